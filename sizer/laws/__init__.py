@@ -1,0 +1,33 @@
+"""Motion-law library: normalized shapes, exact coefficients, spec parsing."""
+
+from sizer.laws.base import INFINITELY_SMOOTH, MotionLaw, Parameter, Piece
+from sizer.laws.coefficients import AccelerationJump, LawCoefficients
+from sizer.laws.motion import ScaledMotion
+from sizer.laws.registry import (
+    ALIASES,
+    DEFAULT_LAW_SPECS,
+    LAW_FAMILIES,
+    known_law_ids,
+    make_law,
+    resolve,
+)
+from sizer.laws.spec import AUTO, LawSpec, parse_law_spec
+
+__all__ = [
+    "ALIASES",
+    "AUTO",
+    "DEFAULT_LAW_SPECS",
+    "INFINITELY_SMOOTH",
+    "LAW_FAMILIES",
+    "AccelerationJump",
+    "LawCoefficients",
+    "LawSpec",
+    "MotionLaw",
+    "Parameter",
+    "Piece",
+    "ScaledMotion",
+    "known_law_ids",
+    "make_law",
+    "parse_law_spec",
+    "resolve",
+]

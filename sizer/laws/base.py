@@ -1,0 +1,231 @@
+"""Normalized rest-to-rest motion laws q_N(tau), tau in [0, 1] (book sec. 6.2).
+
+A law is a sequence of smooth pieces. Each piece evaluates the position and its
+derivatives exactly on its own interval; the law dispatches a vectorized tau to its
+pieces and is at rest outside [0, 1] (q_N = 0 before, q_N = 1 after, derivatives 0).
+The real motion is q(t) = q0 + h*q_N((t - t0)/T); the k-th derivative scales by h/T^k.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+from functools import cached_property
+from typing import TYPE_CHECKING, ClassVar
+
+import numpy as np
+
+from sizer.errors import UserError
+
+if TYPE_CHECKING:
+    from sizer.laws.coefficients import LawCoefficients
+
+PieceFunction = Callable[[np.ndarray, int], np.ndarray]
+"""Evaluate the derivative of the given order of q_N at an array of tau in the piece."""
+
+INFINITELY_SMOOTH = math.inf
+"""Continuity class of a law whose position is C^infinity (e.g. the exponential law)."""
+
+
+@dataclass(frozen=True)
+class Piece:
+    """One smooth piece of a law: q_N restricted to [start, end]."""
+
+    start: float
+    end: float
+    evaluate: PieceFunction
+
+
+def mirrored(pieces: Sequence[Piece]) -> list[Piece]:
+    """Complete the first half [0, 1/2] of a symmetric law: q_N(tau) = 1 - q_N(1 - tau).
+
+    The k-th derivative of 1 - f(1 - tau) is -(-1)^k f^(k)(1 - tau) (book sec. 5.1).
+    """
+
+    def reflect(piece: Piece) -> Piece:
+        def evaluate(tau: np.ndarray, order: int) -> np.ndarray:
+            value = piece.evaluate(1.0 - tau, order)
+            if order == 0:
+                return 1.0 - value
+            return -((-1.0) ** order) * value
+
+        return Piece(1.0 - piece.end, 1.0 - piece.start, evaluate)
+
+    return list(pieces) + [reflect(p) for p in reversed(pieces)]
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """A shape parameter of a law family, with its admissible range."""
+
+    name: str
+    default: float | None
+    low: float
+    high: float
+    low_open: bool = False
+    high_open: bool = False
+    integer: bool = False
+    odd: bool = False
+    description: str = ""
+
+    def range_text(self) -> str:
+        """The admissible range written as an interval, e.g. '(0, 1/2]'."""
+        low = "-inf" if self.low == -math.inf else _short(self.low)
+        high = "inf" if self.high == math.inf else _short(self.high)
+        left = "(" if self.low_open else "["
+        right = ")" if self.high_open else "]"
+        kind = "odd integer in " if self.odd else "integer in " if self.integer else ""
+        return f"{kind}{left}{low}, {high}{right}"
+
+    def validate(self, law_id: str, value: float) -> float:
+        """Return the value as float, or raise a UserError naming the valid range."""
+        value = float(value)
+        ok = math.isfinite(value)
+        ok = ok and (value > self.low if self.low_open else value >= self.low)
+        ok = ok and (value < self.high if self.high_open else value <= self.high)
+        if ok and self.integer:
+            ok = value == int(value)
+        if ok and self.odd:
+            ok = int(value) % 2 == 1
+        if not ok:
+            raise UserError(
+                f"{law_id}: parameter {self.name}={_short(value)} is out of range; "
+                f"valid: {self.name} {self.range_text()}"
+            )
+        return value
+
+
+def _short(value: float) -> str:
+    """A compact, exact-looking text for a parameter value (fractions where small)."""
+    if value == int(value) and abs(value) < 1e15:
+        return str(int(value))
+    frac = Fraction(value).limit_denominator(1000)
+    if float(frac) == value:
+        return f"{frac.numerator}/{frac.denominator}"
+    return repr(value)
+
+
+def format_parameter(value: float) -> str:
+    """Text of a parameter value in a law spec; reads back to the same float."""
+    return _short(value)
+
+
+class MotionLaw:
+    """A normalized rest-to-rest motion law on [0, 1].
+
+    Subclasses set ``law_id``, ``parameters``, and build their pieces and continuity
+    class in ``__init__`` via ``_setup``.
+    """
+
+    law_id: ClassVar[str] = ""
+    title: ClassVar[str] = ""
+    parameters: ClassVar[tuple[Parameter, ...]] = ()
+    max_order: ClassVar[int] = 4
+    """Highest derivative order the pieces evaluate exactly."""
+
+    def __init__(self, **params: float) -> None:
+        unknown = set(params) - {p.name for p in self.parameters}
+        if unknown:
+            names = ", ".join(p.name for p in self.parameters) or "none"
+            raise UserError(
+                f"{self.law_id}: unknown parameter(s) {', '.join(sorted(unknown))}; "
+                f"parameters: {names}"
+            )
+        values: dict[str, float] = {}
+        for p in self.parameters:
+            if p.name in params:
+                values[p.name] = p.validate(self.law_id, params[p.name])
+            elif p.default is not None:
+                values[p.name] = float(p.default)
+            else:
+                raise UserError(f"{self.law_id}: parameter {p.name} is required "
+                                f"({p.name} {p.range_text()})")
+        self.params: Mapping[str, float] = values
+        pieces, continuity = self._build()
+        self.pieces: tuple[Piece, ...] = tuple(p for p in pieces if p.end > p.start)
+        self.continuity: float = continuity
+        starts = np.array([p.start for p in self.pieces])
+        self._starts = starts
+        self.breakpoints = np.append(starts, self.pieces[-1].end)
+
+    def _build(self) -> tuple[Sequence[Piece], float]:
+        """Return the pieces covering [0, 1] in order and the continuity class k (C^k)."""
+        raise NotImplementedError
+
+    # ----------------------------------------------------------------- naming
+    @property
+    def spec(self) -> str:
+        """Canonical spec text, e.g. 'trapezoidal(alpha=1/3)'; parses back to this law."""
+        if not self.parameters:
+            return self.law_id
+        args = ", ".join(f"{k}={format_parameter(v)}" for k, v in self.params.items())
+        return f"{self.law_id}({args})"
+
+    def __repr__(self) -> str:
+        return f"<MotionLaw {self.spec}>"
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, MotionLaw) and other.spec == self.spec
+
+    def __hash__(self) -> int:
+        return hash(self.spec)
+
+    # ------------------------------------------------------------- evaluation
+    def derivative(self, tau: np.ndarray | float, order: int = 0) -> np.ndarray:
+        """The order-th derivative of q_N at tau (vectorized); rest outside [0, 1].
+
+        At an interior breakpoint the piece on the right is used; tau = 1 belongs to the
+        last piece.
+        """
+        if order < 0 or order > self.max_order:
+            raise ValueError(f"{self.law_id}: derivative order {order} not in 0..{self.max_order}")
+        tau = np.asarray(tau, dtype=float)
+        out = np.zeros(tau.shape)
+        if order == 0:
+            out[tau > 1.0] = 1.0
+        inside = (tau >= 0.0) & (tau <= 1.0)
+        if not inside.any():
+            return out
+        index = np.searchsorted(self._starts, tau, side="right") - 1
+        for i, piece in enumerate(self.pieces):
+            mask = inside & (index == i)
+            if mask.any():
+                out[mask] = piece.evaluate(tau[mask], order)
+        return out
+
+    def piece_derivative(self, index: int, tau: np.ndarray | float, order: int) -> np.ndarray:
+        """The order-th derivative of piece ``index`` at tau (its one-sided values at ends)."""
+        return self.pieces[index].evaluate(np.asarray(tau, dtype=float), order)
+
+    def position(self, tau: np.ndarray | float) -> np.ndarray:
+        return self.derivative(tau, 0)
+
+    def velocity(self, tau: np.ndarray | float) -> np.ndarray:
+        return self.derivative(tau, 1)
+
+    def acceleration(self, tau: np.ndarray | float) -> np.ndarray:
+        return self.derivative(tau, 2)
+
+    def jerk(self, tau: np.ndarray | float) -> np.ndarray:
+        return self.derivative(tau, 3)
+
+    # ----------------------------------------------------------- coefficients
+    def closed_form_coefficients(self) -> dict[str, float]:
+        """Coefficients known in closed form (book formulas); used in place of numerics."""
+        return {}
+
+    @cached_property
+    def coefficients(self) -> LawCoefficients:
+        """C_v, C_a, C_j, C_v_rms, C_a_rms and the acceleration jumps (sec. 6.2)."""
+        from sizer.laws.coefficients import compute_coefficients
+
+        return compute_coefficients(self)
+
+    @cached_property
+    def numerical_coefficients(self) -> LawCoefficients:
+        """The coefficients computed numerically only (ignores closed forms): a cross-check."""
+        from sizer.laws.coefficients import compute_coefficients
+
+        return compute_coefficients(self, use_closed_form=False)

@@ -1,0 +1,168 @@
+"""Shape coefficients of a normalized law (book sec. 6.2, Tables 2.2, 6.1 to 6.7).
+
+C_v = max|q_N'|, C_a = max|q_N''|, C_j = max|q_N'''| inside the smooth pieces, and
+C_v_rms, C_a_rms the RMS values over [0, 1]. Peaks are found exactly: the candidates
+are the ends of each piece and the roots of the next derivative inside it (brentq).
+RMS values integrate each smooth piece with adaptive Gauss-Kronrod quadrature.
+Where the acceleration jumps (between pieces, or against rest at tau = 0 and 1) the
+jerk has an impulse: those jumps are reported, and ``jerk_bounded`` is False.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import integrate, optimize
+
+from sizer.laws.base import MotionLaw
+
+GRID_PER_PIECE = 256
+"""Sub-intervals per piece scanned for sign changes of the next derivative."""
+
+JUMP_TOLERANCE = 1e-9
+"""Relative size below which a difference of one-sided limits is rounding, not a jump."""
+
+COEFFICIENT_NAMES = ("C_v", "C_a", "C_j", "C_v_rms", "C_a_rms")
+
+
+@dataclass(frozen=True)
+class AccelerationJump:
+    """A step of the normalized acceleration at tau: a jerk impulse of that area (h/T^2)."""
+
+    tau: float
+    jump: float
+
+
+@dataclass(frozen=True)
+class LawCoefficients:
+    """Dimensionless coefficients of a law's shape (sec. 6.2)."""
+
+    C_v: float
+    C_a: float
+    C_j: float
+    C_v_rms: float
+    C_a_rms: float
+    acceleration_jumps: tuple[AccelerationJump, ...]
+
+    @property
+    def jerk_bounded(self) -> bool:
+        """True when the acceleration is continuous everywhere, ends included."""
+        return not self.acceleration_jumps
+
+    def as_dict(self) -> dict[str, float]:
+        return {name: getattr(self, name) for name in COEFFICIENT_NAMES}
+
+
+def compute_coefficients(law: MotionLaw, use_closed_form: bool = True) -> LawCoefficients:
+    """All coefficients of a law; closed forms where the law provides them."""
+    known = law.closed_form_coefficients() if use_closed_form else {}
+    values = {
+        "C_v": known.get("C_v") or peak(law, 1)[0],
+        "C_a": known.get("C_a") or peak(law, 2)[0],
+        "C_j": known.get("C_j") or peak(law, 3)[0],
+        "C_v_rms": known.get("C_v_rms") or rms(law, 1),
+        "C_a_rms": known.get("C_a_rms") or rms(law, 2),
+    }
+    return LawCoefficients(**values, acceleration_jumps=tuple(jumps(law, 2)))
+
+
+def peak(law: MotionLaw, order: int) -> tuple[float, float]:
+    """max |q_N^(order)| over the smooth pieces and the tau where it occurs."""
+    best_value, best_tau = -1.0, 0.0
+    for index, piece in enumerate(law.pieces):
+        candidates = [piece.start, piece.end, *_stationary_points(law, index, order)]
+        taus = np.array(candidates)
+        values = np.abs(law.piece_derivative(index, taus, order))
+        k = int(np.argmax(values))
+        if values[k] > best_value:
+            best_value, best_tau = float(values[k]), float(taus[k])
+    return best_value, best_tau
+
+
+def _stationary_points(law: MotionLaw, index: int, order: int) -> list[float]:
+    """Points inside a piece where |q_N^(order)| may peak."""
+    piece = law.pieces[index]
+    grid = np.linspace(piece.start, piece.end, GRID_PER_PIECE + 1)
+    if order + 1 > law.max_order:
+        return _maximize_on_grid(law, index, order, grid)
+    slope = law.piece_derivative(index, grid, order + 1)
+    scale = float(np.max(np.abs(slope))) or 1.0
+    slope = np.where(np.abs(slope) <= 1e-14 * scale, 0.0, slope)
+    points = list(grid[slope == 0.0])
+    sign_change = np.nonzero(slope[:-1] * slope[1:] < 0.0)[0]
+
+    def f(x: float) -> float:
+        return float(law.piece_derivative(index, np.array([x]), order + 1)[0])
+
+    for k in sign_change:
+        points.append(optimize.brentq(f, grid[k], grid[k + 1], xtol=1e-15, rtol=1e-15))
+    return points
+
+
+def _maximize_on_grid(law: MotionLaw, index: int, order: int, grid: np.ndarray) -> list[float]:
+    """Local maxima of |f| refined with bounded Brent search (no next derivative known)."""
+    values = np.abs(law.piece_derivative(index, grid, order))
+    points = []
+    for k in range(1, len(grid) - 1):
+        if values[k] >= values[k - 1] and values[k] >= values[k + 1]:
+            result = optimize.minimize_scalar(
+                lambda x: -abs(float(law.piece_derivative(index, np.array([x]), order)[0])),
+                bounds=(grid[k - 1], grid[k + 1]),
+                method="bounded",
+                options={"xatol": 1e-14},
+            )
+            points.append(float(result.x))
+    return points
+
+
+def rms(law: MotionLaw, order: int) -> float:
+    """sqrt( integral over [0, 1] of (q_N^(order))^2 ), piece by piece."""
+    total = 0.0
+    for index, piece in enumerate(law.pieces):
+
+        def square(x: float, index: int = index) -> float:
+            return float(law.piece_derivative(index, np.array([x]), order)[0]) ** 2
+
+        value, _ = integrate.quad(square, piece.start, piece.end,
+                                  epsabs=0.0, epsrel=1e-13, limit=200)
+        total += value
+    return math.sqrt(total)
+
+
+def one_sided_limits(law: MotionLaw, order: int) -> list[tuple[float, float, float]]:
+    """(tau, left, right) limits of q_N^(order) at every breakpoint, ends included.
+
+    Outside [0, 1] the law is at rest: 0 on the left of tau = 0, 1 or 0 right of tau = 1.
+    """
+    pieces = law.pieces
+
+    def value(index: int, tau: float) -> float:
+        return float(law.piece_derivative(index, np.array([tau]), order)[0])
+
+    rest_after = 1.0 if order == 0 else 0.0
+    rows = [(pieces[0].start, 0.0, value(0, pieces[0].start))]
+    for i in range(1, len(pieces)):
+        rows.append((pieces[i].start, value(i - 1, pieces[i].start), value(i, pieces[i].start)))
+    rows.append((pieces[-1].end, value(len(pieces) - 1, pieces[-1].end), rest_after))
+    return rows
+
+
+def jumps(law: MotionLaw, order: int) -> list[AccelerationJump]:
+    """Breakpoints where q_N^(order) jumps, with the size of the jump."""
+    limits = one_sided_limits(law, order)
+    scale = max(1.0, *(max(abs(left), abs(right)) for _, left, right in limits))
+    return [
+        AccelerationJump(tau=tau, jump=right - left)
+        for tau, left, right in limits
+        if abs(right - left) > JUMP_TOLERANCE * scale
+    ]
+
+
+def measured_continuity(law: MotionLaw) -> float:
+    """The largest k such that q_N is C^k across all breakpoints (up to law.max_order)."""
+    for order in range(law.max_order + 1):
+        if jumps(law, order):
+            return order - 1
+    return law.max_order

@@ -1,0 +1,94 @@
+"""Exponential law (book sec. 2.3, eq. 2.24) with f_a(x, lam) = x^2 / |1 - x^2|^lam.
+
+With x = 2*tau - 1 in [-1, 1], the velocity is q_N' = v_c * exp(-sigma*f(x)); it and
+all its derivatives vanish at both ends, so the law is C^infinity. The position is the
+integral of the velocity, evaluated with composite Gauss-Legendre quadrature on panels
+(the integrand is analytic inside [0, 1)); v_c normalizes q_N(1) = 1.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.polynomial.legendre import leggauss
+
+from sizer.laws.base import INFINITELY_SMOOTH, MotionLaw, Parameter, Piece
+
+PANELS = 64
+NODES = 24
+
+
+class Exponential(MotionLaw):
+    """Exponential law with smoothness parameters sigma and lam (sec. 2.3, Table 2.3)."""
+
+    law_id = "exponential"
+    title = "Exponential"
+    parameters = (
+        Parameter("sigma", 7.1, 0.0, 100.0, low_open=True,
+                  description="exponent scale (book optimum 7.1)"),
+        Parameter("lam", 0.2, 0.0, 5.0, low_open=True,
+                  description="exponent of |1 - x^2| (book optimum 0.2)"),
+    )
+
+    def _build(self):
+        sigma, lam = self.params["sigma"], self.params["lam"]
+
+        def shape(x: np.ndarray) -> np.ndarray:
+            """exp(-sigma*f(x)) for |x| < 1, 0 at |x| >= 1."""
+            w = 1.0 - x * x
+            out = np.zeros_like(x)
+            inside = w > 0.0
+            with np.errstate(over="ignore", under="ignore", divide="ignore"):
+                out[inside] = np.exp(-sigma * x[inside] ** 2 / w[inside] ** lam)
+            return out
+
+        # Cumulative integral of shape over [0, 1] on equal panels, Gauss-Legendre nodes.
+        nodes, weights = leggauss(NODES)
+        edges = np.linspace(0.0, 1.0, PANELS + 1)
+        half = 0.5 * (edges[1:] - edges[:-1])
+        mid = 0.5 * (edges[1:] + edges[:-1])
+        panel = (shape(mid[:, None] + half[:, None] * nodes) * weights).sum(axis=1) * half
+        cumulative = np.concatenate(([0.0], np.cumsum(panel)))
+        v_c = 1.0 / cumulative[-1]  # integral over tau in [0, 1] equals integral over x in [0, 1]
+
+        def integral(x_abs: np.ndarray) -> np.ndarray:
+            """int_0^X shape(y) dy for X in [0, 1]."""
+            k = np.minimum((x_abs * PANELS).astype(int), PANELS - 1)
+            left = edges[k]
+            h = 0.5 * (x_abs - left)
+            partial = (shape((left + h)[:, None] + h[:, None] * nodes) * weights).sum(axis=1) * h
+            return cumulative[k] + partial
+
+        def evaluate(tau: np.ndarray, order: int) -> np.ndarray:
+            x = 2.0 * tau - 1.0
+            if order == 0:
+                return 0.5 + np.sign(x) * 0.5 * v_c * integral(np.abs(x))
+            e = shape(x)
+            out = np.zeros_like(x)
+            live = e > 0.0
+            x, e = x[live], e[live]
+            w = 1.0 - x * x
+            f1 = 2 * x * w**-lam + 2 * lam * x**3 * w ** (-lam - 1)
+            if order == 1:
+                out[live] = v_c * e
+            elif order == 2:
+                out[live] = 2 * v_c * (-sigma * f1) * e
+            else:
+                f2 = (2 * w**-lam + 10 * lam * x * x * w ** (-lam - 1)
+                      + 4 * lam * (lam + 1) * x**4 * w ** (-lam - 2))
+                if order == 3:
+                    out[live] = 4 * v_c * (sigma**2 * f1**2 - sigma * f2) * e
+                else:
+                    f3 = (24 * lam * x * w ** (-lam - 1)
+                          + 36 * lam * (lam + 1) * x**3 * w ** (-lam - 2)
+                          + 8 * lam * (lam + 1) * (lam + 2) * x**5 * w ** (-lam - 3))
+                    out[live] = 8 * v_c * (-(sigma**3) * f1**3 + 3 * sigma**2 * f1 * f2
+                                           - sigma * f3) * e
+            return out
+
+        self._v_c = v_c
+        return [Piece(0.0, 1.0, evaluate)], INFINITELY_SMOOTH
+
+    def closed_form_coefficients(self) -> dict[str, float]:
+        return {"C_v": self._v_c}
+
+

@@ -1,0 +1,63 @@
+"""Exact piece types: a polynomial plus a sum of sines, evaluated to any derivative order."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import replace
+
+import numpy as np
+from numpy.polynomial import polynomial as P
+
+from sizer.laws.base import Piece
+
+
+def trig_poly_piece(
+    start: float,
+    end: float,
+    poly: Sequence[float] = (),
+    sines: Sequence[tuple[float, float, float]] = (),
+    origin: float = 0.0,
+) -> Piece:
+    """q(tau) = sum_k poly[k]*(tau - origin)^k + sum A*sin(w*tau + phi) on [start, end].
+
+    Covers the cycloidal, harmonic and Fourier laws and the pieces of the modified
+    trapezoidal and modified sinusoidal laws (book sec. 2.2, 2.4, 3.7, 3.8) as well as
+    the polynomial pieces of the trapezoid and double S (sec. 3.2, 3.4).
+    """
+    coef = np.asarray(poly, dtype=float) if len(poly) else np.zeros(1)
+    sines = tuple(sines)
+
+    def evaluate(tau: np.ndarray, order: int) -> np.ndarray:
+        c = P.polyder(coef, order) if order else coef
+        out = P.polyval(tau - origin, c) + np.zeros_like(tau)
+        for amplitude, omega, phase in sines:
+            out = out + amplitude * omega**order * np.sin(omega * tau + phase + order * math.pi / 2)
+        return out
+
+    return Piece(start, end, evaluate)
+
+
+def constant_jerk_pieces(
+    segments: Sequence[tuple[float, float | None, float]], end: float
+) -> list[Piece]:
+    """Polynomial pieces from (duration, acceleration at start or None, jerk) segments.
+
+    Integrates the jerk exactly from rest at tau = 0; an acceleration given at the start
+    of a segment is a step (a jerk impulse), None keeps it continuous. Segments of zero
+    length are skipped; the last piece ends exactly at ``end`` (no rounding drift).
+    """
+    pieces = []
+    t = q = v = a = 0.0
+    for duration, a_start, jerk in segments:
+        if a_start is not None:
+            a = a_start
+        if duration > 0.0:
+            pieces.append(trig_poly_piece(t, t + duration, (q, v, a / 2.0, jerk / 6.0), origin=t))
+            d = duration
+            q, v, a = (q + v * d + a * d * d / 2.0 + jerk * d**3 / 6.0,
+                       v + a * d + jerk * d * d / 2.0,
+                       a + jerk * d)
+            t += d
+    pieces[-1] = replace(pieces[-1], end=end)
+    return pieces

@@ -1,0 +1,59 @@
+"""Rest-to-rest polynomials of odd degree n = 2m+1 with null boundary derivatives.
+
+Book sec. 2.1.7, Tables 2.1 and 2.2. In Bernstein form the position is
+q_N = sum_{k=m+1}^{n} B_{k,n}(tau), the regularized incomplete beta function
+I_tau(m+1, m+1); the velocity is (2m+1)*C(2m, m)*(tau*(1-tau))^m. The Bernstein form
+is evaluated stably for every degree (no ill-conditioned linear system).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.interpolate import BPoly
+from scipy.special import beta as beta_function
+
+from sizer.laws.base import MotionLaw, Parameter, Piece
+
+
+class Polynomial(MotionLaw):
+    """Polynomial of odd degree 3..21 with null derivatives up to order (n-1)/2 at both ends."""
+
+    law_id = "polynomial"
+    title = "Polynomial"
+    parameters = (
+        Parameter("degree", 5, 3, 21, integer=True, odd=True,
+                  description="odd degree n; continuity C^((n-1)/2)"),
+    )
+    max_order = 22
+
+    @property
+    def m(self) -> int:
+        return (int(self.params["degree"]) - 1) // 2
+
+    def _build(self):
+        m = self.m
+        coefficients = np.array([0.0] * (m + 1) + [1.0] * (m + 1))
+        derivatives = [BPoly(coefficients[:, None], [0.0, 1.0])]
+        for _ in range(self.max_order):
+            derivatives.append(derivatives[-1].derivative())
+
+        def evaluate(tau: np.ndarray, order: int) -> np.ndarray:
+            return derivatives[order](tau)
+
+        return [Piece(0.0, 1.0, evaluate)], m
+
+    def closed_form_coefficients(self) -> dict[str, float]:
+        """C_v at tau = 1/2; C_a where 1 - 2 tau = 1/sqrt(2m - 1); RMS via beta functions."""
+        m = self.m
+        k = (2 * m + 1) * math.comb(2 * m, m)  # velocity = k * u^m, u = tau(1 - tau)
+        s = 1.0 / math.sqrt(2 * m - 1)
+        u = (1.0 - s * s) / 4.0
+        return {
+            "C_v": k / 4.0**m,
+            "C_a": k * m * u ** (m - 1) * s,
+            "C_v_rms": k * math.sqrt(beta_function(2 * m + 1, 2 * m + 1)),
+            "C_a_rms": k * m * math.sqrt(beta_function(2 * m - 1, 2 * m - 1)
+                                         - 4.0 * beta_function(2 * m, 2 * m)),
+        }

@@ -1,0 +1,90 @@
+"""Law families by id, aliases, and construction from spec text."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from fractions import Fraction
+
+from sizer.errors import UserError
+from sizer.laws.base import MotionLaw
+from sizer.laws.exponential import Exponential
+from sizer.laws.fourier import Freudenstein13, Freudenstein135, Gutman13
+from sizer.laws.modified import ModifiedSinusoidal, ModifiedTrapezoidal
+from sizer.laws.modified_cycloidal import ModifiedCycloidal
+from sizer.laws.piecewise_polynomial import ConstantAcceleration, DoubleS, Trapezoidal
+from sizer.laws.polynomial import Polynomial
+from sizer.laws.spec import AUTO, LawSpec, parse_law_spec
+from sizer.laws.trigonometric import Cycloidal, Elliptic, Harmonic
+
+LAW_FAMILIES: Mapping[str, type[MotionLaw]] = {
+    cls.law_id: cls
+    for cls in (
+        ConstantAcceleration, Trapezoidal, DoubleS, Harmonic, Cycloidal, Elliptic, Polynomial,
+        ModifiedTrapezoidal, ModifiedSinusoidal, ModifiedCycloidal,
+        Gutman13, Freudenstein13, Freudenstein135, Exponential,
+    )
+}
+
+ALIASES: Mapping[str, tuple[str, dict[str, Fraction]]] = {
+    "poly3": ("polynomial", {"degree": Fraction(3)}),
+    "poly5": ("polynomial", {"degree": Fraction(5)}),
+    "poly7": ("polynomial", {"degree": Fraction(7)}),
+    "triangular": ("constant_acceleration", {}),
+}
+
+DEFAULT_LAW_SPECS: tuple[str, ...] = (
+    "constant_acceleration",
+    "trapezoidal(alpha=1/3)",
+    "double_s(alpha=1/3, beta=1/4)",
+    "harmonic",
+    "cycloidal",
+    "elliptic(n=2)",
+    "poly3",
+    "poly5",
+    "poly7",
+    "modified_trapezoidal",
+    "modified_sinusoidal",
+    "modified_cycloidal",
+    "gutman_1_3",
+    "freudenstein_1_3",
+    "freudenstein_1_3_5",
+    "exponential(sigma=7.1, lam=0.2)",
+)
+"""The laws of ``sizer laws`` when none is named (Table 6.2 plus the other families)."""
+
+
+def known_law_ids() -> list[str]:
+    return sorted([*LAW_FAMILIES, *ALIASES])
+
+
+def resolve(spec: LawSpec | str) -> tuple[type[MotionLaw], dict[str, Fraction | str]]:
+    """The family of a spec and its arguments by parameter name (positional ones named)."""
+    if isinstance(spec, str):
+        spec = parse_law_spec(spec)
+    name, fixed = spec.name, {}
+    if name in ALIASES:
+        name, fixed = ALIASES[name][0], dict(ALIASES[name][1])
+    family = LAW_FAMILIES.get(name)
+    if family is None:
+        raise UserError(f"unknown law {spec.name!r}; known laws: {', '.join(known_law_ids())}")
+    free = [p.name for p in family.parameters if p.name not in fixed]
+    values: dict[str, Fraction | str] = dict(fixed)
+    for position, (key, value) in enumerate(spec.args):
+        if key is None:
+            if position >= len(free):
+                raise UserError(f"{spec.name}: too many arguments; parameters: "
+                                f"{', '.join(free) or 'none'}")
+            key = free[position]
+        if key in values:
+            raise UserError(f"{spec.name}: parameter {key} given twice")
+        values[key] = value
+    return family, values
+
+
+def make_law(spec: LawSpec | str) -> MotionLaw:
+    """Build a law from its spec text, e.g. ``make_law('double_s(alpha=1/3, beta=1/4)')``."""
+    family, values = resolve(spec)
+    if any(v == AUTO for v in values.values()):
+        raise UserError(f"{family.law_id}: 'auto' parameters are chosen by the sizing "
+                        f"solver and need a design file; give a number here")
+    return family(**{k: float(v) for k, v in values.items()})
