@@ -41,9 +41,11 @@ class Exponential(MotionLaw):
                 out[inside] = np.exp(-sigma * x[inside] ** 2 / w[inside] ** lam)
             return out
 
-        # Cumulative integral of shape over [0, 1] on equal panels, Gauss-Legendre nodes.
+        # Cumulative integral of shape over [0, 1] on panels graded toward x = 1 (where
+        # the velocity falls steeply for small sigma or lam), Gauss-Legendre nodes.
         nodes, weights = leggauss(NODES)
-        edges = np.linspace(0.0, 1.0, PANELS + 1)
+        graded = 1.0 - 10.0 ** -np.arange(2.0, 15.0, 0.5)
+        edges = np.unique(np.concatenate((np.linspace(0.0, 1.0, PANELS + 1), graded)))
         half = 0.5 * (edges[1:] - edges[:-1])
         mid = 0.5 * (edges[1:] + edges[:-1])
         panel = (shape(mid[:, None] + half[:, None] * nodes) * weights).sum(axis=1) * half
@@ -52,7 +54,7 @@ class Exponential(MotionLaw):
 
         def integral(x_abs: np.ndarray) -> np.ndarray:
             """int_0^X shape(y) dy for X in [0, 1]."""
-            k = np.minimum((x_abs * PANELS).astype(int), PANELS - 1)
+            k = np.clip(np.searchsorted(edges, x_abs, side="right") - 1, 0, len(edges) - 2)
             left = edges[k]
             h = 0.5 * (x_abs - left)
             partial = (shape((left + h)[:, None] + h[:, None] * nodes) * weights).sum(axis=1) * h
