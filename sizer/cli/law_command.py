@@ -1,0 +1,64 @@
+"""``sizer law``: one motion law scaled to a move, sampled in time."""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+import typer
+
+from sizer.cli.options import FormatOption, OutputOption
+from sizer.errors import UserError
+from sizer.report.formats import Format
+from sizer.units import parse_displacement, to_si
+
+MAX_SAMPLES = 1_000_000
+
+
+def law(
+    spec: Annotated[str, typer.Argument(
+        help="The law, e.g. cycloidal, poly5 or 'trapezoidal(alpha=1/3)'.",
+        show_default=False)],
+    displacement: Annotated[str, typer.Option(
+        "--displacement", metavar="H",
+        help="Displacement h: an angle ('90 deg', rad if bare) or a length ('200 mm').",
+        show_default=False)],
+    duration: Annotated[str, typer.Option(
+        "--duration", metavar="T", help="Duration T of the move, e.g. '0.2 s' (s if bare).",
+        show_default=False)],
+    start_time: Annotated[str, typer.Option(
+        "--start-time", metavar="T0", help="Time t0 when the move starts.")] = "0",
+    start_position: Annotated[str, typer.Option(
+        "--start-position", metavar="Q0",
+        help="Position q0 at the start, same kind as the displacement.")] = "0",
+    samples: Annotated[int, typer.Option(
+        "--samples", "-n", metavar="N", help="Number of equally spaced samples, ends included.",
+    )] = 101,
+    fmt: FormatOption = Format.TABLE,
+    output: OutputOption = None,
+) -> None:
+    """Sample a motion law scaled to a move: time t, position q, velocity v, accel a, jerk j.
+
+    q(t) = q0 + h q_N((t - t0)/T); the columns are in SI units (rad or m based).
+
+    Example:
+
+        sizer law cycloidal --displacement '90 deg' --duration '0.2 s' --format csv
+    """
+    from sizer.laws import ScaledMotion, make_law  # lazy: keeps --help fast
+    from sizer.report.document import publish
+    from sizer.report.series_table import SeriesDocument
+
+    h, linear = parse_displacement(displacement, field="--displacement")
+    T = to_si(duration, "time", field="--duration")
+    if T <= 0.0:
+        raise UserError(f"must be positive, got {duration!r}", field="--duration")
+    t0 = to_si(start_time, "time", field="--start-time")
+    q0 = to_si(start_position, "length" if linear else "angle", field="--start-position")
+    if not 2 <= samples <= MAX_SAMPLES:
+        raise UserError(f"must be between 2 and {MAX_SAMPLES}, got {samples}", field="--samples")
+    motion = ScaledMotion(make_law(spec), h, T, start_time=t0, start_position=q0)
+    publish(SeriesDocument(motion, motion.sample(samples), linear=linear), fmt, output)
+
+
+def register(app: typer.Typer) -> None:
+    app.command("law")(law)
