@@ -258,3 +258,29 @@ def test_version() -> None:
 
     assert ok("--version", in_process=True).strip() == f"sizer {__version__}"
 
+
+# ---------------------------------------------------------------- the README
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def test_readme_starts_with_the_run_and_test_commands_that_ci_runs() -> None:
+    readme = (ROOT / "README.md").read_text().splitlines()
+    assert readme[1].startswith("python -m pip install . && python -m sizer ")
+    assert readme[2] == "python -m pip install '.[test]' && python -m pytest -q"
+    ci = (ROOT / ".ci" / "run").read_text().splitlines()
+    assert ci[0] == "#!/usr/bin/env bash" and "set -euo pipefail" in ci
+    assert [line for line in ci if line.startswith("python ")] == [readme[2]]
+
+
+def test_readme_documents_every_law_and_its_example_output() -> None:
+    from sizer.laws import LAW_FAMILIES, known_law_ids
+
+    readme = (ROOT / "README.md").read_text()
+    for law_id in known_law_ids():
+        assert f"`{law_id}`" in readme
+    for family in LAW_FAMILIES.values():
+        for parameter in family.parameters:
+            assert f"`{parameter.name}` {parameter.range_text()}" in readme
+    md = ok("laws", "--law", "cycloidal", "--law", "double_s(alpha=1/3, beta=1/4)",
+            "--format", "md", in_process=True)
+    assert md in readme
