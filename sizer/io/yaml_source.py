@@ -1,0 +1,242 @@
+"""YAML text with the line of every mapping key and sequence item.
+
+``read_yaml(path)`` / ``parse_yaml(text, file)`` return a :class:`YamlSource`: the plain
+data (safe loader: dicts, lists, str, int, float, bool, None, dates) and a map from paths
+like ``("task", "duration")`` or ``("motors", 3, "inertia")`` to 1-based line numbers.
+Malformed YAML, duplicate keys and a top level that is not a mapping raise UserError with
+the file and line.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Hashable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from sizer.errors import UserError
+
+Path_ = tuple[Any, ...]
+"""A path into the YAML data: mapping keys and sequence indices."""
+
+_MERGE_TAG = "tag:yaml.org,2002:merge"
+
+
+def format_path(path: Sequence[Any]) -> str:
+    """``('motors', 3, 'inertia')`` -> ``'motors[3].inertia'``."""
+    text = ""
+    for part in path:
+        if isinstance(part, int) and not isinstance(part, bool):
+            text += f"[{part}]"
+        elif isinstance(part, str) and part.isidentifier():
+            text += f".{part}" if text else part
+        else:  # an odd key, e.g. '12 kg' or 0: shown as in Python
+            shown = repr(part)
+            text += f"[{shown if len(shown) <= 40 else shown[:37] + '...'}]"
+    return text
+
+
+@dataclass
+class YamlSource:
+    """Parsed YAML data and where each key or item starts (1-based lines)."""
+
+    data: Any
+    file: str | None = None
+    lines: dict[Path_, int] = field(default_factory=dict)
+
+    def line_of(self, path: Sequence[Any]) -> int | None:
+        """The line of ``path``, or of its nearest ancestor whose line is known."""
+        path = tuple(path)
+        while True:
+            line = self.lines.get(path)
+            if line is not None:
+                return line
+            if not path:
+                return None
+            path = path[:-1]
+
+    def error(self, message: str, path: Sequence[Any] = (), *,
+              field: str | None = None) -> UserError:
+        """A UserError at ``path`` (the field name defaults to the path's text)."""
+        return UserError(message, file=self.file, line=self.line_of(path),
+                         field=field if field is not None else (format_path(path) or None))
+
+    def relocate(self, error: UserError, path: Sequence[Any]) -> UserError:
+        """``error`` placed at ``path`` of this file, keeping its own location if it has one."""
+        if error.file is not None:
+            return error
+        return UserError(error.message, file=self.file, line=self.line_of(path),
+                         field=format_path(path) or error.field)
+
+
+def read_yaml(path: str | Path) -> YamlSource:
+    """Read and parse a YAML file whose top level must be a mapping."""
+    path = Path(path)
+    try:
+        raw = path.read_bytes()
+    except FileNotFoundError:
+        raise UserError("file not found", file=str(path)) from None
+    except IsADirectoryError:
+        raise UserError("is a directory, not a YAML file", file=str(path)) from None
+    except OSError as error:
+        raise UserError(f"cannot read: {error.strerror or error}", file=str(path)) from None
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as error:
+        line = raw[: error.start].count(b"\n") + 1
+        raise UserError("not UTF-8 text", file=str(path), line=line) from None
+    return parse_yaml(text, str(path))
+
+
+def parse_yaml(text: str, file: str | None = None) -> YamlSource:
+    """Parse YAML text (one document, a mapping at the top) keeping line numbers."""
+    try:
+        loader = yaml.SafeLoader(text)
+    except yaml.YAMLError as error:
+        raise _yaml_error(error, text, file) from None
+    try:
+        node = loader.get_single_node()
+        source = YamlSource(None, file)
+        if node is not None:
+            source.lines[()] = node.start_mark.line + 1
+            _walk(node, (), source, loader, set(), set())
+            data = loader.construct_document(node)
+        else:
+            data = None
+    except yaml.YAMLError as error:
+        raise _yaml_error(error, text, file) from None
+    except RecursionError:
+        raise UserError("invalid YAML: nested too deeply", file=file) from None
+    except (ValueError, TypeError, OverflowError) as error:  # constructors of odd values
+        raise UserError(f"invalid YAML: {error}", file=file) from None
+    finally:
+        loader.dispose()
+    if not isinstance(data, dict):
+        kind = "empty" if data is None else f"a {_kind(data)}"
+        line = node.start_mark.line + 1 if node is not None else 1
+        raise UserError(f"the file must hold a mapping (key: value lines), but it is {kind}",
+                        file=file, line=line)
+    source.data = data
+    return source
+
+
+def _kind(value: Any) -> str:
+    if isinstance(value, list):
+        return "list"
+    if isinstance(value, str):
+        return "text"
+    if isinstance(value, bool):
+        return "boolean"
+    if isinstance(value, int | float):
+        return "number"
+    return type(value).__name__
+
+
+def _walk(node: yaml.Node, path: Path_, source: YamlSource, loader: yaml.SafeLoader,
+          seen: set[int], active: set[int]) -> None:
+    """Record lines of keys/items under ``node`` and reject duplicate keys.
+
+    Each node is visited once (aliases share nodes; this also stops recursive aliases and
+    alias bombs), so paths reached only through an alias fall back to an ancestor's line.
+    ``active`` holds the nodes being walked: meeting one again is a recursive alias.
+    """
+    if id(node) in active:
+        raise UserError("recursive YAML alias (a collection that contains itself)",
+                        file=source.file, line=node.start_mark.line + 1,
+                        field=format_path(path) or None)
+    if id(node) in seen:
+        return
+    seen.add(id(node))
+    active.add(id(node))
+    try:
+        _walk_children(node, path, source, loader, seen, active)
+    finally:
+        active.discard(id(node))
+
+
+def _walk_children(node: yaml.Node, path: Path_, source: YamlSource, loader: yaml.SafeLoader,
+                   seen: set[int], active: set[int]) -> None:
+    if isinstance(node, yaml.ScalarNode):
+        _construct_scalar(node, path, source, loader)
+    elif isinstance(node, yaml.SequenceNode):
+        for index, item in enumerate(node.value):
+            item_path = (*path, index)
+            source.lines.setdefault(item_path, item.start_mark.line + 1)
+            _walk(item, item_path, source, loader, seen, active)
+    elif isinstance(node, yaml.MappingNode):
+        first_line: dict[Hashable, int] = {}
+        for key_node, value_node in node.value:
+            line = key_node.start_mark.line + 1
+            if key_node.tag == _MERGE_TAG:
+                # '<<: *defaults': merged keys belong to this mapping, explicit keys win.
+                merged = value_node.value if isinstance(value_node, yaml.SequenceNode) \
+                    else [value_node]
+                for part in merged:
+                    if isinstance(part, yaml.MappingNode):
+                        _walk_merged(part, path, source, loader, seen, active)
+                continue
+            key = _key(key_node, path, source, loader)
+            if key in first_line:
+                raise UserError(f"duplicate key {key!r} (first given on line {first_line[key]})",
+                                file=source.file, line=line,
+                                field=format_path((*path, key)))
+            first_line[key] = line
+            key_path = (*path, key)
+            source.lines[key_path] = line
+            _walk(value_node, key_path, source, loader, seen, active)
+
+
+def _walk_merged(node: yaml.MappingNode, path: Path_, source: YamlSource,
+                 loader: yaml.SafeLoader, seen: set[int], active: set[int]) -> None:
+    for key_node, value_node in node.value:
+        if key_node.tag == _MERGE_TAG:
+            continue
+        key_path = (*path, _key(key_node, path, source, loader))
+        source.lines.setdefault(key_path, key_node.start_mark.line + 1)
+        _walk(value_node, key_path, source, loader, seen, active)
+
+
+def _construct_scalar(node: yaml.ScalarNode, path: Path_, source: YamlSource,
+                      loader: yaml.SafeLoader) -> Any:
+    """Construct a scalar now, so that a bad one (e.g. date 2024-02-30) has a line."""
+    try:
+        return loader.construct_object(node)
+    except yaml.YAMLError:
+        raise
+    except Exception as error:  # the timestamp constructor raises ValueError and friends
+        raise UserError(f"invalid YAML value {node.value!r}: {error}", file=source.file,
+                        line=node.start_mark.line + 1,
+                        field=format_path(path) or None) from None
+
+
+def _key(node: yaml.Node, path: Path_, source: YamlSource, loader: yaml.SafeLoader) -> Hashable:
+    """The constructed value of a scalar key; other keys by their position."""
+    if isinstance(node, yaml.ScalarNode):
+        value = _construct_scalar(node, path, source, loader)
+        try:
+            hash(value)
+        except TypeError:
+            return f"<key at line {node.start_mark.line + 1}>"
+        return value
+    return f"<complex key at line {node.start_mark.line + 1}>"
+
+
+def _yaml_error(error: yaml.YAMLError, text: str, file: str | None) -> UserError:
+    """A one-line UserError from a PyYAML error, at its line."""
+    line = None
+    mark = getattr(error, "problem_mark", None) or getattr(error, "context_mark", None)
+    if mark is not None:
+        line = mark.line + 1
+    elif isinstance(error, yaml.reader.ReaderError):
+        line = text[: error.position].count("\n") + 1
+    if isinstance(error, yaml.MarkedYAMLError):
+        parts = [error.context, error.problem]
+        message = "; ".join(p for p in parts if p)
+    elif isinstance(error, yaml.reader.ReaderError):
+        char = error.character
+        message = f"unacceptable character {chr(char) if isinstance(char, int) else char!r}"
+    else:
+        message = str(error).splitlines()[0] if str(error) else type(error).__name__
+    return UserError(f"invalid YAML: {message or 'cannot parse'}", file=file, line=line)
