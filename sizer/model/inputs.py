@@ -1,0 +1,414 @@
+"""Pydantic models of the YAML input files: the design file and the motor catalog.
+
+They check the shape of a file (known fields, types) and convert every quantity whose kind
+is fixed to an SI float with :func:`sizer.units.to_si` ("3000 rpm" -> 314.159...). The
+quantities whose kind depends on the axis (a rotary or a linear load) stay as given and are
+converted by :mod:`sizer.io.loader`, which also runs the checks that span several fields
+(curve order, max speed >= rated speed, ...) and builds the domain objects of
+:mod:`sizer.model.domain`.
+
+Validators raise ValueError with a one-line message; the loader turns pydantic's
+ValidationError into a UserError at the file, line and field.
+"""
+
+from __future__ import annotations
+
+import math
+import reprlib
+from typing import Annotated, Any, Literal
+
+from pydantic import (
+    BaseModel,
+    BeforeValidator,
+    ConfigDict,
+    Discriminator,
+    Field,
+    StrictBool,
+    Tag,
+    WithJsonSchema,
+)
+
+from sizer.errors import UserError
+from sizer.units import KINDS, to_si
+
+# ---------------------------------------------------------------- quantities
+
+
+_REPR = reprlib.Repr()
+_REPR.maxlevel, _REPR.maxdict, _REPR.maxlist, _REPR.maxtuple = 2, 3, 3, 3
+_REPR.maxstring, _REPR.maxother, _REPR.maxlong = 50, 50, 40
+
+
+def show_value(value: Any) -> str:
+    """A short repr of a user's value for messages; bounded even for huge or shared data."""
+    text = _REPR.repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+_show = show_value
+
+
+def _a(name: str) -> str:
+    return f"an {name}" if name[0] in "aeiou" else f"a {name}"
+
+
+def _bound_text(ge: float | None, gt: float | None, le: float | None,
+                lt: float | None) -> str:
+    def num(x: float) -> str:
+        return f"{x:g}"
+
+    if (ge is not None or gt is not None) and (le is not None or lt is not None):
+        left = f"[{num(ge)}" if ge is not None else f"({num(gt)}"  # type: ignore[arg-type]
+        right = f"{num(le)}]" if le is not None else f"{num(lt)})"  # type: ignore[arg-type]
+        return f"in {left}, {right}"
+    if gt is not None:
+        return f"> {num(gt)}"
+    if ge is not None:
+        return f">= {num(ge)}"
+    if lt is not None:
+        return f"< {num(lt)}"
+    return f"<= {num(le)}"  # type: ignore[arg-type]
+
+
+def convert(value: Any, kind: str, *, gt: float | None = None, ge: float | None = None,
+            lt: float | None = None, le: float | None = None) -> float:
+    """``to_si`` plus a range check; raises ValueError with a one-line message."""
+    if isinstance(value, bool) or not isinstance(value, str | int | float):
+        spec = KINDS[kind]
+        raise ValueError(f"expected {_a(kind.replace('_', ' '))} like {spec.example!r}, "
+                         f"got {_show(value)}")
+    if isinstance(value, str) and len(value) > 100:
+        raise ValueError(f"expected {_a(kind.replace('_', ' '))} like "
+                         f"{KINDS[kind].example!r}, got a text of {len(value)} characters")
+    try:
+        result = to_si(value, kind)
+    except UserError as error:
+        raise ValueError(error.message) from None
+    ok = ((gt is None or result > gt) and (ge is None or result >= ge)
+          and (lt is None or result < lt) and (le is None or result <= le))
+    if not ok:
+        unit = KINDS[kind].si_unit
+        shown = f"{result:g}" if unit == "1" else f"{result:g} {unit}"
+        given = ("" if isinstance(value, int | float) or value.strip() == shown
+                 else f" ({value.strip()})")
+        raise ValueError(f"must be {_bound_text(ge, gt, le, lt)}, got {shown}{given}")
+    return result
+
+
+def _quantity_schema(kind: str, note: str = "") -> dict[str, Any]:
+    spec = KINDS[kind]
+    name = kind.replace("_", " ")
+    text = f"{name} like '{spec.example}'"
+    if spec.si_unit != "1":
+        text += f"; a bare number is in {spec.si_unit}"
+    return {"anyOf": [{"type": "number"}, {"type": "string"}],
+            "description": f"{text}{'; ' + note if note else ''}"}
+
+
+def Quantity(kind: str, *, gt: float | None = None, ge: float | None = None,
+             lt: float | None = None, le: float | None = None, note: str = "") -> Any:
+    """An annotated float: accepts a number (SI) or a text with a unit of ``kind``."""
+    bounds = ("" if all(b is None for b in (gt, ge, lt, le))
+              else f"must be {_bound_text(ge, gt, le, lt)} (SI)")
+    schema = _quantity_schema(kind, "; ".join(p for p in (bounds, note) if p))
+    return Annotated[
+        float,
+        BeforeValidator(lambda v: convert(v, kind, gt=gt, ge=ge, lt=lt, le=le)),
+        WithJsonSchema(schema),
+    ]
+
+
+def RawQuantity(examples: str) -> Any:
+    """A quantity kept as given: its kind (torque or force...) is known once the axis is.
+
+    ``examples`` shows the accepted forms in messages, e.g. "'0.2 N*m' or '10 N'".
+    """
+
+    def check(value: Any) -> Any:
+        if isinstance(value, bool) or not isinstance(value, str | int | float):
+            raise ValueError(f"expected a number or a quantity like {examples}, "
+                             f"got {_show(value)}")
+        if isinstance(value, float) and not math.isfinite(value):
+            raise ValueError(f"{value!r} is not a finite number")
+        return value
+
+    return Annotated[
+        str | float | int,
+        BeforeValidator(check),
+        WithJsonSchema({"anyOf": [{"type": "number"}, {"type": "string"}]}),
+    ]
+
+
+def _text(value: Any) -> Any:
+    """Numbers are accepted as text (part numbers, ids like 100)."""
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        return str(value)
+    if value is None or not isinstance(value, str):
+        raise ValueError(f"expected text, got {_show(value)}")
+    return value
+
+
+Text = Annotated[str, BeforeValidator(_text)]
+
+
+def _identifier(value: Any) -> str:
+    text = _text(value).strip()
+    if not text:
+        raise ValueError("must not be empty")
+    return text
+
+
+Identifier = Annotated[str, BeforeValidator(_identifier)]
+
+# ---------------------------------------------------------------- law specs
+
+
+def check_law_spec(text: Any) -> str:
+    """Validate a law spec (``auto`` shape parameters allowed); ValueError if invalid.
+
+    Beyond :func:`sizer.laws.resolve` it rejects unknown parameter names and numbers out
+    of a parameter's range, and builds the law when no parameter is ``auto``.
+    """
+    from sizer.laws import AUTO, make_law, resolve
+
+    if not isinstance(text, str):
+        raise ValueError(f"expected a law spec like 'cycloidal' or 'trapezoidal(alpha=1/3)', "
+                         f"got {_show(text)}")
+    try:
+        family, values = resolve(text)
+        names = {p.name: p for p in family.parameters}
+        unknown = sorted(set(values) - set(names))
+        if unknown:
+            raise UserError(f"{family.law_id}: unknown parameter(s) {', '.join(unknown)}; "
+                            f"parameters: {', '.join(names) or 'none'}")
+        for key, value in values.items():
+            if value != AUTO:
+                names[key].validate(family.law_id, value)  # type: ignore[arg-type]
+        if AUTO not in values.values():
+            make_law(text)
+    except UserError as error:
+        raise ValueError(error.message) from None
+    except (ArithmeticError, ValueError, TypeError) as error:  # huge numbers and the like
+        raise ValueError(f"invalid law spec {_show(text)}: {error}") from None
+    return text.strip()
+
+
+LawSpecText = Annotated[
+    str,
+    BeforeValidator(check_law_spec),
+    WithJsonSchema({"type": "string",
+                    "description": "a motion law spec like 'cycloidal', 'poly5', "
+                                   "'trapezoidal(alpha=1/3)' or 'double_s(alpha=auto, beta=1/4)'"}),
+]
+
+# ---------------------------------------------------------------- catalog
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", populate_by_name=False, frozen=True)
+
+
+def _curve_point(value: Any) -> Any:
+    if isinstance(value, list | tuple):
+        if len(value) != 2:
+            raise ValueError(f"a curve point is [speed, torque] or {{speed: .., torque: ..}}, "
+                             f"got {_show(value)}")
+        return {"speed": value[0], "torque": value[1]}
+    return value
+
+
+class CurvePointInput(_Strict):
+    """A (speed, torque) point of a speed-torque curve."""
+
+    speed: Quantity("angular_speed", ge=0)  # type: ignore[valid-type]
+    torque: Quantity("torque", ge=0)  # type: ignore[valid-type]
+
+
+CurvePoint = Annotated[
+    CurvePointInput,
+    BeforeValidator(_curve_point),
+    WithJsonSchema({"anyOf": [
+        {"type": "array", "minItems": 2, "maxItems": 2,
+         "items": {"anyOf": [{"type": "number"}, {"type": "string"}]},
+         "description": "[speed, torque], e.g. ['3000 rpm', '0.3 N*m']"},
+        {"type": "object", "properties": {"speed": {}, "torque": {}},
+         "required": ["speed", "torque"], "additionalProperties": False},
+    ]}),
+]
+
+
+class MotorInput(_Strict):
+    """One motor of a catalog (or inline in a design file)."""
+
+    id: Identifier = Field(description="unique among all loaded motors")
+    inertia: Quantity("inertia", ge=0,  # type: ignore[valid-type]
+                      note="rotor inertia J_m; 0 for idealized motors whose inertia is "
+                           "counted in the load (the book's examples)")
+    continuous_torque: Quantity("torque", gt=0,  # type: ignore[valid-type]
+                                note="tau_c, continuous (S1) torque up to rated speed")
+    peak_torque: Quantity("torque", gt=0,  # type: ignore[valid-type]
+                          note="tau_p, intermittent peak torque, >= continuous_torque")
+    rated_speed: Quantity("angular_speed", gt=0,  # type: ignore[valid-type]
+                          note="v_n")
+    max_speed: Quantity("angular_speed", gt=0,  # type: ignore[valid-type]
+                        note=">= rated_speed") | None = None
+    damping: Quantity("rotary_damping", ge=0,  # type: ignore[valid-type]
+                      note="viscous B_m") = 0.0
+    continuous_curve: list[CurvePoint] | None = Field(
+        None, description="continuous region boundary, speeds strictly increasing, >= 2 points")
+    intermittent_curve: list[CurvePoint] | None = Field(
+        None, description="intermittent region boundary, speeds strictly increasing, "
+                          ">= 2 points")
+    source: Text | None = None
+    part_number: Text | None = None
+    manufacturer: Text | None = None
+    price: Quantity("money", ge=0) | None = None  # type: ignore[valid-type]
+    mass: Quantity("mass", gt=0) | None = None  # type: ignore[valid-type]
+    notes: Text | None = Field(None, description="free text, ignored by the tool")
+
+
+class CatalogFile(_Strict):
+    """A motor catalog file."""
+
+    catalog: Text | None = Field(None, description="the catalog's name")
+    manufacturer: Text | None = Field(None, description="default for the motors")
+    source: Text | None = Field(None, description="default for the motors")
+    notes: Text | None = Field(None, description="free text, ignored by the tool")
+    motors: list[MotorInput] = Field(description="at least one motor")
+
+
+# ---------------------------------------------------------------- design
+
+
+def _duration(value: Any) -> float | None:
+    if isinstance(value, str) and value.strip().lower() == "minimize":
+        return None
+    return convert(value, "time", gt=0)
+
+
+class TaskInput(_Strict):
+    """The motion task: a move of h in T, then a dwell (and a move back)."""
+
+    displacement: RawQuantity("'90 deg' or '200 mm'") = Field(  # type: ignore[valid-type]
+        description="h at the load: an angle ('90 deg', rotary axis) or a length "
+                    "('200 mm', linear axis); a bare number is rad")
+    duration: Annotated[
+        float | None,
+        BeforeValidator(_duration),
+        WithJsonSchema({"anyOf": [{"type": "number", "exclusiveMinimum": 0},
+                                  {"type": "string"}],
+                        "description": "T, time like '0.25 s', or 'minimize'"}),
+    ]
+    dwell: Quantity("time", ge=0) = 0.0  # type: ignore[valid-type]
+    return_move: StrictBool = Field(False, alias="return",
+                                    description="cycle = move, dwell, move back, dwell")
+
+
+class LoadInput(_Strict):
+    """The load at the load side; rotary fields or linear ones, per the displacement."""
+
+    inertia: RawQuantity("'0.35 kg*m^2'") | None = Field(  # type: ignore[valid-type]
+        None, description="rotary axis: J_l, e.g. '0.35 kg*m^2'")
+    mass: RawQuantity("'12 kg'") | None = Field(  # type: ignore[valid-type]
+        None, description="linear axis: moving mass, e.g. '12 kg'")
+    damping: RawQuantity(  # type: ignore[valid-type]
+        "'0.01 N*m*s/rad' or '5 N*s/m'") | None = Field(
+        None, description="viscous B_l: 'N*m*s/rad' (rotary) or 'N*s/m' (linear)")
+    friction: RawQuantity("'0.2 N*m' or '10 N'") | None = Field(  # type: ignore[valid-type]
+        None, description="Coulomb friction magnitude: N*m (rotary) or N (linear)")
+    torque: RawQuantity("'0.5 N*m'") | None = Field(  # type: ignore[valid-type]
+        None, description="rotary axis: constant external torque, positive opposes the move")
+    force: RawQuantity("'50 N'") | None = Field(  # type: ignore[valid-type]
+        None, description="linear axis: constant external force, positive opposes the move")
+
+
+class GearboxInput(_Strict):
+    """A gearbox stage: motor speed = ratio x output speed."""
+
+    type: Literal["gearbox"]
+    ratio: Quantity("ratio", gt=0, note="k_r, input over output speed")  # type: ignore[valid-type]
+    efficiency: Quantity("fraction", gt=0, le=1) = 1.0  # type: ignore[valid-type]
+    inertia: Quantity("inertia", ge=0,  # type: ignore[valid-type]
+                      note="at the input (motor) side") = 0.0
+    name: Text | None = None
+
+
+class DirectInput(_Strict):
+    """Direct drive: the motor turns the load (no stage)."""
+
+    type: Literal["direct"]
+    name: Text | None = None
+
+
+TransmissionStageInput = Annotated[
+    GearboxInput | DirectInput,
+    Field(discriminator="type"),
+]
+"""One transmission stage, told apart by ``type`` (more types come with later issues)."""
+
+TRANSMISSION_TYPES: tuple[str, ...] = ("gearbox", "direct")
+
+
+def _motor_ref_tag(value: Any) -> str:
+    return "catalog-name" if isinstance(value, str) else "inline-motor"
+
+
+MotorRef = Annotated[
+    Annotated[str, Tag("catalog-name")] | Annotated[MotorInput, Tag("inline-motor")],
+    Discriminator(_motor_ref_tag),
+]
+"""A catalog (file path or bundled name) or an inline motor mapping."""
+
+
+def _as_list(value: Any) -> Any:
+    return [value] if isinstance(value, str) else value
+
+
+def _stages(value: Any) -> Any:
+    return [value] if isinstance(value, dict) else value
+
+
+class CheckInput(_Strict):
+    """The motor and law that ``sizer check`` verifies."""
+
+    motor: Identifier | None = Field(None, description="a motor id among the loaded motors")
+    law: LawSpecText | None = None
+
+
+class LimitsInput(_Strict):
+    """Margins and user limits (all optional)."""
+
+    torque_margin: Quantity("fraction", ge=0, lt=1,  # type: ignore[valid-type]
+                            note="fraction of torque capability left unused") = 0.0
+    speed_margin: Quantity("fraction", ge=0, lt=1,  # type: ignore[valid-type]
+                           note="fraction of speed capability left unused") = 0.0
+    inertia_ratio: Quantity("ratio", gt=0,  # type: ignore[valid-type]
+                            note="max J_load reflected / J_motor") | None = None
+    max_acceleration: RawQuantity(  # type: ignore[valid-type]
+        "'500 rad/s^2' or '20 m/s^2'") | None = Field(
+        None, description="at the load: rad/s^2 (rotary) or m/s^2 (linear)")
+    max_jerk: RawQuantity(  # type: ignore[valid-type]
+        "'1e5 rad/s^3' or '1000 m/s^3'") | None = Field(
+        None, description="at the load: rad/s^3 (rotary) or m/s^3 (linear)")
+    thermal_speed: Literal["max", "rms", "mean"] = Field(
+        "max", description="speed at which the RMS torque is checked against the "
+                           "continuous region")
+
+
+class DesignFile(_Strict):
+    """A design file: the task, the load, the transmission, laws, motors and limits."""
+
+    name: Text | None = None
+    task: TaskInput
+    load: LoadInput
+    transmission: Annotated[list[TransmissionStageInput] | None,
+                            BeforeValidator(_stages)] = Field(
+        None, description="one stage (a mapping) or a list of stages from the motor to the "
+                          "load; omitted = direct drive")
+    laws: Annotated[list[LawSpecText] | None, BeforeValidator(_as_list)] = Field(
+        None, min_length=1, description="law specs; omitted = the default laws")
+    motors: Annotated[list[MotorRef] | None, BeforeValidator(_as_list)] = Field(
+        None, description="catalog paths (relative to this file), bundled catalog names "
+                          "or inline motors")
+    check: CheckInput | None = None
+    limits: LimitsInput = Field(default_factory=LimitsInput)
