@@ -1,0 +1,25 @@
+"""Reading the input files: YAML with line numbers, validation, SI domain objects."""
+
+from sizer.io.loader import (
+    bundled_catalogs,
+    catalog_schema,
+    default_laws,
+    design_schema,
+    load_catalog,
+    load_design,
+    resolve_catalog,
+)
+from sizer.io.yaml_source import YamlSource, parse_yaml, read_yaml
+
+__all__ = [
+    "YamlSource",
+    "bundled_catalogs",
+    "catalog_schema",
+    "default_laws",
+    "design_schema",
+    "load_catalog",
+    "load_design",
+    "parse_yaml",
+    "read_yaml",
+    "resolve_catalog",
+]

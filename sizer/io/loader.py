@@ -1,0 +1,354 @@
+"""Load design files and motor catalogs into the SI domain objects of sizer.model.domain.
+
+    load_design("machine.yaml")                 -> Design
+    load_catalog("book-examples")               -> tuple[Motor, ...]
+    bundled_catalogs()                          -> {"book-examples": Path(...), ...}
+    design_schema(), catalog_schema()           -> JSON Schema dicts
+
+Every mistake in a file ends in a UserError naming the file, the line and the field.
+"""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, replace
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+from sizer.errors import UserError
+from sizer.io.validation import validate
+from sizer.io.yaml_source import YamlSource, format_path, read_yaml
+from sizer.model.domain import Design, Limits, Load, Motor, Stage, Task, Transmission
+from sizer.model.inputs import (
+    CatalogFile,
+    CurvePointInput,
+    DesignFile,
+    GearboxInput,
+    MotorInput,
+    convert,
+)
+from sizer.units import parse_displacement
+
+PathLike = str | Path
+
+
+# ------------------------------------------------------------------- catalogs
+
+
+def bundled_catalogs() -> dict[str, Path]:
+    """The catalogs shipped with sizer, by name (the file stem)."""
+    folder = Path(str(resources.files("sizer").joinpath("catalogs")))
+    if not folder.is_dir():
+        return {}
+    return {p.stem: p for p in sorted(folder.glob("*.yaml"))}
+
+
+def load_catalog(path_or_name: PathLike) -> tuple[Motor, ...]:
+    """The motors of a catalog file or of a bundled catalog (by name)."""
+    path = resolve_catalog(path_or_name, Path.cwd())
+    motors = _read_catalog(path)
+    _check_unique(motors)
+    return tuple(m.motor for m in motors)
+
+
+def resolve_catalog(reference: PathLike, base: Path, *, source: YamlSource | None = None,
+                    at: Sequence[Any] = ()) -> Path:
+    """The file of a catalog reference: a path (relative to ``base``) or a bundled name.
+
+    An existing file wins over a bundled catalog of the same name. Errors are placed at
+    ``at`` in ``source`` (the design file) when given.
+    """
+
+    def fail(message: str) -> UserError:
+        if source is not None:
+            return source.error(message, at)
+        return UserError(message)
+
+    text = str(reference)
+    bundled = bundled_catalogs()
+    try:
+        path = Path(text).expanduser()
+        if not path.is_absolute():
+            path = base / path
+        if path.is_file():
+            return path
+        is_dir = path.is_dir()
+    except (OSError, ValueError):  # a name too long, a NUL byte...
+        path, is_dir = Path(text), False
+    if text in bundled:
+        return bundled[text]
+    if is_dir:
+        raise fail(f"catalog {text!r} is a directory, not a YAML file")
+    names = ", ".join(bundled) or "none"
+    looks_like_path = any(c in text for c in "/\\") or Path(text).suffix in (".yaml", ".yml")
+    if looks_like_path:
+        raise fail(f"catalog file not found: {path} (bundled catalogs: {names})")
+    close = difflib.get_close_matches(text, list(bundled), n=1)
+    hint = f"did you mean {close[0]!r}? " if close else ""
+    raise fail(f"unknown catalog {text!r}: no such file and no such bundled catalog; "
+               f"{hint}bundled catalogs: {names}")
+
+
+@dataclass(frozen=True)
+class _Located:
+    """A motor and where it was defined (for duplicate-id messages)."""
+
+    motor: Motor
+    file: str | None
+    line: int | None
+    field: str
+
+
+def _read_catalog(path: Path) -> list[_Located]:
+    source = read_yaml(path)
+    catalog = validate(CatalogFile, source)
+    if not catalog.motors:
+        raise source.error("the catalog has no motors", ("motors",))
+    located = []
+    for index, item in enumerate(catalog.motors):
+        at = ("motors", index)
+        motor = _motor(item, source, at)
+        motor = replace(motor,
+                        manufacturer=motor.manufacturer or catalog.manufacturer,
+                        source=motor.source or catalog.source)
+        located.append(_Located(motor, source.file, source.line_of((*at, "id")),
+                                format_path((*at, "id"))))
+    return located
+
+
+def _motor(item: MotorInput, source: YamlSource, at: tuple[Any, ...]) -> Motor:
+    """A Motor from its validated input, with the checks that span several fields."""
+    if item.peak_torque < item.continuous_torque:
+        raise source.error(f"peak torque {item.peak_torque:g} N*m is below the continuous "
+                           f"torque {item.continuous_torque:g} N*m", (*at, "peak_torque"))
+    if item.max_speed is not None and item.max_speed < item.rated_speed:
+        raise source.error(f"max speed {item.max_speed:g} rad/s is below the rated speed "
+                           f"{item.rated_speed:g} rad/s", (*at, "max_speed"))
+    return Motor(
+        id=item.id,
+        inertia=item.inertia,
+        continuous_torque=item.continuous_torque,
+        peak_torque=item.peak_torque,
+        rated_speed=item.rated_speed,
+        max_speed=item.max_speed,
+        continuous_curve=_curve(item.continuous_curve, source, (*at, "continuous_curve")),
+        intermittent_curve=_curve(item.intermittent_curve, source, (*at, "intermittent_curve")),
+        damping=item.damping,
+        source=item.source,
+        part_number=item.part_number,
+        manufacturer=item.manufacturer,
+        price=item.price,
+        mass=item.mass,
+    )
+
+
+def _curve(points: list[CurvePointInput] | None, source: YamlSource,
+           at: tuple[Any, ...]) -> tuple[tuple[float, float], ...] | None:
+    if points is None:
+        return None
+    if len(points) < 2:
+        raise source.error(f"a speed-torque curve needs at least 2 points, got {len(points)}",
+                           at)
+    for index in range(1, len(points)):
+        if not points[index].speed > points[index - 1].speed:
+            raise source.error(
+                f"curve speeds must be strictly increasing: {points[index].speed:g} rad/s "
+                f"follows {points[index - 1].speed:g} rad/s", (*at, index))
+    return tuple((p.speed, p.torque) for p in points)
+
+
+def _check_unique(motors: Iterable[_Located]) -> None:
+    first: dict[str, _Located] = {}
+    for item in motors:
+        earlier = first.get(item.motor.id)
+        if earlier is not None:
+            where = earlier.file or "?"
+            if earlier.line is not None:
+                where += f":{earlier.line}"
+            raise UserError(f"duplicate motor id {item.motor.id!r} (first defined at {where})",
+                            file=item.file, line=item.line, field=item.field)
+        first[item.motor.id] = item
+
+
+# ------------------------------------------------------------------- design
+
+
+def load_design(path: PathLike, extra_catalogs: Iterable[PathLike] = ()) -> Design:
+    """Read a design file into a Design (SI).
+
+    ``Design.motors`` holds the motors of the design's ``motors:`` entries, then those of
+    ``extra_catalogs`` (paths relative to the working directory, or bundled names). A
+    catalog file named twice is read once.
+    """
+    path = Path(path)
+    source = read_yaml(path)
+    model = validate(DesignFile, source)
+    task = _task(model, source)
+    linear = task.linear
+    load = _load(model, source, linear)
+    motors = _design_motors(model, source, path.parent, extra_catalogs)
+    by_id = {m.id: m for m in motors}
+    chosen_motor = chosen_law = None
+    if model.check is not None:
+        chosen_motor, chosen_law = model.check.motor, model.check.law
+        if chosen_motor is not None and chosen_motor not in by_id:
+            raise source.error(_unknown_motor(chosen_motor, list(by_id)), ("check", "motor"))
+    return Design(
+        task=task,
+        load=load,
+        transmission=_transmission(model),
+        laws=tuple(model.laws) if model.laws is not None else default_laws(),
+        motors=motors,
+        limits=_limits(model, source, linear),
+        chosen_motor=chosen_motor,
+        chosen_law=chosen_law,
+        name=model.name if model.name is not None else path.stem,
+    )
+
+
+def default_laws() -> tuple[str, ...]:
+    """The laws of a design without ``laws:``: DEFAULT_LAW_SPECS minus the exponential."""
+    from sizer.laws import DEFAULT_LAW_SPECS, resolve
+
+    return tuple(s for s in DEFAULT_LAW_SPECS if resolve(s)[0].law_id != "exponential")
+
+
+def _quantity(source: YamlSource, at: tuple[Any, ...], value: Any, kind: str,
+              **bounds: float) -> float:
+    try:
+        return convert(value, kind, **bounds)
+    except ValueError as error:
+        raise source.error(str(error), at) from None
+
+
+def _task(model: DesignFile, source: YamlSource) -> Task:
+    at = ("task", "displacement")
+    try:
+        h, linear = parse_displacement(model.task.displacement)
+    except UserError as error:
+        raise source.error(error.message, at) from None
+    if not h > 0:
+        raise source.error(f"must be > 0, got {model.task.displacement!r} (give the size of "
+                           f"the move; its direction does not matter for sizing)", at)
+    return Task(displacement=h, duration=model.task.duration, dwell=model.task.dwell,
+                return_move=model.task.return_move, linear=linear)
+
+
+def _load(model: DesignFile, source: YamlSource, linear: bool) -> Load:
+    given = model.load
+    axis = ("a linear axis (the displacement is a length)" if linear
+            else "a rotary axis (the displacement is an angle)")
+    mass_key, torque_key = ("mass", "force") if linear else ("inertia", "torque")
+    for wrong, right in (("inertia", "mass"), ("torque", "force")) if linear \
+            else (("mass", "inertia"), ("force", "torque")):
+        if getattr(given, wrong) is not None:
+            raise source.error(f"{axis} takes '{right}', not '{wrong}'", ("load", wrong))
+    inertia = getattr(given, mass_key)
+    if inertia is None:
+        raise source.error(f"required field is missing for {axis}", ("load",),
+                           field=f"load.{mass_key}")
+    kinds = (("mass", "linear_damping", "force") if linear
+             else ("inertia", "rotary_damping", "torque"))
+
+    def quantity(key: str, kind: str, default: float = 0.0, **bounds: float) -> float:
+        value = getattr(given, key)
+        if value is None:
+            return default
+        return _quantity(source, ("load", key), value, kind, **bounds)
+
+    return Load(
+        inertia=quantity(mass_key, kinds[0], gt=0),
+        damping=quantity("damping", kinds[1], ge=0),
+        friction=quantity("friction", kinds[2], ge=0),
+        torque=quantity(torque_key, kinds[2]),
+    )
+
+
+def _transmission(model: DesignFile) -> Transmission:
+    stages = []
+    for item in model.transmission or ():
+        if isinstance(item, GearboxInput):
+            stages.append(Stage(kind="gearbox", ratio=item.ratio, efficiency=item.efficiency,
+                                inertia=item.inertia, name=item.name or ""))
+        # 'direct' adds no stage
+    return Transmission(stages=tuple(stages))
+
+
+def _limits(model: DesignFile, source: YamlSource, linear: bool) -> Limits:
+    given = model.limits
+    prefix = "linear" if linear else "angular"
+    max_acceleration = max_jerk = None
+    if given.max_acceleration is not None:
+        max_acceleration = _quantity(source, ("limits", "max_acceleration"),
+                                     given.max_acceleration, f"{prefix}_acceleration", gt=0)
+    if given.max_jerk is not None:
+        max_jerk = _quantity(source, ("limits", "max_jerk"), given.max_jerk,
+                             f"{prefix}_jerk", gt=0)
+    return Limits(
+        torque_margin=given.torque_margin,
+        speed_margin=given.speed_margin,
+        inertia_ratio=given.inertia_ratio,
+        max_acceleration=max_acceleration,
+        max_jerk=max_jerk,
+        thermal_speed=given.thermal_speed,
+    )
+
+
+def _design_motors(model: DesignFile, source: YamlSource, folder: Path,
+                   extra_catalogs: Iterable[PathLike]) -> tuple[Motor, ...]:
+    located: list[_Located] = []
+    read: set[Path] = set()
+
+    def add_catalog(path: Path) -> None:
+        key = path.resolve()
+        if key not in read:
+            read.add(key)
+            located.extend(_read_catalog(path))
+
+    for index, item in enumerate(model.motors or ()):
+        at = ("motors", index)
+        if isinstance(item, str):
+            add_catalog(resolve_catalog(item, folder, source=source, at=at))
+        else:
+            located.append(_Located(_motor(item, source, at), source.file,
+                                    source.line_of((*at, "id")), format_path((*at, "id"))))
+    for reference in extra_catalogs:
+        add_catalog(resolve_catalog(reference, Path.cwd()))
+    _check_unique(located)
+    return tuple(m.motor for m in located)
+
+
+def _unknown_motor(motor_id: str, known: list[str]) -> str:
+    if not known:
+        return (f"unknown motor {motor_id!r}: no motors are loaded (list catalogs under "
+                f"'motors:')")
+    close = difflib.get_close_matches(motor_id, known, n=1)
+    hint = f"did you mean {close[0]!r}? " if close else ""
+    shown = ", ".join(known[:12]) + (", ..." if len(known) > 12 else "")
+    return f"unknown motor {motor_id!r}; {hint}loaded motors: {shown}"
+
+
+# ------------------------------------------------------------------- schemas
+
+
+def design_schema() -> dict[str, Any]:
+    """JSON Schema of the design file (for ``sizer schema design``)."""
+    return DesignFile.model_json_schema(by_alias=True)
+
+
+def catalog_schema() -> dict[str, Any]:
+    """JSON Schema of the motor catalog file (for ``sizer schema catalog``)."""
+    return CatalogFile.model_json_schema(by_alias=True)
+
+
+__all__ = [
+    "bundled_catalogs",
+    "catalog_schema",
+    "default_laws",
+    "design_schema",
+    "load_catalog",
+    "load_design",
+    "resolve_catalog",
+]
