@@ -159,7 +159,7 @@ def _field_names(model: type[BaseModel]) -> set[str]:
 
 def _models_in(tp: Any, seen: set[Any]) -> list[type[BaseModel]]:
     found: list[type[BaseModel]] = []
-    if isinstance(tp, type) and issubclass(tp, BaseModel):
+    if _is_model(tp):
         if tp in seen:
             return found
         seen.add(tp)
@@ -186,14 +186,18 @@ def _members(tp: Any) -> list[Any]:
     return [tp]
 
 
-def _model_at(model: type[BaseModel], loc: tuple[Any, ...]) -> type[BaseModel] | None:
-    """The model that validates the value at ``loc`` (pydantic's loc, tags included)."""
+def _is_model(tp: Any) -> bool:
+    return isinstance(tp, type) and issubclass(tp, BaseModel)
+
+
+def _models_at(model: type[BaseModel], loc: tuple[Any, ...]) -> list[type[BaseModel]]:
+    """The models that may validate the value at ``loc`` (pydantic's loc, tags included)."""
     candidates: list[Any] = [model]
     for part in loc:
         nxt: list[Any] = []
         for tp in candidates:
             for member in _members(tp):
-                if isinstance(member, type) and issubclass(member, BaseModel):
+                if _is_model(member):
                     info = _field(member, part)
                     if info is not None:
                         nxt.append(info.annotation)
@@ -204,11 +208,7 @@ def _model_at(model: type[BaseModel], loc: tuple[Any, ...]) -> type[BaseModel] |
                 elif isinstance(part, str) and not part.isidentifier():
                     nxt.append(member)  # a marker of pydantic like 'inline-motor'
         candidates = nxt
-        if not candidates:
-            return None
-    models = [m for tp in candidates for m in _members(tp)
-              if isinstance(m, type) and issubclass(m, BaseModel)]
-    return models[0] if len(models) == 1 else None
+    return [m for tp in candidates for m in _members(tp) if _is_model(m)]
 
 
 def _field(model: type[BaseModel], key: Any) -> Any:
@@ -226,25 +226,13 @@ def _tags_of(model: type[BaseModel]) -> list[str]:
 
 
 def _allowed_fields(model: type[BaseModel], loc: tuple[Any, ...]) -> list[str]:
-    found = _model_at(model, loc)
-    if found is None:
+    """The fields of the model at ``loc``, if exactly one model fits."""
+    found = _models_at(model, loc)
+    if len(found) != 1:
         return []
-    return [info.alias or name for name, info in found.model_fields.items()]
+    return [info.alias or name for name, info in found[0].model_fields.items()]
 
 
 def _tags_at(model: type[BaseModel], loc: tuple[Any, ...]) -> list[str]:
     """The 'type' tags accepted at ``loc`` (a discriminated union of models)."""
-    candidates: list[Any] = [model]
-    for part in loc:
-        nxt: list[Any] = []
-        for tp in candidates:
-            for member in _members(tp):
-                if isinstance(member, type) and issubclass(member, BaseModel):
-                    info = _field(member, part)
-                    if info is not None:
-                        nxt.append(info.annotation)
-                elif typing.get_origin(member) in (list, tuple) and isinstance(part, int):
-                    nxt += list(typing.get_args(member)[:1])
-        candidates = nxt
-    return [t for tp in candidates for m in _members(tp)
-            if isinstance(m, type) and issubclass(m, BaseModel) for t in _tags_of(m)]
+    return [tag for found in _models_at(model, loc) for tag in _tags_of(found)]
