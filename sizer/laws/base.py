@@ -98,11 +98,11 @@ class Parameter:
 
 
 def _short(value: float) -> str:
-    """A compact, exact-looking text for a parameter value (fractions where small)."""
+    """A compact text that reads back to the same float: 3, 1/3, 7.1 or the full repr."""
     if value == int(value) and abs(value) < 1e15:
         return str(int(value))
-    frac = Fraction(value).limit_denominator(1000)
-    if float(frac) == value:
+    frac = Fraction(value).limit_denominator(16)
+    if float(frac) == value and abs(frac.numerator) <= 16:
         return f"{frac.numerator}/{frac.denominator}"
     return repr(value)
 
@@ -124,6 +124,9 @@ class MotionLaw:
     parameters: ClassVar[tuple[Parameter, ...]] = ()
     max_order: ClassVar[int] = 4
     """Highest derivative order the pieces evaluate exactly."""
+    steep_ends: ClassVar[bool] = False
+    """True when the profile varies on scales far below the piece width near the piece
+    ends (the exponential law): samplers then grade their grids toward the ends."""
 
     def __init__(self, **params: float) -> None:
         unknown = set(params) - {p.name for p in self.parameters}

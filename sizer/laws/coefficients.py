@@ -71,6 +71,7 @@ def compute_coefficients(law: MotionLaw, use_closed_form: bool = True) -> LawCoe
         "C_v_rms": known.get("C_v_rms") or rms(law, 1),
         "C_a_rms": known.get("C_a_rms") or rms(law, 2),
     }
+    values = {name: float(value) for name, value in values.items()}
     return LawCoefficients(**values, acceleration_jumps=tuple(jumps(law, 2)))
 
 

@@ -22,6 +22,7 @@ class Exponential(MotionLaw):
 
     law_id = "exponential"
     title = "Exponential"
+    steep_ends = True
     parameters = (
         Parameter("sigma", 7.1, 0.0, 100.0, low_open=True,
                   description="exponent scale (book optimum 7.1)"),

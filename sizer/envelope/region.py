@@ -1,0 +1,77 @@
+"""Torque limit as a function of speed: piecewise linear, zero past the last point.
+
+A region is given by (speed, torque) points with strictly increasing speed from 0.
+Scalar ratings alone give the book's rectangles (sec. 6.1.1): the continuous region is
+tau_c and the intermittent region tau_p, both up to the rated speed v_n.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from sizer.model.domain import Curve, Motor
+
+
+def continuous_region(motor: Motor) -> Curve:
+    """The continuous (S1) region's corner points."""
+    if motor.continuous_curve:
+        return _from_zero(motor.continuous_curve)
+    return ((0.0, motor.continuous_torque), (motor.rated_speed, motor.continuous_torque))
+
+
+def intermittent_region(motor: Motor) -> Curve:
+    """The intermittent (peak) region's corner points."""
+    if motor.intermittent_curve:
+        return _from_zero(motor.intermittent_curve)
+    return ((0.0, motor.peak_torque), (motor.rated_speed, motor.peak_torque))
+
+
+def _from_zero(curve: Curve) -> Curve:
+    """A curve starting above zero speed holds its first torque down to standstill."""
+    if curve[0][0] > 0.0:
+        return ((0.0, curve[0][1]), *curve)
+    return tuple(curve)
+
+
+class RegionTable:
+    """The regions of many motors as padded arrays, evaluated for all of them at once."""
+
+    def __init__(self, curves: Sequence[Curve]) -> None:
+        width = max(len(c) for c in curves)
+        count = len(curves)
+        self.speeds = np.empty((count, width))
+        self.torques = np.empty((count, width))
+        self.max_speed = np.empty(count)
+        for row, curve in enumerate(curves):
+            speed = np.array([p[0] for p in curve], dtype=float)
+            torque = np.array([p[1] for p in curve], dtype=float)
+            top = speed[-1]
+            pad = width - len(curve)
+            # strictly increasing padding past the end keeps every segment well defined
+            self.speeds[row] = np.concatenate((speed, top * (2.0 + np.arange(pad))))
+            self.torques[row] = np.concatenate((torque, np.full(pad, torque[-1])))
+            self.max_speed[row] = top
+
+    def __len__(self) -> int:
+        return len(self.max_speed)
+
+    def limit(self, speed: np.ndarray) -> np.ndarray:
+        """Torque limit at |speed|; speed has shape (motors, ...). Past the end: 0."""
+        speed = np.abs(np.asarray(speed, dtype=float))
+        shape = speed.shape
+        flat = speed.reshape(shape[0], -1)
+        index = (self.speeds[:, None, 1:-1] <= flat[:, :, None]).sum(axis=-1)
+        rows = np.arange(shape[0])[:, None]
+        s0, s1 = self.speeds[rows, index], self.speeds[rows, index + 1]
+        t0, t1 = self.torques[rows, index], self.torques[rows, index + 1]
+        value = t0 + (t1 - t0) * (flat - s0) / (s1 - s0)
+        value = np.where(flat > self.max_speed[:, None] * (1.0 + 1e-12), 0.0, value)
+        return value.reshape(shape)
+
+    def limit_clipped(self, speed: np.ndarray) -> np.ndarray:
+        """Torque limit with the speed clipped into the region (speed is checked apart)."""
+        speed = np.minimum(np.abs(np.asarray(speed, dtype=float)),
+                           self.max_speed.reshape((-1,) + (1,) * (np.ndim(speed) - 1)))
+        return self.limit(speed)

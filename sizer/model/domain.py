@@ -1,0 +1,152 @@
+"""Domain objects in SI units (rad, rad/s, s, N*m, kg*m^2, m, N).
+
+These are what the core (sizer.sizing, sizer.envelope, sizer.mechanics) reads. They are
+built from YAML by sizer.io (which checks units and ranges) or directly from Python.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Literal
+
+ThermalSpeedRule = Literal["max", "rms", "mean"]
+"""Speed at which the RMS torque is checked against the continuous region (sec. 6.1.1)."""
+
+Curve = tuple[tuple[float, float], ...]
+"""(speed rad/s, torque N*m) points, speed strictly increasing, piecewise linear between."""
+
+
+@dataclass(frozen=True)
+class Task:
+    """A rest-to-rest move of h in T (None = as fast as possible), then a dwell.
+
+    With ``return_move`` the machine cycle is: move, dwell, move back, dwell.
+    ``displacement`` is at the load: rad for a rotary axis, m for a linear one.
+    """
+
+    displacement: float
+    duration: float | None = None
+    dwell: float = 0.0
+    return_move: bool = False
+    linear: bool = False
+
+    @property
+    def minimize(self) -> bool:
+        return self.duration is None
+
+    @property
+    def moves_per_cycle(self) -> int:
+        return 2 if self.return_move else 1
+
+
+@dataclass(frozen=True)
+class Load:
+    """The driven load at the load side (sec. 6.1.1, eq. 6.1).
+
+    Rotary: inertia kg*m^2, damping N*m*s/rad, friction and torque N*m.
+    Linear: mass kg (in ``inertia``), damping N*s/m, friction and force N (in ``torque``).
+    ``friction`` is Coulomb friction opposing motion; ``torque`` a constant external load
+    (gravity...) with its sign: positive opposes a positive move.
+    """
+
+    inertia: float
+    damping: float = 0.0
+    friction: float = 0.0
+    torque: float = 0.0
+
+
+@dataclass(frozen=True)
+class Stage:
+    """One transmission stage: load-side motion times ``ratio`` is its input motion.
+
+    ``ratio`` is input speed over output speed (k_r for a gearbox; rad/m for a screw);
+    ``efficiency`` in (0, 1] applies in the direction of power flow; ``inertia`` is the
+    stage's own inertia at its input (kg*m^2).
+    """
+
+    kind: str = "gearbox"
+    ratio: float = 1.0
+    efficiency: float = 1.0
+    inertia: float = 0.0
+    name: str = ""
+
+
+@dataclass(frozen=True)
+class Transmission:
+    """Stages from the motor to the load, in that order; empty = direct drive."""
+
+    stages: tuple[Stage, ...] = ()
+
+    @property
+    def ratio(self) -> float:
+        """Total motor speed over load speed, k_r."""
+        return math.prod(s.ratio for s in self.stages)
+
+    @property
+    def efficiency(self) -> float:
+        return math.prod(s.efficiency for s in self.stages)
+
+    @property
+    def inertia(self) -> float:
+        """Inertia of the stages reflected to the motor shaft, kg*m^2."""
+        total, upstream = 0.0, 1.0
+        for stage in self.stages:
+            total += stage.inertia / upstream**2
+            upstream *= stage.ratio
+        return total
+
+
+@dataclass(frozen=True)
+class Motor:
+    """A motor's ratings and, where known, its speed-torque curves (sec. 6.1).
+
+    Scalar ratings alone give the book's rectangular regions: continuous torque tau_c and
+    peak torque tau_p, both up to the rated speed v_n.
+    """
+
+    id: str
+    inertia: float
+    continuous_torque: float
+    peak_torque: float
+    rated_speed: float
+    max_speed: float | None = None
+    continuous_curve: Curve | None = None
+    intermittent_curve: Curve | None = None
+    damping: float = 0.0
+    source: str | None = None
+    part_number: str | None = None
+    manufacturer: str | None = None
+    price: float | None = None
+    mass: float | None = None
+
+
+@dataclass(frozen=True)
+class Limits:
+    """Margins and user limits. Margins are fractions of the motor's capability left unused.
+
+    ``max_acceleration`` and ``max_jerk`` are at the load (rad/s^2 or m/s^2, ...).
+    ``inertia_ratio`` bounds J_l reflected / J_m.
+    """
+
+    torque_margin: float = 0.0
+    speed_margin: float = 0.0
+    inertia_ratio: float | None = None
+    max_acceleration: float | None = None
+    max_jerk: float | None = None
+    thermal_speed: ThermalSpeedRule = "max"
+
+
+@dataclass(frozen=True)
+class Design:
+    """A complete sizing problem: task, load, transmission, laws, motors, limits."""
+
+    task: Task
+    load: Load
+    transmission: Transmission = field(default_factory=Transmission)
+    laws: tuple[str, ...] = ()
+    motors: tuple[Motor, ...] = ()
+    limits: Limits = field(default_factory=Limits)
+    chosen_motor: str | None = None
+    chosen_law: str | None = None
+    name: str = ""
