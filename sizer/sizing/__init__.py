@@ -1,0 +1,15 @@
+"""Sizing: requirements, margins, minimum duration and ranking (book ch. 6)."""
+
+from sizer.sizing.engine import check_design, evaluate_law, size_design
+from sizer.sizing.ranking import RANK_KEYS
+from sizer.sizing.results import CandidateResult, Check, SizingResult
+
+__all__ = [
+    "RANK_KEYS",
+    "CandidateResult",
+    "Check",
+    "SizingResult",
+    "check_design",
+    "evaluate_law",
+    "size_design",
+]

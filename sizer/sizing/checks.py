@@ -1,0 +1,77 @@
+"""The checks of sec. 6.1.1 with their margins, for many candidates at once.
+
+- speed: the peak speed against the highest speed of the intermittent region;
+- peak: every point (|speed(t)|, |torque(t)|) inside the intermittent region;
+- rms: the RMS torque against the continuous region at the thermal speed (max speed by
+  default as in the book; rms or mean speed on request), and that speed inside it;
+- inertia ratio, load acceleration and load jerk against the user's limits.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from sizer.mechanics import Drive
+from sizer.model.domain import Limits
+from sizer.sizing.cycle import CycleMetrics
+from sizer.sizing.motors import MotorArrays
+
+
+@dataclass(frozen=True)
+class CheckArrays:
+    """One check for all candidates: value, limit, margin = 1 - value/limit, required."""
+
+    name: str
+    value: np.ndarray
+    limit: np.ndarray
+    unit: str
+    required: float
+
+    @property
+    def margin(self) -> np.ndarray:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            margin = 1.0 - self.value / self.limit
+        return np.where(self.limit > 0.0, margin, np.where(self.value > 0.0, -np.inf, 1.0))
+
+    @property
+    def slack(self) -> np.ndarray:
+        return self.margin - self.required
+
+
+def evaluate_checks(metrics: CycleMetrics, motors: MotorArrays, drive: Drive,
+                    limits: Limits, linear: bool = False) -> list[CheckArrays]:
+    """All checks for the candidates described by ``metrics``."""
+    ones = np.ones_like(metrics.duration)
+    checks = [
+        CheckArrays("speed", metrics.max_speed, motors.speed_limit, "rad/s", limits.speed_margin),
+        CheckArrays("peak", metrics.peak_ratio, ones, "", limits.torque_margin),
+        CheckArrays("rms", metrics.rms_torque,
+                    motors.continuous.limit_clipped(metrics.thermal_speed), "N*m",
+                    limits.torque_margin),
+        CheckArrays("thermal_speed", metrics.thermal_speed, motors.continuous.max_speed,
+                    "rad/s", limits.speed_margin),
+    ]
+    if limits.inertia_ratio is not None:
+        with np.errstate(divide="ignore"):
+            ratio = drive.reflected_load_inertia / motors.inertia
+        checks.append(CheckArrays("inertia_ratio", ratio, limits.inertia_ratio * ones, "", 0.0))
+    unit = "m" if linear else "rad"
+    if limits.max_acceleration is not None:
+        checks.append(CheckArrays("acceleration", metrics.load_acceleration,
+                                  limits.max_acceleration * ones, f"{unit}/s^2", 0.0))
+    if limits.max_jerk is not None:
+        checks.append(CheckArrays("jerk", metrics.load_jerk, limits.max_jerk * ones,
+                                  f"{unit}/s^3", 0.0))
+    return checks
+
+
+def worst_slack(checks: list[CheckArrays]) -> np.ndarray:
+    """min over checks of margin - required, per candidate (>= 0 means feasible)."""
+    return np.min(np.stack([c.slack for c in checks]), axis=0)
+
+
+def limiting_index(checks: list[CheckArrays]) -> np.ndarray:
+    """Index of the binding check (smallest slack) per candidate."""
+    return np.argmin(np.stack([c.slack for c in checks]), axis=0)

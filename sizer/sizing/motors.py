@@ -1,0 +1,56 @@
+"""Motors as arrays, so that every check runs for all of them at once."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from sizer.envelope import RegionTable, continuous_region, intermittent_region
+from sizer.model.domain import Motor
+
+
+@dataclass(frozen=True)
+class MotorArrays:
+    """Rotor inertia, damping and speed-torque regions of a list of motors."""
+
+    motors: tuple[Motor, ...]
+    inertia: np.ndarray
+    damping: np.ndarray
+    intermittent: RegionTable
+    continuous: RegionTable
+
+    @classmethod
+    def of(cls, motors: Sequence[Motor]) -> MotorArrays:
+        motors = tuple(motors)
+        return cls(
+            motors,
+            np.array([m.inertia for m in motors], dtype=float),
+            np.array([m.damping for m in motors], dtype=float),
+            RegionTable([intermittent_region(m) for m in motors]),
+            RegionTable([continuous_region(m) for m in motors]),
+        )
+
+    def __len__(self) -> int:
+        return len(self.motors)
+
+    @property
+    def speed_limit(self) -> np.ndarray:
+        """Highest speed of the intermittent region (rated speed for the book's rectangles)."""
+        return self.intermittent.max_speed
+
+    @property
+    def is_rectangular(self) -> np.ndarray:
+        """True where both regions are flat up to one common speed (the book's case)."""
+        flat_i = np.all(self.intermittent.torques == self.intermittent.torques[:, :1], axis=1)
+        flat_c = np.all(self.continuous.torques == self.continuous.torques[:, :1], axis=1)
+        return flat_i & flat_c & (self.intermittent.max_speed == self.continuous.max_speed)
+
+    @property
+    def all_rectangular(self) -> bool:
+        return bool(np.all(self.is_rectangular))
+
+    def subset(self, index: np.ndarray) -> MotorArrays:
+        """The motors at the given positions, in that order."""
+        return MotorArrays.of([self.motors[int(i)] for i in index])

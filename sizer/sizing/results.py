@@ -1,0 +1,86 @@
+"""Results of sizing: plain data that reports format (no computation there)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+
+@dataclass(frozen=True)
+class Check:
+    """One limit checked for a candidate. margin = 1 - value/limit (capability left unused).
+
+    The check passes when margin >= required (the user's margin for that kind of limit).
+    """
+
+    name: str
+    value: float
+    limit: float
+    unit: str
+    margin: float
+    required: float = 0.0
+
+    @property
+    def slack(self) -> float:
+        return self.margin - self.required
+
+    @property
+    def passed(self) -> bool:
+        return self.slack >= 0.0
+
+    def describe(self) -> str:
+        """One line: which limit, the values, and by how much it passes or fails."""
+        unit = f" {self.unit}" if self.unit else ""
+        if math.isinf(self.value):
+            return f"{self.name}: unbounded (jerk impulses) against {self.limit:.6g}{unit}"
+        verdict = "ok" if self.passed else "FAILS"
+        need = f", {self.required:.0%} required" if self.required else ""
+        return (f"{self.name}: {self.value:.6g}{unit} against {self.limit:.6g}{unit}, "
+                f"margin {self.margin:.2%}{need} ({verdict})")
+
+
+@dataclass(frozen=True)
+class CandidateResult:
+    """A motor with a law: its duration, requirements at the motor shaft and checks."""
+
+    motor: str
+    law: str
+    spec: str
+    params: dict[str, float]
+    feasible: bool
+    duration: float | None
+    peak_torque: float | None
+    rms_torque: float | None
+    max_speed: float | None
+    checks: tuple[Check, ...]
+    limiting: str | None
+    reason: str = ""
+    price: float | None = None
+    mass: float | None = None
+    extra: dict[str, float] = field(default_factory=dict)
+
+    def check(self, name: str) -> Check | None:
+        return next((c for c in self.checks if c.name == name), None)
+
+    def margin(self, name: str) -> float | None:
+        found = self.check(name)
+        return None if found is None else found.margin
+
+    @property
+    def worst_slack(self) -> float:
+        """The smallest margin beyond the required one, over all checks (ranking key)."""
+        return min((c.slack for c in self.checks), default=math.inf)
+
+
+@dataclass(frozen=True)
+class SizingResult:
+    """All candidates of a design, ranked, with what the run assumed."""
+
+    mode: str  # "duration" or "minimize"
+    results: tuple[CandidateResult, ...]
+    design_name: str = ""
+    notes: tuple[str, ...] = ()
+
+    @property
+    def feasible(self) -> tuple[CandidateResult, ...]:
+        return tuple(r for r in self.results if r.feasible)

@@ -1,0 +1,91 @@
+"""Shape parameters written ``auto``: chosen per motor by the solver.
+
+In minimize mode the parameter minimizes T_min; with a given duration it maximizes the
+smallest margin. The search is a grid over the parameter's range refined twice around
+each motor's best point (vectorized over the motors that share a neighbourhood), so the
+chosen value is within about 1/400 of the range of the true optimum, and the duration
+or margins reported are computed exactly for the chosen value.
+"""
+
+from __future__ import annotations
+
+import itertools
+from fractions import Fraction
+
+import numpy as np
+
+from sizer.laws import AUTO, MotionLaw
+from sizer.mechanics import Drive
+from sizer.model.domain import Design
+from sizer.sizing.checks import evaluate_checks, worst_slack
+from sizer.sizing.cycle import CycleCalculator
+from sizer.sizing.duration import minimum_duration
+from sizer.sizing.motors import MotorArrays
+
+COARSE = {1: 13, 2: 7}
+FINE = {1: 7, 2: 5}
+REFINEMENTS = 2
+INSET = 1e-3  # keep open interval ends out of the grid
+
+
+def choose_shape(family: type[MotionLaw], values: dict[str, Fraction | str], design: Design,
+                 drive: Drive, motors: MotorArrays) -> list[MotionLaw]:
+    """The best law of the family for each motor, its auto parameters optimized."""
+    free = [p for p in family.parameters if values.get(p.name) == AUTO]
+    fixed = {k: float(v) for k, v in values.items() if v != AUTO}
+    bounds = []
+    for p in free:
+        span = p.high - p.low
+        bounds.append((p.low + (INSET * span if p.low_open else 0.0),
+                       p.high - (INSET * span if p.high_open else 0.0)))
+    dims = len(free)
+    steps = [(hi - lo) / (COARSE[dims] - 1) for lo, hi in bounds]
+    grids = [np.linspace(lo, hi, COARSE[dims]) for lo, hi in bounds]
+    best_point = [None] * len(motors)
+    best_score = np.full(len(motors), -np.inf)
+    everyone = np.arange(len(motors))
+    _search(family, free, fixed, grids, everyone, design, drive, motors, best_point, best_score)
+    for _ in range(REFINEMENTS):
+        steps = [2.0 * s / (FINE[dims] - 1) for s in steps]
+        groups: dict[tuple, list[int]] = {}
+        for i, point in enumerate(best_point):
+            groups.setdefault(point, []).append(i)
+        for point, members in groups.items():
+            local = [np.clip(np.linspace(c - s * (FINE[dims] - 1) / 2, c + s * (FINE[dims] - 1) / 2,
+                                         FINE[dims]), lo, hi)
+                     for c, s, (lo, hi) in zip(point, steps, bounds, strict=True)]
+            _search(family, free, fixed, local, np.array(members), design, drive, motors,
+                    best_point, best_score)
+    return [family(**fixed, **dict(zip([p.name for p in free], point, strict=True)))
+            for point in best_point]
+
+
+def _search(family, free, fixed, grids, members, design, drive, motors, best_point, best_score):
+    """Evaluate every grid point for the member motors and keep improvements."""
+    subset = motors.subset(members)
+    names = [p.name for p in free]
+    for point in itertools.product(*(np.unique(g) for g in grids)):
+        point = tuple(float(x) for x in point)
+        law = family(**fixed, **dict(zip(names, point, strict=True)))
+        score = _score(law, design, drive, subset)
+        better = score > best_score[members]
+        for j in np.nonzero(better)[0]:
+            best_point[members[j]] = point
+            best_score[members[j]] = score[j]
+    for i in members:
+        if best_point[i] is None:  # nothing feasible: keep the middle point for reporting
+            best_point[i] = tuple(float(g[len(g) // 2]) for g in grids)
+
+
+def _score(law: MotionLaw, design: Design, drive: Drive, motors: MotorArrays) -> np.ndarray:
+    """Higher is better: -T_min in minimize mode, the worst slack otherwise."""
+    calculator = CycleCalculator(None, design.task, drive, motors,
+                                 design.limits.thermal_speed, law=law)
+    if design.task.minimize:
+        solution = minimum_duration(calculator, design.limits)
+        return np.where(solution.feasible, -solution.duration, -np.inf)
+    metrics = calculator.evaluate(np.full(len(motors), design.task.duration))
+    return worst_slack(evaluate_checks(metrics, motors, drive, design.limits,
+                                       design.task.linear))
+
+

@@ -1,0 +1,113 @@
+"""Invariants of the minimum duration and of time scaling (hypothesis)."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from sizer.model import Design, Limits, Load, Motor, Stage, Task, Transmission
+from sizer.sizing import size_design
+
+LAWS = ("cycloidal", "trapezoidal(alpha=1/3)", "poly5", "modified_sinusoidal",
+        "double_s(alpha=0.3, beta=0.2)")
+
+positive = st.floats(min_value=0.1, max_value=10.0)
+
+
+@st.composite
+def designs(draw, minimize=True):
+    motor = Motor(
+        "m",
+        inertia=draw(st.floats(1e-5, 1e-2)),
+        continuous_torque=draw(positive),
+        peak_torque=draw(positive) * 3,
+        rated_speed=draw(st.floats(50.0, 600.0)),
+        damping=draw(st.sampled_from([0.0, 1e-4])),
+    )
+    motor = dataclasses.replace(motor, peak_torque=max(motor.peak_torque,
+                                                        motor.continuous_torque))
+    load = Load(
+        inertia=draw(st.floats(1e-4, 1.0)),
+        damping=draw(st.sampled_from([0.0, 0.05])),
+        friction=draw(st.sampled_from([0.0, 0.1])),
+        torque=draw(st.sampled_from([0.0, 0.2, -0.3])),
+    )
+    transmission = Transmission((Stage("gearbox", draw(st.floats(1.0, 20.0)),
+                                       draw(st.sampled_from([1.0, 0.9]))),))
+    task = Task(draw(st.floats(0.2, 6.0)), None if minimize else draw(st.floats(0.05, 2.0)),
+                dwell=draw(st.sampled_from([0.0, 0.1])),
+                return_move=draw(st.booleans()))
+    limits = Limits(torque_margin=draw(st.sampled_from([0.0, 0.1])))
+    return Design(task, load, transmission, laws=(draw(st.sampled_from(LAWS)),),
+                  motors=(motor,), limits=limits)
+
+
+def at_duration(design, T):
+    fixed = dataclasses.replace(design, task=dataclasses.replace(design.task, duration=T))
+    return size_design(fixed).results[0]
+
+
+@settings(max_examples=40, deadline=None)
+@given(designs())
+def test_t_min_is_feasible_and_a_shorter_move_is_not(design):
+    r = size_design(design).results[0]
+    if not r.feasible:
+        return
+    assert at_duration(design, r.duration).feasible or \
+        at_duration(design, r.duration).worst_slack > -1e-9
+    assert not at_duration(design, r.duration * (1 - 1e-6)).feasible
+
+
+@settings(max_examples=30, deadline=None)
+@given(designs(), st.floats(1.0, 3.0), st.sampled_from(["peak", "continuous", "speed"]))
+def test_a_stronger_motor_never_lengthens_t_min(design, factor, what):
+    base = size_design(design).results[0]
+    motor = design.motors[0]
+    stronger = {
+        "peak": dataclasses.replace(motor, peak_torque=motor.peak_torque * factor),
+        "continuous": dataclasses.replace(
+            motor, continuous_torque=min(motor.continuous_torque * factor, motor.peak_torque)),
+        "speed": dataclasses.replace(motor, rated_speed=motor.rated_speed * factor),
+    }[what]
+    better = size_design(dataclasses.replace(design, motors=(stronger,))).results[0]
+    if base.feasible:
+        assert better.feasible
+        assert better.duration <= base.duration * (1 + 1e-9)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.floats(0.1, 10.0), st.floats(0.1, 10.0), st.sampled_from(LAWS))
+def test_time_scaling_of_chapter_5(mu, lam, law):
+    """q(t) -> mu*q(t/lam): speeds scale by mu/lam, inertial torques by mu/lam^2."""
+    motor = Motor("m", inertia=1e-3, continuous_torque=1e6, peak_torque=1e6, rated_speed=1e9)
+    design = Design(Task(1.0, 0.5), Load(0.2), Transmission((Stage("gearbox", 5.0),)),
+                    laws=(law,), motors=(motor,))
+    base = size_design(design).results[0]
+    scaled = size_design(dataclasses.replace(design, task=Task(mu, 0.5 * lam))).results[0]
+    assert scaled.max_speed == pytest.approx(base.max_speed * mu / lam, rel=1e-9)
+    assert scaled.peak_torque == pytest.approx(base.peak_torque * mu / lam**2, rel=1e-9)
+    assert scaled.rms_torque == pytest.approx(base.rms_torque * mu / lam**2, rel=1e-9)
+
+
+@settings(max_examples=20, deadline=None)
+@given(designs())
+def test_minimize_rectangles_pure_inertia_matches_bisection(design):
+    """The closed form (eq. 6.2 with dwell) and the bracketing solver agree to 1e-9."""
+    from sizer.mechanics import Drive
+    from sizer.sizing.cycle import CycleCalculator
+    from sizer.sizing.duration import bisect_duration, closed_form_duration
+    from sizer.sizing.motors import MotorArrays
+
+    pure = dataclasses.replace(design, load=Load(design.load.inertia),
+                               transmission=Transmission((Stage("gearbox", 3.0),)),
+                               motors=(dataclasses.replace(design.motors[0], damping=0.0),))
+    from sizer.laws import make_law
+    calculator = CycleCalculator(None, pure.task, Drive(pure.load, pure.transmission),
+                                 MotorArrays.of(pure.motors), law=make_law(pure.laws[0]))
+    closed = closed_form_duration(calculator, pure.limits)
+    bisected = bisect_duration(calculator, pure.limits)
+    assert np.allclose(bisected, closed, rtol=1e-9)
