@@ -20,7 +20,7 @@ from sizer.sizing.checks import CheckArrays, evaluate_checks, worst_slack
 from sizer.sizing.cycle import CycleCalculator, CycleMetrics
 
 EXPANSIONS = 80
-BISECTIONS = 48
+BISECTIONS = 200
 
 
 @dataclass(frozen=True)
@@ -123,30 +123,52 @@ def _initial_guess(calculator: CycleCalculator) -> np.ndarray:
 
 
 def bisect_duration(calculator: CycleCalculator, limits: Limits) -> np.ndarray:
-    """T_min by bracketing and bisection on feasibility; inf where none is feasible."""
+    """T_min by bracketing, then the Illinois method on the worst slack; inf if none works.
 
-    def feasible(T: np.ndarray) -> np.ndarray:
+    The worst slack (smallest margin beyond the required one, over all checks) is
+    continuous in T and >= 0 exactly where the candidate is feasible. The bracket
+    [lo, hi] keeps lo infeasible and hi feasible, so the answer is always feasible; it
+    stops when the bracket is narrower than 1e-13 (relative) or hi has slack < 1e-14.
+    """
+
+    def slack(T: np.ndarray) -> np.ndarray:
         _, checks = evaluate(calculator, limits, T)
-        return worst_slack(checks) >= 0.0
+        return worst_slack(checks)
 
     hi = _initial_guess(calculator)
-    ok = feasible(hi)
+    f_hi = slack(hi)
     for _ in range(EXPANSIONS):
-        if ok.all():
+        if (f_hi >= 0.0).all():
             break
-        hi = np.where(ok, hi, 2.0 * hi)
-        ok = feasible(hi)
+        hi = np.where(f_hi >= 0.0, hi, 2.0 * hi)
+        f_hi = slack(hi)
+    ok = f_hi >= 0.0
     lo = hi / 2.0
-    low_ok = feasible(lo) & ok
+    f_lo = slack(lo)
     for _ in range(EXPANSIONS):
+        low_ok = ok & (f_lo >= 0.0)
         if not low_ok.any():
             break
-        hi = np.where(low_ok, lo, hi)
+        hi, f_hi = np.where(low_ok, lo, hi), np.where(low_ok, f_lo, f_hi)
         lo = np.where(low_ok, lo / 2.0, lo)
-        low_ok = feasible(lo) & low_ok
-    for _ in range(BISECTIONS):
-        mid = np.sqrt(lo * hi)
-        good = feasible(mid)
-        hi = np.where(good, mid, hi)
-        lo = np.where(good, lo, mid)
-    return np.where(ok, hi, np.inf)
+        f_lo = np.where(low_ok, slack(lo), f_lo)
+    x_lo, x_hi = np.log(lo), np.log(hi)
+    side = np.zeros(len(hi))  # which end moved last: -1 lo, +1 hi (Illinois weighting)
+    for step in range(BISECTIONS):
+        open_ = ok & (x_hi - x_lo > 1e-13) & (f_hi > 1e-14)
+        if not open_.any():
+            break
+        finite = np.isfinite(f_lo) & np.isfinite(f_hi) & (f_hi > f_lo)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            secant = x_hi - f_hi * (x_hi - x_lo) / (f_hi - f_lo)
+        inside = finite & (secant > x_lo) & (secant < x_hi) & (step % 4 != 3)
+        x = np.where(inside, secant, 0.5 * (x_lo + x_hi))
+        f = slack(np.exp(x))
+        good = f >= 0.0
+        move_hi, move_lo = open_ & good, open_ & ~good
+        f_lo = np.where(move_hi & (side == 1), 0.5 * f_lo, f_lo)
+        f_hi = np.where(move_lo & (side == -1), 0.5 * f_hi, f_hi)
+        x_hi, f_hi = np.where(move_hi, x, x_hi), np.where(move_hi, f, f_hi)
+        x_lo, f_lo = np.where(move_lo, x, x_lo), np.where(move_lo, f, f_lo)
+        side = np.where(move_hi, 1, np.where(move_lo, -1, side))
+    return np.where(ok, np.exp(x_hi), np.inf)
