@@ -27,10 +27,12 @@ def trig_poly_piece(
     """
     coef = np.asarray(poly, dtype=float) if len(poly) else np.zeros(1)
     sines = tuple(sines)
+    derivatives = [coef]  # polynomial coefficients of each derivative order, built once
 
     def evaluate(tau: np.ndarray, order: int) -> np.ndarray:
-        c = P.polyder(coef, order) if order else coef
-        out = P.polyval(tau - origin, c) + np.zeros_like(tau)
+        while len(derivatives) <= order:
+            derivatives.append(P.polyder(derivatives[-1]))
+        out = P.polyval(tau - origin, derivatives[order]) + np.zeros_like(tau)
         for amplitude, omega, phase in sines:
             out = out + amplitude * omega**order * np.sin(omega * tau + phase + order * math.pi / 2)
         return out

@@ -24,7 +24,7 @@ from numpy.polynomial.legendre import leggauss
 
 from sizer.mechanics import Drive
 from sizer.model.domain import Task, ThermalSpeedRule
-from sizer.sizing.grid import LawGrid, law_grid, piecewise
+from sizer.sizing.grid import LawGrid, PieceEvaluator, law_grid
 from sizer.sizing.motors import MotorArrays
 
 GOLDEN_STEPS = 40
@@ -153,10 +153,10 @@ class CycleCalculator:
         law = self.law
         piece = g.piece[interval]
         _, _, alpha, beta, gamma = factors
+        at = PieceEvaluator(law, piece)
 
         def load_torque(tau):
-            return (alpha[cand] * piecewise(law, tau, piece, 2)
-                    + beta[cand] * piecewise(law, tau, piece, 1) + gamma)
+            return alpha[cand] * at(tau, 2) + beta[cand] * at(tau, 1) + gamma
 
         lo, hi = g.left[interval].copy(), g.right[interval].copy()
         f_lo = load_torque(lo)
@@ -172,9 +172,8 @@ class CycleCalculator:
         for a, b in ((g.left[interval], root), (root, g.right[interval])):
             half = 0.5 * (b - a)
             tau = (0.5 * (a + b))[:, None] + half[:, None] * x
-            pieces = np.broadcast_to(piece[:, None], tau.shape)
-            a_n = piecewise(law, tau.ravel(), pieces.ravel(), 2).reshape(tau.shape)
-            v_n = piecewise(law, tau.ravel(), pieces.ravel(), 1).reshape(tau.shape)
+            on_pieces = PieceEvaluator(law, np.broadcast_to(piece[:, None], tau.shape))
+            a_n, v_n = on_pieces(tau, 2), on_pieces(tau, 1)
             torque = self._torque(a_n, v_n, factors, index=cand)
             np.add.at(total, cand, (half[:, None] * w * torque**2).sum(axis=1))
         return total
@@ -208,11 +207,10 @@ class CycleCalculator:
         interval, column = np.divmod(best, tau.shape[1])
         lo = tau[interval, np.maximum(column - 1, 0)]
         hi = tau[interval, np.minimum(column + 1, tau.shape[1] - 1)]
-        piece = g.piece[interval]
+        at = PieceEvaluator(self.law, g.piece[interval])
 
         def objective(x):
-            a_n = piecewise(self.law, x, piece, 2)
-            v_n = piecewise(self.law, x, piece, 1)
+            a_n, v_n = at(x, 2), at(x, 1)
             torque = np.abs(self._torque(a_n, v_n, factors))
             if not by_ratio:
                 return torque

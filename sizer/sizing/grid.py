@@ -74,10 +74,27 @@ def law_grid(law: MotionLaw) -> LawGrid:
                    law.derivative(nodes, 2), end_v, end_a)
 
 
+class PieceEvaluator:
+    """Evaluates a law at points each bound to its own piece (one-sided at piece ends).
+
+    The grouping of points by piece is computed once, for repeated evaluations at moving
+    points that stay in their pieces (root and peak searches).
+    """
+
+    def __init__(self, law: MotionLaw, piece: np.ndarray) -> None:
+        self.law = law
+        self.shape = piece.shape
+        flat = piece.ravel()
+        self.groups = [(int(i), np.nonzero(flat == i)[0]) for i in np.unique(flat)]
+
+    def __call__(self, tau: np.ndarray, order: int) -> np.ndarray:
+        flat = tau.ravel()
+        out = np.empty(flat.shape)
+        for index, where in self.groups:
+            out[where] = self.law.piece_derivative(index, flat[where], order)
+        return out.reshape(self.shape)
+
+
 def piecewise(law: MotionLaw, tau: np.ndarray, piece: np.ndarray, order: int) -> np.ndarray:
     """Derivative of the given order at tau, each point evaluated on its own piece index."""
-    out = np.empty(tau.shape)
-    for index in np.unique(piece):
-        mask = piece == index
-        out[mask] = law.piece_derivative(int(index), tau[mask], order)
-    return out
+    return PieceEvaluator(law, piece)(tau, order)
