@@ -84,4 +84,8 @@ class DoubleS(MotionLaw):
             "C_a": 1.0 / (a * (1.0 - a) * (1.0 - b)),
             "C_j": 1.0 / (a * a * b * (1.0 - a) * (1.0 - b)),
             "C_a_rms": math.sqrt((6.0 - 8.0 * b) / (3.0 * a)) / ((1.0 - a) * (1.0 - b)),
+            # int v^2 over the seven segments (beta = 0 gives the trapezoid's value)
+            "C_v_rms": math.sqrt(
+                (30.0 * (1.0 - b) ** 2 - a * (40.0 - 90.0 * b + 65.0 * b * b - 16.0 * b**3))
+                / 30.0) / ((1.0 - a) * (1.0 - b)),
         }

@@ -52,8 +52,8 @@ class CycleCalculator:
 
     def __init__(self, grid: LawGrid | None, task: Task, drive: Drive, motors: MotorArrays,
                  thermal_speed: ThermalSpeedRule = "max", law=None) -> None:
-        self.grid = grid if grid is not None else law_grid(law)
-        self.law = self.grid.law
+        self._grid = grid
+        self.law = grid.law if grid is not None else law
         self.task = task
         self.drive = drive
         self.motors = motors
@@ -61,6 +61,13 @@ class CycleCalculator:
         self.h = abs(task.displacement)
         sign = 1.0 if task.displacement >= 0 else -1.0
         self.directions = (sign, -sign) if task.return_move else (sign,)
+
+    @property
+    def grid(self) -> LawGrid:
+        """The law's sampling grid, built on first use (the closed forms need none)."""
+        if self._grid is None:
+            self._grid = law_grid(self.law)
+        return self._grid
 
     # ------------------------------------------------------------------ public
     def evaluate(self, duration: np.ndarray) -> CycleMetrics:

@@ -2,9 +2,9 @@
 
 In minimize mode the parameter minimizes T_min; with a given duration it maximizes the
 smallest margin. The search is a grid over the parameter's range refined twice around
-each motor's best point (vectorized over the motors that share a neighbourhood), so the
-chosen value is within about 1/400 of the range of the true optimum, and the duration
-or margins reported are computed exactly for the chosen value.
+each motor's best point (vectorized over the motors that share a neighbourhood), halving
+the spacing each round, so the chosen value is within about 1e-3 of the range of the
+true optimum; the duration or margins reported are exact for the chosen value.
 """
 
 from __future__ import annotations
@@ -23,8 +23,8 @@ from sizer.sizing.duration import minimum_duration
 from sizer.sizing.motors import MotorArrays
 
 COARSE = {1: 13, 2: 7}
-FINE = {1: 7, 2: 5}
-REFINEMENTS = 2
+FINE = {1: 5, 2: 5}
+REFINEMENTS = 7
 INSET = 1e-3  # keep open interval ends out of the grid
 
 
