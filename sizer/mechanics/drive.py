@@ -1,14 +1,17 @@
-"""The load and transmission reflected to the motor shaft (book sec. 6.1.1, eq. 6.1).
+"""The load and transmission seen from the motor shaft (book sec. 6.1.1, eq. 6.1).
 
-With total ratio k (motor speed over load speed) and efficiency eta, a load-side torque
-u (or force on a linear axis) needs u/(k*eta) from the motor while the motor drives the
-load (power flows to the load) and u*eta/k while the load drives the motor. So
-J_t = J_m + J_gear + J_l/k^2 and B_t = B_m + B_l/k^2 when eta = 1.
+Stages run from the motor to the load. A torque x at a stage's output (along the motion)
+needs x/(k*eta) at its input while power flows to the load (x >= 0) and x*eta/k while
+the load drives (x < 0). Each stage adds, at its input, the torque to accelerate its own
+inertia and its preload friction. With eta = 1 everywhere this is the book's
+J_t = J_m + J_gear + J_l/k^2 and B_t = B_m + B_l/k^2. A linear axis reads mass for
+inertia, force for torque, and rad/m for the last stage's ratio.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -17,48 +20,91 @@ from sizer.model.domain import Load, Transmission
 
 @dataclass(frozen=True)
 class Drive:
-    """Load plus transmission; everything the motor sees apart from its own rotor."""
+    """Load plus transmission; everything the motor drives apart from its own rotor."""
 
     load: Load
     transmission: Transmission
 
     @property
+    def stages(self):
+        return self.transmission.stages
+
+    @property
     def ratio(self) -> float:
+        """Motor speed over load speed, K."""
         return self.transmission.ratio
 
     @property
     def efficiency(self) -> float:
         return self.transmission.efficiency
 
+    @cached_property
+    def input_ratios(self) -> tuple[float, ...]:
+        """Speed of each stage's input over the load speed."""
+        return self.transmission.input_ratios
+
+    @property
+    def is_ideal(self) -> bool:
+        """All efficiencies are 1: the motor torque is linear in the load's a, v, u."""
+        return all(s.efficiency == 1.0 for s in self.stages)
+
     @property
     def transmission_inertia(self) -> float:
-        """Inertia of the transmission at the motor shaft, J_gear."""
+        """Inertia of all stages reflected to the motor shaft (no efficiency)."""
         return self.transmission.inertia
 
     @property
     def reflected_load_inertia(self) -> float:
-        """J_l/k^2 (the inertia ratio's numerator, without efficiency)."""
+        """J_l/K^2 (the inertia ratio's numerator, without efficiency)."""
         return self.load.inertia / self.ratio**2
 
-    def reflect(self, load_torque: np.ndarray) -> np.ndarray:
-        """Motor-shaft torque for a load-side torque u along the motion direction.
-
-        u >= 0: the motor drives the load, u/(k*eta); u < 0: the load drives, u*eta/k.
-        """
-        k, eta = self.ratio, self.efficiency
-        return np.where(load_torque >= 0.0, load_torque / (k * eta), load_torque * eta / k)
-
-    def load_torque(self, a_n: np.ndarray, v_n: np.ndarray, h: float, T: np.ndarray,
-                    direction: float) -> np.ndarray:
-        """Load-side torque along a move of |h| in T, direction +1 or -1 (eq. 6.1 + loads).
-
-        u = J_l a + B_l v + F + direction*tau_ext, with a, v the load's magnitudes.
-        """
+    def load_torque(self, a_l: np.ndarray, v_l: np.ndarray, direction: float) -> np.ndarray:
+        """u = J_l a + B_l v + F + direction*tau_ext: the load's torque along the motion."""
         load = self.load
-        return (load.inertia * h * a_n / T**2 + load.damping * h * v_n / T
-                + load.friction + direction * load.torque)
+        return load.inertia * a_l + load.damping * v_l + load.friction + direction * load.torque
+
+    def chain(self, a_l: np.ndarray, v_l: np.ndarray,
+              direction: float) -> tuple[np.ndarray, list[np.ndarray]]:
+        """Torque the transmission needs at the motor shaft, and each stage's output torque.
+
+        a_l, v_l are the load's acceleration and speed along the motion (magnitudes for
+        the move's direction). Returns (shaft torque without the rotor, [output torque of
+        stage 0, ..., output torque of the last stage = u]).
+        """
+        x = self.load_torque(a_l, v_l, direction)
+        outputs = [x]
+        for stage, k_in in zip(reversed(self.stages), reversed(self.input_ratios), strict=True):
+            reflected = np.where(x >= 0.0, x / (stage.ratio * stage.efficiency),
+                                 x * stage.efficiency / stage.ratio)
+            x = stage.inertia * k_in * a_l + stage.preload_torque + reflected
+            outputs.append(x)
+        outputs.pop()  # the last one is the shaft torque, not a stage output
+        return x, outputs[::-1]
+
+    def linear_chain(self, direction: float) -> tuple[float, float, float]:
+        """(A, B, C) with shaft torque = A a_l + B v_l + C, valid when ``is_ideal``."""
+        K = self.ratio
+        a_part = self.load.inertia / K + sum(
+            s.inertia * k_in**2 / K for s, k_in in zip(self.stages, self.input_ratios, strict=True))
+        const = (self.load.friction + direction * self.load.torque) / K + sum(
+            s.preload_torque * k_in / K
+            for s, k_in in zip(self.stages, self.input_ratios, strict=True))
+        return a_part, self.load.damping / K, const
+
+    def holding_torques(self) -> tuple[float, list[float]]:
+        """|Torque| at the motor shaft and at each stage output holding the constant load.
+
+        At rest the power flow is undefined; holding counts as driving (divide by eta),
+        the conservative choice.
+        """
+        x = abs(self.load.torque)
+        outputs = [x]
+        for stage in reversed(self.stages):
+            x = x / (stage.ratio * stage.efficiency)
+            outputs.append(x)
+        outputs.pop()
+        return x, outputs[::-1]
 
     @property
     def holding_torque(self) -> float:
-        """|Motor torque| holding the constant external load at rest (counted as driving)."""
-        return abs(self.load.torque) / (self.ratio * self.efficiency)
+        return self.holding_torques()[0]

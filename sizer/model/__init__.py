@@ -2,9 +2,11 @@
 
 from sizer.model.domain import (
     Design,
+    GearboxOption,
     Limits,
     Load,
     Motor,
+    RatioChoice,
     Stage,
     Task,
     ThermalSpeedRule,
@@ -13,9 +15,11 @@ from sizer.model.domain import (
 
 __all__ = [
     "Design",
+    "GearboxOption",
     "Limits",
     "Load",
     "Motor",
+    "RatioChoice",
     "Stage",
     "Task",
     "ThermalSpeedRule",

@@ -58,11 +58,16 @@ class Load:
 
 @dataclass(frozen=True)
 class Stage:
-    """One transmission stage: load-side motion times ``ratio`` is its input motion.
+    """One transmission stage: its output motion times ``ratio`` is its input motion.
 
-    ``ratio`` is input speed over output speed (k_r for a gearbox; rad/m for a screw);
-    ``efficiency`` in (0, 1] applies in the direction of power flow; ``inertia`` is the
-    stage's own inertia at its input (kg*m^2).
+    ``ratio`` is input speed over output speed: k_r for a gearbox or belt (rad/rad), 2*pi/lead
+    for a ball screw and 1/r for a rack and pinion (rad/m). ``efficiency`` in (0, 1] applies
+    in the direction of power flow. ``inertia`` is everything the stage moves, reflected to
+    its input (kg*m^2): gear or pulley inertias, a screw, a belt's mass. ``preload_torque``
+    is a constant friction torque at its input while moving (a ball screw's preload).
+    Limits, where known, are checked like the motor's: ``max_input_speed`` (rad/s, e.g. a
+    gearbox's or a screw's critical speed), ``rated_output_torque`` against the RMS and
+    ``peak_output_torque`` against the peak of the torque (or force) at its output.
     """
 
     kind: str = "gearbox"
@@ -70,6 +75,11 @@ class Stage:
     efficiency: float = 1.0
     inertia: float = 0.0
     name: str = ""
+    preload_torque: float = 0.0
+    max_input_speed: float | None = None
+    rated_output_torque: float | None = None
+    peak_output_torque: float | None = None
+    backlash: float | None = None
 
 
 @dataclass(frozen=True)
@@ -88,13 +98,28 @@ class Transmission:
         return math.prod(s.efficiency for s in self.stages)
 
     @property
+    def input_ratios(self) -> tuple[float, ...]:
+        """Speed of each stage's input over the load's speed (the motor's for stage 0)."""
+        out, speed = [], 1.0
+        for stage in reversed(self.stages):
+            speed *= stage.ratio
+            out.append(speed)
+        return tuple(reversed(out))
+
+    @property
     def inertia(self) -> float:
-        """Inertia of the stages reflected to the motor shaft, kg*m^2."""
+        """Inertia of the stages reflected to the motor shaft, kg*m^2 (no efficiency)."""
         total, upstream = 0.0, 1.0
         for stage in self.stages:
             total += stage.inertia / upstream**2
             upstream *= stage.ratio
         return total
+
+    def with_stage(self, index: int, stage: Stage) -> Transmission:
+        """The same transmission with stage ``index`` replaced (ratio choice)."""
+        stages = list(self.stages)
+        stages[index] = stage
+        return Transmission(tuple(stages))
 
 
 @dataclass(frozen=True)
@@ -138,6 +163,28 @@ class Limits:
 
 
 @dataclass(frozen=True)
+class GearboxOption:
+    """One ratio of a catalog gearbox, with its efficiency, inertia and limits."""
+
+    gearbox: str
+    stage: Stage
+
+
+@dataclass(frozen=True)
+class RatioChoice:
+    """A free ratio of stage ``stage``: a list to try, continuous bounds, or catalog gearboxes.
+
+    The solver picks, for each motor and law, the ratio that minimizes T_min (minimize
+    mode) or the RMS torque (duration given) among the feasible ones.
+    """
+
+    stage: int = 0
+    ratios: tuple[float, ...] = ()
+    bounds: tuple[float, float] | None = None
+    gearboxes: tuple[GearboxOption, ...] = ()
+
+
+@dataclass(frozen=True)
 class Design:
     """A complete sizing problem: task, load, transmission, laws, motors, limits."""
 
@@ -150,3 +197,4 @@ class Design:
     chosen_motor: str | None = None
     chosen_law: str | None = None
     name: str = ""
+    ratio_choice: RatioChoice | None = None
