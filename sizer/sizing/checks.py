@@ -64,6 +64,35 @@ def evaluate_checks(metrics: CycleMetrics, motors: MotorArrays, drive: Drive,
     if limits.max_jerk is not None:
         checks.append(CheckArrays("jerk", metrics.load_jerk, limits.max_jerk * ones,
                                   f"{unit}/s^3", 0.0))
+    checks.extend(stage_checks(metrics, drive, limits, linear))
+    return checks
+
+
+def stage_labels(drive: Drive) -> list[str]:
+    """A name per stage: its own name, else its kind (numbered when kinds repeat)."""
+    kinds = [s.name or s.kind for s in drive.stages]
+    return [k if kinds.count(k) == 1 else f"{k}{i + 1}" for i, k in enumerate(kinds)]
+
+
+def stage_checks(metrics: CycleMetrics, drive: Drive, limits: Limits,
+                 linear: bool) -> list[CheckArrays]:
+    """Limits of the transmission stages: input speed, RMS and peak output torque."""
+    ones = np.ones_like(metrics.duration)
+    checks = []
+    last = len(drive.stages) - 1
+    for i, (stage, label) in enumerate(zip(drive.stages, stage_labels(drive), strict=True)):
+        torque_unit = "N" if linear and i == last else "N*m"
+        if stage.max_input_speed is not None:
+            checks.append(CheckArrays(f"{label}_speed", metrics.stage_speed[i],
+                                      stage.max_input_speed * ones, "rad/s", limits.speed_margin))
+        if stage.rated_output_torque is not None:
+            checks.append(CheckArrays(f"{label}_rms", metrics.stage_rms[i],
+                                      stage.rated_output_torque * ones, torque_unit,
+                                      limits.torque_margin))
+        if stage.peak_output_torque is not None:
+            checks.append(CheckArrays(f"{label}_peak", metrics.stage_peak[i],
+                                      stage.peak_output_torque * ones, torque_unit,
+                                      limits.torque_margin))
     return checks
 
 

@@ -1,16 +1,19 @@
 """The machine cycle of one law for many candidates at once (book sec. 6.1.1).
 
 For each candidate (a motor with its own duration T) the cycle is: move |h| in T, dwell,
-and with a return move the same back and a second dwell. Per move the motor torque is
+and with a return move the same back and a second dwell. Along each move the motor torque
+is
 
-    tau(t) = (J_m + J_gear) k a(t) + B_m k v(t) + reflect(J_l a + B_l v + F +- tau_ext)
+    tau(t) = J_m K a(t) + B_m K v(t) + chain(a, v)
 
-with a, v the load's acceleration and speed, k the ratio and reflect() applying the
-efficiency in the direction of power flow (sizer.mechanics.drive). During a dwell the
-motor holds the constant external load. The RMS torque covers the whole cycle.
+with a, v the load's acceleration and speed, K the total ratio and chain() the torque
+the transmission and the load need at the motor shaft, efficiencies applied in the
+direction of power flow (sizer.mechanics.drive). During a dwell the motor holds the
+constant external load. The RMS torque covers the whole cycle; so do the RMS torques at
+the outputs of transmission stages that have torque ratings.
 
-Integrals are exact: Gauss-Legendre on the law's grid, each interval split where the
-power flow reverses; with eta = 1 the RMS is the closed form in C_v_rms, C_a_rms.
+Integrals are exact: Gauss-Legendre on the law's grid, each interval cut where a stage's
+power flow reverses; with ideal stages the RMS is the closed form in C_v_rms, C_a_rms.
 Peaks are found on the grid and refined by golden-section search.
 """
 
@@ -34,7 +37,13 @@ INV_PHI = (math.sqrt(5.0) - 1.0) / 2.0
 
 @dataclass(frozen=True)
 class CycleMetrics:
-    """Requirements of one law for each candidate (arrays over candidates, SI, motor side)."""
+    """Requirements of one law for each candidate (arrays over candidates, SI).
+
+    Motor side: max_speed, peak_torque, peak_ratio (worst |tau|/tau_int(|speed|)),
+    rms_torque, thermal_speed. Load side: load_speed, load_acceleration, load_jerk (peaks)
+    and load_torque (peak |u|). Per stage: stage_peak and stage_rms output torques and
+    stage_speed (peak input speed), lists over the stages.
+    """
 
     duration: np.ndarray
     max_speed: np.ndarray
@@ -45,6 +54,19 @@ class CycleMetrics:
     load_speed: np.ndarray
     load_acceleration: np.ndarray
     load_jerk: np.ndarray
+    load_torque: np.ndarray
+    stage_peak: list[np.ndarray]
+    stage_rms: list[np.ndarray]
+    stage_speed: list[np.ndarray]
+
+
+@dataclass(frozen=True)
+class _Scales:
+    """Per-candidate scales of one move: load a = acc*a_N, v = vel*v_N."""
+
+    acc: np.ndarray
+    vel: np.ndarray
+    direction: float
 
 
 class CycleCalculator:
@@ -61,6 +83,8 @@ class CycleCalculator:
         self.h = abs(task.displacement)
         sign = 1.0 if task.displacement >= 0 else -1.0
         self.directions = (sign, -sign) if task.return_move else (sign,)
+        self.stage_checks = any(s.rated_output_torque is not None
+                                or s.peak_output_torque is not None for s in drive.stages)
 
     @property
     def grid(self) -> LawGrid:
@@ -73,138 +97,202 @@ class CycleCalculator:
     def evaluate(self, duration: np.ndarray) -> CycleMetrics:
         T = np.broadcast_to(np.asarray(duration, dtype=float), (len(self.motors),)).copy()
         c = self.law.coefficients
-        k, h = self.drive.ratio, self.h
+        K, h = self.drive.ratio, self.h
+        n_stages = len(self.drive.stages)
         load_speed = c.C_v * h / T
-        max_speed = k * load_speed
         peak_torque = np.zeros_like(T)
         peak_ratio = np.zeros_like(T)
-        move_square = np.zeros_like(T)
+        load_torque = np.zeros_like(T)
+        square = np.zeros_like(T)
+        stage_peak = [np.zeros_like(T) for _ in range(n_stages)]
+        stage_square = [np.zeros_like(T) for _ in range(n_stages)]
         for direction in self.directions:
-            torque, ratio = self._peaks(T, direction)
+            scales = _Scales(h / T**2, h / T, direction)
+            torque, ratio, load, stages = self._peaks(scales)
             peak_torque = np.maximum(peak_torque, torque)
             peak_ratio = np.maximum(peak_ratio, ratio)
-            move_square += T * self._mean_square(T, direction)
+            load_torque = np.maximum(load_torque, load)
+            means = self._mean_squares(scales)
+            square += T * means[0]
+            for i in range(n_stages):
+                stage_peak[i] = np.maximum(stage_peak[i], stages[i])
+                stage_square[i] += T * means[1 + i]
         dwell = self.task.dwell
         n = len(self.directions)
-        hold = self.drive.holding_torque
+        hold, stage_hold = self.drive.holding_torques()
         if dwell > 0.0 and hold > 0.0:
             peak_torque = np.maximum(peak_torque, hold)
             hold_limit = self.motors.intermittent.limit(np.zeros_like(T))
             peak_ratio = np.maximum(peak_ratio, _safe_ratio(np.full_like(T, hold), hold_limit))
+            load_torque = np.maximum(load_torque, abs(self.drive.load.torque))
+            for i in range(n_stages):
+                stage_peak[i] = np.maximum(stage_peak[i], stage_hold[i])
         cycle = n * (T + dwell)
-        rms = np.sqrt((move_square + n * dwell * hold**2) / cycle)
+        rms = np.sqrt((square + n * dwell * hold**2) / cycle)
+        stage_rms = [np.sqrt((stage_square[i] + n * dwell * stage_hold[i] ** 2) / cycle)
+                     for i in range(n_stages)]
         if self.thermal_rule == "max":
-            thermal = max_speed
+            thermal = K * load_speed
         elif self.thermal_rule == "rms":
-            thermal = k * h * c.C_v_rms * np.sqrt(n * T / cycle) / T
+            thermal = K * h * c.C_v_rms * np.sqrt(n * T / cycle) / T
         else:
-            thermal = n * k * h / cycle
+            thermal = n * K * h / cycle
         jerk = c.C_j * h / T**3 if c.jerk_bounded else np.full_like(T, np.inf)
-        return CycleMetrics(T, max_speed, peak_torque, peak_ratio, rms, thermal, load_speed,
-                            c.C_a * h / T**2, jerk)
+        return CycleMetrics(
+            duration=T, max_speed=K * load_speed, peak_torque=peak_torque,
+            peak_ratio=peak_ratio, rms_torque=rms, thermal_speed=thermal,
+            load_speed=load_speed, load_acceleration=c.C_a * h / T**2, load_jerk=jerk,
+            load_torque=load_torque, stage_peak=stage_peak, stage_rms=stage_rms,
+            stage_speed=[k * load_speed for k in self.drive.input_ratios],
+        )
 
     # ---------------------------------------------------------------- torques
-    def _coefficients(self, T: np.ndarray, direction: float):
-        """Per-candidate factors: motor part P*a_N + Q*v_N and load part alpha*a_N + ..."""
-        drive, h, k = self.drive, self.h, self.drive.ratio
-        rotor = self.motors.inertia + drive.transmission_inertia
-        p = rotor * k * h / T**2
-        q = self.motors.damping * k * h / T
-        load = drive.load
-        alpha = load.inertia * h / T**2
-        beta = load.damping * h / T
-        gamma = load.friction + direction * load.torque
-        return p, q, alpha, beta, gamma
+    def _channels(self, a_n: np.ndarray, v_n: np.ndarray, scales: _Scales,
+                  index: np.ndarray | None = None) -> tuple[np.ndarray, list[np.ndarray]]:
+        """Motor torque and stage output torques at normalized a_N, v_N.
 
-    def _torque(self, a_n, v_n, factors, index=None):
-        """Motor torque at normalized a_N, v_N (candidate-major arrays)."""
-        p, q, alpha, beta, gamma = factors
+        Arrays are candidate-major; ``index`` selects the candidates of the rows.
+        """
+        acc, vel = scales.acc, scales.vel
+        rotor, damping = self.motors.inertia, self.motors.damping
         if index is not None:
-            p, q, alpha, beta = p[index], q[index], alpha[index], beta[index]
+            acc, vel, rotor, damping = acc[index], vel[index], rotor[index], damping[index]
         shape = (-1,) + (1,) * (np.ndim(a_n) - 1)
-        p, q, alpha, beta = (np.reshape(x, shape) for x in (p, q, alpha, beta))
-        u = alpha * a_n + beta * v_n + gamma
-        return p * a_n + q * v_n + self.drive.reflect(u)
+        acc, vel, rotor, damping = (np.reshape(x, shape) for x in (acc, vel, rotor, damping))
+        a_l, v_l = acc * a_n, vel * v_n
+        shaft, outputs = self.drive.chain(a_l, v_l, scales.direction)
+        K = self.drive.ratio
+        return rotor * K * a_l + damping * K * v_l + shaft, outputs
 
-    def _mean_square(self, T: np.ndarray, direction: float) -> np.ndarray:
-        """(1/T) * integral of tau^2 over one move, for each candidate."""
-        factors = self._coefficients(T, direction)
-        p, q, alpha, beta, gamma = factors
-        c = self.law.coefficients
-        if self.drive.efficiency == 1.0:
-            k = self.drive.ratio
-            a_part, v_part, const = p + alpha / k, q + beta / k, gamma / k
-            # int a_N = 0, int a_N v_N = 0 and int v_N = 1 over a rest-to-rest move
-            return (a_part * c.C_a_rms) ** 2 + (v_part * c.C_v_rms) ** 2 + const**2 \
-                + 2.0 * v_part * const
+    def _mean_squares(self, scales: _Scales) -> list[np.ndarray]:
+        """(1/T) * integral of the squared motor torque (then of each stage output) per move."""
+        drive = self.drive
+        n_stages = len(drive.stages)
+        if drive.is_ideal:
+            return self._ideal_mean_squares(scales)
         g = self.grid
-        a_n, v_n = g.acceleration[None], g.velocity[None]
-        torque = self._torque(a_n, v_n, factors)
-        u_ends = (alpha[:, None, None] * g.end_acceleration[None]
-                  + beta[:, None, None] * g.end_velocity[None] + gamma)
-        crossing = u_ends[..., 0] * u_ends[..., 1] < 0.0
-        plain = np.where(crossing[..., None], 0.0, g.weights[None] * torque**2)
-        total = plain.sum(axis=(1, 2))
+        motor, outputs = self._channels(g.acceleration[None], g.velocity[None], scales)
+        _, end_outputs = self._channels(g.end_acceleration[None], g.end_velocity[None], scales)
+        crossing = np.zeros(motor.shape[:2], dtype=bool)
+        for x in end_outputs:
+            crossing |= x[..., 0] * x[..., 1] < 0.0
+        totals = []
+        for channel in (motor, *outputs[:n_stages]):
+            plain = np.where(crossing[..., None], 0.0, g.weights[None] * channel**2)
+            totals.append(plain.sum(axis=(1, 2)))
         if crossing.any():
-            total += self._split_integrals(np.nonzero(crossing), factors)
-        return total
+            for total, extra in zip(totals, self._split_integrals(np.nonzero(crossing), scales),
+                                    strict=True):
+                total += extra
+        return totals
 
-    def _split_integrals(self, where, factors) -> np.ndarray:
-        """Integrals of tau^2 over base intervals where the power flow reverses.
+    def _ideal_mean_squares(self, scales: _Scales) -> list[np.ndarray]:
+        """Closed forms: int a_N = 0, int a_N v_N = 0, int v_N = 1 over a rest-to-rest move."""
+        c = self.law.coefficients
+        K = self.drive.ratio
+        a_part, v_part, const = self.drive.linear_chain(scales.direction)
+        p = (self.motors.inertia * K + a_part) * scales.acc
+        q = (self.motors.damping * K + v_part) * scales.vel
+        out = [_square_mean(p, q, const, c.C_a_rms, c.C_v_rms)]
+        if self.stage_checks:
+            out += self._stage_ideal_mean_squares(scales)
+        else:
+            out += [np.zeros_like(p) for _ in self.drive.stages]
+        return out
 
-        The interval is cut at the root of the load torque (bisection), and each side is
-        integrated with Gauss-Legendre, so the kink of reflect() is never inside a rule.
+    def _stage_ideal_mean_squares(self, scales: _Scales) -> list[np.ndarray]:
+        """Each stage output torque is linear too: its coefficients from the chain."""
+        c = self.law.coefficients
+        zero, one = np.zeros(1), np.ones(1)
+        _, out_a = self.drive.chain(one, zero, scales.direction)
+        _, out_v = self.drive.chain(zero, one, scales.direction)
+        _, out_0 = self.drive.chain(zero, zero, scales.direction)
+        result = []
+        for xa, xv, x0 in zip(out_a, out_v, out_0, strict=True):
+            a_coef, v_coef, const = float(xa[0] - x0[0]), float(xv[0] - x0[0]), float(x0[0])
+            result.append(_square_mean(a_coef * scales.acc, v_coef * scales.vel, const,
+                                       c.C_a_rms, c.C_v_rms))
+        return result
+
+    def _split_integrals(self, where, scales: _Scales) -> list[np.ndarray]:
+        """Integrals of the squared channels over intervals where a power flow reverses.
+
+        The interval is cut at each root of a stage's output torque (bisection), and each
+        part is integrated with Gauss-Legendre, so no kink of a reflection lies inside a rule.
         """
         cand, interval = where
-        g = self.grid
-        law = self.law
-        piece = g.piece[interval]
-        _, _, alpha, beta, gamma = factors
-        at = PieceEvaluator(law, piece)
-
-        def load_torque(tau):
-            return alpha[cand] * at(tau, 2) + beta[cand] * at(tau, 1) + gamma
-
-        lo, hi = g.left[interval].copy(), g.right[interval].copy()
-        f_lo = load_torque(lo)
-        for _ in range(ROOT_STEPS):
-            mid = 0.5 * (lo + hi)
-            f_mid = load_torque(mid)
-            same = np.sign(f_mid) == np.sign(f_lo)
-            lo, f_lo = np.where(same, mid, lo), np.where(same, f_mid, f_lo)
-            hi = np.where(same, hi, mid)
-        root = 0.5 * (lo + hi)
-        x, w = leggauss(self.grid.nodes.shape[1])
-        total = np.zeros(len(self.motors))
-        for a, b in ((g.left[interval], root), (root, g.right[interval])):
+        g, law = self.grid, self.law
+        at = PieceEvaluator(law, g.piece[interval])
+        lo_edge, hi_edge = g.left[interval], g.right[interval]
+        cuts = []
+        for stage in range(len(self.drive.stages)):
+            def argument(tau, stage=stage):
+                _, outputs = self._channels(at(tau, 2), at(tau, 1), scales, index=cand)
+                return outputs[stage]
+            lo, hi = lo_edge.copy(), hi_edge.copy()
+            f_lo, f_hi = argument(lo), argument(hi)
+            crossing = f_lo * f_hi < 0.0
+            for _ in range(ROOT_STEPS):
+                mid = 0.5 * (lo + hi)
+                f_mid = argument(mid)
+                same = np.sign(f_mid) == np.sign(f_lo)
+                lo, f_lo = np.where(same, mid, lo), np.where(same, f_mid, f_lo)
+                hi = np.where(same, hi, mid)
+            cuts.append(np.where(crossing, 0.5 * (lo + hi), hi_edge))
+        edges = np.sort(np.column_stack([lo_edge, *cuts, hi_edge]), axis=1)
+        x, w = leggauss(g.nodes.shape[1])
+        count = len(self.drive.stages) + 1
+        totals = [np.zeros(len(self.motors)) for _ in range(count)]
+        pieces = np.broadcast_to(g.piece[interval][:, None], (len(cand), len(x)))
+        on_pieces = PieceEvaluator(law, pieces)
+        for part in range(edges.shape[1] - 1):
+            a, b = edges[:, part], edges[:, part + 1]
             half = 0.5 * (b - a)
             tau = (0.5 * (a + b))[:, None] + half[:, None] * x
-            on_pieces = PieceEvaluator(law, np.broadcast_to(piece[:, None], tau.shape))
-            a_n, v_n = on_pieces(tau, 2), on_pieces(tau, 1)
-            torque = self._torque(a_n, v_n, factors, index=cand)
-            np.add.at(total, cand, (half[:, None] * w * torque**2).sum(axis=1))
-        return total
+            motor, outputs = self._channels(on_pieces(tau, 2), on_pieces(tau, 1), scales,
+                                            index=cand)
+            for total, channel in zip(totals, (motor, *outputs), strict=False):
+                np.add.at(total, cand, (half[:, None] * w * channel**2).sum(axis=1))
+        return totals
 
     # ------------------------------------------------------------------ peaks
-    def _peaks(self, T: np.ndarray, direction: float) -> tuple[np.ndarray, np.ndarray]:
-        """max |tau| and max |tau|/tau_int(|omega|) over one move, for each candidate."""
+    def _peaks(self, scales: _Scales):
+        """Per move: max |tau|, max |tau|/tau_int(|speed|), max |u| and stage output peaks."""
         g = self.grid
-        factors = self._coefficients(T, direction)
-        speed_scale = self.drive.ratio * self.h / T
-        # samples: the nodes, and both one-sided ends of every interval
         tau = np.concatenate((g.left[:, None], g.nodes, g.right[:, None]), axis=1)
         a_n = np.concatenate((g.end_acceleration[:, :1], g.acceleration,
                               g.end_acceleration[:, 1:]), axis=1)
         v_n = np.concatenate((g.end_velocity[:, :1], g.velocity, g.end_velocity[:, 1:]), axis=1)
-        torque = np.abs(self._torque(a_n[None], v_n[None], factors))
-        peak = self._refine(torque, tau, factors, speed_scale, by_ratio=False)
-        if self.motors.all_rectangular:  # flat limit: the ratio peaks with the torque
-            return peak, _safe_ratio(peak, self.motors.intermittent.torques[:, 0])
-        speed = speed_scale[:, None, None] * v_n[None]
-        ratio = _safe_ratio(torque, self.motors.intermittent.limit_clipped(speed))
-        return peak, self._refine(ratio, tau, factors, speed_scale, by_ratio=True)
+        motor, outputs = self._channels(a_n[None], v_n[None], scales)
+        speed_scale = self.drive.ratio * scales.vel
 
-    def _refine(self, values, tau, factors, speed_scale, by_ratio: bool) -> np.ndarray:
+        def channel(which, by_ratio=False):
+            def objective(a, v):
+                motor_torque, stage_torques = self._channels(a, v, scales)
+                torque = np.abs(motor_torque if which < 0 else stage_torques[which])
+                if by_ratio:
+                    limit = self.motors.intermittent.limit_clipped(speed_scale * v)
+                    return _safe_ratio(torque, limit)
+                return torque
+            return objective
+
+        peak = self._refine(np.abs(motor), tau, channel(-1))
+        if self.motors.all_rectangular:  # flat limit: the ratio peaks with the torque
+            ratio = _safe_ratio(peak, self.motors.intermittent.torques[:, 0])
+        else:
+            speed = speed_scale[:, None, None] * v_n[None]
+            limit = self.motors.intermittent.limit_clipped(speed)
+            ratio = self._refine(_safe_ratio(np.abs(motor), limit), tau, channel(-1, True))
+        n_stages = len(self.drive.stages)
+        # the load's torque is reported, not checked: its sampled peak (grid of 14 points
+        # per interval) is enough
+        a_l, v_l = scales.acc[:, None, None] * a_n[None], scales.vel[:, None, None] * v_n[None]
+        load = np.abs(self.drive.load_torque(a_l, v_l, scales.direction)).max(axis=(1, 2))
+        stages = [self._refine(np.abs(outputs[i]), tau, channel(i)) if self.stage_checks
+                  else np.zeros_like(peak) for i in range(n_stages)]
+        return peak, ratio, load, stages
+
+    def _refine(self, values, tau, objective_of) -> np.ndarray:
         """Golden-section refinement of the best sample of each candidate."""
         g = self.grid
         count = len(values)
@@ -217,12 +305,7 @@ class CycleCalculator:
         at = PieceEvaluator(self.law, g.piece[interval])
 
         def objective(x):
-            a_n, v_n = at(x, 2), at(x, 1)
-            torque = np.abs(self._torque(a_n, v_n, factors))
-            if not by_ratio:
-                return torque
-            limit = self.motors.intermittent.limit_clipped(speed_scale * v_n)
-            return _safe_ratio(torque, limit)
+            return objective_of(at(x, 2), at(x, 1))
 
         x1 = hi - INV_PHI * (hi - lo)
         x2 = lo + INV_PHI * (hi - lo)
@@ -238,9 +321,13 @@ class CycleCalculator:
         return np.maximum(best_value, np.maximum(f1, f2))
 
 
+def _square_mean(p, q, const, c_a_rms: float, c_v_rms: float):
+    """int_0^1 (p a_N + q v_N + const)^2 d tau for a rest-to-rest law."""
+    return (p * c_a_rms) ** 2 + (q * c_v_rms) ** 2 + const**2 + 2.0 * q * const
+
+
 def _safe_ratio(torque: np.ndarray, limit: np.ndarray) -> np.ndarray:
     """torque/limit, infinite where a positive torque meets a zero limit."""
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = torque / limit
     return np.where(limit > 0.0, ratio, np.where(torque > 0.0, np.inf, 0.0))
-

@@ -44,8 +44,11 @@ def evaluate(calculator: CycleCalculator, limits: Limits, T: np.ndarray):
 def is_purely_inertial(calculator: CycleCalculator) -> bool:
     """The case of eq. (6.2): rectangles, inertial load, ideal transmission."""
     load, drive, motors = calculator.drive.load, calculator.drive, calculator.motors
+    stages_plain = all(s.preload_torque == 0.0 and s.max_input_speed is None
+                       and s.rated_output_torque is None and s.peak_output_torque is None
+                       for s in drive.stages)
     return (load.damping == 0.0 and load.friction == 0.0 and load.torque == 0.0
-            and drive.efficiency == 1.0 and bool(np.all(motors.damping == 0.0))
+            and drive.is_ideal and stages_plain and bool(np.all(motors.damping == 0.0))
             and bool(np.all(motors.is_rectangular)))
 
 

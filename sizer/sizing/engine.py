@@ -38,10 +38,20 @@ def size_design(design: Design, rank_by: str | None = None,
     arrays = MotorArrays.of(motors)
     results: list[CandidateResult] = []
     for spec in design.laws:
-        results.extend(evaluate_law(design, spec, arrays))
+        results.extend(evaluate_candidates(design, spec, arrays))
     mode = "minimize" if design.task.minimize else "duration"
     return SizingResult(mode, tuple(rank(results, rank_by, mode)), design.name,
                         notes=assumptions(design))
+
+
+def evaluate_candidates(design: Design, spec: str,
+                        motors: MotorArrays) -> list[CandidateResult]:
+    """Results of one law spec for all motors, the free ratio chosen if there is one."""
+    if design.ratio_choice is None:
+        return evaluate_law(design, spec, motors)
+    from sizer.sizing.ratio import choose_ratio
+
+    return choose_ratio(design, spec, motors, evaluate_law)
 
 
 def evaluate_law(design: Design, spec: str, motors: MotorArrays) -> list[CandidateResult]:
@@ -77,12 +87,12 @@ def evaluate_fixed_law(design: Design, law: MotionLaw, drive: Drive,
         feasible = worst_slack(checks) >= 0.0
         duration = T
     return to_results(law, motors, metrics, checks, feasible, duration,
-                      minimize=design.task.minimize)
+                      minimize=design.task.minimize, ratio=drive.ratio)
 
 
 def to_results(law: MotionLaw, motors: MotorArrays, metrics: CycleMetrics,
                checks: list[CheckArrays], feasible: np.ndarray, duration: np.ndarray,
-               minimize: bool) -> list[CandidateResult]:
+               minimize: bool, ratio: float = 1.0) -> list[CandidateResult]:
     binding = limiting_index(checks)
     out = []
     for i, motor in enumerate(motors.motors):
@@ -116,6 +126,9 @@ def to_results(law: MotionLaw, motors: MotorArrays, metrics: CycleMetrics,
             reason=reason,
             price=motor.price,
             mass=motor.mass,
+            ratio=ratio,
+            load_speed=float(metrics.load_speed[i]) if known else None,
+            load_torque=float(metrics.load_torque[i]) if known else None,
         ))
     return out
 
@@ -130,7 +143,7 @@ def check_design(design: Design) -> CandidateResult:
         known = ", ".join(m.id for m in design.motors) or "none"
         raise UserError(f"unknown motor {design.chosen_motor!r}; loaded motors: {known}",
                         field="check.motor")
-    results = evaluate_law(design, design.chosen_law, MotorArrays.of([motor]))
+    results = evaluate_candidates(design, design.chosen_law, MotorArrays.of([motor]))
     return results[0]
 
 

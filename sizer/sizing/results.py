@@ -41,7 +41,13 @@ class Check:
 
 @dataclass(frozen=True)
 class CandidateResult:
-    """A motor with a law: its duration, requirements at the motor shaft and checks."""
+    """A motor with a law: its duration, requirements at the motor shaft and checks.
+
+    ``ratio`` is the total transmission ratio K (motor speed over load speed: rad/rad, or
+    rad/m on a linear axis), ``gearbox`` the catalog gearbox chosen if any; ``load_speed``
+    and ``load_torque`` are the peak speed and peak torque (force on a linear axis) at the
+    load.
+    """
 
     motor: str
     law: str
@@ -57,6 +63,10 @@ class CandidateResult:
     reason: str = ""
     price: float | None = None
     mass: float | None = None
+    ratio: float = 1.0
+    gearbox: str | None = None
+    load_speed: float | None = None
+    load_torque: float | None = None
     extra: dict[str, float] = field(default_factory=dict)
 
     def check(self, name: str) -> Check | None:
