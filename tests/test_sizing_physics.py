@@ -170,3 +170,23 @@ def test_speed_torque_curve_limits_the_peak_at_speed():
     assert t_min.limiting == "peak"
     assert t_min.duration == pytest.approx(hi, rel=1e-8)
     assert t_min.check("peak").margin == pytest.approx(0.0, abs=1e-9)
+
+
+def test_task_curve_samples_the_cycle_of_example_6_1():
+    from sizer.sizing.profile import task_curve
+
+    motor = Motor("ex6_1", inertia=0.0, continuous_torque=8.0, peak_torque=20.0,
+                  rated_speed=10.0)
+    design = Design(Task(15.0, 3.0, dwell=1.0, return_move=True), Load(1.0, damping=0.3),
+                    laws=("cycloidal",), motors=(motor,))
+    curve = task_curve(design, motor, "cycloidal", 3.0, samples=201)
+    t = curve.time[:201]
+    x = 2 * np.pi * t / 3.0
+    speed = 15 / 3 * (1 - np.cos(x))
+    torque = 2 * np.pi * 15 / 9 * np.sin(x) + 0.3 * speed  # J a + B v of eq. (6.1)
+    assert curve.motor_speed[:201] == pytest.approx(speed, abs=1e-12)
+    assert curve.motor_torque[:201] == pytest.approx(torque, abs=1e-12)
+    assert curve.motor_speed.min() == pytest.approx(-10.0)  # the move back
+    assert curve.time[-1] == pytest.approx(8.0)
+    assert curve.position[-1] == pytest.approx(0.0, abs=1e-12)
+    assert curve.intermittent_region == ((0.0, 20.0), (10.0, 20.0))

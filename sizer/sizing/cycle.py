@@ -61,7 +61,7 @@ class CycleMetrics:
 
 
 @dataclass(frozen=True)
-class _Scales:
+class MoveScales:
     """Per-candidate scales of one move: load a = acc*a_N, v = vel*v_N."""
 
     acc: np.ndarray
@@ -107,7 +107,7 @@ class CycleCalculator:
         stage_peak = [np.zeros_like(T) for _ in range(n_stages)]
         stage_square = [np.zeros_like(T) for _ in range(n_stages)]
         for direction in self.directions:
-            scales = _Scales(h / T**2, h / T, direction)
+            scales = MoveScales(h / T**2, h / T, direction)
             torque, ratio, load, stages = self._peaks(scales)
             peak_torque = np.maximum(peak_torque, torque)
             peak_ratio = np.maximum(peak_ratio, ratio)
@@ -147,7 +147,7 @@ class CycleCalculator:
         )
 
     # ---------------------------------------------------------------- torques
-    def _channels(self, a_n: np.ndarray, v_n: np.ndarray, scales: _Scales,
+    def channels(self, a_n: np.ndarray, v_n: np.ndarray, scales: MoveScales,
                   index: np.ndarray | None = None) -> tuple[np.ndarray, list[np.ndarray]]:
         """Motor torque and stage output torques at normalized a_N, v_N.
 
@@ -164,15 +164,15 @@ class CycleCalculator:
         K = self.drive.ratio
         return rotor * K * a_l + damping * K * v_l + shaft, outputs
 
-    def _mean_squares(self, scales: _Scales) -> list[np.ndarray]:
+    def _mean_squares(self, scales: MoveScales) -> list[np.ndarray]:
         """(1/T) * integral of the squared motor torque (then of each stage output) per move."""
         drive = self.drive
         n_stages = len(drive.stages)
         if drive.is_ideal:
             return self._ideal_mean_squares(scales)
         g = self.grid
-        motor, outputs = self._channels(g.acceleration[None], g.velocity[None], scales)
-        _, end_outputs = self._channels(g.end_acceleration[None], g.end_velocity[None], scales)
+        motor, outputs = self.channels(g.acceleration[None], g.velocity[None], scales)
+        _, end_outputs = self.channels(g.end_acceleration[None], g.end_velocity[None], scales)
         crossing = np.zeros(motor.shape[:2], dtype=bool)
         for x in end_outputs:
             crossing |= x[..., 0] * x[..., 1] < 0.0
@@ -186,7 +186,7 @@ class CycleCalculator:
                 total += extra
         return totals
 
-    def _ideal_mean_squares(self, scales: _Scales) -> list[np.ndarray]:
+    def _ideal_mean_squares(self, scales: MoveScales) -> list[np.ndarray]:
         """Closed forms: int a_N = 0, int a_N v_N = 0, int v_N = 1 over a rest-to-rest move."""
         c = self.law.coefficients
         K = self.drive.ratio
@@ -200,7 +200,7 @@ class CycleCalculator:
             out += [np.zeros_like(p) for _ in self.drive.stages]
         return out
 
-    def _stage_ideal_mean_squares(self, scales: _Scales) -> list[np.ndarray]:
+    def _stage_ideal_mean_squares(self, scales: MoveScales) -> list[np.ndarray]:
         """Each stage output torque is linear too: its coefficients from the chain."""
         c = self.law.coefficients
         zero, one = np.zeros(1), np.ones(1)
@@ -214,7 +214,7 @@ class CycleCalculator:
                                        c.C_a_rms, c.C_v_rms))
         return result
 
-    def _split_integrals(self, where, scales: _Scales) -> list[np.ndarray]:
+    def _split_integrals(self, where, scales: MoveScales) -> list[np.ndarray]:
         """Integrals of the squared channels over intervals where a power flow reverses.
 
         The interval is cut at each root of a stage's output torque (bisection), and each
@@ -227,7 +227,7 @@ class CycleCalculator:
         cuts = []
         for stage in range(len(self.drive.stages)):
             def argument(tau, stage=stage):
-                _, outputs = self._channels(at(tau, 2), at(tau, 1), scales, index=cand)
+                _, outputs = self.channels(at(tau, 2), at(tau, 1), scales, index=cand)
                 return outputs[stage]
             lo, hi = lo_edge.copy(), hi_edge.copy()
             f_lo, f_hi = argument(lo), argument(hi)
@@ -249,26 +249,26 @@ class CycleCalculator:
             a, b = edges[:, part], edges[:, part + 1]
             half = 0.5 * (b - a)
             tau = (0.5 * (a + b))[:, None] + half[:, None] * x
-            motor, outputs = self._channels(on_pieces(tau, 2), on_pieces(tau, 1), scales,
+            motor, outputs = self.channels(on_pieces(tau, 2), on_pieces(tau, 1), scales,
                                             index=cand)
             for total, channel in zip(totals, (motor, *outputs), strict=False):
                 np.add.at(total, cand, (half[:, None] * w * channel**2).sum(axis=1))
         return totals
 
     # ------------------------------------------------------------------ peaks
-    def _peaks(self, scales: _Scales):
+    def _peaks(self, scales: MoveScales):
         """Per move: max |tau|, max |tau|/tau_int(|speed|), max |u| and stage output peaks."""
         g = self.grid
         tau = np.concatenate((g.left[:, None], g.nodes, g.right[:, None]), axis=1)
         a_n = np.concatenate((g.end_acceleration[:, :1], g.acceleration,
                               g.end_acceleration[:, 1:]), axis=1)
         v_n = np.concatenate((g.end_velocity[:, :1], g.velocity, g.end_velocity[:, 1:]), axis=1)
-        motor, outputs = self._channels(a_n[None], v_n[None], scales)
+        motor, outputs = self.channels(a_n[None], v_n[None], scales)
         speed_scale = self.drive.ratio * scales.vel
 
         def channel(which, by_ratio=False):
             def objective(a, v):
-                motor_torque, stage_torques = self._channels(a, v, scales)
+                motor_torque, stage_torques = self.channels(a, v, scales)
                 torque = np.abs(motor_torque if which < 0 else stage_torques[which])
                 if by_ratio:
                     limit = self.motors.intermittent.limit_clipped(speed_scale * v)

@@ -1,0 +1,95 @@
+"""The mechanical task of one motor and law over a machine cycle, sampled in time.
+
+The curve (motor speed(t), motor torque(t)) is what the book draws in the speed-torque
+plane (Fig. 6.2); with the RMS point (thermal speed, RMS torque) of Fig. 6.3 and the
+motor's regions it makes the speed-torque diagram. Signs follow the motion: the return
+move has negative speed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from sizer.envelope import continuous_region, intermittent_region
+from sizer.laws import MotionLaw, make_law
+from sizer.mechanics import Drive
+from sizer.model.domain import Curve, Design, Motor, Transmission
+from sizer.sizing.cycle import CycleCalculator, MoveScales
+from sizer.sizing.motors import MotorArrays
+
+
+@dataclass(frozen=True)
+class TaskCurve:
+    """One machine cycle sampled in time (SI), with the RMS point and the motor's regions."""
+
+    motor: str
+    law: str
+    duration: float
+    ratio: float
+    time: np.ndarray
+    position: np.ndarray
+    load_speed: np.ndarray
+    load_acceleration: np.ndarray
+    motor_speed: np.ndarray
+    motor_acceleration: np.ndarray
+    motor_torque: np.ndarray
+    rms_torque: float
+    thermal_speed: float
+    peak_torque: float
+    max_speed: float
+    continuous_region: Curve
+    intermittent_region: Curve
+
+
+def task_curve(design: Design, motor: Motor, law: MotionLaw | str, duration: float,
+               transmission: Transmission | None = None, samples: int = 401) -> TaskCurve:
+    """Sample the cycle of ``law`` in ``duration`` for ``motor`` (samples per move).
+
+    Pass the law and duration of a sizing result (its ``spec`` and ``duration``) and,
+    when the ratio was chosen by the solver, the transmission with that ratio.
+    """
+    if isinstance(law, str):
+        law = make_law(law)
+    drive = Drive(design.load, transmission or design.transmission)
+    motors = MotorArrays.of([motor])
+    calc = CycleCalculator(None, design.task, drive, motors, design.limits.thermal_speed,
+                           law=law)
+    T = np.array([duration])
+    metrics = calc.evaluate(T)
+    h, K = calc.h, drive.ratio
+    tau = np.linspace(0.0, 1.0, samples)
+    a_n, v_n = law.derivative(tau, 2), law.derivative(tau, 1)
+    q_n = law.derivative(tau, 0)
+    times, positions, speeds, accelerations, torques = [], [], [], [], []
+    t0, start = 0.0, 0.0
+    hold, _ = drive.holding_torques()
+    for direction in calc.directions:
+        torque, _ = calc.channels(a_n[None], v_n[None], MoveScales(h / T**2, h / T, direction))
+        times.append(t0 + duration * tau)
+        positions.append(start + direction * h * q_n)
+        speeds.append(direction * h * v_n / duration)
+        accelerations.append(direction * h * a_n / duration**2)
+        torques.append(direction * torque[0])
+        t0 += duration
+        start += direction * h
+        if design.task.dwell > 0.0:
+            times.append(np.array([t0, t0 + design.task.dwell]))
+            positions.append(np.full(2, start))
+            speeds.append(np.zeros(2))
+            accelerations.append(np.zeros(2))
+            torques.append(np.full(2, hold * np.sign(design.load.torque)))
+            t0 += design.task.dwell
+    load_speed = np.concatenate(speeds)
+    load_acceleration = np.concatenate(accelerations)
+    return TaskCurve(
+        motor=motor.id, law=law.spec, duration=duration, ratio=K,
+        time=np.concatenate(times), position=np.concatenate(positions),
+        load_speed=load_speed, load_acceleration=load_acceleration,
+        motor_speed=K * load_speed, motor_acceleration=K * load_acceleration,
+        motor_torque=np.concatenate(torques),
+        rms_torque=float(metrics.rms_torque[0]), thermal_speed=float(metrics.thermal_speed[0]),
+        peak_torque=float(metrics.peak_torque[0]), max_speed=float(metrics.max_speed[0]),
+        continuous_region=continuous_region(motor), intermittent_region=intermittent_region(motor),
+    )
