@@ -41,6 +41,16 @@ class TaskCurve:
     max_speed: float
     continuous_region: Curve
     intermittent_region: Curve
+    total_inertia: float
+    """J_t at the motor shaft (rotor + transmission + load/K^2), for the speed-acceleration
+    plane of Fig. 6.7, where each region's torque becomes an acceleration tau/J_t."""
+
+    @property
+    def acceleration_regions(self) -> tuple[Curve, Curve]:
+        """(continuous, intermittent) regions divided by J_t: Fig. 6.7 (b)."""
+        def scaled(curve: Curve) -> Curve:
+            return tuple((speed, torque / self.total_inertia) for speed, torque in curve)
+        return scaled(self.continuous_region), scaled(self.intermittent_region)
 
 
 def task_curve(design: Design, motor: Motor, law: MotionLaw | str, duration: float,
@@ -92,4 +102,5 @@ def task_curve(design: Design, motor: Motor, law: MotionLaw | str, duration: flo
         rms_torque=float(metrics.rms_torque[0]), thermal_speed=float(metrics.thermal_speed[0]),
         peak_torque=float(metrics.peak_torque[0]), max_speed=float(metrics.max_speed[0]),
         continuous_region=continuous_region(motor), intermittent_region=intermittent_region(motor),
+        total_inertia=motor.inertia + drive.transmission_inertia + drive.reflected_load_inertia,
     )
