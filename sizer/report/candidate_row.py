@@ -1,0 +1,142 @@
+"""One motor/law result (a CandidateResult) as a JSON object, CSV cells and table cells.
+
+JSON and CSV are SI (s, N*m, rad/s) with margins as fractions; the display cells are for
+people: duration in ms, speed in rpm, margins in %. Non-finite numbers are null in JSON,
+``inf``/``-inf`` in CSV and tables; a missing number is null, or an empty cell.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Any
+
+from sizer.report.design_summary import finite_or_none
+from sizer.report.numbers import full, short
+
+if TYPE_CHECKING:
+    from sizer.sizing import CandidateResult, Check
+
+RPM_PER_RAD_S = 30.0 / math.pi
+"""rev/min per rad/s, for display."""
+
+SLACK_TOLERANCE = 1e-9
+"""A check within this of its required margin passes when the engine calls the pair feasible.
+
+At T_min the binding check sits exactly at its limit, and rounding can leave its slack at
+-1e-16; the engine (``sizer.sizing.duration``) accepts a slack down to -1e-9 there.
+"""
+
+MARGINS = ("peak", "rms", "speed")
+"""The margins every row shows, by check name."""
+
+CSV_HEADERS = (
+    "rank", "motor", "law", "spec", "feasible", "duration [s]", "peak_torque [N*m]",
+    "rms_torque [N*m]", "max_speed [rad/s]", "margin_peak [1]", "margin_rms [1]",
+    "margin_speed [1]", "limiting", "reason", "price", "mass [kg]",
+)
+
+
+def summary_margin(result: CandidateResult, name: str) -> float | None:
+    """The margin of a check for the summary columns; None where no duration is feasible.
+
+    In minimize mode an infeasible pair has no duration: its checks describe the longest
+    duration tried, which is no real operating point, so the summary leaves them out
+    (the ``checks`` list of the JSON keeps them, with the reason).
+    """
+    if result.duration is None:
+        return None
+    return result.margin(name)
+
+
+def check_passed(result: CandidateResult, check: Check) -> bool:
+    """The check's verdict, consistent with the result's feasibility (see SLACK_TOLERANCE)."""
+    return check.passed or (result.feasible and check.slack >= -SLACK_TOLERANCE)
+
+
+def check_line(result: CandidateResult, check: Check) -> str:
+    """``Check.describe()``, with the verdict of :func:`check_passed`."""
+    text = check.describe()
+    if check_passed(result, check) and not check.passed:
+        text = text.replace("(FAILS)", "(ok: at the limit, to rounding)")
+    return text
+
+
+def check_json(result: CandidateResult, check: Check) -> dict[str, Any]:
+    return {
+        "name": check.name,
+        "value": finite_or_none(check.value),
+        "limit": finite_or_none(check.limit),
+        "unit": check.unit,
+        "margin": finite_or_none(check.margin),
+        "required": float(check.required),
+        "passed": check_passed(result, check),
+    }
+
+
+def result_json(result: CandidateResult) -> dict[str, Any]:
+    """The JSON object of one pair, keys in a fixed order, SI units."""
+    return {
+        "motor": result.motor,
+        "law": result.law,
+        "spec": result.spec,
+        "params": {name: float(value) for name, value in result.params.items()},
+        "feasible": bool(result.feasible),
+        "duration": finite_or_none(result.duration),
+        "peak_torque": finite_or_none(result.peak_torque),
+        "rms_torque": finite_or_none(result.rms_torque),
+        "max_speed": finite_or_none(result.max_speed),
+        **{f"margin_{name}": finite_or_none(summary_margin(result, name))
+           for name in MARGINS},
+        "limiting": result.limiting,
+        "reason": result.reason,
+        "price": finite_or_none(result.price),
+        "mass": finite_or_none(result.mass),
+        "checks": [check_json(result, check) for check in result.checks],
+    }
+
+
+def _csv_number(value: float | None) -> str:
+    return "" if value is None else full(value)
+
+
+def result_csv_cells(rank: int, result: CandidateResult) -> tuple[str, ...]:
+    """CSV cells at full precision (SI), in the order of CSV_HEADERS."""
+    return (
+        str(rank), result.motor, result.law, result.spec,
+        "true" if result.feasible else "false",
+        _csv_number(result.duration), _csv_number(result.peak_torque),
+        _csv_number(result.rms_torque), _csv_number(result.max_speed),
+        *(_csv_number(summary_margin(result, name)) for name in MARGINS),
+        result.limiting or "", result.reason,
+        _csv_number(result.price), _csv_number(result.mass),
+    )
+
+
+def percent(fraction: float | None) -> str:
+    """A margin in % with one decimal: '12.5', '-inf', or '' when missing."""
+    if fraction is None:
+        return ""
+    if not math.isfinite(fraction):
+        return "inf" if fraction > 0 else "-inf"
+    text = f"{100.0 * fraction:.1f}"
+    return "0.0" if text == "-0.0" else text
+
+
+def _short(value: float | None, scale: float = 1.0) -> str:
+    if value is None:
+        return ""
+    value = float(value) * scale
+    if not math.isfinite(value):
+        return "inf" if value > 0 else "-inf"
+    return short(value)
+
+
+def result_display_cells(rank: int, result: CandidateResult) -> tuple[str, ...]:
+    """Cells for a table: rank, motor, law, feasible, T [ms], torques, rpm, margins [%]."""
+    return (
+        str(rank), result.motor, result.spec, "yes" if result.feasible else "no",
+        _short(result.duration, 1000.0), _short(result.peak_torque),
+        _short(result.rms_torque), _short(result.max_speed, RPM_PER_RAD_S),
+        *(percent(summary_margin(result, name)) for name in MARGINS),
+        result.limiting or "",
+    )

@@ -1,0 +1,76 @@
+"""The verdict of ``sizer check`` on the design's chosen motor and law: text and JSON.
+
+The text lists every check (``Check.describe()``) and ends with one line: ``PASS`` with
+the binding limit, or ``FAIL`` with each limit that fails and by how much.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from sizer.report.candidate_row import RPM_PER_RAD_S, check_line, check_passed, result_json
+from sizer.report.design_summary import design_summary
+from sizer.report.json_text import render_json
+from sizer.report.numbers import short
+from sizer.report.sizing_table import RESULT_UNITS
+
+if TYPE_CHECKING:
+    from sizer.model.domain import Design
+    from sizer.sizing import CandidateResult
+
+
+class CheckDocument:
+    """One motor with one law against the design's limits."""
+
+    def __init__(self, result: CandidateResult, design: Design,
+                 notes: tuple[str, ...] = ()) -> None:
+        self.result = result
+        self.design = design
+        self.notes = notes
+
+    @property
+    def passed(self) -> bool:
+        return bool(self.result.feasible)
+
+    def _requirements(self) -> str:
+        r = self.result
+        if r.duration is None:
+            return "no feasible duration"
+        label = "T_min" if self.design.task.minimize else "T"
+        parts = [f"{label} = {short(r.duration * 1000.0)} ms"]
+        if r.peak_torque is not None:
+            parts.append(f"peak torque {short(r.peak_torque)} N*m")
+        if r.rms_torque is not None:
+            parts.append(f"rms torque {short(r.rms_torque)} N*m")
+        if r.max_speed is not None:
+            parts.append(f"max speed {short(r.max_speed * RPM_PER_RAD_S)} rpm")
+        return ", ".join(parts) + " (at the motor shaft)"
+
+    def text(self) -> str:
+        r = self.result
+        name = self.design.name or "design"
+        lines = [f"check {name}: motor {r.motor}, law {r.spec}",
+                 f"  {self._requirements()}"]
+        lines += [f"  {check_line(r, c)}" for c in r.checks]
+        lines += [f"  note: {note}" for note in self.notes]
+        if self.passed:
+            lines.append(f"PASS: {r.motor} with {r.spec} meets every limit with the required "
+                         f"margins (limiting: {r.limiting})")
+        else:
+            failing = [check_line(r, c) for c in r.checks if not check_passed(r, c)]
+            if self.design.task.minimize or not failing:
+                failing = [r.reason]  # 'no duration is feasible: ...'
+            lines.append(f"FAIL: {r.motor} with {r.spec}: " + "; ".join(failing))
+        return "\n".join(lines) + "\n"
+
+    def data(self) -> dict[str, Any]:
+        """The JSON object: the design, the verdict, the units and the pair's result."""
+        return {
+            "design": design_summary(self.design, self.notes),
+            "passed": self.passed,
+            "units": RESULT_UNITS,
+            "result": result_json(self.result),
+        }
+
+    def json(self) -> str:
+        return render_json(self.data())

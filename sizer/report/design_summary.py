@@ -1,0 +1,85 @@
+"""What a design asked for, as plain JSON data in SI with the units stated.
+
+Reports of ``sizer size`` and ``sizer check`` start with it, so a result file says which
+task, load, transmission and limits its numbers belong to.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from sizer.model.domain import Design
+
+
+def finite_or_none(value: float | None) -> float | None:
+    """A float for JSON: None (null) for a missing or non-finite number."""
+    if value is None:
+        return None
+    value = float(value)
+    return value if math.isfinite(value) else None
+
+
+def _units(linear: bool) -> dict[str, str]:
+    """SI units of the axis-dependent quantities (load side)."""
+    if linear:
+        return {"displacement": "m", "inertia": "kg", "damping": "N*s/m", "force": "N",
+                "acceleration": "m/s^2", "jerk": "m/s^3"}
+    return {"displacement": "rad", "inertia": "kg*m^2", "damping": "N*m*s/rad",
+            "force": "N*m", "acceleration": "rad/s^2", "jerk": "rad/s^3"}
+
+
+def design_summary(design: Design, notes: tuple[str, ...] = ()) -> dict[str, Any]:
+    """The design as a JSON object (fixed key order), each section with its ``units``."""
+    task, load, limits = design.task, design.load, design.limits
+    units = _units(task.linear)
+    transmission = design.transmission
+    return {
+        "name": design.name,
+        "mode": "minimize" if task.minimize else "duration",
+        "task": {
+            "axis": "linear" if task.linear else "rotary",
+            "displacement": float(task.displacement),
+            "duration": finite_or_none(task.duration),
+            "dwell": float(task.dwell),
+            "return": bool(task.return_move),
+            "units": {"displacement": units["displacement"], "duration": "s", "dwell": "s"},
+        },
+        "load": {
+            "mass" if task.linear else "inertia": float(load.inertia),
+            "damping": float(load.damping),
+            "friction": float(load.friction),
+            "force" if task.linear else "torque": float(load.torque),
+            "units": {"mass" if task.linear else "inertia": units["inertia"],
+                      "damping": units["damping"], "friction": units["force"],
+                      "force" if task.linear else "torque": units["force"]},
+        },
+        "transmission": {
+            "ratio": float(transmission.ratio),
+            "efficiency": float(transmission.efficiency),
+            "inertia": float(transmission.inertia),
+            "stages": [
+                {"type": stage.kind, "name": stage.name, "ratio": float(stage.ratio),
+                 "efficiency": float(stage.efficiency), "inertia": float(stage.inertia)}
+                for stage in transmission.stages
+            ],
+            "units": {"ratio": "input speed / output speed (rad/rad; rad/m into a linear "
+                               "axis)", "efficiency": "1",
+                      "inertia": "kg*m^2 (total: at the motor shaft; a stage: at its input)"},
+        },
+        "limits": {
+            "torque_margin": float(limits.torque_margin),
+            "speed_margin": float(limits.speed_margin),
+            "inertia_ratio": finite_or_none(limits.inertia_ratio),
+            "max_acceleration": finite_or_none(limits.max_acceleration),
+            "max_jerk": finite_or_none(limits.max_jerk),
+            "thermal_speed": limits.thermal_speed,
+            "units": {"torque_margin": "1", "speed_margin": "1", "inertia_ratio": "1",
+                      "max_acceleration": units["acceleration"], "max_jerk": units["jerk"]},
+        },
+        "laws": list(design.laws),
+        "motors": len(design.motors),
+        "check": ({"motor": design.chosen_motor, "law": design.chosen_law}
+                  if design.chosen_motor or design.chosen_law else None),
+        "notes": list(notes),
+    }

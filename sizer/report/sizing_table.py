@@ -1,0 +1,171 @@
+"""The ranked motor/law table of a design (``sizer size``) in every format.
+
+- JSON: ``{"design", "ranked_by", "units", "results"}``, SI, margins as fractions.
+- CSV: one line per pair, SI units in the headers, full precision.
+- Markdown and the terminal table: duration in ms, speed in rpm, margins in %; a title
+  line above and, below, why the shown infeasible pairs fail and what was assumed.
+
+Rows are the ranked results (feasible first); infeasible pairs only when asked for,
+and at most ``top`` rows. The rank is the position among all pairs, so it does not
+change with the options.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from sizer.report.candidate_row import (
+    CSV_HEADERS,
+    result_csv_cells,
+    result_display_cells,
+    result_json,
+)
+from sizer.report.csv_text import render_csv
+from sizer.report.design_summary import design_summary
+from sizer.report.formats import Format
+from sizer.report.json_text import render_json
+from sizer.report.markdown_table import render_markdown_table
+from sizer.report.numbers import short
+from sizer.report.output import emit, stdout_is_terminal
+from sizer.report.rich_table import print_rich_table
+from sizer.report.table import Column, Table, make_table
+from sizer.report.text_table import render_text_table
+
+if TYPE_CHECKING:
+    from sizer.model.domain import Design
+    from sizer.sizing import CandidateResult, SizingResult
+
+NO_FEASIBLE = "no feasible motor/law pair"
+
+RESULT_UNITS = {"duration": "s", "peak_torque": "N*m", "rms_torque": "N*m",
+                "max_speed": "rad/s", "margin": "1 (fraction of the limit left unused)",
+                "price": "as in the catalog", "mass": "kg"}
+"""Units of the JSON result fields (torques and speeds at the motor shaft)."""
+
+
+def default_rank_key(mode: str) -> str:
+    """The ranking of ``sizer.sizing.size_design`` when none is given."""
+    return "duration" if mode == "minimize" else "margin"
+
+
+class SizingDocument:
+    """The ranked results of a design, filtered for display, in every format."""
+
+    def __init__(self, sizing: SizingResult, design: Design, *, rank_by: str | None = None,
+                 top: int | None = None, include_infeasible: bool = False) -> None:
+        self.sizing = sizing
+        self.design = design
+        self.rank_key = rank_by or default_rank_key(sizing.mode)
+        ranked = list(enumerate(sizing.results, start=1))
+        shown = [(rank, r) for rank, r in ranked if include_infeasible or r.feasible]
+        self.hidden_infeasible = len(ranked) - len(shown)
+        self.cut = max(0, len(shown) - top) if top is not None else 0
+        self.rows: list[tuple[int, CandidateResult]] = shown[:top] if top is not None else shown
+
+    # ---------------------------------------------------------------- texts
+    @property
+    def any_feasible(self) -> bool:
+        return any(r.feasible for r in self.sizing.results)
+
+    @property
+    def title(self) -> str:
+        task = self.design.task
+        unit = "m" if task.linear else "rad"
+        move = f"h = {short(task.displacement)} {unit}"
+        move += (", shortest duration" if task.minimize
+                 else f" in T = {short(task.duration * 1000.0)} ms")
+        feasible = sum(r.feasible for r in self.sizing.results)
+        name = self.design.name or "design"
+        return (f"{name}: {move}; {feasible} of {len(self.sizing.results)} motor/law pairs "
+                f"feasible, ranked by {self.rank_key}")
+
+    def footer(self) -> list[str]:
+        """Lines under a human-readable table."""
+        lines = []
+        if not self.any_feasible:
+            lines.append(NO_FEASIBLE)
+        failing = [(rank, r) for rank, r in self.rows if not r.feasible]
+        if failing:
+            lines.append("why these pairs fail:")
+            lines += [f"  #{rank} {r.motor}, {r.spec}: {r.reason}" for rank, r in failing]
+        if self.hidden_infeasible:
+            lines.append(f"{self.hidden_infeasible} infeasible pairs not shown (--all shows "
+                         f"them)")
+        if self.cut:
+            lines.append(f"{self.cut} more pairs not shown (--top)")
+        lines += [f"note: {note}" for note in self.sizing.notes]
+        return lines
+
+    # --------------------------------------------------------------- formats
+    def table(self) -> Table:
+        duration = "T_min [ms]" if self.sizing.mode == "minimize" else "T [ms]"
+        columns = (
+            Column("#"), Column("motor", "left"), Column("law", "left"),
+            Column("feasible", "left"), Column(duration), Column("peak [N*m]"),
+            Column("rms [N*m]"), Column("max speed [rpm]"), Column("peak margin [%]"),
+            Column("rms margin [%]"), Column("speed margin [%]"), Column("limiting", "left"),
+        )
+        rows = [result_display_cells(rank, r) for rank, r in self.rows]
+        return make_table(columns, rows, title=self.title)
+
+    def csv(self) -> str:
+        return render_csv(CSV_HEADERS, (result_csv_cells(rank, r) for rank, r in self.rows))
+
+    def json(self) -> str:
+        return render_json({
+            "design": design_summary(self.design, self.sizing.notes),
+            "ranked_by": self.rank_key,
+            "units": RESULT_UNITS,
+            "results": [result_json(r) for _, r in self.rows],
+        })
+
+    def markdown(self) -> str:
+        footer = self.footer()
+        text = f"**{self.title}**\n\n" + render_markdown_table(self.table())
+        if footer:
+            text += "\n" + "".join(_markdown_item(line) for line in footer)
+        return text
+
+    def plain_text(self) -> str:
+        footer = self.footer()
+        text = self.title + "\n\n" + render_text_table(self.table())
+        if footer:
+            text += "\n" + "\n".join(footer) + "\n"
+        return text
+
+    def render(self, fmt: Format) -> str:
+        if fmt is Format.CSV:
+            return self.csv()
+        if fmt is Format.JSON:
+            return self.json()
+        if fmt is Format.MD:
+            return self.markdown()
+        return self.plain_text()
+
+
+def _markdown_item(line: str) -> str:
+    if line.startswith("  "):
+        return f"  - {line.strip()}\n"
+    return f"- {line}\n"
+
+
+def publish_sizing(document: SizingDocument, fmt: Format, output: Path | None) -> None:
+    """Write the document to ``output`` or stdout (a rich table on a terminal).
+
+    When no pair is feasible and stdout does not show a human-readable report (CSV or
+    JSON, or a file), the line 'no feasible motor/law pair' also goes to stderr.
+    """
+    if fmt is Format.TABLE and output is None and stdout_is_terminal():
+        print_rich_table(document.table())
+        footer = document.footer()
+        if footer:
+            sys.stdout.write("\n" + "\n".join(footer) + "\n")
+            sys.stdout.flush()
+        return
+    emit(document.render(fmt), output)
+    shown_to_user = output is None and fmt in (Format.TABLE, Format.MD)
+    if not document.any_feasible and not shown_to_user:
+        sys.stderr.write(NO_FEASIBLE + "\n")
+        sys.stderr.flush()
