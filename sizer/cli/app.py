@@ -7,24 +7,33 @@ command (``size``, ``check``, ``catalog ...``) is a new module listed in COMMAND
 from __future__ import annotations
 
 import sys
+from collections.abc import Sequence
 from typing import Annotated
 
 import typer
 
 from sizer import __version__
-from sizer.cli import law_command, laws_command
+from sizer.cli import (
+    check_command,
+    law_command,
+    laws_command,
+    schema_command,
+    size_command,
+)
 from sizer.errors import UserError
 
 USER_ERROR_EXIT_CODE = 2
 """Exit code for mistakes in the user's input (click uses 2 for usage errors too)."""
 
-COMMAND_MODULES = (laws_command, law_command)
+COMMAND_MODULES = (laws_command, law_command, size_command, check_command, schema_command)
 
 app = typer.Typer(
     name="sizer",
     help="Size servo motors and choose motion laws for automatic machines "
          "(Biagiotti & Melchiorri, ch. 6).\n\n"
          "Examples:\n\n"
+         "    sizer size examples/indexing-table.yaml\n\n"
+         "    sizer check examples/indexing-table.yaml\n\n"
          "    sizer laws --format md\n\n"
          "    sizer law cycloidal --displacement '90 deg' --duration '0.2 s'",
     no_args_is_help=True,
@@ -60,10 +69,13 @@ def report_user_error(error: UserError) -> None:
     sys.stderr.flush()
 
 
-def main() -> None:
-    """Run the app; a UserError ends with one line on stderr and exit code 2."""
+def main(argv: Sequence[str] | None = None) -> None:
+    """Run the app on ``argv`` (default: the command line).
+
+    A UserError ends with one line on stderr and exit code 2.
+    """
     try:
-        app()
+        app(args=None if argv is None else list(argv))
     except UserError as error:
         report_user_error(error)
         sys.exit(USER_ERROR_EXIT_CODE)

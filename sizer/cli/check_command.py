@@ -1,0 +1,93 @@
+"""``sizer check``: do the designs' chosen motor and law pass? (for CI and pre-commit)"""
+
+from __future__ import annotations
+
+from enum import StrEnum
+from pathlib import Path
+from typing import TYPE_CHECKING, Annotated
+
+import typer
+
+from sizer.cli.catalog_option import CatalogOption
+from sizer.errors import UserError
+
+if TYPE_CHECKING:
+    from sizer.report.check_report import CheckDocument
+
+CHECK_FAILED_EXIT_CODE = 1
+INVALID_INPUT_EXIT_CODE = 2
+
+
+class CheckFormat(StrEnum):
+    """Output formats of ``sizer check``."""
+
+    TABLE = "table"
+    JSON = "json"
+
+
+def check(
+    designs: Annotated[list[Path], typer.Argument(
+        metavar="DESIGN.yaml...",
+        help="Design files, each naming the motor and law to check.", show_default=False)],
+    catalog: CatalogOption = None,
+    fmt: Annotated[CheckFormat, typer.Option(
+        "--format", "-f", case_sensitive=False,
+        help="Output format: table (one line per limit, then PASS or FAIL) or json "
+             "(an object; a list of objects for several files).",
+    )] = CheckFormat.TABLE,
+) -> None:
+    """Check the motor and law each design names (`check: {motor: ID, law: SPEC}`).
+
+    Exit code 0 when every design's pair meets every limit with the required margins,
+    1 when one does not (the output says which limit fails and by how much), 2 when a
+    file is invalid (one 'error: ...' line on stderr per invalid file; the others are
+    still checked).
+
+    Examples:
+
+        sizer check examples/indexing-table.yaml
+
+        sizer check designs/*.yaml --format json
+    """
+    from sizer.cli.app import report_user_error
+    from sizer.report.json_text import render_json
+    from sizer.report.output import emit
+
+    documents: list[CheckDocument] = []
+    invalid = False
+    for design in designs:
+        try:
+            document = check_one(design, catalog or ())
+        except UserError as error:
+            report_user_error(error)
+            invalid = True
+            continue
+        documents.append(document)
+        if fmt is CheckFormat.TABLE:
+            emit(("\n" if len(documents) > 1 else "") + document.text(), None)
+    if fmt is CheckFormat.JSON and documents:
+        data = [d.data() for d in documents]
+        emit(render_json(data[0] if len(designs) == 1 else data), None)
+    if invalid:
+        raise typer.Exit(INVALID_INPUT_EXIT_CODE)
+    if not all(d.passed for d in documents):
+        raise typer.Exit(CHECK_FAILED_EXIT_CODE)
+
+
+def check_one(design: Path, catalogs: list[str] | tuple[str, ...]) -> CheckDocument:
+    """Load a design and check its chosen pair; UserErrors name the file."""
+    from sizer.io import load_design  # lazy: keeps --help fast
+    from sizer.report.check_report import CheckDocument
+    from sizer.sizing import check_design
+    from sizer.sizing.engine import assumptions
+
+    loaded = load_design(design, extra_catalogs=catalogs)
+    try:
+        result = check_design(loaded)
+    except UserError as error:
+        raise error.located(file=str(design)) from None
+    return CheckDocument(result, loaded, assumptions(loaded))
+
+
+def register(app: typer.Typer) -> None:
+    app.command("check")(check)

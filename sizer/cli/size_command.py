@@ -1,0 +1,89 @@
+"""``sizer size``: every motor x law of a design, checked and ranked."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import replace
+from typing import TYPE_CHECKING, Annotated
+
+import typer
+
+from sizer.cli.catalog_option import CatalogOption, DesignArgument
+from sizer.cli.options import FormatOption, OutputOption
+from sizer.errors import UserError
+from sizer.report.formats import Format
+
+if TYPE_CHECKING:
+    from sizer.model.domain import Motor
+
+RANK_HELP = ("Rank the feasible pairs by duration (shortest first), margin (most room "
+             "left at the tightest limit first), rms or peak (smallest motor torque "
+             "first), price or mass (cheapest or lightest motor first). Default: duration "
+             "with 'duration: minimize', margin otherwise.")
+
+
+def size(
+    design: DesignArgument,
+    catalog: CatalogOption = None,
+    motor: Annotated[list[str] | None, typer.Option(
+        "--motor", "-m", metavar="ID",
+        help="Size only this motor (an id among the loaded motors); repeat for more.",
+        show_default=False)] = None,
+    rank_by: Annotated[str | None, typer.Option(
+        "--rank-by", "-r", metavar="KEY", help=RANK_HELP, show_default=False)] = None,
+    top: Annotated[int | None, typer.Option(
+        "--top", "-n", metavar="N", min=1, help="Show only the first N rows.",
+        show_default=False)] = None,
+    show_all: Annotated[bool, typer.Option(
+        "--all", "-a", help="Also show the infeasible pairs, with the limits they fail.",
+    )] = False,
+    fmt: FormatOption = Format.TABLE,
+    output: OutputOption = None,
+) -> None:
+    """Size a design: every motor with every motion law, feasible pairs ranked.
+
+    With a given duration each pair is checked (speed, peak and RMS torque against the
+    motor's regions, inertia ratio, ...) and the margins are reported; with
+    'duration: minimize' each pair gets its shortest feasible duration T_min.
+    Exit code 0 even when no pair is feasible (the report says so); 2 for bad input.
+
+    Examples:
+
+        sizer size examples/indexing-table.yaml
+
+        sizer size examples/indexing-table.yaml --all --format md --output sizing.md
+
+        sizer size machine.yaml --catalog my-motors.yaml --rank-by price --top 5
+
+        sizer size examples/book/ex6_3.yaml --motor ex6_3
+    """
+    from sizer.io import load_design  # lazy: keeps --help fast
+    from sizer.report.sizing_table import SizingDocument, publish_sizing
+    from sizer.sizing import size_design
+
+    loaded = load_design(design, extra_catalogs=catalog or ())
+    if motor:
+        loaded = replace(loaded, motors=select_motors(loaded.motors, motor))
+    try:
+        sizing = size_design(loaded, rank_by=rank_by)
+    except UserError as error:
+        raise error.located(file=str(design)) from None
+    document = SizingDocument(sizing, loaded, rank_by=rank_by, top=top,
+                              include_infeasible=show_all)
+    publish_sizing(document, fmt, output)
+
+
+def select_motors(motors: Sequence[Motor], ids: Sequence[str]) -> tuple[Motor, ...]:
+    """The motors with the given ids, in catalog order; an unknown id is a UserError."""
+    known = {m.id for m in motors}
+    unknown = [i for i in dict.fromkeys(ids) if i not in known]
+    if unknown:
+        shown = ", ".join(m.id for m in motors[:12]) + (", ..." if len(motors) > 12 else "")
+        raise UserError(f"unknown motor {unknown[0]!r}; loaded motors: {shown or 'none'}",
+                        field="--motor")
+    wanted = set(ids)
+    return tuple(m for m in motors if m.id in wanted)
+
+
+def register(app: typer.Typer) -> None:
+    app.command("size")(size)
