@@ -165,3 +165,25 @@ def test_check_document_text_and_json() -> None:
         "FAIL: m1 with cycloidal: rms: 10 N*m against 8 N*m, margin -25.00%, "
         "10% required (FAILS)")
     assert json.loads(failed.json())["passed"] is False
+
+
+def test_terminal_gets_a_rich_table_with_the_footer(monkeypatch: pytest.MonkeyPatch,
+                                                    capsys: pytest.CaptureFixture) -> None:
+    import sizer.report.sizing_table as sizing_table
+
+    monkeypatch.setattr(sizing_table, "stdout_is_terminal", lambda: True)
+    monkeypatch.setenv("COLUMNS", "120")
+    document = SizingDocument(sizing(candidate("a", True), candidate("c", False)), DESIGN,
+                              include_infeasible=True)
+    publish_sizing(document, Format.TABLE, None)
+    out = capsys.readouterr().out
+    assert "─" in out and "95.493" in out  # box drawing; every numeric column shown
+    assert out.rstrip().endswith("note: a note")
+    assert "  #2 c, cycloidal: rms: too much" in out
+
+
+def test_check_document_without_a_feasible_duration_gives_the_reason() -> None:
+    result = candidate("m1", False, duration=None)
+    text = CheckDocument(result, DESIGN).text().splitlines()
+    assert text[1] == "  no feasible duration" and len(text) == 3
+    assert text[-1] == "FAIL: m1 with cycloidal: rms: too much"

@@ -1,7 +1,8 @@
 """The verdict of ``sizer check`` on the design's chosen motor and law: text and JSON.
 
 The text lists every check (``Check.describe()``) and ends with one line: ``PASS`` with
-the binding limit, or ``FAIL`` with each limit that fails and by how much.
+the binding limit, or ``FAIL`` with each limit that fails and by how much (in minimize
+mode with no feasible duration: the engine's reason).
 """
 
 from __future__ import annotations
@@ -51,7 +52,8 @@ class CheckDocument:
         name = self.design.name or "design"
         lines = [f"check {name}: motor {r.motor}, law {r.spec}",
                  f"  {self._requirements()}"]
-        lines += [f"  {check_line(r, c)}" for c in r.checks]
+        if r.duration is not None:  # else the checks are at no real duration: see FAIL
+            lines += [f"  {check_line(r, c)}" for c in r.checks]
         lines += [f"  note: {note}" for note in self.notes]
         if self.passed:
             lines.append(f"PASS: {r.motor} with {r.spec} meets every limit with the required "
