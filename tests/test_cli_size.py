@@ -26,7 +26,8 @@ SERVO_CATALOG = str(EXAMPLES / "catalogs" / "example-servo.yaml")
 
 RESULT_KEYS = ["motor", "law", "spec", "params", "feasible", "duration", "peak_torque",
                "rms_torque", "max_speed", "margin_peak", "margin_rms", "margin_speed",
-               "limiting", "reason", "price", "mass", "checks"]
+               "limiting", "reason", "price", "mass", "ratio", "gearbox", "load_speed",
+               "load_torque", "checks"]
 CHECK_KEYS = ["name", "value", "limit", "unit", "margin", "required", "passed"]
 
 
@@ -104,6 +105,8 @@ def test_json_results_have_fixed_keys_and_consistent_margins(indexing_json: dict
     by_pair = {(r["motor"], r["spec"]): r for r in results}
     chosen = by_pair[("HG-KN43J", "modified_sinusoidal")]
     assert chosen["feasible"] and chosen["duration"] == 0.25
+    assert chosen["ratio"] == 10.0 and chosen["gearbox"] is None
+    assert chosen["load_speed"] == pytest.approx(chosen["max_speed"] / 10, rel=1e-12)
     assert chosen["max_speed"] == pytest.approx(10 * 1.7596 * (math.pi / 2) / 0.25, rel=1e-4)
     # HG-KN23J: 0.034/10^2 over 0.225e-4 kg*m^2 is above the inertia ratio of 10
     weak = by_pair[("HG-KN23J", "cycloidal")]
@@ -151,7 +154,8 @@ def test_csv_is_si_with_units_in_the_headers() -> None:
     assert list(rows[0]) == ["rank", "motor", "law", "spec", "feasible", "duration [s]",
                              "peak_torque [N*m]", "rms_torque [N*m]", "max_speed [rad/s]",
                              "margin_peak [1]", "margin_rms [1]", "margin_speed [1]",
-                             "limiting", "reason", "price", "mass [kg]"]
+                             "limiting", "reason", "price", "mass [kg]", "ratio",
+                             "gearbox"]
     by_law = {r["law"]: r for r in rows}
     assert float(by_law["cycloidal"]["max_speed [rad/s]"]) == pytest.approx(10.0, rel=1e-12)
     assert round(float(by_law["cycloidal"]["rms_torque [N*m]"]), 4) == 7.6293

@@ -47,6 +47,20 @@ def candidate(motor: str, feasible: bool, *, duration: float | None = 0.5,
         price=None, mass=1.5)
 
 
+def test_a_ratio_column_when_the_ratio_varies() -> None:
+    from dataclasses import replace
+
+    same = SizingDocument(sizing(candidate("a", True), candidate("b", True)), DESIGN)
+    assert "ratio" not in same.table().headers
+    free = SizingDocument(sizing(candidate("a", True),
+                                 replace(candidate("b", True), ratio=7.0, gearbox="GB-7")),
+                          DESIGN)
+    table = free.table()
+    assert table.headers[:5] == ("#", "motor", "law", "ratio", "feasible")
+    assert [row[3] for row in table.rows] == ["1", "7 (GB-7)"]
+    assert json.loads(free.json())["results"][1]["gearbox"] == "GB-7"
+
+
 def sizing(*results: CandidateResult) -> SizingResult:
     return SizingResult("duration", results, "demo", notes=("a note",))
 

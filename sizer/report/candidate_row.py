@@ -32,7 +32,7 @@ MARGINS = ("peak", "rms", "speed")
 CSV_HEADERS = (
     "rank", "motor", "law", "spec", "feasible", "duration [s]", "peak_torque [N*m]",
     "rms_torque [N*m]", "max_speed [rad/s]", "margin_peak [1]", "margin_rms [1]",
-    "margin_speed [1]", "limiting", "reason", "price", "mass [kg]",
+    "margin_speed [1]", "limiting", "reason", "price", "mass [kg]", "ratio", "gearbox",
 )
 
 
@@ -91,6 +91,10 @@ def result_json(result: CandidateResult) -> dict[str, Any]:
         "reason": result.reason,
         "price": finite_or_none(result.price),
         "mass": finite_or_none(result.mass),
+        "ratio": finite_or_none(result.ratio),
+        "gearbox": result.gearbox,
+        "load_speed": finite_or_none(result.load_speed),
+        "load_torque": finite_or_none(result.load_torque),
         "checks": [check_json(result, check) for check in result.checks],
     }
 
@@ -109,6 +113,7 @@ def result_csv_cells(rank: int, result: CandidateResult) -> tuple[str, ...]:
         *(_csv_number(summary_margin(result, name)) for name in MARGINS),
         result.limiting or "", result.reason,
         _csv_number(result.price), _csv_number(result.mass),
+        _csv_number(result.ratio), result.gearbox or "",
     )
 
 
@@ -131,10 +136,21 @@ def _short(value: float | None, scale: float = 1.0) -> str:
     return short(value)
 
 
-def result_display_cells(rank: int, result: CandidateResult) -> tuple[str, ...]:
-    """Cells for a table: rank, motor, law, feasible, T [ms], torques, rpm, margins [%]."""
+def ratio_text(result: CandidateResult) -> str:
+    """The transmission ratio for a table, with the catalog gearbox if one was chosen."""
+    text = _short(result.ratio)
+    return f"{text} ({result.gearbox})" if result.gearbox else text
+
+
+def result_display_cells(rank: int, result: CandidateResult, *,
+                         with_ratio: bool = False) -> tuple[str, ...]:
+    """Cells for a table: rank, motor, law, feasible, T [ms], torques, rpm, margins [%].
+
+    With ``with_ratio`` the transmission ratio follows the law (when it varies by pair).
+    """
+    ratio = (ratio_text(result),) if with_ratio else ()
     return (
-        str(rank), result.motor, result.spec, "yes" if result.feasible else "no",
+        str(rank), result.motor, result.spec, *ratio, "yes" if result.feasible else "no",
         _short(result.duration, 1000.0), _short(result.peak_torque),
         _short(result.rms_torque), _short(result.max_speed, RPM_PER_RAD_S),
         *(percent(summary_margin(result, name)) for name in MARGINS),

@@ -41,8 +41,11 @@ NO_FEASIBLE = "no feasible motor/law pair"
 
 RESULT_UNITS = {"duration": "s", "peak_torque": "N*m", "rms_torque": "N*m",
                 "max_speed": "rad/s", "margin": "1 (fraction of the limit left unused)",
-                "price": "as in the catalog", "mass": "kg"}
-"""Units of the JSON result fields (torques and speeds at the motor shaft)."""
+                "price": "as in the catalog", "mass": "kg",
+                "ratio": "motor speed / load speed (rad/rad; rad/m on a linear axis)",
+                "load_speed": "rad/s (m/s on a linear axis)",
+                "load_torque": "N*m (N on a linear axis)"}
+"""Units of the JSON result fields (torques and speeds at the motor shaft but the load's)."""
 
 
 def default_rank_key(mode: str) -> str:
@@ -99,15 +102,24 @@ class SizingDocument:
         return lines
 
     # --------------------------------------------------------------- formats
+    @property
+    def ratio_varies(self) -> bool:
+        """True when the pairs do not all share one transmission ratio (a free ratio)."""
+        results = self.sizing.results
+        return (len({r.ratio for r in results}) > 1
+                or any(r.gearbox for r in results))
+
     def table(self) -> Table:
         duration = "T_min [ms]" if self.sizing.mode == "minimize" else "T [ms]"
+        with_ratio = self.ratio_varies
         columns = (
             Column("#"), Column("motor", "left"), Column("law", "left"),
+            *((Column("ratio", "left"),) if with_ratio else ()),
             Column("feasible", "left"), Column(duration), Column("peak [N*m]"),
             Column("rms [N*m]"), Column("max speed [rpm]"), Column("peak margin [%]"),
             Column("rms margin [%]"), Column("speed margin [%]"), Column("limiting", "left"),
         )
-        rows = [result_display_cells(rank, r) for rank, r in self.rows]
+        rows = [result_display_cells(rank, r, with_ratio=with_ratio) for rank, r in self.rows]
         return make_table(columns, rows, title=self.title)
 
     def csv(self) -> str:
