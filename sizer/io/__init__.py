@@ -1,8 +1,10 @@
 """Reading the input files: YAML with line numbers, validation, SI domain objects."""
 
 from sizer.io.loader import (
+    NOT_DEFAULT_CATALOGS,
     bundled_catalogs,
     catalog_schema,
+    default_catalogs,
     default_laws,
     design_schema,
     load_catalog,
@@ -12,9 +14,11 @@ from sizer.io.loader import (
 from sizer.io.yaml_source import YamlSource, parse_yaml, read_yaml
 
 __all__ = [
+    "NOT_DEFAULT_CATALOGS",
     "YamlSource",
     "bundled_catalogs",
     "catalog_schema",
+    "default_catalogs",
     "default_laws",
     "design_schema",
     "load_catalog",

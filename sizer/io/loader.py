@@ -45,6 +45,20 @@ def bundled_catalogs() -> dict[str, Path]:
     return {p.stem: p for p in sorted(folder.glob("*.yaml"))}
 
 
+NOT_DEFAULT_CATALOGS = frozenset({"book-examples"})
+"""Bundled catalogs left out of the default set: the book's idealized motors (no rotor
+inertia, bare SI numbers) would rank among real motors without being buyable."""
+
+
+def default_catalogs() -> dict[str, Path]:
+    """The bundled catalogs of real motors: the motors of a design that names none.
+
+    All bundled catalogs but those in NOT_DEFAULT_CATALOGS, by name.
+    """
+    return {name: path for name, path in bundled_catalogs().items()
+            if name not in NOT_DEFAULT_CATALOGS}
+
+
 def load_catalog(path_or_name: PathLike) -> tuple[Motor, ...]:
     """The motors of a catalog file or of a bundled catalog (by name)."""
     path = resolve_catalog(path_or_name, Path.cwd())
@@ -175,12 +189,17 @@ def _check_unique(motors: Iterable[_Located]) -> None:
 # ------------------------------------------------------------------- design
 
 
-def load_design(path: PathLike, extra_catalogs: Iterable[PathLike] = ()) -> Design:
+def load_design(path: PathLike, extra_catalogs: Iterable[PathLike] = (), *,
+                default_motors: bool = False) -> Design:
     """Read a design file into a Design (SI).
 
     ``Design.motors`` holds the motors of the design's ``motors:`` entries, then those of
     ``extra_catalogs`` (paths relative to the working directory, or bundled names). A
     catalog file named twice is read once.
+
+    With ``default_motors``, a design without a ``motors:`` entry and with no extra
+    catalogs is sized against the bundled catalogs of real motors (``default_catalogs()``);
+    ``motors: []`` still means none. Without it such a design has no motors.
     """
     path = Path(path)
     source = read_yaml(path)
@@ -188,7 +207,10 @@ def load_design(path: PathLike, extra_catalogs: Iterable[PathLike] = ()) -> Desi
     task = _task(model, source)
     linear = task.linear
     load = _load(model, source, linear)
-    motors = _design_motors(model, source, path.parent, extra_catalogs)
+    extra = list(extra_catalogs)
+    if default_motors and model.motors is None and not extra:
+        extra = list(default_catalogs().values())
+    motors = _design_motors(model, source, path.parent, extra)
     by_id = {m.id: m for m in motors}
     chosen_motor = chosen_law = None
     if model.check is not None:
@@ -344,8 +366,10 @@ def catalog_schema() -> dict[str, Any]:
 
 
 __all__ = [
+    "NOT_DEFAULT_CATALOGS",
     "bundled_catalogs",
     "catalog_schema",
+    "default_catalogs",
     "default_laws",
     "design_schema",
     "load_catalog",

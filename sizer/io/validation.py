@@ -33,6 +33,25 @@ def validate(model: type[ModelT], source: YamlSource) -> ModelT:
 
 def user_error(error: ValidationError, model: type[BaseModel], source: YamlSource) -> UserError:
     """The first problem of ``error`` in file order, as a UserError; notes how many more."""
+    problems, order = _ordered(error, model, source)
+    first = problems[order[0]]
+    more = len(problems) - 1
+    if more:
+        first = UserError(f"{first.message} (and {more} more problem{'s' * (more > 1)} "
+                          f"in this file)", file=first.file, line=first.line, field=first.field)
+    return first
+
+
+def all_problems(error: ValidationError, model: type[BaseModel],
+                 source: YamlSource) -> list[UserError]:
+    """Every problem of ``error`` as a located UserError, in the order of ``user_error``."""
+    problems, order = _ordered(error, model, source)
+    return [problems[i] for i in order]
+
+
+def _ordered(error: ValidationError, model: type[BaseModel],
+             source: YamlSource) -> tuple[list[UserError], list[int]]:
+    """The problems of ``error`` and their order: file order, a typo before what it hides."""
     items = error.errors(include_url=False)
     problems = [_problem(item, model, source) for item in items]
     # An unknown field is often a typo of a missing one in the same mapping: report it
@@ -47,12 +66,7 @@ def user_error(error: ValidationError, model: type[BaseModel], source: YamlSourc
             line = extra_lines.get(tuple(item["loc"][:-1]), line)
         keys.append((line, item.get("type") != "extra_forbidden"))
     order = sorted(range(len(problems)), key=lambda i: keys[i])
-    first = problems[order[0]]
-    more = len(problems) - 1
-    if more:
-        first = UserError(f"{first.message} (and {more} more problem{'s' * (more > 1)} "
-                          f"in this file)", file=first.file, line=first.line, field=first.field)
-    return first
+    return problems, order
 
 
 def _problem(item: Any, model: type[BaseModel], source: YamlSource) -> UserError:
