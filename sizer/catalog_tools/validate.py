@@ -1,0 +1,155 @@
+"""Validate catalog files: the schema, then the sanity checks, with every finding listed.
+
+A loader stops at the first mistake; the validator goes on, so a CI run shows them all:
+
+    report = validate_catalogs(["catalogs/yaskawa-sgm7j.yaml", "my-motors.yaml"])
+    report.findings     -> [Finding(file, line, field, message, severity), ...]
+    report.unreadable   -> [UserError, ...]  (missing file, not UTF-8, broken YAML, ...)
+
+Duplicate motor ids are findings within a file and across the files validated together
+(they would clash when loaded together). A file named twice is validated once.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from pydantic import ValidationError
+
+from sizer.catalog_tools.checks import check_motor
+from sizer.catalog_tools.findings import Finding
+from sizer.errors import UserError
+from sizer.io.loader import resolve_catalog
+from sizer.io.validation import all_problems
+from sizer.io.yaml_source import YamlSource, format_path, read_yaml
+from sizer.model.inputs import CatalogFile, MotorInput
+
+
+@dataclass
+class ValidationReport:
+    """The findings of the readable files and the errors of the unreadable ones."""
+
+    files: list[str] = field(default_factory=list)
+    findings: list[Finding] = field(default_factory=list)
+    unreadable: list[UserError] = field(default_factory=list)
+    motors: int = 0
+    """How many motor entries the readable files hold."""
+
+    @property
+    def exit_code(self) -> int:
+        """0 clean, 1 with findings, 2 when a file could not be read at all."""
+        if self.unreadable:
+            return 2
+        return 1 if self.findings else 0
+
+
+@dataclass(frozen=True)
+class _Seen:
+    file: str
+    line: int | None
+
+
+def validate_catalogs(references: Iterable[str | Path], base: Path | None = None
+                      ) -> ValidationReport:
+    """Validate catalog files (paths relative to ``base``, default the working directory,
+    or bundled catalog names)."""
+    base = base if base is not None else Path.cwd()
+    report = ValidationReport()
+    ids: dict[str, _Seen] = {}
+    done: set[Path] = set()
+    for reference in references:
+        try:
+            path = resolve_catalog(reference, base)
+        except UserError as error:
+            report.unreadable.append(error.located(file=str(reference)))
+            continue
+        key = path.resolve()
+        if key in done:
+            continue
+        done.add(key)
+        shown = _shown(path, base)
+        try:
+            source = read_yaml(path)
+        except UserError as error:
+            report.unreadable.append(UserError(error.message, file=shown, line=error.line,
+                                               field=error.field))
+            continue
+        source.file = shown
+        report.files.append(shown)
+        report.findings += _validate_source(source, ids, report)
+    report.findings.sort(key=Finding.sort_key)
+    return report
+
+
+def _shown(path: Path, base: Path) -> str:
+    """The path relative to ``base`` when it is inside it (as a user would type it)."""
+    try:
+        return str(path.relative_to(base))
+    except ValueError:
+        return str(path)
+
+
+def _validate_source(source: YamlSource, ids: dict[str, _Seen],
+                     report: ValidationReport) -> list[Finding]:
+    file = source.file or "?"
+    findings: list[Finding] = []
+
+    def finding(path: tuple[Any, ...], message: str, severity: str = "error") -> None:
+        findings.append(Finding(file, source.line_of(path), format_path(path) or None,
+                                message, severity))  # type: ignore[arg-type]
+
+    try:
+        CatalogFile.model_validate(source.data)
+    except ValidationError as error:
+        for problem in all_problems(error, CatalogFile, source):
+            findings.append(Finding(file, problem.line, problem.field, problem.message))
+    except RecursionError:
+        finding((), "the data is nested too deeply")
+        return findings
+    data = source.data
+    motors = data.get("motors")
+    if not isinstance(motors, list):
+        return findings  # the schema said so
+    if not motors:
+        finding(("motors",), "the catalog has no motors")
+    report.motors += len(motors)
+    manufacturer = _text(data.get("manufacturer"))
+    default_source = _text(data.get("source"))
+    for index, raw in enumerate(motors):
+        at = ("motors", index)
+        if isinstance(raw, dict):
+            _check_id(raw.get("id"), (*at, "id"), source, ids, finding)
+        try:
+            item = MotorInput.model_validate(raw)
+        except (ValidationError, RecursionError):
+            continue  # reported by the schema pass above
+        for problem in check_motor(item, manufacturer=manufacturer, source=default_source):
+            finding((*at, *problem.path), problem.message, problem.severity)
+    return findings
+
+
+def _check_id(value: Any, path: tuple[Any, ...], source: YamlSource, ids: dict[str, _Seen],
+              finding: Any) -> None:
+    if isinstance(value, bool) or not isinstance(value, str | int | float):
+        return  # the schema reports it
+    motor_id = str(value).strip()
+    if not motor_id:
+        return
+    line = source.line_of(path)
+    earlier = ids.get(motor_id)
+    if earlier is None:
+        ids[motor_id] = _Seen(source.file or "?", line)
+        return
+    where = earlier.file + (f":{earlier.line}" if earlier.line is not None else "")
+    finding(path, f"duplicate motor id {motor_id!r} (first defined at {where})")
+
+
+def _text(value: Any) -> str | None:
+    if isinstance(value, str):
+        return value
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        return str(value)
+    return None
