@@ -1,0 +1,249 @@
+"""``sizer plot`` (speed-torque diagram of a design's motor and laws) and ``sizer plot-law``
+(position, velocity, acceleration and jerk of motion laws), as PNG or SVG files.
+
+matplotlib is imported only when one of these commands runs.
+"""
+
+from __future__ import annotations
+
+import re
+import sys
+from collections.abc import Sequence
+from dataclasses import replace
+from pathlib import Path
+from typing import TYPE_CHECKING, Annotated
+
+import typer
+
+from sizer.cli.catalog_option import CatalogOption, DesignArgument
+from sizer.errors import UserError
+
+if TYPE_CHECKING:
+    from sizer.model.domain import Design, Motor
+    from sizer.sizing import CandidateResult
+
+FigureOutput = Annotated[
+    Path,
+    typer.Option(
+        "--output", "-o", dir_okay=False, metavar="FILE",
+        help="The figure file: FILE.png or FILE.svg (the suffix sets the format).",
+        show_default=False,
+    ),
+]
+
+DpiOption = Annotated[
+    int,
+    typer.Option("--dpi", metavar="N", min=10, max=1200,
+                 help="Resolution of a PNG in dots per inch (SVG: the size of raster parts)."),
+]
+
+SizeOption = Annotated[
+    str | None,
+    typer.Option("--size", metavar="WxH",
+                 help="Figure size in inches, e.g. 8x6. Default: 8x6 (13x6 with "
+                      "--acceleration) for plot, 8x9 for plot-law.", show_default=False),
+]
+
+SIZE_PATTERN = re.compile(r"^\s*([0-9]*\.?[0-9]+)\s*[xX*,]\s*([0-9]*\.?[0-9]+)\s*$")
+
+
+def parse_size(text: str | None, field: str = "--size") -> tuple[float, float] | None:
+    """'8x6' -> (8.0, 6.0) inches; None stays None."""
+    if text is None:
+        return None
+    match = SIZE_PATTERN.match(text)
+    if not match:
+        raise UserError(f"expected WIDTHxHEIGHT in inches like 8x6, got {text!r}", field=field)
+    width, height = float(match.group(1)), float(match.group(2))
+    if not (0.5 <= width <= 100.0 and 0.5 <= height <= 100.0):
+        raise UserError(f"width and height must be between 0.5 and 100 inches, got {text!r}",
+                        field=field)
+    return width, height
+
+
+# ----------------------------------------------------------------------- sizer plot
+def plot(
+    design: DesignArgument,
+    output: FigureOutput,
+    motor: Annotated[str | None, typer.Option(
+        "--motor", "-m", metavar="ID",
+        help="The motor to draw. Default: the design's check motor, else the motor of "
+             "the best-ranked feasible pair.", show_default=False)] = None,
+    law: Annotated[list[str] | None, typer.Option(
+        "--law", "-l", metavar="SPEC",
+        help="A law to draw for the motor (repeat for more). Default: the design's check "
+             "law, else the best-ranked law for the motor.", show_default=False)] = None,
+    catalog: CatalogOption = None,
+    acceleration: Annotated[bool, typer.Option(
+        "--acceleration", "-a",
+        help="Add a panel in the speed-acceleration plane (Fig. 6.7 b).")] = False,
+    speed_unit: Annotated[str, typer.Option(
+        "--speed-unit", metavar="rpm|rad/s", help="Unit of the speed axis.")] = "rpm",
+    samples: Annotated[int, typer.Option(
+        "--samples", "-n", metavar="N", min=11, max=100_000,
+        help="Samples of each move of the cycle.")] = 401,
+    dpi: DpiOption = 100,
+    size: SizeOption = None,
+) -> None:
+    """Draw the speed-torque diagram of a motor with the task of one or more laws.
+
+    The motor's continuous and intermittent regions, the mechanical task (speed(t),
+    torque(t)) over the machine cycle of each law at its duration (T_min with
+    'duration: minimize') and its RMS point (book Figs. 6.1-6.3), at the motor shaft;
+    the title gives the peak, rms and speed margins. --acceleration adds the
+    speed-acceleration plane (Fig. 6.7).
+
+    Without --motor and --law: the design's `check` pair if it names one, else the
+    best-ranked feasible pair.
+
+    Examples:
+
+        sizer plot examples/indexing-table.yaml -o indexing.png
+
+        sizer plot examples/book/ex6_1-6_2.yaml --motor ex6_1 --law cycloidal
+        --law 'trapezoidal(alpha=0.12732200375003505)' --speed-unit rad/s -o fig6_2.svg
+    """
+    from sizer.io import load_design  # lazy: keeps --help fast
+    from sizer.report.plots import curve_for, figure_format, save_figure, speed_torque_figure
+    from sizer.report.plots.speed_torque import SPEED_UNITS
+
+    figure_format(output)
+    if speed_unit not in SPEED_UNITS:
+        raise UserError(f"expected one of {', '.join(SPEED_UNITS)}, got {speed_unit!r}",
+                        field="--speed-unit")
+    figure_size = parse_size(size)
+    loaded = load_design(design, extra_catalogs=catalog or ())
+    try:
+        results = plot_pairs(loaded, motor, law or ())
+    except UserError as error:
+        raise error.located(file=str(design)) from None
+    drawn, curves = [], []
+    for result in results:
+        if result.duration is None:
+            sys.stderr.write(f"note: {result.motor} with {result.spec} has no feasible "
+                             f"duration, not drawn ({result.reason})\n")
+            continue
+        drawn.append(result)
+        curves.append(curve_for(loaded, result, samples=samples))
+    if not curves:
+        raise UserError(f"{results[0].motor}: no law with a feasible duration, nothing to "
+                        f"draw", file=str(design))
+    figure = speed_torque_figure(curves, drawn, acceleration=acceleration,
+                                 speed_unit=speed_unit, size=figure_size, dpi=dpi,
+                                 title=loaded.name,
+                                 duration_name="T_min" if loaded.task.minimize else "T")
+    save_figure(figure, output, dpi=dpi)
+    typer.echo(f"{output}: speed-torque diagram of {drawn[0].motor} with "
+               f"{', '.join(r.spec for r in drawn)}")
+
+
+def plot_pairs(design: Design, motor: str | None = None, laws: Sequence[str] = (),
+               rank_by: str | None = None) -> list[CandidateResult]:
+    """The sizing results to draw: one motor, one result per law.
+
+    - neither motor nor laws: the design's check pair if it names one, else the
+      best-ranked feasible pair (the best-ranked pair when none is feasible);
+    - a motor only: its best-ranked law;
+    - laws only: for the check motor if the design names one, else for the motor of the
+      best-ranked feasible pair among those laws;
+    - both: those.
+    Each law is sized on its own (its ratio or auto shape chosen as in ``sizer size``).
+    """
+    from sizer.sizing import size_design
+    from sizer.sizing.ranking import rank
+
+    field = "--motor"
+    if motor is None and not laws and design.chosen_motor and design.chosen_law:
+        motor, laws, field = design.chosen_motor, (design.chosen_law,), "check.motor"
+    elif motor is None and laws and design.chosen_motor:
+        motor, field = design.chosen_motor, "check.motor"
+    if motor is not None:
+        design = replace(design, motors=(find_motor(design.motors, motor, field),))
+    laws = tuple(dict.fromkeys(laws))
+    if not laws:
+        return [best_of(size_design(design, rank_by).results)]
+    per_law = [size_design(replace(design, laws=(spec,)), rank_by) for spec in laws]
+    if motor is None:
+        pooled = [r for sizing in per_law for r in sizing.results]
+        motor = best_of(rank(pooled, rank_by, per_law[0].mode)).motor
+    return [next(r for r in sizing.results if r.motor == motor) for sizing in per_law]
+
+
+def best_of(results: Sequence[CandidateResult]) -> CandidateResult:
+    """The first feasible result of a ranked list, else the first."""
+    return next((r for r in results if r.feasible), results[0])
+
+
+def find_motor(motors: Sequence[Motor], motor_id: str, field: str) -> Motor:
+    found = next((m for m in motors if m.id == motor_id), None)
+    if found is None:
+        shown = ", ".join(m.id for m in motors[:12]) + (", ..." if len(motors) > 12 else "")
+        raise UserError(f"unknown motor {motor_id!r}; loaded motors: {shown or 'none'}",
+                        field=field)
+    return found
+
+
+# ------------------------------------------------------------------- sizer plot-law
+def plot_law(
+    specs: Annotated[list[str], typer.Argument(
+        metavar="SPEC...", help="Laws, e.g. cycloidal poly5 'trapezoidal(alpha=1/3)'.",
+        show_default=False)],
+    output: FigureOutput,
+    displacement: Annotated[str | None, typer.Option(
+        "--displacement", metavar="H",
+        help="Scale to a move of h: an angle ('90 deg', rad if bare) or a length "
+             "('200 mm'); with --duration. Default: normalized, h = 1.",
+        show_default=False)] = None,
+    duration: Annotated[str | None, typer.Option(
+        "--duration", metavar="T", help="Duration T of the move ('0.2 s'); with "
+                                        "--displacement. Default: normalized, T = 1.",
+        show_default=False)] = None,
+    samples: Annotated[int, typer.Option(
+        "--samples", "-n", metavar="N", min=11, max=100_000,
+        help="Samples over the move (spread over the law's pieces).")] = 401,
+    dpi: DpiOption = 100,
+    size: SizeOption = None,
+) -> None:
+    """Draw position, velocity, acceleration and jerk of motion laws (Figs. 6.4-6.6).
+
+    Normalized (h = T = 1) by default, or scaled to a move with --displacement and
+    --duration. Where the acceleration jumps the jerk is an impulse: an arrow labelled
+    with the size of the jump.
+
+    Examples:
+
+        sizer plot-law cycloidal poly5 modified_sinusoidal -o laws.png
+
+        sizer plot-law 'trapezoidal(alpha=1/3)' 'double_s(alpha=1/3, beta=1/4)'
+        --displacement '90 deg' --duration '0.25 s' -o trapezoid.svg
+    """
+    from sizer.laws import make_law  # lazy: keeps --help fast
+    from sizer.report.plots import figure_format, law_profiles_figure, save_figure
+    from sizer.units import parse_displacement, to_si
+
+    figure_format(output)
+    figure_size = parse_size(size)
+    if (displacement is None) != (duration is None):
+        given = "--displacement" if displacement is not None else "--duration"
+        missing = "--duration" if displacement is not None else "--displacement"
+        raise UserError(f"{given} needs {missing} too (or neither, for normalized laws)",
+                        field=missing)
+    h, T, linear = None, None, False
+    if displacement is not None:
+        h, linear = parse_displacement(displacement, field="--displacement")
+        T = to_si(duration, "time", field="--duration")
+        if not T > 0.0:
+            raise UserError(f"must be positive, got {duration!r}", field="--duration")
+        if h == 0.0:
+            raise UserError("must not be zero", field="--displacement")
+    laws = [make_law(spec) for spec in dict.fromkeys(specs)]
+    figure = law_profiles_figure(laws, displacement=h, duration=T, linear=linear,
+                                 samples=samples, size=figure_size, dpi=dpi)
+    save_figure(figure, output, dpi=dpi)
+    typer.echo(f"{output}: position, velocity, acceleration and jerk of "
+               f"{', '.join(law.spec for law in laws)}")
+
+
+def register(app: typer.Typer) -> None:
+    app.command("plot")(plot)
+    app.command("plot-law")(plot_law)
