@@ -1,0 +1,66 @@
+"""``sizer report``: a Markdown report of a design (report.md and PNG figures in a folder)."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from sizer.cli.catalog_option import CatalogOption, DesignArgument
+from sizer.cli.plot_command import DpiOption
+from sizer.errors import UserError
+
+
+def report(
+    design: DesignArgument,
+    output: Annotated[Path, typer.Option(
+        "--output", "-o", file_okay=False, metavar="DIR",
+        help="The folder for report.md and its figures (created if missing; files of "
+             "the same names are replaced).", show_default=False)],
+    catalog: CatalogOption = None,
+    motor: Annotated[list[str] | None, typer.Option(
+        "--motor", "-m", metavar="ID",
+        help="Size only this motor (an id among the loaded motors); repeat for more.",
+        show_default=False)] = None,
+    rank_by: Annotated[str | None, typer.Option(
+        "--rank-by", "-r", metavar="KEY",
+        help="Ranking as in 'sizer size': duration, margin, rms, peak, price or mass.",
+        show_default=False)] = None,
+    top: Annotated[int, typer.Option(
+        "--top", "-n", metavar="N", min=1, help="Rows of the ranking table.")] = 5,
+    best: Annotated[int, typer.Option(
+        "--best", "-b", metavar="N", min=0, max=50,
+        help="Candidates with a speed-torque diagram and every check.")] = 3,
+    dpi: DpiOption = 100,
+) -> None:
+    """Write a Markdown report of a design: DIR/report.md plus PNG figures beside it.
+
+    The task, load, transmission and limits; the coefficient table and the profiles of
+    the laws considered; the ranking (first N feasible pairs, and how many are not); for
+    the best candidates the speed-torque diagram and every check with its margin.
+
+    Example:
+
+        sizer report examples/indexing-table.yaml -o report/
+    """
+    from sizer.cli.size_command import select_motors
+    from sizer.io import load_design  # lazy: keeps --help fast
+    from sizer.report.design_report import write_report
+    from sizer.sizing import size_design
+
+    loaded = load_design(design, extra_catalogs=catalog or ())
+    if motor:
+        loaded = replace(loaded, motors=select_motors(loaded.motors, motor))
+    try:
+        sizing = size_design(loaded, rank_by=rank_by)
+    except UserError as error:
+        raise error.located(file=str(design)) from None
+    written = write_report(loaded, sizing, output, top=top, best=best, rank_by=rank_by,
+                           source=design.as_posix(), dpi=dpi)
+    typer.echo(f"{written[0]}: report with {len(written) - 1} figures")
+
+
+def register(app: typer.Typer) -> None:
+    app.command("report")(report)

@@ -1,0 +1,451 @@
+"""A Markdown report of a sized design (``sizer report``): report.md and PNG figures.
+
+The report states the task, the load, the transmission and the limits; the coefficient
+table of the laws considered with a figure of their profiles; the ranking (the first
+``top`` feasible pairs and how many are infeasible); and, for the ``best`` first
+candidates, the speed-torque diagram and every check with its margin.
+
+The text is deterministic (the same design and results give the same bytes) and reads
+well rendered: headings, tables, figures linked by relative paths beside report.md.
+Figures are drawn by :func:`write_report` only; :class:`DesignReport` itself never loads
+matplotlib. Nothing here computes physics: the numbers are the sizing results and the
+core's task curves.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from sizer import __version__
+from sizer.report.candidate_row import RPM_PER_RAD_S, check_line, percent
+from sizer.report.laws_table import LawsDocument
+from sizer.report.markdown_table import render_markdown_table
+from sizer.report.numbers import short
+from sizer.report.output import write_text_atomically
+from sizer.report.sizing_table import SizingDocument, default_rank_key
+from sizer.report.table import Column, make_table
+
+if TYPE_CHECKING:
+    from sizer.laws import MotionLaw
+    from sizer.model.domain import Design, Motor
+    from sizer.sizing import CandidateResult, SizingResult
+
+REPORT_FILE = "report.md"
+LAWS_FIGURE = "laws.png"
+MAX_LAWS_IN_FIGURE = 8
+DEFAULT_TOP = 5
+DEFAULT_BEST = 3
+FIGURE_SIZE = (8.0, 6.0)
+LAWS_FIGURE_SIZE = (8.0, 9.0)
+
+THERMAL_SPEED_TEXT = {
+    "max": "the cycle's peak speed (as the book)",
+    "rms": "the cycle's RMS speed",
+    "mean": "the cycle's mean speed",
+}
+
+
+def md(text: str) -> str:
+    """Text for Markdown: '*' (as in N*m) escaped, so 'N*m*s' is not read as emphasis."""
+    return text.replace("*", "\\*")
+
+
+def candidate_figure(rank: int) -> str:
+    """File name of the speed-torque diagram of the pair ranked ``rank``."""
+    return f"speed-torque-{rank}.png"
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """One of the best pairs: its rank among all pairs, its result and its figure (None
+    when it has no duration to draw)."""
+
+    rank: int
+    result: CandidateResult
+    figure: str | None
+
+
+class DesignReport:
+    """The report's text and the list of its figures; ``write_report`` draws and writes."""
+
+    def __init__(self, design: Design, sizing: SizingResult, *, top: int = DEFAULT_TOP,
+                 best: int = DEFAULT_BEST, rank_by: str | None = None,
+                 source: str | None = None) -> None:
+        self.design = design
+        self.sizing = sizing
+        self.top = top
+        self.rank_key = rank_by or default_rank_key(sizing.mode)
+        self.source = source
+        ranked = list(enumerate(sizing.results, start=1))
+        feasible = [(rank, r) for rank, r in ranked if r.feasible]
+        chosen = (feasible or ranked)[:best]
+        self.candidates = [
+            Candidate(rank, r, candidate_figure(rank) if r.duration is not None else None)
+            for rank, r in chosen
+        ]
+        self.laws = self._laws()
+
+    # ------------------------------------------------------------------ content
+    @property
+    def minimize(self) -> bool:
+        return self.sizing.mode == "minimize"
+
+    @property
+    def figures(self) -> list[str]:
+        """Every figure file the report links to, relative to its directory."""
+        files = [LAWS_FIGURE] if self.laws else []
+        return files + [c.figure for c in self.candidates if c.figure]
+
+    def _laws(self) -> list[MotionLaw]:
+        """The design's laws with fixed shapes, then the shapes the solver chose for 'auto'
+        parameters among the pairs shown (ranking and best candidates)."""
+        from sizer.laws import AUTO, make_law, resolve
+
+        laws: dict[str, MotionLaw] = {}
+        for spec in self.design.laws:
+            _, values = resolve(spec)
+            if not any(v == AUTO for v in values.values()):
+                law = make_law(spec)
+                laws.setdefault(law.spec, law)
+        if any(any(v == AUTO for v in resolve(s)[1].values()) for s in self.design.laws):
+            for result in self._shown_results():
+                if result.spec not in laws:
+                    laws[result.spec] = make_law(result.spec)
+        return list(laws.values())
+
+    def _ranking_document(self) -> SizingDocument:
+        none_feasible = not self.sizing.feasible
+        return SizingDocument(self.sizing, self.design, rank_by=self.rank_key, top=self.top,
+                              include_infeasible=none_feasible)
+
+    def _shown_results(self) -> list[CandidateResult]:
+        rows = [r for _, r in self._ranking_document().rows]
+        return rows + [c.result for c in self.candidates if c.result not in rows]
+
+    # ------------------------------------------------------------------- text
+    def markdown(self) -> str:
+        parts = [
+            self._heading(),
+            self._task(),
+            self._load(),
+            self._transmission(),
+            self._limits(),
+            self._motors(),
+            self._laws_section(),
+            self._ranking(),
+            self._best(),
+        ]
+        return "\n".join(parts)
+
+    def _heading(self) -> str:
+        name = self.design.name or "design"
+        total = len(self.sizing.results)
+        feasible = len(self.sizing.feasible)
+        lines = [f"# Sizing report: {md(name)}", ""]
+        if self.source:
+            lines += [f"Design file: `{self.source}`. "
+                      f"Written by sizer {__version__} (Biagiotti & Melchiorri, ch. 6).", ""]
+        else:
+            lines += [f"Written by sizer {__version__} (Biagiotti & Melchiorri, ch. 6).", ""]
+        motors = len(self.design.motors)
+        summary = (f"{motors} motor{'s' if motors != 1 else ''} x "
+                   f"{len(self.design.laws)} law{'s' if len(self.design.laws) != 1 else ''}: "
+                   f"{feasible} of {total} pairs feasible")
+        if feasible:
+            best = self.sizing.feasible[0]
+            label = "T_min" if self.minimize else "T"
+            summary += (f". Best, ranked by {self.rank_key}: {best.motor} with {best.spec} "
+                        f"({label} = {short(best.duration * 1000.0)} ms, limiting: "
+                        f"{best.limiting}).")
+        else:
+            summary += ": no feasible motor/law pair."
+        lines += [md(summary), "",
+                  "Torques, speeds and accelerations are at the motor shaft unless said "
+                  "otherwise; margins are the share of a limit left unused "
+                  "(1 - value/limit).", ""]
+        return "\n".join(lines)
+
+    def _task(self) -> str:
+        task = self.design.task
+        if task.linear:
+            move = f"{short(task.displacement)} m ({short(task.displacement * 1000.0)} mm)"
+        else:
+            move = (f"{short(task.displacement)} rad "
+                    f"({short(math.degrees(task.displacement))} deg)")
+        duration = ("minimized for each pair (T_min)" if task.minimize
+                    else f"{short(task.duration * 1000.0)} ms")
+        cycle = ("move, dwell, move back, dwell" if task.return_move
+                 else "move, dwell (then the next move)")
+        rows = [
+            ("axis", "linear" if task.linear else "rotary"),
+            ("displacement h (at the load)", move),
+            ("duration T", duration),
+            ("dwell", f"{short(task.dwell * 1000.0)} ms"),
+            ("machine cycle (for the RMS torque)", cycle),
+        ]
+        return _section("Task", _key_value_table(rows))
+
+    def _load(self) -> str:
+        load, linear = self.design.load, self.design.task.linear
+        rows = [
+            ("mass" if linear else "inertia J_l",
+             f"{short(load.inertia)} {'kg' if linear else 'kg*m^2'}"),
+            ("damping B_l", f"{short(load.damping)} {'N*s/m' if linear else 'N*m*s/rad'}"),
+            ("Coulomb friction", f"{short(load.friction)} {'N' if linear else 'N*m'}"),
+            ("constant external " + ("force" if linear else "torque"),
+             f"{short(load.torque)} {'N' if linear else 'N*m'}"),
+        ]
+        return _section("Load", _key_value_table(rows))
+
+    def _transmission(self) -> str:
+        transmission = self.design.transmission
+        if not transmission.stages:
+            body = "Direct drive: the motor turns the load (ratio 1).\n"
+        else:
+            columns = (Column("#"), Column("type", "left"), Column("name", "left"),
+                       Column("ratio"), Column("efficiency"),
+                       Column("inertia at its input [kg*m^2]"))
+            rows = [(str(i), s.kind, s.name, short(s.ratio), short(s.efficiency),
+                     short(s.inertia)) for i, s in enumerate(transmission.stages, start=1)]
+            body = md(render_markdown_table(make_table(columns, rows)))
+            body += ("\n" + md(f"From the motor to the load. Total ratio K = "
+                               f"{short(transmission.ratio)} (motor speed / load speed), "
+                               f"efficiency {short(transmission.efficiency)}, inertia at the "
+                               f"motor shaft {short(transmission.inertia)} kg*m^2.") + "\n")
+        choice = self.design.ratio_choice
+        if choice is not None:
+            options = []
+            if choice.ratios:
+                options.append("the ratios " + ", ".join(short(r) for r in choice.ratios))
+            if choice.bounds is not None:
+                options.append(f"any ratio from {short(choice.bounds[0])} to "
+                               f"{short(choice.bounds[1])}")
+            if choice.gearboxes:
+                names = dict.fromkeys(f"{o.gearbox} ({short(o.stage.ratio)})"
+                                      for o in choice.gearboxes)
+                options.append("the catalog gearboxes " + ", ".join(names))
+            body += ("\n" + md(f"The ratio of stage {choice.stage + 1} is chosen for each "
+                               f"pair among {'; '.join(options)}; each candidate below "
+                               f"states its own.") + "\n")
+        return _section("Transmission", body)
+
+    def _limits(self) -> str:
+        limits, linear = self.design.limits, self.design.task.linear
+        unit = "m" if linear else "rad"
+
+        def optional(value: float | None, text: str) -> str:
+            return "none" if value is None else f"at most {short(value)}{text}"
+
+        rows = [
+            ("torque margin (peak and RMS)", f"{percent(limits.torque_margin)} %"),
+            ("speed margin", f"{percent(limits.speed_margin)} %"),
+            ("inertia ratio J_l/(K^2 J_m)", optional(limits.inertia_ratio, "")),
+            ("acceleration (at the load)", optional(limits.max_acceleration, f" {unit}/s^2")),
+            ("jerk (at the load)", optional(limits.max_jerk, f" {unit}/s^3")),
+            ("thermal speed (where the RMS torque meets the continuous region)",
+             THERMAL_SPEED_TEXT.get(limits.thermal_speed, limits.thermal_speed)),
+        ]
+        return _section("Limits", _key_value_table(rows))
+
+    def _motors(self) -> str:
+        """The motors of the pairs shown (a catalog can hold hundreds), then their sources."""
+        shown = dict.fromkeys(r.motor for r in self._shown_results())
+        motors = [m for m in self.design.motors if m.id in shown]
+        count = len(self.design.motors)
+        text = md(f"{count} motor{'s' if count != 1 else ''} considered; those in the "
+                  f"ranking below:") + "\n\n"
+        columns = (Column("motor", "left"), Column("rotor inertia [kg*m^2]"),
+                   Column("continuous torque [N*m]"), Column("peak torque [N*m]"),
+                   Column("rated speed [rpm]"), Column("max speed [rpm]"),
+                   Column("speed-torque curves", "left"), Column("part number", "left"))
+        rows = [(m.id, short(m.inertia), short(m.continuous_torque), short(m.peak_torque),
+                 short(m.rated_speed * RPM_PER_RAD_S),
+                 "" if m.max_speed is None else short(m.max_speed * RPM_PER_RAD_S),
+                 "catalog" if m.continuous_curve or m.intermittent_curve
+                 else "rectangles (tau_c, tau_p up to v_n)",
+                 m.part_number or "") for m in motors]
+        text += md(render_markdown_table(make_table(columns, rows)))
+        sources: dict[str, list[str]] = {}
+        for m in motors:
+            if m.source:
+                sources.setdefault(m.source, []).append(m.id)
+        if sources:
+            text += "\nSources:\n\n" + "".join(
+                f"- {md(', '.join(ids))}: {md(source)}\n" for source, ids in sources.items())
+        return _section("Motors", text)
+
+    def _laws_section(self) -> str:
+        if not self.laws:
+            return _section("Motion laws", "No motion law.\n")
+        table = md(render_markdown_table(LawsDocument(self.laws).table()))
+        text = ("Shape coefficients of the normalized laws (dimensionless; h/T, h/T^2 ... "
+                "give the real values): peak velocity C_v, peak acceleration C_a, peak jerk "
+                "C_j, RMS velocity C_v_rms and RMS acceleration C_a_rms.\n\n" + table)
+        autos = [s for s in self.design.laws if "auto" in s]
+        if autos:
+            text += ("\n" + md(f"{', '.join(autos)}: the shape is chosen for each motor; the "
+                               f"table lists the shapes of the pairs shown below.") + "\n")
+        shown = self.laws[:MAX_LAWS_IN_FIGURE]
+        caption = "Position, velocity, acceleration and jerk of the laws, normalized"
+        if len(shown) < len(self.laws):
+            caption += f" (the first {len(shown)})"
+        text += f"\n![{md(caption)}]({LAWS_FIGURE})\n"
+        return _section("Motion laws", text)
+
+    def _ranking(self) -> str:
+        document = self._ranking_document()
+        total = len(self.sizing.results)
+        feasible = len(self.sizing.feasible)
+        label = "T_min" if self.minimize else "T"
+        text = md(f"{feasible} of {total} motor/law pairs are feasible; ranked by "
+                  f"{self.rank_key} ({_rank_text(self.rank_key)}). Durations {label} in "
+                  f"ms, speeds in rpm, margins in %.") + "\n\n"
+        text += md(render_markdown_table(document.table()))
+        notes = []
+        if not feasible:
+            notes.append("No feasible motor/law pair: the table shows the first pairs "
+                         "and why they fail.")
+            notes += [f"#{rank} {r.motor}, {r.spec}: {r.reason}"
+                      for rank, r in document.rows]
+        else:
+            infeasible = total - feasible
+            if infeasible:
+                notes.append(f"{infeasible} infeasible pair{'s' if infeasible != 1 else ''} "
+                             f"not shown (`sizer size --all` lists them with the reason).")
+            if document.cut:
+                notes.append(f"{document.cut} more feasible pair"
+                             f"{'s' if document.cut != 1 else ''} not shown.")
+        notes += [f"Note: {note}." for note in self.sizing.notes]
+        if notes:
+            text += "\n" + "".join(f"- {md(note)}\n" for note in notes)
+        return _section("Ranking", text)
+
+    def _best(self) -> str:
+        if self.sizing.feasible:
+            heading = "Best candidates"
+            intro = (f"The first {len(self.candidates)} feasible pairs of the ranking."
+                     if len(self.candidates) > 1 else "The best feasible pair.")
+        else:
+            heading = "Closest candidates (none is feasible)"
+            intro = "The first pairs of the ranking, none of which meets every limit."
+        parts = [f"## {heading}", "", intro, ""]
+        for candidate in self.candidates:
+            parts.append(self._candidate(candidate))
+        return "\n".join(parts)
+
+    def _candidate(self, candidate: Candidate) -> str:
+        r = candidate.result
+        lines = [f"### {candidate.rank}. {md(r.motor)} with {md(r.spec)}", ""]
+        motor = next((m for m in self.design.motors if m.id == r.motor), None)
+        if motor is not None:
+            lines.append(f"- {md(_motor_text(motor))}")
+        lines.append(f"- {md(self._requirements(r))}")
+        if r.ratio != 1.0 or r.gearbox:
+            gearbox = f", gearbox {r.gearbox}" if r.gearbox else ""
+            lines.append(f"- {md(f'Transmission ratio K = {short(r.ratio)}{gearbox}')}")
+        verdict = (f"feasible; limiting check: {r.limiting}" if r.feasible
+                   else f"not feasible: {r.reason}")
+        lines += [f"- Verdict: {md(verdict)}", ""]
+        if candidate.figure:
+            alt = f"Speed-torque diagram of {r.motor} with {r.spec}"
+            lines += [f"![{md(alt)}]({candidate.figure})", ""]
+            lines += [md("The motor's intermittent and continuous regions, the task curve "
+                         "(speed(t), torque(t)) over the machine cycle and its RMS point "
+                         "(thermal speed, RMS torque)."), ""]
+        else:
+            lines += ["No figure: the pair has no feasible duration.", ""]
+        lines += ["Checks (value against limit, margin left, margin required):", ""]
+        lines += [f"- {md(check_line(r, check))}" for check in r.checks]
+        lines.append("")
+        return "\n".join(lines)
+
+    def _requirements(self, r: CandidateResult) -> str:
+        if r.duration is None:
+            return "No feasible duration"
+        label = "T_min" if self.minimize else "T"
+        parts = [f"{label} = {short(r.duration * 1000.0)} ms"]
+        if r.peak_torque is not None:
+            parts.append(f"peak torque {short(r.peak_torque)} N*m")
+        if r.rms_torque is not None:
+            parts.append(f"RMS torque {short(r.rms_torque)} N*m")
+        if r.max_speed is not None:
+            parts.append(f"max speed {short(r.max_speed * RPM_PER_RAD_S)} rpm")
+        return ", ".join(parts)
+
+
+def _rank_text(key: str) -> str:
+    return {
+        "duration": "shortest first",
+        "margin": "most room left at the tightest limit first",
+        "rms": "smallest RMS torque first",
+        "peak": "smallest peak torque first",
+        "price": "cheapest motor first",
+        "mass": "lightest motor first",
+    }.get(key, key)
+
+
+def _motor_text(motor: Motor) -> str:
+    return (f"Motor {motor.id}: rotor inertia {short(motor.inertia)} kg*m^2, continuous torque "
+            f"{short(motor.continuous_torque)} N*m, peak torque {short(motor.peak_torque)} N*m, "
+            f"rated speed {short(motor.rated_speed * RPM_PER_RAD_S)} rpm")
+
+
+def _section(title: str, body: str) -> str:
+    return f"## {title}\n\n{body}"
+
+
+def _key_value_table(rows: Sequence[tuple[str, str]]) -> str:
+    table = make_table((Column("quantity", "left"), Column("value", "left")), rows)
+    return md(render_markdown_table(table))
+
+
+# --------------------------------------------------------------------- writing
+def write_report(design: Design, sizing: SizingResult, directory: Path | str, *,
+                 top: int = DEFAULT_TOP, best: int = DEFAULT_BEST, rank_by: str | None = None,
+                 source: str | None = None, dpi: float = 100.0,
+                 samples: int = 401) -> list[Path]:
+    """Write ``directory``/report.md and its figures (the directory is created if needed).
+
+    Returns the paths written, report.md first.
+    """
+    from sizer.errors import UserError
+    from sizer.report.plots import (
+        curve_for,
+        law_profiles_figure,
+        save_figure,
+        speed_torque_figure,
+    )
+
+    directory = Path(directory)
+    try:
+        directory.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        reason = error.strerror or str(error)
+        raise UserError(f"cannot create the report directory: {reason}",
+                        file=str(directory)) from error
+    report = DesignReport(design, sizing, top=top, best=best, rank_by=rank_by, source=source)
+    written = []
+    if report.laws:
+        figure = law_profiles_figure(report.laws[:MAX_LAWS_IN_FIGURE], size=LAWS_FIGURE_SIZE,
+                                     dpi=dpi, samples=samples)
+        written.append(save_figure(figure, directory / LAWS_FIGURE, dpi=dpi))
+    for candidate in report.candidates:
+        if candidate.figure is None:
+            continue
+        result = candidate.result
+        curve = curve_for(design, result, samples=samples)
+        figure = speed_torque_figure([curve], [result], size=FIGURE_SIZE, dpi=dpi,
+                                     title=f"#{candidate.rank} {design.name}".rstrip(),
+                                     duration_name="T_min" if report.minimize else "T")
+        written.append(save_figure(figure, directory / candidate.figure, dpi=dpi))
+    path = directory / REPORT_FILE
+    try:
+        write_text_atomically(path, report.markdown())
+    except OSError as error:
+        reason = error.strerror or str(error)
+        raise UserError(f"cannot write the report: {reason}", file=str(path)) from error
+    return [path, *written]
