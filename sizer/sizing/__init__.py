@@ -1,6 +1,6 @@
 """Sizing: requirements, margins, minimum duration and ranking (book ch. 6)."""
 
-from sizer.sizing.engine import check_design, evaluate_law, size_design
+from sizer.sizing.engine import assumptions, check_design, evaluate_law, size_design
 from sizer.sizing.ranking import RANK_KEYS
 from sizer.sizing.results import CandidateResult, Check, SizingResult
 
@@ -9,6 +9,7 @@ __all__ = [
     "CandidateResult",
     "Check",
     "SizingResult",
+    "assumptions",
     "check_design",
     "evaluate_law",
     "size_design",

@@ -63,8 +63,16 @@ def minimum_duration(calculator: CycleCalculator, limits: Limits) -> DurationSol
     finite = np.isfinite(T)
     probe = np.where(finite, T, _largest_tried(calculator))
     metrics, checks = evaluate(calculator, limits, probe)
-    feasible = finite & (worst_slack(checks) >= -1e-9)
-    return DurationSolution(np.where(feasible, T, np.nan), feasible, metrics, checks, method)
+    # a closed form can land a rounding error (1e-16) short of its bound: step onto
+    # the feasible side by a few ulps so that every check of T_min passes
+    for _ in range(8):
+        short = finite & (worst_slack(checks) < 0.0) & (worst_slack(checks) > -1e-9)
+        if not short.any():
+            break
+        probe = np.where(short, probe * (1.0 + 4.0 * np.finfo(float).eps), probe)
+        metrics, checks = evaluate(calculator, limits, probe)
+    feasible = finite & (worst_slack(checks) >= 0.0)
+    return DurationSolution(np.where(feasible, probe, np.nan), feasible, metrics, checks, method)
 
 
 def _largest_tried(calculator: CycleCalculator) -> np.ndarray:

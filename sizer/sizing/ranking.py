@@ -11,11 +11,11 @@ from sizer.sizing.results import CandidateResult
 RANK_KEYS = ("duration", "margin", "rms", "peak", "price", "mass")
 
 
-def _value(result: CandidateResult, key: str) -> float:
+def _value(result: CandidateResult, key: str) -> float | tuple[float, ...]:
+    if key == "margin":  # the largest smallest margin first, then the next smallest...
+        return tuple(-s for s in result.slacks)
     if key == "duration":
         value = result.duration
-    elif key == "margin":
-        value = -result.worst_slack
     elif key == "rms":
         value = result.rms_torque
     elif key == "peak":

@@ -32,7 +32,9 @@ class Check:
         """One line: which limit, the values, and by how much it passes or fails."""
         unit = f" {self.unit}" if self.unit else ""
         if math.isinf(self.value):
-            return f"{self.name}: unbounded (jerk impulses) against {self.limit:.6g}{unit}"
+            why = {"jerk": " (the law has jerk impulses)",
+                   "inertia_ratio": " (the motor's inertia is 0)"}.get(self.name, "")
+            return f"{self.name}: unbounded{why} against {self.limit:.6g}{unit} (FAILS)"
         verdict = "ok" if self.passed else "FAILS"
         need = f", {self.required:.0%} required" if self.required else ""
         return (f"{self.name}: {self.value:.6g}{unit} against {self.limit:.6g}{unit}, "
@@ -80,6 +82,11 @@ class CandidateResult:
     def worst_slack(self) -> float:
         """The smallest margin beyond the required one, over all checks (ranking key)."""
         return min((c.slack for c in self.checks), default=math.inf)
+
+    @property
+    def slacks(self) -> tuple[float, ...]:
+        """All slacks, smallest first: ties on the worst are broken by the next ones."""
+        return tuple(sorted(c.slack for c in self.checks))
 
 
 @dataclass(frozen=True)

@@ -4,7 +4,8 @@ In minimize mode the parameter minimizes T_min; with a given duration it maximiz
 smallest margin. The search is a grid over the parameter's range refined twice around
 each motor's best point (vectorized over the motors that share a neighbourhood), halving
 the spacing each round, so the chosen value is within about 1e-3 of the range of the
-true optimum; the duration or margins reported are exact for the chosen value.
+true optimum; the chosen value is rounded to 4 significant digits, and the duration or
+margins reported are exact for it.
 """
 
 from __future__ import annotations
@@ -17,7 +18,7 @@ import numpy as np
 from sizer.laws import AUTO, MotionLaw
 from sizer.mechanics import Drive
 from sizer.model.domain import Design
-from sizer.sizing.checks import evaluate_checks, worst_slack
+from sizer.sizing.checks import evaluate_checks
 from sizer.sizing.cycle import CycleCalculator
 from sizer.sizing.duration import minimum_duration
 from sizer.sizing.motors import MotorArrays
@@ -42,7 +43,7 @@ def choose_shape(family: type[MotionLaw], values: dict[str, Fraction | str], des
     steps = [(hi - lo) / (COARSE[dims] - 1) for lo, hi in bounds]
     grids = [np.linspace(lo, hi, COARSE[dims]) for lo, hi in bounds]
     best_point = [None] * len(motors)
-    best_score = np.full(len(motors), -np.inf)
+    best_score: list[np.ndarray | None] = [None] * len(motors)
     everyone = np.arange(len(motors))
     _search(family, free, fixed, grids, everyone, design, drive, motors, best_point, best_score)
     for _ in range(REFINEMENTS):
@@ -56,8 +57,15 @@ def choose_shape(family: type[MotionLaw], values: dict[str, Fraction | str], des
                      for c, s, (lo, hi) in zip(point, steps, bounds, strict=True)]
             _search(family, free, fixed, local, np.array(members), design, drive, motors,
                     best_point, best_score)
-    return [family(**fixed, **dict(zip([p.name for p in free], point, strict=True)))
+    names = [p.name for p in free]
+    return [family(**fixed, **dict(zip(names, _rounded(point, bounds), strict=True)))
             for point in best_point]
+
+
+def _rounded(point: tuple[float, ...], bounds) -> tuple[float, ...]:
+    """4 significant digits (the search is no finer), kept inside the bounds."""
+    return tuple(min(max(float(f"{x:.4g}"), lo), hi)
+                 for x, (lo, hi) in zip(point, bounds, strict=True))
 
 
 def _search(family, free, fixed, grids, members, design, drive, motors, best_point, best_score):
@@ -68,24 +76,36 @@ def _search(family, free, fixed, grids, members, design, drive, motors, best_poi
         point = tuple(float(x) for x in point)
         law = family(**fixed, **dict(zip(names, point, strict=True)))
         score = _score(law, design, drive, subset)
-        better = score > best_score[members]
-        for j in np.nonzero(better)[0]:
-            best_point[members[j]] = point
-            best_score[members[j]] = score[j]
+        for j, i in enumerate(members):
+            if best_score[i] is None or _better(score[j], best_score[i]):
+                best_point[i] = point
+                best_score[i] = score[j]
     for i in members:
         if best_point[i] is None:  # nothing feasible: keep the middle point for reporting
             best_point[i] = tuple(float(g[len(g) // 2]) for g in grids)
 
 
 def _score(law: MotionLaw, design: Design, drive: Drive, motors: MotorArrays) -> np.ndarray:
-    """Higher is better: -T_min in minimize mode, the worst slack otherwise."""
+    """Rows compared lexicographically, higher is better: (-T_min,) in minimize mode, the
+    slacks of all checks smallest first otherwise (ties on the worst check, e.g. one
+    that does not depend on the law, are broken by the next one)."""
     calculator = CycleCalculator(None, design.task, drive, motors,
                                  design.limits.thermal_speed, law=law)
     if design.task.minimize:
         solution = minimum_duration(calculator, design.limits)
-        return np.where(solution.feasible, -solution.duration, -np.inf)
+        return np.where(solution.feasible, -solution.duration, -np.inf)[:, None]
     metrics = calculator.evaluate(np.full(len(motors), design.task.duration))
-    return worst_slack(evaluate_checks(metrics, motors, drive, design.limits,
-                                       design.task.linear))
+    checks = evaluate_checks(metrics, motors, drive, design.limits, design.task.linear)
+    return np.sort(np.stack([c.slack for c in checks], axis=1), axis=1)
+
+
+def _better(new: np.ndarray, old: np.ndarray) -> bool:
+    """new beats old at the first entry where they differ beyond rounding."""
+    with np.errstate(invalid="ignore"):
+        differs = ~np.isclose(new, old, rtol=1e-12, atol=1e-12) & ~(new == old)
+    if not differs.any():
+        return False
+    first = int(np.argmax(differs))
+    return bool(new[first] > old[first])
 
 
