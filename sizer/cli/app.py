@@ -14,6 +14,7 @@ import typer
 
 from sizer import __version__
 from sizer.cli import (
+    catalog_command,
     check_command,
     law_command,
     laws_command,
@@ -25,7 +26,8 @@ from sizer.errors import UserError
 USER_ERROR_EXIT_CODE = 2
 """Exit code for mistakes in the user's input (click uses 2 for usage errors too)."""
 
-COMMAND_MODULES = (laws_command, law_command, size_command, check_command, schema_command)
+COMMAND_MODULES = (laws_command, law_command, size_command, check_command, schema_command,
+                   catalog_command)
 
 app = typer.Typer(
     name="sizer",

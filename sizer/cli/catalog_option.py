@@ -2,10 +2,14 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
+
+if TYPE_CHECKING:
+    from sizer.model.domain import Design
 
 CatalogOption = Annotated[
     list[str] | None,
@@ -25,3 +29,11 @@ DesignArgument = Annotated[
         show_default=False,
     ),
 ]
+
+
+def load_design_file(design: Path, catalogs: Sequence[str] | None) -> Design:
+    """The design with its catalogs plus ``--catalog`` ones; a design that names no
+    catalog (and no --catalog) gets the bundled motors."""
+    from sizer.io import load_design  # lazy: keeps --help fast
+
+    return load_design(design, extra_catalogs=catalogs or (), default_motors=True)

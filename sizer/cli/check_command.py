@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from sizer.cli.catalog_option import CatalogOption
+from sizer.cli.catalog_option import CatalogOption, load_design_file
 from sizer.errors import UserError
 
 if TYPE_CHECKING:
@@ -76,12 +76,10 @@ def check(
 
 def check_one(design: Path, catalogs: list[str] | tuple[str, ...]) -> CheckDocument:
     """Load a design and check its chosen pair; UserErrors name the file."""
-    from sizer.io import load_design  # lazy: keeps --help fast
     from sizer.report.check_report import CheckDocument
-    from sizer.sizing import check_design
-    from sizer.sizing.engine import assumptions
+    from sizer.sizing import assumptions, check_design
 
-    loaded = load_design(design, extra_catalogs=catalogs)
+    loaded = load_design_file(design, catalogs)
     try:
         result = check_design(loaded)
     except UserError as error:

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from sizer.cli.catalog_option import CatalogOption, DesignArgument
+from sizer.cli.catalog_option import CatalogOption, DesignArgument, load_design_file
 from sizer.cli.options import FormatOption, OutputOption
 from sizer.errors import UserError
 from sizer.report.formats import Format
@@ -57,11 +57,10 @@ def size(
 
         sizer size examples/book/ex6_3.yaml --motor ex6_3
     """
-    from sizer.io import load_design  # lazy: keeps --help fast
     from sizer.report.sizing_table import SizingDocument, publish_sizing
     from sizer.sizing import size_design
 
-    loaded = load_design(design, extra_catalogs=catalog or ())
+    loaded = load_design_file(design, catalog)
     if motor:
         loaded = replace(loaded, motors=select_motors(loaded.motors, motor))
     try:
