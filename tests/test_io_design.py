@@ -80,7 +80,7 @@ load:
   damping: 5 N*s/m
   friction: 10 N
   force: 50 N
-transmission: {type: gearbox, ratio: 31.4159, efficiency: 0.9}
+transmission: {type: ball_screw, lead: 200 mm, efficiency: 0.9, inertia: 0}
 motors: book-examples
 limits:
   max_acceleration: 20 m/s^2
@@ -300,10 +300,10 @@ BAD_CASES = [
     ("friction: 0.2 N*m", "friction: -0.2 N*m", "friction: -0.2", "load.friction",
      "must be >= 0"),
     ("torque: 0 N*m", "torque: 5 N", "torque: 5 N", "load.torque", "expected a torque"),
-    ("type: gearbox", "type: belt", "type: belt", "transmission.type",
-     "unknown type 'belt'; expected one of: gearbox, direct"),
+    ("type: gearbox", "type: chain", "type: chain", "transmission.type",
+     "unknown type 'chain'; expected one of: gearbox, belt, ball_screw, rack_pinion, direct"),
     ("  type: gearbox\n", "", "transmission:", "transmission.type",
-     "required field is missing (one of: gearbox, direct)"),
+     "required field is missing (one of: gearbox, belt, ball_screw, rack_pinion, direct)"),
     ("  ratio: 10\n", "", "transmission:", "transmission.ratio", "required field is missing"),
     ("  ratio: 10\n", "  ratio: 0\n", "ratio: 0", "transmission.ratio", "must be > 0"),
     ("  ratio: 10\n", "  ratio: -10\n", "ratio: -10", "transmission.ratio", "must be > 0"),

@@ -18,17 +18,18 @@ from pathlib import Path
 from typing import Any
 
 from sizer.errors import UserError
+from sizer.io.transmission import build_transmission
 from sizer.io.validation import validate
 from sizer.io.yaml_source import YamlSource, format_path, read_yaml
-from sizer.model.domain import Design, Limits, Load, Motor, Stage, Task, Transmission
+from sizer.mechanics import linear_load
+from sizer.model.domain import Design, Limits, Load, Motor, Task
 from sizer.model.inputs import (
     CatalogFile,
     CurvePointInput,
     DesignFile,
-    GearboxInput,
     MotorInput,
-    convert,
 )
+from sizer.model.inputs_base import convert
 from sizer.units import parse_displacement
 
 PathLike = str | Path
@@ -210,6 +211,8 @@ def load_design(path: PathLike, extra_catalogs: Iterable[PathLike] = (), *,
     extra = list(extra_catalogs)
     if default_motors and model.motors is None and not extra:
         extra = list(default_catalogs().values())
+    transmission, ratio_choice = build_transmission(model.transmission, source, path.parent,
+                                                    linear)
     motors = _design_motors(model, source, path.parent, extra)
     by_id = {m.id: m for m in motors}
     chosen_motor = chosen_law = None
@@ -220,7 +223,8 @@ def load_design(path: PathLike, extra_catalogs: Iterable[PathLike] = (), *,
     return Design(
         task=task,
         load=load,
-        transmission=_transmission(model),
+        transmission=transmission,
+        ratio_choice=ratio_choice,
         laws=tuple(model.laws) if model.laws is not None else default_laws(),
         motors=motors,
         limits=_limits(model, source, linear),
@@ -280,22 +284,25 @@ def _load(model: DesignFile, source: YamlSource, linear: bool) -> Load:
             return default
         return _quantity(source, ("load", key), value, kind, **bounds)
 
-    return Load(
-        inertia=quantity(mass_key, kinds[0], gt=0),
+    if not linear:
+        for key in ("incline", "friction_coefficient"):
+            if getattr(given, key) is not None:
+                raise source.error(f"{axis} has no '{key}' (it is for linear axes)",
+                                   ("load", key))
+        return Load(
+            inertia=quantity(mass_key, kinds[0], gt=0),
+            damping=quantity("damping", kinds[1], ge=0),
+            friction=quantity("friction", kinds[2], ge=0),
+            torque=quantity(torque_key, kinds[2]),
+        )
+    return linear_load(
+        quantity(mass_key, kinds[0], gt=0),
+        incline=given.incline or 0.0,
+        friction_coefficient=given.friction_coefficient or 0.0,
+        friction_force=quantity("friction", kinds[2], ge=0),
+        force=quantity(torque_key, kinds[2]),
         damping=quantity("damping", kinds[1], ge=0),
-        friction=quantity("friction", kinds[2], ge=0),
-        torque=quantity(torque_key, kinds[2]),
     )
-
-
-def _transmission(model: DesignFile) -> Transmission:
-    stages = []
-    for item in model.transmission or ():
-        if isinstance(item, GearboxInput):
-            stages.append(Stage(kind="gearbox", ratio=item.ratio, efficiency=item.efficiency,
-                                inertia=item.inertia, name=item.name or ""))
-        # 'direct' adds no stage
-    return Transmission(stages=tuple(stages))
 
 
 def _limits(model: DesignFile, source: YamlSource, linear: bool) -> Limits:

@@ -13,14 +13,10 @@ ValidationError into a UserError at the file, line and field.
 
 from __future__ import annotations
 
-import math
-import reprlib
 from typing import Annotated, Any, Literal
 
 from pydantic import (
-    BaseModel,
     BeforeValidator,
-    ConfigDict,
     Discriminator,
     Field,
     StrictBool,
@@ -29,136 +25,20 @@ from pydantic import (
 )
 
 from sizer.errors import UserError
-from sizer.units import KINDS, to_si
-
-# ---------------------------------------------------------------- quantities
-
-
-_REPR = reprlib.Repr()
-_REPR.maxlevel, _REPR.maxdict, _REPR.maxlist, _REPR.maxtuple = 2, 3, 3, 3
-_REPR.maxstring, _REPR.maxother, _REPR.maxlong = 50, 50, 40
-
-
-def show_value(value: Any) -> str:
-    """A short repr of a user's value for messages; bounded even for huge or shared data."""
-    text = _REPR.repr(value)
-    return text if len(text) <= 60 else text[:57] + "..."
-
+from sizer.model.inputs_base import (
+    Identifier,
+    Quantity,
+    RawQuantity,
+    Strict,
+    Text,
+    convert,
+    show_value,
+)
+from sizer.model.transmission_inputs import (
+    TransmissionStageInput,
+)
 
 _show = show_value
-
-
-def _a(name: str) -> str:
-    return f"an {name}" if name[0] in "aeiou" else f"a {name}"
-
-
-def _bound_text(ge: float | None, gt: float | None, le: float | None,
-                lt: float | None) -> str:
-    def num(x: float) -> str:
-        return f"{x:g}"
-
-    if (ge is not None or gt is not None) and (le is not None or lt is not None):
-        left = f"[{num(ge)}" if ge is not None else f"({num(gt)}"  # type: ignore[arg-type]
-        right = f"{num(le)}]" if le is not None else f"{num(lt)})"  # type: ignore[arg-type]
-        return f"in {left}, {right}"
-    if gt is not None:
-        return f"> {num(gt)}"
-    if ge is not None:
-        return f">= {num(ge)}"
-    if lt is not None:
-        return f"< {num(lt)}"
-    return f"<= {num(le)}"  # type: ignore[arg-type]
-
-
-def convert(value: Any, kind: str, *, gt: float | None = None, ge: float | None = None,
-            lt: float | None = None, le: float | None = None) -> float:
-    """``to_si`` plus a range check; raises ValueError with a one-line message."""
-    if isinstance(value, bool) or not isinstance(value, str | int | float):
-        spec = KINDS[kind]
-        raise ValueError(f"expected {_a(kind.replace('_', ' '))} like {spec.example!r}, "
-                         f"got {_show(value)}")
-    if isinstance(value, str) and len(value) > 100:
-        raise ValueError(f"expected {_a(kind.replace('_', ' '))} like "
-                         f"{KINDS[kind].example!r}, got a text of {len(value)} characters")
-    try:
-        result = to_si(value, kind)
-    except UserError as error:
-        raise ValueError(error.message) from None
-    ok = ((gt is None or result > gt) and (ge is None or result >= ge)
-          and (lt is None or result < lt) and (le is None or result <= le))
-    if not ok:
-        unit = KINDS[kind].si_unit
-        shown = f"{result:g}" if unit == "1" else f"{result:g} {unit}"
-        given = ("" if isinstance(value, int | float) or value.strip() == shown
-                 else f" ({value.strip()})")
-        raise ValueError(f"must be {_bound_text(ge, gt, le, lt)}, got {shown}{given}")
-    return result
-
-
-def _quantity_schema(kind: str, note: str = "") -> dict[str, Any]:
-    spec = KINDS[kind]
-    name = kind.replace("_", " ")
-    text = f"{name} like '{spec.example}'"
-    if spec.si_unit != "1":
-        text += f"; a bare number is in {spec.si_unit}"
-    return {"anyOf": [{"type": "number"}, {"type": "string"}],
-            "description": f"{text}{'; ' + note if note else ''}"}
-
-
-def Quantity(kind: str, *, gt: float | None = None, ge: float | None = None,
-             lt: float | None = None, le: float | None = None, note: str = "") -> Any:
-    """An annotated float: accepts a number (SI) or a text with a unit of ``kind``."""
-    bounds = ("" if all(b is None for b in (gt, ge, lt, le))
-              else f"must be {_bound_text(ge, gt, le, lt)} (SI)")
-    schema = _quantity_schema(kind, "; ".join(p for p in (bounds, note) if p))
-    return Annotated[
-        float,
-        BeforeValidator(lambda v: convert(v, kind, gt=gt, ge=ge, lt=lt, le=le)),
-        WithJsonSchema(schema),
-    ]
-
-
-def RawQuantity(examples: str) -> Any:
-    """A quantity kept as given: its kind (torque or force...) is known once the axis is.
-
-    ``examples`` shows the accepted forms in messages, e.g. "'0.2 N*m' or '10 N'".
-    """
-
-    def check(value: Any) -> Any:
-        if isinstance(value, bool) or not isinstance(value, str | int | float):
-            raise ValueError(f"expected a number or a quantity like {examples}, "
-                             f"got {_show(value)}")
-        if isinstance(value, float) and not math.isfinite(value):
-            raise ValueError(f"{value!r} is not a finite number")
-        return value
-
-    return Annotated[
-        str | float | int,
-        BeforeValidator(check),
-        WithJsonSchema({"anyOf": [{"type": "number"}, {"type": "string"}]}),
-    ]
-
-
-def _text(value: Any) -> Any:
-    """Numbers are accepted as text (part numbers, ids like 100)."""
-    if isinstance(value, int | float) and not isinstance(value, bool):
-        return str(value)
-    if value is None or not isinstance(value, str):
-        raise ValueError(f"expected text, got {_show(value)}")
-    return value
-
-
-Text = Annotated[str, BeforeValidator(_text)]
-
-
-def _identifier(value: Any) -> str:
-    text = _text(value).strip()
-    if not text:
-        raise ValueError("must not be empty")
-    return text
-
-
-Identifier = Annotated[str, BeforeValidator(_identifier)]
 
 # ---------------------------------------------------------------- law specs
 
@@ -204,8 +84,7 @@ LawSpecText = Annotated[
 # ---------------------------------------------------------------- catalog
 
 
-class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", populate_by_name=False, frozen=True)
+_Strict = Strict
 
 
 def _curve_point(value: Any) -> Any:
@@ -320,33 +199,13 @@ class LoadInput(_Strict):
         None, description="rotary axis: constant external torque, positive opposes the move")
     force: RawQuantity("'50 N'") | None = Field(  # type: ignore[valid-type]
         None, description="linear axis: constant external force, positive opposes the move")
-
-
-class GearboxInput(_Strict):
-    """A gearbox stage: motor speed = ratio x output speed."""
-
-    type: Literal["gearbox"]
-    ratio: Quantity("ratio", gt=0, note="k_r, input over output speed")  # type: ignore[valid-type]
-    efficiency: Quantity("fraction", gt=0, le=1) = 1.0  # type: ignore[valid-type]
-    inertia: Quantity("inertia", ge=0,  # type: ignore[valid-type]
-                      note="at the input (motor) side") = 0.0
-    name: Text | None = None
-
-
-class DirectInput(_Strict):
-    """Direct drive: the motor turns the load (no stage)."""
-
-    type: Literal["direct"]
-    name: Text | None = None
-
-
-TransmissionStageInput = Annotated[
-    GearboxInput | DirectInput,
-    Field(discriminator="type"),
-]
-"""One transmission stage, told apart by ``type`` (more types come with later issues)."""
-
-TRANSMISSION_TYPES: tuple[str, ...] = ("gearbox", "direct")
+    incline: Quantity("angle", ge=-1.5707963267948966,  # type: ignore[valid-type]
+                      le=1.5707963267948966,
+                      note="linear axis: angle from the horizontal, 90 deg = vertical; "
+                           "gravity opposes a positive move") | None = None
+    friction_coefficient: Quantity("ratio", ge=0,  # type: ignore[valid-type]
+                                   note="linear axis: Coulomb mu, friction = mu m g "
+                                        "cos(incline), added to friction") | None = None
 
 
 def _motor_ref_tag(value: Any) -> str:

@@ -1,0 +1,169 @@
+"""Build the transmission (and its free ratio) of a design file, and read gearbox catalogs.
+
+Checks that span fields: at most one stage with a free ratio; a linear axis ends in a
+stage that turns rotation into travel (ball screw, rack and pinion, belt) unless it is a
+direct (linear motor) drive, and a rotary axis has no such stage; a ball screw needs its
+inertia or diameter and length; a belt its ratio or diameters.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from sizer.io.validation import validate
+from sizer.io.yaml_source import YamlSource, read_yaml
+from sizer.mechanics import ball_screw, belt, gearbox, rack_pinion
+from sizer.model.domain import GearboxOption, RatioChoice, Stage, Transmission
+from sizer.model.transmission_inputs import (
+    LINEAR_OUTPUT_TYPES,
+    BallScrewInput,
+    BeltInput,
+    DirectInput,
+    GearboxCatalogFile,
+    GearboxInput,
+    RackPinionInput,
+)
+
+
+def build_transmission(items: Sequence[Any] | None, source: YamlSource, folder: Path,
+                       linear: bool) -> tuple[Transmission, RatioChoice | None]:
+    """The stages from motor to load, and the free ratio if a stage has one."""
+    items = list(items or ())
+    as_list = isinstance(source.data, dict) and isinstance(source.data.get("transmission"),
+                                                           list)
+
+    def at(index: int, *keys: Any) -> tuple[Any, ...]:
+        return ("transmission", index, *keys) if as_list else ("transmission", *keys)
+
+    moving = [i for i, item in enumerate(items) if not isinstance(item, DirectInput)]
+    if linear and moving and items[moving[-1]].type not in LINEAR_OUTPUT_TYPES:
+        raise source.error("a linear axis (the displacement is a length) needs a last stage "
+                           "that turns rotation into travel: ball_screw, rack_pinion or belt "
+                           "(or a direct drive by a linear motor)", at(moving[-1], "type"))
+    stages: list[Stage] = []
+    choice: RatioChoice | None = None
+    choice_at: tuple[Any, ...] = ()
+    for index, item in enumerate(items):
+        if isinstance(item, DirectInput):
+            continue
+        last = index == moving[-1]
+        if item.type in ("ball_screw", "rack_pinion") and not linear:
+            raise source.error(f"a {item.type} moves a linear axis, but the displacement is an "
+                               f"angle (give it as a length, e.g. '200 mm')", at(index, "type"))
+        stage, free = _stage(item, source, at, index, linear and last, folder)
+        if free is not None:
+            if choice is not None:
+                raise source.error(f"only one stage may have a free ratio (the one at line "
+                                   f"{source.line_of(choice_at)} has one too)", at(index))
+            choice = dataclasses.replace(free, stage=len(stages))
+            choice_at = at(index)
+        stages.append(stage)
+    return Transmission(tuple(stages)), choice
+
+
+def _stage(item: Any, source: YamlSource, at, index: int, linear_output: bool,
+           folder: Path) -> tuple[Stage, RatioChoice | None]:
+    name = item.name or ""
+    if isinstance(item, GearboxInput):
+        return _gearbox(item, source, at, index, folder)
+    if isinstance(item, BeltInput):
+        ratio, free = _ratio(item.ratio)
+        if linear_output:
+            if item.driver_diameter is None:
+                raise source.error("a belt carrying the load needs driver_diameter (the "
+                                   "load moves d/2 per radian)", at(index))
+            if item.ratio is not None:
+                raise source.error("a belt carrying the load has its ratio from "
+                                   "driver_diameter (2/d rad/m); drop 'ratio'", at(index, "ratio"))
+        elif ratio is None and (item.driver_diameter is None or item.driven_diameter is None):
+            raise source.error("a belt needs its ratio or both pulley diameters", at(index))
+        if item.belt_mass and item.driver_diameter is None:
+            raise source.error("a belt mass needs driver_diameter", at(index, "belt_mass"))
+        stage = belt(ratio=ratio,
+                     driver_diameter=item.driver_diameter, driven_diameter=item.driven_diameter,
+                     driver_inertia=item.driver_inertia, driven_inertia=item.driven_inertia,
+                     belt_mass=item.belt_mass, efficiency=item.efficiency,
+                     linear=linear_output, name=name)
+        return stage, free
+    if isinstance(item, BallScrewInput):
+        if item.inertia is None and (item.diameter is None or item.length is None):
+            raise source.error("a ball screw needs its inertia, or its diameter and length "
+                               "(a steel screw)", at(index))
+        return ball_screw(item.lead, efficiency=item.efficiency, inertia=item.inertia,
+                          diameter=item.diameter, length=item.length,
+                          preload_torque=item.preload_torque, max_speed=item.max_speed,
+                          name=name), None
+    if isinstance(item, RackPinionInput):
+        if (item.pitch_radius is None) == (item.pitch_diameter is None):
+            raise source.error("a rack and pinion needs pitch_radius or pitch_diameter "
+                               "(one of them)", at(index))
+        radius = item.pitch_radius or item.pitch_diameter / 2.0
+        return rack_pinion(radius, inertia=item.inertia, efficiency=item.efficiency,
+                           name=name), None
+    raise AssertionError(f"unknown stage {item!r}")
+
+
+def _ratio(spec: tuple[str, tuple[float, ...]] | None) -> tuple[float | None, RatioChoice | None]:
+    """The stage's starting ratio and the free ratio choice, from the parsed ratio field."""
+    if spec is None:
+        return None, None
+    kind, values = spec
+    if kind == "fixed":
+        return values[0], None
+    if kind == "list":
+        return values[0], RatioChoice(ratios=values)
+    return values[0], RatioChoice(bounds=(values[0], values[1]))
+
+
+def _gearbox(item: GearboxInput, source: YamlSource, at, index: int,
+             folder: Path) -> tuple[Stage, RatioChoice | None]:
+    if item.ratio is None and item.catalog is None:
+        raise source.error("required field is missing: a gearbox needs a ratio (or a "
+                           "gearbox catalog)", at(index, "ratio"))
+    if item.ratio is not None and item.catalog is not None:
+        raise source.error("give a ratio or a gearbox catalog, not both", at(index, "catalog"))
+    limits = {"max_input_speed": item.max_input_speed,
+              "rated_output_torque": item.rated_output_torque,
+              "peak_output_torque": item.peak_output_torque, "backlash": item.backlash}
+    if item.catalog is not None:
+        path = folder / item.catalog
+        if not path.is_file():
+            raise source.error(f"no gearbox catalog file {str(path)!r}", at(index, "catalog"))
+        options = load_gearbox_catalog(path)
+        return options[0].stage, RatioChoice(gearboxes=options)
+    ratio, free = _ratio(item.ratio)
+    return gearbox(ratio, item.efficiency, item.inertia, name=item.name or "", **limits), free
+
+
+def load_gearbox_catalog(path: str | Path) -> tuple[GearboxOption, ...]:
+    """Every ratio of every series of a gearbox catalog, as options for the ratio choice."""
+    source = read_yaml(path)
+    model = validate(GearboxCatalogFile, source)
+    options = []
+    seen: set[str] = set()
+    for s_index, series in enumerate(model.gearboxes):
+        if series.id in seen:
+            raise source.error(f"duplicate gearbox id {series.id!r}",
+                               ("gearboxes", s_index, "id"))
+        seen.add(series.id)
+        for ratio in series.ratios:
+            stage = gearbox(
+                ratio.ratio,
+                ratio.efficiency if ratio.efficiency is not None else series.efficiency,
+                ratio.inertia,
+                max_input_speed=_first(ratio.max_input_speed, series.max_input_speed),
+                rated_output_torque=_first(ratio.rated_output_torque,
+                                           series.rated_output_torque),
+                peak_output_torque=_first(ratio.peak_output_torque, series.peak_output_torque),
+                backlash=series.backlash,
+                name="gearbox",
+            )
+            options.append(GearboxOption(f"{series.id} i={ratio.ratio:g}", stage))
+    return tuple(options)
+
+
+def _first(*values: float | None) -> float | None:
+    return next((v for v in values if v is not None), None)

@@ -1,0 +1,169 @@
+"""Input models of the transmission stages and of gearbox catalog files (YAML).
+
+A stage's ``ratio`` may be a number, a list of ratios to try, ``optimize`` (between 1 and
+100) or ``{optimize: [min, max]}``; a gearbox may instead name a gearbox ``catalog``
+whose ratios are the options. Quantities are converted to SI like the other inputs.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Any, Literal
+
+from pydantic import BeforeValidator, Field, WithJsonSchema
+
+from sizer.model.inputs_base import Quantity, Strict, Text, convert, show_value
+
+DEFAULT_RATIO_BOUNDS = (1.0, 100.0)
+
+RatioSpec = tuple[str, tuple[float, ...]]
+"""("fixed", (k,)), ("list", (k1, k2, ...)) or ("optimize", (min, max))."""
+
+
+def _ratio(value: Any) -> RatioSpec:
+    if isinstance(value, str) and value.strip().lower() == "optimize":
+        return ("optimize", DEFAULT_RATIO_BOUNDS)
+    if isinstance(value, dict):
+        if set(value) != {"optimize"}:
+            raise ValueError(f"a ratio is a number, a list, 'optimize' or {{optimize: [min, "
+                             f"max]}}, got {show_value(value)}")
+        bounds = value["optimize"]
+        if not isinstance(bounds, list) or len(bounds) != 2:
+            raise ValueError(f"optimize takes [min, max], got {show_value(bounds)}")
+        lo, hi = (convert(b, "ratio", gt=0) for b in bounds)
+        if not hi > lo:
+            raise ValueError(f"optimize bounds must have min < max, got [{lo:g}, {hi:g}]")
+        return ("optimize", (lo, hi))
+    if isinstance(value, list):
+        if not value:
+            raise ValueError("a list of ratios must not be empty")
+        return ("list", tuple(convert(v, "ratio", gt=0) for v in value))
+    return ("fixed", (convert(value, "ratio", gt=0),))
+
+
+Ratio = Annotated[
+    Any,
+    BeforeValidator(_ratio),
+    WithJsonSchema({"anyOf": [
+        {"type": "number", "exclusiveMinimum": 0},
+        {"type": "array", "items": {"type": "number", "exclusiveMinimum": 0}},
+        {"type": "string", "enum": ["optimize"]},
+        {"type": "object", "properties": {"optimize": {"type": "array"}},
+         "required": ["optimize"]},
+    ], "description": "input over output speed: a number, a list to try, 'optimize' "
+                      "(1 to 100) or {optimize: [min, max]}"}),
+]
+
+Efficiency = Quantity("fraction", gt=0, le=1)
+Inertia = Quantity("inertia", ge=0, note="reflected to the stage input")
+Speed = Quantity("angular_speed", gt=0)
+Torque = Quantity("torque", gt=0)
+
+
+class GearboxInput(Strict):
+    """A gearbox: motor speed = ratio x output speed. Or the ratios of a gearbox catalog."""
+
+    type: Literal["gearbox"]
+    ratio: Ratio | None = None  # type: ignore[valid-type]
+    catalog: Text | None = Field(
+        None, description="a gearbox catalog file (relative to the design); its ratios are "
+                          "the options, each with its own efficiency, inertia and limits")
+    efficiency: Efficiency = 1.0  # type: ignore[valid-type]
+    inertia: Inertia = 0.0  # type: ignore[valid-type]
+    max_input_speed: Speed | None = None  # type: ignore[valid-type]
+    rated_output_torque: Torque | None = None  # type: ignore[valid-type]
+    peak_output_torque: Torque | None = None  # type: ignore[valid-type]
+    backlash: Quantity("angle", ge=0, note="informative") | None = None  # type: ignore
+    name: Text | None = None
+
+
+class BeltInput(Strict):
+    """A timing belt on two pulleys; as the last stage of a linear axis the load rides on it."""
+
+    type: Literal["belt"]
+    ratio: Ratio | None = None  # type: ignore[valid-type]
+    driver_diameter: Quantity("length", gt=0) | None = None  # type: ignore[valid-type]
+    driven_diameter: Quantity("length", gt=0) | None = None  # type: ignore[valid-type]
+    driver_inertia: Inertia = 0.0  # type: ignore[valid-type]
+    driven_inertia: Inertia = 0.0  # type: ignore[valid-type]
+    belt_mass: Quantity("mass", ge=0) = 0.0  # type: ignore[valid-type]
+    efficiency: Efficiency = 1.0  # type: ignore[valid-type]
+    name: Text | None = None
+
+
+class BallScrewInput(Strict):
+    """A ball screw: ratio 2 pi / lead (rad/m)."""
+
+    type: Literal["ball_screw"]
+    lead: Quantity("length", gt=0, note="travel per screw turn")  # type: ignore[valid-type]
+    efficiency: Efficiency = 0.9  # type: ignore[valid-type]
+    inertia: Inertia | None = None  # type: ignore[valid-type]
+    diameter: Quantity("length", gt=0) | None = None  # type: ignore[valid-type]
+    length: Quantity("length", gt=0) | None = None  # type: ignore[valid-type]
+    preload_torque: Quantity("torque", ge=0) = 0.0  # type: ignore[valid-type]
+    max_speed: Speed | None = None  # type: ignore[valid-type]
+    name: Text | None = None
+
+
+class RackPinionInput(Strict):
+    """A rack and pinion: ratio 1/r (rad/m)."""
+
+    type: Literal["rack_pinion"]
+    pitch_radius: Quantity("length", gt=0) | None = None  # type: ignore[valid-type]
+    pitch_diameter: Quantity("length", gt=0) | None = None  # type: ignore[valid-type]
+    inertia: Inertia = 0.0  # type: ignore[valid-type]
+    efficiency: Efficiency = 1.0  # type: ignore[valid-type]
+    name: Text | None = None
+
+
+class DirectInput(Strict):
+    """Direct drive: the motor turns (or, a linear motor, moves) the load (no stage)."""
+
+    type: Literal["direct"]
+    name: Text | None = None
+
+
+TransmissionStageInput = Annotated[
+    GearboxInput | BeltInput | BallScrewInput | RackPinionInput | DirectInput,
+    Field(discriminator="type"),
+]
+"""One transmission stage, told apart by ``type``."""
+
+TRANSMISSION_TYPES: tuple[str, ...] = ("gearbox", "belt", "ball_screw", "rack_pinion", "direct")
+LINEAR_OUTPUT_TYPES: tuple[str, ...] = ("ball_screw", "rack_pinion", "belt")
+
+# ------------------------------------------------------------ gearbox catalog
+
+
+class GearboxRatioInput(Strict):
+    """One ratio of a gearbox series, with what differs per ratio."""
+
+    ratio: Quantity("ratio", gt=0)  # type: ignore[valid-type]
+    inertia: Inertia = 0.0  # type: ignore[valid-type]
+    efficiency: Efficiency | None = None  # type: ignore[valid-type]
+    max_input_speed: Speed | None = None  # type: ignore[valid-type]
+    rated_output_torque: Torque | None = None  # type: ignore[valid-type]
+    peak_output_torque: Torque | None = None  # type: ignore[valid-type]
+
+
+class GearboxSeriesInput(Strict):
+    """A gearbox series: shared figures, and its ratios."""
+
+    id: Text = Field(description="series or part id, unique in the file")
+    efficiency: Efficiency = 1.0  # type: ignore[valid-type]
+    max_input_speed: Speed | None = None  # type: ignore[valid-type]
+    rated_output_torque: Torque | None = None  # type: ignore[valid-type]
+    peak_output_torque: Torque | None = None  # type: ignore[valid-type]
+    backlash: Quantity("angle", ge=0) | None = None  # type: ignore[valid-type]
+    source: Text | None = None
+    notes: Text | None = None
+    ratios: list[GearboxRatioInput] = Field(min_length=1)
+
+
+class GearboxCatalogFile(Strict):
+    """A gearbox catalog file."""
+
+    catalog: Text | None = None
+    manufacturer: Text | None = None
+    source: Text | None = None
+    notes: Text | None = None
+    gearboxes: list[GearboxSeriesInput] = Field(min_length=1)
