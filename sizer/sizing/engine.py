@@ -16,7 +16,7 @@ import numpy as np
 from sizer.errors import UserError
 from sizer.laws import AUTO, MotionLaw, make_law, resolve
 from sizer.mechanics import Drive
-from sizer.model.domain import Design, Motor
+from sizer.model.domain import Design, Motor, Transmission
 from sizer.sizing.checks import CheckArrays, evaluate_checks, limiting_index, worst_slack
 from sizer.sizing.cycle import CycleCalculator, CycleMetrics
 from sizer.sizing.duration import minimum_duration
@@ -87,12 +87,12 @@ def evaluate_fixed_law(design: Design, law: MotionLaw, drive: Drive,
         feasible = worst_slack(checks) >= 0.0
         duration = T
     return to_results(law, motors, metrics, checks, feasible, duration,
-                      minimize=design.task.minimize, ratio=drive.ratio)
+                      minimize=design.task.minimize, transmission=drive.transmission)
 
 
 def to_results(law: MotionLaw, motors: MotorArrays, metrics: CycleMetrics,
                checks: list[CheckArrays], feasible: np.ndarray, duration: np.ndarray,
-               minimize: bool, ratio: float = 1.0) -> list[CandidateResult]:
+               minimize: bool, transmission: Transmission) -> list[CandidateResult]:
     binding = limiting_index(checks)
     out = []
     for i, motor in enumerate(motors.motors):
@@ -126,7 +126,8 @@ def to_results(law: MotionLaw, motors: MotorArrays, metrics: CycleMetrics,
             reason=reason,
             price=motor.price,
             mass=motor.mass,
-            ratio=ratio,
+            ratio=transmission.ratio,
+            transmission=transmission,
             load_speed=float(metrics.load_speed[i]) if known else None,
             load_torque=float(metrics.load_torque[i]) if known else None,
         ))

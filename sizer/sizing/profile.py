@@ -69,9 +69,7 @@ def task_curve(design: Design, motor: Motor, law: MotionLaw | str, duration: flo
     T = np.array([duration])
     metrics = calc.evaluate(T)
     h, K = calc.h, drive.ratio
-    tau = np.linspace(0.0, 1.0, samples)
-    a_n, v_n = law.derivative(tau, 2), law.derivative(tau, 1)
-    q_n = law.derivative(tau, 0)
+    tau, q_n, v_n, a_n = _sample_pieces(law, samples)
     times, positions, speeds, accelerations, torques = [], [], [], [], []
     t0, start = 0.0, 0.0
     hold, _ = drive.holding_torques()
@@ -104,3 +102,16 @@ def task_curve(design: Design, motor: Motor, law: MotionLaw | str, duration: flo
         continuous_region=continuous_region(motor), intermittent_region=intermittent_region(motor),
         total_inertia=motor.inertia + drive.transmission_inertia + drive.reflected_load_inertia,
     )
+
+
+def _sample_pieces(law: MotionLaw, samples: int) -> tuple[np.ndarray, ...]:
+    """tau, q_N, v_N, a_N sampled piece by piece, both ends of each piece included, so
+    that a step of the acceleration (a jerk impulse) shows as a vertical step."""
+    parts: list[list[np.ndarray]] = [[], [], [], []]
+    for index, piece in enumerate(law.pieces):
+        count = max(2, round(samples * (piece.end - piece.start)))
+        tau = np.linspace(piece.start, piece.end, count)
+        parts[0].append(tau)
+        for order in range(3):
+            parts[order + 1].append(law.piece_derivative(index, tau, order))
+    return tuple(np.concatenate(p) for p in parts)

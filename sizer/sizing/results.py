@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from sizer.model.domain import Transmission
+
 
 @dataclass(frozen=True)
 class Check:
@@ -48,7 +50,8 @@ class CandidateResult:
     ``ratio`` is the total transmission ratio K (motor speed over load speed: rad/rad, or
     rad/m on a linear axis), ``gearbox`` the catalog gearbox chosen if any; ``load_speed``
     and ``load_torque`` are the peak speed and peak torque (force on a linear axis) at the
-    load.
+    load. ``transmission`` is the one the result was computed with (the design's, or with
+    the chosen ratio or catalog gearbox in place).
     """
 
     motor: str
@@ -69,6 +72,7 @@ class CandidateResult:
     gearbox: str | None = None
     load_speed: float | None = None
     load_torque: float | None = None
+    transmission: Transmission | None = None
     extra: dict[str, float] = field(default_factory=dict)
 
     def check(self, name: str) -> Check | None:

@@ -3,7 +3,6 @@ law, duration and (when the solver chose it) transmission ratio or catalog gearb
 
 from __future__ import annotations
 
-import dataclasses
 from typing import TYPE_CHECKING
 
 from sizer.errors import UserError
@@ -15,27 +14,8 @@ if TYPE_CHECKING:
 
 
 def transmission_for(design: Design, result: CandidateResult) -> Transmission:
-    """The transmission the result was sized with.
-
-    Without a free ratio it is the design's. With one, stage ``ratio_choice.stage`` is the
-    catalog gearbox the result names (its ratio, efficiency, inertia and limits), or the
-    design's stage with the ratio ``result.extra["stage_ratio"]``.
-    """
-    choice = design.ratio_choice
-    if choice is None:
-        return design.transmission
-    ratio = result.extra.get("stage_ratio")
-    if ratio is None:
-        raise ValueError(f"{result.motor}, {result.spec}: no stage_ratio for the free ratio")
-    if result.gearbox is not None:
-        stage = next((o.stage for o in choice.gearboxes
-                      if o.gearbox == result.gearbox and o.stage.ratio == ratio), None)
-        if stage is None:
-            raise ValueError(f"{result.motor}, {result.spec}: gearbox {result.gearbox!r} "
-                             f"with ratio {ratio!r} is not among the design's options")
-    else:
-        stage = dataclasses.replace(design.transmission.stages[choice.stage], ratio=ratio)
-    return design.transmission.with_stage(choice.stage, stage)
+    """The transmission the result was sized with (its chosen ratio or gearbox in place)."""
+    return result.transmission or design.transmission
 
 
 def motor_of(design: Design, result: CandidateResult) -> Motor:
