@@ -18,6 +18,8 @@ from sizer.cli import (
     check_command,
     law_command,
     laws_command,
+    plot_command,
+    report_command,
     schema_command,
     size_command,
 )
@@ -27,7 +29,7 @@ USER_ERROR_EXIT_CODE = 2
 """Exit code for mistakes in the user's input (click uses 2 for usage errors too)."""
 
 COMMAND_MODULES = (laws_command, law_command, size_command, check_command, schema_command,
-                   catalog_command)
+                   catalog_command, plot_command, report_command)
 
 app = typer.Typer(
     name="sizer",

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from sizer.cli.catalog_option import CatalogOption, DesignArgument
+from sizer.cli.catalog_option import CatalogOption, DesignArgument, load_design_file
 from sizer.errors import UserError
 
 if TYPE_CHECKING:
@@ -103,7 +103,6 @@ def plot(
         sizer plot examples/book/ex6_1-6_2.yaml --motor ex6_1 --law cycloidal
         --law 'trapezoidal(alpha=0.12732200375003505)' --speed-unit rad/s -o fig6_2.svg
     """
-    from sizer.io import load_design  # lazy: keeps --help fast
     from sizer.report.plots import curve_for, figure_format, save_figure, speed_torque_figure
     from sizer.report.plots.speed_torque import SPEED_UNITS
 
@@ -112,7 +111,7 @@ def plot(
         raise UserError(f"expected one of {', '.join(SPEED_UNITS)}, got {speed_unit!r}",
                         field="--speed-unit")
     figure_size = parse_size(size)
-    loaded = load_design(design, extra_catalogs=catalog or ())
+    loaded = load_design_file(design, catalog)
     try:
         results = plot_pairs(loaded, motor, law or ())
     except UserError as error:

@@ -8,7 +8,7 @@ from typing import Annotated
 
 import typer
 
-from sizer.cli.catalog_option import CatalogOption, DesignArgument
+from sizer.cli.catalog_option import CatalogOption, DesignArgument, load_design_file
 from sizer.cli.plot_command import DpiOption
 from sizer.errors import UserError
 
@@ -46,11 +46,10 @@ def report(
         sizer report examples/indexing-table.yaml -o report/
     """
     from sizer.cli.size_command import select_motors
-    from sizer.io import load_design  # lazy: keeps --help fast
     from sizer.report.design_report import write_report
     from sizer.sizing import size_design
 
-    loaded = load_design(design, extra_catalogs=catalog or ())
+    loaded = load_design_file(design, catalog)
     if motor:
         loaded = replace(loaded, motors=select_motors(loaded.motors, motor))
     try:
