@@ -155,7 +155,7 @@ def test_optimal_ratio_is_the_inertia_match_for_a_given_duration():
                     laws=("cycloidal",), motors=(MOTOR,),
                     ratio_choice=RatioChoice(0, bounds=(1.0, 300.0)))
     r = only(design)
-    assert r.ratio == pytest.approx(math.sqrt(J_l / MOTOR.inertia), rel=2e-3)  # 70.7
+    assert r.ratio == pytest.approx(math.sqrt(J_l / MOTOR.inertia), rel=3e-3)  # 70.7
     # RMS (J_m k + J_l/k) C_a_rms h/T^2 at its minimum 2 sqrt(J_m J_l)
     best = 2 * math.sqrt(MOTOR.inertia * J_l) * math.sqrt(2) * math.pi / 0.25
     assert r.rms_torque == pytest.approx(best, rel=1e-5)

@@ -29,9 +29,9 @@ from sizer.mechanics import Drive
 from sizer.model.domain import Task, ThermalSpeedRule
 from sizer.sizing.grid import LawGrid, PieceEvaluator, law_grid
 from sizer.sizing.motors import MotorArrays
+from sizer.sizing.roots import illinois
 
 GOLDEN_STEPS = 40
-ROOT_STEPS = 60
 INV_PHI = (math.sqrt(5.0) - 1.0) / 2.0
 
 
@@ -217,7 +217,7 @@ class CycleCalculator:
     def _split_integrals(self, where, scales: MoveScales) -> list[np.ndarray]:
         """Integrals of the squared channels over intervals where a power flow reverses.
 
-        The interval is cut at each root of a stage's output torque (bisection), and each
+        The interval is cut at each root of a stage's output torque (Illinois), and each
         part is integrated with Gauss-Legendre, so no kink of a reflection lies inside a rule.
         """
         cand, interval = where
@@ -229,16 +229,21 @@ class CycleCalculator:
             def argument(tau, stage=stage):
                 _, outputs = self.channels(at(tau, 2), at(tau, 1), scales, index=cand)
                 return outputs[stage]
-            lo, hi = lo_edge.copy(), hi_edge.copy()
-            f_lo, f_hi = argument(lo), argument(hi)
+            f_lo, f_hi = argument(lo_edge), argument(hi_edge)
             crossing = f_lo * f_hi < 0.0
-            for _ in range(ROOT_STEPS):
-                mid = 0.5 * (lo + hi)
-                f_mid = argument(mid)
-                same = np.sign(f_mid) == np.sign(f_lo)
-                lo, f_lo = np.where(same, mid, lo), np.where(same, f_mid, f_lo)
-                hi = np.where(same, hi, mid)
-            cuts.append(np.where(crossing, 0.5 * (lo + hi), hi_edge))
+            root = hi_edge.copy()
+            if crossing.any():
+                where_ = np.nonzero(crossing)[0]
+                sub = PieceEvaluator(law, g.piece[interval][where_])
+
+                def restricted(tau, stage=stage, where_=where_, sub=sub):
+                    _, outputs = self.channels(sub(tau, 2), sub(tau, 1), scales,
+                                               index=cand[where_])
+                    return outputs[stage]
+
+                root[where_] = illinois(restricted, lo_edge[where_], hi_edge[where_],
+                                        f_lo[where_], f_hi[where_])
+            cuts.append(root)
         edges = np.sort(np.column_stack([lo_edge, *cuts, hi_edge]), axis=1)
         x, w = leggauss(g.nodes.shape[1])
         count = len(self.drive.stages) + 1

@@ -2,9 +2,9 @@
 
 The options are a list of ratios, catalog gearboxes (each ratio with its own efficiency,
 inertia and limits), or a continuous range searched on a logarithmic grid refined around
-each motor's best point. Per motor the best option is the feasible one with the shortest
-T_min (minimize mode) or the smallest RMS torque (duration given); when none is feasible,
-the one closest to feasible.
+each motor's best point down to 0.25 % steps. Per motor the best option is the feasible
+one with the shortest T_min (minimize mode) or the smallest RMS torque (duration given);
+when none is feasible, the one closest to feasible.
 """
 
 from __future__ import annotations
@@ -19,9 +19,10 @@ from sizer.model.domain import Design, Stage
 from sizer.sizing.motors import MotorArrays
 from sizer.sizing.results import CandidateResult
 
-COARSE = 17
+COARSE = 9
 FINE = 5
-REFINEMENTS = 8
+LOG_STEP = 2.5e-3
+"""Final spacing of the search in log(ratio): the chosen ratio is within ~0.25 %."""
 
 Evaluate = Callable[[Design, str, MotorArrays], list[CandidateResult]]
 
@@ -67,19 +68,25 @@ def choose_ratio(design: Design, spec: str, motors: MotorArrays,
 
 
 def _continuous(bounds, base: Stage, consider, best, everyone) -> None:
-    """Log-spaced grid over the bounds, then halving steps around each motor's best."""
+    """Log-spaced grid over the bounds, then halving steps around each motor's best.
+
+    All points lie on one lattice in log(ratio), so each round evaluates every needed
+    point once, for all the motors whose neighbourhood contains it.
+    """
     lo, hi = math.log(bounds[0]), math.log(bounds[1])
     step = (hi - lo) / (COARSE - 1)
     for x in np.linspace(lo, hi, COARSE):
         consider(dataclasses.replace(base, ratio=math.exp(x)), None, everyone)
-    for _ in range(REFINEMENTS):
+    last = COARSE - 1
+    while step > LOG_STEP:
         step /= 2.0
-        groups: dict[float, list[int]] = {}
+        last *= 2
+        needed: dict[int, list[int]] = {}
         for i in everyone:
-            groups.setdefault(best[i].extra["stage_ratio"], []).append(int(i))
-        for centre, members in groups.items():
-            c = math.log(centre)
-            for x in np.linspace(c - 2 * step, c + 2 * step, FINE):
-                if lo <= x <= hi and not math.isclose(x, c):
-                    consider(dataclasses.replace(base, ratio=math.exp(x)), None,
-                             np.array(members))
+            centre = round((math.log(best[i].extra["stage_ratio"]) - lo) / step)
+            for k in (-2, -1, 1, 2):
+                if 0 <= centre + k <= last:
+                    needed.setdefault(centre + k, []).append(int(i))
+        for key, members in sorted(needed.items()):
+            consider(dataclasses.replace(base, ratio=math.exp(lo + key * step)), None,
+                     np.array(members))
