@@ -15,12 +15,16 @@ def write_text_atomically(path: Path | str, text: str) -> None:
 
     A reader never sees a half-written file; on failure the old file is left untouched.
     """
-    path = Path(path)
+    write_bytes_atomically(Path(path), text.encode("utf-8"))
+
+
+def write_bytes_atomically(path: Path, data: bytes) -> None:
+    """Write to a temporary file beside ``path``, then rename it over ``path``."""
     directory = path.parent if str(path.parent) else Path(".")
     fd, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=directory)
     try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="") as handle:
-            handle.write(text)
+        with os.fdopen(fd, "wb") as handle:
+            handle.write(data)
         os.chmod(temporary, _file_mode(path))
         os.replace(temporary, path)
     except BaseException:
