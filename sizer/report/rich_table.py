@@ -8,8 +8,12 @@ MAX_WORD_WIDTH = 16
 """A text column is at least as wide as the longest word of its cells, up to this."""
 
 
-def print_rich_table(table: Table) -> None:
-    """Print to stdout with box drawing; cell text is never read as rich markup."""
+def print_rich_table(table: Table, wrap_headers: bool = False) -> None:
+    """Print to stdout with box drawing; cell text is never read as rich markup.
+
+    With ``wrap_headers`` (tables with a dozen numeric columns, ``sizer size``) a numeric
+    column is only as wide as its widest number or header word, and its header wraps.
+    """
     from rich import box
     from rich.console import Console
     from rich.table import Table as RichTable
@@ -21,13 +25,17 @@ def print_rich_table(table: Table) -> None:
                            collapse_padding=True)
     for index, column in enumerate(table.columns):
         cells = [row[index] for row in rows]
-        if column.align == "right":  # numbers: never shrink or cut
+        header_words = (column.header.split() or [""]) if wrap_headers else []
+        if column.align == "right" and wrap_headers:  # numbers never cut; headers wrap
+            width = max([*map(len, cells), *map(len, header_words)])
+            rich_table.add_column(Text(column.header), justify="right", width=width)
+        elif column.align == "right":  # numbers: never shrink or cut
             width = max([len(column.header), *map(len, cells)])
             rich_table.add_column(Text(column.header), justify="right", no_wrap=True,
                                   min_width=width)
         else:  # words: wrap on a narrow terminal, but not into slivers
             words = [w for cell in cells for w in cell.split()] or [""]
-            width = min(max(map(len, words)), MAX_WORD_WIDTH)
+            width = min(max(map(len, words + header_words)), MAX_WORD_WIDTH)
             rich_table.add_column(Text(column.header), justify="left", overflow="fold",
                                   min_width=width)
     for row in rows:

@@ -29,7 +29,7 @@ from sizer.report.json_text import render_json
 from sizer.report.markdown_table import render_markdown_table
 from sizer.report.numbers import short
 from sizer.report.output import emit, stdout_is_terminal
-from sizer.report.rich_wide_table import print_wide_rich_table
+from sizer.report.rich_table import print_rich_table
 from sizer.report.table import Column, Table, make_table
 from sizer.report.text_table import render_text_table
 
@@ -170,7 +170,7 @@ def publish_sizing(document: SizingDocument, fmt: Format, output: Path | None) -
     JSON, or a file), the line 'no feasible motor/law pair' also goes to stderr.
     """
     if fmt is Format.TABLE and output is None and stdout_is_terminal():
-        print_wide_rich_table(document.table())
+        print_rich_table(document.table(), wrap_headers=True)
         footer = document.footer()
         if footer:
             sys.stdout.write("\n" + "\n".join(footer) + "\n")
