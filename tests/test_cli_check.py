@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-import io
 import json
 import subprocess
 import sys
-from contextlib import redirect_stderr, redirect_stdout
 from pathlib import Path
 
 import pytest
+from cli_run import run_cli as run
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = ROOT / "examples"
@@ -17,18 +16,6 @@ INDEXING = EXAMPLES / "indexing-table.yaml"
 EX63 = str(EXAMPLES / "book" / "ex6_3.yaml")
 
 
-def run(*args: str) -> subprocess.CompletedProcess[str]:
-    """``sizer ARGS`` in this process: exit code, stdout and stderr."""
-    from sizer.cli.app import main
-
-    stdout, stderr = io.StringIO(), io.StringIO()
-    code = 0
-    with redirect_stdout(stdout), redirect_stderr(stderr):
-        try:
-            main(list(args))
-        except SystemExit as exit_:
-            code = exit_.code if isinstance(exit_.code, int) else int(exit_.code is not None)
-    return subprocess.CompletedProcess(args, code, stdout.getvalue(), stderr.getvalue())
 
 
 def variant(tmp_path: Path, name: str, old: str, new: str) -> Path:

@@ -18,6 +18,7 @@ from pathlib import Path
 from unittest.mock import patch
 
 import pytest
+from cli_run import assert_user_error
 
 LAW_KEYS = ["law", "spec", "params", "continuity", "C_v", "C_a", "C_j", "jerk_bounded",
             "C_v_rms", "C_a_rms", "acceleration_jumps"]
@@ -53,15 +54,6 @@ def ok(*args: str, in_process: bool = False) -> str:
     return result.stdout
 
 
-def assert_user_error(result: subprocess.CompletedProcess[str], *fragments: str) -> str:
-    """Exit code 2 and one 'error: ...' line on stderr naming all fragments, no traceback."""
-    assert result.returncode == 2, (result.stdout, result.stderr)
-    assert "Traceback" not in result.stderr
-    lines = [line for line in result.stderr.splitlines() if line.startswith("error:")]
-    assert len(lines) == 1, result.stderr
-    for fragment in fragments:
-        assert fragment in lines[0]
-    return lines[0]
 
 
 # ------------------------------------------------------------------ sizer laws

@@ -2,27 +2,11 @@
 
 from __future__ import annotations
 
-import io
 import json
-import subprocess
-from contextlib import redirect_stderr, redirect_stdout
 from pathlib import Path
 
 import pytest
-
-
-def run(*args: str) -> subprocess.CompletedProcess[str]:
-    """``sizer ARGS`` in this process: exit code, stdout and stderr."""
-    from sizer.cli.app import main
-
-    stdout, stderr = io.StringIO(), io.StringIO()
-    code = 0
-    with redirect_stdout(stdout), redirect_stderr(stderr):
-        try:
-            main(list(args))
-        except SystemExit as exit_:
-            code = exit_.code if isinstance(exit_.code, int) else int(exit_.code is not None)
-    return subprocess.CompletedProcess(args, code, stdout.getvalue(), stderr.getvalue())
+from cli_run import run_cli as run
 
 
 @pytest.mark.parametrize(("which", "fields"), [

@@ -12,10 +12,11 @@ import json
 import math
 import subprocess
 import sys
-from contextlib import redirect_stderr, redirect_stdout
 from pathlib import Path
 
 import pytest
+from cli_run import assert_user_error
+from cli_run import run_cli as run
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = ROOT / "examples"
@@ -31,18 +32,6 @@ RESULT_KEYS = ["motor", "law", "spec", "params", "feasible", "duration", "peak_t
 CHECK_KEYS = ["name", "value", "limit", "unit", "margin", "required", "passed"]
 
 
-def run(*args: str) -> subprocess.CompletedProcess[str]:
-    """``sizer ARGS`` in this process: exit code, stdout and stderr."""
-    from sizer.cli.app import main
-
-    stdout, stderr = io.StringIO(), io.StringIO()
-    code = 0
-    with redirect_stdout(stdout), redirect_stderr(stderr):
-        try:
-            main(list(args))
-        except SystemExit as exit_:
-            code = exit_.code if isinstance(exit_.code, int) else int(exit_.code is not None)
-    return subprocess.CompletedProcess(args, code, stdout.getvalue(), stderr.getvalue())
 
 
 def ok(*args: str) -> str:
@@ -51,14 +40,6 @@ def ok(*args: str) -> str:
     return result.stdout
 
 
-def assert_user_error(result: subprocess.CompletedProcess[str], *fragments: str) -> str:
-    assert result.returncode == 2, (result.stdout, result.stderr)
-    assert "Traceback" not in result.stderr
-    lines = [line for line in result.stderr.splitlines() if line.startswith("error:")]
-    assert len(lines) == 1, result.stderr
-    for fragment in fragments:
-        assert fragment in lines[0]
-    return lines[0]
 
 
 @pytest.fixture(scope="module")

@@ -9,17 +9,16 @@ as a real process from the repository root, as in a fresh clone.
 
 from __future__ import annotations
 
-import io
 import json
 import math
 import re
 import subprocess
 import sys
-from contextlib import redirect_stderr, redirect_stdout
 from pathlib import Path
 
 import pytest
 import yaml
+from cli_run import run_cli as run
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = ROOT / "examples"
@@ -27,18 +26,6 @@ BOOK = EXAMPLES / "book"
 REFERENCE = ROOT.parent / "shared" / "reference" / "motor-data.md"
 
 
-def run(*args: str) -> subprocess.CompletedProcess[str]:
-    """``sizer ARGS`` in this process: exit code, stdout and stderr."""
-    from sizer.cli.app import main
-
-    stdout, stderr = io.StringIO(), io.StringIO()
-    code = 0
-    with redirect_stdout(stdout), redirect_stderr(stderr):
-        try:
-            main(list(args))
-        except SystemExit as exit_:
-            code = exit_.code if isinstance(exit_.code, int) else int(exit_.code is not None)
-    return subprocess.CompletedProcess(args, code, stdout.getvalue(), stderr.getvalue())
 
 
 def results(design: Path, motor: str) -> dict[str, dict]:

@@ -2,22 +2,19 @@
 
 from __future__ import annotations
 
-import contextlib
-import io
 import json
 import math
 from pathlib import Path
 
-from sizer.cli.app import main
+from cli_run import run_cli
 
 ROOT = Path(__file__).resolve().parents[1]
 
 
 def run_json(*args: str) -> dict:
-    buffer = io.StringIO()
-    with contextlib.redirect_stdout(buffer), contextlib.suppress(SystemExit):
-        main([*args, "--format", "json"])
-    return json.loads(buffer.getvalue())
+    result = run_cli(*args, "--format", "json")
+    assert result.returncode == 0, result.stderr
+    return json.loads(result.stdout)
 
 
 def test_pick_and_place_vertical_axis_with_belt_and_ball_screw():
