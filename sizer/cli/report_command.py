@@ -2,15 +2,13 @@
 
 from __future__ import annotations
 
-from dataclasses import replace
 from pathlib import Path
 from typing import Annotated
 
 import typer
 
-from sizer.cli.catalog_option import CatalogOption, DesignArgument, load_design_file
+from sizer.cli.catalog_option import CatalogOption, DesignArgument
 from sizer.cli.plot_command import DpiOption
-from sizer.errors import UserError
 
 
 def report(
@@ -45,17 +43,10 @@ def report(
 
         sizer report examples/indexing-table.yaml -o report/
     """
-    from sizer.cli.size_command import select_motors
+    from sizer.cli.size_command import load_and_size
     from sizer.report.design_report import write_report
-    from sizer.sizing import size_design
 
-    loaded = load_design_file(design, catalog)
-    if motor:
-        loaded = replace(loaded, motors=select_motors(loaded.motors, motor))
-    try:
-        sizing = size_design(loaded, rank_by=rank_by)
-    except UserError as error:
-        raise error.located(file=str(design)) from None
+    loaded, sizing = load_and_size(design, catalog, motor, rank_by)
     written = write_report(loaded, sizing, output, top=top, best=best, rank_by=rank_by,
                            source=design.as_posix(), dpi=dpi)
     typer.echo(f"{written[0]}: report with {len(written) - 1} figures")

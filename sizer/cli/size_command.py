@@ -14,7 +14,10 @@ from sizer.errors import UserError
 from sizer.report.formats import Format
 
 if TYPE_CHECKING:
-    from sizer.model.domain import Motor
+    from pathlib import Path
+
+    from sizer.model.domain import Design, Motor
+    from sizer.sizing import SizingResult
 
 RANK_HELP = ("Rank the feasible pairs by duration (shortest first), margin (most room "
              "left at the tightest limit first), rms or peak (smallest motor torque "
@@ -58,18 +61,26 @@ def size(
         sizer size examples/book/ex6_3.yaml --motor ex6_3
     """
     from sizer.report.sizing_table import SizingDocument, publish_sizing
+
+    loaded, sizing = load_and_size(design, catalog, motor, rank_by)
+    document = SizingDocument(sizing, loaded, rank_by=rank_by, top=top,
+                              include_infeasible=show_all)
+    publish_sizing(document, fmt, output)
+
+
+def load_and_size(design: Path, catalog: Sequence[str] | None, motor: Sequence[str] | None,
+                  rank_by: str | None) -> tuple[Design, SizingResult]:
+    """Load a design (plus --catalog, restricted to --motor ids) and size it; UserErrors
+    of the sizing name the design file."""
     from sizer.sizing import size_design
 
     loaded = load_design_file(design, catalog)
     if motor:
         loaded = replace(loaded, motors=select_motors(loaded.motors, motor))
     try:
-        sizing = size_design(loaded, rank_by=rank_by)
+        return loaded, size_design(loaded, rank_by=rank_by)
     except UserError as error:
         raise error.located(file=str(design)) from None
-    document = SizingDocument(sizing, loaded, rank_by=rank_by, top=top,
-                              include_infeasible=show_all)
-    publish_sizing(document, fmt, output)
 
 
 def select_motors(motors: Sequence[Motor], ids: Sequence[str]) -> tuple[Motor, ...]:
