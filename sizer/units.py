@@ -3,6 +3,34 @@
 ``to_si("3000 rpm", "angular_speed") == 314.159...``. A bare number (or a string with no
 unit) is already SI. Angles are dimensionless in pint, so an angle and a plain number
 are told apart by the unit text, not the dimension.
+
+Units are read the way datasheets write them. The rules, applied to every field of a kind
+(design files, catalogs, ``sizer catalog validate`` and ``sizer catalog import`` alike):
+
+- **Frequencies are revolutions.** Where an angular speed, acceleration or jerk is expected,
+  a unit with no angle in it (a pure frequency: ``Hz``, ``1/min``, ``min^-1``, ``1/s``,
+  ``s^-1``; ``Hz/s``, ``1/s^2``, ``min^-2`` for accelerations, ``1/s^3`` for jerks) means
+  revolutions per unit time: ``3000 min^-1`` = ``3000 rpm`` = ``50 rev/s`` = ``50 Hz`` =
+  314.159... rad/s, and ``1 Hz/s`` = 2*pi rad/s^2. A unit with an angle (``rad``, ``deg``,
+  ``rev``, ``r``, ``turn``; ``rpm`` and ``rps`` are rev per minute and per second) means
+  that angle: ``1 rad/s`` stays 1 rad/s. Also read: ``RPM``, ``r/min``, ``U/min``, ``r/s``.
+  A bare number stays SI (rad/s). A rotary damping is not covered: write its angle
+  (``N*m*s/rad``, ``N*m/rpm``); a damping without one is per radian (SI).
+- **Torques as datasheets write them.** Where a torque (or a rotary damping) is expected,
+  ``Nm``, ``mNm``, ``kNm``, ``Ncm``, ``Nmm`` are N*m, mN*m, ... (pint alone reads ``Nm`` as
+  a "number meter"); ``N.m``, ``N·m``, ``N-m`` and ``N*m`` are the same. Inertias accept
+  ``kgm^2``, ``kgcm^2``, ``gcm^2`` likewise. Superscripts (``min⁻¹``, ``kg·cm²``) are read
+  as exponents.
+- **Gravitational (imperial) units.** Where a torque is expected, a mass times a length
+  (``oz*in``, ``lb*ft``, ``kg*cm``) is read with the mass as its weight (x g_n = 9.80665
+  m/s^2): ``1 oz*in`` = ``1 ozf*in`` = 7.0615518e-3 N*m, ``1 lb*ft`` = ``1 lbf*ft``. Where an
+  inertia is expected, a mass times a length times a time squared (``oz*in*s^2``) is read
+  the same way: ``1 oz*in*s^2`` = ``1 ozf*in*s^2`` = 7.0615518e-3 kg*m^2; ``lb*in^2`` and
+  ``oz*in^2`` are plain inertias (1 lb*in^2 = 2.9263965e-4 kg*m^2).
+- **GD^2.** An inertia may be given as the flywheel effect GD^2 with the marker ``GD^2``
+  after the unit: ``"0.04 kgf*m^2 GD^2"`` is J = GD^2/4 = 0.01 kg*m^2 (G, the weight in kgf,
+  is numerically the mass in kg; D the diameter of gyration). A GD^2 in N*m^2 is divided by
+  4 g_n; one written with a mass (``kg*m^2 GD^2``) by 4.
 """
 
 from __future__ import annotations
@@ -104,6 +132,38 @@ def to_si(value: Any, kind: str, *, field: str | None = None) -> float:
     return result
 
 
+_ANGULAR_MOTION = frozenset({"angular_speed", "angular_acceleration", "angular_jerk"})
+_TORQUE_LIKE = frozenset({"torque", "rotary_damping"})
+
+_SUPERSCRIPT = re.compile(r"([⁺⁻]?)([⁰¹²³⁴⁵⁶⁷⁸⁹]+)")
+_SUPERSCRIPT_DIGITS = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻", "0123456789+-")
+_WORD = re.compile(r"[A-Za-zµμ_]+")
+_ANGLE_WORDS = {"r": "rev", "U": "rev", "RPM": "rpm", "Rpm": "rpm", "RPS": "rps",
+                "revs": "rev"}
+"""Words of angular speeds as datasheets write them ('r/min', 'U/min', 'RPM')."""
+_NEWTON_METRE = re.compile(r"^([kmcµμ]?)N(m|cm|mm)$")
+_KILOGRAM_METRE = re.compile(r"^(k?g)(m|cm|mm)$")
+_GD2 = re.compile(r"\s*\bGD(?:\^?2|\*\*2)$")
+
+
+def _normalize(unit: str, kind: str) -> str:
+    """A datasheet's unit text in pint's syntax, for a quantity of ``kind``."""
+    unit = unit.replace("·", "*").replace("⋅", "*").replace("×", "*").replace("−", "-")
+    unit = re.sub(r"(?<=[A-Za-z])[-.](?=[A-Za-z])", "*", unit)  # N-m, oz-in, N.m
+
+    def word(match: re.Match[str]) -> str:
+        text = match.group(0)
+        if kind in _ANGULAR_MOTION:
+            return _ANGLE_WORDS.get(text, text)
+        if kind in _TORQUE_LIKE:
+            return _NEWTON_METRE.sub(r"\1N*\2", text)
+        if kind == "inertia":
+            return _KILOGRAM_METRE.sub(r"\1*\2", text)
+        return text
+
+    return _WORD.sub(word, unit).replace("^", "**")
+
+
 def _parse_text(text: str, spec: Kind, field: str | None) -> float:
     number, unit = _split(text.replace("%", " percent"))
     wrong = _expected(spec, text, field)
@@ -119,16 +179,50 @@ def _parse_text(text: str, spec: Kind, field: str | None) -> float:
         raise wrong
     if spec.name == "angle" and not _ANGLE_UNITS.match(unit):
         raise wrong
+    unit = _SUPERSCRIPT.sub(lambda m: "^" + m.group(0).translate(_SUPERSCRIPT_DIGITS), unit)
+    gd2 = spec.name == "inertia" and _GD2.search(unit) is not None
+    if gd2:
+        unit = _GD2.sub("", unit)
     ureg = registry()
     try:
-        quantity = ureg.Quantity(float(number), unit.replace("^", "**"))
+        quantity = ureg.Quantity(float(number), _normalize(unit, spec.name))
     except Exception as error:  # pint raises several unrelated error types
         raise UserError(f"unknown unit {unit!r} in {text!r} ({spec.name.replace('_', ' ')} "
                         f"expected, e.g. {spec.example!r})", field=field) from error
+    if gd2:
+        return _inertia_of_gd2(quantity, text, field)
     expected = ureg.get_dimensionality(spec.dimensionality) if spec.dimensionality else {}
+    if quantity.dimensionality != expected and spec.name in ("torque", "inertia"):
+        # a mass where a weight is meant: oz*in, lb*ft (torques), oz*in*s^2 (an inertia)
+        weight = quantity * ureg.standard_gravity
+        if weight.dimensionality == expected:
+            quantity = weight
     if quantity.dimensionality != expected:
         raise wrong
+    if spec.name in _ANGULAR_MOTION:
+        return _angular(quantity, wrong)
     return float(quantity.to_base_units().magnitude)
+
+
+def _angular(quantity: Any, wrong: UserError) -> float:
+    """rad/s (or /s^2, /s^3) of an angular quantity; no angle in the unit = revolutions."""
+    root = quantity.to_root_units()
+    angle = dict(root.unit_items()).get("radian", 0)
+    if angle == 1:
+        return float(root.magnitude)
+    if angle == 0:
+        return float(root.magnitude) * 2.0 * math.pi
+    raise wrong
+
+
+def _inertia_of_gd2(quantity: Any, text: str, field: str | None) -> float:
+    """J = GD^2/4 in kg*m^2: G in kgf (numerically the mass in kg) or in kg, D in m."""
+    ureg = registry()
+    if quantity.dimensionality == ureg.get_dimensionality("[mass]*[length]**3/[time]**2"):
+        return float(quantity.to("kgf*m**2").magnitude) / 4.0
+    if quantity.dimensionality == ureg.get_dimensionality("[mass]*[length]**2"):
+        return float(quantity.to("kg*m**2").magnitude) / 4.0
+    raise UserError(f"expected a GD^2 like '0.04 kgf*m^2 GD^2', got {text!r}", field=field)
 
 
 def parse_displacement(value: Any, *, field: str | None = None) -> tuple[float, bool]:
