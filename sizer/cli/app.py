@@ -7,7 +7,7 @@ command (``size``, ``check``, ``catalog ...``) is a new module listed in COMMAND
 from __future__ import annotations
 
 import sys
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from typing import Annotated
 
 import typer
@@ -70,6 +70,13 @@ def report_user_error(error: UserError) -> None:
     """One line on stderr: 'error: file:line: field: message'."""
     text = " ".join(str(error).split("\n"))
     sys.stderr.write(f"error: {text}\n")
+    sys.stderr.flush()
+
+
+def report_warnings(warnings: Iterable[str]) -> None:
+    """One 'warning: ...' line on stderr per warning; nothing when there are none."""
+    for warning in warnings:
+        sys.stderr.write(f"warning: {' '.join(warning.split())}\n")
     sys.stderr.flush()
 
 

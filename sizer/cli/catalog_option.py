@@ -34,6 +34,9 @@ DesignArgument = Annotated[
 def load_design_file(design: Path, catalogs: Sequence[str] | None) -> Design:
     """The design with its catalogs plus ``--catalog`` ones; a design that names no
     catalog (and no --catalog) gets the bundled motors."""
+    from sizer.cli.app import report_warnings
     from sizer.io import load_design  # lazy: keeps --help fast
 
-    return load_design(design, extra_catalogs=catalogs or (), default_motors=True)
+    loaded = load_design(design, extra_catalogs=catalogs or (), default_motors=True)
+    report_warnings(loaded.warnings)
+    return loaded

@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from sizer.errors import UserError
+from sizer.io.plausibility import bare_number_warnings, motor_warnings
 from sizer.io.transmission import build_transmission
 from sizer.io.validation import validate
 from sizer.io.yaml_source import YamlSource, format_path, read_yaml
@@ -62,10 +63,28 @@ def default_catalogs() -> dict[str, Path]:
 
 def load_catalog(path_or_name: PathLike) -> tuple[Motor, ...]:
     """The motors of a catalog file or of a bundled catalog (by name)."""
+    return read_catalog(path_or_name).motors
+
+
+@dataclass(frozen=True)
+class LoadedCatalog:
+    """The motors of a catalog file and the warnings about its figures.
+
+    ``warnings`` are located texts, ``file:line: field: text`` (bare numbers far from the
+    plausible range, see :mod:`sizer.io.plausibility`); empty for a clean catalog.
+    """
+
+    motors: tuple[Motor, ...]
+    warnings: tuple[str, ...] = ()
+
+
+def read_catalog(path_or_name: PathLike) -> LoadedCatalog:
+    """A catalog file or a bundled catalog (by name): its motors and warnings."""
     path = resolve_catalog(path_or_name, Path.cwd())
-    motors = _read_catalog(path)
+    warnings: list[str] = []
+    motors = _read_catalog(path, warnings)
     _check_unique(motors)
-    return tuple(m.motor for m in motors)
+    return LoadedCatalog(tuple(m.motor for m in motors), tuple(warnings))
 
 
 def resolve_catalog(reference: PathLike, base: Path, *, source: YamlSource | None = None,
@@ -116,7 +135,8 @@ class _Located:
     field: str
 
 
-def _read_catalog(path: Path) -> list[_Located]:
+def _read_catalog(path: Path, warnings: list[str]) -> list[_Located]:
+    """The motors of a catalog file; warnings about them are appended to ``warnings``."""
     source = read_yaml(path)
     catalog = validate(CatalogFile, source)
     if not catalog.motors:
@@ -128,6 +148,7 @@ def _read_catalog(path: Path) -> list[_Located]:
         motor = replace(motor,
                         manufacturer=motor.manufacturer or catalog.manufacturer,
                         source=motor.source or catalog.source)
+        warnings += _motor_warnings(motor, source, at)
         located.append(_Located(motor, source.file, source.line_of((*at, "id")),
                                 format_path((*at, "id"))))
     return located
@@ -157,6 +178,15 @@ def _motor(item: MotorInput, source: YamlSource, at: tuple[Any, ...]) -> Motor:
         price=item.price,
         mass=item.mass,
     )
+
+
+def _motor_warnings(motor: Motor, source: YamlSource, at: tuple[Any, ...]) -> list[str]:
+    given = source.data
+    for part in at:
+        given = given[part]
+    return motor_warnings(source, at, given, motor.inertia, motor.continuous_torque,
+                          motor.peak_torque, motor.rated_speed, motor.max_speed,
+                          motor.manufacturer)
 
 
 def _curve(points: list[CurvePointInput] | None, source: YamlSource,
@@ -205,6 +235,7 @@ def load_design(path: PathLike, extra_catalogs: Iterable[PathLike] = (), *,
     path = Path(path)
     source = read_yaml(path)
     model = validate(DesignFile, source)
+    warnings = bare_number_warnings(source)
     task = _task(model, source)
     linear = task.linear
     load = _load(model, source, linear)
@@ -213,7 +244,7 @@ def load_design(path: PathLike, extra_catalogs: Iterable[PathLike] = (), *,
         extra = list(default_catalogs().values())
     transmission, ratio_choice = build_transmission(model.transmission, source, path.parent,
                                                     linear)
-    motors = _design_motors(model, source, path.parent, extra)
+    motors = _design_motors(model, source, path.parent, extra, warnings)
     by_id = {m.id: m for m in motors}
     chosen_motor = chosen_law = None
     if model.check is not None:
@@ -231,6 +262,7 @@ def load_design(path: PathLike, extra_catalogs: Iterable[PathLike] = (), *,
         chosen_motor=chosen_motor,
         chosen_law=chosen_law,
         name=model.name if model.name is not None else path.stem,
+        warnings=tuple(warnings),
     )
 
 
@@ -326,7 +358,7 @@ def _limits(model: DesignFile, source: YamlSource, linear: bool) -> Limits:
 
 
 def _design_motors(model: DesignFile, source: YamlSource, folder: Path,
-                   extra_catalogs: Iterable[PathLike]) -> tuple[Motor, ...]:
+                   extra_catalogs: Iterable[PathLike], warnings: list[str]) -> tuple[Motor, ...]:
     located: list[_Located] = []
     read: set[Path] = set()
 
@@ -334,14 +366,16 @@ def _design_motors(model: DesignFile, source: YamlSource, folder: Path,
         key = path.resolve()
         if key not in read:
             read.add(key)
-            located.extend(_read_catalog(path))
+            located.extend(_read_catalog(path, warnings))
 
     for index, item in enumerate(model.motors or ()):
         at = ("motors", index)
         if isinstance(item, str):
             add_catalog(resolve_catalog(item, folder, source=source, at=at))
         else:
-            located.append(_Located(_motor(item, source, at), source.file,
+            motor = _motor(item, source, at)
+            warnings += _motor_warnings(motor, source, at)
+            located.append(_Located(motor, source.file,
                                     source.line_of((*at, "id")), format_path((*at, "id"))))
     for reference in extra_catalogs:
         add_catalog(resolve_catalog(reference, Path.cwd()))
@@ -374,6 +408,7 @@ def catalog_schema() -> dict[str, Any]:
 
 __all__ = [
     "NOT_DEFAULT_CATALOGS",
+    "LoadedCatalog",
     "bundled_catalogs",
     "catalog_schema",
     "default_catalogs",
@@ -381,5 +416,6 @@ __all__ = [
     "design_schema",
     "load_catalog",
     "load_design",
+    "read_catalog",
     "resolve_catalog",
 ]

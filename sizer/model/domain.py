@@ -198,3 +198,6 @@ class Design:
     chosen_law: str | None = None
     name: str = ""
     ratio_choice: RatioChoice | None = None
+    warnings: tuple[str, ...] = ()
+    """Located warnings from loading (``file:line: field: text``), e.g. a bare number far
+    from its plausible range; they never change the sizing."""
