@@ -4,18 +4,35 @@ The schema (``sizer.model.inputs.MotorInput``) already holds units, signs and ty
 checks look at how the figures fit together: peak >= continuous torque, max speed >= rated
 speed, curves with strictly increasing speeds, the continuous region under the intermittent
 one, the curves' first torques against the scalar ratings, a rotor inertia and a source.
+
+Plausibility (warnings): figures whose ratios are far outside what real servomotors have,
+a likely unit mistake (an inertia in kg*m^2 that was kg*cm^2, a speed in rad/s that was
+rpm). The bands, from the 64 bundled motors and the research notes on motor datasheets
+widened by a factor of about 3 to 10 (the table and its sources are in
+:mod:`sizer.io.plausibility`, which also warns about such bare numbers at loading):
+
+- peak / continuous torque at most 30 (bundled 2.35 to 5.06);
+- acceleration capacity tau_p / J_m in 5e2 to 5e6 rad/s^2 (bundled 7.2e3 to 2.6e5);
+- rated power per rotor inertia tau_c v_n / J_m in 5e4 to 1e9 W/(kg*m^2) (bundled 5.7e5
+  to 2.7e7; a 100 W motor of 3 kg*m^2 has 33);
+- max / rated speed at most 6 (bundled 1 to 2);
+- rated speed 50 to 15000 rpm (bundled 1500 to 6000), max speed at most 25000 rpm
+  (bundled up to 9000).
+
+Idealized textbook motors (manufacturer 'idealized ...') are not checked for plausibility.
 """
 
 from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
 from sizer.catalog_tools.findings import Severity
 from sizer.envelope import continuous_region, intermittent_region
+from sizer.io.plausibility import IDEALIZED_MARK, bare_note, is_idealized, motor_implausibilities
 from sizer.model.domain import Curve, Motor
 from sizer.model.inputs import CurvePointInput, MotorInput
 
@@ -26,10 +43,6 @@ CURVE_START_TOLERANCE = 0.10
 
 RELATIVE_TOLERANCE = 1e-9
 """Rounding allowance when comparing figures given in different units."""
-
-IDEALIZED_MARK = "idealized"
-"""A manufacturer text containing this word marks textbook motors: no rotor inertia needed."""
-
 
 @dataclass(frozen=True)
 class MotorProblem:
@@ -48,17 +61,14 @@ def _nm(torque: float) -> str:
     return f"{torque:.4g} N*m"
 
 
-def is_idealized(manufacturer: str | None) -> bool:
-    """True for the textbook motors (``manufacturer: idealized ...``)."""
-    return manufacturer is not None and IDEALIZED_MARK in manufacturer.lower()
-
-
 def check_motor(item: MotorInput, *, manufacturer: str | None = None,
-                source: str | None = None) -> list[MotorProblem]:
+                source: str | None = None,
+                given: Mapping[str, Any] | None = None) -> list[MotorProblem]:
     """Every sanity problem of a schema-valid motor.
 
     ``manufacturer`` and ``source`` are the catalog-level defaults, used where the motor
-    has none of its own.
+    has none of its own. ``given`` is the motor's mapping as written: a plausibility
+    warning names the bare number it involves.
     """
     problems: list[MotorProblem] = []
     add = problems.append
@@ -75,6 +85,8 @@ def check_motor(item: MotorInput, *, manufacturer: str | None = None,
     if not (item.source or source or "").strip():
         add(MotorProblem(("source",), "no source: give the datasheet's title and web address "
                                       "(on the motor, or 'source:' at the catalog level)"))
+    if not is_idealized(item.manufacturer or manufacturer):
+        problems += _plausibility(item, given or {})
     curves_ok = True
     for name, rating, rating_name in (
             ("continuous_curve", item.continuous_torque, "continuous_torque"),
@@ -96,6 +108,17 @@ def check_motor(item: MotorInput, *, manufacturer: str | None = None,
     if curves_ok and (item.continuous_curve or item.intermittent_curve):
         # (two rectangles compare as peak >= continuous torque, checked above)
         problems += _region_problems(item)
+    return problems
+
+
+def _plausibility(item: MotorInput, given: Mapping[str, Any]) -> list[MotorProblem]:
+    """Figures far outside the bands of real servomotors (a warning each)."""
+    problems = []
+    for found in motor_implausibilities(item.inertia, item.continuous_torque,
+                                        item.peak_torque, item.rated_speed, item.max_speed):
+        note = bare_note(found, given)
+        message = f"implausible: {found.message}" + (f" ({note})" if note else "")
+        problems.append(MotorProblem((found.field,), message, "warning"))
     return problems
 
 

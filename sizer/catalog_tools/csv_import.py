@@ -117,6 +117,9 @@ class ImportedCatalog:
     csv_name: str
     maps: tuple[ColumnMap, ...]
     motors: tuple[dict[str, str], ...] = field(default_factory=tuple)
+    warnings: tuple[str, ...] = ()
+    """Located warnings about rows that are valid but implausible (``file.csv:line: field
+    (column ...): text``); the catalog is still written."""
 
     def yaml(self) -> str:
         """The catalog file's text: the same input gives the same text, byte for byte."""
@@ -143,6 +146,7 @@ def import_csv(path: str | Path, maps: Sequence[ColumnMap], *, catalog_name: str
     header, body = rows[0][1], rows[1:]
     index = _column_indices(path, header, maps)
     problems: list[UserError] = []
+    warnings: list[str] = []
     motors: list[dict[str, str]] = []
     first_line: dict[str, int] = {}
     for line, cells in body:
@@ -152,7 +156,9 @@ def import_csv(path: str | Path, maps: Sequence[ColumnMap], *, catalog_name: str
         problems += row_problems
         if row_problems:
             continue
-        problems += _validate(path, line, motor, maps, manufacturer, source)
+        errors, row_warnings = _validate(path, line, motor, maps, manufacturer, source)
+        problems += errors
+        warnings += [str(w) for w in row_warnings]
         motor_id = motor.get("id", "").strip()
         if motor_id in first_line:
             problems.append(UserError(
@@ -165,7 +171,8 @@ def import_csv(path: str | Path, maps: Sequence[ColumnMap], *, catalog_name: str
     if not motors:
         raise UserError("no motor rows under the header line", file=str(path), line=rows[0][0])
     return ImportedCatalog(name=catalog_name or path.stem, manufacturer=manufacturer,
-                           source=source, csv_name=path.name, maps=maps, motors=tuple(motors))
+                           source=source, csv_name=path.name, maps=maps, motors=tuple(motors),
+                           warnings=tuple(warnings))
 
 
 def _check_maps(maps: Sequence[ColumnMap], source: str | None) -> None:
@@ -285,18 +292,22 @@ def _decimal_point(cell: str) -> str:
 
 
 def _validate(path: Path, line: int, motor: dict[str, str], maps: Sequence[ColumnMap],
-              manufacturer: str | None, source: str | None) -> list[UserError]:
-    """Schema and sanity problems of one row's motor, at the row's line."""
+              manufacturer: str | None, source: str | None
+              ) -> tuple[list[UserError], list[UserError]]:
+    """Schema and sanity problems of one row's motor, at the row's line: the errors, and
+    the warnings (implausible figures) that do not stop the import."""
     where = YamlSource(data=motor, file=str(path), lines={(): line})
     for name in motor:
         where.lines[(name,)] = line
     try:
         item = MotorInput.model_validate(motor)
     except ValidationError as error:
-        return [_renamed(p, maps) for p in all_problems(error, MotorInput, where)]
-    return [UserError(p.message, file=str(path), line=line,
-                      field=_field_text(str(p.path[0]), maps))
-            for p in check_motor(item, manufacturer=manufacturer, source=source)]
+        return [_renamed(p, maps) for p in all_problems(error, MotorInput, where)], []
+    found: dict[str, list[UserError]] = {"error": [], "warning": []}
+    for p in check_motor(item, manufacturer=manufacturer, source=source, given=motor):
+        found[p.severity].append(UserError(p.message, file=str(path), line=line,
+                                           field=_field_text(str(p.path[0]), maps)))
+    return found["error"], found["warning"]
 
 
 def _renamed(problem: UserError, maps: Sequence[ColumnMap]) -> UserError:

@@ -126,7 +126,8 @@ def _validate_source(source: YamlSource, ids: dict[str, _Seen],
             item = MotorInput.model_validate(raw)
         except (ValidationError, RecursionError):
             continue  # reported by the schema pass above
-        for problem in check_motor(item, manufacturer=manufacturer, source=default_source):
+        for problem in check_motor(item, manufacturer=manufacturer, source=default_source,
+                                   given=raw):
             finding((*at, *problem.path), problem.message, problem.severity)
     return findings
 

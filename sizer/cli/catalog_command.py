@@ -206,6 +206,9 @@ def import_command(
             sys.stderr.write(f"error: {problem}\n")
         sys.stderr.flush()
         raise typer.Exit(2) from None
+    from sizer.cli.app import report_warnings
+
+    report_warnings(catalog.warnings)
     emit(catalog.yaml(), output)
     if output is not None:
         typer.echo(f"{len(catalog.motors)} motor(s) written to {output}", err=True)
