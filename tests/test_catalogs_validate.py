@@ -203,3 +203,114 @@ def test_a_catalog_level_source_covers_its_motors_and_idealized_motors_may_weigh
 def test_the_book_examples_validate_clean():
     report = validate_catalogs(["book-examples"])
     assert report.findings == [] and report.motors == 3
+
+
+# ------------------------------------------------------------------ plausibility
+
+SGM7J_01A = {"inertia": "0.0659e-4 kg*m^2", "continuous_torque": "0.318 N*m",
+             "peak_torque": "1.11 N*m", "rated_speed": "3000 rpm", "max_speed": "6000 rpm"}
+"""A real 100 W servomotor (Yaskawa SGM7J-01A, datasheet figures)."""
+
+IMPLAUSIBLE = [
+    # (what is wrong, fields changed, the field flagged, a fragment of the message)
+    ("100 W motor with 3 kg*m^2", {"inertia": "3 kg*m^2"}, "inertia", "W per kg*m^2"),
+    ("kg*cm^2 written as kg*m^2", {"inertia": "0.0659 kg*m^2"}, "inertia",
+     "rad/s^2"),
+    ("rated speed 30 rpm", {"rated_speed": "30 rpm", "max_speed": "60 rpm"}, "rated_speed",
+     "30 rpm is outside the range"),
+    ("speeds in rad/s where rpm was meant", {"rated_speed": "3000 rad/s",
+                                             "max_speed": "6000 rad/s"}, "rated_speed",
+     "28648 rpm is outside the range"),
+    ("speeds in rad/s where rpm was meant", {"rated_speed": "3000 rad/s",
+                                             "max_speed": "6000 rad/s"}, "max_speed",
+     "above 25000 rpm"),
+    ("peak torque in N*m, continuous in mN*m", {"peak_torque": "1110 N*m"}, "peak_torque",
+     "times the continuous torque"),
+    ("max speed in rpm, rated in rev/s", {"max_speed": "6000 rpm", "rated_speed": "50 rpm"},
+     "max_speed", "120 times the rated speed"),
+]
+
+
+def _catalog_of(fields: dict[str, object]) -> str:
+    lines = "".join(f"    {key}: {value}\n" for key, value in fields.items())
+    return f"source: s\nmotors:\n  - id: M\n{lines}"
+
+
+def test_a_real_motor_is_plausible(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    write(tmp_path, _catalog_of(SGM7J_01A), "m.yaml")
+    assert validate_catalogs(["m.yaml"]).findings == []
+
+
+@pytest.mark.parametrize(("what", "changes", "field", "fragment"), IMPLAUSIBLE)
+def test_implausible_motors_are_flagged(tmp_path, monkeypatch, what, changes, field, fragment):
+    monkeypatch.chdir(tmp_path)
+    text = _catalog_of({**SGM7J_01A, **changes})
+    write(tmp_path, text, "m.yaml")
+    report = validate_catalogs(["m.yaml"])
+    hits = found(report, f"motors[0].{field}")
+    assert any(fragment in f.message and f.severity == "warning" for f in hits), \
+        (what, [str(f) for f in report.findings])
+    assert hits[0].line == line_of(text, f"{field}:")
+    assert report.exit_code == 1
+
+
+def test_a_bare_number_behind_a_finding_is_named(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    write(tmp_path, _catalog_of({**SGM7J_01A, "rated_speed": 3000, "max_speed": 6000}),
+          "m.yaml")
+    messages = [f.message for f in validate_catalogs(["m.yaml"]).findings]
+    assert any("(bare number 3000 read as 3000 rad/s)" in m for m in messages), messages
+
+
+def test_idealized_motors_are_not_checked_for_plausibility():
+    item = MotorInput.model_validate({"id": "x", "inertia": 3, "continuous_torque": 1,
+                                      "peak_torque": 100, "rated_speed": 2})
+    assert check_motor(item, manufacturer="idealized (textbook)", source="the book") == []
+    assert len(check_motor(item, source="the book")) >= 3
+
+
+def _bundled_figures() -> list[dict[str, float]]:
+    from sizer.io import bundled_catalogs, load_catalog
+
+    figures = []
+    for name, path in bundled_catalogs().items():
+        if name == "book-examples":
+            continue
+        for m in load_catalog(path):
+            figures.append({
+                "peak/continuous": m.peak_torque / m.continuous_torque,
+                "acceleration": m.peak_torque / m.inertia,
+                "power/inertia": m.continuous_torque * m.rated_speed / m.inertia,
+                "max/rated": (m.max_speed or m.rated_speed) / m.rated_speed,
+                "rated": m.rated_speed, "max": m.max_speed or m.rated_speed})
+    return figures
+
+
+def test_the_bands_are_wide_around_every_bundled_motor():
+    # every bundled motor is inside each band with room to spare: at least a factor 2.4
+    # (speeds) or 3 (ratios) from its edges, where the band has an edge on that side
+    from sizer.io import plausibility as p
+
+    figures = _bundled_figures()
+    assert len(figures) == 64
+
+    def span(key: str) -> tuple[float, float]:
+        return min(f[key] for f in figures), max(f[key] for f in figures)
+
+    assert span("peak/continuous")[1] * 3 <= p.PEAK_TO_CONTINUOUS[1]
+    low, high = span("acceleration")
+    assert p.ACCELERATION_CAPACITY[0] * 3 <= low and high * 3 <= p.ACCELERATION_CAPACITY[1]
+    low, high = span("power/inertia")
+    assert p.POWER_PER_INERTIA[0] * 3 <= low and high * 3 <= p.POWER_PER_INERTIA[1]
+    assert span("max/rated")[1] * 3 <= p.MAX_TO_RATED_SPEED[1]
+    low, high = span("rated")
+    assert p.RATED_SPEED[0] * 2.4 <= low and high * 2.4 <= p.RATED_SPEED[1]
+    assert span("max")[1] * 2.4 <= p.MAX_SPEED
+
+
+def test_every_bundled_catalog_validates_clean():
+    from sizer.io import bundled_catalogs
+
+    report = validate_catalogs([str(p) for p in bundled_catalogs().values()])
+    assert report.findings == [] and report.unreadable == [] and report.motors == 67

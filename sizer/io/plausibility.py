@@ -105,14 +105,6 @@ def motor_implausibilities(inertia: float, continuous_torque: float, peak_torque
             f"{continuous_torque:.4g} N*m; servomotors have at most {PEAK_TO_CONTINUOUS[1]:g} "
             f"(check the units)"))
     if inertia > 0:
-        capacity = peak_torque / inertia
-        low, high = ACCELERATION_CAPACITY
-        if not low <= capacity <= high:
-            found.append(Implausible(
-                "inertia", ("inertia", "peak_torque"),
-                f"peak torque / rotor inertia = {capacity:.3g} rad/s^2 is outside the range "
-                f"of servomotors ({low:g} to {high:g} rad/s^2): check the inertia's unit "
-                f"(1 kg*cm^2 = 1e-4 kg*m^2)"))
         power = continuous_torque * rated_speed
         low, high = POWER_PER_INERTIA
         if not low <= power / inertia <= high:
@@ -121,6 +113,14 @@ def motor_implausibilities(inertia: float, continuous_torque: float, peak_torque
                 f"a rotor inertia of {inertia:.4g} kg*m^2 for {power:.4g} W rated power "
                 f"(continuous torque x rated speed) is {power / inertia:.3g} W per kg*m^2, "
                 f"outside the range of servomotors ({low:g} to {high:g})"))
+        capacity = peak_torque / inertia
+        low, high = ACCELERATION_CAPACITY
+        if not low <= capacity <= high:
+            found.append(Implausible(
+                "inertia", ("inertia", "peak_torque"),
+                f"peak torque / rotor inertia = {capacity:.3g} rad/s^2 is outside the range "
+                f"of servomotors ({low:g} to {high:g} rad/s^2): check the inertia's unit "
+                f"(1 kg*cm^2 = 1e-4 kg*m^2)"))
     low, high = RATED_SPEED
     if not low <= rated_speed <= high:
         found.append(Implausible(
