@@ -80,12 +80,22 @@ def convert(value: Any, kind: str, *, gt: float | None = None, ge: float | None 
     return result
 
 
+_UNIT_NOTES = {
+    **dict.fromkeys(("angular_speed", "angular_acceleration", "angular_jerk"),
+                    "; a unit without an angle (Hz, 1/min, min^-1, 1/s^2) counts revolutions"),
+    "torque": "; Nm, mNm, Ncm and oz*in, lbf*ft are accepted",
+    "inertia": "; lb*in^2, oz*in*s^2 and a GD^2 like '0.04 kgf*m^2 GD^2' are accepted",
+}
+"""What the JSON Schema says about the datasheet spellings of a kind (sizer.units)."""
+
+
 def _quantity_schema(kind: str, note: str = "") -> dict[str, Any]:
     spec = KINDS[kind]
     name = kind.replace("_", " ")
     text = f"{name} like '{spec.example}'"
     if spec.si_unit != "1":
         text += f"; a bare number is in {spec.si_unit}"
+    text += _UNIT_NOTES.get(kind, "")
     return {"anyOf": [{"type": "number"}, {"type": "string"}],
             "description": f"{text}{'; ' + note if note else ''}"}
 
