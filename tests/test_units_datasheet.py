@@ -12,6 +12,7 @@ import math
 from pathlib import Path
 
 import pytest
+from cli_run import run_cli
 
 from sizer.catalog_tools import import_csv, parse_column_map, validate_catalogs
 from sizer.errors import UserError
@@ -234,3 +235,9 @@ def test_spellings_through_catalog_import(tmp_path: Path) -> None:
     assert motor.peak_torque == pytest.approx(315.8 * OUNCE * G_N * INCH, rel=REL)
     assert motor.inertia == pytest.approx(0.08987 * POUND * INCH**2, rel=REL)
     assert validate_catalogs([out]).findings == []
+    args = ["catalog", "import", str(csv), "--source", "a datasheet"]
+    for item in maps:
+        args += ["--map", item]
+    result = run_cli(*args)  # the command line gives the same catalog
+    assert result.returncode == 0 and result.stdout == imported.yaml(), result.stderr
+    assert "warning" not in result.stderr
