@@ -346,3 +346,19 @@ def test_negative_displacement_moves_back_first(return_move):
         assert up_first.rms_torque == pytest.approx(r.rms_torque, rel=1e-12)
     else:  # lifting through the screw needs more torque than lowering
         assert up_first.rms_torque > 1.05 * r.rms_torque
+
+
+def test_steady_load_keeps_eq_6_2_for_a_pure_inertia():
+    """With the efficiency on the steady load only, a pure inertia sees no efficiency:
+    T_min is eq. (6.2) with J_t = J_m + J_gear + J_l/k^2, as with an ideal gearbox."""
+    stage = Stage("gearbox", 4.0, 0.7, 1e-5)
+    design = Design(Task(2.0, None), Load(0.3),
+                    Transmission((stage,), efficiency_applies_to="steady_load"),
+                    laws=("cycloidal",), motors=(MOTOR,))
+    r = only(design)
+    J_t = MOTOR.inertia + 1e-5 + 0.3 / 16
+    expected = max(2 * 4 * 2.0 / 1000.0, math.sqrt(2 * math.pi * 4 * 2.0 * J_t / 150.0),
+                   math.sqrt(math.sqrt(2) * math.pi * 4 * 2.0 * J_t / 50.0))
+    assert r.duration == pytest.approx(expected, rel=1e-12)
+    flow = only(dataclasses.replace(design, transmission=Transmission((stage,))))
+    assert flow.duration > 1.03 * r.duration  # J_l/(k^2 eta) while accelerating
