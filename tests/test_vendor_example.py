@@ -1,8 +1,9 @@
 """A vendor's worked example end to end: Yaskawa's horizontal ball-screw axis with a gear.
 
 Source: YASKAWA Sigma-V-MD Series user's manual, 2.2.2 "Selection Calculations", p. 2-5,
-https://manualshive.com/en/manual/yaskawa/e-v-md-series/3588034?page=30, written as
-examples/vendor-ballscrew.yaml. Each printed figure is checked to its printed digits: the
+https://manualshive.com/en/manual/yaskawa/e-v-md-series/3588034?page=30 (the same in
+https://studylib.net/doc/18738127/selecting-servomotor-capacity-and-regenerative-capacity),
+written as examples/vendor-ballscrew.yaml. Each printed figure is checked to its printed digits: the
 tolerance is half a unit of the last printed digit.
 
 The page that prints the acceleration, deceleration and RMS torques and the motor Yaskawa
@@ -177,3 +178,27 @@ def test_the_power_flow_convention_differs_as_computed_by_hand(design):
     assert r.rms_torque == pytest.approx(t_rms, rel=1e-9)
     assert r.peak_torque > by_hand["t_p"] * 1.04                          # 1.29 vs 1.24 N*m
     assert "efficiency applied in the direction of power flow" in size_design(flow).notes
+
+
+def test_mitsubishi_selection_example_inertias_with_its_density():
+    """Mitsubishi's selection example (HG-SR/HG-MR servo motor instruction manual, App. 5.9,
+    http://marine.manualsonline.com/manuals/mfg/mitsubishi_1/hgsr.html?p=357 and
+    https://mwib.goodbear.co.uk/manual/1309045/Mitsubishi-Electric-Hg-Mr.html/?page=372):
+    60 kg moved at 30000 mm/min by a 16 mm-lead screw (D 20 mm, L 500 mm) behind a 5:8 gear
+    pair (D 25 and 40 mm, 10 mm wide), steel at Mitsubishi's 7.8e3 kg/m^3. Printed: N_0 =
+    3000 r/min; J_L1 = 1.52, J_L2 = 0.24, J_L3 = 0.03, J_L4 = 0.08, J_L = 1.9 (x 1e-4 kg*m^2).
+    """
+    from sizer.mechanics import ball_screw, gearbox, linear_load, screw_inertia
+    from sizer.model import Transmission
+
+    n, rho = 8 / 5, 7.8e3
+    pinion, wheel = screw_inertia(0.025, 0.010, rho), screw_inertia(0.040, 0.010, rho)
+    gears = gearbox(n, inertia=pinion + wheel / n**2)
+    screw = ball_screw(0.016, diameter=0.020, length=0.500, density=rho)
+    drive = Drive(linear_load(60.0), Transmission((gears, screw)))
+    printed(drive.reflected_load_inertia, 1.52e-4, 0.01e-4)              # J_L1
+    printed(screw.inertia / n**2, 0.24e-4, 0.01e-4)                       # J_L2
+    printed(pinion, 0.03e-4, 0.01e-4)                                     # J_L3
+    printed(wheel / n**2, 0.08e-4, 0.01e-4)                               # J_L4
+    printed(drive.driven_inertia, 1.9e-4, 0.1e-4)                         # J_L
+    printed(30.0 / 60 * drive.ratio * 30 / math.pi, 3000.0, 1.0)          # N_0, r/min
