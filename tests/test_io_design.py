@@ -249,7 +249,7 @@ def test_schema_names_the_sections():
     schema = design_schema()
     assert {"task", "load"} <= set(schema["required"])
     assert {"name", "task", "load", "transmission", "laws", "motors", "check",
-            "limits"} == set(schema["properties"])
+            "limits", "efficiency_applies_to"} == set(schema["properties"])
     assert "return" in schema["$defs"]["TaskInput"]["properties"]
 
 
@@ -280,8 +280,8 @@ BAD_CASES = [
      "expected true or false"),
     ("displacement: 90 deg", "displacement: 90 N", "displacement: 90 N", "task.displacement",
      "expected an angle"),
-    ("displacement: 90 deg", "displacement: -90 deg", "displacement: -90", "task.displacement",
-     "must be > 0"),
+    ("displacement: 90 deg", "displacement: 0 deg", "displacement: 0", "task.displacement",
+     "must not be zero"),
     ("displacement: 90 deg", "displacement: [90 deg]", "displacement: [90", "task.displacement",
      "expected a number or a quantity"),
     ("displacement: 90 deg", "displacement: 200 mm", "inertia: 0.35", "load.inertia",

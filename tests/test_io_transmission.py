@@ -153,3 +153,52 @@ def test_bad_transmissions(tmp_path, text, needle, field, message):
     assert message in found.message
     assert found.field == field
     assert found.line == line(text, needle)
+
+
+# ------------------------------------------------- vendor conventions (issue 9)
+def test_ball_screw_density_with_units(tmp_path):
+    design = load(tmp_path, HEAD + "transmission: {type: ball_screw, lead: 10 mm, "
+                  "diameter: 20 mm, length: 1 m, density: 7.87 g/cm^3}\n")
+    (stage,) = design.transmission.stages
+    assert stage.inertia == pytest.approx(screw_inertia(0.02, 1.0, 7870.0), rel=1e-12)
+    default = load(tmp_path, HEAD + "transmission: {type: ball_screw, lead: 10 mm, "
+                   "diameter: 20 mm, length: 1 m}\n")
+    assert default.transmission.stages[0].inertia == pytest.approx(
+        screw_inertia(0.02, 1.0, 7850.0), rel=1e-12)
+    bad = error(tmp_path, HEAD + "transmission: {type: ball_screw, lead: 10 mm, "
+                "diameter: 20 mm, length: 1 m, density: 7.8 kg}\n")
+    assert bad.field == "transmission.density" and "density" in bad.message
+
+
+@pytest.mark.parametrize(("given", "expected"), [
+    (None, "power_flow"), ("power_flow", "power_flow"), ("steady_load", "steady_load"),
+    ("siemens", "power_flow"), ("Mitsubishi", "power_flow"), ("yaskawa", "steady_load")])
+def test_efficiency_convention_by_name_or_vendor(tmp_path, given, expected):
+    text = HEAD + "transmission: {type: ball_screw, lead: 10 mm, inertia: 1e-5}\n"
+    if given is not None:
+        text += f"efficiency_applies_to: {given}\n"
+    assert load(tmp_path, text).transmission.efficiency_applies_to == expected
+
+
+def test_unknown_efficiency_convention_is_a_user_error(tmp_path):
+    bad = error(tmp_path, ROTARY + "efficiency_applies_to: whole_torque\n")
+    assert bad.field == "efficiency_applies_to" and bad.line == 3
+    assert "power_flow" in bad.message and "steady_load" in bad.message
+
+
+def test_inertia_ratio_of_in_limits(tmp_path):
+    design = load(tmp_path, ROTARY + "limits: {inertia_ratio: 5, inertia_ratio_of: load}\n")
+    assert design.limits.inertia_ratio_of == "load"
+    assert load(tmp_path, ROTARY).limits.inertia_ratio_of == "driven"
+    bad = error(tmp_path, ROTARY + "limits: {inertia_ratio_of: rotor}\n")
+    assert bad.field == "limits.inertia_ratio_of"
+
+
+def test_negative_displacement_is_accepted(tmp_path):
+    design = load(tmp_path, "task: {displacement: -200 mm, duration: 0.5 s}\n"
+                  "load: {mass: 5 kg}\ntransmission: {type: ball_screw, lead: 10 mm, "
+                  "inertia: 1e-5}\n")
+    assert design.task.displacement == pytest.approx(-0.2) and design.task.linear
+    zero = error(tmp_path, "task: {displacement: 0 deg, duration: 0.5 s}\n"
+                 "load: {inertia: 1}\n")
+    assert zero.field == "task.displacement" and "must not be zero" in zero.message

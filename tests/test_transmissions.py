@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -219,3 +220,145 @@ def test_stage_without_efficiency_loss_keeps_the_closed_form():
     expected = max(2 * 4 * 2.0 / 1000.0, math.sqrt(2 * math.pi * 4 * 2.0 * J_t / 150.0),
                    math.sqrt(math.sqrt(2) * math.pi * 4 * 2.0 * J_t / 50.0))
     assert r.duration == pytest.approx(expected, rel=1e-12)
+
+
+# ------------------------------------------------- vendor conventions (issue 9)
+def test_ball_screw_density_is_a_parameter():
+    # Yaskawa's 7.87e3 and Mitsubishi's 7.8e3 kg/m^3 against the default 7.85e3
+    for rho in (7870.0, 7800.0):
+        s = ball_screw(0.01, diameter=0.02, length=1.0, density=rho)
+        assert s.inertia == pytest.approx(math.pi * rho * 1.0 * 0.02**4 / 32, rel=1e-14)
+    assert ball_screw(0.01, diameter=0.02, length=1.0).inertia == pytest.approx(
+        math.pi * 7850 * 0.02**4 / 32, rel=1e-14)
+
+
+def steady(x, k, eta):
+    """Yaskawa: a steady torque x at a stage output needs x/(k eta) while it opposes the
+    motion, x eta/k while it drives."""
+    return x / (k * eta) if x >= 0 else x * eta / k
+
+
+def test_steady_load_convention_by_hand():
+    """The pick-and-place axis above with the efficiencies on the steady load only.
+
+    Inertial torque at the motor: (J_m + J_belt) K a + (J_s k2 a + m a / k2) / k1, no
+    efficiency; steady torque: F = F_fric + s m g sin 45 through the screw (0.9, plus the
+    preload) and the belt (0.95), divided while it opposes the move and multiplied while
+    gravity drives it (the move down: F < 0).
+    """
+    m, h, T, dwell, alpha = 5.0, 0.2, 0.4, 0.2, 0.25
+    load = linear_load(m, incline=math.pi / 4, friction_coefficient=0.05)
+    screw = ball_screw(0.01, efficiency=0.9, diameter=0.016, length=0.5, preload_torque=0.02)
+    pulleys = belt(ratio=3.0, driver_inertia=1e-5, driven_inertia=9e-5, efficiency=0.95)
+    k1, k2 = 3.0, 2 * math.pi / 0.01
+    K = k1 * k2
+    transmission = Transmission((pulleys, screw), efficiency_applies_to="steady_load")
+    design = Design(Task(h, T, dwell=dwell, return_move=True, linear=True), load,
+                    transmission, laws=(f"trapezoidal(alpha={alpha})",), motors=(MOTOR,))
+    r = only(design)
+    phases = []
+    for s in (1.0, -1.0):
+        F = load.friction + s * load.torque
+        steady_torque = steady(0.02 + steady(F, k2, 0.9), k1, 0.95)
+        for duration, a in trapezoid_phases(alpha, h, T):
+            inertial = (MOTOR.inertia + pulleys.inertia) * K * a + (
+                screw.inertia * k2 * a + m * a / k2) / k1
+            phases.append((duration, inertial + steady_torque))
+    hold = load.torque / (K * 0.9 * 0.95)
+    phases += [(dwell, hold)] * 2
+    cycle = sum(d for d, _ in phases)
+    assert r.rms_torque == pytest.approx(
+        math.sqrt(sum(d * t**2 for d, t in phases) / cycle), rel=1e-10)
+    assert r.peak_torque == pytest.approx(max(abs(t) for _, t in phases), rel=1e-10)
+    assert "efficiency applied to the load's steady torque only" in " ".join(
+        size_design(design).notes)
+
+
+def test_steady_load_chain_is_linear_and_matches_its_coefficients():
+    load = Load(0.05, damping=0.3, friction=2.0, torque=-5.0)
+    stages = (gearbox(4.0, 0.9, 2e-5), Stage("gearbox", 3.0, 0.8, 1e-5, preload_torque=0.1))
+    drive = Drive(load, Transmission(stages, efficiency_applies_to="steady_load"))
+    assert drive.is_ideal
+    rng = np.random.default_rng(9)
+    a, v = rng.normal(size=50) * 100, rng.normal(size=50) * 10
+    for direction in (1.0, -1.0):
+        shaft, outputs = drive.chain(a, v, direction)
+        a_part, v_part, const = drive.linear_chain(direction)
+        assert shaft == pytest.approx(a_part * a + v_part * v + const, rel=1e-12, abs=1e-12)
+        # the load's steady torque 2 - 5 s drives (s = +1: x eta) or opposes (s = -1: /eta)
+        f2 = 0.8 if direction > 0 else 1 / 0.8
+        const_out = 2.0 - 5.0 * direction
+        x2 = 0.1 + const_out * f2 / 3.0
+        f1 = 0.9 if x2 < 0 else 1 / 0.9
+        assert const == pytest.approx(x2 * f1 / 4.0, rel=1e-14)
+        assert v_part == pytest.approx(0.3 * f2 / 3.0 * f1 / 4.0, rel=1e-14)
+        assert a_part == pytest.approx(2e-5 * 12 + 1e-5 * 9 / 12 + 0.05 / 12, rel=1e-14)
+        # the output of the first stage is the second's input torque
+        assert outputs[0] == pytest.approx(1e-5 * 3 * a + 0.05 * a / 3 + x2
+                                           + 0.3 * v * f2 / 3, rel=1e-12, abs=1e-12)
+
+
+def test_inertia_ratio_counts_everything_driven_by_default():
+    J_gear, J_l, k = 3e-5, 0.02, 10.0
+    base = Design(Task(1.0, 0.5), Load(J_l), Transmission((gearbox(k, 0.95, J_gear),)),
+                  laws=("cycloidal",), motors=(MOTOR,), limits=Limits(inertia_ratio=5.0))
+    driven = only(base).check("inertia_ratio")
+    assert driven.value == pytest.approx((J_gear + J_l / k**2) / MOTOR.inertia, rel=1e-14)
+    load_only = only(dataclasses.replace(
+        base, limits=Limits(inertia_ratio=5.0, inertia_ratio_of="load"))).check("inertia_ratio")
+    assert load_only.value == pytest.approx(J_l / k**2 / MOTOR.inertia, rel=1e-14)
+    # 2.0 (load alone) passes, 2.3 (driven) does not against 2.2
+    tight = Limits(inertia_ratio=2.2)
+    assert not only(dataclasses.replace(base, limits=tight)).feasible
+    assert only(dataclasses.replace(base, limits=dataclasses.replace(
+        tight, inertia_ratio_of="load"))).check("inertia_ratio").passed
+
+
+@pytest.mark.parametrize("return_move", [False, True])
+def test_negative_displacement_moves_back_first(return_move):
+    """A vertical 4 kg axis moved down first (-h): gravity drives the first move.
+
+    Direct ball screw, efficiency 0.9 in the direction of power flow: along the motion
+    u = m a + s m g (s = -1 down, +1 up), motor torque = J_m K a + R(u; K, 0.9); the motor
+    holds m g / (K 0.9) at rest.
+    """
+    m, h, T, dwell, alpha = 4.0, 0.15, 0.3, 0.2, 1 / 3
+    load = linear_load(m, incline=math.pi / 2)
+    screw = ball_screw(0.02, efficiency=0.9, inertia=0.0)
+    K = 2 * math.pi / 0.02
+    design = Design(Task(-h, T, dwell=dwell, return_move=return_move, linear=True), load,
+                    Transmission((screw,)), laws=(f"trapezoidal(alpha={alpha})",),
+                    motors=(MOTOR,))
+    r = only(design)
+    phases = []
+    for s in ((-1.0, 1.0) if return_move else (-1.0,)):
+        for duration, a in trapezoid_phases(alpha, h, T):
+            phases.append((duration, MOTOR.inertia * K * a
+                           + reflect(m * a + s * m * GRAVITY, K, 0.9)))
+        phases.append((dwell, m * GRAVITY / (K * 0.9)))
+    cycle = sum(d for d, _ in phases)
+    assert r.rms_torque == pytest.approx(
+        math.sqrt(sum(d * t**2 for d, t in phases) / cycle), rel=1e-10)
+    assert r.peak_torque == pytest.approx(max(abs(t) for _, t in phases), rel=1e-10)
+    up_first = only(dataclasses.replace(design, task=dataclasses.replace(design.task,
+                                                                         displacement=h)))
+    if return_move:  # the same cycle, started elsewhere
+        assert up_first.rms_torque == pytest.approx(r.rms_torque, rel=1e-12)
+    else:  # lifting through the screw needs more torque than lowering
+        assert up_first.rms_torque > 1.05 * r.rms_torque
+
+
+def test_steady_load_keeps_eq_6_2_for_a_pure_inertia():
+    """With the efficiency on the steady load only, a pure inertia sees no efficiency:
+    T_min is eq. (6.2) with J_t = J_m + J_gear + J_l/k^2, as with an ideal gearbox."""
+    stage = Stage("gearbox", 4.0, 0.7, 1e-5)
+    design = Design(Task(2.0, None), Load(0.3),
+                    Transmission((stage,), efficiency_applies_to="steady_load"),
+                    laws=("cycloidal",), motors=(MOTOR,))
+    r = only(design)
+    J_t = MOTOR.inertia + 1e-5 + 0.3 / 16
+    expected = max(2 * 4 * 2.0 / 1000.0, math.sqrt(2 * math.pi * 4 * 2.0 * J_t / 150.0),
+                   math.sqrt(math.sqrt(2) * math.pi * 4 * 2.0 * J_t / 50.0))
+    assert r.duration == pytest.approx(expected, rel=1e-12)
+    flow = only(dataclasses.replace(design, transmission=Transmission((stage,))))
+    assert flow.duration > 1.03 * r.duration  # J_l/(k^2 eta) while accelerating

@@ -11,6 +11,7 @@ Every mistake in a file ends in a UserError naming the file, the line and the fi
 from __future__ import annotations
 
 import difflib
+import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
 from importlib import resources
@@ -244,6 +245,7 @@ def load_design(path: PathLike, extra_catalogs: Iterable[PathLike] = (), *,
         extra = list(default_catalogs().values())
     transmission, ratio_choice = build_transmission(model.transmission, source, path.parent,
                                                     linear)
+    transmission = replace(transmission, efficiency_applies_to=model.efficiency_applies_to)
     motors = _design_motors(model, source, path.parent, extra, warnings)
     by_id = {m.id: m for m in motors}
     chosen_motor = chosen_law = None
@@ -287,9 +289,9 @@ def _task(model: DesignFile, source: YamlSource) -> Task:
         h, linear = parse_displacement(model.task.displacement)
     except UserError as error:
         raise source.error(error.message, at) from None
-    if not h > 0:
-        raise source.error(f"must be > 0, got {model.task.displacement!r} (give the size of "
-                           f"the move; its direction does not matter for sizing)", at)
+    if not (math.isfinite(h) and h != 0.0):
+        raise source.error(f"must not be zero, got {model.task.displacement!r} (a negative "
+                           f"displacement moves back first)", at)
     return Task(displacement=h, duration=model.task.duration, dwell=model.task.dwell,
                 return_move=model.task.return_move, linear=linear)
 
@@ -354,6 +356,7 @@ def _limits(model: DesignFile, source: YamlSource, linear: bool) -> Limits:
         max_acceleration=max_acceleration,
         max_jerk=max_jerk,
         thermal_speed=given.thermal_speed,
+        inertia_ratio_of=given.inertia_ratio_of,
     )
 
 

@@ -93,7 +93,7 @@ def _stage(item: Any, source: YamlSource, at, index: int, linear_output: bool,
             raise source.error("a ball screw needs its inertia, or its diameter and length "
                                "(a steel screw)", at(index))
         return ball_screw(item.lead, efficiency=item.efficiency, inertia=item.inertia,
-                          diameter=item.diameter, length=item.length,
+                          diameter=item.diameter, length=item.length, density=item.density,
                           preload_torque=item.preload_torque, max_speed=item.max_speed,
                           name=name), None
     if isinstance(item, RackPinionInput):

@@ -2,7 +2,7 @@
 
 Every function returns a ``Stage``: ``ratio`` is input speed over output speed (rad/rad
 for rotary outputs, rad/m when the output moves linearly), ``inertia`` is what the stage
-moves, reflected to its input. Solid steel parts use STEEL_DENSITY.
+moves, reflected to its input. Solid steel parts use STEEL_DENSITY unless given one.
 """
 
 from __future__ import annotations
@@ -64,16 +64,17 @@ def screw_inertia(diameter: float, length: float, density: float = STEEL_DENSITY
 
 def ball_screw(lead: float, *, efficiency: float = 0.9, inertia: float | None = None,
                diameter: float | None = None, length: float | None = None,
-               preload_torque: float = 0.0, max_speed: float | None = None,
-               name: str = "") -> Stage:
-    """A ball screw: ratio 2 pi / lead (rad/m); screw inertia given or from d and L (steel).
+               density: float = STEEL_DENSITY, preload_torque: float = 0.0,
+               max_speed: float | None = None, name: str = "") -> Stage:
+    """A ball screw: ratio 2 pi / lead (rad/m); screw inertia given or from d, L, density.
 
+    ``density`` is the screw material's (kg/m^3; vendors use 7.87e3 or 7.8e3 for steel).
     ``max_speed`` is the user's screw speed limit (critical speed, ball recirculation).
     """
     if inertia is None:
         if diameter is None or length is None:
             raise ValueError("a ball screw needs its inertia or its diameter and length")
-        inertia = screw_inertia(diameter, length)
+        inertia = screw_inertia(diameter, length, density)
     return Stage("ball_screw", 2.0 * math.pi / lead, efficiency, inertia, name=name,
                  preload_torque=preload_torque, max_input_speed=max_speed)
 

@@ -7,11 +7,20 @@ built from YAML by sizer.io (which checks units and ranges) or directly from Pyt
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Literal
 
 ThermalSpeedRule = Literal["max", "rms", "mean"]
 """Speed at which the RMS torque is checked against the continuous region (sec. 6.1.1)."""
+
+EfficiencyRule = Literal["power_flow", "steady_load"]
+"""Where the efficiencies act: on the whole torque in the direction of power flow
+(Siemens, Mitsubishi; sizer's default), or on the load's steady torque only, the inertial
+torque passing without loss (Yaskawa: T_L = F P / (2 pi R eta), T_a = J omega / t_a)."""
+
+InertiaRatioRule = Literal["driven", "load"]
+"""Numerator of the inertia ratio: everything the motor drives (load, screw, gears,
+couplings, reflected to the motor; the vendors' definition) or the load alone."""
 
 Curve = tuple[tuple[float, float], ...]
 """(speed rad/s, torque N*m) points, speed strictly increasing, piecewise linear between."""
@@ -62,9 +71,10 @@ class Stage:
 
     ``ratio`` is input speed over output speed: k_r for a gearbox or belt (rad/rad), 2*pi/lead
     for a ball screw and 1/r for a rack and pinion (rad/m). ``efficiency`` in (0, 1] applies
-    in the direction of power flow. ``inertia`` is everything the stage moves, reflected to
-    its input (kg*m^2): gear or pulley inertias, a screw, a belt's mass. ``preload_torque``
-    is a constant friction torque at its input while moving (a ball screw's preload).
+    as the transmission's ``efficiency_applies_to`` says. ``inertia`` is everything the stage
+    moves, reflected to its input (kg*m^2): gear or pulley inertias, a screw, a belt's mass.
+    ``preload_torque`` is a constant friction torque at its input while moving (a ball
+    screw's preload).
     Limits, where known, are checked like the motor's: ``max_input_speed`` (rad/s, e.g. a
     gearbox's or a screw's critical speed), ``rated_output_torque`` against the RMS and
     ``peak_output_torque`` against the peak of the torque (or force) at its output.
@@ -84,9 +94,13 @@ class Stage:
 
 @dataclass(frozen=True)
 class Transmission:
-    """Stages from the motor to the load, in that order; empty = direct drive."""
+    """Stages from the motor to the load, in that order; empty = direct drive.
+
+    ``efficiency_applies_to`` says how the stage efficiencies act (``EfficiencyRule``).
+    """
 
     stages: tuple[Stage, ...] = ()
+    efficiency_applies_to: EfficiencyRule = "power_flow"
 
     @property
     def ratio(self) -> float:
@@ -119,7 +133,7 @@ class Transmission:
         """The same transmission with stage ``index`` replaced (ratio choice)."""
         stages = list(self.stages)
         stages[index] = stage
-        return Transmission(tuple(stages))
+        return replace(self, stages=tuple(stages))
 
 
 @dataclass(frozen=True)
@@ -151,7 +165,9 @@ class Limits:
     """Margins and user limits. Margins are fractions of the motor's capability left unused.
 
     ``max_acceleration`` and ``max_jerk`` are at the load (rad/s^2 or m/s^2, ...).
-    ``inertia_ratio`` bounds J_l reflected / J_m.
+    ``inertia_ratio`` bounds the driven inertia reflected to the motor over J_m: with
+    ``inertia_ratio_of = "driven"`` (the vendors' definition, default) the load, the
+    screws, gears and couplings; with ``"load"`` the load alone (J_l/k^2).
     """
 
     torque_margin: float = 0.0
@@ -160,6 +176,7 @@ class Limits:
     max_acceleration: float | None = None
     max_jerk: float | None = None
     thermal_speed: ThermalSpeedRule = "max"
+    inertia_ratio_of: InertiaRatioRule = "driven"
 
 
 @dataclass(frozen=True)

@@ -170,7 +170,8 @@ class TaskInput(_Strict):
 
     displacement: RawQuantity("'90 deg' or '200 mm'") = Field(  # type: ignore[valid-type]
         description="h at the load: an angle ('90 deg', rotary axis) or a length "
-                    "('200 mm', linear axis); a bare number is rad")
+                    "('200 mm', linear axis); a bare number is rad; negative moves back "
+                    "first (not zero)")
     duration: Annotated[
         float | None,
         BeforeValidator(_duration),
@@ -252,6 +253,22 @@ class LimitsInput(_Strict):
     thermal_speed: Literal["max", "rms", "mean"] = Field(
         "max", description="speed at which the RMS torque is checked against the "
                            "continuous region")
+    inertia_ratio_of: Literal["driven", "load"] = Field(
+        "driven", description="numerator of inertia_ratio: 'driven' = everything the motor "
+                              "drives (load, screws, gears, couplings) reflected to the motor, "
+                              "as vendors define it; 'load' = the load alone")
+
+
+EFFICIENCY_ALIASES = {"siemens": "power_flow", "mitsubishi": "power_flow",
+                      "yaskawa": "steady_load"}
+"""Vendor names for the efficiency conventions (sizer.mechanics.drive)."""
+
+
+def _efficiency_rule(value: Any) -> Any:
+    if isinstance(value, str):
+        key = value.strip().lower()
+        return EFFICIENCY_ALIASES.get(key, key)
+    return value
 
 
 class DesignFile(_Strict):
@@ -271,3 +288,13 @@ class DesignFile(_Strict):
                           "or inline motors")
     check: CheckInput | None = None
     limits: LimitsInput = Field(default_factory=LimitsInput)
+    efficiency_applies_to: Annotated[
+        Literal["power_flow", "steady_load"],
+        BeforeValidator(_efficiency_rule),
+        WithJsonSchema({"type": "string",
+                        "enum": ["power_flow", "steady_load", *EFFICIENCY_ALIASES],
+                        "description": "how stage efficiencies act: 'power_flow' (default; "
+                                       "alias siemens, mitsubishi) on the whole torque in the "
+                                       "direction of power flow, 'steady_load' (alias yaskawa) "
+                                       "on the load's steady torque only"}),
+    ] = "power_flow"

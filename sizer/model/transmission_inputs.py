@@ -11,9 +11,14 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BeforeValidator, Field, WithJsonSchema
 
+from sizer.mechanics.stages import STEEL_DENSITY
 from sizer.model.inputs_base import Quantity, Strict, Text, convert, show_value
+from sizer.units import KINDS, Kind
 
 DEFAULT_RATIO_BOUNDS = (1.0, 100.0)
+
+# a screw's material density (could live in sizer.units.KINDS with the other kinds)
+KINDS.setdefault("density", Kind("density", "[mass]/[length]**3", "7.87e3 kg/m^3", "kg/m^3"))
 
 RatioSpec = tuple[str, tuple[float, ...]]
 """("fixed", (k,)), ("list", (k1, k2, ...)) or ("optimize", (min, max))."""
@@ -99,6 +104,9 @@ class BallScrewInput(Strict):
     inertia: Inertia | None = None  # type: ignore[valid-type]
     diameter: Quantity("length", gt=0) | None = None  # type: ignore[valid-type]
     length: Quantity("length", gt=0) | None = None  # type: ignore[valid-type]
+    density: Quantity(  # type: ignore[valid-type]
+        "density", gt=0, note="of a screw given by diameter and length; vendors use "
+                              "7.87e3 (Yaskawa) or 7.8e3 (Mitsubishi)") = STEEL_DENSITY
     preload_torque: Quantity("torque", ge=0) = 0.0  # type: ignore[valid-type]
     max_speed: Speed | None = None  # type: ignore[valid-type]
     name: Text | None = None

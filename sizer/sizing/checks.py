@@ -4,7 +4,9 @@
 - peak: every point (|speed(t)|, |torque(t)|) inside the intermittent region;
 - rms: the RMS torque against the continuous region at the thermal speed (max speed by
   default as in the book; rms or mean speed on request), and that speed inside it;
-- inertia ratio, load acceleration and load jerk against the user's limits.
+- inertia ratio (by default everything the motor drives, reflected to it, over the rotor
+  inertia, as vendors define it; ``inertia_ratio_of: load`` for the load alone), load
+  acceleration and load jerk against the user's limits.
 """
 
 from __future__ import annotations
@@ -55,7 +57,7 @@ def evaluate_checks(metrics: CycleMetrics, motors: MotorArrays, drive: Drive,
     ]
     if limits.inertia_ratio is not None:
         with np.errstate(divide="ignore"):
-            ratio = drive.reflected_load_inertia / motors.inertia
+            ratio = drive.inertia_ratio_numerator(limits.inertia_ratio_of) / motors.inertia
         checks.append(CheckArrays("inertia_ratio", ratio, limits.inertia_ratio * ones, "", 0.0))
     unit = "m" if linear else "rad"
     if limits.max_acceleration is not None:

@@ -157,5 +157,16 @@ def assumptions(design: Design) -> tuple[str, ...]:
     if design.load.torque and design.task.dwell:
         notes.append("holding the constant load at rest counts as driving (torque / efficiency)")
     if not math.isclose(design.transmission.efficiency, 1.0):
-        notes.append("efficiency applied in the direction of power flow")
+        if design.transmission.efficiency_applies_to == "steady_load":
+            notes.append("efficiency applied to the load's steady torque only (friction, "
+                         "constant load); inertial torque without loss (Yaskawa's convention)")
+        else:
+            notes.append("efficiency applied in the direction of power flow")
+    if design.limits.inertia_ratio is not None:
+        if design.limits.inertia_ratio_of == "load":
+            notes.append("inertia ratio: the load alone reflected to the motor, over the "
+                         "rotor inertia")
+        else:
+            notes.append("inertia ratio: everything the motor drives (load, screws, gears, "
+                         "couplings) reflected to the motor, over the rotor inertia")
     return tuple(notes)
