@@ -70,6 +70,7 @@ KINDS: dict[str, Kind] = {
         Kind("force", "[mass]*[length]/[time]**2", "100 N", "N"),
         Kind("inertia", "[mass]*[length]**2", "1.2 kg*cm^2", "kg*m^2"),
         Kind("mass", "[mass]", "12 kg", "kg"),
+        Kind("density", "[mass]/[length]**3", "7.87e3 kg/m^3", "kg/m^3"),
         Kind("rotary_damping", "[mass]*[length]**2/[time]", "0.01 N*m*s/rad", "N*m*s/rad"),
         Kind("linear_damping", "[mass]/[time]", "5 N*s/m", "N*s/m"),
         Kind("fraction", "", "10 %", "1"),

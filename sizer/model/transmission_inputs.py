@@ -13,12 +13,8 @@ from pydantic import BeforeValidator, Field, WithJsonSchema
 
 from sizer.mechanics.stages import STEEL_DENSITY
 from sizer.model.inputs_base import Quantity, Strict, Text, convert, show_value
-from sizer.units import KINDS, Kind
 
 DEFAULT_RATIO_BOUNDS = (1.0, 100.0)
-
-# a screw's material density (could live in sizer.units.KINDS with the other kinds)
-KINDS.setdefault("density", Kind("density", "[mass]/[length]**3", "7.87e3 kg/m^3", "kg/m^3"))
 
 RatioSpec = tuple[str, tuple[float, ...]]
 """("fixed", (k,)), ("list", (k1, k2, ...)) or ("optimize", (min, max))."""
