@@ -24,7 +24,8 @@ def report(
         show_default=False)] = None,
     rank_by: Annotated[str | None, typer.Option(
         "--rank-by", "-r", metavar="KEY",
-        help="Ranking as in 'sizer size': duration, margin, rms, peak, price or mass.",
+        help="Ranking as in 'sizer size': size (alias power), duration, margin, rms, "
+             "peak, price or mass.",
         show_default=False)] = None,
     top: Annotated[int, typer.Option(
         "--top", "-n", metavar="N", min=1, help="Rows of the ranking table.")] = 5,

@@ -26,7 +26,7 @@ from sizer.report.laws_table import LawsDocument
 from sizer.report.markdown_table import render_markdown_table
 from sizer.report.numbers import short
 from sizer.report.output import write_text_atomically
-from sizer.report.sizing_table import SizingDocument, default_rank_key
+from sizer.report.sizing_table import SizingDocument
 from sizer.report.table import Column, make_table
 
 if TYPE_CHECKING:
@@ -78,7 +78,10 @@ class DesignReport:
         self.design = design
         self.sizing = sizing
         self.top = top
-        self.rank_key = rank_by or default_rank_key(sizing.mode)
+        from sizer.sizing.ranking import rank_rule
+
+        self.rank_rule = rank_rule(rank_by, sizing.mode)
+        self.rank_key = self.rank_rule.key.value
         self.source = source
         ranked = list(enumerate(sizing.results, start=1))
         feasible = [(rank, r) for rank, r in ranked if r.feasible]
@@ -302,7 +305,7 @@ class DesignReport:
         feasible = len(self.sizing.feasible)
         label = "T_min" if self.minimize else "T"
         text = md(f"{feasible} of {total} motor/law pairs are feasible; ranked by "
-                  f"{self.rank_key} ({_rank_text(self.rank_key)}). Durations {label} in "
+                  f"{self.rank_key} ({self.rank_rule.text}). Durations {label} in "
                   f"ms, speeds in rpm, margins in %.") + "\n\n"
         text += md(render_markdown_table(document.table()))
         notes = []
@@ -375,17 +378,6 @@ class DesignReport:
         if r.max_speed is not None:
             parts.append(f"max speed {short(r.max_speed * RPM_PER_RAD_S)} rpm")
         return ", ".join(parts)
-
-
-def _rank_text(key: str) -> str:
-    return {
-        "duration": "shortest first",
-        "margin": "most room left at the tightest limit first",
-        "rms": "smallest RMS torque first",
-        "peak": "smallest peak torque first",
-        "price": "cheapest motor first",
-        "mass": "lightest motor first",
-    }.get(key, key)
 
 
 def _motor_text(motor: Motor) -> str:

@@ -1,6 +1,7 @@
 """The ranked motor/law table of a design (``sizer size``) in every format.
 
-- JSON: ``{"design", "ranked_by", "units", "results"}``, SI, margins as fractions.
+- JSON: ``{"format", "design", "ranked_by", "ranking", "units", "results"}``, SI, margins
+  as fractions; ``format`` is FORMAT, ``ranking`` the rule of ``ranked_by`` in words.
 - CSV: one line per pair, SI units in the headers, full precision.
 - Markdown and the terminal table: duration in ms, speed in rpm, margins in %; a title
   line above and, below, why the shown infeasible pairs fail and what was assumed.
@@ -48,9 +49,15 @@ RESULT_UNITS = {"duration": "s", "peak_torque": "N*m", "rms_torque": "N*m",
 """Units of the JSON result fields (torques and speeds at the motor shaft but the load's)."""
 
 
+FORMAT = "sizer.sizing/1"
+"""The ``format`` of the JSON document: its name and version, bumped on incompatible changes."""
+
+
 def default_rank_key(mode: str) -> str:
     """The ranking of ``sizer.sizing.size_design`` when none is given."""
-    return "duration" if mode == "minimize" else "margin"
+    from sizer.sizing.ranking import default_rank_key as default
+
+    return default(mode).value
 
 
 class SizingDocument:
@@ -60,7 +67,10 @@ class SizingDocument:
                  top: int | None = None, include_infeasible: bool = False) -> None:
         self.sizing = sizing
         self.design = design
-        self.rank_key = rank_by or default_rank_key(sizing.mode)
+        from sizer.sizing.ranking import rank_rule
+
+        self.rank_rule = rank_rule(rank_by, sizing.mode)
+        self.rank_key = self.rank_rule.key.value
         ranked = list(enumerate(sizing.results, start=1))
         shown = [(rank, r) for rank, r in ranked if include_infeasible or r.feasible]
         self.hidden_infeasible = len(ranked) - len(shown)
@@ -98,6 +108,7 @@ class SizingDocument:
                          f"them)")
         if self.cut:
             lines.append(f"{self.cut} more pairs not shown (--top)")
+        lines.append(f"ranked by {self.rank_key}: {self.rank_rule.text}")
         lines += [f"note: {note}" for note in self.sizing.notes]
         return lines
 
@@ -127,8 +138,10 @@ class SizingDocument:
 
     def json(self) -> str:
         return render_json({
+            "format": FORMAT,
             "design": design_summary(self.design, self.sizing.notes),
             "ranked_by": self.rank_key,
+            "ranking": self.rank_rule.text,
             "units": RESULT_UNITS,
             "results": [result_json(r) for _, r in self.rows],
         })
