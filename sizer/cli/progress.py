@@ -7,6 +7,7 @@ The bar appears once a run has taken ``DELAY`` seconds, so quick runs print noth
 
 from __future__ import annotations
 
+import os
 import sys
 import time
 from collections.abc import Callable, Iterator
@@ -14,7 +15,8 @@ from contextlib import contextmanager
 from typing import IO, Any
 
 DELAY = 0.5
-"""Seconds before the bar appears."""
+"""Seconds before the bar appears (the environment variable SIZER_PROGRESS_DELAY sets
+another, e.g. 0 to see it at once)."""
 
 
 def is_terminal(stream: IO[str] | Any) -> bool:
@@ -56,7 +58,7 @@ class TerminalProgress:
 
 @contextmanager
 def sizing_progress(description: str, stream: IO[str] | None = None,
-                    delay: float = DELAY) -> Iterator[Callable[[int, int], None] | None]:
+                    delay: float | None = None) -> Iterator[Callable[[int, int], None] | None]:
     """A progress callback drawing on ``stream`` (default stderr) if it is a terminal, else
     None (nothing is ever written to a pipe or a file)."""
     stream = sys.stderr if stream is None else stream
@@ -64,6 +66,12 @@ def sizing_progress(description: str, stream: IO[str] | None = None,
         yield None
         return
     from rich.console import Console
+
+    if delay is None:
+        try:
+            delay = float(os.environ.get("SIZER_PROGRESS_DELAY", DELAY))
+        except ValueError:
+            delay = DELAY
 
     progress = TerminalProgress(description, Console(file=stream), delay)
     try:
