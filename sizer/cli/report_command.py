@@ -49,7 +49,7 @@ def report(
 
     loaded, sizing = load_and_size(design, catalog, motor, rank_by)
     written = write_report(loaded, sizing, output, top=top, best=best, rank_by=rank_by,
-                           source=design.as_posix(), dpi=dpi)
+                           source=design.name, dpi=dpi)
     typer.echo(f"{written[0]}: report with {len(written) - 1} figures")
 
 

@@ -149,8 +149,8 @@ class DesignReport:
         total = len(self.sizing.results)
         feasible = len(self.sizing.feasible)
         lines = [f"# Sizing report: {md(name)}", ""]
-        if self.source:
-            lines += [f"Design file: `{self.source}`. "
+        if self.source:  # the file name only: no path of the machine it ran on
+            lines += [f"Design file: `{Path(self.source).name}`. "
                       f"Written by sizer {__version__} (Biagiotti & Melchiorri, ch. 6).", ""]
         else:
             lines += [f"Written by sizer {__version__} (Biagiotti & Melchiorri, ch. 6).", ""]
@@ -206,20 +206,35 @@ class DesignReport:
 
     def _transmission(self) -> str:
         transmission = self.design.transmission
+        choice = self.design.ratio_choice
+        chosen = choice.stage if choice is not None else None
+        from_catalog = choice is not None and bool(choice.gearboxes)
         if not transmission.stages:
             body = "Direct drive: the motor turns the load (ratio 1).\n"
         else:
             columns = (Column("#"), Column("type", "left"), Column("name", "left"),
                        Column("ratio"), Column("efficiency"),
                        Column("inertia at its input [kg*m^2]"))
-            rows = [(str(i), s.kind, s.name, short(s.ratio), short(s.efficiency),
-                     short(s.inertia)) for i, s in enumerate(transmission.stages, start=1)]
+            rows = []
+            for i, s in enumerate(transmission.stages):
+                if i == chosen and from_catalog:  # nothing of it is known before the choice
+                    rows.append((str(i + 1), s.kind, "from the gearbox catalog", "per pair",
+                                 "per pair", "per pair"))
+                elif i == chosen:
+                    rows.append((str(i + 1), s.kind, s.name, "per pair", short(s.efficiency),
+                                 short(s.inertia)))
+                else:
+                    rows.append((str(i + 1), s.kind, s.name, short(s.ratio),
+                                 short(s.efficiency), short(s.inertia)))
             body = md(render_markdown_table(make_table(columns, rows)))
-            body += ("\n" + md(f"From the motor to the load. Total ratio K = "
-                               f"{short(transmission.ratio)} (motor speed / load speed), "
-                               f"efficiency {short(transmission.efficiency)}, inertia at the "
-                               f"motor shaft {short(transmission.inertia)} kg*m^2.") + "\n")
-        choice = self.design.ratio_choice
+            if chosen is None:
+                body += ("\n" + md(f"From the motor to the load. Total ratio K = "
+                                   f"{short(transmission.ratio)} (motor speed / load speed), "
+                                   f"efficiency {short(transmission.efficiency)}, inertia at "
+                                   f"the motor shaft {short(transmission.inertia)} kg*m^2.")
+                         + "\n")
+            else:
+                body += "\n" + md("From the motor to the load.") + "\n"
         if choice is not None:
             options = []
             if choice.ratios:
@@ -228,8 +243,7 @@ class DesignReport:
                 options.append(f"any ratio from {short(choice.bounds[0])} to "
                                f"{short(choice.bounds[1])}")
             if choice.gearboxes:
-                names = dict.fromkeys(f"{o.gearbox} ({short(o.stage.ratio)})"
-                                      for o in choice.gearboxes)
+                names = dict.fromkeys(o.gearbox for o in choice.gearboxes)
                 options.append("the catalog gearboxes " + ", ".join(names))
             body += ("\n" + md(f"The ratio of stage {choice.stage + 1} is chosen for each "
                                f"pair among {'; '.join(options)}; each candidate below "
@@ -348,8 +362,7 @@ class DesignReport:
             lines.append(f"- {md(_motor_text(motor))}")
         lines.append(f"- {md(self._requirements(r))}")
         if r.ratio != 1.0 or r.gearbox:
-            gearbox = f", gearbox {r.gearbox}" if r.gearbox else ""
-            lines.append(f"- {md(f'Transmission ratio K = {short(r.ratio)}{gearbox}')}")
+            lines.append(f"- {md(self._transmission_of(r))}")
         verdict = (f"feasible; limiting check: {r.limiting}" if r.feasible
                    else f"not feasible: {r.reason}")
         lines += [f"- Verdict: {md(verdict)}", ""]
@@ -365,6 +378,27 @@ class DesignReport:
         lines += [f"- {md(check_line(r, check))}" for check in r.checks]
         lines.append("")
         return "\n".join(lines)
+
+    def _transmission_of(self, r: CandidateResult) -> str:
+        """The pair's ratio and, when it was chosen, the stage it was computed with."""
+        text = f"Transmission ratio K = {short(r.ratio)}"
+        choice = self.design.ratio_choice
+        if choice is None or r.transmission is None \
+                or choice.stage >= len(r.transmission.stages):
+            return text + (f", gearbox {r.gearbox}" if r.gearbox else "")
+        stage = r.transmission.stages[choice.stage]
+        name = f"gearbox {r.gearbox} (from the catalog)" if r.gearbox else \
+            f"stage {choice.stage + 1} ({stage.kind})"
+        figures = [f"ratio {short(stage.ratio)}", f"efficiency {short(stage.efficiency)}",
+                   f"inertia {short(stage.inertia)} kg*m^2 at its input"]
+        if stage.max_input_speed is not None:
+            figures.append(f"max input speed {short(stage.max_input_speed * RPM_PER_RAD_S)} "
+                           f"rpm")
+        if stage.rated_output_torque is not None:
+            figures.append(f"rated output torque {short(stage.rated_output_torque)} N*m")
+        if stage.peak_output_torque is not None:
+            figures.append(f"peak output torque {short(stage.peak_output_torque)} N*m")
+        return f"{text}; {name}: {', '.join(figures)}"
 
     def _requirements(self, r: CandidateResult) -> str:
         if r.duration is None:
