@@ -104,3 +104,33 @@ def test_indexing_table_first_row_is_the_smallest_feasible_motor() -> None:
     slacks = [r.slacks for r in same_motor]
     assert slacks == sorted(slacks, reverse=True)  # then by margin
     assert feasible[0].rated_power == pytest.approx(408.407, rel=1e-5)
+
+
+CARRIAGE = """\
+name: 5 kg carriage on a belt
+task: {displacement: 300 mm, duration: 0.5 s, dwell: 0.2 s, return: true}
+load: {mass: 5 kg, friction_coefficient: 0.05}
+transmission: {type: belt, driver_diameter: 40 mm, efficiency: 0.95}
+laws: [cycloidal, modified_sinusoidal]
+limits: {torque_margin: 20 %}
+"""
+
+
+def test_a_light_carriage_gets_a_small_motor_from_the_bundled_catalogs(tmp_path: Path) -> None:
+    """Against every bundled real motor: the first pair has the smallest rated power of
+    all feasible motors; ranking by margin would put a motor of several kW first."""
+    from sizer.io import load_design
+    from sizer.sizing import size_design
+
+    path = tmp_path / "carriage.yaml"
+    path.write_text(CARRIAGE)
+    design = load_design(path, default_motors=True)
+    assert len(design.motors) > 50
+    power = {m.id: m.continuous_torque * m.rated_speed for m in design.motors}
+    sizing = size_design(design)
+    feasible = [r for r in sizing.results if r.feasible]
+    smallest = min(power[r.motor] for r in feasible)
+    assert power[sizing.results[0].motor] == smallest < 250.0
+    assert [power[r.motor] for r in feasible] == sorted(power[r.motor] for r in feasible)
+    roomiest = rank(sizing.results, "margin", sizing.mode)[0]
+    assert power[roomiest.motor] > 10 * smallest
