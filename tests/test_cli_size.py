@@ -27,8 +27,8 @@ SERVO_CATALOG = str(EXAMPLES / "catalogs" / "example-servo.yaml")
 
 RESULT_KEYS = ["motor", "law", "spec", "params", "feasible", "duration", "peak_torque",
                "rms_torque", "max_speed", "margin_peak", "margin_rms", "margin_speed",
-               "limiting", "reason", "price", "mass", "ratio", "gearbox", "load_speed",
-               "load_torque", "checks"]
+               "limiting", "reason", "price", "mass", "rated_power", "ratio", "gearbox",
+               "load_speed", "load_torque", "checks"]
 CHECK_KEYS = ["name", "value", "limit", "unit", "margin", "required", "passed"]
 
 

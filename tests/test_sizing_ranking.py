@@ -134,3 +134,16 @@ def test_a_light_carriage_gets_a_small_motor_from_the_bundled_catalogs(tmp_path:
     assert [power[r.motor] for r in feasible] == sorted(power[r.motor] for r in feasible)
     roomiest = rank(sizing.results, "margin", sizing.mode)[0]
     assert power[roomiest.motor] > 10 * smallest
+
+
+def test_json_results_give_the_size_they_are_ranked_by() -> None:
+    import json
+
+    from cli_run import run_cli
+
+    data = json.loads(run_cli("size", str(ROOT / "examples/indexing-table.yaml"), "-f", "json",
+                              "--top", "1").stdout)
+    assert data["results"][0]["motor"] == "HG-KN43J"
+    assert data["results"][0]["rated_power"] == pytest.approx(1.3 * 3000 * 2 * 3.141592653589793
+                                                              / 60, rel=1e-12)
+    assert data["units"]["rated_power"].startswith("W")

@@ -48,6 +48,7 @@ SPEED = {False: "max speed [rpm]", True: "speed [rpm]"}
 RESULT_UNITS = {"duration": "s", "peak_torque": "N*m", "rms_torque": "N*m",
                 "max_speed": "rad/s", "margin": "1 (fraction of the limit left unused)",
                 "price": "as in the catalog", "mass": "kg",
+                "rated_power": "W (the motor's tau_c*v_n, the size it is ranked by)",
                 "ratio": "motor speed / load speed (rad/rad; rad/m on a linear axis)",
                 "load_speed": "rad/s (m/s on a linear axis)",
                 "load_torque": "N*m (N on a linear axis)"}
