@@ -12,15 +12,18 @@ from cli_run import run_cli as run
 @pytest.mark.parametrize(("which", "fields"), [
     ("design", {"task", "load", "transmission", "laws", "motors", "check", "limits"}),
     ("catalog", {"catalog", "motors"}),
+    ("gearboxes", {"catalog", "gearboxes"}),
 ])
 def test_schema_is_json_with_the_file_fields(which: str, fields: set[str]) -> None:
-    from sizer.io import catalog_schema, design_schema
+    from sizer.io.loader import catalog_schema, design_schema, gearbox_catalog_schema
 
     result = run("schema", which)
     assert result.returncode == 0, result.stderr
     schema = json.loads(result.stdout)
     assert fields <= set(schema["properties"])
-    assert schema == (design_schema() if which == "design" else catalog_schema())
+    expected = {"design": design_schema, "catalog": catalog_schema,
+                "gearboxes": gearbox_catalog_schema}[which]()
+    assert schema == expected and schema["$id"].endswith(f":{which}:1")
     assert result.stdout.endswith("}\n") and run("schema", which).stdout == result.stdout
 
 

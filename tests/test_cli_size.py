@@ -27,8 +27,8 @@ SERVO_CATALOG = str(EXAMPLES / "catalogs" / "example-servo.yaml")
 
 RESULT_KEYS = ["motor", "law", "spec", "params", "feasible", "duration", "peak_torque",
                "rms_torque", "max_speed", "margin_peak", "margin_rms", "margin_speed",
-               "limiting", "reason", "price", "mass", "ratio", "gearbox", "load_speed",
-               "load_torque", "checks"]
+               "limiting", "reason", "price", "mass", "rated_power", "ratio", "gearbox",
+               "load_speed", "load_torque", "checks"]
 CHECK_KEYS = ["name", "value", "limit", "unit", "margin", "required", "passed"]
 
 
@@ -49,10 +49,13 @@ def indexing_json() -> dict:
 
 # ------------------------------------------------------------------ JSON
 def test_json_has_the_design_in_si_with_units(indexing_json: dict) -> None:
-    assert list(indexing_json) == ["design", "ranked_by", "units", "results"]
+    assert list(indexing_json) == ["format", "design", "ranked_by", "ranking", "units",
+                                   "results"]
+    assert indexing_json["format"] == "sizer.sizing/1"
     design = indexing_json["design"]
     assert design["name"] == "Indexing table, 90 deg in 0.25 s"
-    assert design["mode"] == "duration" and indexing_json["ranked_by"] == "margin"
+    assert design["mode"] == "duration" and indexing_json["ranked_by"] == "size"
+    assert indexing_json["ranking"].startswith("smallest motor first")
     assert design["task"]["displacement"] == pytest.approx(math.pi / 2, rel=1e-15)
     assert design["task"]["duration"] == 0.25 and design["task"]["dwell"] == 0.35
     assert design["task"]["units"] == {"displacement": "rad", "duration": "s", "dwell": "s"}
@@ -197,8 +200,9 @@ def test_minimize_ranks_by_duration_and_rank_by_changes_the_order() -> None:
     assert by_rms["ranked_by"] == "rms"
     rms = [r["rms_torque"] for r in by_rms["results"]]
     assert rms == sorted(rms) and rms != [r["rms_torque"] for r in by_duration["results"]]
-    for key in ("margin", "peak", "price", "mass"):
+    for key in ("margin", "peak", "price", "mass", "size"):
         assert json.loads(ok("size", EX64, "-f", "json", "-r", key))["ranked_by"] == key
+    assert json.loads(ok("size", EX64, "-f", "json", "-r", "power"))["ranked_by"] == "size"
 
 
 def test_bad_rank_key_lists_the_keys() -> None:

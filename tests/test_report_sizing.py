@@ -130,7 +130,7 @@ def test_sizing_document_filters_and_keeps_ranks() -> None:
     top = SizingDocument(results, DESIGN, include_infeasible=True, top=1)
     assert "2 more pairs not shown (--top)" in top.footer()
     assert top.title == ("demo: h = 1 rad in T = 500 ms; 2 of 3 motor/law pairs feasible, "
-                         "ranked by margin")
+                         "ranked by size")
 
 
 def test_sizing_document_formats() -> None:

@@ -24,7 +24,8 @@ def report(
         show_default=False)] = None,
     rank_by: Annotated[str | None, typer.Option(
         "--rank-by", "-r", metavar="KEY",
-        help="Ranking as in 'sizer size': duration, margin, rms, peak, price or mass.",
+        help="Ranking as in 'sizer size': size (alias power), duration, margin, rms, "
+             "peak, price or mass.",
         show_default=False)] = None,
     top: Annotated[int, typer.Option(
         "--top", "-n", metavar="N", min=1, help="Rows of the ranking table.")] = 5,
@@ -48,7 +49,7 @@ def report(
 
     loaded, sizing = load_and_size(design, catalog, motor, rank_by)
     written = write_report(loaded, sizing, output, top=top, best=best, rank_by=rank_by,
-                           source=design.as_posix(), dpi=dpi)
+                           source=design.name, dpi=dpi)
     typer.echo(f"{written[0]}: report with {len(written) - 1} figures")
 
 

@@ -1,4 +1,4 @@
-"""``sizer schema``: the JSON Schema of the design file or of the motor catalog."""
+"""``sizer schema``: the JSON Schema of the design file, the motor or the gearbox catalog."""
 
 from __future__ import annotations
 
@@ -15,26 +15,36 @@ class SchemaName(StrEnum):
 
     DESIGN = "design"
     CATALOG = "catalog"
+    GEARBOXES = "gearboxes"
 
 
 def schema(
     which: Annotated[SchemaName, typer.Argument(
-        metavar="design|catalog", case_sensitive=False,
-        help="design (a design file) or catalog (a motor catalog).", show_default=False)],
+        metavar="design|catalog|gearboxes", case_sensitive=False,
+        help="design (a design file), catalog (a motor catalog) or gearboxes (a gearbox "
+             "catalog).", show_default=False)],
     output: OutputOption = None,
 ) -> None:
-    """Print the JSON Schema of a design file or a motor catalog (for editors and CI).
+    """Print the JSON Schema (draft 2020-12) of a design file, a motor catalog or a gearbox
+    catalog, for editors and CI. Put the line
+    '# yaml-language-server: $schema=design.schema.json' at the top of a design file to
+    have an editor with the YAML language server complete and check it.
 
     Example:
 
         sizer schema design --output design.schema.json
     """
-    from sizer.io import catalog_schema, design_schema  # lazy: keeps --help fast
+    from sizer.io.loader import (  # lazy: keeps --help fast
+        catalog_schema,
+        design_schema,
+        gearbox_catalog_schema,
+    )
     from sizer.report.json_text import render_json
     from sizer.report.output import emit
 
-    document = design_schema() if which is SchemaName.DESIGN else catalog_schema()
-    emit(render_json(document), output)
+    build = {SchemaName.DESIGN: design_schema, SchemaName.CATALOG: catalog_schema,
+             SchemaName.GEARBOXES: gearbox_catalog_schema}[which]
+    emit(render_json(build()), output)
 
 
 def register(app: typer.Typer) -> None:

@@ -19,10 +19,12 @@ if TYPE_CHECKING:
     from sizer.model.domain import Design, Motor
     from sizer.sizing import SizingResult
 
-RANK_HELP = ("Rank the feasible pairs by duration (shortest first), margin (most room "
-             "left at the tightest limit first), rms or peak (smallest motor torque "
-             "first), price or mass (cheapest or lightest motor first). Default: duration "
-             "with 'duration: minimize', margin otherwise.")
+RANK_HELP = ("Rank the feasible pairs by size (alias power: the smallest motor first, by "
+             "rated power tau_c*v_n), duration (shortest first), margin (most room left at "
+             "the tightest limit first), rms or peak (smallest motor torque first), price "
+             "or mass (cheapest or lightest motor first); ties go to the next criteria "
+             "(size, margin, rotor inertia). Default: duration with 'duration: minimize', "
+             "size otherwise.")
 
 
 def size(
@@ -72,13 +74,17 @@ def load_and_size(design: Path, catalog: Sequence[str] | None, motor: Sequence[s
                   rank_by: str | None) -> tuple[Design, SizingResult]:
     """Load a design (plus --catalog, restricted to --motor ids) and size it; UserErrors
     of the sizing name the design file."""
+    from sizer.cli.progress import sizing_progress
     from sizer.sizing import size_design
+    from sizer.sizing.ranking import rank_rule
 
+    rank_rule(rank_by, "duration")  # an unknown key fails before any work
     loaded = load_design_file(design, catalog)
     if motor:
         loaded = replace(loaded, motors=select_motors(loaded.motors, motor))
     try:
-        return loaded, size_design(loaded, rank_by=rank_by)
+        with sizing_progress(f"sizing {design.name}") as progress:
+            return loaded, size_design(loaded, rank_by=rank_by, progress=progress)
     except UserError as error:
         raise error.located(file=str(design)) from None
 

@@ -3,7 +3,8 @@
     load_design("machine.yaml")                 -> Design
     load_catalog("book-examples")               -> tuple[Motor, ...]
     bundled_catalogs()                          -> {"book-examples": Path(...), ...}
-    design_schema(), catalog_schema()           -> JSON Schema dicts
+    design_schema(), catalog_schema(),
+    gearbox_catalog_schema()                    -> JSON Schema dicts (draft 2020-12)
 
 Every mistake in a file ends in a UserError naming the file, the line and the field.
 """
@@ -17,6 +18,8 @@ from dataclasses import dataclass, replace
 from importlib import resources
 from pathlib import Path
 from typing import Any
+
+from pydantic import BaseModel
 
 from sizer.errors import UserError
 from sizer.io.plausibility import bare_number_warnings, motor_warnings
@@ -399,14 +402,38 @@ def _unknown_motor(motor_id: str, known: list[str]) -> str:
 # ------------------------------------------------------------------- schemas
 
 
+SCHEMA_DIALECT = "https://json-schema.org/draft/2020-12/schema"
+SCHEMA_VERSION = 1
+"""Bumped when a schema stops accepting files it accepted (its ``$id`` ends with it)."""
+
+
+def schema_id(name: str) -> str:
+    """The ``$id`` of a schema: a name, not an address (nothing is fetched from it)."""
+    return f"urn:sizer-motion:schema:{name}:{SCHEMA_VERSION}"
+
+
+def _schema_document(model: type[BaseModel], name: str) -> dict[str, Any]:
+    """The model's JSON Schema (derived by pydantic, shorthands included) with ``$schema``
+    (draft 2020-12) and ``$id`` first."""
+    return {"$schema": SCHEMA_DIALECT, "$id": schema_id(name),
+            **model.model_json_schema(by_alias=True)}
+
+
 def design_schema() -> dict[str, Any]:
     """JSON Schema of the design file (for ``sizer schema design``)."""
-    return DesignFile.model_json_schema(by_alias=True)
+    return _schema_document(DesignFile, "design")
 
 
 def catalog_schema() -> dict[str, Any]:
     """JSON Schema of the motor catalog file (for ``sizer schema catalog``)."""
-    return CatalogFile.model_json_schema(by_alias=True)
+    return _schema_document(CatalogFile, "catalog")
+
+
+def gearbox_catalog_schema() -> dict[str, Any]:
+    """JSON Schema of the gearbox catalog file (for ``sizer schema gearboxes``)."""
+    from sizer.model.transmission_inputs import GearboxCatalogFile
+
+    return _schema_document(GearboxCatalogFile, "gearboxes")
 
 
 __all__ = [
@@ -417,6 +444,7 @@ __all__ = [
     "default_catalogs",
     "default_laws",
     "design_schema",
+    "gearbox_catalog_schema",
     "load_catalog",
     "load_design",
     "read_catalog",

@@ -27,6 +27,8 @@ from pydantic import (
 from sizer.errors import UserError
 from sizer.model.inputs_base import (
     Identifier,
+    OneOrList,
+    OrArray,
     Quantity,
     RawQuantity,
     Strict,
@@ -87,15 +89,6 @@ LawSpecText = Annotated[
 _Strict = Strict
 
 
-def _curve_point(value: Any) -> Any:
-    if isinstance(value, list | tuple):
-        if len(value) != 2:
-            raise ValueError(f"a curve point is [speed, torque] or {{speed: .., torque: ..}}, "
-                             f"got {_show(value)}")
-        return {"speed": value[0], "torque": value[1]}
-    return value
-
-
 class CurvePointInput(_Strict):
     """A (speed, torque) point of a speed-torque curve."""
 
@@ -103,17 +96,8 @@ class CurvePointInput(_Strict):
     torque: Quantity("torque", ge=0)  # type: ignore[valid-type]
 
 
-CurvePoint = Annotated[
-    CurvePointInput,
-    BeforeValidator(_curve_point),
-    WithJsonSchema({"anyOf": [
-        {"type": "array", "minItems": 2, "maxItems": 2,
-         "items": {"anyOf": [{"type": "number"}, {"type": "string"}]},
-         "description": "[speed, torque], e.g. ['3000 rpm', '0.3 N*m']"},
-        {"type": "object", "properties": {"speed": {}, "torque": {}},
-         "required": ["speed", "torque"], "additionalProperties": False},
-    ]}),
-]
+CurvePoint = Annotated[CurvePointInput, OrArray(("speed", "torque"), "curve point")]
+"""A point as a mapping or as the pair [speed, torque], e.g. ['3000 rpm', '0.3 N*m']."""
 
 
 class MotorInput(_Strict):
@@ -220,14 +204,6 @@ MotorRef = Annotated[
 """A catalog (file path or bundled name) or an inline motor mapping."""
 
 
-def _as_list(value: Any) -> Any:
-    return [value] if isinstance(value, str) else value
-
-
-def _stages(value: Any) -> Any:
-    return [value] if isinstance(value, dict) else value
-
-
 class CheckInput(_Strict):
     """The motor and law that ``sizer check`` verifies."""
 
@@ -278,12 +254,12 @@ class DesignFile(_Strict):
     task: TaskInput
     load: LoadInput
     transmission: Annotated[list[TransmissionStageInput] | None,
-                            BeforeValidator(_stages)] = Field(
+                            OneOrList("object")] = Field(
         None, description="one stage (a mapping) or a list of stages from the motor to the "
                           "load; omitted = direct drive")
-    laws: Annotated[list[LawSpecText] | None, BeforeValidator(_as_list)] = Field(
+    laws: Annotated[list[LawSpecText] | None, OneOrList("string")] = Field(
         None, min_length=1, description="law specs; omitted = the default laws")
-    motors: Annotated[list[MotorRef] | None, BeforeValidator(_as_list)] = Field(
+    motors: Annotated[list[MotorRef] | None, OneOrList("string")] = Field(
         None, description="catalog paths (relative to this file), bundled catalog names "
                           "or inline motors")
     check: CheckInput | None = None

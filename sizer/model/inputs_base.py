@@ -9,9 +9,19 @@ from __future__ import annotations
 
 import math
 import reprlib
-from typing import Annotated, Any
+from dataclasses import dataclass
+from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, WithJsonSchema
+from pydantic import (
+    BaseModel,
+    BeforeValidator,
+    ConfigDict,
+    GetCoreSchemaHandler,
+    GetJsonSchemaHandler,
+    WithJsonSchema,
+)
+from pydantic.json_schema import JsonSchemaValue
+from pydantic_core import core_schema
 
 from sizer.errors import UserError
 from sizer.units import KINDS, to_si
@@ -160,3 +170,85 @@ class Strict(BaseModel):
     """Unknown fields are errors; models are immutable."""
 
     model_config = ConfigDict(extra="forbid", populate_by_name=False, frozen=True)
+
+
+# ---------------------------------------------------------------- shorthands
+#
+# A shorthand is accepted by the validator and written into the JSON Schema by one object,
+# so the schema (``sizer schema``) follows the models: it is derived from pydantic's own
+# schema of the full form, never written by hand.
+
+JsonType = Literal["string", "object"]
+
+_PYTHON_TYPES: dict[str, type] = {"string": str, "object": dict}
+
+
+def _array_branch(schema: dict[str, Any]) -> dict[str, Any] | None:
+    """The ``{"type": "array", ...}`` part of a schema (itself or a branch of anyOf)."""
+    if schema.get("type") == "array":
+        return schema
+    return next((b for b in schema.get("anyOf", ()) if b.get("type") == "array"), None)
+
+
+@dataclass(frozen=True)
+class OneOrList:
+    """A list field that also takes one item of JSON type ``single`` alone (``laws:
+    cycloidal``, a transmission of one stage as a mapping): the item becomes ``[item]``."""
+
+    single: JsonType
+
+    def __get_pydantic_core_schema__(self, source: Any,
+                                     handler: GetCoreSchemaHandler) -> core_schema.CoreSchema:
+        kind = _PYTHON_TYPES[self.single]
+        return core_schema.no_info_before_validator_function(
+            lambda v: [v] if isinstance(v, kind) else v, handler(source))
+
+    def __get_pydantic_json_schema__(self, schema: core_schema.CoreSchema,
+                                     handler: GetJsonSchemaHandler) -> JsonSchemaValue:
+        json_schema = handler(schema)
+        array = _array_branch(json_schema)
+        if array is None:
+            return json_schema
+        item = array.get("items", {})
+        one = item if item.get("type") == self.single else {
+            "allOf": [item, {"type": self.single}]}
+        if "anyOf" not in json_schema:
+            return {"anyOf": [one, json_schema]}
+        return {**json_schema, "anyOf": [one, *json_schema["anyOf"]]}
+
+
+_MODEL_KEY = "sizer_or_array_model"
+
+
+@dataclass(frozen=True)
+class OrArray:
+    """A mapping that may also be written as a list of its values in the order ``fields``
+    (a curve point ``[speed, torque]`` for ``{speed: .., torque: ..}``)."""
+
+    fields: tuple[str, ...]
+    name: str = "value"
+
+    def _as_mapping(self, value: Any) -> Any:
+        if isinstance(value, list | tuple):
+            if len(value) != len(self.fields):
+                listed = ", ".join(self.fields)
+                mapping = ", ".join(f"{f}: .." for f in self.fields)
+                raise ValueError(f"{_a(self.name)} is [{listed}] or {{{mapping}}}, got "
+                                 f"{show_value(value)}")
+            return dict(zip(self.fields, value, strict=True))
+        return value
+
+    def __get_pydantic_core_schema__(self, source: Any,
+                                     handler: GetCoreSchemaHandler) -> core_schema.CoreSchema:
+        return core_schema.no_info_before_validator_function(
+            self._as_mapping, handler(source), metadata={_MODEL_KEY: source})
+
+    def __get_pydantic_json_schema__(self, schema: core_schema.CoreSchema,
+                                     handler: GetJsonSchemaHandler) -> JsonSchemaValue:
+        json_schema = handler(schema)
+        model = (schema.get("metadata") or {}).get(_MODEL_KEY)
+        properties = model.model_json_schema()["properties"] if model is not None else {}
+        array = {"type": "array", "prefixItems": [properties.get(f, {}) for f in self.fields],
+                 "minItems": len(self.fields), "maxItems": len(self.fields), "items": False,
+                 "description": f"[{', '.join(self.fields)}]"}
+        return {"anyOf": [array, json_schema]}

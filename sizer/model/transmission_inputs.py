@@ -46,10 +46,14 @@ Ratio = Annotated[
     BeforeValidator(_ratio),
     WithJsonSchema({"anyOf": [
         {"type": "number", "exclusiveMinimum": 0},
-        {"type": "array", "items": {"type": "number", "exclusiveMinimum": 0}},
+        {"type": "array", "minItems": 1,
+         "items": {"anyOf": [{"type": "number", "exclusiveMinimum": 0}, {"type": "string"}]}},
         {"type": "string", "enum": ["optimize"]},
-        {"type": "object", "properties": {"optimize": {"type": "array"}},
-         "required": ["optimize"]},
+        {"type": "object", "properties": {"optimize": {
+            "type": "array", "minItems": 2, "maxItems": 2,
+            "items": {"anyOf": [{"type": "number", "exclusiveMinimum": 0},
+                                {"type": "string"}]}}},
+         "required": ["optimize"], "additionalProperties": False},
     ], "description": "input over output speed: a number, a list to try, 'optimize' "
                       "(1 to 100) or {optimize: [min, max]}"}),
 ]

@@ -91,6 +91,7 @@ def result_json(result: CandidateResult) -> dict[str, Any]:
         "reason": result.reason,
         "price": finite_or_none(result.price),
         "mass": finite_or_none(result.mass),
+        "rated_power": finite_or_none(result.rated_power),
         "ratio": finite_or_none(result.ratio),
         "gearbox": result.gearbox,
         "load_speed": finite_or_none(result.load_speed),

@@ -20,6 +20,10 @@ if TYPE_CHECKING:
     from sizer.sizing import CandidateResult
 
 
+FORMAT = "sizer.check/1"
+"""The ``format`` of the JSON document: its name and version, bumped on incompatible changes."""
+
+
 class CheckDocument:
     """One motor with one law against the design's limits."""
 
@@ -68,6 +72,7 @@ class CheckDocument:
     def data(self) -> dict[str, Any]:
         """The JSON object: the design, the verdict, the units and the pair's result."""
         return {
+            "format": FORMAT,
             "design": design_summary(self.design, self.notes),
             "passed": self.passed,
             "units": RESULT_UNITS,

@@ -26,7 +26,7 @@ from sizer.report.laws_table import LawsDocument
 from sizer.report.markdown_table import render_markdown_table
 from sizer.report.numbers import short
 from sizer.report.output import write_text_atomically
-from sizer.report.sizing_table import SizingDocument, default_rank_key
+from sizer.report.sizing_table import SizingDocument
 from sizer.report.table import Column, make_table
 
 if TYPE_CHECKING:
@@ -78,7 +78,10 @@ class DesignReport:
         self.design = design
         self.sizing = sizing
         self.top = top
-        self.rank_key = rank_by or default_rank_key(sizing.mode)
+        from sizer.sizing.ranking import rank_rule
+
+        self.rank_rule = rank_rule(rank_by, sizing.mode)
+        self.rank_key = self.rank_rule.key.value
         self.source = source
         ranked = list(enumerate(sizing.results, start=1))
         feasible = [(rank, r) for rank, r in ranked if r.feasible]
@@ -146,8 +149,8 @@ class DesignReport:
         total = len(self.sizing.results)
         feasible = len(self.sizing.feasible)
         lines = [f"# Sizing report: {md(name)}", ""]
-        if self.source:
-            lines += [f"Design file: `{self.source}`. "
+        if self.source:  # the file name only: no path of the machine it ran on
+            lines += [f"Design file: `{Path(self.source).name}`. "
                       f"Written by sizer {__version__} (Biagiotti & Melchiorri, ch. 6).", ""]
         else:
             lines += [f"Written by sizer {__version__} (Biagiotti & Melchiorri, ch. 6).", ""]
@@ -203,20 +206,35 @@ class DesignReport:
 
     def _transmission(self) -> str:
         transmission = self.design.transmission
+        choice = self.design.ratio_choice
+        chosen = choice.stage if choice is not None else None
+        from_catalog = choice is not None and bool(choice.gearboxes)
         if not transmission.stages:
             body = "Direct drive: the motor turns the load (ratio 1).\n"
         else:
             columns = (Column("#"), Column("type", "left"), Column("name", "left"),
                        Column("ratio"), Column("efficiency"),
                        Column("inertia at its input [kg*m^2]"))
-            rows = [(str(i), s.kind, s.name, short(s.ratio), short(s.efficiency),
-                     short(s.inertia)) for i, s in enumerate(transmission.stages, start=1)]
+            rows = []
+            for i, s in enumerate(transmission.stages):
+                if i == chosen and from_catalog:  # nothing of it is known before the choice
+                    rows.append((str(i + 1), s.kind, "from the gearbox catalog", "per pair",
+                                 "per pair", "per pair"))
+                elif i == chosen:
+                    rows.append((str(i + 1), s.kind, s.name, "per pair", short(s.efficiency),
+                                 short(s.inertia)))
+                else:
+                    rows.append((str(i + 1), s.kind, s.name, short(s.ratio),
+                                 short(s.efficiency), short(s.inertia)))
             body = md(render_markdown_table(make_table(columns, rows)))
-            body += ("\n" + md(f"From the motor to the load. Total ratio K = "
-                               f"{short(transmission.ratio)} (motor speed / load speed), "
-                               f"efficiency {short(transmission.efficiency)}, inertia at the "
-                               f"motor shaft {short(transmission.inertia)} kg*m^2.") + "\n")
-        choice = self.design.ratio_choice
+            if chosen is None:
+                body += ("\n" + md(f"From the motor to the load. Total ratio K = "
+                                   f"{short(transmission.ratio)} (motor speed / load speed), "
+                                   f"efficiency {short(transmission.efficiency)}, inertia at "
+                                   f"the motor shaft {short(transmission.inertia)} kg*m^2.")
+                         + "\n")
+            else:
+                body += "\n" + md("From the motor to the load.") + "\n"
         if choice is not None:
             options = []
             if choice.ratios:
@@ -225,8 +243,7 @@ class DesignReport:
                 options.append(f"any ratio from {short(choice.bounds[0])} to "
                                f"{short(choice.bounds[1])}")
             if choice.gearboxes:
-                names = dict.fromkeys(f"{o.gearbox} ({short(o.stage.ratio)})"
-                                      for o in choice.gearboxes)
+                names = dict.fromkeys(o.gearbox for o in choice.gearboxes)
                 options.append("the catalog gearboxes " + ", ".join(names))
             body += ("\n" + md(f"The ratio of stage {choice.stage + 1} is chosen for each "
                                f"pair among {'; '.join(options)}; each candidate below "
@@ -302,7 +319,7 @@ class DesignReport:
         feasible = len(self.sizing.feasible)
         label = "T_min" if self.minimize else "T"
         text = md(f"{feasible} of {total} motor/law pairs are feasible; ranked by "
-                  f"{self.rank_key} ({_rank_text(self.rank_key)}). Durations {label} in "
+                  f"{self.rank_key} ({self.rank_rule.text}). Durations {label} in "
                   f"ms, speeds in rpm, margins in %.") + "\n\n"
         text += md(render_markdown_table(document.table()))
         notes = []
@@ -345,8 +362,7 @@ class DesignReport:
             lines.append(f"- {md(_motor_text(motor))}")
         lines.append(f"- {md(self._requirements(r))}")
         if r.ratio != 1.0 or r.gearbox:
-            gearbox = f", gearbox {r.gearbox}" if r.gearbox else ""
-            lines.append(f"- {md(f'Transmission ratio K = {short(r.ratio)}{gearbox}')}")
+            lines.append(f"- {md(self._transmission_of(r))}")
         verdict = (f"feasible; limiting check: {r.limiting}" if r.feasible
                    else f"not feasible: {r.reason}")
         lines += [f"- Verdict: {md(verdict)}", ""]
@@ -363,6 +379,27 @@ class DesignReport:
         lines.append("")
         return "\n".join(lines)
 
+    def _transmission_of(self, r: CandidateResult) -> str:
+        """The pair's ratio and, when it was chosen, the stage it was computed with."""
+        text = f"Transmission ratio K = {short(r.ratio)}"
+        choice = self.design.ratio_choice
+        if choice is None or r.transmission is None \
+                or choice.stage >= len(r.transmission.stages):
+            return text + (f", gearbox {r.gearbox}" if r.gearbox else "")
+        stage = r.transmission.stages[choice.stage]
+        name = f"gearbox {r.gearbox} (from the catalog)" if r.gearbox else \
+            f"stage {choice.stage + 1} ({stage.kind})"
+        figures = [f"ratio {short(stage.ratio)}", f"efficiency {short(stage.efficiency)}",
+                   f"inertia {short(stage.inertia)} kg*m^2 at its input"]
+        if stage.max_input_speed is not None:
+            figures.append(f"max input speed {short(stage.max_input_speed * RPM_PER_RAD_S)} "
+                           f"rpm")
+        if stage.rated_output_torque is not None:
+            figures.append(f"rated output torque {short(stage.rated_output_torque)} N*m")
+        if stage.peak_output_torque is not None:
+            figures.append(f"peak output torque {short(stage.peak_output_torque)} N*m")
+        return f"{text}; {name}: {', '.join(figures)}"
+
     def _requirements(self, r: CandidateResult) -> str:
         if r.duration is None:
             return "No feasible duration"
@@ -375,17 +412,6 @@ class DesignReport:
         if r.max_speed is not None:
             parts.append(f"max speed {short(r.max_speed * RPM_PER_RAD_S)} rpm")
         return ", ".join(parts)
-
-
-def _rank_text(key: str) -> str:
-    return {
-        "duration": "shortest first",
-        "margin": "most room left at the tightest limit first",
-        "rms": "smallest RMS torque first",
-        "peak": "smallest peak torque first",
-        "price": "cheapest motor first",
-        "mass": "lightest motor first",
-    }.get(key, key)
 
 
 def _motor_text(motor: Motor) -> str:

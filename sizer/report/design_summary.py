@@ -29,11 +29,25 @@ def _units(linear: bool) -> dict[str, str]:
             "force": "N*m", "acceleration": "rad/s^2", "jerk": "rad/s^3"}
 
 
+def _choice(design: Design) -> dict[str, Any] | None:
+    """The free ratio of a stage: the options tried (each result gives its own choice)."""
+    choice = design.ratio_choice
+    if choice is None:
+        return None
+    return {"stage": choice.stage,
+            "ratios": [float(r) for r in choice.ratios] or None,
+            "bounds": [float(b) for b in choice.bounds] if choice.bounds else None,
+            "gearboxes": [o.gearbox for o in choice.gearboxes] or None}
+
+
 def design_summary(design: Design, notes: tuple[str, ...] = ()) -> dict[str, Any]:
     """The design as a JSON object (fixed key order), each section with its ``units``."""
     task, load, limits = design.task, design.load, design.limits
     units = _units(task.linear)
     transmission = design.transmission
+    choice = design.ratio_choice
+    chosen = choice.stage if choice is not None else None
+    catalog = choice is not None and bool(choice.gearboxes)
     return {
         "name": design.name,
         "mode": "minimize" if task.minimize else "duration",
@@ -55,16 +69,21 @@ def design_summary(design: Design, notes: tuple[str, ...] = ()) -> dict[str, Any
                       "force" if task.linear else "torque": units["force"]},
         },
         "transmission": {
-            "ratio": float(transmission.ratio),
-            "efficiency": float(transmission.efficiency),
-            "inertia": float(transmission.inertia),
+            "ratio": None if chosen is not None else float(transmission.ratio),
+            "efficiency": None if catalog else float(transmission.efficiency),
+            "inertia": None if catalog else float(transmission.inertia),
             "stages": [
-                {"type": stage.kind, "name": stage.name, "ratio": float(stage.ratio),
-                 "efficiency": float(stage.efficiency), "inertia": float(stage.inertia)}
-                for stage in transmission.stages
+                {"type": stage.kind, "name": None if i == chosen and catalog else stage.name,
+                 "ratio": None if i == chosen else float(stage.ratio),
+                 "efficiency": None if i == chosen and catalog else float(stage.efficiency),
+                 "inertia": None if i == chosen and catalog else float(stage.inertia),
+                 "chosen_per_pair": i == chosen}
+                for i, stage in enumerate(transmission.stages)
             ],
+            "choice": _choice(design),
             "units": {"ratio": "input speed / output speed (rad/rad; rad/m into a linear "
-                               "axis)", "efficiency": "1",
+                               "axis); null where chosen per pair (see choice and each "
+                               "result's ratio and gearbox)", "efficiency": "1",
                       "inertia": "kg*m^2 (total: at the motor shaft; a stage: at its input)"},
         },
         "limits": {

@@ -1,6 +1,14 @@
-"""A Table drawn with rich on a terminal (rich is imported only when used)."""
+"""A Table drawn with rich on a terminal (rich is imported only when used).
+
+A table wider than the terminal keeps its columns readable: the columns named in
+``droppable`` are left out, in that order, until the rest fits, and the caller is told
+which ones (to say so under the table). Nothing is ever dropped silently.
+"""
 
 from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
 
 from sizer.report.table import Table
 
@@ -8,14 +16,42 @@ MAX_WORD_WIDTH = 16
 """A text column is at least as wide as the longest word of its cells, up to this."""
 
 
-def print_rich_table(table: Table, wrap_headers: bool = False) -> None:
-    """Print to stdout with box drawing; cell text is never read as rich markup.
+def without_columns(table: Table, headers: Sequence[str]) -> Table:
+    """The table without the columns of these headers."""
+    keep = [i for i, c in enumerate(table.columns) if c.header not in set(headers)]
 
-    With ``wrap_headers`` (tables with a dozen numeric columns, ``sizer size``) a numeric
-    column is only as wide as its widest number or header word, and its header wraps.
-    """
+    def pick(rows: tuple[tuple[str, ...], ...]) -> tuple[tuple[str, ...], ...]:
+        return tuple(tuple(row[i] for i in keep) for row in rows)
+
+    return Table(tuple(table.columns[i] for i in keep), pick(table.rows), table.title,
+                 None if table.unicode_rows is None else pick(table.unicode_rows))
+
+
+COLUMN_GAP = 2
+"""Characters between two columns (padding and the blank divider of box.SIMPLE_HEAD)."""
+
+
+def _column_width(table: Table, index: int, wrap_headers: bool) -> int:
+    """The narrowest a column gets: numbers are never cut, words not into slivers."""
+    column = table.columns[index]
+    cells = [row[index] for row in (table.unicode_rows or table.rows)]
+    header_words = (column.header.split() or [""]) if wrap_headers else []
+    if column.align == "right" and wrap_headers:
+        return max([*map(len, cells), *map(len, header_words)])
+    if column.align == "right":
+        return max([len(column.header), *map(len, cells)])
+    words = [w for cell in cells for w in cell.split()] or [""]
+    return min(max(map(len, words + header_words)), MAX_WORD_WIDTH)
+
+
+def minimum_width(table: Table, wrap_headers: bool = False) -> int:
+    """The width below which the table's columns would be cut or squeezed."""
+    widths = [_column_width(table, i, wrap_headers) for i in range(len(table.columns))]
+    return sum(widths) + COLUMN_GAP * max(len(widths) - 1, 0)
+
+
+def _rich_table(table: Table, wrap_headers: bool) -> Any:
     from rich import box
-    from rich.console import Console
     from rich.table import Table as RichTable
     from rich.text import Text
 
@@ -24,20 +60,52 @@ def print_rich_table(table: Table, wrap_headers: bool = False) -> None:
                            box=box.SIMPLE_HEAD, show_edge=False, pad_edge=False,
                            collapse_padding=True)
     for index, column in enumerate(table.columns):
-        cells = [row[index] for row in rows]
-        header_words = (column.header.split() or [""]) if wrap_headers else []
+        width = _column_width(table, index, wrap_headers)
         if column.align == "right" and wrap_headers:  # numbers never cut; headers wrap
-            width = max([*map(len, cells), *map(len, header_words)])
             rich_table.add_column(Text(column.header), justify="right", width=width)
         elif column.align == "right":  # numbers: never shrink or cut
-            width = max([len(column.header), *map(len, cells)])
             rich_table.add_column(Text(column.header), justify="right", no_wrap=True,
                                   min_width=width)
         else:  # words: wrap on a narrow terminal, but not into slivers
-            words = [w for cell in cells for w in cell.split()] or [""]
-            width = min(max(map(len, words + header_words)), MAX_WORD_WIDTH)
             rich_table.add_column(Text(column.header), justify="left", overflow="fold",
                                   min_width=width)
     for row in rows:
         rich_table.add_row(*(Text(cell) for cell in row))
-    Console(highlight=False).print(rich_table)
+    return rich_table
+
+
+def fit_table(table: Table, width: int, droppable: Sequence[str] = (), *,
+              wrap_headers: bool = False) -> tuple[Table, list[str]]:
+    """The table without as few ``droppable`` columns (in that order) as make it fit in
+    ``width`` characters, and the headers left out."""
+    dropped: list[str] = []
+    present = set(table.headers)
+    candidates = [h for h in droppable if h in present]
+    while minimum_width(table, wrap_headers) > width and candidates:
+        dropped.append(candidates.pop(0))
+        table = without_columns(table, dropped[-1:])
+    return table, dropped
+
+
+def print_rich_table(table: Table, wrap_headers: bool = False, *,
+                     droppable: Sequence[str] = (), title_above: bool = False,
+                     console: Any = None) -> list[str]:
+    """Print with box drawing; cell text is never read as rich markup. Returns the headers
+    of the columns left out to fit the terminal (only ever from ``droppable``).
+
+    With ``wrap_headers`` (tables with a dozen numeric columns, ``sizer size``) a numeric
+    column is only as wide as its widest number or header word, and its header wraps.
+    With ``title_above`` a long title wraps as plain text above the table rather than
+    centered over it. ``console`` defaults to a rich Console on stdout.
+    """
+    from rich.console import Console
+    from rich.text import Text
+
+    console = console or Console(highlight=False)
+    table, dropped = fit_table(table, console.width, droppable, wrap_headers=wrap_headers)
+    if table.title and title_above:
+        console.print(Text(table.title))
+        console.print()
+        table = Table(table.columns, table.rows, "", table.unicode_rows)
+    console.print(_rich_table(table, wrap_headers))
+    return dropped

@@ -1,6 +1,7 @@
 """The ranked motor/law table of a design (``sizer size``) in every format.
 
-- JSON: ``{"design", "ranked_by", "units", "results"}``, SI, margins as fractions.
+- JSON: ``{"format", "design", "ranked_by", "ranking", "units", "results"}``, SI, margins
+  as fractions; ``format`` is FORMAT, ``ranking`` the rule of ``ranked_by`` in words.
 - CSV: one line per pair, SI units in the headers, full precision.
 - Markdown and the terminal table: duration in ms, speed in rpm, margins in %; a title
   line above and, below, why the shown infeasible pairs fail and what was assumed.
@@ -13,8 +14,9 @@ change with the options.
 from __future__ import annotations
 
 import sys
+from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from sizer.report.candidate_row import (
     CSV_HEADERS,
@@ -39,18 +41,29 @@ if TYPE_CHECKING:
 
 NO_FEASIBLE = "no feasible motor/law pair"
 
+FEASIBLE = {False: "feasible", True: "ok"}
+SPEED = {False: "max speed [rpm]", True: "speed [rpm]"}
+"""Headers of the full (False) and the compact (True, terminal) table."""
+
 RESULT_UNITS = {"duration": "s", "peak_torque": "N*m", "rms_torque": "N*m",
                 "max_speed": "rad/s", "margin": "1 (fraction of the limit left unused)",
                 "price": "as in the catalog", "mass": "kg",
+                "rated_power": "W (the motor's tau_c*v_n, the size it is ranked by)",
                 "ratio": "motor speed / load speed (rad/rad; rad/m on a linear axis)",
                 "load_speed": "rad/s (m/s on a linear axis)",
                 "load_torque": "N*m (N on a linear axis)"}
 """Units of the JSON result fields (torques and speeds at the motor shaft but the load's)."""
 
 
+FORMAT = "sizer.sizing/1"
+"""The ``format`` of the JSON document: its name and version, bumped on incompatible changes."""
+
+
 def default_rank_key(mode: str) -> str:
     """The ranking of ``sizer.sizing.size_design`` when none is given."""
-    return "duration" if mode == "minimize" else "margin"
+    from sizer.sizing.ranking import default_rank_key as default
+
+    return default(mode).value
 
 
 class SizingDocument:
@@ -60,7 +73,10 @@ class SizingDocument:
                  top: int | None = None, include_infeasible: bool = False) -> None:
         self.sizing = sizing
         self.design = design
-        self.rank_key = rank_by or default_rank_key(sizing.mode)
+        from sizer.sizing.ranking import rank_rule
+
+        self.rank_rule = rank_rule(rank_by, sizing.mode)
+        self.rank_key = self.rank_rule.key.value
         ranked = list(enumerate(sizing.results, start=1))
         shown = [(rank, r) for rank, r in ranked if include_infeasible or r.feasible]
         self.hidden_infeasible = len(ranked) - len(shown)
@@ -84,9 +100,15 @@ class SizingDocument:
         return (f"{name}: {move}; {feasible} of {len(self.sizing.results)} motor/law pairs "
                 f"feasible, ranked by {self.rank_key}")
 
-    def footer(self) -> list[str]:
-        """Lines under a human-readable table."""
+    def footer(self, dropped: Sequence[str] = ()) -> list[str]:
+        """Lines under a human-readable table (``dropped``: columns a terminal left out)."""
         lines = []
+        if dropped:
+            every_row_ok = all(r.feasible for _, r in self.rows)
+            names = [f"{h} (every row: yes)" if h in FEASIBLE.values() and every_row_ok else h
+                     for h in dropped]
+            lines.append(f"not shown at this terminal width: {', '.join(names)} (a wider "
+                         f"terminal, --format md or csv show every column)")
         if not self.any_feasible:
             lines.append(NO_FEASIBLE)
         failing = [(rank, r) for rank, r in self.rows if not r.feasible]
@@ -98,6 +120,7 @@ class SizingDocument:
                          f"them)")
         if self.cut:
             lines.append(f"{self.cut} more pairs not shown (--top)")
+        lines.append(f"ranked by {self.rank_key}: {self.rank_rule.text}")
         lines += [f"note: {note}" for note in self.sizing.notes]
         return lines
 
@@ -109,26 +132,40 @@ class SizingDocument:
         return (len({r.ratio for r in results}) > 1
                 or any(r.gearbox for r in results))
 
-    def table(self) -> Table:
+    def table(self, compact: bool = False) -> Table:
+        """The display table; ``compact`` headers for a terminal (they wrap in rich)."""
         duration = "T_min [ms]" if self.sizing.mode == "minimize" else "T [ms]"
         with_ratio = self.ratio_varies
         columns = (
             Column("#"), Column("motor", "left"), Column("law", "left"),
             *((Column("ratio", "left"),) if with_ratio else ()),
-            Column("feasible", "left"), Column(duration), Column("peak [N*m]"),
-            Column("rms [N*m]"), Column("max speed [rpm]"), Column("peak margin [%]"),
+            Column(FEASIBLE[compact], "left"), Column(duration), Column("peak [N*m]"),
+            Column("rms [N*m]"), Column(SPEED[compact]), Column("peak margin [%]"),
             Column("rms margin [%]"), Column("speed margin [%]"), Column("limiting", "left"),
         )
         rows = [result_display_cells(rank, r, with_ratio=with_ratio) for rank, r in self.rows]
         return make_table(columns, rows, title=self.title)
+
+    def droppable(self, compact: bool = True) -> list[str]:
+        """Columns a narrow terminal may leave out, first to last: the motor's torques and
+        speed (the margins say how close they are to the limits), the feasible column
+        where every row is feasible, then the ratio. Margins and limiting always stay."""
+        feasible = FEASIBLE[compact]
+        every_row_ok = all(r.feasible for _, r in self.rows)
+        order = [SPEED[compact], "peak [N*m]", "rms [N*m]", feasible, "ratio"]
+        if every_row_ok:
+            order.insert(0, order.pop(order.index(feasible)))
+        return order
 
     def csv(self) -> str:
         return render_csv(CSV_HEADERS, (result_csv_cells(rank, r) for rank, r in self.rows))
 
     def json(self) -> str:
         return render_json({
+            "format": FORMAT,
             "design": design_summary(self.design, self.sizing.notes),
             "ranked_by": self.rank_key,
+            "ranking": self.rank_rule.text,
             "units": RESULT_UNITS,
             "results": [result_json(r) for _, r in self.rows],
         })
@@ -163,6 +200,24 @@ def _markdown_item(line: str) -> str:
     return f"- {line}\n"
 
 
+def print_terminal_table(document: SizingDocument, console: Any = None) -> None:
+    """The rich table with compact headers, fitted to the terminal's width (``console``:
+    a rich Console, default stdout), then the footer, which names any column left out."""
+    from rich.console import Console
+
+    console = console or Console(highlight=False)
+    dropped = print_rich_table(document.table(compact=True), wrap_headers=True,
+                               droppable=document.droppable(), title_above=True,
+                               console=console)
+    footer = document.footer(dropped)
+    if footer:
+        from rich.text import Text
+
+        console.print()
+        for line in footer:  # wrapped to the terminal, never read as markup
+            console.print(Text(line))
+
+
 def publish_sizing(document: SizingDocument, fmt: Format, output: Path | None) -> None:
     """Write the document to ``output`` or stdout (a rich table on a terminal).
 
@@ -170,11 +225,7 @@ def publish_sizing(document: SizingDocument, fmt: Format, output: Path | None) -
     JSON, or a file), the line 'no feasible motor/law pair' also goes to stderr.
     """
     if fmt is Format.TABLE and output is None and stdout_is_terminal():
-        print_rich_table(document.table(), wrap_headers=True)
-        footer = document.footer()
-        if footer:
-            sys.stdout.write("\n" + "\n".join(footer) + "\n")
-            sys.stdout.flush()
+        print_terminal_table(document)
         return
     emit(document.render(fmt), output)
     shown_to_user = output is None and fmt in (Format.TABLE, Format.MD)

@@ -9,7 +9,7 @@ motor (sizer.sizing.shape).
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 import numpy as np
 
@@ -25,10 +25,17 @@ from sizer.sizing.ranking import rank
 from sizer.sizing.results import CandidateResult, Check, SizingResult
 from sizer.sizing.shape import choose_shape
 
+Progress = Callable[[int, int], None]
+"""Called as ``progress(done, total)``: laws sized so far, of all the laws."""
+
 
 def size_design(design: Design, rank_by: str | None = None,
-                motors: Sequence[Motor] | None = None) -> SizingResult:
-    """Every motor x law of the design, ranked (feasible first)."""
+                motors: Sequence[Motor] | None = None,
+                progress: Progress | None = None) -> SizingResult:
+    """Every motor x law of the design, ranked (feasible first).
+
+    ``progress``, if given, is called with (0, n) and then after each of the n laws.
+    """
     motors = tuple(motors if motors is not None else design.motors)
     if not motors:
         raise UserError("no motors to size: give a catalog in the design or with --catalog",
@@ -37,8 +44,12 @@ def size_design(design: Design, rank_by: str | None = None,
         raise UserError("no motion laws to consider", field="laws")
     arrays = MotorArrays.of(motors)
     results: list[CandidateResult] = []
-    for spec in design.laws:
+    if progress is not None:
+        progress(0, len(design.laws))
+    for done, spec in enumerate(design.laws, start=1):
         results.extend(evaluate_candidates(design, spec, arrays))
+        if progress is not None:
+            progress(done, len(design.laws))
     mode = "minimize" if design.task.minimize else "duration"
     return SizingResult(mode, tuple(rank(results, rank_by, mode)), design.name,
                         notes=assumptions(design))
@@ -130,6 +141,9 @@ def to_results(law: MotionLaw, motors: MotorArrays, metrics: CycleMetrics,
             transmission=transmission,
             load_speed=float(metrics.load_speed[i]) if known else None,
             load_torque=float(metrics.load_torque[i]) if known else None,
+            rated_power=motor.continuous_torque * motor.rated_speed,
+            continuous_torque=motor.continuous_torque,
+            rotor_inertia=motor.inertia,
         ))
     return out
 

@@ -1,34 +1,135 @@
-"""Order candidates: feasible first, then by the chosen key, ties by motor and law."""
+"""Order candidates the way engineers choose: feasible first, then the smallest drive that
+passes with the required margins.
+
+A ranking is a chain of criteria, each "smaller first": the key the user chose, then the
+next meaningful ones (size, margin, rotor inertia), and finally the order of the design
+(its laws as written, the catalog's motors as listed): never the motor's id.
+
+- ``size`` (the default with a given duration; alias ``power``): the motor's rated power
+  tau_c*v_n, then its continuous torque, then the margin, then the rotor inertia.
+- ``duration`` (the default with ``duration: minimize``): T_min, then size, then margin.
+- ``margin``: the largest smallest slack (margin beyond the required one) first, then the
+  next smallest..., then size.
+- ``rms``, ``peak``: the smallest motor torque the task needs; ``price``, ``mass``: the
+  cheapest or lightest motor (unknown values last); each then size and margin.
+"""
 
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass
+from enum import StrEnum
 
 from sizer.errors import UserError
 from sizer.sizing.results import CandidateResult
 
-RANK_KEYS = ("duration", "margin", "rms", "peak", "price", "mass")
+
+class RankKey(StrEnum):
+    """The keys of ``--rank-by``."""
+
+    SIZE = "size"
+    DURATION = "duration"
+    MARGIN = "margin"
+    RMS = "rms"
+    PEAK = "peak"
+    PRICE = "price"
+    MASS = "mass"
 
 
-def _value(result: CandidateResult, key: str) -> float | tuple[float, ...]:
-    if key == "margin":  # the largest smallest margin first, then the next smallest...
-        return tuple(-s for s in result.slacks)
-    if key == "duration":
-        value = result.duration
-    elif key == "rms":
-        value = result.rms_torque
-    elif key == "peak":
-        value = result.peak_torque
-    else:
-        value = getattr(result, key)
+RANK_ALIASES: dict[str, RankKey] = {"power": RankKey.SIZE}
+"""Other names accepted for a key (``power`` is the rated power, the ``size`` key)."""
+
+RANK_KEYS: tuple[str, ...] = tuple(k.value for k in RankKey)
+
+
+def _number(value: float | None) -> float:
+    """A value to sort by, smaller first; unknown (None, NaN) last."""
     return math.inf if value is None or math.isnan(value) else float(value)
+
+
+Criterion = Callable[[CandidateResult], float | tuple[float, ...]]
+
+
+def _power(r: CandidateResult) -> float:
+    return _number(r.rated_power)
+
+
+def _continuous_torque(r: CandidateResult) -> float:
+    return _number(r.continuous_torque)
+
+
+def _margin(r: CandidateResult) -> tuple[float, ...]:
+    return tuple(-s for s in r.slacks)  # the largest smallest slack first, then the next
+
+
+def _inertia(r: CandidateResult) -> float:
+    return _number(r.rotor_inertia)
+
+
+_SIZE: tuple[Criterion, ...] = (_power, _continuous_torque)
+_THEN: tuple[Criterion, ...] = (*_SIZE, _margin, _inertia)
+
+
+@dataclass(frozen=True)
+class RankRule:
+    """A key, the criteria it sorts by (each smaller first) and the rule in words."""
+
+    key: RankKey
+    criteria: tuple[Criterion, ...]
+    text: str
+
+
+RULES: dict[RankKey, RankRule] = {rule.key: rule for rule in (
+    RankRule(RankKey.SIZE, (*_SIZE, _margin, _inertia),
+             "smallest motor first (rated power tau_c*v_n, then continuous torque), then the "
+             "largest margin, then the smallest rotor inertia"),
+    RankRule(RankKey.DURATION, (lambda r: _number(r.duration), *_THEN),
+             "shortest duration first, then the smallest motor (rated power tau_c*v_n), then "
+             "the largest margin"),
+    RankRule(RankKey.MARGIN, (_margin, *_SIZE, _inertia),
+             "most room left at the tightest limit first, then the smallest motor (rated "
+             "power tau_c*v_n)"),
+    RankRule(RankKey.RMS, (lambda r: _number(r.rms_torque), *_THEN),
+             "smallest RMS torque first, then the smallest motor (rated power tau_c*v_n), "
+             "then the largest margin"),
+    RankRule(RankKey.PEAK, (lambda r: _number(r.peak_torque), *_THEN),
+             "smallest peak torque first, then the smallest motor (rated power tau_c*v_n), "
+             "then the largest margin"),
+    RankRule(RankKey.PRICE, (lambda r: _number(r.price), *_THEN),
+             "cheapest motor first (unknown prices last), then the smallest motor (rated "
+             "power tau_c*v_n), then the largest margin"),
+    RankRule(RankKey.MASS, (lambda r: _number(r.mass), *_THEN),
+             "lightest motor first (unknown masses last), then the smallest motor (rated "
+             "power tau_c*v_n), then the largest margin"),
+)}
+
+
+def default_rank_key(mode: str) -> RankKey:
+    """Duration in minimize mode, size (the smallest motor that passes) otherwise."""
+    return RankKey.DURATION if mode == "minimize" else RankKey.SIZE
+
+
+def rank_rule(rank_by: str | None, mode: str) -> RankRule:
+    """The rule of a ``--rank-by`` key (None: the default of the mode); UserError if unknown."""
+    if rank_by is None:
+        return RULES[default_rank_key(mode)]
+    name = rank_by.strip().lower()
+    key = RANK_ALIASES.get(name)
+    if key is None:
+        try:
+            key = RankKey(name)
+        except ValueError:
+            known = ", ".join((*RANK_KEYS, *RANK_ALIASES))
+            raise UserError(f"cannot rank by {rank_by!r}; choose one of {known}") from None
+    return RULES[key]
 
 
 def rank(results: Iterable[CandidateResult], rank_by: str | None,
          mode: str) -> list[CandidateResult]:
-    """Feasible pairs first; by duration in minimize mode, by largest margin otherwise."""
-    key = rank_by or ("duration" if mode == "minimize" else "margin")
-    if key not in RANK_KEYS:
-        raise UserError(f"cannot rank by {key!r}; choose one of {', '.join(RANK_KEYS)}")
-    return sorted(results, key=lambda r: (not r.feasible, _value(r, key), r.motor, r.spec))
+    """Feasible pairs first, then by the rule of ``rank_by`` (see the module docstring).
+
+    The sort is stable: what every criterion leaves tied keeps the design's order.
+    """
+    rule = rank_rule(rank_by, mode)
+    return sorted(results, key=lambda r: (not r.feasible, *(c(r) for c in rule.criteria)))

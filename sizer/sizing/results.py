@@ -51,7 +51,9 @@ class CandidateResult:
     rad/m on a linear axis), ``gearbox`` the catalog gearbox chosen if any; ``load_speed``
     and ``load_torque`` are the peak speed and peak torque (force on a linear axis) at the
     load. ``transmission`` is the one the result was computed with (the design's, or with
-    the chosen ratio or catalog gearbox in place).
+    the chosen ratio or catalog gearbox in place). ``rated_power`` (tau_c*v_n, W),
+    ``continuous_torque`` (N*m) and ``rotor_inertia`` (kg*m^2) are the motor's, for ranking
+    by size.
     """
 
     motor: str
@@ -73,6 +75,9 @@ class CandidateResult:
     load_speed: float | None = None
     load_torque: float | None = None
     transmission: Transmission | None = None
+    rated_power: float | None = None
+    continuous_torque: float | None = None
+    rotor_inertia: float | None = None
     extra: dict[str, float] = field(default_factory=dict)
 
     def check(self, name: str) -> Check | None:

@@ -1,0 +1,93 @@
+"""Progress of long runs: a plain callback in the core, a rich bar on a terminal only."""
+
+from __future__ import annotations
+
+import io
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from sizer.cli.progress import TerminalProgress, sizing_progress
+
+ROOT = Path(__file__).resolve().parent.parent
+DESIGN = ROOT / "examples" / "indexing-table.yaml"
+
+
+def test_size_design_calls_back_per_law_and_gives_the_same_results() -> None:
+    from sizer.io import load_design
+    from sizer.sizing import size_design
+
+    design = load_design(DESIGN)
+    calls: list[tuple[int, int]] = []
+    with_progress = size_design(design, progress=lambda done, total: calls.append((done, total)))
+    n = len(design.laws)
+    assert calls == [(i, n) for i in range(n + 1)]
+    assert with_progress == size_design(design)
+
+
+class FakeTerminal(io.StringIO):
+    def isatty(self) -> bool:
+        return True
+
+
+def test_no_callback_unless_the_stream_is_a_terminal() -> None:
+    with sizing_progress("sizing", stream=io.StringIO(), delay=0.0) as progress:
+        assert progress is None
+    stream = FakeTerminal()
+    with sizing_progress("sizing x.yaml", stream=stream, delay=0.0) as progress:
+        assert isinstance(progress, TerminalProgress)
+        progress(0, 4)
+        progress(2, 4)
+    assert "sizing x.yaml" in stream.getvalue()
+
+
+def test_quick_runs_draw_nothing() -> None:
+    stream = FakeTerminal()
+    with sizing_progress("sizing", stream=stream, delay=60.0) as progress:
+        assert progress is not None
+        progress(0, 3)
+        progress(3, 3)
+    assert stream.getvalue() == ""
+
+
+def run_sizer(stdout: int, stderr: int) -> subprocess.CompletedProcess:
+    env = {**os.environ, "SIZER_PROGRESS_DELAY": "0", "COLUMNS": "100"}
+    return subprocess.run([sys.executable, "-m", "sizer", "size", str(DESIGN), "--top", "3"],
+                          cwd=ROOT, stdout=stdout, stderr=stderr, env=env, timeout=120)
+
+
+def test_piped_output_has_no_progress_text() -> None:
+    result = run_sizer(subprocess.PIPE, subprocess.PIPE)
+    assert result.returncode == 0
+    assert result.stderr == b""
+    out = result.stdout.decode()
+    assert "\x1b" not in out and "sizing indexing-table" not in out
+    assert out.startswith("Indexing table, 90 deg in 0.25 s:")
+
+
+@pytest.mark.skipif(not hasattr(os, "openpty"), reason="needs a pseudo-terminal")
+def test_a_terminal_on_stderr_shows_the_bar_and_stdout_stays_clean() -> None:
+    master, slave = os.openpty()
+    try:
+        result = run_sizer(subprocess.PIPE, slave)
+        os.close(slave)
+        slave = -1
+        drawn = b""
+        while True:
+            try:
+                chunk = os.read(master, 65536)
+            except OSError:
+                break
+            if not chunk:
+                break
+            drawn += chunk
+    finally:
+        if slave >= 0:
+            os.close(slave)
+        os.close(master)
+    assert result.returncode == 0
+    assert b"sizing indexing-table.yaml" in drawn
+    assert b"sizing" not in result.stdout and b"\x1b" not in result.stdout
