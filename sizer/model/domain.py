@@ -13,6 +13,9 @@ from typing import Literal
 ThermalSpeedRule = Literal["max", "rms", "mean"]
 """Speed at which the RMS torque is checked against the continuous region (sec. 6.1.1)."""
 
+EnvelopeRule = Literal["book", "linear", "linear_intermittent"]
+"""How a region without a curve is completed up to max_speed (sizer.envelope.completion)."""
+
 Curve = tuple[tuple[float, float], ...]
 """(speed rad/s, torque N*m) points, speed strictly increasing, piecewise linear between."""
 
@@ -198,3 +201,4 @@ class Design:
     chosen_law: str | None = None
     name: str = ""
     ratio_choice: RatioChoice | None = None
+    envelope: EnvelopeRule = "linear"  # regions without curves (sizer.envelope.completion)
