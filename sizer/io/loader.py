@@ -231,6 +231,7 @@ def load_design(path: PathLike, extra_catalogs: Iterable[PathLike] = (), *,
         chosen_motor=chosen_motor,
         chosen_law=chosen_law,
         name=model.name if model.name is not None else path.stem,
+        envelope=model.envelope,
     )
 
 

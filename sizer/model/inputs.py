@@ -271,3 +271,8 @@ class DesignFile(_Strict):
                           "or inline motors")
     check: CheckInput | None = None
     limits: LimitsInput = Field(default_factory=LimitsInput)
+    envelope: Literal["book", "linear", "linear_intermittent"] = Field(
+        "linear", description="how a motor region without a curve is completed up to "
+                              "max_speed: book (rectangles up to the rated speed), linear "
+                              "(then straight lines down to max_speed) or "
+                              "linear_intermittent (only the intermittent region extended)")
