@@ -36,7 +36,7 @@ PLAIN = Motor(id="plain", inertia=1e-4, continuous_torque=1.0, peak_torque=3.0,
 def test_the_rules_are_named_and_linear_is_the_default():
     assert RULES == ("book", "linear", "linear_intermittent")
     assert DEFAULT_ENVELOPE == "linear"
-    assert Design(task=Task(1.0, 1.0), load=Load(1.0)).envelope == "linear"
+    assert Design(task=Task(1.0, 1.0), load=Load(1.0)).limits.envelope == "linear"
 
 
 def test_book_keeps_the_rectangles_up_to_the_rated_speed():
@@ -138,7 +138,7 @@ H = V_PEAK * T_MOVE / 1.5  # trapezoid alpha = 1/3: C_v = 1.5
 def _design(envelope, thermal_speed="max", duration=T_MOVE):
     return Design(task=Task(H, duration, dwell=DWELL), load=Load(J_LOAD),
                   laws=("trapezoidal(alpha=1/3)",), motors=(SGM7J_04A,),
-                  limits=Limits(thermal_speed=thermal_speed), envelope=envelope)
+                  limits=Limits(thermal_speed=thermal_speed, envelope=envelope))
 
 
 def _linear_limits(speed):
@@ -205,7 +205,7 @@ def test_shortest_move_with_a_falling_region_matches_an_independent_root():
 
     design = Design(task=Task(h, None, dwell=DWELL), load=Load(4.0e-4),
                     laws=("trapezoidal(alpha=1/3)",), motors=(SGM7J_04A,),
-                    envelope="linear")
+                    limits=Limits(envelope="linear"))
     result = size_design(design).results[0]
     assert result.feasible
     assert result.duration == pytest.approx(expected, rel=1e-9)
@@ -215,7 +215,7 @@ def test_shortest_move_with_a_falling_region_matches_an_independent_root():
 
     book_expected = max(1.5 * h / (3000 * RPM), math.sqrt(J_t * 4.5 * h / 4.46),
                         brentq(book_rms_slack, 1e-3, 10.0, xtol=1e-15))
-    book = size_design(replace(design, envelope="book")).results[0]
+    book = size_design(replace(design, limits=Limits(envelope="book"))).results[0]
     assert book.duration == pytest.approx(book_expected, rel=1e-9)
     assert book.duration > expected
 

@@ -29,19 +29,23 @@ def _write(tmp_path, extra=""):
 
 def _feasible(stdout):
     data = json.loads(stdout)
-    return {r["motor"] for r in data["results"] if r["feasible"]}, data["design"]["notes"]
+    rule = data["design"]["limits"]["envelope"]
+    notes = data["design"]["notes"]
+    assert [n for n in notes if n.startswith(f"envelope {rule}:")], (rule, notes)
+    return {r["motor"] for r in data["results"] if r["feasible"]}, notes
 
 
 def test_the_design_file_chooses_the_rule(tmp_path):
-    assert load_design(_write(tmp_path)).envelope == "linear"
+    assert load_design(_write(tmp_path)).limits.envelope == "linear"
     for rule in ("book", "linear", "linear_intermittent"):
-        assert load_design(_write(tmp_path, f"envelope: {rule}\n")).envelope == rule
+        design = load_design(_write(tmp_path, f"limits: {{envelope: {rule}}}\n"))
+        assert design.limits.envelope == rule
 
 
 def test_an_unknown_rule_is_a_user_error_at_its_line(tmp_path):
-    path = _write(tmp_path, "envelope: flat\n")
+    path = _write(tmp_path, "limits:\n  torque_margin: 10 %\n  envelope: flat\n")
     result = run_cli("size", str(path))
-    line = assert_user_error(result, "axis.yaml:7", "envelope", "'book'", "'flat'")
+    line = assert_user_error(result, "axis.yaml:9", "limits.envelope", "'book'", "'flat'")
     assert "linear_intermittent" in line
 
 
@@ -58,7 +62,7 @@ def test_31_yaskawa_motors_none_feasible_with_book_some_with_linear(tmp_path):
     assert book == set()
     assert any(n.startswith("envelope book:") and "rectangular" in n for n in notes)
     # the design file's choice, overridden by the option
-    book_file = _write(tmp_path, "envelope: book\n")
+    book_file = _write(tmp_path, "limits: {envelope: book}\n")
     assert _feasible(run_cli("size", str(book_file), "--format", "json").stdout)[0] == set()
     assert _feasible(run_cli("size", str(book_file), "--format", "json",
                              "--envelope", "linear").stdout)[0] == linear

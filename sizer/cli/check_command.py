@@ -85,7 +85,8 @@ def check_one(design: Path, catalogs: list[str] | tuple[str, ...],
 
     loaded = load_design_file(design, catalogs)
     if envelope:
-        loaded = replace(loaded, envelope=str(envelope))  # type: ignore[arg-type]
+        limits = replace(loaded.limits, envelope=str(envelope))  # type: ignore[arg-type]
+        loaded = replace(loaded, limits=limits)
     try:
         result = check_design(loaded)
     except UserError as error:

@@ -78,7 +78,8 @@ def load_and_size(design: Path, catalog: Sequence[str] | None, motor: Sequence[s
 
     loaded = load_design_file(design, catalog)
     if envelope:
-        loaded = replace(loaded, envelope=str(envelope))  # type: ignore[arg-type]
+        limits = replace(loaded.limits, envelope=str(envelope))  # type: ignore[arg-type]
+        loaded = replace(loaded, limits=limits)
     if motor:
         loaded = replace(loaded, motors=select_motors(loaded.motors, motor))
     try:

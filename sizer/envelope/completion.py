@@ -4,8 +4,8 @@ Most catalogs print corner figures only: the rated (continuous) torque tau_c fro
 up to the rated speed v_n, the peak torque tau_p and the maximum speed v_max. Their
 speed-torque diagrams (Yaskawa's continuous and intermittent duty zones, Mitsubishi's
 continuous and short-duration running ranges) reach v_max, but the torque there is drawn,
-not printed, and depends on the supply voltage. A rule says what a region without a curve
-is taken to be:
+not printed, and depends on the supply voltage. A rule, chosen by the design's
+``limits.envelope`` (or ``--envelope``), says what a region without a curve is taken to be:
 
 - ``book``: the book's rectangles (sec. 6.1.1): tau_c and tau_p up to v_n; v_max unused.
 - ``linear`` (the default): the rectangles up to v_n, then straight lines to v_max: the
@@ -30,13 +30,12 @@ from sizer.model.domain import Curve, EnvelopeRule, Motor
 
 ENVELOPE_RULES: dict[str, str] = {
     "book": "the book's rectangular regions up to the rated speed (sec. 6.1.1)",
-    "linear": "the book's rectangular regions up to the rated speed, then straight lines "
-              "to max_speed: peak torque down to the continuous torque, continuous torque "
-              "down to the rated power's torque (an assumption, not the datasheet's curves)",
-    "linear_intermittent": "the book's rectangular regions up to the rated speed; the "
-                           "intermittent region then falls in a straight line from the "
-                           "peak to the continuous torque at max_speed (an assumption, "
-                           "not the datasheet's curve)",
+    "linear": "the book's rectangular regions up to the rated speed, then lines to "
+              "max_speed (tau_p down to tau_c, tau_c down to the rated power); assumed, "
+              "not datasheet curves",
+    "linear_intermittent": "the book's rectangular regions up to the rated speed, the "
+                           "intermittent one then a line to max_speed (tau_p down to "
+                           "tau_c); assumed, not datasheet curves",
 }
 """Rule -> what a motor without curves is given, as stated in the outputs."""
 

@@ -231,7 +231,6 @@ def load_design(path: PathLike, extra_catalogs: Iterable[PathLike] = (), *,
         chosen_motor=chosen_motor,
         chosen_law=chosen_law,
         name=model.name if model.name is not None else path.stem,
-        envelope=model.envelope,
     )
 
 
@@ -323,6 +322,7 @@ def _limits(model: DesignFile, source: YamlSource, linear: bool) -> Limits:
         max_acceleration=max_acceleration,
         max_jerk=max_jerk,
         thermal_speed=given.thermal_speed,
+        envelope=given.envelope,
     )
 
 

@@ -130,7 +130,8 @@ class Motor:
     """A motor's ratings and, where known, its speed-torque curves (sec. 6.1).
 
     Scalar ratings alone give the book's rectangular regions: continuous torque tau_c and
-    peak torque tau_p, both up to the rated speed v_n.
+    peak torque tau_p, both up to the rated speed v_n; ``Limits.envelope`` may complete a
+    region without a curve up to ``max_speed`` (sizer.envelope.completion).
     """
 
     id: str
@@ -154,7 +155,8 @@ class Limits:
     """Margins and user limits. Margins are fractions of the motor's capability left unused.
 
     ``max_acceleration`` and ``max_jerk`` are at the load (rad/s^2 or m/s^2, ...).
-    ``inertia_ratio`` bounds J_l reflected / J_m.
+    ``inertia_ratio`` bounds J_l reflected / J_m. ``envelope`` completes the regions of
+    motors without curves up to max_speed (sizer.envelope.completion).
     """
 
     torque_margin: float = 0.0
@@ -163,6 +165,7 @@ class Limits:
     max_acceleration: float | None = None
     max_jerk: float | None = None
     thermal_speed: ThermalSpeedRule = "max"
+    envelope: EnvelopeRule = "linear"  # regions without curves (sizer.envelope.completion)
 
 
 @dataclass(frozen=True)
@@ -201,4 +204,3 @@ class Design:
     chosen_law: str | None = None
     name: str = ""
     ratio_choice: RatioChoice | None = None
-    envelope: EnvelopeRule = "linear"  # regions without curves (sizer.envelope.completion)

@@ -252,6 +252,11 @@ class LimitsInput(_Strict):
     thermal_speed: Literal["max", "rms", "mean"] = Field(
         "max", description="speed at which the RMS torque is checked against the "
                            "continuous region")
+    envelope: Literal["book", "linear", "linear_intermittent"] = Field(
+        "linear", description="how a motor region without a curve is completed up to "
+                              "max_speed: book (rectangles up to the rated speed), linear "
+                              "(then straight lines down to max_speed) or "
+                              "linear_intermittent (only the intermittent region extended)")
 
 
 class DesignFile(_Strict):
@@ -271,8 +276,3 @@ class DesignFile(_Strict):
                           "or inline motors")
     check: CheckInput | None = None
     limits: LimitsInput = Field(default_factory=LimitsInput)
-    envelope: Literal["book", "linear", "linear_intermittent"] = Field(
-        "linear", description="how a motor region without a curve is completed up to "
-                              "max_speed: book (rectangles up to the rated speed), linear "
-                              "(then straight lines down to max_speed) or "
-                              "linear_intermittent (only the intermittent region extended)")

@@ -36,7 +36,7 @@ def size_design(design: Design, rank_by: str | None = None,
                         field="motors")
     if not design.laws:
         raise UserError("no motion laws to consider", field="laws")
-    arrays = MotorArrays.of(motors, design.envelope)
+    arrays = MotorArrays.of(motors, design.limits.envelope)
     results: list[CandidateResult] = []
     for spec in design.laws:
         results.extend(evaluate_candidates(design, spec, arrays))
@@ -146,7 +146,7 @@ def check_design(design: Design) -> CandidateResult:
         raise UserError(f"unknown motor {design.chosen_motor!r}; loaded motors: {known}",
                         field="check.motor")
     results = evaluate_candidates(design, design.chosen_law,
-                                  MotorArrays.of([motor], design.envelope))
+                                  MotorArrays.of([motor], design.limits.envelope))
     return results[0]
 
 
@@ -154,7 +154,7 @@ def assumptions(design: Design) -> tuple[str, ...]:
     """What the computation assumed, for reports."""
     notes = []
     if any(m.continuous_curve is None or m.intermittent_curve is None for m in design.motors):
-        notes.append(envelope_note(design.envelope))
+        notes.append(envelope_note(design.limits.envelope))
     if design.load.torque and design.task.dwell:
         notes.append("holding the constant load at rest counts as driving (torque / efficiency)")
     if not math.isclose(design.transmission.efficiency, 1.0):
