@@ -225,3 +225,13 @@ def test_region_table_of_completed_and_written_curves_together():
     table = RegionTable([intermittent_region(m, "linear") for m in motors])
     assert table.limit(np.array([[150.0], [25.0]]))[:, 0] == pytest.approx([2.0, 1.5])
     assert table.max_speed == pytest.approx([200.0, 50.0])
+
+
+def test_the_speed_torque_diagram_draws_the_completed_regions():
+    from sizer.sizing.profile import task_curve
+
+    curve = task_curve(_design("linear"), SGM7J_04A, "trapezoidal(alpha=1/3)", T_MOVE)
+    assert curve.intermittent_region == ((0.0, 4.46), (3000 * RPM, 4.46), (6000 * RPM, 1.27))
+    assert curve.continuous_region[-1] == pytest.approx((6000 * RPM, 1.27 / 2))
+    book = task_curve(_design("book"), SGM7J_04A, "trapezoidal(alpha=1/3)", T_MOVE)
+    assert book.intermittent_region == ((0.0, 4.46), (3000 * RPM, 4.46))

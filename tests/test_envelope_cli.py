@@ -85,3 +85,21 @@ def test_table_and_markdown_carry_the_note(tmp_path):
         out = run_cli("size", str(path), "--format", fmt, "--envelope",
                       "linear_intermittent").stdout
         assert "envelope linear_intermittent:" in out, fmt
+
+
+def test_the_schema_knows_the_rules(tmp_path):
+    import jsonschema
+    import yaml
+
+    from sizer.io import design_schema
+
+    schema = design_schema()
+    ok = yaml.safe_load(_write(tmp_path, "limits: {envelope: linear_intermittent}\n").read_text())
+    jsonschema.validate(ok, schema)
+    bad = yaml.safe_load(_write(tmp_path, "limits: {envelope: flat}\n").read_text())
+    try:
+        jsonschema.validate(bad, schema)
+    except jsonschema.ValidationError as error:
+        assert "flat" in error.message
+    else:
+        raise AssertionError("the schema accepted envelope: flat")
