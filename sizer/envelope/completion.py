@@ -17,9 +17,9 @@ not printed, and depends on the supply voltage. A rule, chosen by the design's
 
 Why ``linear`` is the default: an engineer reading a servo catalog expects intermittent
 operation up to the maximum speed, as every datasheet diagram shows, and the book's
-rectangles refuse any move above v_n. The straight lines use printed figures only and stay
-low: the peak torque is not assumed beyond v_n, and at v_max the motor keeps only its
-rated torque briefly and its rated power continuously. It is an assumption, not the
+rectangles refuse any move above v_n. The straight lines use printed figures only and
+assume little: the peak torque is not assumed beyond v_n, and at v_max the motor keeps
+only its rated torque briefly and its rated power continuously. It is an assumption, not the
 datasheet's curve; it is stated in every output, and a catalog's own curves always win.
 A motor without ``max_speed`` (or with v_max = v_n) keeps the rectangles under every rule.
 """
