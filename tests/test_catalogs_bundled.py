@@ -7,6 +7,7 @@ its row of the notes, so no figure was invented, rounded or converted on the way
 
 from __future__ import annotations
 
+import itertools
 import re
 import tomllib
 from collections import Counter
@@ -27,8 +28,11 @@ from sizer.io import (
 from sizer.sizing import size_design
 
 ROOT = Path(__file__).resolve().parent.parent
-REFERENCE = ROOT.parent / "shared" / "reference" / "motor-data.md"
+REFERENCE = next((folder / "shared" / "reference" / "motor-data.md" for folder in ROOT.parents
+                  if (folder / "shared" / "reference" / "motor-data.md").is_file()),
+                 ROOT.parent / "shared" / "reference" / "motor-data.md")
 REAL = sorted(set(bundled_catalogs()) - NOT_DEFAULT_CATALOGS)
+RPM = 2 * 3.141592653589793 / 60
 
 
 def real_motors():
@@ -100,9 +104,67 @@ def test_curves_where_the_datasheets_give_points():
     assert by_id["1FT7044-AK7"].continuous_curve is not None
     assert by_id["HC52"].continuous_curve is not None
     assert by_id["EC45flat-30W-339281"].intermittent_curve is not None
-    # corner figures only: the book's rectangles, no invented curve
-    assert by_id["SGM7J-02A"].continuous_curve is None
-    assert by_id["SGM7J-02A"].intermittent_curve is None
+    # written out so that no envelope rule extends it to the mechanical 9000 rpm
+    assert _flat(by_id["1FT7044-AK7"].intermittent_curve) == pytest.approx(
+        [0.0, 23.0, 6000 * RPM, 23.0])
+    # corner figures only (the curves are drawn, not printed): no invented curve, the
+    # design's envelope rule completes the regions
+    for motor_id in ("SGM7J-02A", "SGM7A-15A", "SGM7G-03A", "SGMAH-01A", "SGMSH-10AA",
+                     "HG-KN43J", "JSMA-PMC10"):
+        assert by_id[motor_id].continuous_curve is None, motor_id
+        assert by_id[motor_id].intermittent_curve is None, motor_id
+
+
+def _flat(curve):
+    return [value for point in curve for value in point]
+
+
+def test_every_bundled_curve_falls_with_speed_from_standstill():
+    for motor in real_motors():
+        for curve in (motor.continuous_curve, motor.intermittent_curve):
+            if curve is None:
+                continue
+            speeds, torques = zip(*curve, strict=True)
+            assert speeds[0] == 0.0, motor.id
+            assert all(b > a for a, b in itertools.pairwise(speeds)), motor.id
+            assert all(b <= a for a, b in itertools.pairwise(torques)), motor.id
+        if motor.continuous_curve and motor.intermittent_curve:
+            assert motor.continuous_curve[0][1] <= motor.intermittent_curve[0][1], motor.id
+
+
+def _cell_number(cells: dict[str, str], heading: str) -> float:
+    matches = [c for h, c in cells.items() if h.lower().startswith(heading.lower())]
+    assert matches, (heading, list(cells))
+    return float(re.match(r"\d+(?:\.\d+)?", matches[0].replace(",", "")).group(0))
+
+
+@pytest.mark.skipif(not REFERENCE.is_file(), reason="the motor-data notes are not here")
+def test_curve_points_are_the_notes_figures():
+    """Each curve point is a figure of the notes' table, in the column that defines it."""
+    checked = 0
+    for catalog, raw in raw_motors():
+        motor = {m.id: m for m in load_catalog(catalog)}[raw["id"]]
+        if catalog == "maxon-ec45-flat":  # the line at nominal voltage: stall -> no-load
+            cells = _table_cells(str(raw["part_number"]))
+            expected = ((0.0, _cell_number(cells, "Stall torque") * 1e-3),
+                        (_cell_number(cells, "No-load speed") * RPM, 0.0))
+            assert _flat(motor.intermittent_curve) == pytest.approx(_flat(expected)), raw["id"]
+            checked += 1
+        elif catalog == "mitsubishi-hc":  # S1: stall torque at 0, rated torque at rated speed
+            cells = _table_cells(raw["id"])
+            expected = ((0.0, _cell_number(cells, "Stall torque")),
+                        (_cell_number(cells, "Rated speed") * RPM,
+                         _cell_number(cells, "Rated torque")))
+            assert _flat(motor.continuous_curve) == pytest.approx(_flat(expected)), raw["id"]
+            checked += 1
+    siemens = {m.id: m for m in load_catalog("siemens-1ft7")}["1FT7044-AK7"]
+    section = REFERENCE.read_text(encoding="utf-8").split("## 3. Siemens")[1].split("## 4.")[0]
+    for fragment in ("| Rated speed nr | 6,000 rpm |", "| Rated torque (100 K) | 2 Nm |",
+                     "/ 5 Nm |", "| 23 Nm / 30 A |"):
+        assert fragment in section, fragment
+    assert _flat(siemens.continuous_curve) == pytest.approx([0.0, 5.0, 6000 * RPM, 2.0])
+    assert _flat(siemens.intermittent_curve) == pytest.approx([0.0, 23.0, 6000 * RPM, 23.0])
+    assert checked == 6 + 8
 
 
 def test_a_known_figure_in_si():

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from enum import StrEnum
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated
@@ -9,6 +10,7 @@ from typing import TYPE_CHECKING, Annotated
 import typer
 
 from sizer.cli.catalog_option import CatalogOption, load_design_file
+from sizer.cli.options import EnvelopeOption
 from sizer.errors import UserError
 
 if TYPE_CHECKING:
@@ -35,6 +37,7 @@ def check(
         help="Output format: table (one line per limit, then PASS or FAIL) or json "
              "(an object; a list of objects for several files).",
     )] = CheckFormat.TABLE,
+    envelope: EnvelopeOption = None,
 ) -> None:
     """Check the motor and law each design names (`check: {motor: ID, law: SPEC}`).
 
@@ -57,7 +60,7 @@ def check(
     invalid = False
     for design in designs:
         try:
-            document = check_one(design, catalog or ())
+            document = check_one(design, catalog or (), envelope)
         except UserError as error:
             report_user_error(error)
             invalid = True
@@ -74,12 +77,16 @@ def check(
         raise typer.Exit(CHECK_FAILED_EXIT_CODE)
 
 
-def check_one(design: Path, catalogs: list[str] | tuple[str, ...]) -> CheckDocument:
-    """Load a design and check its chosen pair; UserErrors name the file."""
+def check_one(design: Path, catalogs: list[str] | tuple[str, ...],
+              envelope: str | None = None) -> CheckDocument:
+    """Load a design (with --envelope) and check its chosen pair; UserErrors name the file."""
     from sizer.report.check_report import CheckDocument
     from sizer.sizing import assumptions, check_design
 
     loaded = load_design_file(design, catalogs)
+    if envelope:
+        limits = replace(loaded.limits, envelope=str(envelope))  # type: ignore[arg-type]
+        loaded = replace(loaded, limits=limits)
     try:
         result = check_design(loaded)
     except UserError as error:

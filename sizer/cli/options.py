@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from enum import StrEnum
 from pathlib import Path
 from typing import Annotated
 
@@ -26,5 +27,25 @@ OutputOption = Annotated[
         dir_okay=False,
         metavar="FILE",
         help="Write to FILE (replaced atomically) instead of stdout.",
+    ),
+]
+
+
+class EnvelopeChoice(StrEnum):
+    """Completion rules of regions without curves (sizer.envelope.completion)."""
+
+    BOOK = "book"
+    LINEAR = "linear"
+    LINEAR_INTERMITTENT = "linear_intermittent"
+
+
+EnvelopeOption = Annotated[
+    EnvelopeChoice | None,
+    typer.Option(
+        "--envelope", case_sensitive=False, show_default=False,
+        help="How a motor region without a curve is completed up to max_speed: book "
+             "(the book's rectangles up to the rated speed), linear (then straight lines "
+             "down to max_speed) or linear_intermittent. Default: the design's "
+             "'envelope:' (linear).",
     ),
 ]

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Annotated
 import typer
 
 from sizer.cli.catalog_option import CatalogOption, DesignArgument, load_design_file
-from sizer.cli.options import FormatOption, OutputOption
+from sizer.cli.options import EnvelopeOption, FormatOption, OutputOption
 from sizer.errors import UserError
 from sizer.report.formats import Format
 
@@ -44,6 +44,7 @@ def size(
     )] = False,
     fmt: FormatOption = Format.TABLE,
     output: OutputOption = None,
+    envelope: EnvelopeOption = None,
 ) -> None:
     """Size a design: every motor with every motion law, feasible pairs ranked.
 
@@ -64,22 +65,26 @@ def size(
     """
     from sizer.report.sizing_table import SizingDocument, publish_sizing
 
-    loaded, sizing = load_and_size(design, catalog, motor, rank_by)
+    loaded, sizing = load_and_size(design, catalog, motor, rank_by, envelope=envelope)
     document = SizingDocument(sizing, loaded, rank_by=rank_by, top=top,
                               include_infeasible=show_all)
     publish_sizing(document, fmt, output)
 
 
 def load_and_size(design: Path, catalog: Sequence[str] | None, motor: Sequence[str] | None,
-                  rank_by: str | None) -> tuple[Design, SizingResult]:
-    """Load a design (plus --catalog, restricted to --motor ids) and size it; UserErrors
-    of the sizing name the design file."""
+                  rank_by: str | None, *, envelope: str | None = None,
+                  ) -> tuple[Design, SizingResult]:
+    """Load a design (plus --catalog, restricted to --motor ids, with --envelope) and size
+    it; UserErrors of the sizing name the design file."""
     from sizer.cli.progress import sizing_progress
     from sizer.sizing import size_design
     from sizer.sizing.ranking import rank_rule
 
     rank_rule(rank_by, "duration")  # an unknown key fails before any work
     loaded = load_design_file(design, catalog)
+    if envelope:
+        limits = replace(loaded.limits, envelope=str(envelope))  # type: ignore[arg-type]
+        loaded = replace(loaded, limits=limits)
     if motor:
         loaded = replace(loaded, motors=select_motors(loaded.motors, motor))
     try:

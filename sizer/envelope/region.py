@@ -2,7 +2,8 @@
 
 A region is given by (speed, torque) points with strictly increasing speed from 0.
 Scalar ratings alone give the book's rectangles (sec. 6.1.1): the continuous region is
-tau_c and the intermittent region tau_p, both up to the rated speed v_n.
+tau_c and the intermittent region tau_p, both up to the rated speed v_n; a completion rule
+(sizer.envelope.completion) may extend a region without a curve up to ``max_speed``.
 """
 
 from __future__ import annotations
@@ -11,21 +12,22 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from sizer.model.domain import Curve, Motor
+from sizer.envelope.completion import completed_continuous, completed_intermittent
+from sizer.model.domain import Curve, EnvelopeRule, Motor
 
 
-def continuous_region(motor: Motor) -> Curve:
-    """The continuous (S1) region's corner points."""
+def continuous_region(motor: Motor, rule: EnvelopeRule = "book") -> Curve:
+    """The continuous (S1) region's corner points: the catalog's curve, else by ``rule``."""
     if motor.continuous_curve:
         return _from_zero(motor.continuous_curve)
-    return ((0.0, motor.continuous_torque), (motor.rated_speed, motor.continuous_torque))
+    return completed_continuous(motor, rule)
 
 
-def intermittent_region(motor: Motor) -> Curve:
-    """The intermittent (peak) region's corner points."""
+def intermittent_region(motor: Motor, rule: EnvelopeRule = "book") -> Curve:
+    """The intermittent (peak) region's corner points: the catalog's curve, else by ``rule``."""
     if motor.intermittent_curve:
         return _from_zero(motor.intermittent_curve)
-    return ((0.0, motor.peak_torque), (motor.rated_speed, motor.peak_torque))
+    return completed_intermittent(motor, rule)
 
 
 def _from_zero(curve: Curve) -> Curve:

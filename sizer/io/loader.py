@@ -360,6 +360,7 @@ def _limits(model: DesignFile, source: YamlSource, linear: bool) -> Limits:
         max_jerk=max_jerk,
         thermal_speed=given.thermal_speed,
         inertia_ratio_of=given.inertia_ratio_of,
+        envelope=given.envelope,
     )
 
 

@@ -22,6 +22,9 @@ InertiaRatioRule = Literal["driven", "load"]
 """Numerator of the inertia ratio: everything the motor drives (load, screw, gears,
 couplings, reflected to the motor; the vendors' definition) or the load alone."""
 
+EnvelopeRule = Literal["book", "linear", "linear_intermittent"]
+"""How a region without a curve is completed up to max_speed (sizer.envelope.completion)."""
+
 Curve = tuple[tuple[float, float], ...]
 """(speed rad/s, torque N*m) points, speed strictly increasing, piecewise linear between."""
 
@@ -141,7 +144,8 @@ class Motor:
     """A motor's ratings and, where known, its speed-torque curves (sec. 6.1).
 
     Scalar ratings alone give the book's rectangular regions: continuous torque tau_c and
-    peak torque tau_p, both up to the rated speed v_n.
+    peak torque tau_p, both up to the rated speed v_n; ``Limits.envelope`` may complete a
+    region without a curve up to ``max_speed`` (sizer.envelope.completion).
     """
 
     id: str
@@ -167,7 +171,9 @@ class Limits:
     ``max_acceleration`` and ``max_jerk`` are at the load (rad/s^2 or m/s^2, ...).
     ``inertia_ratio`` bounds the driven inertia reflected to the motor over J_m: with
     ``inertia_ratio_of = "driven"`` (the vendors' definition, default) the load, the
-    screws, gears and couplings; with ``"load"`` the load alone (J_l/k^2).
+    screws, gears and couplings; with ``"load"`` the load alone (J_l/k^2). ``envelope``
+    completes the regions of motors without curves up to max_speed
+    (sizer.envelope.completion).
     """
 
     torque_margin: float = 0.0
@@ -177,6 +183,8 @@ class Limits:
     max_jerk: float | None = None
     thermal_speed: ThermalSpeedRule = "max"
     inertia_ratio_of: InertiaRatioRule = "driven"
+
+    envelope: EnvelopeRule = "linear"  # regions without curves (sizer.envelope.completion)
 
 
 @dataclass(frozen=True)

@@ -233,6 +233,11 @@ class LimitsInput(_Strict):
         "driven", description="numerator of inertia_ratio: 'driven' = everything the motor "
                               "drives (load, screws, gears, couplings) reflected to the motor, "
                               "as vendors define it; 'load' = the load alone")
+    envelope: Literal["book", "linear", "linear_intermittent"] = Field(
+        "linear", description="how a motor region without a curve is completed up to "
+                              "max_speed: book (rectangles up to the rated speed), linear "
+                              "(then straight lines down to max_speed) or "
+                              "linear_intermittent (only the intermittent region extended)")
 
 
 EFFICIENCY_ALIASES = {"siemens": "power_flow", "mitsubishi": "power_flow",

@@ -283,7 +283,7 @@ class DesignReport:
                  short(m.rated_speed * RPM_PER_RAD_S),
                  "" if m.max_speed is None else short(m.max_speed * RPM_PER_RAD_S),
                  "catalog" if m.continuous_curve or m.intermittent_curve
-                 else "rectangles (tau_c, tau_p up to v_n)",
+                 else f"none (envelope {self.design.limits.envelope})",
                  m.part_number or "") for m in motors]
         text += md(render_markdown_table(make_table(columns, rows)))
         sources: dict[str, list[str]] = {}

@@ -93,6 +93,7 @@ def design_summary(design: Design, notes: tuple[str, ...] = ()) -> dict[str, Any
             "max_acceleration": finite_or_none(limits.max_acceleration),
             "max_jerk": finite_or_none(limits.max_jerk),
             "thermal_speed": limits.thermal_speed,
+            "envelope": limits.envelope,
             "units": {"torque_margin": "1", "speed_margin": "1", "inertia_ratio": "1",
                       "max_acceleration": units["acceleration"], "max_jerk": units["jerk"]},
         },

@@ -13,6 +13,7 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
+from sizer.envelope import envelope_note
 from sizer.errors import UserError
 from sizer.laws import AUTO, MotionLaw, make_law, resolve
 from sizer.mechanics import Drive
@@ -42,7 +43,7 @@ def size_design(design: Design, rank_by: str | None = None,
                         field="motors")
     if not design.laws:
         raise UserError("no motion laws to consider", field="laws")
-    arrays = MotorArrays.of(motors)
+    arrays = MotorArrays.of(motors, design.limits.envelope)
     results: list[CandidateResult] = []
     if progress is not None:
         progress(0, len(design.laws))
@@ -158,16 +159,16 @@ def check_design(design: Design) -> CandidateResult:
         known = ", ".join(m.id for m in design.motors) or "none"
         raise UserError(f"unknown motor {design.chosen_motor!r}; loaded motors: {known}",
                         field="check.motor")
-    results = evaluate_candidates(design, design.chosen_law, MotorArrays.of([motor]))
+    results = evaluate_candidates(design, design.chosen_law,
+                                  MotorArrays.of([motor], design.limits.envelope))
     return results[0]
 
 
 def assumptions(design: Design) -> tuple[str, ...]:
     """What the computation assumed, for reports."""
     notes = []
-    if any(not (m.continuous_curve or m.intermittent_curve) for m in design.motors):
-        notes.append("motors without curves use the book's rectangular regions up to the "
-                     "rated speed")
+    if any(m.continuous_curve is None or m.intermittent_curve is None for m in design.motors):
+        notes.append(envelope_note(design.limits.envelope))
     if design.load.torque and design.task.dwell:
         notes.append("holding the constant load at rest counts as driving (torque / efficiency)")
     if not math.isclose(design.transmission.efficiency, 1.0):

@@ -8,28 +8,34 @@ from dataclasses import dataclass
 import numpy as np
 
 from sizer.envelope import RegionTable, continuous_region, intermittent_region
-from sizer.model.domain import Motor
+from sizer.model.domain import EnvelopeRule, Motor
 
 
 @dataclass(frozen=True)
 class MotorArrays:
-    """Rotor inertia, damping and speed-torque regions of a list of motors."""
+    """Rotor inertia, damping and speed-torque regions of a list of motors.
+
+    ``envelope`` is the rule that completed the regions without curves
+    (sizer.envelope.completion); ``book`` keeps the book's rectangles.
+    """
 
     motors: tuple[Motor, ...]
     inertia: np.ndarray
     damping: np.ndarray
     intermittent: RegionTable
     continuous: RegionTable
+    envelope: EnvelopeRule = "book"
 
     @classmethod
-    def of(cls, motors: Sequence[Motor]) -> MotorArrays:
+    def of(cls, motors: Sequence[Motor], envelope: EnvelopeRule = "book") -> MotorArrays:
         motors = tuple(motors)
         return cls(
             motors,
             np.array([m.inertia for m in motors], dtype=float),
             np.array([m.damping for m in motors], dtype=float),
-            RegionTable([intermittent_region(m) for m in motors]),
-            RegionTable([continuous_region(m) for m in motors]),
+            RegionTable([intermittent_region(m, envelope) for m in motors]),
+            RegionTable([continuous_region(m, envelope) for m in motors]),
+            envelope,
         )
 
     def __len__(self) -> int:
@@ -42,7 +48,11 @@ class MotorArrays:
 
     @property
     def is_rectangular(self) -> np.ndarray:
-        """True where both regions are flat up to one common speed (the book's case)."""
+        """True where both regions are flat up to one common speed (the book's case).
+
+        Read from the regions as completed, so a motor whose regions were extended past
+        the rated speed by a falling line is not rectangular (eq. 6.2 does not apply).
+        """
         flat_i = np.all(self.intermittent.torques == self.intermittent.torques[:, :1], axis=1)
         flat_c = np.all(self.continuous.torques == self.continuous.torques[:, :1], axis=1)
         return flat_i & flat_c & (self.intermittent.max_speed == self.continuous.max_speed)
@@ -53,4 +63,4 @@ class MotorArrays:
 
     def subset(self, index: np.ndarray) -> MotorArrays:
         """The motors at the given positions, in that order."""
-        return MotorArrays.of([self.motors[int(i)] for i in index])
+        return MotorArrays.of([self.motors[int(i)] for i in index], self.envelope)

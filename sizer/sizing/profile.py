@@ -63,7 +63,7 @@ def task_curve(design: Design, motor: Motor, law: MotionLaw | str, duration: flo
     if isinstance(law, str):
         law = make_law(law)
     drive = Drive(design.load, transmission or design.transmission)
-    motors = MotorArrays.of([motor])
+    motors = MotorArrays.of([motor], design.limits.envelope)
     calc = CycleCalculator(None, design.task, drive, motors, design.limits.thermal_speed,
                            law=law)
     T = np.array([duration])
@@ -99,7 +99,8 @@ def task_curve(design: Design, motor: Motor, law: MotionLaw | str, duration: flo
         motor_torque=np.concatenate(torques),
         rms_torque=float(metrics.rms_torque[0]), thermal_speed=float(metrics.thermal_speed[0]),
         peak_torque=float(metrics.peak_torque[0]), max_speed=float(metrics.max_speed[0]),
-        continuous_region=continuous_region(motor), intermittent_region=intermittent_region(motor),
+        continuous_region=continuous_region(motor, design.limits.envelope),
+        intermittent_region=intermittent_region(motor, design.limits.envelope),
         total_inertia=motor.inertia + drive.transmission_inertia + drive.reflected_load_inertia,
     )
 
