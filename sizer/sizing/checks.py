@@ -4,7 +4,12 @@
 - peak: every point (|speed(t)|, |torque(t)|) inside the intermittent region;
 - rms: the RMS torque against the continuous region at the thermal speed (max speed by
   default as in the book; rms or mean speed on request), and that speed inside it;
-- inertia ratio, load acceleration and load jerk against the user's limits.
+- inertia ratio, load speed, load acceleration and load jerk against the user's limits.
+
+Every verdict is decided here, with one tolerance: a check passes when
+margin >= required - TOLERANCE, i.e. value <= (1 - required + TOLERANCE) * limit. A
+requirement exactly equal to a rating (a motor run exactly at its rated speed) passes
+although rounding leaves it one ulp above; a requirement 1e-6 (relative) above fails.
 """
 
 from __future__ import annotations
@@ -17,6 +22,9 @@ from sizer.mechanics import Drive
 from sizer.model.domain import Limits
 from sizer.sizing.cycle import CycleMetrics
 from sizer.sizing.motors import MotorArrays
+
+TOLERANCE = 1e-9
+"""Relative tolerance of every check: value <= (1 - required + TOLERANCE) * limit passes."""
 
 
 @dataclass(frozen=True)
@@ -38,6 +46,11 @@ class CheckArrays:
     @property
     def slack(self) -> np.ndarray:
         return self.margin - self.required
+
+    @property
+    def passed(self) -> np.ndarray:
+        """The verdict per candidate: slack >= -TOLERANCE."""
+        return self.slack >= -TOLERANCE
 
 
 def evaluate_checks(metrics: CycleMetrics, motors: MotorArrays, drive: Drive,
@@ -97,8 +110,13 @@ def stage_checks(metrics: CycleMetrics, drive: Drive, limits: Limits,
 
 
 def worst_slack(checks: list[CheckArrays]) -> np.ndarray:
-    """min over checks of margin - required, per candidate (>= 0 means feasible)."""
+    """min over checks of margin - required, per candidate (see :func:`feasible`)."""
     return np.min(np.stack([c.slack for c in checks]), axis=0)
+
+
+def feasible(checks: list[CheckArrays]) -> np.ndarray:
+    """Every check passes, per candidate: worst slack >= -TOLERANCE."""
+    return worst_slack(checks) >= -TOLERANCE
 
 
 def limiting_index(checks: list[CheckArrays]) -> np.ndarray:
