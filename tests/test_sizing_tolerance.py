@@ -82,9 +82,9 @@ PEAK = J_T * K * 2 * math.pi * H / T**2  # motor torque at the peak of the cyclo
 RMS = J_T * K * math.pi * math.sqrt(2) * H / T**2
 
 
-def cycloidal(motor: Motor, limits: Limits = Limits()) -> Design:
+def cycloidal(motor: Motor, limits: Limits | None = None) -> Design:
     return Design(Task(H, T), Load(J_L), Transmission((Stage("gearbox", K),)),
-                  laws=("cycloidal",), motors=(motor,), limits=limits)
+                  laws=("cycloidal",), motors=(motor,), limits=limits or Limits())
 
 
 def motor(peak: float, continuous: float) -> Motor:
