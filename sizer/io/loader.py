@@ -308,7 +308,10 @@ def _load(model: DesignFile, source: YamlSource, linear: bool) -> Load:
 def _limits(model: DesignFile, source: YamlSource, linear: bool) -> Limits:
     given = model.limits
     prefix = "linear" if linear else "angular"
-    max_acceleration = max_jerk = None
+    max_acceleration = max_jerk = max_speed = None
+    if given.max_speed is not None:
+        max_speed = _quantity(source, ("limits", "max_speed"), given.max_speed,
+                              f"{prefix}_speed", gt=0)
     if given.max_acceleration is not None:
         max_acceleration = _quantity(source, ("limits", "max_acceleration"),
                                      given.max_acceleration, f"{prefix}_acceleration", gt=0)
@@ -322,6 +325,7 @@ def _limits(model: DesignFile, source: YamlSource, linear: bool) -> Limits:
         max_acceleration=max_acceleration,
         max_jerk=max_jerk,
         thermal_speed=given.thermal_speed,
+        max_speed=max_speed,
     )
 
 

@@ -150,8 +150,8 @@ class Motor:
 class Limits:
     """Margins and user limits. Margins are fractions of the motor's capability left unused.
 
-    ``max_acceleration`` and ``max_jerk`` are at the load (rad/s^2 or m/s^2, ...).
-    ``inertia_ratio`` bounds J_l reflected / J_m.
+    ``max_speed``, ``max_acceleration`` and ``max_jerk`` are at the load (rad/s or m/s,
+    rad/s^2 or m/s^2, ...). ``inertia_ratio`` bounds J_l reflected / J_m.
     """
 
     torque_margin: float = 0.0
@@ -160,6 +160,7 @@ class Limits:
     max_acceleration: float | None = None
     max_jerk: float | None = None
     thermal_speed: ThermalSpeedRule = "max"
+    max_speed: float | None = None
 
 
 @dataclass(frozen=True)

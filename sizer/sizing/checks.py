@@ -71,6 +71,9 @@ def evaluate_checks(metrics: CycleMetrics, motors: MotorArrays, drive: Drive,
             ratio = drive.reflected_load_inertia / motors.inertia
         checks.append(CheckArrays("inertia_ratio", ratio, limits.inertia_ratio * ones, "", 0.0))
     unit = "m" if linear else "rad"
+    if limits.max_speed is not None:
+        checks.append(CheckArrays("load_speed", metrics.load_speed,
+                                  limits.max_speed * ones, f"{unit}/s", 0.0))
     if limits.max_acceleration is not None:
         checks.append(CheckArrays("acceleration", metrics.load_acceleration,
                                   limits.max_acceleration * ones, f"{unit}/s^2", 0.0))

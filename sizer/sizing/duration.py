@@ -94,8 +94,8 @@ def _largest_tried(calculator: CycleCalculator) -> np.ndarray:
 def closed_form_duration(calculator: CycleCalculator, limits: Limits) -> np.ndarray:
     """Eq. (6.2) per candidate, with the dwell in the RMS and the user's load limits.
 
-    The bounds are those of the checks that depend on T (speed, peak, RMS, acceleration
-    and jerk); a check no duration changes (the inertia ratio) is left to
+    The bounds are those of the checks that depend on T (speed, peak, RMS, load speed,
+    acceleration and jerk); a check no duration changes (the inertia ratio) is left to
     the verdict at the bound.
     """
     c = calculator.law.coefficients
@@ -109,6 +109,8 @@ def closed_form_duration(calculator: CycleCalculator, limits: Limits) -> np.ndar
         bounds = [c.C_v * k * h / speed, np.sqrt(c.C_a * k * h * J_t / tau_p)]
         rms_scale = J_t * k * h * c.C_a_rms / tau_c
     bounds.append(np.array([_rms_duration(s, task.dwell) for s in rms_scale]))
+    if limits.max_speed is not None:
+        bounds.append(np.full(len(motors), c.C_v * h / limits.max_speed))
     if limits.max_acceleration is not None:
         bounds.append(np.full(len(motors), math.sqrt(c.C_a * h / limits.max_acceleration)))
     if limits.max_jerk is not None:
