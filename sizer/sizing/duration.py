@@ -74,8 +74,8 @@ def minimum_duration(calculator: CycleCalculator, limits: Limits) -> DurationSol
         _, checks = evaluate(calculator, limits, np.where(finite, T, 1.0))
         missed = finite & ~feasible(checks)
         if missed.any():
-            searched = bisect_duration(calculator, limits, guess=np.where(missed, T, 1.0),
-                                       active=missed)
+            start = np.where(missed & (T > 0.0), T, _initial_guess(calculator))
+            searched = bisect_duration(calculator, limits, guess=start, active=missed)
             T = np.where(missed, searched, T)
     else:
         T = bisect_duration(calculator, limits)
@@ -169,11 +169,17 @@ def bisect_duration(calculator: CycleCalculator, limits: Limits,
     return np.where(found, np.exp(x), np.inf)
 
 
-def _unfixable(first: list[CheckArrays], second: list[CheckArrays]) -> np.ndarray:
-    """A check that fails with the same value and limit at two durations: no T fixes it."""
+def _unfixable(*samples: list[CheckArrays]) -> np.ndarray:
+    """A check that fails with the same value and limit at every duration sampled (the
+    inertia ratio, a holding torque, a jerk impulse): no duration fixes it."""
+    first = samples[0]
     out = np.zeros(len(first[0].value), dtype=bool)
-    for a, b in zip(first, second, strict=True):
-        out |= ~a.passed & ~b.passed & (a.value == b.value) & (a.limit == b.limit)
+    for i, check in enumerate(first):
+        same = ~check.passed
+        for other in samples[1:]:
+            same &= ~other[i].passed & (other[i].value == check.value) & \
+                (other[i].limit == check.limit)
+        out |= same
     return out
 
 
@@ -196,7 +202,7 @@ def _bracket(checks_at, x0: np.ndarray, active: np.ndarray):
     second = checks_at(x1)
     f1 = worst_slack(second)
     ok0, ok1 = f0 >= -TOLERANCE, f1 >= -TOLERANCE
-    stuck = _unfixable(first, second)
+    stuck = _unfixable(first, second, checks_at(x0 + EXPANSIONS / 2 * STEP))
     found = active & (ok0 | ok1)
     x_ok, f_ok = np.where(ok0, x0, np.where(ok1, x1, nan)), np.where(ok0, f0, f1)
     x_bad, f_bad = np.where(ok0, nan, x0), np.where(ok0, nan, f0)
