@@ -44,11 +44,14 @@ def designs(draw):
                   peak_torque=continuous * draw(st.floats(1.0, 5.0)),
                   rated_speed=draw(st.floats(30.0, 700.0)),
                   damping=draw(st.sampled_from([0.0, 1e-4])))
+    stage = Stage("gearbox", draw(st.floats(1.0, 30.0)), draw(st.sampled_from([1.0, 0.9, 0.7])))
+    # a friction near the continuous torque (at the load) makes windows of feasible T:
+    # the RMS over a cycle with dwell falls with T, then rises to the friction torque
+    near = continuous * stage.ratio * stage.efficiency * draw(st.floats(0.7, 1.2))
     load = Load(inertia=draw(st.floats(1e-4, 1.0)),
                 damping=draw(st.sampled_from([0.0, 0.02, 0.5])),
-                friction=draw(st.sampled_from([0.0, 0.05, 0.5, 2.0])),
+                friction=draw(st.sampled_from([0.0, 0.05, 0.5, 2.0, near])),
                 torque=draw(st.sampled_from([0.0, 0.0, 0.3, -0.5])))
-    stage = Stage("gearbox", draw(st.floats(1.0, 30.0)), draw(st.sampled_from([1.0, 0.9, 0.7])))
     task = Task(draw(st.floats(0.1, 10.0)), None, dwell=draw(st.sampled_from([0.0, 0.1, 2.0])),
                 return_move=draw(st.booleans()))
     limits = Limits(torque_margin=draw(st.sampled_from([0.0, 0.1, 0.3])),
@@ -73,7 +76,7 @@ def at_duration(design: Design, T: float):
     return size_design(fixed).results[0]
 
 
-@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(designs())
 def test_minimize_finds_every_feasible_duration_of_a_grid(design):
     on_grid = passes_at(design, GRID)
