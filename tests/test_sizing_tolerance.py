@@ -129,3 +129,18 @@ def test_minimize_at_equality_reports_the_limit_as_passing() -> None:
     r = only(design)
     assert r.duration == pytest.approx(T, rel=1e-12)
     assert r.limiting == "peak" and "margin 0.00% (ok)" in r.check("peak").describe()
+
+
+def test_sizer_check_passes_at_the_rated_speed_and_prints_a_failing_margin(tmp_path) -> None:
+    from cli_run import run_cli
+
+    path = tmp_path / "rated.yaml"
+    check = "check: {motor: m, law: poly5}\n"
+    path.write_text(POLY5_AT_RATED_SPEED + check)
+    result = run_cli("check", str(path))
+    assert result.returncode == 0, result.stdout
+    assert "speed: 314.159 rad/s against 314.159 rad/s, margin 0.00% (ok)" in result.stdout
+    path.write_text(POLY5_AT_RATED_SPEED.replace("3000 rpm", f"{3000 / OVER!r} rpm") + check)
+    result = run_cli("check", str(path))
+    assert result.returncode == 1
+    assert "margin -0.0001% (FAILS)" in result.stdout and "-0.00%" not in result.stdout
