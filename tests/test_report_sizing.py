@@ -108,13 +108,15 @@ def test_display_cells_in_ms_rpm_and_percent() -> None:
     assert cells[8:11] == ("50.0", "50.0", "60.0")
 
 
-def test_a_check_at_its_limit_passes_only_when_the_pair_is_feasible() -> None:
+def test_reports_show_the_engines_verdict_and_never_a_failing_minus_zero() -> None:
     at_limit = Check("rms", 14.000000000000002, 14.0, "N*m", -2.2e-16)
     feasible = candidate("m1", True)
-    assert not at_limit.passed  # the raw comparison
-    assert check_passed(feasible, at_limit)
-    assert check_line(feasible, at_limit).endswith("(ok: at the limit, to rounding)")
-    assert not check_passed(candidate("m1", False), at_limit)
+    assert at_limit.passed and check_passed(feasible, at_limit)
+    assert check_line(feasible, at_limit).endswith("margin 0.00% (ok)")
+    just_over = Check("rms", 14.000014, 14.0, "N*m", -1e-6)
+    assert not check_passed(feasible, just_over)  # never re-decided from feasibility
+    assert check_line(feasible, just_over).endswith("margin -0.0001% (FAILS)")
+    assert percent(-1e-6) == "-0.0001" and percent(-2.2e-16) == "0.0"
     clearly_over = Check("rms", 15.0, 14.0, "N*m", -1 / 14)
     assert not check_passed(feasible, clearly_over)
 

@@ -147,9 +147,6 @@ def test_the_chosen_motor_meets_every_limit_within_a_relative_tolerance(result):
         assert check.margin >= check.required - 1e-9, check.describe()
 
 
-@pytest.mark.xfail(strict=True, reason="a requirement equal to a rating fails by one ulp "
-                                       "until checks compare with a relative tolerance "
-                                       "(issue 9, another branch): drop this mark then")
 def test_the_chosen_motor_is_feasible(result):
     assert result.feasible
 

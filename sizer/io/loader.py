@@ -345,7 +345,10 @@ def _load(model: DesignFile, source: YamlSource, linear: bool) -> Load:
 def _limits(model: DesignFile, source: YamlSource, linear: bool) -> Limits:
     given = model.limits
     prefix = "linear" if linear else "angular"
-    max_acceleration = max_jerk = None
+    max_acceleration = max_jerk = max_speed = None
+    if given.max_speed is not None:
+        max_speed = _quantity(source, ("limits", "max_speed"), given.max_speed,
+                              f"{prefix}_speed", gt=0)
     if given.max_acceleration is not None:
         max_acceleration = _quantity(source, ("limits", "max_acceleration"),
                                      given.max_acceleration, f"{prefix}_acceleration", gt=0)
@@ -361,6 +364,7 @@ def _limits(model: DesignFile, source: YamlSource, linear: bool) -> Limits:
         thermal_speed=given.thermal_speed,
         inertia_ratio_of=given.inertia_ratio_of,
         envelope=given.envelope,
+        max_speed=max_speed,
     )
 
 

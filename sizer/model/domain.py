@@ -168,7 +168,8 @@ class Motor:
 class Limits:
     """Margins and user limits. Margins are fractions of the motor's capability left unused.
 
-    ``max_acceleration`` and ``max_jerk`` are at the load (rad/s^2 or m/s^2, ...).
+    ``max_speed``, ``max_acceleration`` and ``max_jerk`` are at the load (rad/s or m/s,
+    rad/s^2 or m/s^2, ...).
     ``inertia_ratio`` bounds the driven inertia reflected to the motor over J_m: with
     ``inertia_ratio_of = "driven"`` (the vendors' definition, default) the load, the
     screws, gears and couplings; with ``"load"`` the load alone (J_l/k^2). ``envelope``
@@ -183,8 +184,8 @@ class Limits:
     max_jerk: float | None = None
     thermal_speed: ThermalSpeedRule = "max"
     inertia_ratio_of: InertiaRatioRule = "driven"
-
     envelope: EnvelopeRule = "linear"  # regions without curves (sizer.envelope.completion)
+    max_speed: float | None = None
 
 
 @dataclass(frozen=True)

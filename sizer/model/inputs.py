@@ -220,6 +220,10 @@ class LimitsInput(_Strict):
                            note="fraction of speed capability left unused") = 0.0
     inertia_ratio: Quantity("ratio", gt=0,  # type: ignore[valid-type]
                             note="max J_load reflected / J_motor") | None = None
+    max_speed: RawQuantity(  # type: ignore[valid-type]
+        "'300 rpm' or '2 m/s'") | None = Field(
+        None, description="at the load: rad/s or rpm (rotary), m/s or m/min (linear: a "
+                          "belt's or a screw's maximum linear speed)")
     max_acceleration: RawQuantity(  # type: ignore[valid-type]
         "'500 rad/s^2' or '20 m/s^2'") | None = Field(
         None, description="at the load: rad/s^2 (rotary) or m/s^2 (linear)")

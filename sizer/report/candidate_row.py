@@ -12,19 +12,14 @@ from typing import TYPE_CHECKING, Any
 
 from sizer.report.design_summary import finite_or_none
 from sizer.report.numbers import full, short
+from sizer.sizing.checks import TOLERANCE
+from sizer.sizing.results import margin_percent
 
 if TYPE_CHECKING:
     from sizer.sizing import CandidateResult, Check
 
 RPM_PER_RAD_S = 30.0 / math.pi
 """rev/min per rad/s, for display."""
-
-SLACK_TOLERANCE = 1e-9
-"""A check within this of its required margin passes when the engine calls the pair feasible.
-
-At T_min the binding check sits exactly at its limit, and rounding can leave its slack at
--1e-16; the engine (``sizer.sizing.duration``) accepts a slack down to -1e-9 there.
-"""
 
 MARGINS = ("peak", "rms", "speed")
 """The margins every row shows, by check name."""
@@ -49,16 +44,13 @@ def summary_margin(result: CandidateResult, name: str) -> float | None:
 
 
 def check_passed(result: CandidateResult, check: Check) -> bool:
-    """The check's verdict, consistent with the result's feasibility (see SLACK_TOLERANCE)."""
-    return check.passed or (result.feasible and check.slack >= -SLACK_TOLERANCE)
+    """The check's verdict, as the engine decided it (``Check.passed``)."""
+    return check.passed
 
 
 def check_line(result: CandidateResult, check: Check) -> str:
-    """``Check.describe()``, with the verdict of :func:`check_passed`."""
-    text = check.describe()
-    if check_passed(result, check) and not check.passed:
-        text = text.replace("(FAILS)", "(ok: at the limit, to rounding)")
-    return text
+    """``Check.describe()``: the engine's verdict and margin."""
+    return check.describe()
 
 
 def check_json(result: CandidateResult, check: Check) -> dict[str, Any]:
@@ -119,13 +111,14 @@ def result_csv_cells(rank: int, result: CandidateResult) -> tuple[str, ...]:
 
 
 def percent(fraction: float | None) -> str:
-    """A margin in % with one decimal: '12.5', '-inf', or '' when missing."""
+    """A margin in % with one decimal: '12.5', '-inf', or '' when missing.
+
+    A negative margin beyond the checks' tolerance (a failing one) shows enough decimals
+    to be visibly negative ('-0.0001'); one within it reads '0.0'.
+    """
     if fraction is None:
         return ""
-    if not math.isfinite(fraction):
-        return "inf" if fraction > 0 else "-inf"
-    text = f"{100.0 * fraction:.1f}"
-    return "0.0" if text == "-0.0" else text
+    return margin_percent(fraction, 1, failed=fraction < -TOLERANCE)
 
 
 def _short(value: float | None, scale: float = 1.0) -> str:

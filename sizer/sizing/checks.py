@@ -6,7 +6,12 @@
   default as in the book; rms or mean speed on request), and that speed inside it;
 - inertia ratio (by default everything the motor drives, reflected to it, over the rotor
   inertia, as vendors define it; ``inertia_ratio_of: load`` for the load alone), load
-  acceleration and load jerk against the user's limits.
+  speed, load acceleration and load jerk against the user's limits.
+
+Every verdict is decided here, with one tolerance: a check passes when
+margin >= required - TOLERANCE, i.e. value <= (1 - required + TOLERANCE) * limit. A
+requirement exactly equal to a rating (a motor run exactly at its rated speed) passes
+although rounding leaves it one ulp above; a requirement 1e-6 (relative) above fails.
 """
 
 from __future__ import annotations
@@ -19,6 +24,9 @@ from sizer.mechanics import Drive
 from sizer.model.domain import Limits
 from sizer.sizing.cycle import CycleMetrics
 from sizer.sizing.motors import MotorArrays
+
+TOLERANCE = 1e-9
+"""Relative tolerance of every check: value <= (1 - required + TOLERANCE) * limit passes."""
 
 
 @dataclass(frozen=True)
@@ -41,6 +49,11 @@ class CheckArrays:
     def slack(self) -> np.ndarray:
         return self.margin - self.required
 
+    @property
+    def passed(self) -> np.ndarray:
+        """The verdict per candidate: slack >= -TOLERANCE."""
+        return self.slack >= -TOLERANCE
+
 
 def evaluate_checks(metrics: CycleMetrics, motors: MotorArrays, drive: Drive,
                     limits: Limits, linear: bool = False) -> list[CheckArrays]:
@@ -60,6 +73,9 @@ def evaluate_checks(metrics: CycleMetrics, motors: MotorArrays, drive: Drive,
             ratio = drive.inertia_ratio_numerator(limits.inertia_ratio_of) / motors.inertia
         checks.append(CheckArrays("inertia_ratio", ratio, limits.inertia_ratio * ones, "", 0.0))
     unit = "m" if linear else "rad"
+    if limits.max_speed is not None:
+        checks.append(CheckArrays("load_speed", metrics.load_speed,
+                                  limits.max_speed * ones, f"{unit}/s", 0.0))
     if limits.max_acceleration is not None:
         checks.append(CheckArrays("acceleration", metrics.load_acceleration,
                                   limits.max_acceleration * ones, f"{unit}/s^2", 0.0))
@@ -99,8 +115,13 @@ def stage_checks(metrics: CycleMetrics, drive: Drive, limits: Limits,
 
 
 def worst_slack(checks: list[CheckArrays]) -> np.ndarray:
-    """min over checks of margin - required, per candidate (>= 0 means feasible)."""
+    """min over checks of margin - required, per candidate (see :func:`feasible`)."""
     return np.min(np.stack([c.slack for c in checks]), axis=0)
+
+
+def feasible(checks: list[CheckArrays]) -> np.ndarray:
+    """Every check passes, per candidate: worst slack >= -TOLERANCE."""
+    return worst_slack(checks) >= -TOLERANCE
 
 
 def limiting_index(checks: list[CheckArrays]) -> np.ndarray:

@@ -14,7 +14,9 @@ the outputs of transmission stages that have torque ratings.
 
 Integrals are exact: Gauss-Legendre on the law's grid, each interval cut where a stage's
 power flow reverses; with ideal stages the RMS is the closed form in C_v_rms, C_a_rms.
-Peaks are found on the grid and refined by golden-section search.
+Peaks are found on the grid (piece ends and the ends of the move included) and the
+largest local maxima of the samples, in whatever interval or piece, are refined by
+golden-section search.
 """
 
 from __future__ import annotations
@@ -32,6 +34,10 @@ from sizer.sizing.motors import MotorArrays
 from sizer.sizing.roots import illinois
 
 GOLDEN_STEPS = 40
+REFINED = 6
+"""Local maxima of the samples refined per candidate (the largest ones)."""
+REFINE_SHARE = 0.5
+"""Samples below this share of the best sample are no candidate peaks."""
 INV_PHI = (math.sqrt(5.0) - 1.0) / 2.0
 
 
@@ -276,8 +282,8 @@ class CycleCalculator:
                 motor_torque, stage_torques = self.channels(a, v, scales)
                 torque = np.abs(motor_torque if which < 0 else stage_torques[which])
                 if by_ratio:
-                    limit = self.motors.intermittent.limit_clipped(speed_scale * v)
-                    return _safe_ratio(torque, limit)
+                    speed = np.reshape(speed_scale, (-1,) + (1,) * (np.ndim(v) - 1)) * v
+                    return _safe_ratio(torque, self.motors.intermittent.limit_clipped(speed))
                 return torque
             return objective
 
@@ -298,15 +304,38 @@ class CycleCalculator:
         return peak, ratio, load, stages
 
     def _refine(self, values, tau, objective_of) -> np.ndarray:
-        """Golden-section refinement of the best sample of each candidate."""
+        """The maximum over the move: the best samples, each refined by golden section.
+
+        ``values`` are the samples (candidates, intervals, columns) at ``tau`` (intervals,
+        columns: each interval's left end, nodes, right end, so breakpoints and the ends of
+        the move are samples, one-sided). Every sample that is a local maximum of the
+        samples of its piece and within REFINE_SHARE of the best is a candidate peak (the
+        REFINED largest of them); each is refined between its neighbours in its interval. A peak
+        on a sample is that sample; one between samples is found in whichever interval or
+        piece it lies, not only next to the best sample.
+        """
         g = self.grid
-        count = len(values)
-        flat = values.reshape(count, -1)
-        best = np.argmax(flat, axis=1)
-        best_value = flat[np.arange(count), best]
-        interval, column = np.divmod(best, tau.shape[1])
+        count, columns = len(values), tau.shape[1]
+        best_value = values.reshape(count, -1).max(axis=1)
+        # neighbours of each sample; at an interval's end, the sample across the end when
+        # the next interval is on the same piece (else none: a breakpoint or an end)
+        same = g.piece[1:] == g.piece[:-1]
+        before = np.where(same[None, :], values[:, :-1, -2], -np.inf)
+        after = np.where(same[None, :], values[:, 1:, 1], -np.inf)
+        edge = np.full((count, 1), -np.inf)
+        before = np.concatenate((edge, before), axis=1)[..., None]
+        after = np.concatenate((after, edge), axis=1)[..., None]
+        left = np.concatenate((before, values[..., :-1]), axis=2)
+        right = np.concatenate((values[..., 1:], after), axis=2)
+        floor = (REFINE_SHARE * best_value)[:, None, None]
+        local = (values >= left) & (values >= right) & (values >= floor)
+        score = np.where(local, values, -np.inf).reshape(count, -1)
+        keep = min(REFINED, score.shape[1])
+        chosen = np.argpartition(-score, keep - 1, axis=1)[:, :keep]  # (count, keep)
+        valid = np.isfinite(np.take_along_axis(score, chosen, axis=1))
+        interval, column = np.divmod(chosen, columns)
         lo = tau[interval, np.maximum(column - 1, 0)]
-        hi = tau[interval, np.minimum(column + 1, tau.shape[1] - 1)]
+        hi = tau[interval, np.minimum(column + 1, columns - 1)]
         at = PieceEvaluator(self.law, g.piece[interval])
 
         def objective(x):
@@ -316,14 +345,15 @@ class CycleCalculator:
         x2 = lo + INV_PHI * (hi - lo)
         f1, f2 = objective(x1), objective(x2)
         for _ in range(GOLDEN_STEPS):
-            left = f1 >= f2  # the maximum lies in [lo, x2]
-            hi, lo = np.where(left, x2, hi), np.where(left, lo, x1)
-            new_x1 = np.where(left, hi - INV_PHI * (hi - lo), x2)
-            new_x2 = np.where(left, x1, lo + INV_PHI * (hi - lo))
-            f_new = objective(np.where(left, new_x1, new_x2))
-            f1, f2 = np.where(left, f_new, f2), np.where(left, f1, f_new)
+            left_ = f1 >= f2  # the maximum lies in [lo, x2]
+            hi, lo = np.where(left_, x2, hi), np.where(left_, lo, x1)
+            new_x1 = np.where(left_, hi - INV_PHI * (hi - lo), x2)
+            new_x2 = np.where(left_, x1, lo + INV_PHI * (hi - lo))
+            f_new = objective(np.where(left_, new_x1, new_x2))
+            f1, f2 = np.where(left_, f_new, f2), np.where(left_, f1, f_new)
             x1, x2 = new_x1, new_x2
-        return np.maximum(best_value, np.maximum(f1, f2))
+        refined = np.where(valid, np.maximum(f1, f2), -np.inf).max(axis=1)
+        return np.maximum(best_value, refined)
 
 
 def _square_mean(p, q, const, c_a_rms: float, c_v_rms: float):

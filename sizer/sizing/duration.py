@@ -3,8 +3,14 @@
 With the book's rectangular regions and a purely inertial load (no damping, friction or
 constant load, efficiency 1) T_min is the closed form of eq. (6.2), extended to a cycle
 with dwell: the RMS bound T^3 (T + t_dwell) >= (J_t k h C_a_rms / tau_c)^2 is solved
-exactly. Otherwise T_min is found by bisection on the feasibility of every check,
-vectorized over candidates, to a relative width of 1e-12.
+exactly. Otherwise T_min is found by a search on the worst slack, vectorized over
+candidates: a walk in log T up the slack until a feasible duration (or a golden-section
+search for the slack's maximum where it stops rising), then the Illinois method down to
+where the binding check reaches its limit, to a relative width of 1e-13.
+
+Feasible means what it means everywhere (sizer.sizing.checks.feasible: every slack
+>= -TOLERANCE). T_min is where the binding check is exactly at its limit; only where no
+duration reaches slack 0 but some are within the tolerance, it is the shortest of those.
 """
 
 from __future__ import annotations
@@ -16,11 +22,14 @@ import numpy as np
 from scipy import optimize
 
 from sizer.model.domain import Limits
-from sizer.sizing.checks import CheckArrays, evaluate_checks, worst_slack
+from sizer.sizing.checks import TOLERANCE, CheckArrays, evaluate_checks, feasible, worst_slack
 from sizer.sizing.cycle import CycleCalculator, CycleMetrics
 
 EXPANSIONS = 80
 BISECTIONS = 200
+GOLDEN_STEPS = 80
+STEP = math.log(2.0)
+INV_PHI = (math.sqrt(5.0) - 1.0) / 2.0
 
 
 @dataclass(frozen=True)
@@ -53,26 +62,29 @@ def is_purely_inertial(calculator: CycleCalculator) -> bool:
 
 
 def minimum_duration(calculator: CycleCalculator, limits: Limits) -> DurationSolution:
-    """Shortest feasible duration of the calculator's law for each candidate."""
+    """Shortest feasible duration of the calculator's law for each candidate.
+
+    The closed form is checked like any duration; where it misses (a check it does not
+    model, or rounding beyond the tolerance) the search starts from it.
+    """
     if is_purely_inertial(calculator):
         T = closed_form_duration(calculator, limits)
         method = "closed form (eq. 6.2)"
+        finite = np.isfinite(T)
+        _, checks = evaluate(calculator, limits, np.where(finite, T, 1.0))
+        missed = finite & ~feasible(checks)
+        if missed.any():
+            start = np.where(missed & (T > 0.0), T, _initial_guess(calculator))
+            searched = bisect_duration(calculator, limits, guess=start, active=missed)
+            T = np.where(missed, searched, T)
     else:
         T = bisect_duration(calculator, limits)
         method = "bisection"
     finite = np.isfinite(T)
     probe = np.where(finite, T, _largest_tried(calculator))
     metrics, checks = evaluate(calculator, limits, probe)
-    # a closed form can land a rounding error (1e-16) short of its bound: step onto
-    # the feasible side by a few ulps so that every check of T_min passes
-    for _ in range(8):
-        short = finite & (worst_slack(checks) < 0.0) & (worst_slack(checks) > -1e-9)
-        if not short.any():
-            break
-        probe = np.where(short, probe * (1.0 + 4.0 * np.finfo(float).eps), probe)
-        metrics, checks = evaluate(calculator, limits, probe)
-    feasible = finite & (worst_slack(checks) >= 0.0)
-    return DurationSolution(np.where(feasible, probe, np.nan), feasible, metrics, checks, method)
+    ok = finite & feasible(checks)
+    return DurationSolution(np.where(ok, probe, np.nan), ok, metrics, checks, method)
 
 
 def _largest_tried(calculator: CycleCalculator) -> np.ndarray:
@@ -80,7 +92,12 @@ def _largest_tried(calculator: CycleCalculator) -> np.ndarray:
 
 
 def closed_form_duration(calculator: CycleCalculator, limits: Limits) -> np.ndarray:
-    """Eq. (6.2) per candidate, with the dwell in the RMS; inf where nothing is feasible."""
+    """Eq. (6.2) per candidate, with the dwell in the RMS and the user's load limits.
+
+    The bounds are those of the checks that depend on T (speed, peak, RMS, load speed,
+    acceleration and jerk); a check no duration changes (the inertia ratio) is left to
+    the verdict at the bound.
+    """
     c = calculator.law.coefficients
     drive, motors, task = calculator.drive, calculator.motors, calculator.task
     k, h = drive.ratio, calculator.h
@@ -92,17 +109,14 @@ def closed_form_duration(calculator: CycleCalculator, limits: Limits) -> np.ndar
         bounds = [c.C_v * k * h / speed, np.sqrt(c.C_a * k * h * J_t / tau_p)]
         rms_scale = J_t * k * h * c.C_a_rms / tau_c
     bounds.append(np.array([_rms_duration(s, task.dwell) for s in rms_scale]))
+    if limits.max_speed is not None:
+        bounds.append(np.full(len(motors), c.C_v * h / limits.max_speed))
     if limits.max_acceleration is not None:
         bounds.append(np.full(len(motors), math.sqrt(c.C_a * h / limits.max_acceleration)))
     if limits.max_jerk is not None:
         jerk_bound = (c.C_j * h / limits.max_jerk) ** (1 / 3) if c.jerk_bounded else math.inf
         bounds.append(np.full(len(motors), jerk_bound))
-    T = np.max(np.stack(bounds), axis=0)
-    if limits.inertia_ratio is not None:
-        with np.errstate(divide="ignore"):
-            too_light = drive.reflected_load_inertia / motors.inertia > limits.inertia_ratio
-        T = np.where(too_light, np.inf, T)
-    return T
+    return np.max(np.stack(bounds), axis=0)
 
 
 def _rms_duration(scale: float, dwell: float) -> float:
@@ -133,53 +147,174 @@ def _initial_guess(calculator: CycleCalculator) -> np.ndarray:
     return np.where(np.isfinite(guess) & (guess > 0.0), guess, 1.0)
 
 
-def bisect_duration(calculator: CycleCalculator, limits: Limits) -> np.ndarray:
-    """T_min by bracketing, then the Illinois method on the worst slack; inf if none works.
+def bisect_duration(calculator: CycleCalculator, limits: Limits,
+                    guess: np.ndarray | None = None,
+                    active: np.ndarray | None = None) -> np.ndarray:
+    """T_min per candidate by search on the worst slack; inf where no duration is feasible.
 
-    The worst slack (smallest margin beyond the required one, over all checks) is
-    continuous in T and >= 0 exactly where the candidate is feasible. The bracket
-    [lo, hi] keeps lo infeasible and hi feasible, so the answer is always feasible; it
-    stops when the bracket is narrower than 1e-13 (relative) or hi has slack < 1e-14.
+    First a bracket (:func:`_bracket`): a feasible log T and an infeasible one below it,
+    then the crossing between them (:func:`_crossing`). ``guess`` is where the search
+    starts (default: the speed and inertial bounds), ``active`` which candidates to solve
+    (the others get inf).
     """
+    x0 = np.log(_initial_guess(calculator) if guess is None else np.asarray(guess, float))
+    active = np.ones(len(x0), dtype=bool) if active is None else np.asarray(active, bool)
 
-    def slack(T: np.ndarray) -> np.ndarray:
-        _, checks = evaluate(calculator, limits, T)
-        return worst_slack(checks)
+    def checks_at(x: np.ndarray) -> list[CheckArrays]:
+        return evaluate(calculator, limits, np.exp(x))[1]
 
-    hi = _initial_guess(calculator)
-    f_hi = slack(hi)
+    found, x_bad, x_ok, f_bad, f_ok = _bracket(checks_at, x0, active)
+    x = _crossing(lambda x: worst_slack(checks_at(x)), x_bad, x_ok, f_bad, f_ok,
+                  found & np.isfinite(x_bad))
+    return np.where(found, np.exp(x), np.inf)
+
+
+def _unfixable(*samples: list[CheckArrays]) -> np.ndarray:
+    """A check that fails with the same value and limit at every duration sampled (the
+    inertia ratio, a holding torque, a jerk impulse): no duration fixes it."""
+    first = samples[0]
+    out = np.zeros(len(first[0].value), dtype=bool)
+    for i, check in enumerate(first):
+        same = ~check.passed
+        for other in samples[1:]:
+            same &= ~other[i].passed & (other[i].value == check.value) & \
+                (other[i].limit == check.limit)
+        out |= same
+    return out
+
+
+def _bracket(checks_at, x0: np.ndarray, active: np.ndarray):
+    """Per candidate a feasible x_ok = log T and an infeasible x_bad < x_ok.
+
+    The worst slack f is a minimum of checks that each fall or rise with T, or rise and
+    then fall (an RMS with friction over a cycle with dwell): the feasible durations form
+    an interval. From x0 the walk goes up the slack by factors of 2 until f >= -TOLERANCE;
+    where f stops rising before, its maximum lies in the last three points and a
+    golden-section search looks there. From a feasible x0 the walk goes down to an
+    infeasible point. Returns (found, x_bad, x_ok, f_bad, f_ok); x_bad is nan where every
+    point down to 2^-EXPANSIONS x0 was feasible.
+    """
+    n = len(x0)
+    nan = np.full(n, np.nan)
+    first = checks_at(x0)
+    f0 = worst_slack(first)
+    x1 = x0 + STEP
+    second = checks_at(x1)
+    f1 = worst_slack(second)
+    ok0, ok1 = f0 >= -TOLERANCE, f1 >= -TOLERANCE
+    stuck = _unfixable(first, second, checks_at(x0 + EXPANSIONS / 2 * STEP))
+    found = active & (ok0 | ok1)
+    x_ok, f_ok = np.where(ok0, x0, np.where(ok1, x1, nan)), np.where(ok0, f0, f1)
+    x_bad, f_bad = np.where(ok0, nan, x0), np.where(ok0, nan, f0)
+    # climb: per candidate a direction d, the previous point and the current one
+    climbing = active & ~found & ~stuck
+    up = f1 > f0
+    d = np.where(up, STEP, -STEP)
+    x_prev, f_prev = np.where(up, x0, x1), np.where(up, f0, f1)
+    x_cur, f_cur = np.where(up, x1, x0), np.where(up, f1, f0)
+    descending = active & ok0  # from a feasible point down to an infeasible one
+    peaked = np.zeros(n, dtype=bool)  # the slack stopped rising: golden search
+    x_lo, x_hi = nan.copy(), nan.copy()
     for _ in range(EXPANSIONS):
-        if (f_hi >= 0.0).all():
+        if not (climbing.any() or descending.any()):
             break
-        hi = np.where(f_hi >= 0.0, hi, 2.0 * hi)
-        f_hi = slack(hi)
-    ok = f_hi >= 0.0
-    lo = hi / 2.0
+        x_next = np.where(descending, x_ok - STEP, x_cur + d)
+        f_next = worst_slack(checks_at(x_next))
+        good = f_next >= -TOLERANCE
+        # descending: a feasible point moves x_ok down, an infeasible one ends the walk
+        down_ok = descending & good
+        down_end = descending & ~good
+        x_ok, f_ok = np.where(down_ok, x_next, x_ok), np.where(down_ok, f_next, f_ok)
+        x_bad, f_bad = np.where(down_end, x_next, x_bad), np.where(down_end, f_next, f_bad)
+        descending = down_ok
+        # climbing: feasible ends the climb (going down: then descend from it)
+        hit = climbing & good
+        x_ok, f_ok = np.where(hit, x_next, x_ok), np.where(hit, f_next, f_ok)
+        hit_up = hit & (d > 0)
+        x_bad, f_bad = np.where(hit_up, x_cur, x_bad), np.where(hit_up, f_cur, f_bad)
+        found |= hit
+        descending |= hit & (d < 0)
+        top = climbing & ~good & (f_next <= f_cur)
+        peaked |= top
+        x_lo = np.where(top, np.minimum(x_prev, x_next), x_lo)
+        x_hi = np.where(top, np.maximum(x_prev, x_next), x_hi)
+        rising = climbing & ~good & ~top
+        x_prev, f_prev = np.where(rising, x_cur, x_prev), np.where(rising, f_cur, f_prev)
+        x_cur, f_cur = np.where(rising, x_next, x_cur), np.where(rising, f_next, f_cur)
+        climbing = rising
+    if peaked.any():
+        hit, x_top, f_top, x_below, f_below = _golden_max(checks_at, x_lo, x_hi, peaked)
+        found |= hit
+        x_ok, f_ok = np.where(hit, x_top, x_ok), np.where(hit, f_top, f_ok)
+        x_bad, f_bad = np.where(hit, x_below, x_bad), np.where(hit, f_below, f_bad)
+    return found, x_bad, x_ok, f_bad, f_ok
+
+
+def _golden_max(checks_at, lo: np.ndarray, hi: np.ndarray, active: np.ndarray):
+    """Golden-section search for a feasible point where the slack peaks in [lo, hi].
+
+    Stops for a candidate at its first feasible point; every point below it that was
+    evaluated is infeasible, so the lower end of the current interval brackets the
+    crossing. Returns (hit, x_ok, f_ok, x_bad, f_bad).
+    """
+    def slack(x):
+        return worst_slack(checks_at(np.where(active, x, 0.0)))
+
     f_lo = slack(lo)
-    for _ in range(EXPANSIONS):
-        low_ok = ok & (f_lo >= 0.0)
-        if not low_ok.any():
-            break
-        hi, f_hi = np.where(low_ok, lo, hi), np.where(low_ok, f_lo, f_hi)
-        lo = np.where(low_ok, lo / 2.0, lo)
-        f_lo = np.where(low_ok, slack(lo), f_lo)
-    x_lo, x_hi = np.log(lo), np.log(hi)
-    side = np.zeros(len(hi))  # which end moved last: -1 lo, +1 hi (Illinois weighting)
-    for step in range(BISECTIONS):
-        open_ = ok & (x_hi - x_lo > 1e-13) & (f_hi > 1e-14)
+    x1, x2 = hi - INV_PHI * (hi - lo), lo + INV_PHI * (hi - lo)
+    f1, f2 = slack(x1), slack(x2)
+    hit = np.zeros(len(lo), dtype=bool)
+    x_ok, f_ok = np.full(len(lo), np.nan), np.full(len(lo), np.nan)
+    x_bad, f_bad = lo.copy(), f_lo.copy()
+    open_ = active.copy()
+    for _ in range(GOLDEN_STEPS):
+        for x, f, below, f_below in ((x1, f1, lo, f_lo), (x2, f2, x1, f1)):
+            new = open_ & (f >= -TOLERANCE)
+            hit |= new
+            x_ok, f_ok = np.where(new, x, x_ok), np.where(new, f, f_ok)
+            x_bad, f_bad = np.where(new, below, x_bad), np.where(new, f_below, f_bad)
+            open_ &= ~new
         if not open_.any():
             break
-        finite = np.isfinite(f_lo) & np.isfinite(f_hi) & (f_hi > f_lo)
+        left = f1 >= f2  # the maximum lies in [lo, x2]
+        lo_new = np.where(left, lo, x1)
+        f_lo = np.where(left, f_lo, f1)
+        hi = np.where(left, x2, hi)
+        lo = lo_new
+        new_x1 = np.where(left, hi - INV_PHI * (hi - lo), x2)
+        new_x2 = np.where(left, x1, lo + INV_PHI * (hi - lo))
+        f_new = slack(np.where(left, new_x1, new_x2))
+        f1, f2 = np.where(left, f_new, f2), np.where(left, f1, f_new)
+        x1, x2 = new_x1, new_x2
+    return hit, x_ok, f_ok, x_bad, f_bad
+
+
+def _crossing(slack, x_lo, x_hi, f_lo, f_hi, active) -> np.ndarray:
+    """log T where the worst slack reaches 0 between an infeasible x_lo and a feasible x_hi.
+
+    Illinois steps with a bisection every fourth step, on g = f (or on f + TOLERANCE
+    where x_hi reaches only the tolerance). x_hi stays feasible, so the answer is; it
+    stops at a relative width of 1e-13 or when g(x_hi) < 1e-14.
+    """
+    offset = np.where(f_hi >= 0.0, 0.0, TOLERANCE)
+    g_lo, g_hi = f_lo + offset, f_hi + offset
+    rest = np.where(np.isfinite(x_hi), x_hi, 0.0)  # where inactive candidates are evaluated
+    side = np.zeros(len(x_hi))  # which end moved last: -1 lo, +1 hi (Illinois weighting)
+    for step in range(BISECTIONS):
+        open_ = active & (x_hi - x_lo > 1e-13) & (g_hi > 1e-14)
+        if not open_.any():
+            break
+        finite = np.isfinite(g_lo) & np.isfinite(g_hi) & (g_hi > g_lo)
         with np.errstate(invalid="ignore", divide="ignore"):
-            secant = x_hi - f_hi * (x_hi - x_lo) / (f_hi - f_lo)
+            secant = x_hi - g_hi * (x_hi - x_lo) / (g_hi - g_lo)
         inside = finite & (secant > x_lo) & (secant < x_hi) & (step % 4 != 3)
-        x = np.where(inside, secant, 0.5 * (x_lo + x_hi))
-        f = slack(np.exp(x))
-        good = f >= 0.0
+        x = np.where(open_, np.where(inside, secant, 0.5 * (x_lo + x_hi)), rest)
+        g = slack(x) + offset
+        good = g >= 0.0
         move_hi, move_lo = open_ & good, open_ & ~good
-        f_lo = np.where(move_hi & (side == 1), 0.5 * f_lo, f_lo)
-        f_hi = np.where(move_lo & (side == -1), 0.5 * f_hi, f_hi)
-        x_hi, f_hi = np.where(move_hi, x, x_hi), np.where(move_hi, f, f_hi)
-        x_lo, f_lo = np.where(move_lo, x, x_lo), np.where(move_lo, f, f_lo)
+        g_lo = np.where(move_hi & (side == 1), 0.5 * g_lo, g_lo)
+        g_hi = np.where(move_lo & (side == -1), 0.5 * g_hi, g_hi)
+        x_hi, g_hi = np.where(move_hi, x, x_hi), np.where(move_hi, g, g_hi)
+        x_lo, g_lo = np.where(move_lo, x, x_lo), np.where(move_lo, g, g_lo)
         side = np.where(move_hi, 1, np.where(move_lo, -1, side))
-    return np.where(ok, np.exp(x_hi), np.inf)
+    return x_hi

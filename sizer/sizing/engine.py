@@ -18,7 +18,8 @@ from sizer.errors import UserError
 from sizer.laws import AUTO, MotionLaw, make_law, resolve
 from sizer.mechanics import Drive
 from sizer.model.domain import Design, Motor, Transmission
-from sizer.sizing.checks import CheckArrays, evaluate_checks, limiting_index, worst_slack
+from sizer.sizing.checks import CheckArrays, evaluate_checks, limiting_index
+from sizer.sizing.checks import feasible as all_pass
 from sizer.sizing.cycle import CycleCalculator, CycleMetrics
 from sizer.sizing.duration import minimum_duration
 from sizer.sizing.motors import MotorArrays
@@ -96,7 +97,7 @@ def evaluate_fixed_law(design: Design, law: MotionLaw, drive: Drive,
         T = np.full(len(motors), design.task.duration)
         metrics = calculator.evaluate(T)
         checks = evaluate_checks(metrics, motors, drive, design.limits, design.task.linear)
-        feasible = worst_slack(checks) >= 0.0
+        feasible = all_pass(checks)
         duration = T
     return to_results(law, motors, metrics, checks, feasible, duration,
                       minimize=design.task.minimize, transmission=drive.transmission)

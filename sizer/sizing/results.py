@@ -6,13 +6,36 @@ import math
 from dataclasses import dataclass, field
 
 from sizer.model.domain import Transmission
+from sizer.sizing.checks import TOLERANCE
+
+
+def margin_percent(margin: float, decimals: int = 2, *, failed: bool = False,
+                   required: float = 0.0) -> str:
+    """A margin in % with ``decimals`` decimals ('12.50').
+
+    A failing margin gets as many more decimals as it takes to show it below the required
+    one (visibly negative for required 0: '-0.0001', never '-0.00'); a passing margin never
+    shows a minus sign on zero.
+    """
+    if not math.isfinite(margin):
+        return "inf" if margin > 0 else "-inf"
+    value = 100.0 * margin
+    text = f"{value:.{decimals}f}"
+    if failed:
+        while float(text) >= 100.0 * required and decimals < 20:
+            decimals += 1
+            text = f"{value:.{decimals}f}"
+    elif float(text) == 0.0:
+        text = text.lstrip("-")
+    return text
 
 
 @dataclass(frozen=True)
 class Check:
     """One limit checked for a candidate. margin = 1 - value/limit (capability left unused).
 
-    The check passes when margin >= required (the user's margin for that kind of limit).
+    The check passes when margin >= required - TOLERANCE (sizer.sizing.checks: the one
+    tolerance of every verdict, so that a requirement equal to its rating passes).
     """
 
     name: str
@@ -28,7 +51,7 @@ class Check:
 
     @property
     def passed(self) -> bool:
-        return self.slack >= 0.0
+        return self.slack >= -TOLERANCE
 
     def describe(self) -> str:
         """One line: which limit, the values, and by how much it passes or fails."""
@@ -39,8 +62,9 @@ class Check:
             return f"{self.name}: unbounded{why} against {self.limit:.6g}{unit} (FAILS)"
         verdict = "ok" if self.passed else "FAILS"
         need = f", {self.required:.0%} required" if self.required else ""
+        margin = margin_percent(self.margin, failed=not self.passed, required=self.required)
         return (f"{self.name}: {self.value:.6g}{unit} against {self.limit:.6g}{unit}, "
-                f"margin {self.margin:.2%}{need} ({verdict})")
+                f"margin {margin}%{need} ({verdict})")
 
 
 @dataclass(frozen=True)
