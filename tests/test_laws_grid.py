@@ -141,3 +141,17 @@ def test_grid_is_graded_toward_fine_points():
                                                                                  rel=1e-9)
     assert law.coefficients.C_v_rms == pytest.approx(c_v_rms, rel=1e-9)
     assert law.coefficients.C_a_rms == pytest.approx(c_a_rms, rel=1e-9)
+
+
+@pytest.mark.parametrize("alpha", [1e-6, 1e-3, 1 / 3, 1 / 2])
+def test_grid_nodes_are_evaluated_on_their_own_piece(alpha):
+    # trapezoid: a_N = +C_a on the first piece, 0 on the cruise, -C_a on the last; no node
+    # of a piece's interval may read its neighbour's value
+    law = make_law(f"trapezoidal(alpha={alpha!r})")
+    _, c_a = _exact(alpha, 0.0)
+    grid = law_grid(law)
+    first, last = grid.piece == 0, grid.piece == len(law.pieces) - 1
+    assert np.allclose(grid.acceleration[first], c_a, rtol=1e-12, atol=0)
+    assert np.allclose(grid.acceleration[last], -c_a, rtol=1e-12, atol=0)
+    middle = ~(first | last)
+    assert np.all(grid.acceleration[middle] == 0.0)

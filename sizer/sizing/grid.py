@@ -80,8 +80,11 @@ def law_grid(law: MotionLaw) -> LawGrid:
         for side, where in enumerate((left[mask], right[mask])):
             end_v[mask, side] = law.piece_derivative(index, where, 1)
             end_a[mask, side] = law.piece_derivative(index, where, 2)
-    return LawGrid(law, left, right, piece, nodes, weights, law.derivative(nodes, 1),
-                   law.derivative(nodes, 2), end_v, end_a)
+    # nodes are evaluated on their interval's piece: in an interval a few ulps wide a node
+    # may round onto the next piece's start, where law.derivative would switch pieces
+    on_pieces = PieceEvaluator(law, np.broadcast_to(piece[:, None], nodes.shape))
+    return LawGrid(law, left, right, piece, nodes, weights, on_pieces(nodes, 1),
+                   on_pieces(nodes, 2), end_v, end_a)
 
 
 class PieceEvaluator:
