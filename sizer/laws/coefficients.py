@@ -167,7 +167,8 @@ def rms(law: MotionLaw, order: int) -> float:
 
 def _integral_of_square(law: MotionLaw, index: int, order: int, edges: np.ndarray) -> float:
     """Adaptive Gauss-Legendre over the intervals of ``edges`` (vectorized): an interval
-    is accepted when its 20- and 30-node rules agree to RMS_TOLERANCE, else halved."""
+    is accepted when its 20- and 30-node rules agree to RMS_TOLERANCE of the piece's
+    integral or to 1e-13 of its own (rounding level), else halved."""
     rules = [leggauss(20), leggauss(30)]
     lo, hi = edges[:-1], edges[1:]
     total, scale = 0.0, None
@@ -179,8 +180,9 @@ def _integral_of_square(law: MotionLaw, index: int, order: int, edges: np.ndarra
         )
         if scale is None:
             scale = float(np.sum(fine))
-        ok = np.abs(fine - coarse) <= RMS_TOLERANCE * max(scale, 1e-300)
-        ok |= (half <= 1e-17) | (level == RMS_LEVELS - 1)
+        error = np.abs(fine - coarse)
+        ok = (error <= RMS_TOLERANCE * max(scale, 1e-300)) | (error <= 1e-13 * np.abs(fine))
+        ok |= (half <= 1e-17) | (level == RMS_LEVELS - 1) | (len(lo) > 100_000)
         total += float(np.sum(fine[ok]))
         if ok.all():
             break
