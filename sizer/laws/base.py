@@ -1,8 +1,10 @@
 """Normalized rest-to-rest motion laws q_N(tau), tau in [0, 1] (book sec. 6.2).
 
 A law is a sequence of smooth pieces. Each piece evaluates the position and its
-derivatives exactly on its own interval; the law dispatches a vectorized tau to its
-pieces and is at rest outside [0, 1] (q_N = 0 before, q_N = 1 after, derivatives 0).
+derivatives exactly on its own interval (a tau outside it is clamped to the nearer end);
+the law dispatches a vectorized tau to its pieces and is at rest outside [0, 1]
+(q_N = 0 before, q_N = 1 after, derivatives 0). Parameter ranges and the rules for
+``auto``: see :class:`Parameter`.
 The real motion is q(t) = q0 + h*q_N((t - t0)/T); the k-th derivative scales by h/T^k.
 """
 
