@@ -145,7 +145,7 @@ def test_unknown_law_lists_the_known_ones() -> None:
 
 
 def test_out_of_range_parameter_names_the_valid_range() -> None:
-    assert_user_error(sizer("laws", "--law", "trapezoidal(alpha=0.7)"), "alpha", "(0, 1/2]")
+    assert_user_error(sizer("laws", "--law", "trapezoidal(alpha=0.7)"), "alpha", "[1e-06, 1/2]")
 
 
 def test_bad_format_is_a_usage_error() -> None:

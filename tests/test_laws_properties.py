@@ -34,7 +34,7 @@ def law_specs(draw):
     if family == "modified_cycloidal":
         return f"modified_cycloidal(kappa={draw(st.floats(-0.8, 0.8))!r})"
     if family == "exponential":
-        sigma, lam = draw(st.floats(1.0, 10.0)), draw(st.floats(0.1, 1.0))
+        sigma, lam = draw(st.floats(1.0, 10.0)), draw(st.floats(0.15, 1.0))
         return f"exponential(sigma={sigma!r}, lam={lam!r})"
     return family
 

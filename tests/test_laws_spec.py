@@ -44,13 +44,16 @@ def test_unknown_law_lists_known_ids():
 
 
 @pytest.mark.parametrize(("text", "needle"), [
-    ("trapezoidal(alpha=0.7)", "alpha (0, 1/2]"),
-    ("trapezoidal(alpha=0)", "alpha (0, 1/2]"),
-    ("double_s(alpha=1/3, beta=0.6)", "beta (0, 1/2]"),
+    ("trapezoidal(alpha=0.7)", "alpha [1e-06, 1/2]"),
+    ("trapezoidal(alpha=0)", "alpha [1e-06, 1/2]"),
+    ("double_s(alpha=1/3, beta=0.6)", "beta [1e-06, 1/2]"),
     ("polynomial(4)", "odd integer in [3, 21]"),
     ("polynomial(23)", "odd integer in [3, 21]"),
-    ("elliptic(n=0.5)", "n [1, inf)"),
-    ("modified_cycloidal(kappa=1)", "kappa (-1, 1)"),
+    ("elliptic(n=0.5)", "n [1, 1000]"),
+    ("elliptic(n=1e300)", "n [1, 1000]"),
+    ("modified_cycloidal(kappa=1)", "kappa [-0.99, 0.99]"),
+    ("exponential(sigma=0.5)", "sigma [1, 100]"),
+    ("exponential(lam=0.1)", "lam [0.15, 5]"),
     ("trapezoidal(beta=1/3)", "parameters: alpha"),
     ("cycloidal(1)", "too many arguments"),
     ("trapezoidal(1/3, alpha=1/4)", "given twice"),

@@ -1,8 +1,10 @@
 """Normalized rest-to-rest motion laws q_N(tau), tau in [0, 1] (book sec. 6.2).
 
 A law is a sequence of smooth pieces. Each piece evaluates the position and its
-derivatives exactly on its own interval; the law dispatches a vectorized tau to its
-pieces and is at rest outside [0, 1] (q_N = 0 before, q_N = 1 after, derivatives 0).
+derivatives exactly on its own interval (a tau outside it is clamped to the nearer end);
+the law dispatches a vectorized tau to its pieces and is at rest outside [0, 1]
+(q_N = 0 before, q_N = 1 after, derivatives 0). Parameter ranges and the rules for
+``auto``: see :class:`Parameter`.
 The real motion is q(t) = q0 + h*q_N((t - t0)/T); the k-th derivative scales by h/T^k.
 """
 
@@ -37,6 +39,10 @@ class Piece:
     end: float
     evaluate: PieceFunction
 
+    def clamp(self, tau: np.ndarray) -> np.ndarray:
+        """tau moved into [start, end]: a point one ulp outside reads the end's value."""
+        return np.clip(tau, self.start, self.end)
+
 
 def mirrored(pieces: Sequence[Piece]) -> list[Piece]:
     """Complete the first half [0, 1/2] of a symmetric law: q_N(tau) = 1 - q_N(1 - tau).
@@ -45,20 +51,39 @@ def mirrored(pieces: Sequence[Piece]) -> list[Piece]:
     """
 
     def reflect(piece: Piece) -> Piece:
+        start, end = 1.0 - piece.end, 1.0 - piece.start
+
         def evaluate(tau: np.ndarray, order: int) -> np.ndarray:
-            value = piece.evaluate(1.0 - tau, order)
+            # 1 - (1 - end) may differ from end by an ulp: the reflected piece's own ends
+            # map exactly onto the piece's ends, and every argument stays in the piece
+            u = np.where(tau <= start, piece.end, np.where(tau >= end, piece.start, 1.0 - tau))
+            value = piece.evaluate(piece.clamp(u), order)
             if order == 0:
                 return 1.0 - value
             return -((-1.0) ** order) * value
 
-        return Piece(1.0 - piece.end, 1.0 - piece.start, evaluate)
+        return Piece(start, end, evaluate)
 
     return list(pieces) + [reflect(p) for p in reversed(pieces)]
 
 
 @dataclass(frozen=True)
 class Parameter:
-    """A shape parameter of a law family, with its admissible range."""
+    """A shape parameter of a law family, with its admissible range.
+
+    Parameter ranges: [low, high] (ends excluded where ``low_open``/``high_open``) is the
+    range over which the law is exact: its pieces, its coefficients (closed forms and the
+    numerical path agree to 1e-9) and the sizing grids. A value outside it is a user error
+    naming the range. Where a family degenerates toward an end (a step, or a profile
+    steeper than double precision resolves), the range stops short of it and
+    ``description`` says why.
+
+    ``auto``: a shape parameter written ``auto`` is chosen by the sizing solver within
+    ``auto_range``, a finite interval inside the admissible range (its ends excluded where
+    they are the parameter's open ends). It is the parameter's own range unless
+    ``auto_low``/``auto_high`` narrow it. ``no_auto`` refuses ``auto`` with that reason
+    (and what to write instead); so does an unbounded range with no finite auto range.
+    """
 
     name: str
     default: float | None
@@ -69,6 +94,28 @@ class Parameter:
     integer: bool = False
     odd: bool = False
     description: str = ""
+    auto_low: float | None = None
+    auto_high: float | None = None
+    no_auto: str = ""
+
+    @property
+    def auto_range(self) -> tuple[float, float] | None:
+        """The finite interval an ``auto`` search may use, or None when auto is refused."""
+        if self.no_auto:
+            return None
+        low = self.low if self.auto_low is None else self.auto_low
+        high = self.high if self.auto_high is None else self.auto_high
+        if not (math.isfinite(low) and math.isfinite(high)):
+            return None
+        return low, high
+
+    def auto_refusal(self, law_id: str) -> str | None:
+        """The one-line message refusing ``auto`` for this parameter, or None if allowed."""
+        if self.auto_range is not None:
+            return None
+        reason = self.no_auto or (f"its range {self.range_text()} is unbounded; "
+                                  f"write a number")
+        return f"{law_id}: {self.name}=auto is not supported: {reason}"
 
     def range_text(self) -> str:
         """The admissible range written as an interval, e.g. '(0, 1/2]'."""
@@ -127,6 +174,12 @@ class MotionLaw:
     steep_ends: ClassVar[bool] = False
     """True when the profile varies on scales far below the piece width near the piece
     ends (the exponential law): samplers then grade their grids toward the ends."""
+
+    def fine_points(self) -> tuple[float, ...]:
+        """Points of [0, 1] near which the profile varies on scales far below its piece
+        widths (e.g. tau = 1/2 of an elliptic law with a large n); samplers grade their
+        grids geometrically toward them, from both sides. None by default."""
+        return ()
 
     def __init__(self, **params: float) -> None:
         unknown = set(params) - {p.name for p in self.parameters}
@@ -195,12 +248,17 @@ class MotionLaw:
         for i, piece in enumerate(self.pieces):
             mask = inside & (index == i)
             if mask.any():
-                out[mask] = piece.evaluate(tau[mask], order)
+                out[mask] = piece.evaluate(piece.clamp(tau[mask]), order)
         return out
 
     def piece_derivative(self, index: int, tau: np.ndarray | float, order: int) -> np.ndarray:
-        """The order-th derivative of piece ``index`` at tau (its one-sided values at ends)."""
-        return self.pieces[index].evaluate(np.asarray(tau, dtype=float), order)
+        """The order-th derivative of piece ``index`` at tau (its one-sided values at ends).
+
+        tau is clamped into the piece's interval, so a point a rounding error outside
+        reads the end's one-sided value, never the piece's extrapolation.
+        """
+        piece = self.pieces[index]
+        return piece.evaluate(piece.clamp(np.asarray(tau, dtype=float)), order)
 
     def position(self, tau: np.ndarray | float) -> np.ndarray:
         return self.derivative(tau, 0)

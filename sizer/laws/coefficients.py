@@ -2,21 +2,23 @@
 
 C_v = max|q_N'|, C_a = max|q_N''|, C_j = max|q_N'''| inside the smooth pieces, and
 C_v_rms, C_a_rms the RMS values over [0, 1]. Peaks are found exactly: the candidates
-are the ends of each piece and the roots of the next derivative inside it (brentq).
-RMS values integrate each smooth piece with adaptive Gauss-Kronrod quadrature.
+are every point of a scan grid of each piece (its ends included, one-sided), the roots
+of the next derivative inside it (brentq) and a bounded search around each local maximum
+of the samples; the grid is graded toward the piece ends and the law's fine points.
+RMS values integrate each smooth piece with adaptive Gauss-Legendre quadrature.
 Where the acceleration jumps (between pieces, or against rest at tau = 0 and 1) the
 jerk has an impulse: those jumps are reported, and ``jerk_bounded`` is False.
 """
 
 from __future__ import annotations
 
-import itertools
 import math
-import warnings
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import integrate, optimize
+from numpy.polynomial.legendre import leggauss
+from scipy import optimize
 
 from sizer.laws.base import MotionLaw, Piece
 
@@ -26,6 +28,15 @@ GRID_PER_PIECE = 256
 END_REFINEMENT = 12
 """Decades of geometric refinement toward each piece end (laws like the exponential one
 have their steepest features within 1e-6 of the ends)."""
+
+REFINED_MAXIMA = 16
+"""Local maxima of the samples refined by a bounded search, largest first, per piece."""
+
+RMS_TOLERANCE = 1e-14
+"""Error allowed on each interval of the RMS integral, relative to the whole integral."""
+
+RMS_LEVELS = 60
+"""Halvings allowed per interval of the RMS integral."""
 
 JUMP_TOLERANCE = 1e-9
 """Relative size below which a difference of one-sided limits is rounding, not a jump."""
@@ -76,11 +87,17 @@ def compute_coefficients(law: MotionLaw, use_closed_form: bool = True) -> LawCoe
 
 
 def peak(law: MotionLaw, order: int) -> tuple[float, float]:
-    """max |q_N^(order)| over the smooth pieces and the tau where it occurs."""
+    """max |q_N^(order)| over the smooth pieces and the tau where it occurs.
+
+    Each piece is evaluated on its own (one-sided values at both sides of every
+    breakpoint). The candidates are every point of its scan grid, the roots of the next
+    derivative inside each sign change, and a bounded search around each local maximum
+    of the samples: a peak exactly on a grid point or a piece end is a candidate itself,
+    whatever the rounding of the next derivative there.
+    """
     best_value, best_tau = -1.0, 0.0
-    for index, piece in enumerate(law.pieces):
-        candidates = [piece.start, piece.end, *_stationary_points(law, index, order)]
-        taus = np.array(candidates)
+    for index in range(len(law.pieces)):
+        taus = _peak_candidates(law, index, order)
         values = np.abs(law.piece_derivative(index, taus, order))
         k = int(np.argmax(values))
         if values[k] > best_value:
@@ -88,65 +105,89 @@ def peak(law: MotionLaw, order: int) -> tuple[float, float]:
     return best_value, best_tau
 
 
-def _stationary_points(law: MotionLaw, index: int, order: int) -> list[float]:
-    """Points inside a piece where |q_N^(order)| may peak."""
-    grid = scan_grid(law.pieces[index])
-    if order + 1 > law.max_order:
-        return _maximize_on_grid(law, index, order, grid)
-    slope = law.piece_derivative(index, grid, order + 1)
-    scale = float(np.max(np.abs(slope))) or 1.0
-    slope = np.where(np.abs(slope) <= 1e-14 * scale, 0.0, slope)
-    points = list(grid[slope == 0.0])
-    sign_change = np.nonzero(slope[:-1] * slope[1:] < 0.0)[0]
+def _peak_candidates(law: MotionLaw, index: int, order: int) -> np.ndarray:
+    """Points of a piece where |q_N^(order)| may peak (its grid points among them)."""
+    grid = scan_grid(law.pieces[index], toward=law.fine_points())
+    points = [grid]
+    if order + 1 <= law.max_order:
+        slope = law.piece_derivative(index, grid, order + 1)
 
-    def f(x: float) -> float:
-        return float(law.piece_derivative(index, np.array([x]), order + 1)[0])
+        def f(x: float) -> float:
+            return float(law.piece_derivative(index, np.array([x]), order + 1)[0])
 
-    for k in sign_change:
-        points.append(optimize.brentq(f, grid[k], grid[k + 1], xtol=1e-15, rtol=1e-15))
-    return points
+        for k in np.nonzero(slope[:-1] * slope[1:] < 0.0)[0]:
+            points.append(np.array([optimize.brentq(f, grid[k], grid[k + 1], xtol=1e-15,
+                                                    rtol=1e-15)]))
+    points.append(_refined_maxima(law, index, order, grid))
+    return np.concatenate(points)
 
 
-def scan_grid(piece: Piece, uniform: int = GRID_PER_PIECE) -> np.ndarray:
-    """Uniform points over a piece plus geometrically graded points toward both ends."""
-    width = piece.end - piece.start
-    graded = width * 10.0 ** -np.arange(END_REFINEMENT, 1, -1, dtype=float)
-    uniform = np.linspace(piece.start, piece.end, uniform + 1)
-    return np.unique(np.concatenate((uniform, piece.start + graded, piece.end - graded)))
-
-
-def _maximize_on_grid(law: MotionLaw, index: int, order: int, grid: np.ndarray) -> list[float]:
-    """Local maxima of |f| refined with bounded Brent search (no next derivative known)."""
+def _refined_maxima(law: MotionLaw, index: int, order: int, grid: np.ndarray) -> np.ndarray:
+    """Bounded Brent maximization of |f| around the largest local maxima of the samples."""
     values = np.abs(law.piece_derivative(index, grid, order))
-    points = []
-    for k in range(1, len(grid) - 1):
-        if values[k] >= values[k - 1] and values[k] >= values[k + 1]:
-            result = optimize.minimize_scalar(
-                lambda x: -abs(float(law.piece_derivative(index, np.array([x]), order)[0])),
-                bounds=(grid[k - 1], grid[k + 1]),
-                method="bounded",
-                options={"xatol": 1e-14},
-            )
-            points.append(float(result.x))
-    return points
+    padded = np.concatenate(([-np.inf], values, [-np.inf]))
+    mid, left, right = padded[1:-1], padded[:-2], padded[2:]
+    local = np.nonzero(((mid > left) & (mid >= right)) | ((mid >= left) & (mid > right)))[0]
+    local = local[np.argsort(values[local])[::-1][:REFINED_MAXIMA]]
+    found = []
+    for k in local:
+        lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, len(grid) - 1)]
+        result = optimize.minimize_scalar(
+            lambda x: -abs(float(law.piece_derivative(index, np.array([x]), order)[0])),
+            bounds=(lo, hi), method="bounded", options={"xatol": 1e-15 * max(1.0, abs(hi))},
+        )
+        found.append(float(result.x))
+    return np.array(found)
+
+
+def scan_grid(piece: Piece, uniform: int = GRID_PER_PIECE, toward: Sequence[float] = (),
+              per_decade: int = 4) -> np.ndarray:
+    """Uniform points over a piece plus points graded geometrically toward both ends and
+    toward each of the ``toward`` points that lie in the piece (from both sides)."""
+    width = piece.end - piece.start
+    exponents = np.arange(END_REFINEMENT * per_decade, per_decade - 1, -1) / per_decade
+    graded = width * 10.0 ** -exponents
+    parts = [np.linspace(piece.start, piece.end, uniform + 1), piece.start + graded,
+             piece.end - graded]
+    for point in toward:
+        if piece.start <= point <= piece.end:
+            parts += [np.array([point]), point - graded, point + graded]
+    grid = np.concatenate(parts)
+    return np.unique(grid[(grid >= piece.start) & (grid <= piece.end)])
 
 
 def rms(law: MotionLaw, order: int) -> float:
     """sqrt( integral over [0, 1] of (q_N^(order))^2 ), piece by piece."""
     total = 0.0
     for index, piece in enumerate(law.pieces):
-
-        def square(x: float, index: int = index) -> float:
-            return float(law.piece_derivative(index, np.array([x]), order)[0]) ** 2
-
-        with warnings.catch_warnings():
-            # roundoff notices on tiny graded sub-intervals; accuracy is pinned in tests
-            warnings.simplefilter("ignore", integrate.IntegrationWarning)
-            for a, b in itertools.pairwise(scan_grid(piece, uniform=16)):
-                value, _ = integrate.quad(square, a, b, epsabs=1e-16 * (b - a), epsrel=1e-12,
-                                          limit=200)
-                total += value
+        grid = scan_grid(piece, uniform=16, toward=law.fine_points(), per_decade=1)
+        total += _integral_of_square(law, index, order, grid)
     return math.sqrt(total)
+
+
+def _integral_of_square(law: MotionLaw, index: int, order: int, edges: np.ndarray) -> float:
+    """Adaptive Gauss-Legendre over the intervals of ``edges`` (vectorized): an interval
+    is accepted when its 20- and 30-node rules agree to RMS_TOLERANCE of the piece's
+    integral or to 1e-13 of its own (rounding level), else halved."""
+    rules = [leggauss(20), leggauss(30)]
+    lo, hi = edges[:-1], edges[1:]
+    total, scale = 0.0, None
+    for level in range(RMS_LEVELS):
+        mid, half = 0.5 * (lo + hi), 0.5 * (hi - lo)
+        coarse, fine = (
+            (law.piece_derivative(index, mid[:, None] + half[:, None] * x, order) ** 2 @ w) * half
+            for x, w in rules
+        )
+        if scale is None:
+            scale = float(np.sum(fine))
+        error = np.abs(fine - coarse)
+        ok = (error <= RMS_TOLERANCE * max(scale, 1e-300)) | (error <= 1e-13 * np.abs(fine))
+        ok |= (half <= 1e-17) | (level == RMS_LEVELS - 1) | (len(lo) > 100_000)
+        total += float(np.sum(fine[ok]))
+        if ok.all():
+            break
+        lo, hi = np.concatenate((lo[~ok], mid[~ok])), np.concatenate((mid[~ok], hi[~ok]))
+    return total
 
 
 def one_sided_limits(law: MotionLaw, order: int) -> list[tuple[float, float, float]]:

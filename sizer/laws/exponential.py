@@ -24,10 +24,13 @@ class Exponential(MotionLaw):
     title = "Exponential"
     steep_ends = True
     parameters = (
-        Parameter("sigma", 7.1, 0.0, 100.0, low_open=True,
-                  description="exponent scale (book optimum 7.1)"),
-        Parameter("lam", 0.2, 0.0, 5.0, low_open=True,
-                  description="exponent of |1 - x^2| (book optimum 0.2)"),
+        Parameter("sigma", 7.1, 1.0, 100.0,
+                  description="exponent scale (book optimum 7.1); at least 1, see lam"),
+        Parameter("lam", 0.2, 0.15, 5.0,
+                  description="exponent of |1 - x^2| (book optimum 0.2); with sigma >= 1 and "
+                              "lam >= 0.15 the velocity is below 1e-17 v_c at 1e-12 from the "
+                              "ends (smaller values fall to rest closer to the ends than "
+                              "double precision resolves)"),
     )
 
     def _build(self):

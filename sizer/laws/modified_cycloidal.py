@@ -17,6 +17,8 @@ from sizer.laws.base import MotionLaw, Parameter, Piece
 
 TWO_PI = 2.0 * math.pi
 WILDT_KAPPA = 1.0 - math.sqrt(3.0) / 2.0
+MAX_KAPPA = 0.99
+"""The law degenerates as |kappa| -> 1 (at -0.99, C_v = 200 and C_a = 4.6e5)."""
 
 
 def solve_tau_m(tau: np.ndarray, kappa: float) -> np.ndarray:
@@ -46,8 +48,10 @@ class ModifiedCycloidal(MotionLaw):
     law_id = "modified_cycloidal"
     title = "Modified cycloidal"
     parameters = (
-        Parameter("kappa", WILDT_KAPPA, -1.0, 1.0, low_open=True, high_open=True,
-                  description="distortion; 1 - sqrt(3)/2 minimizes C_a, 0 is cycloidal"),
+        Parameter("kappa", WILDT_KAPPA, -MAX_KAPPA, MAX_KAPPA,
+                  description="distortion; 1 - sqrt(3)/2 minimizes C_a, 0 is cycloidal; "
+                              "|kappa| <= 0.99: toward -1 C_v = 2/(1 + kappa) diverges, "
+                              "toward 1 C_a does"),
     )
 
     def _build(self):
@@ -71,7 +75,38 @@ class ModifiedCycloidal(MotionLaw):
 
         return [Piece(0.0, 1.0, evaluate)], 2
 
-    def closed_form_coefficients(self) -> dict[str, float]:
-        """Peak velocity at tau = 1/2: 2/(1 + kappa) (eq. 3.54 misprints it, see errata)."""
+    def fine_points(self) -> tuple[float, ...]:
+        """Where 1 - kappa cos(2 pi tau_m) is smallest: tau = 1/2 for kappa < 0, the ends
+        for kappa > 0 (the profile narrows there as |kappa| -> 1)."""
         kappa = self.params["kappa"]
-        return {"C_v": 2.0 / (1.0 + kappa)}
+        return (0.5,) if kappa < 0.0 else (0.0, 1.0) if kappa > 0.0 else ()
+
+    def closed_form_coefficients(self) -> dict[str, float]:
+        """C_v = 2/(1 + kappa) at tau = 1/2 (eq. 3.54 misprints it, see errata); C_a and
+        C_j at the roots in c = cos(2 pi tau_m) of the next derivative, see
+        :func:`peak_coefficients`."""
+        return peak_coefficients(self.params["kappa"])
+
+
+def peak_coefficients(kappa: float) -> dict[str, float]:
+    """C_v, C_a, C_j of the modified cycloidal law in closed form.
+
+    With c = cos(theta), theta = 2 pi tau_m, g = 1 - kappa c: v = (1 - c)/g,
+    a = 2 pi (1 - kappa) sin(theta)/g^3 and j = 4 pi^2 (1 - kappa)(c + 2 kappa c^2 - 3 kappa)/g^5.
+    da/dtheta = 0 where 2 kappa c^2 + c - 3 kappa = 0, i.e. c = 6 kappa/(1 + sqrt(1 + 24 kappa^2));
+    dj/dtheta = 0 where sin(theta) = 0 (c = +-1) or 6 kappa^2 c^2 + 8 kappa c + 1 - 15 kappa^2 = 0.
+    """
+    c_a = 6.0 * kappa / (1.0 + math.sqrt(1.0 + 24.0 * kappa * kappa))
+    s_a = math.sqrt(max(0.0, 1.0 - c_a * c_a))
+    C_a = TWO_PI * (1.0 - kappa) * s_a / (1.0 - kappa * c_a) ** 3
+    cs = [1.0, -1.0]
+    if kappa != 0.0:
+        r = math.sqrt(40.0 + 360.0 * kappa * kappa)
+        cs += [c for c in ((-8.0 + r) / (12.0 * kappa), (-8.0 - r) / (12.0 * kappa))
+               if -1.0 <= c <= 1.0]
+
+    def jerk(c: float) -> float:
+        return abs(TWO_PI**2 * (1.0 - kappa) * (c + 2.0 * kappa * c * c - 3.0 * kappa)
+                   / (1.0 - kappa * c) ** 5)
+
+    return {"C_v": 2.0 / (1.0 + kappa), "C_a": C_a, "C_j": max(jerk(c) for c in cs)}

@@ -11,6 +11,11 @@ import math
 from sizer.laws.base import MotionLaw, Parameter, mirrored
 from sizer.laws.pieces import constant_jerk_pieces
 
+MIN_FRACTION = 1e-6
+"""Smallest alpha and beta: C_a = 1/(alpha (1 - alpha)(1 - beta)) and
+C_j ~ 1/(alpha^2 beta) stay finite and the pieces (widths down to 1e-12) exact in double
+precision; alpha = 1e-6 is a trapezoid with C_v = 1 + 1e-6."""
+
 
 class Trapezoidal(MotionLaw):
     """Trapezoidal velocity with T_a = alpha*T (sec. 3.2, 6.2.1)."""
@@ -18,8 +23,8 @@ class Trapezoidal(MotionLaw):
     law_id = "trapezoidal"
     title = "Trapezoidal velocity"
     parameters = (
-        Parameter("alpha", 1 / 3, 0.0, 0.5, low_open=True,
-                  description="acceleration time over duration, T_a/T"),
+        Parameter("alpha", 1 / 3, MIN_FRACTION, 0.5,
+                  description="acceleration time over duration, T_a/T; at least 1e-6"),
     )
 
     def _build(self):
@@ -58,10 +63,10 @@ class DoubleS(MotionLaw):
     law_id = "double_s"
     title = "Double S"
     parameters = (
-        Parameter("alpha", 1 / 3, 0.0, 0.5, low_open=True,
-                  description="acceleration time over duration, T_a/T"),
-        Parameter("beta", 1 / 4, 0.0, 0.5, low_open=True,
-                  description="jerk time over acceleration time, T_j/T_a"),
+        Parameter("alpha", 1 / 3, MIN_FRACTION, 0.5,
+                  description="acceleration time over duration, T_a/T; at least 1e-6"),
+        Parameter("beta", 1 / 4, MIN_FRACTION, 0.5,
+                  description="jerk time over acceleration time, T_j/T_a; at least 1e-6"),
     )
 
     def _build(self):

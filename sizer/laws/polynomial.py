@@ -24,7 +24,9 @@ class Polynomial(MotionLaw):
     title = "Polynomial"
     parameters = (
         Parameter("degree", 5, 3, 21, integer=True, odd=True,
-                  description="odd degree n; continuity C^((n-1)/2)"),
+                  description="odd degree n; continuity C^((n-1)/2)",
+                  no_auto="the degree is a discrete choice; list the degrees to compare "
+                          "instead, e.g. poly3, poly5, poly7"),
     )
     max_order = 22
 

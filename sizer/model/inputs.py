@@ -66,6 +66,8 @@ def check_law_spec(text: Any) -> str:
         for key, value in values.items():
             if value != AUTO:
                 names[key].validate(family.law_id, value)  # type: ignore[arg-type]
+            elif (refusal := names[key].auto_refusal(family.law_id)) is not None:
+                raise UserError(refusal)
         if AUTO not in values.values():
             make_law(text)
     except UserError as error:

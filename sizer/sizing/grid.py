@@ -19,6 +19,9 @@ from sizer.laws import MotionLaw
 INTERVALS_PER_PIECE = 16
 NODES = 12
 GRADED_DECADES = np.arange(2.0, 11.0)
+FINE_DECADES = np.arange(1.0, 11.0, 0.25)
+"""Graded edges toward a law's fine points: four per decade, from 1e-1 to 1e-10 of the
+piece width (the profile varies there on scales down to its distance from the point)."""
 
 
 @dataclass(frozen=True)
@@ -42,11 +45,18 @@ class LawGrid:
 
 
 def _edges(law: MotionLaw, start: float, end: float) -> np.ndarray:
-    edges = np.linspace(start, end, INTERVALS_PER_PIECE + 1)
+    """Uniform edges over a piece, graded by decades toward its ends (steep_ends laws)
+    and toward the law's fine points inside or at the ends of the piece."""
+    edges = [np.linspace(start, end, INTERVALS_PER_PIECE + 1)]
+    graded = (end - start) * 10.0**-GRADED_DECADES
     if law.steep_ends:
-        graded = (end - start) * 10.0**-GRADED_DECADES
-        edges = np.unique(np.concatenate((edges, start + graded, end - graded)))
-    return edges
+        edges += [start + graded, end - graded]
+    fine = (end - start) * 10.0**-FINE_DECADES
+    for point in law.fine_points():
+        if start <= point <= end:
+            edges += [np.array([point]), point - fine, point + fine]
+    edges = np.concatenate(edges)
+    return np.unique(edges[(edges >= start) & (edges <= end)])
 
 
 @lru_cache(maxsize=256)
@@ -70,15 +80,21 @@ def law_grid(law: MotionLaw) -> LawGrid:
         for side, where in enumerate((left[mask], right[mask])):
             end_v[mask, side] = law.piece_derivative(index, where, 1)
             end_a[mask, side] = law.piece_derivative(index, where, 2)
-    return LawGrid(law, left, right, piece, nodes, weights, law.derivative(nodes, 1),
-                   law.derivative(nodes, 2), end_v, end_a)
+    # nodes are evaluated on their interval's piece: in an interval a few ulps wide a node
+    # may round onto the next piece's start, where law.derivative would switch pieces
+    on_pieces = PieceEvaluator(law, np.broadcast_to(piece[:, None], nodes.shape))
+    return LawGrid(law, left, right, piece, nodes, weights, on_pieces(nodes, 1),
+                   on_pieces(nodes, 2), end_v, end_a)
 
 
 class PieceEvaluator:
     """Evaluates a law at points each bound to its own piece (one-sided at piece ends).
 
     The grouping of points by piece is computed once, for repeated evaluations at moving
-    points that stay in their pieces (root and peak searches).
+    points that stay in their pieces (root and peak searches). Each point is clamped into
+    its piece's interval: a search point a rounding error outside reads the end's
+    one-sided value, never the piece's extrapolation (with a steep double S that overshoot
+    exceeded C_a and put a check's slack below zero).
     """
 
     def __init__(self, law: MotionLaw, piece: np.ndarray) -> None:
@@ -91,7 +107,8 @@ class PieceEvaluator:
         flat = tau.ravel()
         out = np.empty(flat.shape)
         for index, where in self.groups:
-            out[where] = self.law.piece_derivative(index, flat[where], order)
+            piece = self.law.pieces[index]
+            out[where] = self.law.piece_derivative(index, piece.clamp(flat[where]), order)
         return out.reshape(self.shape)
 
 
