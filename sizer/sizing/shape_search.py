@@ -1,0 +1,154 @@
+"""Auto shape parameters searched to tolerance, for the cases without a closed form.
+
+Friction, damping, efficiency, curved envelopes, stage limits, a given duration (the
+largest smallest margin) or other families: the score of a shape (-T_min in minimize
+mode, else the slacks of all checks smallest first, compared lexicographically) is
+computed by the engine's own checks for each motor. One parameter: a coarse grid brackets
+each motor's best point, then golden section narrows the bracket to TOLERANCE[1] (T_min
+and the margins are max/min of quasi-convex/quasi-concave bounds, unimodal on the
+bracket). Two parameters: the same, nested (the inner search for each outer point), to
+TOLERANCE[2] per parameter. Integer parameters are enumerated. Motors whose points
+coincide are evaluated together (vectorized); the points evaluated are the same for
+motors that share a bracket.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+
+from sizer.laws import MotionLaw
+from sizer.mechanics import Drive
+from sizer.model.domain import Design
+from sizer.sizing.checks import evaluate_checks
+from sizer.sizing.cycle import CycleCalculator
+from sizer.sizing.duration import minimum_duration
+from sizer.sizing.motors import MotorArrays
+
+GRID = {1: 13, 2: 7}
+TOLERANCE = {1: 1e-12, 2: 1e-6}
+INV_PHI = (math.sqrt(5.0) - 1.0) / 2.0
+
+Scores = np.ndarray
+"""(motors, m) rows compared lexicographically, higher is better."""
+
+
+def search_shape(family: type[MotionLaw], fixed: dict[str, float],
+                 ranges: dict[str, tuple[float, float]], design: Design, drive: Drive,
+                 motors: MotorArrays) -> dict[str, np.ndarray]:
+    """The best value of each auto parameter per motor (arrays over the motors)."""
+    names = list(ranges)
+    params = {p.name: p for p in family.parameters}
+    n = len(motors)
+    dims = len(names)
+
+    def score(points: list[np.ndarray]) -> Scores:
+        return evaluate_points(family, fixed, names, points, design, drive, motors)
+
+    if dims == 1:
+        best, _ = search_1d(lambda x: score([x]), params[names[0]], ranges[names[0]], n, dims)
+        return {names[0]: best}
+    outer, inner = names
+    # the inner optimum of every outer point tried, to return the best pair at the end
+    tried: list[tuple[np.ndarray, np.ndarray, Scores]] = []
+
+    def outer_score(x: np.ndarray) -> Scores:
+        y, scores = search_1d(lambda y: score([x, y]), params[inner], ranges[inner], n, dims)
+        tried.append((x.copy(), y, scores))
+        return scores
+
+    search_1d(outer_score, params[outer], ranges[outer], n, dims)
+    best_x, best_y, best_s = tried[0]
+    for x, y, s in tried[1:]:
+        take = beats(s, best_s)
+        best_x, best_y = np.where(take, x, best_x), np.where(take, y, best_y)
+        best_s = np.where(take[:, None], s, best_s)
+    return {outer: best_x, inner: best_y}
+
+
+def search_1d(score: Callable[[np.ndarray], Scores], parameter, bounds: tuple[float, float],
+              n: int, dims: int) -> tuple[np.ndarray, Scores]:
+    """Best point per motor of a 1-D score, and its score (grid, then golden section)."""
+    lo, hi = bounds
+    if parameter.integer:
+        grid = np.arange(math.ceil(lo), math.floor(hi) + 1, dtype=float)
+        if parameter.odd:
+            grid = grid[grid % 2 == 1]
+        best, best_s, _ = _best_on_grid(score, grid, n)
+        return best, best_s
+    grid = np.linspace(lo, hi, GRID[dims])
+    best, best_s, index = _best_on_grid(score, grid, n)
+    a = grid[np.maximum(index - 1, 0)]
+    b = grid[np.minimum(index + 1, len(grid) - 1)]
+    x1, x2 = b - INV_PHI * (b - a), a + INV_PHI * (b - a)
+    f1, f2 = score(x1), score(x2)
+    while np.any(b - a > TOLERANCE[dims]):
+        left = ~beats(f2, f1)  # the best lies in [a, x2]
+        b, a = np.where(left, x2, b), np.where(left, a, x1)
+        new1 = np.where(left, b - INV_PHI * (b - a), x2)
+        new2 = np.where(left, x1, a + INV_PHI * (b - a))
+        f_new = score(np.where(left, new1, new2))
+        f1, f2 = (np.where(left[:, None], f_new, f2), np.where(left[:, None], f1, f_new))
+        x1, x2 = new1, new2
+    for x, s in ((x1, f1), (x2, f2)):
+        take = beats(s, best_s)
+        best, best_s = np.where(take, x, best), np.where(take[:, None], s, best_s)
+    return best, best_s
+
+
+def _best_on_grid(score, grid: np.ndarray, n: int) -> tuple[np.ndarray, Scores, np.ndarray]:
+    """Best grid point per motor (first of equals), its score and its index."""
+    index = np.zeros(n, dtype=int)
+    best_s = score(np.full(n, grid[0]))
+    for i, x in enumerate(grid[1:], start=1):
+        s = score(np.full(n, x))
+        take = beats(s, best_s)
+        index, best_s = np.where(take, i, index), np.where(take[:, None], s, best_s)
+    return grid[index], best_s, index
+
+
+def beats(new: Scores, old: Scores) -> np.ndarray:
+    """Per row: new is better than old at the first entry where they differ beyond
+    rounding (1e-12 relative); nan counts as worst."""
+    new = np.where(np.isnan(new), -np.inf, new)
+    old = np.where(np.isnan(old), -np.inf, old)
+    with np.errstate(invalid="ignore"):
+        differs = ~np.isclose(new, old, rtol=1e-12, atol=1e-15) & (new != old)
+    first = np.argmax(differs, axis=1)
+    rows = np.arange(len(new))
+    return differs.any(axis=1) & (new[rows, first] > old[rows, first])
+
+
+def evaluate_points(family: type[MotionLaw], fixed: dict[str, float], names: list[str],
+                    points: list[np.ndarray], design: Design, drive: Drive,
+                    motors: MotorArrays) -> Scores:
+    """The score of each motor at its own point (motors at equal points evaluated together)."""
+    n = len(motors)
+    stacked = np.column_stack(points)
+    keys, inverse = np.unique(stacked, axis=0, return_inverse=True)
+    inverse = inverse.reshape(-1)
+    out: Scores | None = None
+    for k, key in enumerate(keys):
+        members = np.nonzero(inverse == k)[0]
+        law = family(**fixed, **{name: float(v) for name, v in zip(names, key, strict=True)})
+        subset = motors if len(members) == n else motors.subset(members)
+        rows = score_law(law, design, drive, subset)
+        if out is None:
+            out = np.full((n, rows.shape[1]), -np.inf)
+        out[members] = rows
+    assert out is not None
+    return out
+
+
+def score_law(law: MotionLaw, design: Design, drive: Drive, motors: MotorArrays) -> Scores:
+    """(-T_min,) in minimize mode (-inf if infeasible), else the sorted slacks."""
+    calculator = CycleCalculator(None, design.task, drive, motors,
+                                 design.limits.thermal_speed, law=law)
+    if design.task.minimize:
+        solution = minimum_duration(calculator, design.limits)
+        return np.where(solution.feasible, -solution.duration, -np.inf)[:, None]
+    metrics = calculator.evaluate(np.full(len(motors), design.task.duration))
+    checks = evaluate_checks(metrics, motors, drive, design.limits, design.task.linear)
+    return np.sort(np.stack([c.slack for c in checks], axis=1), axis=1)
