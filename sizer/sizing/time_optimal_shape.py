@@ -31,8 +31,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from sizer.sizing.roots import illinois
-
 INV_PHI = (math.sqrt(5.0) - 1.0) / 2.0
 SAMPLES = 65
 GOLDEN_WIDTH = 1e-13
@@ -91,12 +89,14 @@ def rms_time(x: np.ndarray, dwell: float) -> np.ndarray:
         T = np.sqrt(x)
         if dwell > 0.0:
             T = np.minimum(T, np.cbrt(target / dwell))
-        for _ in range(100):
+        for _ in range(60):
             f = T**3 * (T + dwell) - target
             step = f / (T * T * (4.0 * T + 3.0 * dwell))
-            step = np.where(np.isfinite(step) & (T > 0.0), step, 0.0)
+            step = np.where(np.isfinite(step) & (T > 0.0) & (step > 0.0), step, 0.0)
             T = T - step
-            if not np.any(np.abs(step) > 1e-16 * T):
+            if not np.any(step > 1e-15 * T):  # quadratic convergence: one more is exact
+                f = T**3 * (T + dwell) - target
+                T = T - np.where(T > 0.0, f / (T * T * (4.0 * T + 3.0 * dwell)), 0.0)
                 break
     return np.where(x > 0.0, T, np.where(np.isnan(x), np.nan, 0.0))
 
@@ -190,7 +190,7 @@ def best_beta(scales: BoundScales, a: np.ndarray, low: float, high: float = HALF
     T_A and T_R increase with beta, T_J decreases: the best beta is where the larger of
     the first two meets T_J (the smaller of the two crossings), or an end of [low, high].
     T_A = T_J is the quadratic b^2/(1-b) = S_J^2 P_j^2/(S_A^3 P^3) (P = 1/(a(1-a)),
-    P_j = P/a); T_R = T_J is a 1-D root.
+    P_j = P/a); T_R = T_J, i.e. T_J^3 (T_J + dwell) = (C_a_rms S_R)^2, is a 1-D root.
     """
     a = np.asarray(a, dtype=float)
     _, S_A, S_R, S_J = _scales_like(scales, a.shape)
@@ -203,9 +203,11 @@ def best_beta(scales: BoundScales, a: np.ndarray, low: float, high: float = HALF
         def gap(b: np.ndarray, where: np.ndarray) -> np.ndarray:
             aa, bb = a.reshape(-1)[where], b
             _, _, c_a_rms, c_j = double_s_coefficients(aa, bb)
-            T_r = rms_time(c_a_rms * S_R.reshape(-1)[where], scales.dwell)
+            T_j = np.cbrt(c_j * S_J.reshape(-1)[where])
+            # T_R > T_J exactly where T_J^3 (T_J + dwell) < (C_a_rms S_R)^2
             with np.errstate(divide="ignore"):
-                return np.log(T_r) - np.log(np.cbrt(c_j * S_J.reshape(-1)[where]))
+                return (2.0 * np.log(c_a_rms * S_R.reshape(-1)[where])
+                        - np.log(T_j**3 * (T_j + scales.dwell)))
 
         every = np.arange(a.size)
         f_low = gap(np.full(a.size, low), every)
@@ -215,8 +217,12 @@ def best_beta(scales: BoundScales, a: np.ndarray, low: float, high: float = HALF
         flat[f_low >= 0.0] = low
         if cross.any():
             where = np.flatnonzero(cross)
-            flat[where] = illinois(lambda x: gap(x, where), np.full(len(where), low),
-                                   flat[where], f_low[where], f_top[where])
+            # in log(beta), where T_J ~ beta^(-1/3) makes the gap nearly linear
+            # in log(beta), where T_J ~ beta^(-1/3) makes the gap nearly linear
+            flat[where] = np.exp(log_gap_root(lambda u, i: gap(np.exp(u), where[i]),
+                                              np.full(len(where), math.log(low)),
+                                              np.log(flat[where]), f_low[where],
+                                              f_top[where]))
         beta = flat.reshape(a.shape)
     return np.where(S_J > 0.0, beta, low)
 
@@ -236,12 +242,43 @@ def _crossing(gap, n: int, low: float, high: float) -> np.ndarray:
     if sign_change.any():
         idx = np.nonzero(sign_change)[0]
 
-        def restricted(x: np.ndarray) -> np.ndarray:
+        def restricted(x: np.ndarray, i: np.ndarray) -> np.ndarray:
             full = np.full(n, low)
-            full[idx] = x
-            return gap(full[:, None])[idx, 0]
+            full[idx[i]] = x
+            return gap(full[:, None])[idx[i], 0]
 
-        root[idx] = illinois(restricted, lo[idx], hi[idx], f_lo[idx], f_hi[idx])
+        root[idx] = log_gap_root(restricted, lo[idx], hi[idx], f_lo[idx], f_hi[idx])
+    return root
+
+
+def log_gap_root(f, lo: np.ndarray, hi: np.ndarray, f_lo: np.ndarray, f_hi: np.ndarray,
+                 ftol: float = 1e-15) -> np.ndarray:
+    """Roots of a log-ratio of two bounds, f(x, i) for the elements i, bracketed by
+    [lo, hi] with f_lo, f_hi of opposite signs: Illinois steps on the unsettled elements
+    until |f| <= ftol (the bounds equal to 1e-15 relative) or the bracket is one ulp."""
+    lo, hi, f_lo, f_hi = (np.array(x, dtype=float) for x in (lo, hi, f_lo, f_hi))
+    root = 0.5 * (lo + hi)
+    side = np.zeros(lo.shape)
+    active = np.arange(len(lo))
+    for step in range(200):
+        if not len(active):
+            break
+        a, b, fa, fb = lo[active], hi[active], f_lo[active], f_hi[active]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            x = (a * fb - b * fa) / (fb - fa)
+        bad = ~np.isfinite(x) | (x <= a) | (x >= b) | (step % 8 == 7)
+        x = np.where(bad, 0.5 * (a + b), x)
+        fx = f(x, active)
+        done = (np.abs(fx) <= ftol) | (b - a <= 4e-16 * np.maximum(np.abs(a), np.abs(b)))
+        root[active] = x
+        same = np.sign(fx) == np.sign(fa)  # root in [x, b]: move lo
+        s = side[active]
+        fb = np.where(same & (s == -1), 0.5 * fb, fb)
+        fa = np.where(~same & (s == 1), 0.5 * fa, fa)
+        lo[active], f_lo[active] = np.where(same, x, a), np.where(same, fx, fa)
+        hi[active], f_hi[active] = np.where(same, b, x), np.where(same, fb, fx)
+        side[active] = np.where(same, -1, 1)
+        active = active[~done]
     return root
 
 
