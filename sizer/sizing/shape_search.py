@@ -6,10 +6,10 @@ mode, else the slacks of all checks smallest first, compared lexicographically) 
 computed by the engine's own checks for each motor. One parameter: a coarse grid brackets
 each motor's best point, then golden section narrows the bracket to TOLERANCE[1] (T_min
 and the margins are max/min of quasi-convex/quasi-concave bounds, unimodal on the
-bracket). Two parameters: the same, nested (the inner search for each outer point), to
-TOLERANCE[2] per parameter. Integer parameters are enumerated. Motors whose points
-coincide are evaluated together (vectorized); the points evaluated are the same for
-motors that share a bracket.
+bracket), or until the scores across the bracket agree to FLAT. Two parameters: the
+same, nested (the inner search for each outer point), to TOLERANCE[2] per parameter
+(coarser: the cost is the product of the two searches). Integer parameters are
+enumerated. Motors at equal points are evaluated together (vectorized).
 """
 
 from __future__ import annotations
@@ -28,7 +28,11 @@ from sizer.sizing.duration import minimum_duration
 from sizer.sizing.motors import MotorArrays
 
 GRID = {1: 13, 2: 7}
-TOLERANCE = {1: 1e-12, 2: 1e-6}
+TOLERANCE = {1: 1e-12, 2: 1e-4}
+"""Bracket width at which the golden section stops, per parameter. Two parameters cost
+the product of the two searches, each point a full T_min search in minimize mode (about
+0.1 s per motor with friction), so 1e-12 there would take hours; 1e-4 takes minutes."""
+FLAT = 1e-13
 INV_PHI = (math.sqrt(5.0) - 1.0) / 2.0
 
 Scores = np.ndarray
@@ -70,43 +74,68 @@ def search_shape(family: type[MotionLaw], fixed: dict[str, float],
 
 def search_1d(score: Callable[[np.ndarray], Scores], parameter, bounds: tuple[float, float],
               n: int, dims: int) -> tuple[np.ndarray, Scores]:
-    """Best point per motor of a 1-D score, and its score (grid, then golden section)."""
+    """Best point per motor of a 1-D score, and its score (grid, then golden section).
+
+    A motor is settled when its bracket is narrower than TOLERANCE[dims] or when the
+    scores at the bracket's ends and inner points agree to FLAT (the optimum's value is
+    then known to that precision); settled motors are not evaluated again (their point
+    is passed as nan).
+    """
     lo, hi = bounds
     if parameter.integer:
         grid = np.arange(math.ceil(lo), math.floor(hi) + 1, dtype=float)
         if parameter.odd:
             grid = grid[grid % 2 == 1]
-        best, best_s, _ = _best_on_grid(score, grid, n)
+        best, best_s, _, _ = _best_on_grid(score, grid, n)
         return best, best_s
     grid = np.linspace(lo, hi, GRID[dims])
-    best, best_s, index = _best_on_grid(score, grid, n)
-    a = grid[np.maximum(index - 1, 0)]
-    b = grid[np.minimum(index + 1, len(grid) - 1)]
+    best, best_s, index, on_grid = _best_on_grid(score, grid, n)
+    rows = np.arange(n)
+    left_i, right_i = np.maximum(index - 1, 0), np.minimum(index + 1, len(grid) - 1)
+    a, b = grid[left_i], grid[right_i]
+    fa, fb = on_grid[left_i, rows], on_grid[right_i, rows]
     x1, x2 = b - INV_PHI * (b - a), a + INV_PHI * (b - a)
     f1, f2 = score(x1), score(x2)
-    while np.any(b - a > TOLERANCE[dims]):
+    active = np.ones(n, dtype=bool)
+    while True:
+        active &= (b - a > TOLERANCE[dims]) & ~_flat(fa, f1, f2, fb)
+        if not active.any():
+            break
         left = ~beats(f2, f1)  # the best lies in [a, x2]
-        b, a = np.where(left, x2, b), np.where(left, a, x1)
+        move_b, move_a = active & left, active & ~left
+        fb = np.where(move_b[:, None], f2, fb)
+        fa = np.where(move_a[:, None], f1, fa)
+        b, a = np.where(move_b, x2, b), np.where(move_a, x1, a)
         new1 = np.where(left, b - INV_PHI * (b - a), x2)
         new2 = np.where(left, x1, a + INV_PHI * (b - a))
-        f_new = score(np.where(left, new1, new2))
-        f1, f2 = (np.where(left[:, None], f_new, f2), np.where(left[:, None], f1, f_new))
-        x1, x2 = new1, new2
+        f_new = score(np.where(active, np.where(left, new1, new2), np.nan))
+        f1, f2 = (np.where(move_b[:, None], f_new, np.where(move_a[:, None], f2, f1)),
+                  np.where(move_b[:, None], f1, np.where(move_a[:, None], f_new, f2)))
+        x1, x2 = np.where(active, new1, x1), np.where(active, new2, x2)
     for x, s in ((x1, f1), (x2, f2)):
         take = beats(s, best_s)
         best, best_s = np.where(take, x, best), np.where(take[:, None], s, best_s)
     return best, best_s
 
 
-def _best_on_grid(score, grid: np.ndarray, n: int) -> tuple[np.ndarray, Scores, np.ndarray]:
-    """Best grid point per motor (first of equals), its score and its index."""
+def _flat(*scores: Scores) -> np.ndarray:
+    """Per row: all the score rows agree to FLAT (relative, or absolute near zero)."""
+    first = scores[0]
+    with np.errstate(invalid="ignore"):
+        same = [np.isclose(s, first, rtol=FLAT, atol=FLAT) | (s == first) for s in scores[1:]]
+    return np.all(np.stack(same), axis=(0, 2))
+
+
+def _best_on_grid(score, grid: np.ndarray,
+                  n: int) -> tuple[np.ndarray, Scores, np.ndarray, np.ndarray]:
+    """Best grid point per motor (first of equals), its score, its index, all scores."""
+    every = np.stack([score(np.full(n, x)) for x in grid])
     index = np.zeros(n, dtype=int)
-    best_s = score(np.full(n, grid[0]))
-    for i, x in enumerate(grid[1:], start=1):
-        s = score(np.full(n, x))
-        take = beats(s, best_s)
-        index, best_s = np.where(take, i, index), np.where(take[:, None], s, best_s)
-    return grid[index], best_s, index
+    best_s = every[0]
+    for i in range(1, len(grid)):
+        take = beats(every[i], best_s)
+        index, best_s = np.where(take, i, index), np.where(take[:, None], every[i], best_s)
+    return grid[index], best_s, index, every
 
 
 def beats(new: Scores, old: Scores) -> np.ndarray:
@@ -127,11 +156,14 @@ def evaluate_points(family: type[MotionLaw], fixed: dict[str, float], names: lis
     """The score of each motor at its own point (motors at equal points evaluated together)."""
     n = len(motors)
     stacked = np.column_stack(points)
-    keys, inverse = np.unique(stacked, axis=0, return_inverse=True)
+    wanted = np.nonzero(~np.isnan(stacked).any(axis=1))[0]
+    if not len(wanted):
+        return np.full((n, 1), -np.inf)
+    keys, inverse = np.unique(stacked[wanted], axis=0, return_inverse=True)
     inverse = inverse.reshape(-1)
     out: Scores | None = None
     for k, key in enumerate(keys):
-        members = np.nonzero(inverse == k)[0]
+        members = wanted[np.nonzero(inverse == k)[0]]
         law = family(**fixed, **{name: float(v) for name, v in zip(names, key, strict=True)})
         subset = motors if len(members) == n else motors.subset(members)
         rows = score_law(law, design, drive, subset)
