@@ -151,3 +151,15 @@ def test_a_parameter_without_a_finite_range_cannot_be_auto():
     design = Design(Task(1.0, None), Load(1.0), laws=("elliptic(n=auto)",), motors=(MOTOR,))
     with pytest.raises(UserError, match=r"n=auto cannot be chosen.*unbounded"):
         size_design(design)
+
+
+def test_an_integer_parameter_is_enumerated():
+    def sized(*laws):
+        return size_design(Design(Task(1.0, None, dwell=0.2), Load(1.0, friction=0.2),
+                                  laws=laws, motors=(MOTOR,))).results
+
+    auto = sized("polynomial(degree=auto)")[0]
+    fixed = sized(*(f"polynomial(degree={d})" for d in range(3, 22, 2)))
+    best = min((r for r in fixed if r.feasible), key=lambda r: r.duration)
+    assert auto.params["degree"] == best.params["degree"]
+    assert auto.duration == best.duration

@@ -8,9 +8,11 @@ and 6.2); every other case is searched to tolerance (sizer.sizing.shape_search).
 chosen parameters are kept at full precision: the duration and margins reported are
 those of the law with exactly these parameters.
 
-A parameter is searched over its admissible range; an open end is approached to within
-OPEN_INSET of the range (the infimum is not attained there: T_min at the inset point is
-within about 1e-10 of it). A parameter without a finite range cannot be searched.
+A parameter is searched over its admissible range. The exact optimum approaches an open
+end to within OPEN_INSET of the range (the infimum is not attained there: T_min at the
+inset point is within about 1e-10 of it, e.g. beta -> 0 of a double S without a jerk
+limit); the search keeps SEARCH_INSET away. A parameter without a finite range cannot
+be searched.
 """
 
 from __future__ import annotations
@@ -33,6 +35,10 @@ from sizer.sizing.shape_search import search_shape
 from sizer.sizing.time_optimal_shape import bound_scales, optimal_double_s, optimal_trapezoid
 
 OPEN_INSET = 1e-10
+SEARCH_INSET = 1e-3
+"""The searched laws are built and sampled at each point; next to an open end their
+shapes get steep (e.g. kappa -> -1 of the modified cycloidal) and their numerics are
+not reliable there, so the search keeps 1e-3 of the range away from open ends."""
 
 
 def choose_shape(family: type[MotionLaw], values: dict[str, Fraction | str], design: Design,
@@ -40,22 +46,24 @@ def choose_shape(family: type[MotionLaw], values: dict[str, Fraction | str], des
     """The best law of the family for each motor, its auto parameters optimized."""
     free = [p for p in family.parameters if values.get(p.name) == AUTO]
     fixed = {k: float(v) for k, v in values.items() if v != AUTO}
-    ranges = {p.name: search_range(family.law_id, p) for p in free}
+    ranges = {p.name: search_range(family.law_id, p, OPEN_INSET) for p in free}
     params = exact_time_optimal(family, fixed, ranges, design, drive, motors)
     if params is None:
+        ranges = {p.name: search_range(family.law_id, p, SEARCH_INSET) for p in free}
         params = search_shape(family, fixed, ranges, design, drive, motors)
     return [family(**fixed, **{name: float(v[i]) for name, v in params.items()})
             for i in range(len(motors))]
 
 
-def search_range(law_id: str, p: Parameter) -> tuple[float, float]:
-    """The closed interval searched for an auto parameter (open ends inset)."""
+def search_range(law_id: str, p: Parameter, inset: float) -> tuple[float, float]:
+    """The closed interval searched for an auto parameter (open ends inset by
+    ``inset`` times the range)."""
     if not (math.isfinite(p.low) and math.isfinite(p.high)):
         raise UserError(f"{law_id}: parameter {p.name}=auto cannot be chosen: its range "
                         f"{p.range_text()} is unbounded; give a value")
     span = p.high - p.low
-    return (p.low + (OPEN_INSET * span if p.low_open else 0.0),
-            p.high - (OPEN_INSET * span if p.high_open else 0.0))
+    return (p.low + (inset * span if p.low_open else 0.0),
+            p.high - (inset * span if p.high_open else 0.0))
 
 
 def exact_time_optimal(family: type[MotionLaw], fixed: dict[str, float],
