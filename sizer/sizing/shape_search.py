@@ -9,7 +9,9 @@ and the margins are max/min of quasi-convex/quasi-concave bounds, unimodal on th
 bracket), or until the scores across the bracket agree to FLAT. Two parameters: the
 same, nested (the inner search for each outer point), to TOLERANCE[2] per parameter
 (coarser: the cost is the product of the two searches). Integer parameters are
-enumerated. Motors at equal points are evaluated together (vectorized).
+enumerated. Motors at equal points are evaluated together (vectorized). In minimize
+mode each T_min starts from the motor's previous one (warm_duration), falling back to
+the full search of sizer.sizing.duration.
 """
 
 from __future__ import annotations
@@ -22,10 +24,11 @@ import numpy as np
 from sizer.laws import MotionLaw
 from sizer.mechanics import Drive
 from sizer.model.domain import Design
-from sizer.sizing.checks import evaluate_checks
+from sizer.sizing.checks import evaluate_checks, worst_slack
 from sizer.sizing.cycle import CycleCalculator
-from sizer.sizing.duration import minimum_duration
+from sizer.sizing.duration import evaluate, minimum_duration
 from sizer.sizing.motors import MotorArrays
+from sizer.sizing.roots import illinois
 
 GRID = {1: 13, 2: 7}
 TOLERANCE = {1: 1e-12, 2: 1e-4}
@@ -33,6 +36,8 @@ TOLERANCE = {1: 1e-12, 2: 1e-4}
 the product of the two searches, each point a full T_min search in minimize mode (about
 0.1 s per motor with friction), so 1e-12 there would take hours; 1e-4 takes minutes."""
 FLAT = 1e-13
+TIE = 1e-14
+WARM = 1e-2
 INV_PHI = (math.sqrt(5.0) - 1.0) / 2.0
 
 Scores = np.ndarray
@@ -48,8 +53,14 @@ def search_shape(family: type[MotionLaw], fixed: dict[str, float],
     n = len(motors)
     dims = len(names)
 
+    guess = np.full(n, np.nan)  # the last T_min of each motor, to start the next one
+
     def score(points: list[np.ndarray]) -> Scores:
-        return evaluate_points(family, fixed, names, points, design, drive, motors)
+        scores = evaluate_points(family, fixed, names, points, design, drive, motors, guess)
+        if design.task.minimize:
+            found = np.isfinite(scores[:, 0])
+            guess[found] = -scores[found, 0]
+        return scores
 
     if dims == 1:
         best, _ = search_1d(lambda x: score([x]), params[names[0]], ranges[names[0]], n, dims)
@@ -140,11 +151,12 @@ def _best_on_grid(score, grid: np.ndarray,
 
 def beats(new: Scores, old: Scores) -> np.ndarray:
     """Per row: new is better than old at the first entry where they differ beyond
-    rounding (1e-12 relative); nan counts as worst."""
+    rounding (TIE relative: a check that does not depend on the shape ties,
+    and the next one decides); nan counts as worst."""
     new = np.where(np.isnan(new), -np.inf, new)
     old = np.where(np.isnan(old), -np.inf, old)
     with np.errstate(invalid="ignore"):
-        differs = ~np.isclose(new, old, rtol=1e-12, atol=1e-15) & (new != old)
+        differs = ~np.isclose(new, old, rtol=TIE, atol=1e-300) & (new != old)
     first = np.argmax(differs, axis=1)
     rows = np.arange(len(new))
     return differs.any(axis=1) & (new[rows, first] > old[rows, first])
@@ -152,7 +164,7 @@ def beats(new: Scores, old: Scores) -> np.ndarray:
 
 def evaluate_points(family: type[MotionLaw], fixed: dict[str, float], names: list[str],
                     points: list[np.ndarray], design: Design, drive: Drive,
-                    motors: MotorArrays) -> Scores:
+                    motors: MotorArrays, guess: np.ndarray | None = None) -> Scores:
     """The score of each motor at its own point (motors at equal points evaluated together)."""
     n = len(motors)
     stacked = np.column_stack(points)
@@ -166,7 +178,8 @@ def evaluate_points(family: type[MotionLaw], fixed: dict[str, float], names: lis
         members = wanted[np.nonzero(inverse == k)[0]]
         law = family(**fixed, **{name: float(v) for name, v in zip(names, key, strict=True)})
         subset = motors if len(members) == n else motors.subset(members)
-        rows = score_law(law, design, drive, subset)
+        rows = score_law(law, design, drive, subset,
+                         None if guess is None else guess[members])
         if out is None:
             out = np.full((n, rows.shape[1]), -np.inf)
         out[members] = rows
@@ -174,13 +187,44 @@ def evaluate_points(family: type[MotionLaw], fixed: dict[str, float], names: lis
     return out
 
 
-def score_law(law: MotionLaw, design: Design, drive: Drive, motors: MotorArrays) -> Scores:
+def score_law(law: MotionLaw, design: Design, drive: Drive, motors: MotorArrays,
+              guess: np.ndarray | None = None) -> Scores:
     """(-T_min,) in minimize mode (-inf if infeasible), else the sorted slacks."""
     calculator = CycleCalculator(None, design.task, drive, motors,
                                  design.limits.thermal_speed, law=law)
     if design.task.minimize:
-        solution = minimum_duration(calculator, design.limits)
-        return np.where(solution.feasible, -solution.duration, -np.inf)[:, None]
+        T = warm_duration(calculator, design, guess) if guess is not None else None
+        if T is None:
+            solution = minimum_duration(calculator, design.limits)
+            T = np.where(solution.feasible, solution.duration, np.inf)
+        return -T[:, None]
     metrics = calculator.evaluate(np.full(len(motors), design.task.duration))
     checks = evaluate_checks(metrics, motors, drive, design.limits, design.task.linear)
     return np.sort(np.stack([c.slack for c in checks], axis=1), axis=1)
+
+
+def warm_duration(calculator: CycleCalculator, design: Design,
+                  guess: np.ndarray) -> np.ndarray | None:
+    """T_min near a previous one (a neighbouring shape's): the worst slack bracketed in
+    [guess (1 - WARM), guess (1 + WARM)], then the Illinois method on log T to 1e-14
+    (the feasible end returned). None when a motor has no guess or no bracket there:
+    the caller then uses the full search of sizer.sizing.duration."""
+    if not np.all(np.isfinite(guess)):
+        return None
+
+    def slack(T: np.ndarray) -> np.ndarray:
+        return worst_slack(evaluate(calculator, design.limits, T)[1])
+
+    lo, hi = guess * (1.0 - WARM), guess * (1.0 + WARM)
+    f_lo, f_hi = slack(lo), slack(hi)
+    if not (np.all(f_lo < 0.0) and np.all(f_hi >= 0.0)):
+        return None
+    root = illinois(lambda x: slack(np.exp(x)), np.log(lo), np.log(hi), f_lo, f_hi,
+                    xtol=1e-14)
+    T = np.exp(root)
+    for _ in range(8):  # the feasible side, as minimum_duration reports it
+        short = slack(T) < 0.0
+        if not short.any():
+            return T
+        T = np.where(short, T * (1.0 + 1e-14), T)
+    return None
