@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING, Any
 
+from sizer.laws.base import format_parameter
 from sizer.report.design_summary import finite_or_none
 from sizer.report.numbers import full, short
 from sizer.sizing.checks import TOLERANCE
@@ -136,6 +137,17 @@ def ratio_text(result: CandidateResult) -> str:
     return f"{text} ({result.gearbox})" if result.gearbox else text
 
 
+def display_spec(result: CandidateResult) -> str:
+    """The law spec for a table: a parameter chosen by the solver (full precision in JSON
+    and CSV) shown to 4 significant digits."""
+    texts = {k: format_parameter(v) for k, v in result.params.items()}
+    if all(len(t) <= 8 for t in texts.values()):
+        return result.spec
+    args = ", ".join(f"{k}={t if len(t) <= 8 else f'{result.params[k]:.4g}'}"
+                     for k, t in texts.items())
+    return f"{result.law}({args})"
+
+
 def result_display_cells(rank: int, result: CandidateResult, *,
                          with_ratio: bool = False) -> tuple[str, ...]:
     """Cells for a table: rank, motor, law, feasible, T [ms], torques, rpm, margins [%].
@@ -144,7 +156,8 @@ def result_display_cells(rank: int, result: CandidateResult, *,
     """
     ratio = (ratio_text(result),) if with_ratio else ()
     return (
-        str(rank), result.motor, result.spec, *ratio, "yes" if result.feasible else "no",
+        str(rank), result.motor, display_spec(result), *ratio,
+        "yes" if result.feasible else "no",
         _short(result.duration, 1000.0), _short(result.peak_torque),
         _short(result.rms_torque), _short(result.max_speed, RPM_PER_RAD_S),
         *(percent(summary_margin(result, name)) for name in MARGINS),

@@ -1,32 +1,44 @@
 """Shape parameters written ``auto``: chosen per motor by the solver.
 
-In minimize mode the parameter minimizes T_min; with a given duration it maximizes the
-smallest margin. The search is a grid over the parameter's range refined twice around
-each motor's best point (vectorized over the motors that share a neighbourhood), halving
-the spacing each round, so the chosen value is within about 1e-3 of the range of the
-true optimum; the chosen value is rounded to 4 significant digits, and the duration or
-margins reported are exact for it.
+In minimize mode the parameters minimize T_min; with a given duration they maximize the
+smallest margin (ties broken by the next smallest). The trapezoid and the double S in
+the book's case (rectangular regions, purely inertial load, ideal transmission) have
+their time-optimal shape computed exactly (sizer.sizing.time_optimal_shape, sec. 3.2-3.4
+and 6.2); every other case is searched to tolerance (sizer.sizing.shape_search). The
+chosen parameters are kept at full precision: the duration and margins reported are
+those of the law with exactly these parameters.
+
+A parameter is searched over its admissible range. The exact optimum approaches an open
+end to within OPEN_INSET of the range (the infimum is not attained there: T_min at the
+inset point is within about 1e-10 of it, e.g. beta -> 0 of a double S without a jerk
+limit); the search keeps SEARCH_INSET away. A parameter without a finite range cannot
+be searched.
 """
 
 from __future__ import annotations
 
-import itertools
+import math
 from fractions import Fraction
 
 import numpy as np
 
+from sizer.errors import UserError
 from sizer.laws import AUTO, MotionLaw
+from sizer.laws.base import Parameter
+from sizer.laws.piecewise_polynomial import DoubleS, Trapezoidal
 from sizer.mechanics import Drive
 from sizer.model.domain import Design
-from sizer.sizing.checks import evaluate_checks
 from sizer.sizing.cycle import CycleCalculator
-from sizer.sizing.duration import minimum_duration
+from sizer.sizing.duration import is_purely_inertial
 from sizer.sizing.motors import MotorArrays
+from sizer.sizing.shape_search import search_shape
+from sizer.sizing.time_optimal_shape import bound_scales, optimal_double_s, optimal_trapezoid
 
-COARSE = {1: 13, 2: 7}
-FINE = {1: 5, 2: 5}
-REFINEMENTS = 7
-INSET = 1e-3  # keep open interval ends out of the grid
+OPEN_INSET = 1e-10
+SEARCH_INSET = 1e-3
+"""The searched laws are built and sampled at each point; next to an open end their
+shapes get steep (e.g. kappa -> -1 of the modified cycloidal) and their numerics are
+not reliable there, so the search keeps 1e-3 of the range away from open ends."""
 
 
 def choose_shape(family: type[MotionLaw], values: dict[str, Fraction | str], design: Design,
@@ -34,78 +46,42 @@ def choose_shape(family: type[MotionLaw], values: dict[str, Fraction | str], des
     """The best law of the family for each motor, its auto parameters optimized."""
     free = [p for p in family.parameters if values.get(p.name) == AUTO]
     fixed = {k: float(v) for k, v in values.items() if v != AUTO}
-    bounds = []
-    for p in free:
-        span = p.high - p.low
-        bounds.append((p.low + (INSET * span if p.low_open else 0.0),
-                       p.high - (INSET * span if p.high_open else 0.0)))
-    dims = len(free)
-    steps = [(hi - lo) / (COARSE[dims] - 1) for lo, hi in bounds]
-    grids = [np.linspace(lo, hi, COARSE[dims]) for lo, hi in bounds]
-    best_point = [None] * len(motors)
-    best_score: list[np.ndarray | None] = [None] * len(motors)
-    everyone = np.arange(len(motors))
-    _search(family, free, fixed, grids, everyone, design, drive, motors, best_point, best_score)
-    for _ in range(REFINEMENTS):
-        steps = [2.0 * s / (FINE[dims] - 1) for s in steps]
-        groups: dict[tuple, list[int]] = {}
-        for i, point in enumerate(best_point):
-            groups.setdefault(point, []).append(i)
-        for point, members in groups.items():
-            local = [np.clip(np.linspace(c - s * (FINE[dims] - 1) / 2, c + s * (FINE[dims] - 1) / 2,
-                                         FINE[dims]), lo, hi)
-                     for c, s, (lo, hi) in zip(point, steps, bounds, strict=True)]
-            _search(family, free, fixed, local, np.array(members), design, drive, motors,
-                    best_point, best_score)
-    names = [p.name for p in free]
-    return [family(**fixed, **dict(zip(names, _rounded(point, bounds), strict=True)))
-            for point in best_point]
+    ranges = {p.name: search_range(family.law_id, p, OPEN_INSET) for p in free}
+    params = exact_time_optimal(family, fixed, ranges, design, drive, motors)
+    if params is None:
+        ranges = {p.name: search_range(family.law_id, p, SEARCH_INSET) for p in free}
+        params = search_shape(family, fixed, ranges, design, drive, motors)
+    return [family(**fixed, **{name: float(v[i]) for name, v in params.items()})
+            for i in range(len(motors))]
 
 
-def _rounded(point: tuple[float, ...], bounds) -> tuple[float, ...]:
-    """4 significant digits (the search is no finer), kept inside the bounds."""
-    return tuple(min(max(float(f"{x:.4g}"), lo), hi)
-                 for x, (lo, hi) in zip(point, bounds, strict=True))
+def search_range(law_id: str, p: Parameter, inset: float) -> tuple[float, float]:
+    """The closed interval searched for an auto parameter (open ends inset by
+    ``inset`` times the range)."""
+    if not (math.isfinite(p.low) and math.isfinite(p.high)):
+        raise UserError(f"{law_id}: parameter {p.name}=auto cannot be chosen: its range "
+                        f"{p.range_text()} is unbounded; give a value")
+    span = p.high - p.low
+    return (p.low + (inset * span if p.low_open else 0.0),
+            p.high - (inset * span if p.high_open else 0.0))
 
 
-def _search(family, free, fixed, grids, members, design, drive, motors, best_point, best_score):
-    """Evaluate every grid point for the member motors and keep improvements."""
-    subset = motors.subset(members)
-    names = [p.name for p in free]
-    for point in itertools.product(*(np.unique(g) for g in grids)):
-        point = tuple(float(x) for x in point)
-        law = family(**fixed, **dict(zip(names, point, strict=True)))
-        score = _score(law, design, drive, subset)
-        for j, i in enumerate(members):
-            if best_score[i] is None or _better(score[j], best_score[i]):
-                best_point[i] = point
-                best_score[i] = score[j]
-    for i in members:
-        if best_point[i] is None:  # nothing feasible: keep the middle point for reporting
-            best_point[i] = tuple(float(g[len(g) // 2]) for g in grids)
-
-
-def _score(law: MotionLaw, design: Design, drive: Drive, motors: MotorArrays) -> np.ndarray:
-    """Rows compared lexicographically, higher is better: (-T_min,) in minimize mode, the
-    slacks of all checks smallest first otherwise (ties on the worst check, e.g. one
-    that does not depend on the law, are broken by the next one)."""
-    calculator = CycleCalculator(None, design.task, drive, motors,
-                                 design.limits.thermal_speed, law=law)
-    if design.task.minimize:
-        solution = minimum_duration(calculator, design.limits)
-        return np.where(solution.feasible, -solution.duration, -np.inf)[:, None]
-    metrics = calculator.evaluate(np.full(len(motors), design.task.duration))
-    checks = evaluate_checks(metrics, motors, drive, design.limits, design.task.linear)
-    return np.sort(np.stack([c.slack for c in checks], axis=1), axis=1)
-
-
-def _better(new: np.ndarray, old: np.ndarray) -> bool:
-    """new beats old at the first entry where they differ beyond rounding."""
-    with np.errstate(invalid="ignore"):
-        differs = ~np.isclose(new, old, rtol=1e-12, atol=1e-12) & ~(new == old)
-    if not differs.any():
-        return False
-    first = int(np.argmax(differs))
-    return bool(new[first] > old[first])
-
-
+def exact_time_optimal(family: type[MotionLaw], fixed: dict[str, float],
+                       ranges: dict[str, tuple[float, float]], design: Design, drive: Drive,
+                       motors: MotorArrays) -> dict[str, np.ndarray] | None:
+    """The exact optimum where it is known (minimize mode, book's case), else None."""
+    if not design.task.minimize or family not in (Trapezoidal, DoubleS):
+        return None
+    calculator = CycleCalculator(None, design.task, drive, motors, design.limits.thermal_speed)
+    if not is_purely_inertial(calculator):
+        return None
+    scales = bound_scales(calculator, design.limits)
+    if family is Trapezoidal:
+        if design.limits.max_jerk is not None:  # infinite jerk: no alpha is feasible
+            return {"alpha": np.full(len(motors), 1.0 / 3.0)}
+        return optimal_trapezoid(scales, *ranges["alpha"]).params
+    given = {p.name: float(p.default) for p in family.parameters} | fixed
+    a = ranges.get("alpha", (given["alpha"],) * 2)
+    b = ranges.get("beta", (given["beta"],) * 2)
+    solution = optimal_double_s(scales, a[0], b[0], a[1], b[1])
+    return {name: solution.params[name] for name in ranges}
