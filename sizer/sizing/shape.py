@@ -56,14 +56,15 @@ def choose_shape(family: type[MotionLaw], values: dict[str, Fraction | str], des
 
 
 def search_range(law_id: str, p: Parameter, inset: float) -> tuple[float, float]:
-    """The closed interval searched for an auto parameter (open ends inset by
-    ``inset`` times the range)."""
-    if not (math.isfinite(p.low) and math.isfinite(p.high)):
-        raise UserError(f"{law_id}: parameter {p.name}=auto cannot be chosen: its range "
-                        f"{p.range_text()} is unbounded; give a value")
-    span = p.high - p.low
-    return (p.low + (inset * span if p.low_open else 0.0),
-            p.high - (inset * span if p.high_open else 0.0))
+    """The closed interval searched for an auto parameter: its ``auto_range`` (sizer.laws),
+    open ends inset by ``inset`` times the range."""
+    refusal = p.auto_refusal(law_id)
+    if refusal is not None:
+        raise UserError(refusal)
+    low, high = p.auto_range  # type: ignore[misc]
+    span = high - low
+    return (low + (inset * span if p.low_open and low == p.low else 0.0),
+            high - (inset * span if p.high_open and high == p.high else 0.0))
 
 
 def exact_time_optimal(family: type[MotionLaw], fixed: dict[str, float],
