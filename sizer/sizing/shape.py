@@ -17,7 +17,6 @@ be searched.
 
 from __future__ import annotations
 
-import math
 from fractions import Fraction
 
 import numpy as np
