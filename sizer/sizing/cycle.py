@@ -21,7 +21,6 @@ golden-section search.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -29,6 +28,7 @@ from numpy.polynomial.legendre import leggauss
 
 from sizer.mechanics import Drive
 from sizer.model.domain import Task, ThermalSpeedRule
+from sizer.sizing.golden import golden_step, interior_points
 from sizer.sizing.grid import LawGrid, PieceEvaluator, law_grid
 from sizer.sizing.motors import MotorArrays
 from sizer.sizing.roots import illinois
@@ -38,7 +38,6 @@ REFINED = 6
 """Local maxima of the samples refined per candidate (the largest ones)."""
 REFINE_SHARE = 0.5
 """Samples below this share of the best sample are no candidate peaks."""
-INV_PHI = (math.sqrt(5.0) - 1.0) / 2.0
 
 
 @dataclass(frozen=True)
@@ -341,17 +340,11 @@ class CycleCalculator:
         def objective(x):
             return objective_of(at(x, 2), at(x, 1))
 
-        x1 = hi - INV_PHI * (hi - lo)
-        x2 = lo + INV_PHI * (hi - lo)
-        f1, f2 = objective(x1), objective(x2)
+        x1, x2 = interior_points(lo, hi)
+        bracket = (lo, hi, x1, x2, objective(x1), objective(x2))
         for _ in range(GOLDEN_STEPS):
-            left_ = f1 >= f2  # the maximum lies in [lo, x2]
-            hi, lo = np.where(left_, x2, hi), np.where(left_, lo, x1)
-            new_x1 = np.where(left_, hi - INV_PHI * (hi - lo), x2)
-            new_x2 = np.where(left_, x1, lo + INV_PHI * (hi - lo))
-            f_new = objective(np.where(left_, new_x1, new_x2))
-            f1, f2 = np.where(left_, f_new, f2), np.where(left_, f1, f_new)
-            x1, x2 = new_x1, new_x2
+            bracket = golden_step(objective, bracket, bracket[4] >= bracket[5])  # max in [lo, x2]
+        f1, f2 = bracket[4], bracket[5]
         refined = np.where(valid, np.maximum(f1, f2), -np.inf).max(axis=1)
         return np.maximum(best_value, refined)
 

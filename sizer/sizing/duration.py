@@ -24,12 +24,12 @@ from scipy import optimize
 from sizer.model.domain import Limits
 from sizer.sizing.checks import TOLERANCE, CheckArrays, evaluate_checks, feasible, worst_slack
 from sizer.sizing.cycle import CycleCalculator, CycleMetrics
+from sizer.sizing.golden import golden_step, interior_points
 
 EXPANSIONS = 80
 BISECTIONS = 200
 GOLDEN_STEPS = 80
 STEP = math.log(2.0)
-INV_PHI = (math.sqrt(5.0) - 1.0) / 2.0
 
 
 @dataclass(frozen=True)
@@ -91,6 +91,44 @@ def _largest_tried(calculator: CycleCalculator) -> np.ndarray:
     return _initial_guess(calculator) * 2.0**EXPANSIONS
 
 
+@dataclass(frozen=True)
+class DurationBounds:
+    """Per-candidate scales of the bounds of eq. (6.2), margins applied, SI.
+
+    For a law with coefficients C_v, C_a, C_a_rms, C_j the bounds on T are C_v*speed,
+    sqrt(C_a*torque), the RMS bound of scale C_a_rms*rms with the dwell, and
+    cbrt(C_j*jerk). The load's own limits merge into the motor's: a load speed limit
+    into ``speed`` (both multiply C_v), a load acceleration limit into ``torque``. 0 means
+    no such limit; inf that no duration meets it.
+    """
+
+    speed: np.ndarray
+    torque: np.ndarray
+    rms: np.ndarray
+    jerk: np.ndarray
+    dwell: float
+
+
+def duration_bounds(calculator: CycleCalculator, limits: Limits) -> DurationBounds:
+    """The scales of eq. (6.2) for the candidates of a calculator (its law unused)."""
+    drive, motors, task = calculator.drive, calculator.motors, calculator.task
+    k, h = drive.ratio, calculator.h
+    J_t = motors.inertia + drive.transmission_inertia + drive.reflected_load_inertia
+    speed = motors.speed_limit * (1.0 - limits.speed_margin)
+    tau_p = motors.intermittent.torques[:, 0] * (1.0 - limits.torque_margin)
+    tau_c = motors.continuous.torques[:, 0] * (1.0 - limits.torque_margin)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        s_v = k * h / speed
+        s_a = k * h * J_t / tau_p
+        s_r = J_t * k * h / tau_c
+    if limits.max_speed is not None:
+        s_v = np.maximum(s_v, h / limits.max_speed)
+    if limits.max_acceleration is not None:
+        s_a = np.maximum(s_a, h / limits.max_acceleration)
+    s_j = np.full(len(motors), h / limits.max_jerk if limits.max_jerk is not None else 0.0)
+    return DurationBounds(s_v, s_a, s_r, s_j, task.dwell)
+
+
 def closed_form_duration(calculator: CycleCalculator, limits: Limits) -> np.ndarray:
     """Eq. (6.2) per candidate, with the dwell in the RMS and the user's load limits.
 
@@ -99,24 +137,15 @@ def closed_form_duration(calculator: CycleCalculator, limits: Limits) -> np.ndar
     the verdict at the bound.
     """
     c = calculator.law.coefficients
-    drive, motors, task = calculator.drive, calculator.motors, calculator.task
-    k, h = drive.ratio, calculator.h
-    J_t = motors.inertia + drive.transmission_inertia + drive.reflected_load_inertia
-    speed = motors.speed_limit * (1.0 - limits.speed_margin)
-    tau_p = motors.intermittent.torques[:, 0] * (1.0 - limits.torque_margin)
-    tau_c = motors.continuous.torques[:, 0] * (1.0 - limits.torque_margin)
-    with np.errstate(divide="ignore"):
-        bounds = [c.C_v * k * h / speed, np.sqrt(c.C_a * k * h * J_t / tau_p)]
-        rms_scale = J_t * k * h * c.C_a_rms / tau_c
-    bounds.append(np.array([_rms_duration(s, task.dwell) for s in rms_scale]))
-    if limits.max_speed is not None:
-        bounds.append(np.full(len(motors), c.C_v * h / limits.max_speed))
-    if limits.max_acceleration is not None:
-        bounds.append(np.full(len(motors), math.sqrt(c.C_a * h / limits.max_acceleration)))
-    if limits.max_jerk is not None:
-        jerk_bound = (c.C_j * h / limits.max_jerk) ** (1 / 3) if c.jerk_bounded else math.inf
-        bounds.append(np.full(len(motors), jerk_bound))
-    return np.max(np.stack(bounds), axis=0)
+    s = duration_bounds(calculator, limits)
+    rms = np.array([_rms_duration(x, s.dwell) for x in c.C_a_rms * s.rms])
+    if limits.max_jerk is None:
+        jerk = np.zeros_like(s.jerk)
+    elif c.jerk_bounded:
+        jerk = np.cbrt(c.C_j * s.jerk)
+    else:
+        jerk = np.full_like(s.jerk, np.inf)
+    return np.max(np.stack([c.C_v * s.speed, np.sqrt(c.C_a * s.torque), rms, jerk]), axis=0)
 
 
 def _rms_duration(scale: float, dwell: float) -> float:
@@ -261,7 +290,7 @@ def _golden_max(checks_at, lo: np.ndarray, hi: np.ndarray, active: np.ndarray):
         return worst_slack(checks_at(np.where(active, x, 0.0)))
 
     f_lo = slack(lo)
-    x1, x2 = hi - INV_PHI * (hi - lo), lo + INV_PHI * (hi - lo)
+    x1, x2 = interior_points(lo, hi)
     f1, f2 = slack(x1), slack(x2)
     hit = np.zeros(len(lo), dtype=bool)
     x_ok, f_ok = np.full(len(lo), np.nan), np.full(len(lo), np.nan)
@@ -277,15 +306,8 @@ def _golden_max(checks_at, lo: np.ndarray, hi: np.ndarray, active: np.ndarray):
         if not open_.any():
             break
         left = f1 >= f2  # the maximum lies in [lo, x2]
-        lo_new = np.where(left, lo, x1)
         f_lo = np.where(left, f_lo, f1)
-        hi = np.where(left, x2, hi)
-        lo = lo_new
-        new_x1 = np.where(left, hi - INV_PHI * (hi - lo), x2)
-        new_x2 = np.where(left, x1, lo + INV_PHI * (hi - lo))
-        f_new = slack(np.where(left, new_x1, new_x2))
-        f1, f2 = np.where(left, f_new, f2), np.where(left, f1, f_new)
-        x1, x2 = new_x1, new_x2
+        lo, hi, x1, x2, f1, f2 = golden_step(slack, (lo, hi, x1, x2, f1, f2), left)
     return hit, x_ok, f_ok, x_bad, f_bad
 
 

@@ -31,7 +31,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-INV_PHI = (math.sqrt(5.0) - 1.0) / 2.0
+from sizer.sizing.duration import duration_bounds
+from sizer.sizing.golden import golden_step, interior_points
+
 SAMPLES = 65
 GOLDEN_WIDTH = 1e-13
 HALF = 0.5
@@ -42,7 +44,8 @@ class BoundScales:
     """Per-motor scales of the bounds of eq. (6.2) (see the module docstring), SI.
 
     A zero scale means no such limit; ``feasible`` is False where no shape can work
-    (e.g. the inertia ratio, a zero torque).
+    (e.g. a zero torque); checks that no shape changes (the inertia ratio) are left to
+    the verdict.
     """
 
     speed: np.ndarray
@@ -285,17 +288,11 @@ def log_gap_root(f, lo: np.ndarray, hi: np.ndarray, f_lo: np.ndarray, f_hi: np.n
 def _golden(f, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
     """Per-element golden-section minimum of f on [lo, hi] to a width of GOLDEN_WIDTH."""
     lo, hi = lo.astype(float).copy(), hi.astype(float).copy()
-    x1 = hi - INV_PHI * (hi - lo)
-    x2 = lo + INV_PHI * (hi - lo)
-    f1, f2 = f(x1), f(x2)
-    while np.any(hi - lo > GOLDEN_WIDTH):
-        left = f1 <= f2  # the minimum lies in [lo, x2]
-        hi, lo = np.where(left, x2, hi), np.where(left, lo, x1)
-        new_x1 = np.where(left, hi - INV_PHI * (hi - lo), x2)
-        new_x2 = np.where(left, x1, lo + INV_PHI * (hi - lo))
-        f_new = f(np.where(left, new_x1, new_x2))
-        f1, f2 = np.where(left, f_new, f2), np.where(left, f1, f_new)
-        x1, x2 = new_x1, new_x2
+    x1, x2 = interior_points(lo, hi)
+    bracket = (lo, hi, x1, x2, f(x1), f(x2))
+    while np.any(bracket[1] - bracket[0] > GOLDEN_WIDTH):
+        bracket = golden_step(f, bracket, bracket[4] <= bracket[5])  # min in [lo, x2]
+    _, _, x1, x2, f1, f2 = bracket
     return np.where(f1 <= f2, x1, x2)
 
 
@@ -309,27 +306,11 @@ def _finish(scales: BoundScales, params: dict[str, np.ndarray], duration: np.nda
 
 # --------------------------------------------------------------------------- entry
 def bound_scales(calculator, limits) -> BoundScales:
-    """The scales of the bounds for the candidates of a CycleCalculator (law unused),
-    with the margins applied as in eq. (6.2) of sizer.sizing.duration."""
-    drive, motors, task = calculator.drive, calculator.motors, calculator.task
-    k, h = drive.ratio, calculator.h
-    J_t = motors.inertia + drive.transmission_inertia + drive.reflected_load_inertia
-    speed = motors.speed_limit * (1.0 - limits.speed_margin)
-    tau_p = motors.intermittent.torques[:, 0] * (1.0 - limits.torque_margin)
-    tau_c = motors.continuous.torques[:, 0] * (1.0 - limits.torque_margin)
-    zero = np.zeros(len(motors))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        s_v = k * h / speed
-        s_a = k * h * J_t / tau_p
-        s_r = J_t * k * h / tau_c
-        load_speed = getattr(limits, "max_speed", None)
-        if load_speed is not None:
-            s_v = np.maximum(s_v, h / load_speed)
-        if limits.max_acceleration is not None:
-            s_a = np.maximum(s_a, h / limits.max_acceleration)
-        s_j = zero + (h / limits.max_jerk if limits.max_jerk is not None else 0.0)
-        feasible = np.isfinite(s_v) & np.isfinite(s_a) & np.isfinite(s_r) & np.isfinite(s_j)
-        if limits.inertia_ratio is not None:
-            feasible &= ~(drive.reflected_load_inertia / motors.inertia > limits.inertia_ratio)
-    return BoundScales(*(np.where(feasible, s, 0.0) for s in (s_v, s_a, s_r, s_j)),
-                       dwell=task.dwell, feasible=feasible)
+    """The scales of the bounds for the candidates of a CycleCalculator (law unused):
+    those of eq. (6.2) in sizer.sizing.duration, zeroed where one is infinite (no shape
+    can meet it: ``feasible`` False)."""
+    raw = duration_bounds(calculator, limits)
+    scales = (raw.speed, raw.torque, raw.rms, raw.jerk)
+    feasible = np.all(np.isfinite(np.stack(scales)), axis=0)
+    return BoundScales(*(np.where(feasible, s, 0.0) for s in scales), dwell=raw.dwell,
+                       feasible=feasible)
