@@ -139,7 +139,8 @@ def test_csv_is_si_with_units_in_the_headers() -> None:
                              "peak_torque [N*m]", "rms_torque [N*m]", "max_speed [rad/s]",
                              "margin_peak [1]", "margin_rms [1]", "margin_speed [1]",
                              "limiting", "reason", "price", "mass [kg]", "ratio",
-                             "gearbox"]
+                             "gearbox", "envelope"]
+    assert {r["envelope"] for r in rows} == {"linear"}  # the rule is stated in the CSV too
     by_law = {r["law"]: r for r in rows}
     assert float(by_law["cycloidal"]["max_speed [rad/s]"]) == pytest.approx(10.0, rel=1e-12)
     assert round(float(by_law["cycloidal"]["rms_torque [N*m]"]), 4) == 7.6293

@@ -29,7 +29,10 @@ CSV_HEADERS = (
     "rank", "motor", "law", "spec", "feasible", "duration [s]", "peak_torque [N*m]",
     "rms_torque [N*m]", "max_speed [rad/s]", "margin_peak [1]", "margin_rms [1]",
     "margin_speed [1]", "limiting", "reason", "price", "mass [kg]", "ratio", "gearbox",
+    "envelope",
 )
+"""``envelope`` is the rule that completed the regions of motors without curves
+(sizer.envelope.completion), so that a CSV states what it assumed as the table does."""
 
 
 def summary_margin(result: CandidateResult, name: str) -> float | None:
@@ -97,7 +100,7 @@ def _csv_number(value: float | None) -> str:
     return "" if value is None else full(value)
 
 
-def result_csv_cells(rank: int, result: CandidateResult) -> tuple[str, ...]:
+def result_csv_cells(rank: int, result: CandidateResult, envelope: str = "") -> tuple[str, ...]:
     """CSV cells at full precision (SI), in the order of CSV_HEADERS."""
     return (
         str(rank), result.motor, result.law, result.spec,
@@ -107,7 +110,7 @@ def result_csv_cells(rank: int, result: CandidateResult) -> tuple[str, ...]:
         *(_csv_number(summary_margin(result, name)) for name in MARGINS),
         result.limiting or "", result.reason,
         _csv_number(result.price), _csv_number(result.mass),
-        _csv_number(result.ratio), result.gearbox or "",
+        _csv_number(result.ratio), result.gearbox or "", envelope,
     )
 
 

@@ -158,7 +158,9 @@ class SizingDocument:
         return order
 
     def csv(self) -> str:
-        return render_csv(CSV_HEADERS, (result_csv_cells(rank, r) for rank, r in self.rows))
+        envelope = self.design.limits.envelope
+        return render_csv(CSV_HEADERS,
+                          (result_csv_cells(rank, r, envelope) for rank, r in self.rows))
 
     def json(self) -> str:
         return render_json({
