@@ -51,14 +51,18 @@ def evaluate(calculator: CycleCalculator, limits: Limits, T: np.ndarray):
 
 
 def is_purely_inertial(calculator: CycleCalculator) -> bool:
-    """The case of eq. (6.2): rectangles, inertial load, ideal transmission."""
+    """The case of eq. (6.2): inertial load, ideal transmission, plain stages.
+
+    The motors' regions are read as their flat part (MotorArrays.flat_speed): exact for
+    the book's rectangles, and for extended regions wherever the move's peak speed stays
+    below the end of the flat part (:func:`minimum_duration` searches the others).
+    """
     load, drive, motors = calculator.drive.load, calculator.drive, calculator.motors
     stages_plain = all(s.preload_torque == 0.0 and s.max_input_speed is None
                        and s.rated_output_torque is None and s.peak_output_torque is None
                        for s in drive.stages)
     return (load.damping == 0.0 and load.friction == 0.0 and load.torque == 0.0
-            and drive.is_ideal and stages_plain and bool(np.all(motors.damping == 0.0))
-            and bool(np.all(motors.is_rectangular)))
+            and drive.is_ideal and stages_plain and bool(np.all(motors.damping == 0.0)))
 
 
 def minimum_duration(calculator: CycleCalculator, limits: Limits) -> DurationSolution:
@@ -73,10 +77,12 @@ def minimum_duration(calculator: CycleCalculator, limits: Limits) -> DurationSol
         finite = np.isfinite(T)
         _, checks = evaluate(calculator, limits, np.where(finite, T, 1.0))
         missed = finite & ~feasible(checks)
-        if missed.any():
+        beyond = beyond_flat_part(calculator, limits, T)
+        if (missed | beyond).any():
             start = np.where(missed & (T > 0.0), T, _initial_guess(calculator))
-            searched = bisect_duration(calculator, limits, guess=start, active=missed)
-            T = np.where(missed, searched, T)
+            searched = bisect_duration(calculator, limits, guess=start,
+                                       active=missed | beyond)
+            T = np.where(missed | beyond, searched, T)
     else:
         T = bisect_duration(calculator, limits)
         method = "bisection"
@@ -85,6 +91,19 @@ def minimum_duration(calculator: CycleCalculator, limits: Limits) -> DurationSol
     metrics, checks = evaluate(calculator, limits, probe)
     ok = finite & feasible(checks)
     return DurationSolution(np.where(ok, probe, np.nan), ok, metrics, checks, method)
+
+
+def beyond_flat_part(calculator: CycleCalculator, limits: Limits, T: np.ndarray,
+                     C_v: np.ndarray | float | None = None) -> np.ndarray:
+    """Where a duration T from eq. (6.2) may not be the shortest: the motor's region goes
+    on past its flat part and the move reaches the end of it (or T is infinite), so a
+    shorter, faster move might still fit the falling part."""
+    motors = calculator.motors
+    c_v = calculator.law.coefficients.C_v if C_v is None else C_v
+    with np.errstate(divide="ignore", invalid="ignore"):
+        at_flat_end = (c_v * calculator.drive.ratio * calculator.h
+                       / (motors.flat_speed * (1.0 - limits.speed_margin)))
+    return (motors.flat_speed < motors.speed_limit) & ~(at_flat_end * (1.0 + 1e-9) < T)
 
 
 def _largest_tried(calculator: CycleCalculator) -> np.ndarray:
@@ -114,7 +133,7 @@ def duration_bounds(calculator: CycleCalculator, limits: Limits) -> DurationBoun
     drive, motors, task = calculator.drive, calculator.motors, calculator.task
     k, h = drive.ratio, calculator.h
     J_t = motors.inertia + drive.transmission_inertia + drive.reflected_load_inertia
-    speed = motors.speed_limit * (1.0 - limits.speed_margin)
+    speed = motors.flat_speed * (1.0 - limits.speed_margin)
     tau_p = motors.intermittent.torques[:, 0] * (1.0 - limits.torque_margin)
     tau_c = motors.continuous.torques[:, 0] * (1.0 - limits.torque_margin)
     with np.errstate(divide="ignore", invalid="ignore"):

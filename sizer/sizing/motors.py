@@ -58,9 +58,24 @@ class MotorArrays:
         return flat_i & flat_c & (self.intermittent.max_speed == self.continuous.max_speed)
 
     @property
+    def flat_speed(self) -> np.ndarray:
+        """Speed up to which both regions keep their standstill torque: the rectangle that
+        eq. (6.2) sees (the rated speed for a motor whose regions the envelope rule
+        extended, the whole region for the book's rectangles)."""
+        return np.minimum(_flat_end(self.intermittent), _flat_end(self.continuous))
+
+    @property
     def all_rectangular(self) -> bool:
         return bool(np.all(self.is_rectangular))
 
     def subset(self, index: np.ndarray) -> MotorArrays:
         """The motors at the given positions, in that order."""
         return MotorArrays.of([self.motors[int(i)] for i in index], self.envelope)
+
+
+def _flat_end(table: RegionTable) -> np.ndarray:
+    """Per motor, the speed where the region's torque first leaves its value at rest."""
+    same = table.torques == table.torques[:, :1]
+    first_change = np.argmin(same, axis=1)  # 0 only where every point is the same
+    end = table.speeds[np.arange(len(table)), np.maximum(first_change - 1, 0)]
+    return np.where(same.all(axis=1), table.max_speed, np.minimum(end, table.max_speed))

@@ -28,7 +28,7 @@ from sizer.laws.piecewise_polynomial import DoubleS, Trapezoidal
 from sizer.mechanics import Drive
 from sizer.model.domain import Design
 from sizer.sizing.cycle import CycleCalculator
-from sizer.sizing.duration import is_purely_inertial
+from sizer.sizing.duration import beyond_flat_part, is_purely_inertial
 from sizer.sizing.motors import MotorArrays
 from sizer.sizing.shape_search import search_shape
 from sizer.sizing.time_optimal_shape import bound_scales, optimal_double_s, optimal_trapezoid
@@ -46,10 +46,18 @@ def choose_shape(family: type[MotionLaw], values: dict[str, Fraction | str], des
     free = [p for p in family.parameters if values.get(p.name) == AUTO]
     fixed = {k: float(v) for k, v in values.items() if v != AUTO}
     ranges = {p.name: search_range(family.law_id, p, OPEN_INSET) for p in free}
-    params = exact_time_optimal(family, fixed, ranges, design, drive, motors)
-    if params is None:
+    exact = exact_time_optimal(family, fixed, ranges, design, drive, motors)
+    params, search = (None, np.ones(len(motors), dtype=bool)) if exact is None else exact
+    if search.any():
         ranges = {p.name: search_range(family.law_id, p, SEARCH_INSET) for p in free}
-        params = search_shape(family, fixed, ranges, design, drive, motors)
+        index = np.flatnonzero(search)
+        found = search_shape(family, fixed, ranges, design, drive, motors.subset(index))
+        if params is None:
+            params = found
+        else:
+            for name, values in found.items():
+                params[name] = params[name].astype(float).copy()
+                params[name][index] = values
     return [family(**fixed, **{name: float(v[i]) for name, v in params.items()})
             for i in range(len(motors))]
 
@@ -68,8 +76,13 @@ def search_range(law_id: str, p: Parameter, inset: float) -> tuple[float, float]
 
 def exact_time_optimal(family: type[MotionLaw], fixed: dict[str, float],
                        ranges: dict[str, tuple[float, float]], design: Design, drive: Drive,
-                       motors: MotorArrays) -> dict[str, np.ndarray] | None:
-    """The exact optimum where it is known (minimize mode, book's case), else None."""
+                       motors: MotorArrays) -> tuple[dict[str, np.ndarray], np.ndarray] | None:
+    """The exact optimum where it is known (minimize mode, book's case), else None.
+
+    With it, the mask of the motors left to the search: those whose region goes on past
+    the flat part the exact optimum sees, where the optimum reaches the end of it
+    (sizer.sizing.duration.beyond_flat_part).
+    """
     if not design.task.minimize or family not in (Trapezoidal, DoubleS):
         return None
     calculator = CycleCalculator(None, design.task, drive, motors, design.limits.thermal_speed)
@@ -78,10 +91,14 @@ def exact_time_optimal(family: type[MotionLaw], fixed: dict[str, float],
     scales = bound_scales(calculator, design.limits)
     if family is Trapezoidal:
         if design.limits.max_jerk is not None:  # infinite jerk: no alpha is feasible
-            return {"alpha": np.full(len(motors), 1.0 / 3.0)}
-        return optimal_trapezoid(scales, *ranges["alpha"]).params
-    given = {p.name: float(p.default) for p in family.parameters} | fixed
-    a = ranges.get("alpha", (given["alpha"],) * 2)
-    b = ranges.get("beta", (given["beta"],) * 2)
-    solution = optimal_double_s(scales, a[0], b[0], a[1], b[1])
-    return {name: solution.params[name] for name in ranges}
+            return {"alpha": np.full(len(motors), 1.0 / 3.0)}, np.zeros(len(motors), bool)
+        solution = optimal_trapezoid(scales, *ranges["alpha"])
+    else:
+        given = {p.name: float(p.default) for p in family.parameters} | fixed
+        a = ranges.get("alpha", (given["alpha"],) * 2)
+        b = ranges.get("beta", (given["beta"],) * 2)
+        solution = optimal_double_s(scales, a[0], b[0], a[1], b[1])
+    alpha = solution.params.get("alpha", np.full(len(motors), fixed.get("alpha", 0.0)))
+    # C_v = 1/(1 - alpha) for both families (sec. 3.2, 3.4)
+    beyond = beyond_flat_part(calculator, design.limits, solution.duration, 1.0 / (1.0 - alpha))
+    return {name: solution.params[name] for name in ranges}, beyond
