@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 import os
 import shutil
+import site
 import subprocess
 import sys
 from pathlib import Path
@@ -58,6 +59,14 @@ def test_pip_install_finds_the_bundled_catalogs(tmp_path):
     subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", str(venv)],
                    check=True, env=env, timeout=120)
     python = venv / ("Scripts" if os.name == "nt" else "bin") / "python"
+    # the dependencies come from the environment running the tests, a virtual one too
+    # (--system-site-packages reaches only the base interpreter's)
+    purelib = subprocess.run([str(python), "-c",
+                              "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+                             capture_output=True, text=True, check=True, env=env,
+                             timeout=60).stdout.strip()
+    outer = [p for p in site.getsitepackages() if Path(p).is_dir()]
+    (Path(purelib) / "outer-environment.pth").write_text("\n".join(outer) + "\n")
     install = subprocess.run([str(python), "-m", "pip", "install", "--no-deps", "--no-input",
                               "--disable-pip-version-check", "-q", str(source)],
                              capture_output=True, text=True, env=env, timeout=600)
