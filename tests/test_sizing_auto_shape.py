@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 import pytest
-from ruckig import InputParameter, Result, Ruckig, Trajectory
+from reference_values import ruckig_duration
 from scipy import optimize
 
 from sizer.errors import UserError
@@ -18,13 +18,6 @@ MOTOR = Motor("m", inertia=1e-3, continuous_torque=4.0, peak_torque=12.0, rated_
 J_T = 1.0 + MOTOR.inertia
 
 
-def ruckig_duration(h: float, v: float, a: float, j: float) -> float:
-    inp = InputParameter(1)
-    inp.current_position, inp.target_position = [0.0], [h]
-    inp.max_velocity, inp.max_acceleration, inp.max_jerk = [v], [a], [j]
-    trajectory = Trajectory(1)
-    assert Ruckig(1).calculate(inp, trajectory) == Result.Working
-    return trajectory.duration
 
 
 def trapezoid_t_min(alpha, v_max, tau_p, tau_c, dwell=0.0):

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 import pytest
-from ruckig import InputParameter, Result, Ruckig, Trajectory
+from reference_values import ruckig_duration
 from scipy import optimize
 
 from sizer.laws import make_law
@@ -26,13 +26,6 @@ LOW = 5e-11  # the open ends alpha, beta -> 0 inset as in sizer.sizing.shape
 CASES = 120
 
 
-def ruckig_duration(h: float, v: float, a: float, j: float) -> float:
-    inp = InputParameter(1)
-    inp.current_position, inp.target_position = [0.0], [h]
-    inp.max_velocity, inp.max_acceleration, inp.max_jerk = [v], [a], [j]
-    trajectory = Trajectory(1)
-    assert Ruckig(1).calculate(inp, trajectory) == Result.Working
-    return trajectory.duration
 
 
 def scales(speed, torque, rms=None, jerk=None, dwell=0.0) -> BoundScales:

@@ -24,6 +24,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from reference_values import printed
 
 from sizer.io import load_design
 from sizer.mechanics import Drive
@@ -43,9 +44,6 @@ FEED, FEED_TIME, CYCLE, T_A = 0.275, 1.2, 60.0 / 40.0, 0.1
 J_M, RATED_TORQUE, MAX_TORQUE = 0.263e-4, 0.637, 2.23
 
 
-def printed(value: float, shown: float, last_digit: float) -> None:
-    """``value`` rounds to the printed ``shown`` (last printed digit worth ``last_digit``)."""
-    assert abs(value - shown) <= 0.5 * last_digit, (value, shown)
 
 
 @pytest.fixture(scope="module")

@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from cli_run import run_cli
+from reference_values import printed
 
 from sizer.io import load_design
 from sizer.mechanics import Drive
@@ -38,10 +39,6 @@ ALLOWABLE_LOAD_INERTIA = 3.69e-4           # the SGDM-02AP SERVOPACK's, kg*m^2
 CYCLE, T_A, T_C = 60.0 / 40.0, 0.1, 0.9
 
 
-def printed(value: float, shown: float, last_digit: float) -> None:
-    """``value`` rounds to the printed ``shown`` (last printed digit worth ``last_digit``);
-    a value exactly half way (J_C = 0.3375e-4, printed 0.338e-4) passes up to rounding."""
-    assert abs(value - shown) <= 0.5 * last_digit * (1 + 1e-9), (value, shown)
 
 
 @pytest.fixture(scope="module")
