@@ -69,6 +69,8 @@ def _inertia(r: CandidateResult) -> float:
 
 _SIZE: tuple[Criterion, ...] = (_power, _continuous_torque)
 _THEN: tuple[Criterion, ...] = (*_SIZE, _margin, _inertia)
+_THEN_TEXT = ", then the smallest motor (rated power tau_c*v_n), then the largest margin"
+"""The ties of every key but size and margin, in words (the criteria of _THEN)."""
 
 
 @dataclass(frozen=True)
@@ -85,23 +87,18 @@ RULES: dict[RankKey, RankRule] = {rule.key: rule for rule in (
              "smallest motor first (rated power tau_c*v_n, then continuous torque), then the "
              "largest margin, then the smallest rotor inertia"),
     RankRule(RankKey.DURATION, (lambda r: _number(r.duration), *_THEN),
-             "shortest duration first, then the smallest motor (rated power tau_c*v_n), then "
-             "the largest margin"),
+             "shortest duration first" + _THEN_TEXT),
     RankRule(RankKey.MARGIN, (_margin, *_SIZE, _inertia),
              "most room left at the tightest limit first, then the smallest motor (rated "
              "power tau_c*v_n)"),
     RankRule(RankKey.RMS, (lambda r: _number(r.rms_torque), *_THEN),
-             "smallest RMS torque first, then the smallest motor (rated power tau_c*v_n), "
-             "then the largest margin"),
+             "smallest RMS torque first" + _THEN_TEXT),
     RankRule(RankKey.PEAK, (lambda r: _number(r.peak_torque), *_THEN),
-             "smallest peak torque first, then the smallest motor (rated power tau_c*v_n), "
-             "then the largest margin"),
+             "smallest peak torque first" + _THEN_TEXT),
     RankRule(RankKey.PRICE, (lambda r: _number(r.price), *_THEN),
-             "cheapest motor first (unknown prices last), then the smallest motor (rated "
-             "power tau_c*v_n), then the largest margin"),
+             "cheapest motor first (unknown prices last)" + _THEN_TEXT),
     RankRule(RankKey.MASS, (lambda r: _number(r.mass), *_THEN),
-             "lightest motor first (unknown masses last), then the smallest motor (rated "
-             "power tau_c*v_n), then the largest margin"),
+             "lightest motor first (unknown masses last)" + _THEN_TEXT),
 )}
 
 
