@@ -22,6 +22,7 @@ from typing import Any
 from pydantic import BaseModel
 
 from sizer.errors import UserError
+from sizer.io.motor_checks import impossibilities
 from sizer.io.plausibility import bare_number_warnings, motor_warnings
 from sizer.io.transmission import build_transmission
 from sizer.io.validation import validate
@@ -32,9 +33,13 @@ from sizer.model.inputs import (
     CatalogFile,
     CurvePointInput,
     DesignFile,
+    LimitsInput,
+    LoadInput,
     MotorInput,
+    TaskInput,
 )
-from sizer.model.inputs_base import convert
+from sizer.model.inputs_base import axis_range, convert_in, given_text, show_value
+from sizer.model.ranges import RANGES, check_range, number_text
 from sizer.units import parse_displacement
 
 PathLike = str | Path
@@ -159,13 +164,14 @@ def _read_catalog(path: Path, warnings: list[str]) -> list[_Located]:
 
 
 def _motor(item: MotorInput, source: YamlSource, at: tuple[Any, ...]) -> Motor:
-    """A Motor from its validated input, with the checks that span several fields."""
-    if item.peak_torque < item.continuous_torque:
-        raise source.error(f"peak torque {item.peak_torque:g} N*m is below the continuous "
-                           f"torque {item.continuous_torque:g} N*m", (*at, "peak_torque"))
-    if item.max_speed is not None and item.max_speed < item.rated_speed:
-        raise source.error(f"max speed {item.max_speed:g} rad/s is below the rated speed "
-                           f"{item.rated_speed:g} rad/s", (*at, "max_speed"))
+    """A Motor from its validated input; an impossible motor (see
+    :mod:`sizer.io.motor_checks`) is refused at its first problem, with its id."""
+    problems = impossibilities(item)
+    if problems:
+        first = problems[0]
+        more = len(problems) - 1
+        tail = f" (and {more} more problem{'s' * (more > 1)} of this motor)" if more else ""
+        raise source.error(f"motor {item.id!r}: {first.message}{tail}", (*at, *first.path))
     return Motor(
         id=item.id,
         inertia=item.inertia,
@@ -173,8 +179,8 @@ def _motor(item: MotorInput, source: YamlSource, at: tuple[Any, ...]) -> Motor:
         peak_torque=item.peak_torque,
         rated_speed=item.rated_speed,
         max_speed=item.max_speed,
-        continuous_curve=_curve(item.continuous_curve, source, (*at, "continuous_curve")),
-        intermittent_curve=_curve(item.intermittent_curve, source, (*at, "intermittent_curve")),
+        continuous_curve=_curve(item.continuous_curve),
+        intermittent_curve=_curve(item.intermittent_curve),
         damping=item.damping,
         source=item.source,
         part_number=item.part_number,
@@ -193,18 +199,10 @@ def _motor_warnings(motor: Motor, source: YamlSource, at: tuple[Any, ...]) -> li
                           motor.manufacturer)
 
 
-def _curve(points: list[CurvePointInput] | None, source: YamlSource,
-           at: tuple[Any, ...]) -> tuple[tuple[float, float], ...] | None:
+def _curve(points: list[CurvePointInput] | None) -> tuple[tuple[float, float], ...] | None:
+    """The (speed, torque) points of a checked curve."""
     if points is None:
         return None
-    if len(points) < 2:
-        raise source.error(f"a speed-torque curve needs at least 2 points, got {len(points)}",
-                           at)
-    for index in range(1, len(points)):
-        if not points[index].speed > points[index - 1].speed:
-            raise source.error(
-                f"curve speeds must be strictly increasing: {points[index].speed:g} rad/s "
-                f"follows {points[index - 1].speed:g} rad/s", (*at, index))
     return tuple((p.speed, p.torque) for p in points)
 
 
@@ -278,23 +276,32 @@ def default_laws() -> tuple[str, ...]:
     return tuple(s for s in DEFAULT_LAW_SPECS if resolve(s)[0].law_id != "exponential")
 
 
-def _quantity(source: YamlSource, at: tuple[Any, ...], value: Any, kind: str,
-              **bounds: float) -> float:
+def _quantity(source: YamlSource, at: tuple[Any, ...], value: Any, name: str) -> float:
+    """``value`` in SI, checked against ``RANGES[name]``; a UserError at ``at`` if not."""
     try:
-        return convert(value, kind, **bounds)
+        return convert_in(value, name)
     except ValueError as error:
         raise source.error(str(error), at) from None
 
 
 def _task(model: DesignFile, source: YamlSource) -> Task:
     at = ("task", "displacement")
+    given = model.task.displacement
     try:
-        h, linear = parse_displacement(model.task.displacement)
+        h, linear = parse_displacement(given)
     except UserError as error:
         raise source.error(error.message, at) from None
+    except OverflowError:
+        raise source.error(f"{show_value(given)} is too large for a number", at) from None
     if not (math.isfinite(h) and h != 0.0):
-        raise source.error(f"must not be zero, got {model.task.displacement!r} (a negative "
+        raise source.error(f"must not be zero, got {given!r} (a negative "
                            f"displacement moves back first)", at)
+    name = axis_range(TaskInput, "displacement", linear)
+    try:
+        check_range(name, h)
+    except ValueError as error:
+        shown = f"{number_text(h)} {RANGES[name].unit}"
+        raise source.error(f"{error}{given_text(given, shown)}", at) from None
     return Task(displacement=h, duration=model.task.duration, dwell=model.task.dwell,
                 return_move=model.task.return_move, linear=linear)
 
@@ -312,14 +319,12 @@ def _load(model: DesignFile, source: YamlSource, linear: bool) -> Load:
     if inertia is None:
         raise source.error(f"required field is missing for {axis}", ("load",),
                            field=f"load.{mass_key}")
-    kinds = (("mass", "linear_damping", "force") if linear
-             else ("inertia", "rotary_damping", "torque"))
 
-    def quantity(key: str, kind: str, default: float = 0.0, **bounds: float) -> float:
+    def quantity(key: str, default: float = 0.0) -> float:
         value = getattr(given, key)
         if value is None:
             return default
-        return _quantity(source, ("load", key), value, kind, **bounds)
+        return _quantity(source, ("load", key), value, axis_range(LoadInput, key, linear))
 
     if not linear:
         for key in ("incline", "friction_coefficient"):
@@ -327,44 +332,40 @@ def _load(model: DesignFile, source: YamlSource, linear: bool) -> Load:
                 raise source.error(f"{axis} has no '{key}' (it is for linear axes)",
                                    ("load", key))
         return Load(
-            inertia=quantity(mass_key, kinds[0], gt=0),
-            damping=quantity("damping", kinds[1], ge=0),
-            friction=quantity("friction", kinds[2], ge=0),
-            torque=quantity(torque_key, kinds[2]),
+            inertia=quantity(mass_key),
+            damping=quantity("damping"),
+            friction=quantity("friction"),
+            torque=quantity(torque_key),
         )
     return linear_load(
-        quantity(mass_key, kinds[0], gt=0),
+        quantity(mass_key),
         incline=given.incline or 0.0,
         friction_coefficient=given.friction_coefficient or 0.0,
-        friction_force=quantity("friction", kinds[2], ge=0),
-        force=quantity(torque_key, kinds[2]),
-        damping=quantity("damping", kinds[1], ge=0),
+        friction_force=quantity("friction"),
+        force=quantity(torque_key),
+        damping=quantity("damping"),
     )
 
 
 def _limits(model: DesignFile, source: YamlSource, linear: bool) -> Limits:
     given = model.limits
-    prefix = "linear" if linear else "angular"
-    max_acceleration = max_jerk = max_speed = None
-    if given.max_speed is not None:
-        max_speed = _quantity(source, ("limits", "max_speed"), given.max_speed,
-                              f"{prefix}_speed", gt=0)
-    if given.max_acceleration is not None:
-        max_acceleration = _quantity(source, ("limits", "max_acceleration"),
-                                     given.max_acceleration, f"{prefix}_acceleration", gt=0)
-    if given.max_jerk is not None:
-        max_jerk = _quantity(source, ("limits", "max_jerk"), given.max_jerk,
-                             f"{prefix}_jerk", gt=0)
+
+    def quantity(key: str) -> float | None:
+        value = getattr(given, key)
+        if value is None:
+            return None
+        return _quantity(source, ("limits", key), value, axis_range(LimitsInput, key, linear))
+
     return Limits(
         torque_margin=given.torque_margin,
         speed_margin=given.speed_margin,
         inertia_ratio=given.inertia_ratio,
-        max_acceleration=max_acceleration,
-        max_jerk=max_jerk,
+        max_acceleration=quantity("max_acceleration"),
+        max_jerk=quantity("max_jerk"),
         thermal_speed=given.thermal_speed,
         inertia_ratio_of=given.inertia_ratio_of,
         envelope=given.envelope,
-        max_speed=max_speed,
+        max_speed=quantity("max_speed"),
     )
 
 

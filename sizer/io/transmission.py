@@ -9,6 +9,7 @@ inertia or diameter and length; a belt its ratio or diameters.
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -17,6 +18,7 @@ from sizer.io.validation import validate
 from sizer.io.yaml_source import YamlSource, read_yaml
 from sizer.mechanics import ball_screw, belt, gearbox, rack_pinion
 from sizer.model.domain import GearboxOption, RatioChoice, Stage, Transmission
+from sizer.model.ranges import TOTAL_RATIO, number_text
 from sizer.model.transmission_inputs import (
     LINEAR_OUTPUT_TYPES,
     BallScrewInput,
@@ -61,7 +63,30 @@ def build_transmission(items: Sequence[Any] | None, source: YamlSource, folder: 
             choice = dataclasses.replace(free, stage=len(stages))
             choice_at = at(index)
         stages.append(stage)
+    _check_total_ratio(stages, choice, source, linear)
     return Transmission(tuple(stages)), choice
+
+
+def _check_total_ratio(stages: Sequence[Stage], choice: RatioChoice | None,
+                       source: YamlSource, linear: bool) -> None:
+    """The product of the stage ratios (every option of a free ratio) in TOTAL_RATIO."""
+    if not stages:
+        return
+    fixed = [s.ratio for i, s in enumerate(stages) if choice is None or i != choice.stage]
+    free = [1.0]
+    if choice is not None:
+        free = [*choice.ratios, *(choice.bounds or ()),
+                *(g.stage.ratio for g in choice.gearboxes)] or [stages[choice.stage].ratio]
+    product = math.prod(fixed)
+    low, high = TOTAL_RATIO
+    for total in (product * min(free), product * max(free)):
+        if not low <= total <= high:
+            unit = "rad/m" if linear else "rad/rad"
+            raise source.error(
+                f"the transmission's total ratio (motor speed over load speed, the product "
+                f"of its stages' ratios) must be in [{number_text(low)}, "
+                f"{number_text(high)}] {unit}, got {number_text(total)} {unit}",
+                ("transmission",))
 
 
 def _stage(item: Any, source: YamlSource, at, index: int, linear_output: bool,
@@ -149,7 +174,14 @@ def load_gearbox_catalog(path: str | Path) -> tuple[GearboxOption, ...]:
             raise source.error(f"duplicate gearbox id {series.id!r}",
                                ("gearboxes", s_index, "id"))
         seen.add(series.id)
-        for ratio in series.ratios:
+        ratios_seen: dict[float, int] = {}
+        for r_index, ratio in enumerate(series.ratios):
+            if ratio.ratio in ratios_seen:
+                first = source.line_of(("gearboxes", s_index, "ratios", ratios_seen[ratio.ratio]))
+                raise source.error(
+                    f"gearbox {series.id!r}: ratio {ratio.ratio:g} is listed twice (first at "
+                    f"line {first})", ("gearboxes", s_index, "ratios", r_index, "ratio"))
+            ratios_seen[ratio.ratio] = r_index
             stage = gearbox(
                 ratio.ratio,
                 ratio.efficiency if ratio.efficiency is not None else series.efficiency,

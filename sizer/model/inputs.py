@@ -29,13 +29,15 @@ from sizer.model.inputs_base import (
     Identifier,
     OneOrList,
     OrArray,
-    Quantity,
+    Ranged,
+    RangeRef,
     RawQuantity,
     Strict,
     Text,
-    convert,
+    convert_in,
     show_value,
 )
+from sizer.model.ranges import RANGES
 from sizer.model.transmission_inputs import (
     TransmissionStageInput,
 )
@@ -94,8 +96,8 @@ _Strict = Strict
 class CurvePointInput(_Strict):
     """A (speed, torque) point of a speed-torque curve."""
 
-    speed: Quantity("angular_speed", ge=0)  # type: ignore[valid-type]
-    torque: Quantity("torque", ge=0)  # type: ignore[valid-type]
+    speed: Ranged("curve_speed")  # type: ignore[valid-type]
+    torque: Ranged("curve_torque")  # type: ignore[valid-type]
 
 
 CurvePoint = Annotated[CurvePointInput, OrArray(("speed", "torque"), "curve point")]
@@ -106,19 +108,19 @@ class MotorInput(_Strict):
     """One motor of a catalog (or inline in a design file)."""
 
     id: Identifier = Field(description="unique among all loaded motors")
-    inertia: Quantity("inertia", ge=0,  # type: ignore[valid-type]
-                      note="rotor inertia J_m; 0 for idealized motors whose inertia is "
+    inertia: Ranged("motor_inertia",  # type: ignore[valid-type]
+                    note="rotor inertia J_m; 0 for idealized motors whose inertia is "
                            "counted in the load (the book's examples)")
-    continuous_torque: Quantity("torque", gt=0,  # type: ignore[valid-type]
-                                note="tau_c, continuous (S1) torque up to rated speed")
-    peak_torque: Quantity("torque", gt=0,  # type: ignore[valid-type]
-                          note="tau_p, intermittent peak torque, >= continuous_torque")
-    rated_speed: Quantity("angular_speed", gt=0,  # type: ignore[valid-type]
-                          note="v_n")
-    max_speed: Quantity("angular_speed", gt=0,  # type: ignore[valid-type]
-                        note=">= rated_speed") | None = None
-    damping: Quantity("rotary_damping", ge=0,  # type: ignore[valid-type]
-                      note="viscous B_m") = 0.0
+    continuous_torque: Ranged("motor_torque",  # type: ignore[valid-type]
+                              note="tau_c, continuous (S1) torque up to rated speed")
+    peak_torque: Ranged("motor_torque",  # type: ignore[valid-type]
+                        note="tau_p, intermittent peak torque, >= continuous_torque")
+    rated_speed: Ranged("motor_speed",  # type: ignore[valid-type]
+                        note="v_n")
+    max_speed: Ranged("motor_speed",  # type: ignore[valid-type]
+                      note=">= rated_speed") | None = None
+    damping: Ranged("motor_damping",  # type: ignore[valid-type]
+                    note="viscous B_m") = 0.0
     continuous_curve: list[CurvePoint] | None = Field(
         None, description="continuous region boundary, speeds strictly increasing, >= 2 points")
     intermittent_curve: list[CurvePoint] | None = Field(
@@ -127,8 +129,8 @@ class MotorInput(_Strict):
     source: Text | None = None
     part_number: Text | None = None
     manufacturer: Text | None = None
-    price: Quantity("money", ge=0) | None = None  # type: ignore[valid-type]
-    mass: Quantity("mass", gt=0) | None = None  # type: ignore[valid-type]
+    price: Ranged("price") | None = None  # type: ignore[valid-type]
+    mass: Ranged("motor_mass") | None = None  # type: ignore[valid-type]
     notes: Text | None = Field(None, description="free text, ignored by the tool")
 
 
@@ -148,24 +150,29 @@ class CatalogFile(_Strict):
 def _duration(value: Any) -> float | None:
     if isinstance(value, str) and value.strip().lower() == "minimize":
         return None
-    return convert(value, "time", gt=0)
+    return convert_in(value, "duration")
 
 
 class TaskInput(_Strict):
     """The motion task: a move of h in T, then a dwell (and a move back)."""
 
-    displacement: RawQuantity("'90 deg' or '200 mm'") = Field(  # type: ignore[valid-type]
+    displacement: RawQuantity("'90 deg' or '200 mm'",  # type: ignore[valid-type]
+                              rotary="angle_displacement",
+                              linear="length_displacement") = Field(  # type: ignore[valid-type]
         description="h at the load: an angle ('90 deg', rotary axis) or a length "
                     "('200 mm', linear axis); a bare number is rad; negative moves back "
                     "first (not zero)")
     duration: Annotated[
         float | None,
         BeforeValidator(_duration),
-        WithJsonSchema({"anyOf": [{"type": "number", "exclusiveMinimum": 0},
+        WithJsonSchema({"anyOf": [{"type": "number", "minimum": RANGES["duration"].low,
+                                   "maximum": RANGES["duration"].high},
                                   {"type": "string"}],
-                        "description": "T, time like '0.25 s', or 'minimize'"}),
+                        "description": "T, time like '0.25 s', or 'minimize'; must be "
+                                       f"{RANGES['duration'].text()} (SI)"}),
+        RangeRef("duration"),
     ]
-    dwell: Quantity("time", ge=0) = 0.0  # type: ignore[valid-type]
+    dwell: Ranged("dwell") = 0.0  # type: ignore[valid-type]
     return_move: StrictBool = Field(False, alias="return",
                                     description="cycle = move, dwell, move back, dwell")
 
@@ -173,25 +180,26 @@ class TaskInput(_Strict):
 class LoadInput(_Strict):
     """The load at the load side; rotary fields or linear ones, per the displacement."""
 
-    inertia: RawQuantity("'0.35 kg*m^2'") | None = Field(  # type: ignore[valid-type]
+    inertia: RawQuantity("'0.35 kg*m^2'", rotary="load_inertia") | None = Field(  # type: ignore[valid-type]
         None, description="rotary axis: J_l, e.g. '0.35 kg*m^2'")
-    mass: RawQuantity("'12 kg'") | None = Field(  # type: ignore[valid-type]
+    mass: RawQuantity("'12 kg'", linear="load_mass") | None = Field(  # type: ignore[valid-type]
         None, description="linear axis: moving mass, e.g. '12 kg'")
     damping: RawQuantity(  # type: ignore[valid-type]
-        "'0.01 N*m*s/rad' or '5 N*s/m'") | None = Field(
+        "'0.01 N*m*s/rad' or '5 N*s/m'", rotary="load_rotary_damping",
+        linear="load_linear_damping") | None = Field(
         None, description="viscous B_l: 'N*m*s/rad' (rotary) or 'N*s/m' (linear)")
-    friction: RawQuantity("'0.2 N*m' or '10 N'") | None = Field(  # type: ignore[valid-type]
+    friction: RawQuantity("'0.2 N*m' or '10 N'", rotary="load_friction_torque",
+                          linear="load_friction_force") | None = Field(  # type: ignore[valid-type]
         None, description="Coulomb friction magnitude: N*m (rotary) or N (linear)")
-    torque: RawQuantity("'0.5 N*m'") | None = Field(  # type: ignore[valid-type]
+    torque: RawQuantity("'0.5 N*m'", rotary="load_torque") | None = Field(  # type: ignore[valid-type]
         None, description="rotary axis: constant external torque, positive opposes the move")
-    force: RawQuantity("'50 N'") | None = Field(  # type: ignore[valid-type]
+    force: RawQuantity("'50 N'", linear="load_force") | None = Field(  # type: ignore[valid-type]
         None, description="linear axis: constant external force, positive opposes the move")
-    incline: Quantity("angle", ge=-1.5707963267948966,  # type: ignore[valid-type]
-                      le=1.5707963267948966,
-                      note="linear axis: angle from the horizontal, 90 deg = vertical; "
+    incline: Ranged("incline",  # type: ignore[valid-type]
+                    note="linear axis: angle from the horizontal, 90 deg = vertical; "
                            "gravity opposes a positive move") | None = None
-    friction_coefficient: Quantity("ratio", ge=0,  # type: ignore[valid-type]
-                                   note="linear axis: Coulomb mu, friction = mu m g "
+    friction_coefficient: Ranged("friction_coefficient",  # type: ignore[valid-type]
+                                 note="linear axis: Coulomb mu, friction = mu m g "
                                         "cos(incline), added to friction") | None = None
 
 
@@ -216,21 +224,24 @@ class CheckInput(_Strict):
 class LimitsInput(_Strict):
     """Margins and user limits (all optional)."""
 
-    torque_margin: Quantity("fraction", ge=0, lt=1,  # type: ignore[valid-type]
-                            note="fraction of torque capability left unused") = 0.0
-    speed_margin: Quantity("fraction", ge=0, lt=1,  # type: ignore[valid-type]
-                           note="fraction of speed capability left unused") = 0.0
-    inertia_ratio: Quantity("ratio", gt=0,  # type: ignore[valid-type]
-                            note="max J_load reflected / J_motor") | None = None
+    torque_margin: Ranged("margin",  # type: ignore[valid-type]
+                          note="fraction of torque capability left unused") = 0.0
+    speed_margin: Ranged("margin",  # type: ignore[valid-type]
+                         note="fraction of speed capability left unused") = 0.0
+    inertia_ratio: Ranged("inertia_ratio",  # type: ignore[valid-type]
+                          note="max J_load reflected / J_motor") | None = None
     max_speed: RawQuantity(  # type: ignore[valid-type]
-        "'300 rpm' or '2 m/s'") | None = Field(
+        "'300 rpm' or '2 m/s'", rotary="load_max_angular_speed",
+        linear="load_max_linear_speed") | None = Field(
         None, description="at the load: rad/s or rpm (rotary), m/s or m/min (linear: a "
                           "belt's or a screw's maximum linear speed)")
     max_acceleration: RawQuantity(  # type: ignore[valid-type]
-        "'500 rad/s^2' or '20 m/s^2'") | None = Field(
+        "'500 rad/s^2' or '20 m/s^2'", rotary="load_max_angular_acceleration",
+        linear="load_max_linear_acceleration") | None = Field(
         None, description="at the load: rad/s^2 (rotary) or m/s^2 (linear)")
     max_jerk: RawQuantity(  # type: ignore[valid-type]
-        "'1e5 rad/s^3' or '1000 m/s^3'") | None = Field(
+        "'1e5 rad/s^3' or '1000 m/s^3'", rotary="load_max_angular_jerk",
+        linear="load_max_linear_jerk") | None = Field(
         None, description="at the load: rad/s^3 (rotary) or m/s^3 (linear)")
     thermal_speed: Literal["max", "rms", "mean"] = Field(
         "max", description="speed at which the RMS torque is checked against the "

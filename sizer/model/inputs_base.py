@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import math
 import reprlib
+import types
+import typing
 from dataclasses import dataclass
 from typing import Annotated, Any, Literal
 
@@ -24,6 +26,7 @@ from pydantic.json_schema import JsonSchemaValue
 from pydantic_core import core_schema
 
 from sizer.errors import UserError
+from sizer.model.ranges import RANGES, Range, check_range, number_text
 from sizer.units import KINDS, to_si
 
 # ---------------------------------------------------------------- quantities
@@ -65,9 +68,9 @@ def _bound_text(ge: float | None, gt: float | None, le: float | None,
     return f"<= {num(le)}"  # type: ignore[arg-type]
 
 
-def convert(value: Any, kind: str, *, gt: float | None = None, ge: float | None = None,
-            lt: float | None = None, le: float | None = None) -> float:
-    """``to_si`` plus a range check; raises ValueError with a one-line message."""
+def _si(value: Any, kind: str) -> float:
+    """``to_si`` of a number or a text, with ValueErrors for what is not one (a bool, a
+    list, a long text, an integer too large for a float); -0.0 becomes 0.0."""
     if isinstance(value, bool) or not isinstance(value, str | int | float):
         spec = KINDS[kind]
         raise ValueError(f"expected {_a(kind.replace('_', ' '))} like {spec.example!r}, "
@@ -79,14 +82,47 @@ def convert(value: Any, kind: str, *, gt: float | None = None, ge: float | None 
         result = to_si(value, kind)
     except UserError as error:
         raise ValueError(error.message) from None
+    except OverflowError:
+        raise ValueError(f"{_show(value)} is too large for a number") from None
+    return result + 0.0
+
+
+def given_text(value: Any, shown: str) -> str:
+    """' (3000 rpm)' when the user wrote the value otherwise than ``shown``."""
+    if isinstance(value, int | float) or value.strip() == shown:
+        return ""
+    try:
+        float(value)
+        return ""  # a bare number in a text ('1e308'): shown already, in SI
+    except ValueError:
+        pass
+    return f" ({value.strip()})"
+
+
+def convert(value: Any, kind: str, *, gt: float | None = None, ge: float | None = None,
+            lt: float | None = None, le: float | None = None) -> float:
+    """``to_si`` plus a range check; raises ValueError with a one-line message."""
+    result = _si(value, kind)
     ok = ((gt is None or result > gt) and (ge is None or result >= ge)
           and (lt is None or result < lt) and (le is None or result <= le))
     if not ok:
         unit = KINDS[kind].si_unit
         shown = f"{result:g}" if unit == "1" else f"{result:g} {unit}"
-        given = ("" if isinstance(value, int | float) or value.strip() == shown
-                 else f" ({value.strip()})")
-        raise ValueError(f"must be {_bound_text(ge, gt, le, lt)}, got {shown}{given}")
+        raise ValueError(f"must be {_bound_text(ge, gt, le, lt)}, got {shown}"
+                         f"{given_text(value, shown)}")
+    return result
+
+
+def convert_in(value: Any, name: str) -> float:
+    """``to_si`` of a quantity and the check of its range ``RANGES[name]``; ValueError with
+    the allowed range in SI units and the value given otherwise."""
+    allowed = RANGES[name]
+    result = _si(value, allowed.kind)
+    try:
+        check_range(name, result)
+    except ValueError as error:
+        unit = f" {allowed.unit}" if allowed.unit else ""
+        raise ValueError(f"{error}{given_text(value, number_text(result) + unit)}") from None
     return result
 
 
@@ -123,10 +159,48 @@ def Quantity(kind: str, *, gt: float | None = None, ge: float | None = None,
     ]
 
 
-def RawQuantity(examples: str) -> Any:
+@dataclass(frozen=True)
+class RangeRef:
+    """Marks a field's annotation with the name of its range (for the docs and tests)."""
+
+    name: str
+
+
+def range_schema(allowed: Range, note: str = "") -> dict[str, Any]:
+    """The JSON Schema of a ranged quantity: a number within the range's span (SI), or a
+    text with a unit; the exact rule in the description."""
+    low, high = allowed.span
+    text = _quantity_schema(allowed.kind)["description"]
+    extra = f"; must be {allowed.text()} (SI)" + (f"; {note}" if note else "")
+    return {"anyOf": [{"type": "number", "minimum": low, "maximum": high},
+                      {"type": "string"}], "description": text + extra}
+
+
+def Ranged(name: str, *, note: str = "") -> Any:
+    """An annotated float within ``RANGES[name]``: a number (SI) or a text with a unit."""
+    return Annotated[
+        float,
+        BeforeValidator(lambda v: convert_in(v, name)),
+        WithJsonSchema(range_schema(RANGES[name], note)),
+        RangeRef(name),
+    ]
+
+
+@dataclass(frozen=True)
+class AxisRanges:
+    """Marks a quantity whose kind depends on the axis with its range on each axis."""
+
+    rotary: str
+    linear: str
+
+
+def RawQuantity(examples: str, *, rotary: str | None = None,
+                linear: str | None = None) -> Any:
     """A quantity kept as given: its kind (torque or force...) is known once the axis is.
 
     ``examples`` shows the accepted forms in messages, e.g. "'0.2 N*m' or '10 N'".
+    ``rotary`` and ``linear`` name its range (``RANGES``) on each axis; a field of one
+    axis only names one. The loader converts and checks it (:func:`axis_range`).
     """
 
     def check(value: Any) -> Any:
@@ -137,11 +211,51 @@ def RawQuantity(examples: str) -> Any:
             raise ValueError(f"{value!r} is not a finite number")
         return value
 
+    names = [n for n in (rotary, linear) if n is not None]
+    schema: dict[str, Any] = {"anyOf": [{"type": "number"}, {"type": "string"}]}
+    if names:
+        low = min(RANGES[n].span[0] for n in names)
+        high = max(RANGES[n].span[1] for n in names)
+        schema["anyOf"][0] = {"type": "number", "minimum": low, "maximum": high}
+        axes = [f"{axis}: {RANGES[n].text()}" for axis, n in (("rotary", rotary),
+                                                               ("linear", linear))
+                if n is not None]
+        schema["description"] = f"must be ({'; '.join(axes)}) (SI)"
     return Annotated[
         str | float | int,
         BeforeValidator(check),
-        WithJsonSchema({"anyOf": [{"type": "number"}, {"type": "string"}]}),
+        WithJsonSchema(schema),
+        AxisRanges(rotary or "", linear or ""),
     ]
+
+
+def markers(annotation: Any) -> list[Any]:
+    """The metadata of the Annotated types in ``annotation`` (through unions, not lists)."""
+    found: list[Any] = []
+    origin = typing.get_origin(annotation)
+    if origin is Annotated:
+        found += list(annotation.__metadata__)
+        found += markers(typing.get_args(annotation)[0])
+    elif origin is typing.Union or origin is types.UnionType:
+        for arg in typing.get_args(annotation):
+            found += markers(arg)
+    return found
+
+
+def field_markers(model: type[BaseModel], field: str) -> list[Any]:
+    """The markers of one field of ``model`` (its annotation's and the FieldInfo's)."""
+    info = model.model_fields[field]
+    return [*info.metadata, *markers(info.annotation)]
+
+
+def axis_range(model: type[BaseModel], field: str, linear: bool) -> str:
+    """The range name of ``model``'s axis-dependent ``field`` on the given axis."""
+    for marker in field_markers(model, field):
+        if isinstance(marker, AxisRanges):
+            name = marker.linear if linear else marker.rotary
+            if name:
+                return name
+    raise KeyError(f"{model.__name__}.{field} has no range on this axis")
 
 
 def _text(value: Any) -> Any:

@@ -12,7 +12,8 @@ from typing import Annotated, Any, Literal
 from pydantic import BeforeValidator, Field, WithJsonSchema
 
 from sizer.mechanics.stages import STEEL_DENSITY
-from sizer.model.inputs_base import Quantity, Strict, Text, convert, show_value
+from sizer.model.inputs_base import Ranged, RangeRef, Strict, Text, convert_in, show_value
+from sizer.model.ranges import RANGES
 
 DEFAULT_RATIO_BOUNDS = (1.0, 100.0)
 
@@ -20,48 +21,73 @@ RatioSpec = tuple[str, tuple[float, ...]]
 """("fixed", (k,)), ("list", (k1, k2, ...)) or ("optimize", (min, max))."""
 
 
-def _ratio(value: Any) -> RatioSpec:
-    if isinstance(value, str) and value.strip().lower() == "optimize":
-        return ("optimize", DEFAULT_RATIO_BOUNDS)
-    if isinstance(value, dict):
-        if set(value) != {"optimize"}:
-            raise ValueError(f"a ratio is a number, a list, 'optimize' or {{optimize: [min, "
-                             f"max]}}, got {show_value(value)}")
-        bounds = value["optimize"]
-        if not isinstance(bounds, list) or len(bounds) != 2:
-            raise ValueError(f"optimize takes [min, max], got {show_value(bounds)}")
-        lo, hi = (convert(b, "ratio", gt=0) for b in bounds)
-        if not hi > lo:
-            raise ValueError(f"optimize bounds must have min < max, got [{lo:g}, {hi:g}]")
-        return ("optimize", (lo, hi))
-    if isinstance(value, list):
-        if not value:
-            raise ValueError("a list of ratios must not be empty")
-        return ("list", tuple(convert(v, "ratio", gt=0) for v in value))
-    return ("fixed", (convert(value, "ratio", gt=0),))
+def _ratio_of(name: str) -> Any:
+    """The parser of a ratio field whose ratios lie in ``RANGES[name]``."""
+
+    def parse(value: Any) -> RatioSpec:
+        if isinstance(value, str) and value.strip().lower() == "optimize":
+            return ("optimize", DEFAULT_RATIO_BOUNDS)
+        if isinstance(value, dict):
+            if set(value) != {"optimize"}:
+                raise ValueError(f"a ratio is a number, a list, 'optimize' or {{optimize: "
+                                 f"[min, max]}}, got {show_value(value)}")
+            bounds = value["optimize"]
+            if not isinstance(bounds, list) or len(bounds) != 2:
+                raise ValueError(f"optimize takes [min, max], got {show_value(bounds)}")
+            lo, hi = (convert_in(b, name) for b in bounds)
+            if not hi > lo:
+                raise ValueError(f"optimize bounds must have min < max, got [{lo:g}, {hi:g}]")
+            return ("optimize", (lo, hi))
+        if isinstance(value, list):
+            if not value:
+                raise ValueError("a list of ratios must not be empty")
+            if len(value) > MAX_RATIO_OPTIONS:
+                raise ValueError(f"a list of ratios holds at most {MAX_RATIO_OPTIONS}, got "
+                                 f"{len(value)}")
+            ratios = tuple(convert_in(v, name) for v in value)
+            repeated = sorted({r for r in ratios if ratios.count(r) > 1})
+            if repeated:
+                raise ValueError(f"ratio {repeated[0]:g} is listed twice")
+            return ("list", ratios)
+        return ("fixed", (convert_in(value, name),))
+
+    return parse
 
 
-Ratio = Annotated[
-    Any,
-    BeforeValidator(_ratio),
-    WithJsonSchema({"anyOf": [
-        {"type": "number", "exclusiveMinimum": 0},
-        {"type": "array", "minItems": 1,
-         "items": {"anyOf": [{"type": "number", "exclusiveMinimum": 0}, {"type": "string"}]}},
-        {"type": "string", "enum": ["optimize"]},
-        {"type": "object", "properties": {"optimize": {
-            "type": "array", "minItems": 2, "maxItems": 2,
-            "items": {"anyOf": [{"type": "number", "exclusiveMinimum": 0},
-                                {"type": "string"}]}}},
-         "required": ["optimize"], "additionalProperties": False},
-    ], "description": "input over output speed: a number, a list to try, 'optimize' "
-                      "(1 to 100) or {optimize: [min, max]}"}),
-]
+def _ratio_schema(name: str, optimize: bool) -> dict[str, Any]:
+    allowed = RANGES[name]
+    number = {"type": "number", "minimum": allowed.low, "maximum": allowed.high}
+    item = {"anyOf": [number, {"type": "string"}]}
+    branches: list[dict[str, Any]] = [
+        number, {"type": "array", "minItems": 1, "maxItems": MAX_RATIO_OPTIONS,
+                 "items": item}]
+    if optimize:
+        branches += [
+            {"type": "string", "enum": ["optimize"]},
+            {"type": "object", "properties": {"optimize": {
+                "type": "array", "minItems": 2, "maxItems": 2, "items": item}},
+             "required": ["optimize"], "additionalProperties": False}]
+    return {"anyOf": branches,
+            "description": f"input over output speed: a number, a list to try, 'optimize' "
+                           f"(1 to 100) or {{optimize: [min, max]}}; ratios must be "
+                           f"{allowed.text()}"}
 
-Efficiency = Quantity("fraction", gt=0, le=1)
-Inertia = Quantity("inertia", ge=0, note="reflected to the stage input")
-Speed = Quantity("angular_speed", gt=0)
-Torque = Quantity("torque", gt=0)
+
+def RatioField(name: str) -> Any:
+    """A stage's ratio field (fixed, list or optimize) with its ratios in ``RANGES[name]``."""
+    return Annotated[Any, BeforeValidator(_ratio_of(name)),
+                     WithJsonSchema(_ratio_schema(name, True)), RangeRef(name)]
+
+
+MAX_RATIO_OPTIONS = 1000
+"""At most this many ratios in a list (each is a candidate for every motor and law)."""
+
+Ratio = RatioField("gear_ratio")
+BeltRatio = RatioField("belt_ratio")
+Efficiency = Ranged("efficiency")
+Inertia = Ranged("stage_inertia", note="reflected to the stage input")
+Speed = Ranged("stage_speed")
+Torque = Ranged("stage_torque")
 
 
 class GearboxInput(Strict):
@@ -77,7 +103,7 @@ class GearboxInput(Strict):
     max_input_speed: Speed | None = None  # type: ignore[valid-type]
     rated_output_torque: Torque | None = None  # type: ignore[valid-type]
     peak_output_torque: Torque | None = None  # type: ignore[valid-type]
-    backlash: Quantity("angle", ge=0, note="informative") | None = None  # type: ignore
+    backlash: Ranged("backlash", note="informative") | None = None  # type: ignore
     name: Text | None = None
 
 
@@ -85,12 +111,12 @@ class BeltInput(Strict):
     """A timing belt on two pulleys; as the last stage of a linear axis the load rides on it."""
 
     type: Literal["belt"]
-    ratio: Ratio | None = None  # type: ignore[valid-type]
-    driver_diameter: Quantity("length", gt=0) | None = None  # type: ignore[valid-type]
-    driven_diameter: Quantity("length", gt=0) | None = None  # type: ignore[valid-type]
+    ratio: BeltRatio | None = None  # type: ignore[valid-type]
+    driver_diameter: Ranged("pulley_diameter") | None = None  # type: ignore[valid-type]
+    driven_diameter: Ranged("pulley_diameter") | None = None  # type: ignore[valid-type]
     driver_inertia: Inertia = 0.0  # type: ignore[valid-type]
     driven_inertia: Inertia = 0.0  # type: ignore[valid-type]
-    belt_mass: Quantity("mass", ge=0) = 0.0  # type: ignore[valid-type]
+    belt_mass: Ranged("belt_mass") = 0.0  # type: ignore[valid-type]
     efficiency: Efficiency = 1.0  # type: ignore[valid-type]
     name: Text | None = None
 
@@ -99,15 +125,15 @@ class BallScrewInput(Strict):
     """A ball screw: ratio 2 pi / lead (rad/m)."""
 
     type: Literal["ball_screw"]
-    lead: Quantity("length", gt=0, note="travel per screw turn")  # type: ignore[valid-type]
+    lead: Ranged("screw_lead", note="travel per screw turn")  # type: ignore[valid-type]
     efficiency: Efficiency = 0.9  # type: ignore[valid-type]
     inertia: Inertia | None = None  # type: ignore[valid-type]
-    diameter: Quantity("length", gt=0) | None = None  # type: ignore[valid-type]
-    length: Quantity("length", gt=0) | None = None  # type: ignore[valid-type]
-    density: Quantity(  # type: ignore[valid-type]
-        "density", gt=0, note="of a screw given by diameter and length; vendors use "
+    diameter: Ranged("screw_diameter") | None = None  # type: ignore[valid-type]
+    length: Ranged("screw_length") | None = None  # type: ignore[valid-type]
+    density: Ranged(  # type: ignore[valid-type]
+        "density", note="of a screw given by diameter and length; vendors use "
                               "7.87e3 (Yaskawa) or 7.8e3 (Mitsubishi)") = STEEL_DENSITY
-    preload_torque: Quantity("torque", ge=0) = 0.0  # type: ignore[valid-type]
+    preload_torque: Ranged("preload_torque") = 0.0  # type: ignore[valid-type]
     max_speed: Speed | None = None  # type: ignore[valid-type]
     name: Text | None = None
 
@@ -116,8 +142,8 @@ class RackPinionInput(Strict):
     """A rack and pinion: ratio 1/r (rad/m)."""
 
     type: Literal["rack_pinion"]
-    pitch_radius: Quantity("length", gt=0) | None = None  # type: ignore[valid-type]
-    pitch_diameter: Quantity("length", gt=0) | None = None  # type: ignore[valid-type]
+    pitch_radius: Ranged("pitch_radius") | None = None  # type: ignore[valid-type]
+    pitch_diameter: Ranged("pitch_diameter") | None = None  # type: ignore[valid-type]
     inertia: Inertia = 0.0  # type: ignore[valid-type]
     efficiency: Efficiency = 1.0  # type: ignore[valid-type]
     name: Text | None = None
@@ -145,7 +171,7 @@ LINEAR_OUTPUT_TYPES: tuple[str, ...] = ("ball_screw", "rack_pinion", "belt")
 class GearboxRatioInput(Strict):
     """One ratio of a gearbox series, with what differs per ratio."""
 
-    ratio: Quantity("ratio", gt=0)  # type: ignore[valid-type]
+    ratio: Ranged("gear_ratio")  # type: ignore[valid-type]
     inertia: Inertia = 0.0  # type: ignore[valid-type]
     efficiency: Efficiency | None = None  # type: ignore[valid-type]
     max_input_speed: Speed | None = None  # type: ignore[valid-type]
@@ -161,7 +187,7 @@ class GearboxSeriesInput(Strict):
     max_input_speed: Speed | None = None  # type: ignore[valid-type]
     rated_output_torque: Torque | None = None  # type: ignore[valid-type]
     peak_output_torque: Torque | None = None  # type: ignore[valid-type]
-    backlash: Quantity("angle", ge=0) | None = None  # type: ignore[valid-type]
+    backlash: Ranged("backlash") | None = None  # type: ignore[valid-type]
     source: Text | None = None
     notes: Text | None = None
     ratios: list[GearboxRatioInput] = Field(min_length=1)

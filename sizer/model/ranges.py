@@ -1,0 +1,188 @@
+"""The plausible range of every quantity of the input files, written once.
+
+Each field of a design, motor catalog or gearbox catalog that holds a quantity names one
+:class:`Range` of :data:`RANGES`. The same table checks the values (a value outside gives
+a one-line message with the range in SI units and the value given), writes ``minimum`` and
+``maximum`` into the JSON Schema and is printed in docs/input-ranges.md (a test compares
+the document with :func:`ranges_markdown`).
+
+The bounds are generous for real machines (a 1 us move, a 100 t load, a 1e5:1 gearbox)
+and keep every computation of the sizing finite: docs/input-ranges.md derives the largest
+speeds, torques and their squares that the extreme combinations give.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import sys
+from dataclasses import dataclass
+
+from sizer.units import KINDS
+
+
+def number_text(x: float) -> str:
+    """A short text of a bound: 1e-06 -> '1e-6', 100000 -> '1e5', 1.5707963 -> '1.5708'."""
+    if x != 0.0 and abs(x) < sys.float_info.min:
+        return repr(x)  # a subnormal as written (1e-320), not its rounded mantissa
+    if x != 0.0 and not 1e-3 <= abs(x) < 1e4:
+        mantissa, exponent = f"{x:.5e}".split("e")
+        mantissa = mantissa.rstrip("0").rstrip(".")
+        return f"{mantissa}e{int(exponent)}"
+    text = f"{x:.6g}"
+    return re.sub(r"e([+-])0*(\d)", lambda m: f"e{'-' if m.group(1) == '-' else ''}"
+                  f"{m.group(2)}", text)
+
+
+@dataclass(frozen=True)
+class Range:
+    """Allowed values of a quantity, in SI: ``low <= |x| <= high`` (or x itself).
+
+    ``zero``: 0 is allowed too (meaning none: no dwell, no damping), smaller magnitudes
+    are not (a subnormal 1e-320 is a mistake, never a figure). ``signed``: the sign is
+    free and the magnitude must be in range (a load torque, a displacement).
+    """
+
+    kind: str
+    low: float
+    high: float
+    why: str
+    zero: bool = False
+    signed: bool = False
+
+    @property
+    def unit(self) -> str:
+        """The SI unit of the kind ('' for a pure number)."""
+        unit = KINDS[self.kind].si_unit
+        return "" if unit == "1" else unit
+
+    def contains(self, x: float) -> bool:
+        """True if ``x`` (SI) is allowed."""
+        if not math.isfinite(x):
+            return False
+        if x == 0.0:
+            return self.zero or (self.low == 0.0 and not self.signed)
+        size = abs(x) if self.signed else x
+        return self.low <= size <= self.high
+
+    def text(self) -> str:
+        """'in [1e-6, 1e6] s', '0 or in [...]', '0 or of magnitude in [...]'."""
+        interval = f"[{number_text(self.low)}, {number_text(self.high)}]"
+        unit = f" {self.unit}" if self.unit else ""
+        core = f"of magnitude in {interval}" if self.signed else f"in {interval}"
+        return f"{'0 or ' if self.zero else ''}{core}{unit}"
+
+    @property
+    def span(self) -> tuple[float, float]:
+        """The smallest and largest allowed values (for the JSON Schema)."""
+        if self.signed:
+            return -self.high, self.high
+        return (0.0 if self.zero else self.low), self.high
+
+
+def _r(kind: str, low: float, high: float, why: str, **flags: bool) -> Range:
+    return Range(kind, low, high, why, **flags)
+
+
+RANGES: dict[str, Range] = {
+    # task
+    "duration": _r("time", 1e-6, 1e6, "1 us is shorter than any servo's control period; "
+                   "1e6 s is 11.6 days for one move"),
+    "dwell": _r("time", 1e-6, 1e6, "as a duration; 0 = no rest", zero=True),
+    "angle_displacement": _r("angle", 1e-6, 1e7, "0.2 arcsec to 1.6 million turns; the "
+                             "sign is the direction", signed=True),
+    "length_displacement": _r("length", 1e-7, 1e4, "0.1 um to 10 km; the sign is the "
+                              "direction", signed=True),
+    # load
+    "load_inertia": _r("inertia", 1e-12, 1e8, "a watch gear (1e-12 kg*m^2) to a 500 t "
+                       "turntable of 20 m diameter"),
+    "load_mass": _r("mass", 1e-6, 1e7, "1 mg to 10,000 t"),
+    "load_rotary_damping": _r("rotary_damping", 1e-12, 1e8, "as the inertia", zero=True),
+    "load_linear_damping": _r("linear_damping", 1e-9, 1e9, "as the mass", zero=True),
+    "load_friction_torque": _r("torque", 1e-9, 1e8, "as the torques", zero=True),
+    "load_friction_force": _r("force", 1e-9, 1e9, "as the forces", zero=True),
+    "load_torque": _r("torque", 1e-9, 1e8, "1 nN*m to 100 MN*m, either sign", zero=True,
+                      signed=True),
+    "load_force": _r("force", 1e-9, 1e9, "1 nN to 1 GN (100,000 t), either sign",
+                     zero=True, signed=True),
+    "incline": _r("angle", 1e-9, math.pi / 2, "horizontal to vertical, up or down",
+                  zero=True, signed=True),
+    "friction_coefficient": _r("ratio", 1e-6, 10.0, "PTFE (0.04) to rubber on a rough "
+                               "surface (about 1), widened", zero=True),
+    # transmission
+    "gear_ratio": _r("ratio", 1e-3, 1e5, "a 1000:1 speed-up to a 100,000:1 gear train "
+                     "(harmonic and worm stages reach 1:160 each)"),
+    "belt_ratio": _r("ratio", 1e-3, 1e3, "pulleys of 1 mm and 1 m"),
+    "efficiency": _r("fraction", 0.01, 1.0, "1 %: below a self-locking worm gear (about "
+                     "30 %) by far; 1/efficiency multiplies torques by at most 100"),
+    "stage_inertia": _r("inertia", 1e-12, 1e3, "a pinion of 1 mm to a 10 t flywheel; "
+                        "0 = negligible", zero=True),
+    "stage_speed": _r("angular_speed", 1e-3, 1e5, "0.01 rpm to 955,000 rpm (a spindle "
+                      "turbine)"),
+    "stage_torque": _r("torque", 1e-6, 1e7, "1 uN*m to 10 MN*m (a mill's gearbox)"),
+    "backlash": _r("angle", 1e-9, 0.5, "up to 29 deg; informative", zero=True),
+    "pulley_diameter": _r("length", 1e-4, 10.0, "0.1 mm to 10 m: ratio 2/d of a belt "
+                          "carrying the load in [0.2, 20,000] rad/m"),
+    "belt_mass": _r("mass", 1e-6, 1e4, "as a load; 0 = negligible", zero=True),
+    "screw_lead": _r("length", 1e-5, 2.0, "10 um to 2 m: ratio 2 pi / lead in [3.14, "
+                     "628,319] rad/m (a lead of 0.1 mm is 62,832 rad/m)"),
+    "screw_diameter": _r("length", 1e-3, 1.0, "1 mm to 1 m"),
+    "screw_length": _r("length", 1e-3, 100.0, "1 mm to 100 m"),
+    "density": _r("density", 100.0, 1e5, "foams (100 kg/m^3) to beyond osmium "
+                  "(22,590 kg/m^3)"),
+    "preload_torque": _r("torque", 1e-9, 1e4, "as the torques; 0 = none", zero=True),
+    "pitch_radius": _r("length", 1e-4, 10.0, "0.1 mm to 10 m: ratio 1/r in [0.1, 10,000] "
+                       "rad/m (r = 1 mm is 1000 rad/m)"),
+    "pitch_diameter": _r("length", 2e-4, 20.0, "twice the pitch radius"),
+    # motors
+    "motor_inertia": _r("inertia", 1e-12, 1e3, "a micro motor (1e-12 kg*m^2) to a 1000 "
+                        "kg*m^2 torque motor; 0 only for idealized textbook motors whose "
+                        "rotor is counted in the load", zero=True),
+    "motor_torque": _r("torque", 1e-6, 1e6, "1 uN*m (a watch motor) to 1 MN*m (a ship's "
+                       "direct drive)"),
+    "motor_speed": _r("angular_speed", 1e-3, 1e5, "0.01 rpm to 955,000 rpm"),
+    "motor_damping": _r("rotary_damping", 1e-12, 1e3, "viscous friction of the rotor; "
+                        "0 = none", zero=True),
+    "curve_speed": _r("angular_speed", 1e-3, 1e5, "as the motor's speeds; a curve may "
+                      "start at 0", zero=True),
+    "curve_torque": _r("torque", 1e-6, 1e6, "as the motor's torques; a curve may end at 0",
+                       zero=True),
+    "price": _r("money", 1e-3, 1e9, "any currency; 0 = free", zero=True),
+    "motor_mass": _r("mass", 1e-4, 1e5, "0.1 g to 100 t"),
+    # limits
+    "margin": _r("fraction", 1e-9, 0.95, "a margin of 95 % leaves 1/20 of the capability; "
+                 "0 = none", zero=True),
+    "inertia_ratio": _r("ratio", 1e-3, 1e6, "vendors allow 3 to 30, direct drives "
+                        "thousands"),
+    "load_max_angular_speed": _r("angular_speed", 1e-6, 1e6, "at the load"),
+    "load_max_linear_speed": _r("linear_speed", 1e-6, 1e4, "at the load: up to 10 km/s"),
+    "load_max_angular_acceleration": _r("angular_acceleration", 1e-6, 1e9, "at the load"),
+    "load_max_linear_acceleration": _r("linear_acceleration", 1e-6, 1e8, "at the load"),
+    "load_max_angular_jerk": _r("angular_jerk", 1e-6, 1e13, "at the load"),
+    "load_max_linear_jerk": _r("linear_jerk", 1e-6, 1e12, "at the load"),
+}
+"""Every range of the input files, by name (the fields name them)."""
+
+TOTAL_RATIO = (1e-6, 1e9)
+"""The product of a transmission's stage ratios, motor speed over load speed (rad/rad or
+rad/m), over every option of a free ratio: a 1e6:1 speed-up to a screw of 6 nm lead."""
+
+
+def check_range(name: str, x: float) -> None:
+    """Raise ValueError 'must be in [..] unit, got ..' if ``x`` (SI) is outside the range."""
+    allowed = RANGES[name]
+    if not allowed.contains(x):
+        unit = f" {allowed.unit}" if allowed.unit else ""
+        raise ValueError(f"must be {allowed.text()}, got {number_text(x)}{unit}")
+
+
+def ranges_markdown(fields: dict[str, list[str]]) -> str:
+    """The table of docs/input-ranges.md: range, allowed values (SI), fields, why.
+
+    ``fields`` lists the fields that use each range (from the models' annotations).
+    """
+    lines = ["| range | allowed (SI) | fields | why |", "| --- | --- | --- | --- |"]
+    for name, allowed in RANGES.items():
+        used = ", ".join(f"`{f}`" for f in fields.get(name, ())) or "-"
+        lines.append(f"| {name} | {allowed.text()} | {used} | {allowed.why} |")
+    return "\n".join(lines) + "\n"
