@@ -18,7 +18,7 @@ from sizer.io.validation import validate
 from sizer.io.yaml_source import YamlSource, read_yaml
 from sizer.mechanics import ball_screw, belt, gearbox, rack_pinion
 from sizer.model.domain import GearboxOption, RatioChoice, Stage, Transmission
-from sizer.model.ranges import TOTAL_RATIO, number_text
+from sizer.model.ranges import TOTAL_EFFICIENCY, TOTAL_RATIO, number_text
 from sizer.model.transmission_inputs import (
     LINEAR_OUTPUT_TYPES,
     BallScrewInput,
@@ -69,7 +69,8 @@ def build_transmission(items: Sequence[Any] | None, source: YamlSource, folder: 
 
 def _check_total_ratio(stages: Sequence[Stage], choice: RatioChoice | None,
                        source: YamlSource, linear: bool) -> None:
-    """The product of the stage ratios (every option of a free ratio) in TOTAL_RATIO."""
+    """The product of the stage ratios (every option of a free ratio) in TOTAL_RATIO, the
+    product of their efficiencies at least TOTAL_EFFICIENCY."""
     if not stages:
         return
     fixed = [s.ratio for i, s in enumerate(stages) if choice is None or i != choice.stage]
@@ -77,6 +78,12 @@ def _check_total_ratio(stages: Sequence[Stage], choice: RatioChoice | None,
     if choice is not None:
         free = [*choice.ratios, *(choice.bounds or ()),
                 *(g.stage.ratio for g in choice.gearboxes)] or [stages[choice.stage].ratio]
+    efficiency = math.prod(s.efficiency for s in stages)
+    if efficiency < TOTAL_EFFICIENCY:
+        raise source.error(
+            f"the transmission's total efficiency (the product of its stages' efficiencies) "
+            f"must be at least {number_text(TOTAL_EFFICIENCY)}, got {efficiency:.3g}",
+            ("transmission",))
     product = math.prod(fixed)
     low, high = TOTAL_RATIO
     for total in (product * min(free), product * max(free)):

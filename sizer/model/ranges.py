@@ -167,6 +167,10 @@ TOTAL_RATIO = (1e-6, 1e9)
 """The product of a transmission's stage ratios, motor speed over load speed (rad/rad or
 rad/m), over every option of a free ratio: a 1e6:1 speed-up to a screw of 6 nm lead."""
 
+TOTAL_EFFICIENCY = 1e-4
+"""The smallest product of a transmission's stage efficiencies: two stages of 1 %. It
+bounds the torque a chain of lossy stages multiplies (1 / efficiency)."""
+
 
 def check_range(name: str, x: float) -> None:
     """Raise ValueError 'must be in [..] unit, got ..' if ``x`` (SI) is outside the range."""
