@@ -292,7 +292,9 @@ def _task(model: DesignFile, source: YamlSource) -> Task:
     except UserError as error:
         raise source.error(error.message, at) from None
     except OverflowError:
-        raise source.error(f"{show_value(given)} is too large for a number", at) from None
+        allowed = RANGES[axis_range(TaskInput, "displacement", False)]
+        raise source.error(f"{show_value(given)} is too large for a number; must be "
+                           f"{allowed.text()} (or a length)", at) from None
     if not (math.isfinite(h) and h != 0.0):
         raise source.error(f"must not be zero, got {given!r} (a negative "
                            f"displacement moves back first)", at)

@@ -193,17 +193,29 @@ def bare_number_warnings(source: YamlSource) -> list[str]:
         return []
     out = []
     for key, limit in (("duration", LONG_MOVE), ("dwell", LONG_DWELL)):
-        value = task.get(key)
-        if is_bare(value) and float(value) > limit:
-            shown = f"{float(value):g}"
+        number = _bare_float(task.get(key))
+        if number is not None and number > limit:
+            shown = f"{number:g}"
             out.append(warning_text(source, ("task", key),
                                     f"bare number {shown} read as {shown} s; write "
                                     f"'{shown} ms' if that was meant"))
-    value = task.get("displacement")
-    if is_bare(value) and abs(float(value)) > LARGE_ANGLE:
-        shown = f"{float(value):g}"
-        turns = abs(float(value)) / (2 * math.pi)
+    number = _bare_float(task.get("displacement"))
+    if number is not None and abs(number) > LARGE_ANGLE:
+        shown = f"{number:g}"
+        turns = abs(number) / (2 * math.pi)
         out.append(warning_text(source, ("task", "displacement"),
                                 f"bare number {shown} read as {shown} rad ({turns:.3g} "
                                 f"turns); write '{shown} deg' if that was meant"))
     return out
+
+
+def _bare_float(value: Any) -> float | None:
+    """The float of a bare number, None for anything else or a number beyond the floats
+    (the field's range refuses it)."""
+    if not is_bare(value):
+        return None
+    try:
+        number = float(value)
+    except OverflowError:
+        return None
+    return number if math.isfinite(number) else None

@@ -83,8 +83,12 @@ def _si(value: Any, kind: str) -> float:
     except UserError as error:
         raise ValueError(error.message) from None
     except OverflowError:
-        raise ValueError(f"{_show(value)} is too large for a number") from None
+        raise TooLargeError(f"{_show(value)} is too large for a number") from None
     return result + 0.0
+
+
+class TooLargeError(ValueError):
+    """A number beyond the floats (an integer of 400 digits)."""
 
 
 def given_text(value: Any, shown: str) -> str:
@@ -117,7 +121,10 @@ def convert_in(value: Any, name: str) -> float:
     """``to_si`` of a quantity and the check of its range ``RANGES[name]``; ValueError with
     the allowed range in SI units and the value given otherwise."""
     allowed = RANGES[name]
-    result = _si(value, allowed.kind)
+    try:
+        result = _si(value, allowed.kind)
+    except TooLargeError as error:
+        raise ValueError(f"{error}; must be {allowed.text()}") from None
     try:
         check_range(name, result)
     except ValueError as error:

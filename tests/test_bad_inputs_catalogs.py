@@ -1,0 +1,308 @@
+"""Bad motor catalogs and gearbox catalogs: fields out of range and physically impossible
+motors, each refused at loading with the file, the field, the motor and what is allowed;
+``sizer catalog validate`` reports the same impossibilities, all of them."""
+
+from __future__ import annotations
+
+import copy
+import re
+from typing import Any
+
+import pytest
+import yaml
+from bad_input_cases import Case, edited, run_case
+from cli_run import run_cli
+
+DESIGN = edited("book/ex6_1-6_2.yaml", set={"motors": "motors.yaml"}, delete=("check",))
+"""The book's design sized against the case's catalog (motors.yaml beside it)."""
+
+GEARED = edited("indexing-table-gearboxes.yaml", set={"transmission.catalog": "gears.yaml"})
+"""A design that takes its gearbox from the case's gearbox catalog (gears.yaml)."""
+
+MOTOR: dict[str, Any] = {
+    "id": "M1", "inertia": "0.5 kg*cm^2", "continuous_torque": "1.3 N*m",
+    "peak_torque": "3.8 N*m", "rated_speed": "3000 rpm", "max_speed": "6000 rpm",
+    "damping": "1e-5 N*m*s/rad",
+    "continuous_curve": [["0 rpm", "1.3 N*m"], ["3000 rpm", "1.3 N*m"],
+                         ["6000 rpm", "0.8 N*m"]],
+    "intermittent_curve": [["0 rpm", "3.8 N*m"], ["3000 rpm", "3.8 N*m"],
+                           ["6000 rpm", "1.5 N*m"]],
+    "source": "a datasheet", "part_number": "M1-A", "manufacturer": "Acme",
+    "price": 450, "mass": "1.2 kg", "notes": "for the tests",
+}
+"""A plausible servomotor with both curves."""
+
+GEARS: dict[str, Any] = {
+    "catalog": "test gearboxes", "manufacturer": "Acme", "source": "a datasheet",
+    "notes": "for the tests",
+    "gearboxes": [{
+        "id": "PG60", "efficiency": "95 %", "max_input_speed": "5000 rpm",
+        "rated_output_torque": "30 N*m", "peak_output_torque": "60 N*m",
+        "backlash": "8 arcmin", "source": "a datasheet", "notes": "n",
+        "ratios": [{"ratio": 10, "inertia": "0.15 kg*cm^2"},
+                   {"ratio": 16, "inertia": "0.12 kg*cm^2", "efficiency": "94 %",
+                    "max_input_speed": "4000 rpm", "rated_output_torque": "32 N*m",
+                    "peak_output_torque": "64 N*m"}]}],
+}
+
+
+def _parts(path: str) -> list[str | int]:
+    return [int(i) if i else n for n, i in re.findall(r"([^.\[\]]+)|\[(\d+)\]", path)]
+
+
+def _edit(data: dict[str, Any], set: dict[str, Any], delete: tuple[str, ...]) -> str:
+    data = copy.deepcopy(data)
+    for path, value in set.items():
+        *head, last = _parts(path)
+        target: Any = data
+        for part in head:
+            target = target[part]
+        if isinstance(target, list) and last == len(target):
+            target.append(value)
+        else:
+            target[last] = value
+    for path in delete:
+        *head, last = _parts(path)
+        target = data
+        for part in head:
+            target = target[part]
+        del target[last]
+    return yaml.safe_dump(data, sort_keys=False)
+
+
+def motors(set: dict[str, Any] | None = None, delete: tuple[str, ...] = (),
+           motor: dict[str, Any] | None = None) -> str:
+    """A catalog of MOTOR with keys set ('motors[0].inertia' or 'catalog') and deleted."""
+    data = {"catalog": "test motors", "manufacturer": "Acme", "source": "a datasheet",
+            "notes": "n", "motors": [motor if motor is not None else MOTOR]}
+    return _edit(data, set or {}, delete)
+
+
+M = "motors[0]"
+C = "catalog:motors"
+
+
+def bad_motor(id: str, set: dict[str, Any], words: tuple[str, ...],
+              fields: tuple[str, ...], delete: tuple[str, ...] = ()) -> Case:
+    """A catalog with one bad motor, sized by the book's design."""
+    return Case(id, design=DESIGN, catalog=motors(set, delete), words=("motors.yaml:", *words),
+                fields=fields)
+
+
+def bad_gears(id: str, set: dict[str, Any], words: tuple[str, ...],
+              fields: tuple[str, ...]) -> Case:
+    """A gearbox catalog with a bad entry, named by a design's gearbox stage."""
+    return Case(id, design=GEARED, extra_files={"gears.yaml": _edit(GEARS, set, ())},
+                words=("gears.yaml:", *words), fields=fields)
+
+
+FIELDS = [
+    bad_motor("catalog-name-list", {"catalog": [1]}, ("catalog", "expected text"),
+              ("catalog:catalog",)),
+    bad_motor("catalog-manufacturer-mapping", {"manufacturer": {"x": 1}},
+              ("manufacturer", "expected text"), ("catalog:manufacturer",)),
+    bad_motor("catalog-source-list", {"source": [1]}, ("source", "expected text"),
+              ("catalog:source",)),
+    bad_motor("catalog-notes-mapping", {"notes": {"a": "b"}}, ("notes", "expected text"),
+              ("catalog:notes",)),
+    bad_motor("catalog-no-motors", {"motors": []}, ("motors", "no motors"),
+              ("catalog:motors",)),
+    bad_motor("motor-not-a-mapping", {"motors": ["M1"]}, ("motors[0]", "expected a mapping"),
+              ("catalog:motors",)),
+    bad_motor("motor-id-empty", {f"{M}.id": " "}, (f"{M}.id", "must not be empty"),
+              (f"{C}.id",)),
+    bad_motor("motor-id-twice", {"motors[1]": {**MOTOR, "price": 500}},
+              ("motors[1].id", "duplicate motor id 'M1'"), (f"{C}.id",)),
+    bad_motor("motor-unknown-field", {f"{M}.colour": "red"},
+              (f"{M}.colour", "unknown field 'colour'", "allowed fields"), ("catalog:motors",)),
+    bad_motor("inertia-subnormal", {f"{M}.inertia": "1e-320 kg*m^2"},
+              (f"{M}.inertia", "0 or in [1e-12, 1000] kg*m^2"), (f"{C}.inertia",)),
+    bad_motor("inertia-negative", {f"{M}.inertia": "-0.5 kg*cm^2"},
+              (f"{M}.inertia", "0 or in [1e-12, 1000] kg*m^2", "-0.5 kg*cm^2"),
+              (f"{C}.inertia",)),
+    bad_motor("continuous-torque-huge", {f"{M}.continuous_torque": "1e7 N*m"},
+              (f"{M}.continuous_torque", "[1e-6, 1e6] N*m"), (f"{C}.continuous_torque",)),
+    bad_motor("continuous-torque-missing", {}, (f"{M}.continuous_torque",
+                                                 "required field is missing"),
+              (f"{C}.continuous_torque",), delete=(f"{M}.continuous_torque",)),
+    bad_motor("peak-torque-zero", {f"{M}.peak_torque": "0 N*m"},
+              (f"{M}.peak_torque", "[1e-6, 1e6] N*m"), (f"{C}.peak_torque",)),
+    bad_motor("rated-speed-subnormal", {f"{M}.rated_speed": "1e-320 rpm"},
+              (f"{M}.rated_speed", "[0.001, 1e5] rad/s"), (f"{C}.rated_speed",)),
+    bad_motor("rated-speed-integer-too-large", {f"{M}.rated_speed": 10**400},
+              (f"{M}.rated_speed", "too large", "[0.001, 1e5] rad/s"), (f"{C}.rated_speed",)),
+    bad_motor("max-speed-1e7-rpm", {f"{M}.max_speed": "1e7 rpm"},
+              (f"{M}.max_speed", "[0.001, 1e5] rad/s", "1e7 rpm"), (f"{C}.max_speed",)),
+    bad_motor("damping-negative", {f"{M}.damping": "-1e-5 N*m*s/rad"},
+              (f"{M}.damping", "0 or in [1e-12, 1000] N*m*s/rad"), (f"{C}.damping",)),
+    bad_motor("curve-speed-negative", {f"{M}.continuous_curve[1]": ["-3000 rpm", "1.3 N*m"]},
+              (f"{M}.continuous_curve[1].speed", "0 or in [0.001, 1e5] rad/s"),
+              (f"{C}.continuous_curve.speed",)),
+    bad_motor("curve-torque-1e308", {f"{M}.continuous_curve[2]": ["6000 rpm", 1e308]},
+              (f"{M}.continuous_curve[2].torque", "0 or in [1e-6, 1e6] N*m"),
+              (f"{C}.continuous_curve.torque",)),
+    bad_motor("curve-point-of-three", {f"{M}.continuous_curve[0]": [0, 1.3, 2]},
+              (f"{M}.continuous_curve[0]", "[speed, torque]"), (f"{C}.continuous_curve",)),
+    bad_motor("intermittent-speed-subnormal",
+              {f"{M}.intermittent_curve[0]": ["1e-320 rad/s", "3.8 N*m"]},
+              (f"{M}.intermittent_curve[0].speed", "0 or in [0.001, 1e5] rad/s"),
+              (f"{C}.intermittent_curve.speed",)),
+    bad_motor("intermittent-torque-negative",
+              {f"{M}.intermittent_curve[2]": ["6000 rpm", "-1.5 N*m"]},
+              (f"{M}.intermittent_curve[2].torque", "0 or in [1e-6, 1e6] N*m"),
+              (f"{C}.intermittent_curve.torque",)),
+    bad_motor("intermittent-curve-a-number", {f"{M}.intermittent_curve": 3.8},
+              (f"{M}.intermittent_curve", "expected a list"), (f"{C}.intermittent_curve",)),
+    bad_motor("motor-source-list", {f"{M}.source": ["a"]}, (f"{M}.source", "expected text"),
+              (f"{C}.source",)),
+    bad_motor("part-number-mapping", {f"{M}.part_number": {"a": 1}},
+              (f"{M}.part_number", "expected text"), (f"{C}.part_number",)),
+    bad_motor("motor-manufacturer-list", {f"{M}.manufacturer": [1]},
+              (f"{M}.manufacturer", "expected text"), (f"{C}.manufacturer",)),
+    bad_motor("price-negative", {f"{M}.price": -3},
+              (f"{M}.price", "0 or in [0.001, 1e9]"), (f"{C}.price",)),
+    bad_motor("mass-zero", {f"{M}.mass": "0 kg"}, (f"{M}.mass", "[1e-4, 1e5] kg"),
+              (f"{C}.mass",)),
+    bad_motor("motor-notes-list", {f"{M}.notes": [1]}, (f"{M}.notes", "expected text"),
+              (f"{C}.notes",)),
+    Case("inline-motor-inertia-bool",
+         design=edited("book/ex6_3-vmax4.yaml", set={"motors[0].inertia": True}),
+         words=("design.yaml:", "motors[0].inertia", "expected an inertia"),
+         fields=(f"{C}.inertia",)),
+]
+
+IMPOSSIBLE = [
+    bad_motor("peak-below-continuous", {f"{M}.peak_torque": "1 N*m"},
+              (f"{M}.peak_torque", "motor 'M1'", "below the continuous torque"),
+              (f"{C}.peak_torque", f"{C}.continuous_torque")),
+    bad_motor("max-below-rated-speed", {f"{M}.max_speed": "2000 rpm"},
+              (f"{M}.max_speed", "motor 'M1'", "below the rated speed"),
+              (f"{C}.max_speed", f"{C}.rated_speed")),
+    bad_motor("curve-speeds-not-increasing",
+              {f"{M}.continuous_curve[2]": ["3000 rpm", "0.8 N*m"]},
+              (f"{M}.continuous_curve[2]", "motor 'M1'", "strictly increasing"),
+              (f"{C}.continuous_curve.speed",)),
+    bad_motor("curve-of-one-point", {f"{M}.intermittent_curve": [["0 rpm", "3.8 N*m"]]},
+              (f"{M}.intermittent_curve", "motor 'M1'", "at least 2 points"),
+              (f"{C}.intermittent_curve",)),
+    bad_motor("curve-beyond-max-speed",
+              {f"{M}.intermittent_curve[2]": ["7000 rpm", "1.5 N*m"]},
+              (f"{M}.intermittent_curve[2]", "motor 'M1'", "7000 rpm", "above max_speed"),
+              (f"{C}.intermittent_curve", f"{C}.max_speed")),
+    bad_motor("continuous-curve-above-intermittent",
+              {f"{M}.continuous_curve[2]": ["6000 rpm", "2 N*m"]},
+              (f"{M}.continuous_curve", "motor 'M1'", "above the intermittent region at "
+               "6000 rpm", "2 N*m > 1.5 N*m", "by 0.5 N*m"),
+              (f"{C}.continuous_curve", f"{C}.intermittent_curve")),
+    bad_motor("continuous-torque-above-intermittent-curve",
+              {f"{M}.continuous_curve": None,
+               f"{M}.intermittent_curve[1]": ["3000 rpm", "1 N*m"]},
+              (f"{M}.continuous_torque", "motor 'M1'", "above the intermittent region at "
+               "3000 rpm", "by 0.3 N*m"),
+              (f"{C}.continuous_torque", f"{C}.intermittent_curve")),
+]
+
+GEARBOX_CASES = [
+    bad_gears("gears-catalog-list", {"catalog": [1]}, ("catalog", "expected text"),
+              ("gearboxes:catalog",)),
+    bad_gears("gears-manufacturer-mapping", {"manufacturer": {"a": 1}},
+              ("manufacturer", "expected text"), ("gearboxes:manufacturer",)),
+    bad_gears("gears-source-list", {"source": [1]}, ("source", "expected text"),
+              ("gearboxes:source",)),
+    bad_gears("gears-notes-list", {"notes": [1]}, ("notes", "expected text"),
+              ("gearboxes:notes",)),
+    bad_gears("gears-no-gearboxes", {"gearboxes": []}, ("gearboxes", "at least 1"),
+              ("gearboxes:gearboxes",)),
+    bad_gears("gears-id-twice", {"gearboxes[1]": GEARS["gearboxes"][0]},
+              ("gearboxes[1].id", "duplicate gearbox id 'PG60'"), ("gearboxes:gearboxes.id",)),
+    bad_gears("gears-efficiency-0.1-percent", {"gearboxes[0].efficiency": "0.1 %"},
+              ("gearboxes[0].efficiency", "[0.01, 1]"), ("gearboxes:gearboxes.efficiency",)),
+    bad_gears("gears-max-input-speed-huge", {"gearboxes[0].max_input_speed": "1e7 rpm"},
+              ("gearboxes[0].max_input_speed", "[0.001, 1e5] rad/s"),
+              ("gearboxes:gearboxes.max_input_speed",)),
+    bad_gears("gears-rated-torque-negative", {"gearboxes[0].rated_output_torque": -1},
+              ("gearboxes[0].rated_output_torque", "[1e-6, 1e7] N*m"),
+              ("gearboxes:gearboxes.rated_output_torque",)),
+    bad_gears("gears-peak-torque-subnormal",
+              {"gearboxes[0].peak_output_torque": "1e-320 N*m"},
+              ("gearboxes[0].peak_output_torque", "[1e-6, 1e7] N*m"),
+              ("gearboxes:gearboxes.peak_output_torque",)),
+    bad_gears("gears-backlash-1-rad", {"gearboxes[0].backlash": "1 rad"},
+              ("gearboxes[0].backlash", "0 or in [1e-9, 0.5] rad"),
+              ("gearboxes:gearboxes.backlash",)),
+    bad_gears("gears-series-source-list", {"gearboxes[0].source": [1]},
+              ("gearboxes[0].source", "expected text"), ("gearboxes:gearboxes.source",)),
+    bad_gears("gears-series-notes-mapping", {"gearboxes[0].notes": {"a": 1}},
+              ("gearboxes[0].notes", "expected text"), ("gearboxes:gearboxes.notes",)),
+    bad_gears("gears-no-ratios", {"gearboxes[0].ratios": []},
+              ("gearboxes[0].ratios", "at least 1"), ("gearboxes:gearboxes.ratios",)),
+    bad_gears("gears-ratio-listed-twice", {"gearboxes[0].ratios[1].ratio": 10},
+              ("gearboxes[0].ratios[1].ratio", "gearbox 'PG60'", "ratio 10 is listed twice"),
+              ("gearboxes:gearboxes.ratios.ratio",)),
+    bad_gears("gears-ratio-1e6", {"gearboxes[0].ratios[0].ratio": 1e6},
+              ("gearboxes[0].ratios[0].ratio", "[0.001, 1e5]"),
+              ("gearboxes:gearboxes.ratios.ratio",)),
+    bad_gears("gears-ratio-inertia-negative", {"gearboxes[0].ratios[0].inertia": -1},
+              ("gearboxes[0].ratios[0].inertia", "0 or in [1e-12, 1000] kg*m^2"),
+              ("gearboxes:gearboxes.ratios.inertia",)),
+    bad_gears("gears-ratio-efficiency-2", {"gearboxes[0].ratios[1].efficiency": 2},
+              ("gearboxes[0].ratios[1].efficiency", "[0.01, 1]"),
+              ("gearboxes:gearboxes.ratios.efficiency",)),
+    bad_gears("gears-ratio-max-input-speed-zero",
+              {"gearboxes[0].ratios[1].max_input_speed": 0},
+              ("gearboxes[0].ratios[1].max_input_speed", "[0.001, 1e5] rad/s"),
+              ("gearboxes:gearboxes.ratios.max_input_speed",)),
+    bad_gears("gears-ratio-rated-torque-huge",
+              {"gearboxes[0].ratios[1].rated_output_torque": "1e8 N*m"},
+              ("gearboxes[0].ratios[1].rated_output_torque", "[1e-6, 1e7] N*m"),
+              ("gearboxes:gearboxes.ratios.rated_output_torque",)),
+    bad_gears("gears-ratio-peak-torque-bool",
+              {"gearboxes[0].ratios[1].peak_output_torque": True},
+              ("gearboxes[0].ratios[1].peak_output_torque", "expected a torque"),
+              ("gearboxes:gearboxes.ratios.peak_output_torque",)),
+]
+
+CASES = [*FIELDS, *IMPOSSIBLE, *GEARBOX_CASES]
+
+
+@pytest.mark.parametrize("case", CASES, ids=str)
+def test_bad_input(case, tmp_path):
+    run_case(case, tmp_path)
+
+
+def test_the_base_files_are_good(tmp_path):
+    (tmp_path / "motors.yaml").write_text(motors(), encoding="utf-8")
+    result = run_cli("catalog", "validate", str(tmp_path / "motors.yaml"))
+    assert result.returncode == 0, result.stdout + result.stderr
+
+
+def _error_field(stderr: str) -> str:
+    line = next(line for line in stderr.splitlines() if line.startswith("error:"))
+    return line.split(": ")[2]
+
+
+@pytest.mark.parametrize("case", IMPOSSIBLE, ids=str)
+def test_validate_reports_what_loading_refuses(case, tmp_path):
+    loaded = run_case(case, tmp_path)
+    field = _error_field(loaded.stderr)
+    result = run_cli("catalog", "validate", str(tmp_path / "motors.yaml"))
+    assert result.returncode == 1, result.stdout + result.stderr
+    errors = [line for line in result.stdout.splitlines() if "(warning)" not in line]
+    assert any(f": {field}: " in line for line in errors), (field, result.stdout)
+
+
+def test_validate_lists_every_impossibility_where_loading_stops_at_the_first(tmp_path):
+    text = motors({f"{M}.peak_torque": "1 N*m", f"{M}.max_speed": "2000 rpm",
+                   f"{M}.continuous_curve[2]": ["3000 rpm", "0.8 N*m"]})
+    (tmp_path / "motors.yaml").write_text(text, encoding="utf-8")
+    (tmp_path / "design.yaml").write_text(DESIGN, encoding="utf-8")
+    loaded = run_cli("size", str(tmp_path / "design.yaml"))
+    assert loaded.returncode == 2
+    assert "motor 'M1': peak torque 1 N*m is below" in loaded.stderr
+    assert "(and 4 more problems of this motor)" in loaded.stderr
+    result = run_cli("catalog", "validate", str(tmp_path / "motors.yaml"))
+    fields = {line.split(": ")[1] for line in result.stdout.splitlines()
+              if line.startswith(str(tmp_path)) or "motors.yaml:" in line}
+    assert {f"{M}.peak_torque", f"{M}.max_speed", f"{M}.continuous_curve[2]",
+            f"{M}.continuous_curve[1]",
+            f"{M}.intermittent_curve[1]"} <= fields, result.stdout
