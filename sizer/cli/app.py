@@ -105,7 +105,8 @@ for _module in COMMAND_MODULES:
 def report_user_error(error: UserError) -> None:
     """One line on stderr: 'error: file:line: field: message' (control characters
     escaped)."""
-    sys.stderr.write(f"error: {printable(' '.join(str(error).splitlines()))}\n")
+    text = " ".join(str(error).split("\n"))  # a CR or another control stays, escaped
+    sys.stderr.write(f"error: {printable(text)}\n")
     sys.stderr.flush()
 
 
