@@ -2,13 +2,16 @@
 
 from __future__ import annotations
 
+import codecs
 import sys
 from pathlib import Path
 from typing import Annotated
 
 import typer
 
+from sizer.cli.catalog_option import check_catalog_references
 from sizer.cli.options import FormatOption, OutputOption
+from sizer.errors import UserError
 from sizer.report.formats import Format
 from sizer.report.printable import printable
 
@@ -100,6 +103,7 @@ def show(
     from sizer.report.catalog_tables import MotorDocument
     from sizer.report.document import publish
 
+    check_catalog_references(catalog or ())
     check_output(output, catalog or ())
     if output is not None:  # the catalogs searched: named (resolved) or every bundled one
         read = ([resolve_catalog(c, Path.cwd()) for c in catalog] if catalog
@@ -206,9 +210,12 @@ def import_command(
     from sizer.report.output import emit
 
     check_output(output, [csv_file])
+    try:
+        codecs.lookup(encoding)
+    except LookupError:
+        raise UserError(f"unknown text encoding {encoding!r}; e.g. utf-8, cp1252, "
+                        f"latin-1, shift_jis", field="--encoding") from None
     if delimiter is not None and len(delimiter.replace("\\t", "\t")) != 1:
-        from sizer.errors import UserError
-
         raise UserError(f"expected one character, got {delimiter!r}", field="--delimiter")
     try:
         catalog = import_csv(

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from sizer.cli.catalog_option import CatalogOption, load_design_file
+from sizer.cli.catalog_option import CatalogOption, check_catalog_references, load_design_file
 from sizer.cli.options import EnvelopeOption
 from sizer.errors import UserError
 
@@ -59,6 +59,7 @@ def check(
     from sizer.report.json_text import render_json
     from sizer.report.output import emit
 
+    check_catalog_references(catalog or ())  # an option's mistake: once, before any file
     documents: list[CheckDocument] = []
     invalid = internal = False
     for design in designs:

@@ -6,7 +6,7 @@ from typing import Annotated
 
 import typer
 
-from sizer.cli.options import FormatOption, OutputOption
+from sizer.cli.options import FormatOption, OutputOption, blame_option
 from sizer.errors import UserError
 from sizer.report.formats import Format
 from sizer.units import parse_displacement, to_si
@@ -58,7 +58,8 @@ def law(
     q0 = to_si(start_position, "length" if linear else "angle", field="--start-position")
     if not 2 <= samples <= MAX_SAMPLES:
         raise UserError(f"must be between 2 and {MAX_SAMPLES}, got {samples}", field="--samples")
-    law_object = make_law(spec)
+    with blame_option("SPEC"):
+        law_object = make_law(spec)
     motion = ScaledMotion(law_object, h, T, start_time=t0, start_position=q0)
     publish(SeriesDocument(motion, motion.sample(samples), linear=linear), fmt, output)
 

@@ -6,7 +6,7 @@ from typing import Annotated
 
 import typer
 
-from sizer.cli.options import FormatOption, OutputOption
+from sizer.cli.options import FormatOption, OutputOption, blame_option
 from sizer.report.formats import Format
 
 LawOption = Annotated[
@@ -41,7 +41,9 @@ def laws(
 
     check_output(output)
     specs = law or list(DEFAULT_LAW_SPECS)
-    publish(LawsDocument([make_law(spec) for spec in specs]), fmt, output)
+    with blame_option("--law"):
+        laws = [make_law(spec) for spec in specs]
+    publish(LawsDocument(laws), fmt, output)
 
 
 def register(app: typer.Typer) -> None:

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Annotated
 import typer
 
 from sizer.cli.catalog_option import CatalogOption, DesignArgument, load_design_file
+from sizer.cli.options import blame_option, check_law_specs
 from sizer.errors import UserError
 from sizer.report.printable import printable
 
@@ -113,12 +114,15 @@ def plot(
         raise UserError(f"expected one of {', '.join(SPEED_UNITS)}, got "
                         f"{printable(repr(speed_unit))}", field="--speed-unit")
     figure_size = parse_size(size)
+    check_law_specs(law or [], "--law")
     check_output(output, [design, *(catalog or ())])
     loaded = load_design_file(design, catalog)
     check_outputs([output], loaded.files)
     try:
         results = plot_pairs(loaded, motor, law or ())
     except UserError as error:
+        if (error.field or "").startswith("--"):  # an option's mistake, not the file's
+            raise
         raise error.located(file=str(design)) from None
     drawn, curves = [], []
     for result in results:
@@ -242,7 +246,8 @@ def plot_law(
             raise UserError(f"must be positive, got {duration!r}", field="--duration")
         if h == 0.0:
             raise UserError("must not be zero", field="--displacement")
-    laws = [make_law(spec) for spec in dict.fromkeys(specs)]
+    with blame_option("SPEC"):
+        laws = [make_law(spec) for spec in dict.fromkeys(specs)]
     figure = law_profiles_figure(laws, displacement=h, duration=T, linear=linear,
                                  samples=samples, size=figure_size, dpi=dpi)
     save_figure(figure, output, dpi=dpi)
