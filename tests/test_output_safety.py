@@ -117,6 +117,24 @@ def test_an_unwritable_folder_is_a_user_error(tmp_path: Path) -> None:
         folder.chmod(0o700)
 
 
+def test_a_refused_temporary_file_is_a_user_error(tmp_path: Path, monkeypatch) -> None:
+    """As in a folder the user may not write in (simulated: the tests may run as root)."""
+    target = tmp_path / "out.csv"
+    target.write_text("old")
+    real_open = os.open
+
+    def refuse(path, flags, *args, **kwargs):
+        if ".sizer-" in str(path):
+            raise PermissionError(13, "Permission denied")
+        return real_open(path, flags, *args, **kwargs)
+
+    monkeypatch.setattr(os, "open", refuse)
+    with pytest.raises(UserError, match=r"Permission denied.*not writable") as caught:
+        write_text_atomically(target, "new")
+    assert caught.value.field == "--output"
+    assert target.read_text() == "old" and leftovers(tmp_path) == []
+
+
 def test_a_failed_rename_leaves_the_old_file_and_no_temporary(tmp_path: Path,
                                                             monkeypatch) -> None:
     target = tmp_path / "out.csv"
