@@ -228,12 +228,11 @@ def run(argv: Sequence[str] | None = None) -> int:
 def main(argv: Sequence[str] | None = None) -> None:
     """Run the app on ``argv`` (default: the command line) and exit with its code."""
     code = run(argv)
-    if code == 0:
-        try:
-            sys.stdout.flush()
-        except BrokenPipeError:
-            _silence_stdout()
-            code = BROKEN_PIPE_EXIT_CODE
-        except (OSError, ValueError):
-            pass
+    try:
+        sys.stdout.flush()
+    except BrokenPipeError:  # the reader left after the last write: quiet, like above
+        _silence_stdout()
+        code = code or BROKEN_PIPE_EXIT_CODE
+    except (OSError, ValueError):
+        pass
     sys.exit(code)
