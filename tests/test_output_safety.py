@@ -202,8 +202,8 @@ def test_same_file_sees_hard_and_symbolic_links(tmp_path: Path) -> None:
 
 
 # --------------------------------------------------------------- kill -9 during a write
-SAMPLES = "200000"
-"""Samples of the law table: about 19 MB of CSV, written in 1 MiB chunks."""
+SAMPLES = "120000"
+"""Samples of the law table: about 11 MB of CSV, written in 1 MiB chunks."""
 
 
 def _command(target: Path) -> list[str]:
@@ -212,7 +212,8 @@ def _command(target: Path) -> list[str]:
 
 
 def _kill_while_writing(target: Path) -> tuple[bool, Path]:
-    """Start a run, kill -9 it as soon as its temporary file exists; (caught, temporary)."""
+    """Start a run, kill -9 it as soon as its temporary file holds some bytes; (caught,
+    temporary)."""
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     process = subprocess.Popen(_command(target), cwd=target.parent, env=env,
                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
@@ -221,6 +222,11 @@ def _kill_while_writing(target: Path) -> tuple[bool, Path]:
     caught = False
     while time.monotonic() < deadline:
         if temporary.exists():
+            try:  # the first bytes in it, then kill (a part written, the rest not)
+                while temporary.stat().st_size == 0 and process.poll() is None:
+                    pass
+            except FileNotFoundError:  # renamed already: the kill comes after the write
+                pass
             process.send_signal(signal.SIGKILL)
             caught = True
             break
