@@ -225,3 +225,20 @@ def test_a_pipe_closed_while_writing_is_quiet(monkeypatch) -> None:
 
     monkeypatch.setattr(sys, "stdout", ClosedPipe())
     assert app_module.run(["laws"]) == app_module.BROKEN_PIPE_EXIT_CODE
+
+
+def test_help_imports_no_numerical_or_file_libraries() -> None:
+    """``sizer --help`` stays quick: the error handling, escaping and output checks import
+    nothing heavy (numpy, scipy, pint, yaml, pydantic, matplotlib) before a command runs."""
+    code = ("import sys, io, contextlib\n"
+            "from sizer.cli.app import main\n"
+            "with contextlib.redirect_stdout(io.StringIO()):\n"
+            "    try:\n"
+            "        main(['--help'])\n"
+            "    except SystemExit:\n"
+            "        pass\n"
+            "heavy = {'numpy', 'scipy', 'pint', 'yaml', 'pydantic', 'matplotlib'}\n"
+            "print(sorted(m for m in sys.modules if m.split('.')[0] in heavy))\n")
+    result = _subprocess(code)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == "[]"

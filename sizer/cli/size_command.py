@@ -52,7 +52,8 @@ def size(
     With a given duration each pair is checked (speed, peak and RMS torque against the
     motor's regions, inertia ratio, ...) and the margins are reported; with
     'duration: minimize' each pair gets its shortest feasible duration T_min.
-    Exit code 0 even when no pair is feasible (the report says so); 2 for bad input.
+    Exit code 0 even when no pair is feasible (the report says so); 2 for bad input;
+    3 for an internal error (a bug in sizer).
 
     Examples:
 
