@@ -209,7 +209,8 @@ def test_minimize_ranks_by_duration_and_rank_by_changes_the_order() -> None:
 def test_bad_rank_key_lists_the_keys() -> None:
     from sizer.sizing import RANK_KEYS
 
-    line = assert_user_error(run("size", EX64, "--rank-by", "speed"), "cannot rank by")
+    line = assert_user_error(run("size", EX64, "--rank-by", "speed"),
+                             "--rank-by: unknown key 'speed'; choose one of")
     assert all(key in line for key in RANK_KEYS)
     help_text = ok("size", "--help")
     assert all(key in help_text for key in RANK_KEYS)

@@ -228,4 +228,4 @@ def test_report_command(tmp_path):
     bad = CliRunner().invoke(application, ["report", str(path), "-o", str(out),
                                            "--rank-by", "colour"])
     assert isinstance(bad.exception, UserError)
-    assert "cannot rank by 'colour'" in str(bad.exception)
+    assert "--rank-by: unknown key 'colour'" in str(bad.exception)

@@ -346,7 +346,7 @@ def test_unknown_suffix_is_a_user_error(tmp_path, name):
 def test_unwritable_figure_is_a_user_error(tmp_path):
     figure = law_profiles_figure([make_law("cycloidal")], samples=SAMPLES, size=SMALL,
                                  dpi=DPI)
-    with pytest.raises(UserError, match="cannot write the figure"):
+    with pytest.raises(UserError, match="cannot write"):
         save_figure(figure, tmp_path / "missing" / "figure.png")
 
 

@@ -6,11 +6,20 @@ command (``size``, ``check``, ``catalog ...``) is a new module listed in COMMAND
 
 from __future__ import annotations
 
+import os
 import sys
+import traceback
 from collections.abc import Iterable, Sequence
 from typing import Annotated
 
 import typer
+import typer.main
+from typer import Abort, Exit
+
+try:  # typer >= 0.20 has its own copy of click; older ones use click itself
+    from typer._click import exceptions as click_exceptions
+except ImportError:  # pragma: no cover
+    from click import exceptions as click_exceptions  # type: ignore[no-redef]
 
 from sizer import __version__
 from sizer.cli import (
@@ -24,9 +33,24 @@ from sizer.cli import (
     size_command,
 )
 from sizer.errors import UserError
+from sizer.report.printable import printable
 
+CHECK_FAILED_EXIT_CODE = 1
+"""Exit code of a check that fails (``sizer check``, ``sizer catalog validate``)."""
 USER_ERROR_EXIT_CODE = 2
 """Exit code for mistakes in the user's input (click uses 2 for usage errors too)."""
+INTERNAL_ERROR_EXIT_CODE = 3
+"""Exit code of a bug in sizer (an exception that is not a UserError)."""
+INTERRUPTED_EXIT_CODE = 130
+"""Exit code after Ctrl-C (128 + SIGINT, as shells report it)."""
+BROKEN_PIPE_EXIT_CODE = 141
+"""Exit code when stdout's reader went away (128 + SIGPIPE, e.g. ``sizer laws | head -1``)."""
+
+EXIT_CODES_HELP = ("Exit codes: 0 ok; 1 a check failed (sizer check: a limit not met; "
+                   "catalog validate: a finding); 2 bad input (one 'error: ...' line naming "
+                   "the file, line and field, or the option); 3 internal error (a bug in "
+                   "sizer: one 'internal error: ...' line, --debug shows the traceback); "
+                   "130 interrupted.")
 
 COMMAND_MODULES = (laws_command, law_command, size_command, check_command, schema_command,
                    catalog_command, plot_command, report_command)
@@ -39,10 +63,12 @@ app = typer.Typer(
          "    sizer size examples/indexing-table.yaml\n\n"
          "    sizer check examples/indexing-table.yaml\n\n"
          "    sizer laws --format md\n\n"
-         "    sizer law cycloidal --displacement '90 deg' --duration '0.2 s'",
+         "    sizer law cycloidal --displacement '90 deg' --duration '0.2 s'\n\n"
+         + EXIT_CODES_HELP,
     no_args_is_help=True,
     rich_markup_mode="markdown",
     add_completion=False,
+    pretty_exceptions_enable=False,
     pretty_exceptions_show_locals=False,
 )
 
@@ -53,13 +79,23 @@ def _show_version(value: bool) -> None:
         raise typer.Exit()
 
 
+_debug = False
+"""Set by ``--debug``: an internal error shows its traceback."""
+
+
 @app.callback()
 def _root(
     version: Annotated[bool, typer.Option(
         "--version", callback=_show_version, is_eager=True,
         help="Show the version and exit.")] = False,
+    debug: Annotated[bool, typer.Option(
+        "--debug",
+        help="On an internal error (exit code 3) show the traceback (so does "
+             "SIZER_DEBUG=1).")] = False,
 ) -> None:
     """Size servo motors and choose motion laws for automatic machines."""
+    global _debug
+    _debug = _debug or debug
 
 
 for _module in COMMAND_MODULES:
@@ -67,26 +103,136 @@ for _module in COMMAND_MODULES:
 
 
 def report_user_error(error: UserError) -> None:
-    """One line on stderr: 'error: file:line: field: message'."""
-    text = " ".join(str(error).split("\n"))
-    sys.stderr.write(f"error: {text}\n")
+    """One line on stderr: 'error: file:line: field: message' (control characters
+    escaped)."""
+    text = " ".join(str(error).split("\n"))  # a CR or another control stays, escaped
+    sys.stderr.write(f"error: {printable(text)}\n")
     sys.stderr.flush()
 
 
 def report_warnings(warnings: Iterable[str]) -> None:
     """One 'warning: ...' line on stderr per warning; nothing when there are none."""
     for warning in warnings:
-        sys.stderr.write(f"warning: {' '.join(warning.split())}\n")
+        sys.stderr.write(f"warning: {printable(' '.join(warning.split()))}\n")
     sys.stderr.flush()
 
 
-def main(argv: Sequence[str] | None = None) -> None:
-    """Run the app on ``argv`` (default: the command line).
+def internal_error_line(error: BaseException, what: str = "") -> str:
+    """The one line that reports a bug: what failed (the command or file, and where in
+    sizer), the exception's type and message, how to report it."""
+    message = " ".join(str(error).split())
+    where = _where(error)
+    failed = " ".join(part for part in (what, where) if part)
+    return printable(f"internal error{' in ' + failed if failed else ''}: "
+                     f"{type(error).__name__}{': ' + message if message else ''} - this is a "
+                     f"bug in sizer {__version__}; please report it with the command and its "
+                     f"input files (run again with --debug for the traceback)")
 
-    A UserError ends with one line on stderr and exit code 2.
-    """
+
+def _where(error: BaseException) -> str:
+    """'(at sizer/x.py:12 in f)': the innermost frame of the sizer package, if any."""
+    package = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    frames = [f for f in traceback.extract_tb(error.__traceback__)
+              if os.path.abspath(f.filename).startswith(package + os.sep)]
+    if not frames:
+        return ""
+    frame = frames[-1]
+    shown = os.path.relpath(os.path.abspath(frame.filename), os.path.dirname(package))
+    return f"(at {shown}:{frame.lineno} in {frame.name})"
+
+
+def _command_words(args: Sequence[str]) -> str:
+    """'sizer size' or 'sizer catalog import': the command of ``args``, options left out."""
+    words = [a for a in args if not a.startswith("-")][:2]
+    if words and words[0] != "catalog":
+        words = words[:1]
+    return " ".join(["sizer", *words])
+
+
+def debug_enabled() -> bool:
+    """``--debug`` was given or SIZER_DEBUG is set (to anything but '', 0, false, no)."""
+    flag = os.environ.get("SIZER_DEBUG", "").strip().lower()
+    return _debug or flag not in ("", "0", "false", "no", "off")
+
+
+def report_internal_error(error: BaseException, what: str = "") -> None:
+    """The traceback (with --debug or SIZER_DEBUG=1), then the one internal-error line."""
+    if debug_enabled():
+        traceback.print_exception(error, file=sys.stderr)
+    sys.stderr.write(internal_error_line(error, what) + "\n")
+    sys.stderr.flush()
+
+
+def _usage_error_line(error: click_exceptions.ClickException) -> str:
+    """A click usage error as one 'error: ...' line (no box, no usage text)."""
+    message = " ".join(error.format_message().replace("Value error, ", "").split())
+    context = getattr(error, "ctx", None)
+    if isinstance(error, click_exceptions.UsageError) and context is not None:
+        message += f" (see '{context.command_path} --help')"
+    return f"error: {printable(message)}"
+
+
+def _silence_stdout() -> None:
+    """After a broken pipe: point stdout at /dev/null so the final flush stays quiet."""
     try:
-        app(args=None if argv is None else list(argv))
-    except UserError as error:
-        report_user_error(error)
-        sys.exit(USER_ERROR_EXIT_CODE)
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError, AttributeError):
+        pass
+
+
+def run(argv: Sequence[str] | None = None) -> int:
+    """Run the app on ``argv`` (default: the command line) and return the exit code.
+
+    0 ok, 1 a check failed, 2 a user or usage error (one 'error:' line), 3 an internal
+    error (one 'internal error:' line; the traceback with --debug or SIZER_DEBUG=1),
+    130 interrupted, 141 stdout closed by its reader.
+    """
+    global _debug
+    _debug = False
+    args = sys.argv[1:] if argv is None else list(argv)
+    command = typer.main.get_command(app)
+    try:
+        try:
+            with command.make_context("sizer", args) as context:
+                command.invoke(context)
+        except Exit as exit_:
+            return exit_.exit_code
+        except click_exceptions.NoArgsIsHelpError as error:
+            shown = error.format_message()  # typer has printed the help already
+            if shown.strip():
+                sys.stderr.write(shown.rstrip("\n") + "\n")
+            return USER_ERROR_EXIT_CODE
+        except click_exceptions.ClickException as error:
+            sys.stderr.write(_usage_error_line(error) + "\n")
+            sys.stderr.flush()
+            return USER_ERROR_EXIT_CODE if isinstance(error, click_exceptions.UsageError) \
+                else error.exit_code
+        except UserError as error:
+            report_user_error(error)
+            return USER_ERROR_EXIT_CODE
+    except (KeyboardInterrupt, Abort):
+        sys.stderr.write("interrupted\n")
+        sys.stderr.flush()
+        return INTERRUPTED_EXIT_CODE
+    except BrokenPipeError:
+        _silence_stdout()
+        return BROKEN_PIPE_EXIT_CODE
+    except Exception as error:  # a bug: one line, the traceback only on request
+        report_internal_error(error, f"'{_command_words(args)}'")
+        return INTERNAL_ERROR_EXIT_CODE
+    return 0
+
+
+def main(argv: Sequence[str] | None = None) -> None:
+    """Run the app on ``argv`` (default: the command line) and exit with its code."""
+    code = run(argv)
+    try:
+        sys.stdout.flush()
+    except BrokenPipeError:  # the reader left after the last write: quiet, like above
+        _silence_stdout()
+        code = code or BROKEN_PIPE_EXIT_CODE
+    except (OSError, ValueError):
+        pass
+    sys.exit(code)

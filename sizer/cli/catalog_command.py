@@ -2,14 +2,18 @@
 
 from __future__ import annotations
 
+import codecs
 import sys
 from pathlib import Path
 from typing import Annotated
 
 import typer
 
+from sizer.cli.catalog_option import check_catalog_references
 from sizer.cli.options import FormatOption, OutputOption
+from sizer.errors import UserError
 from sizer.report.formats import Format
+from sizer.report.printable import printable
 
 catalog_app = typer.Typer(
     name="catalog",
@@ -57,13 +61,18 @@ def list_catalogs(
         sizer catalog list my-motors.yaml --format csv
     """
     from sizer.catalog_tools import catalog_entries, catalog_summaries, summarize_catalog
+    from sizer.cli.output_guard import check_output
+    from sizer.io import bundled_catalogs
     from sizer.report.catalog_tables import CatalogsDocument, MotorsDocument
     from sizer.report.document import publish
 
     if catalog is None:
+        check_output(output, bundled_catalogs().values())
         publish(CatalogsDocument(catalog_summaries()), fmt, output)
         return
+    check_output(output, [catalog])
     summary = summarize_catalog(catalog)
+    check_output(output, [summary.path])
     title = f"{summary.title or summary.name} ({summary.path})"
     publish(MotorsDocument(catalog_entries(summary.path), title=title), fmt, output)
 
@@ -89,9 +98,17 @@ def show(
         sizer catalog show MY-MOTOR --catalog my-motors.yaml --format json
     """
     from sizer.catalog_tools import find_motor
+    from sizer.cli.output_guard import check_output
+    from sizer.io import bundled_catalogs, resolve_catalog
     from sizer.report.catalog_tables import MotorDocument
     from sizer.report.document import publish
 
+    check_catalog_references(catalog or ())
+    check_output(output, catalog or ())
+    if output is not None:  # the catalogs searched: named (resolved) or every bundled one
+        read = ([resolve_catalog(c, Path.cwd()) for c in catalog] if catalog
+                else list(bundled_catalogs().values()))
+        check_output(output, read)
     publish(MotorDocument(find_motor(motor_id, catalog or None)), fmt, output)
 
 
@@ -126,9 +143,9 @@ def validate(
     references = files or [str(p) for p in bundled_catalogs().values()]
     report = validate_catalogs(references)
     for finding in report.findings:
-        typer.echo(str(finding))
+        typer.echo(printable(str(finding)))
     for error in report.unreadable:
-        typer.echo(f"error: {error}", err=True)
+        typer.echo(printable(f"error: {error}"), err=True)
     if not quiet:
         count = len(report.findings)
         summary = (f"{len(report.files)} file(s), {report.motors} motor(s): "
@@ -189,11 +206,16 @@ def import_command(
           --manufacturer ACME --source 'ACME catalog 2024, https://...' -o acme.yaml
     """
     from sizer.catalog_tools import CatalogImportError, import_csv, parse_column_map
+    from sizer.cli.output_guard import check_output
     from sizer.report.output import emit
 
+    check_output(output, [csv_file])
+    try:
+        codecs.lookup(encoding)
+    except LookupError:
+        raise UserError(f"unknown text encoding {encoding!r}; e.g. utf-8, cp1252, "
+                        f"latin-1, shift_jis", field="--encoding") from None
     if delimiter is not None and len(delimiter.replace("\\t", "\t")) != 1:
-        from sizer.errors import UserError
-
         raise UserError(f"expected one character, got {delimiter!r}", field="--delimiter")
     try:
         catalog = import_csv(
@@ -203,7 +225,7 @@ def import_command(
             decimal_comma=decimal_comma, encoding=encoding)
     except CatalogImportError as error:
         for problem in error.problems:
-            sys.stderr.write(f"error: {problem}\n")
+            sys.stderr.write(printable(f"error: {problem}") + "\n")
         sys.stderr.flush()
         raise typer.Exit(2) from None
     from sizer.cli.app import report_warnings
@@ -211,7 +233,7 @@ def import_command(
     report_warnings(catalog.warnings)
     emit(catalog.yaml(), output)
     if output is not None:
-        typer.echo(f"{len(catalog.motors)} motor(s) written to {output}", err=True)
+        typer.echo(printable(f"{len(catalog.motors)} motor(s) written to {output}"), err=True)
 
 
 def register(app: typer.Typer) -> None:

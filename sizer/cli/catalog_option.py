@@ -31,12 +31,24 @@ DesignArgument = Annotated[
 ]
 
 
+def check_catalog_references(catalogs: Sequence[str], field: str = "--catalog") -> None:
+    """Each ``--catalog`` names a file or a bundled catalog, else a UserError naming the
+    option (before the design is read)."""
+    from sizer.cli.options import blame_option
+    from sizer.io import resolve_catalog
+
+    for reference in catalogs:
+        with blame_option(field):
+            resolve_catalog(reference, Path.cwd())
+
+
 def load_design_file(design: Path, catalogs: Sequence[str] | None) -> Design:
     """The design with its catalogs plus ``--catalog`` ones; a design that names no
     catalog (and no --catalog) gets the bundled motors."""
     from sizer.cli.app import report_warnings
     from sizer.io import load_design  # lazy: keeps --help fast
 
+    check_catalog_references(catalogs or ())
     loaded = load_design(design, extra_catalogs=catalogs or (), default_motors=True)
     report_warnings(loaded.warnings)
     return loaded

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from sizer.cli.catalog_option import CatalogOption, load_design_file
+from sizer.cli.catalog_option import CatalogOption, check_catalog_references, load_design_file
 from sizer.cli.options import EnvelopeOption
 from sizer.errors import UserError
 
@@ -18,6 +18,7 @@ if TYPE_CHECKING:
 
 CHECK_FAILED_EXIT_CODE = 1
 INVALID_INPUT_EXIT_CODE = 2
+INTERNAL_ERROR_EXIT_CODE = 3
 
 
 class CheckFormat(StrEnum):
@@ -43,8 +44,10 @@ def check(
 
     Exit code 0 when every design's pair meets every limit with the required margins,
     1 when one does not (the output says which limit fails and by how much), 2 when a
-    file is invalid (one 'error: ...' line on stderr per invalid file; the others are
-    still checked).
+    file is invalid (one 'error: ...' line on stderr per invalid file), 3 when sizer
+    fails on a file (an internal error, a bug: one 'internal error: ...' line naming the
+    file). The other files are still checked; the exit code is the gravest: 3, else 2,
+    else 1, else 0.
 
     Examples:
 
@@ -52,12 +55,13 @@ def check(
 
         sizer check designs/*.yaml --format json
     """
-    from sizer.cli.app import report_user_error
+    from sizer.cli.app import report_internal_error, report_user_error
     from sizer.report.json_text import render_json
     from sizer.report.output import emit
 
+    check_catalog_references(catalog or ())  # an option's mistake: once, before any file
     documents: list[CheckDocument] = []
-    invalid = False
+    invalid = internal = False
     for design in designs:
         try:
             document = check_one(design, catalog or (), envelope)
@@ -65,12 +69,18 @@ def check(
             report_user_error(error)
             invalid = True
             continue
+        except Exception as error:  # a bug in sizer: reported, the other files checked
+            report_internal_error(error, f"checking {design}")
+            internal = True
+            continue
         documents.append(document)
         if fmt is CheckFormat.TABLE:
-            emit(("\n" if len(documents) > 1 else "") + document.text(), None)
+            emit(("\n" if len(documents) > 1 else "") + document.text(), None, escape=True)
     if fmt is CheckFormat.JSON and documents:
         data = [d.data() for d in documents]
         emit(render_json(data[0] if len(designs) == 1 else data), None)
+    if internal:
+        raise typer.Exit(INTERNAL_ERROR_EXIT_CODE)
     if invalid:
         raise typer.Exit(INVALID_INPUT_EXIT_CODE)
     if not all(d.passed for d in documents):

@@ -6,7 +6,7 @@ from typing import Annotated
 
 import typer
 
-from sizer.cli.options import FormatOption, OutputOption
+from sizer.cli.options import FormatOption, OutputOption, blame_option
 from sizer.errors import UserError
 from sizer.report.formats import Format
 from sizer.units import parse_displacement, to_si
@@ -44,10 +44,12 @@ def law(
 
         sizer law cycloidal --displacement '90 deg' --duration '0.2 s' --format csv
     """
+    from sizer.cli.output_guard import check_output
     from sizer.laws import ScaledMotion, make_law  # lazy: keeps --help fast
     from sizer.report.document import publish
     from sizer.report.series_table import SeriesDocument
 
+    check_output(output)
     h, linear = parse_displacement(displacement, field="--displacement")
     T = to_si(duration, "time", field="--duration")
     if T <= 0.0:
@@ -56,7 +58,9 @@ def law(
     q0 = to_si(start_position, "length" if linear else "angle", field="--start-position")
     if not 2 <= samples <= MAX_SAMPLES:
         raise UserError(f"must be between 2 and {MAX_SAMPLES}, got {samples}", field="--samples")
-    motion = ScaledMotion(make_law(spec), h, T, start_time=t0, start_position=q0)
+    with blame_option("SPEC"):
+        law_object = make_law(spec)
+    motion = ScaledMotion(law_object, h, T, start_time=t0, start_position=q0)
     publish(SeriesDocument(motion, motion.sample(samples), linear=linear), fmt, output)
 
 

@@ -6,7 +6,7 @@ from typing import Annotated
 
 import typer
 
-from sizer.cli.options import FormatOption, OutputOption
+from sizer.cli.options import FormatOption, OutputOption, blame_option
 from sizer.report.formats import Format
 
 LawOption = Annotated[
@@ -34,12 +34,16 @@ def laws(
 
         sizer laws --law cycloidal --law 'double_s(alpha=1/3, beta=1/4)' --format md
     """
+    from sizer.cli.output_guard import check_output
     from sizer.laws import DEFAULT_LAW_SPECS, make_law  # lazy: keeps --help fast
     from sizer.report.document import publish
     from sizer.report.laws_table import LawsDocument
 
+    check_output(output)
     specs = law or list(DEFAULT_LAW_SPECS)
-    publish(LawsDocument([make_law(spec) for spec in specs]), fmt, output)
+    with blame_option("--law"):
+        laws = [make_law(spec) for spec in specs]
+    publish(LawsDocument(laws), fmt, output)
 
 
 def register(app: typer.Typer) -> None:

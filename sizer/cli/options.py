@@ -2,13 +2,35 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
 from enum import StrEnum
 from pathlib import Path
 from typing import Annotated
 
 import typer
 
+from sizer.errors import UserError
 from sizer.report.formats import Format
+
+
+@contextmanager
+def blame_option(field: str) -> Iterator[None]:
+    """A UserError raised inside names the option ``field`` (unless it names a field)."""
+    try:
+        yield
+    except UserError as error:
+        raise error.located(field=field) from None
+
+
+def check_law_specs(specs: list[str] | tuple[str, ...], field: str) -> None:
+    """Every spec reads as a law (``auto`` parameters allowed), else a UserError naming
+    ``field``: checked before any file is read or any work done."""
+    from sizer.laws import resolve  # lazy: keeps --help fast
+
+    for spec in specs:
+        with blame_option(field):
+            resolve(spec)
 
 FormatOption = Annotated[
     Format,

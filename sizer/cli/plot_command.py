@@ -16,7 +16,9 @@ from typing import TYPE_CHECKING, Annotated
 import typer
 
 from sizer.cli.catalog_option import CatalogOption, DesignArgument, load_design_file
+from sizer.cli.options import blame_option, check_law_specs
 from sizer.errors import UserError
+from sizer.report.printable import printable
 
 if TYPE_CHECKING:
     from sizer.model.domain import Design, Motor
@@ -103,24 +105,31 @@ def plot(
         sizer plot examples/book/ex6_1-6_2.yaml --motor ex6_1 --law cycloidal
         --law 'trapezoidal(alpha=0.12732200375003505)' --speed-unit rad/s -o fig6_2.svg
     """
+    from sizer.cli.output_guard import check_output, check_outputs
     from sizer.report.plots import curve_for, figure_format, save_figure, speed_torque_figure
     from sizer.report.plots.speed_torque import SPEED_UNITS
 
     figure_format(output)
     if speed_unit not in SPEED_UNITS:
-        raise UserError(f"expected one of {', '.join(SPEED_UNITS)}, got {speed_unit!r}",
-                        field="--speed-unit")
+        raise UserError(f"expected one of {', '.join(SPEED_UNITS)}, got "
+                        f"{printable(repr(speed_unit))}", field="--speed-unit")
     figure_size = parse_size(size)
+    check_law_specs(law or [], "--law")
+    check_output(output, [design, *(catalog or ())])
     loaded = load_design_file(design, catalog)
+    check_outputs([output], loaded.files)
     try:
         results = plot_pairs(loaded, motor, law or ())
     except UserError as error:
+        if (error.field or "").startswith("--"):  # an option's mistake, not the file's
+            raise
         raise error.located(file=str(design)) from None
     drawn, curves = [], []
     for result in results:
         if result.duration is None:
-            sys.stderr.write(f"note: {result.motor} with {result.spec} has no feasible "
-                             f"duration, not drawn ({result.reason})\n")
+            sys.stderr.write(printable(f"note: {result.motor} with {result.spec} has no "
+                                       f"feasible duration, not drawn ({result.reason})")
+                             + "\n")
             continue
         drawn.append(result)
         curves.append(curve_for(loaded, result, samples=samples))
@@ -132,8 +141,8 @@ def plot(
                                  title=loaded.name,
                                  duration_name="T_min" if loaded.task.minimize else "T")
     save_figure(figure, output, dpi=dpi)
-    typer.echo(f"{output}: speed-torque diagram of {drawn[0].motor} with "
-               f"{', '.join(r.spec for r in drawn)}")
+    typer.echo(printable(f"{output}: speed-torque diagram of {drawn[0].motor} with "
+                         f"{', '.join(r.spec for r in drawn)}"))
 
 
 def plot_pairs(design: Design, motor: str | None = None, laws: Sequence[str] = (),
@@ -216,12 +225,14 @@ def plot_law(
         sizer plot-law 'trapezoidal(alpha=1/3)' 'double_s(alpha=1/3, beta=1/4)'
         --displacement '90 deg' --duration '0.25 s' -o trapezoid.svg
     """
+    from sizer.cli.output_guard import check_output
     from sizer.laws import make_law  # lazy: keeps --help fast
     from sizer.report.plots import figure_format, law_profiles_figure, save_figure
     from sizer.units import parse_displacement, to_si
 
     figure_format(output)
     figure_size = parse_size(size)
+    check_output(output)
     if (displacement is None) != (duration is None):
         given = "--displacement" if displacement is not None else "--duration"
         missing = "--duration" if displacement is not None else "--displacement"
@@ -235,12 +246,13 @@ def plot_law(
             raise UserError(f"must be positive, got {duration!r}", field="--duration")
         if h == 0.0:
             raise UserError("must not be zero", field="--displacement")
-    laws = [make_law(spec) for spec in dict.fromkeys(specs)]
+    with blame_option("SPEC"):
+        laws = [make_law(spec) for spec in dict.fromkeys(specs)]
     figure = law_profiles_figure(laws, displacement=h, duration=T, linear=linear,
                                  samples=samples, size=figure_size, dpi=dpi)
     save_figure(figure, output, dpi=dpi)
-    typer.echo(f"{output}: position, velocity, acceleration and jerk of "
-               f"{', '.join(law.spec for law in laws)}")
+    typer.echo(printable(f"{output}: position, velocity, acceleration and jerk of "
+                         f"{', '.join(law.spec for law in laws)}"))
 
 
 def register(app: typer.Typer) -> None:

@@ -9,6 +9,8 @@ import typer
 
 from sizer.cli.catalog_option import CatalogOption, DesignArgument
 from sizer.cli.plot_command import DpiOption
+from sizer.errors import UserError
+from sizer.report.printable import printable
 
 
 def report(
@@ -44,13 +46,29 @@ def report(
 
         sizer report examples/indexing-table.yaml -o report/
     """
-    from sizer.cli.size_command import load_and_size
-    from sizer.report.design_report import write_report
+    from sizer.cli.output_guard import check_outputs
+    from sizer.cli.size_command import check_rank_key, load_and_size
+    from sizer.report.design_report import (
+        LAWS_FIGURE,
+        REPORT_FILE,
+        candidate_figure,
+        write_report,
+    )
 
-    loaded, sizing = load_and_size(design, catalog, motor, rank_by)
+    check_rank_key(rank_by)
+    if output.is_symlink() and not output.is_dir():
+        raise UserError(f"{printable(str(output))} is a symbolic link to a missing folder "
+                        f"or to a file; name a folder", field="--output")
+    if output.exists() and not output.is_dir():
+        raise UserError(f"{printable(str(output))} is not a folder; name a folder",
+                        field="--output")
+    targets = [output / REPORT_FILE, output / LAWS_FIGURE,
+               *(output / candidate_figure(rank) for rank in range(1, best + 1))]
+    check_outputs(targets, [design, *(catalog or ())])
+    loaded, sizing = load_and_size(design, catalog, motor, rank_by, outputs=targets)
     written = write_report(loaded, sizing, output, top=top, best=best, rank_by=rank_by,
                            source=design.name, dpi=dpi)
-    typer.echo(f"{written[0]}: report with {len(written) - 1} figures")
+    typer.echo(printable(f"{written[0]}: report with {len(written) - 1} figures"))
 
 
 def register(app: typer.Typer) -> None:

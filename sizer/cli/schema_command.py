@@ -34,6 +34,7 @@ def schema(
 
         sizer schema design --output design.schema.json
     """
+    from sizer.cli.output_guard import check_output
     from sizer.io.loader import (  # lazy: keeps --help fast
         catalog_schema,
         design_schema,
@@ -42,6 +43,7 @@ def schema(
     from sizer.report.json_text import render_json
     from sizer.report.output import emit
 
+    check_output(output)
     build = {SchemaName.DESIGN: design_schema, SchemaName.CATALOG: catalog_schema,
              SchemaName.GEARBOXES: gearbox_catalog_schema}[which]
     emit(render_json(build()), output)

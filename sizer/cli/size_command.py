@@ -12,6 +12,7 @@ from sizer.cli.catalog_option import CatalogOption, DesignArgument, load_design_
 from sizer.cli.options import EnvelopeOption, FormatOption, OutputOption
 from sizer.errors import UserError
 from sizer.report.formats import Format
+from sizer.report.printable import printable
 
 if TYPE_CHECKING:
     from pathlib import Path
@@ -51,7 +52,8 @@ def size(
     With a given duration each pair is checked (speed, peak and RMS torque against the
     motor's regions, inertia ratio, ...) and the margins are reported; with
     'duration: minimize' each pair gets its shortest feasible duration T_min.
-    Exit code 0 even when no pair is feasible (the report says so); 2 for bad input.
+    Exit code 0 even when no pair is feasible (the report says so); 2 for bad input;
+    3 for an internal error (a bug in sizer).
 
     Examples:
 
@@ -63,9 +65,13 @@ def size(
 
         sizer size examples/book/ex6_3.yaml --motor ex6_3
     """
+    from sizer.cli.output_guard import check_output
     from sizer.report.sizing_table import SizingDocument, publish_sizing
 
-    loaded, sizing = load_and_size(design, catalog, motor, rank_by, envelope=envelope)
+    check_rank_key(rank_by)
+    check_output(output, [design, *(catalog or ())])
+    loaded, sizing = load_and_size(design, catalog, motor, rank_by, envelope=envelope,
+                                   outputs=() if output is None else (output,))
     document = SizingDocument(sizing, loaded, rank_by=rank_by, top=top,
                               include_infeasible=show_all)
     publish_sizing(document, fmt, output)
@@ -73,15 +79,17 @@ def size(
 
 def load_and_size(design: Path, catalog: Sequence[str] | None, motor: Sequence[str] | None,
                   rank_by: str | None, *, envelope: str | None = None,
-                  ) -> tuple[Design, SizingResult]:
+                  outputs: Sequence[Path] = ()) -> tuple[Design, SizingResult]:
     """Load a design (plus --catalog, restricted to --motor ids, with --envelope) and size
-    it; UserErrors of the sizing name the design file."""
+    it; UserErrors of the sizing name the design file. None of the ``outputs`` may be a
+    file the load read (checked before the sizing)."""
+    from sizer.cli.output_guard import check_outputs
     from sizer.cli.progress import sizing_progress
     from sizer.sizing import size_design
-    from sizer.sizing.ranking import rank_rule
 
-    rank_rule(rank_by, "duration")  # an unknown key fails before any work
+    check_rank_key(rank_by)  # an unknown key fails before any work
     loaded = load_design_file(design, catalog)
+    check_outputs(outputs, loaded.files)
     if envelope:
         limits = replace(loaded.limits, envelope=str(envelope))  # type: ignore[arg-type]
         loaded = replace(loaded, limits=limits)
@@ -92,6 +100,21 @@ def load_and_size(design: Path, catalog: Sequence[str] | None, motor: Sequence[s
             return loaded, size_design(loaded, rank_by=rank_by, progress=progress)
     except UserError as error:
         raise error.located(file=str(design)) from None
+
+
+def check_rank_key(rank_by: str | None, field: str = "--rank-by") -> None:
+    """UserError naming the option and its choices (sizer.sizing.ranking.RankKey) when
+    ``rank_by`` is not a key."""
+    from sizer.sizing.ranking import RANK_ALIASES, RankKey
+
+    if rank_by is None:
+        return
+    name = rank_by.strip().lower()
+    if name in RANK_ALIASES or name in {k.value for k in RankKey}:
+        return
+    choices = ", ".join([*(k.value for k in RankKey), *RANK_ALIASES])
+    raise UserError(f"unknown key {printable(repr(rank_by))}; choose one of {choices}",
+                    field=field)
 
 
 def select_motors(motors: Sequence[Motor], ids: Sequence[str]) -> tuple[Motor, ...]:

@@ -247,7 +247,8 @@ def load_design(path: PathLike, extra_catalogs: Iterable[PathLike] = (), *,
     transmission, ratio_choice = build_transmission(model.transmission, source, path.parent,
                                                     linear)
     transmission = replace(transmission, efficiency_applies_to=model.efficiency_applies_to)
-    motors = _design_motors(model, source, path.parent, extra, warnings)
+    files = [path, *_gearbox_catalog_files(model.transmission, path.parent)]
+    motors = _design_motors(model, source, path.parent, extra, warnings, files)
     by_id = {m.id: m for m in motors}
     chosen_motor = chosen_law = None
     if model.check is not None:
@@ -266,7 +267,15 @@ def load_design(path: PathLike, extra_catalogs: Iterable[PathLike] = (), *,
         chosen_law=chosen_law,
         name=model.name if model.name is not None else path.stem,
         warnings=tuple(warnings),
+        files=tuple(files),
     )
+
+
+def _gearbox_catalog_files(items: Any, folder: Path) -> list[Path]:
+    """The gearbox catalog files the transmission's stages name (read while building it)."""
+    items = items if isinstance(items, list) else [items]
+    named = (getattr(item, "catalog", None) for item in items)
+    return [folder / name for name in named if isinstance(name, str)]
 
 
 def default_laws() -> tuple[str, ...]:
@@ -372,7 +381,8 @@ def _limits(model: DesignFile, source: YamlSource, linear: bool) -> Limits:
 
 
 def _design_motors(model: DesignFile, source: YamlSource, folder: Path,
-                   extra_catalogs: Iterable[PathLike], warnings: list[str]) -> tuple[Motor, ...]:
+                   extra_catalogs: Iterable[PathLike], warnings: list[str],
+                   files: list[Path] | None = None) -> tuple[Motor, ...]:
     located: list[_Located] = []
     read: set[Path] = set()
 
@@ -380,6 +390,8 @@ def _design_motors(model: DesignFile, source: YamlSource, folder: Path,
         key = path.resolve()
         if key not in read:
             read.add(key)
+            if files is not None:
+                files.append(path)
             located.extend(_read_catalog(path, warnings))
 
     for index, item in enumerate(model.motors or ()):

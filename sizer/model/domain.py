@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from pathlib import Path
 from typing import Literal
 
 ThermalSpeedRule = Literal["max", "rms", "mean"]
@@ -227,3 +228,6 @@ class Design:
     warnings: tuple[str, ...] = ()
     """Located warnings from loading (``file:line: field: text``), e.g. a bare number far
     from its plausible range; they never change the sizing."""
+    files: tuple[Path, ...] = ()
+    """The files the loader read: the design file, the motor catalogs (named by the design
+    or added), the gearbox catalogs. A command never writes its output over one of them."""

@@ -39,4 +39,4 @@ def publish(document: Document, fmt: Format, output: Path | None) -> None:
     if fmt is Format.TABLE and output is None and stdout_is_terminal():
         print_rich_table(document.table())
         return
-    emit(render_text(document, fmt), output)
+    emit(render_text(document, fmt), output, escape=fmt in (Format.TABLE, Format.MD))

@@ -31,6 +31,7 @@ from sizer.report.json_text import render_json
 from sizer.report.markdown_table import render_markdown_table
 from sizer.report.numbers import short
 from sizer.report.output import emit, stdout_is_terminal
+from sizer.report.printable import printable
 from sizer.report.rich_table import print_rich_table
 from sizer.report.table import Column, Table, make_table
 from sizer.report.text_table import render_text_table
@@ -217,7 +218,7 @@ def print_terminal_table(document: SizingDocument, console: Any = None) -> None:
 
         console.print()
         for line in footer:  # wrapped to the terminal, never read as markup
-            console.print(Text(line))
+            console.print(Text(printable(line)))
 
 
 def publish_sizing(document: SizingDocument, fmt: Format, output: Path | None) -> None:
@@ -229,7 +230,7 @@ def publish_sizing(document: SizingDocument, fmt: Format, output: Path | None) -
     if fmt is Format.TABLE and output is None and stdout_is_terminal():
         print_terminal_table(document)
         return
-    emit(document.render(fmt), output)
+    emit(document.render(fmt), output, escape=fmt in (Format.TABLE, Format.MD))
     shown_to_user = output is None and fmt in (Format.TABLE, Format.MD)
     if not document.any_feasible and not shown_to_user:
         sys.stderr.write(NO_FEASIBLE + "\n")
