@@ -6,6 +6,7 @@ import io
 import os
 import subprocess
 import sys
+import threading
 from pathlib import Path
 
 import pytest
@@ -71,23 +72,27 @@ def test_piped_output_has_no_progress_text() -> None:
 @pytest.mark.skipif(not hasattr(os, "openpty"), reason="needs a pseudo-terminal")
 def test_a_terminal_on_stderr_shows_the_bar_and_stdout_stays_clean() -> None:
     master, slave = os.openpty()
-    try:
-        result = run_sizer(subprocess.PIPE, slave)
-        os.close(slave)
-        slave = -1
-        drawn = b""
+    chunks: list[bytes] = []
+
+    def drain() -> None:  # read while the child runs: a full pty buffer would block it
         while True:
             try:
                 chunk = os.read(master, 65536)
             except OSError:
-                break
+                return
             if not chunk:
-                break
-            drawn += chunk
+                return
+            chunks.append(chunk)
+
+    reader = threading.Thread(target=drain, daemon=True)
+    reader.start()
+    try:
+        result = run_sizer(subprocess.PIPE, slave)
     finally:
-        if slave >= 0:
-            os.close(slave)
+        os.close(slave)
+        reader.join(timeout=30)
         os.close(master)
+    drawn = b"".join(chunks)
     assert result.returncode == 0
     assert b"sizing indexing-table.yaml" in drawn
     assert b"sizing" not in result.stdout and b"\x1b" not in result.stdout
