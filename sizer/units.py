@@ -105,18 +105,22 @@ _POWER = re.compile(r"\*\*\s*(\(\s*)?([+-]?\s*\d+(?:\.\d+)?(?:\s*/\s*\d+)?)(?(1)
 _FACTOR = re.compile(r"(?<![A-Za-z_\d.])\d[\d.]*(?:[eE][+-]?\d+)?", re.ASCII)
 
 
+class _LimitError(UserError):
+    """A number or unit text out of bounds: its message stands as it is (not 'expected ...')."""
+
+
 def _not_finite(value: Any, field: str | None) -> UserError:
     if isinstance(value, int):  # too large for a float (repr fails beyond 4300 digits)
         shown = f"an integer of about {int(value.bit_length() * 0.30103) + 1} digits"
     else:
         shown = repr(value) if len(repr(value)) <= 60 else f"{repr(value)[:57]}..."
-    return UserError(f"{shown} is not a finite number: numbers must be finite (no nan or inf), "
+    return _LimitError(f"{shown} is not a finite number: numbers must be finite (no nan or inf), "
                      f"below {_FLOAT_MAX:.4g} in size", field=field)
 
 
 def _check_unit_text(unit: str, text: str, spec: Kind, field: str | None) -> None:
     """Refuse powers pint would spend unbounded work on (``10**10**10``, ``m**1e9``)."""
-    wrong = UserError(f"unit {unit!r} in {text!r}: a power must be a plain number of at most "
+    wrong = _LimitError(f"unit {unit!r} in {text!r}: a power must be a plain number of at most "
                       f"{MAX_UNIT_POWER} ({spec.name.replace('_', ' ')} expected, e.g. "
                       f"{spec.example!r})", field=field)
     pos = 0
@@ -134,7 +138,7 @@ def _check_unit_text(unit: str, text: str, spec: Kind, field: str | None) -> Non
     for factor in _FACTOR.findall(unit):
         exponent = re.search(r"[eE]([+-]?\d+)$", factor)
         if len(factor) > MAX_NUMBER_CHARS or (exponent and abs(int(exponent.group(1))) > 400):
-            raise UserError(f"unit {unit!r} in {text!r}: the number {factor[:30]!r} is out of "
+            raise _LimitError(f"unit {unit!r} in {text!r}: the number {factor[:30]!r} is out of "
                             f"range (numbers must be finite)", field=field)
 
 
@@ -281,6 +285,8 @@ def parse_displacement(value: Any, *, field: str | None = None) -> tuple[float, 
         if unit and not _ANGLE_UNITS.match(unit):
             try:
                 return to_si(value, "length", field=field), True
+            except _LimitError:
+                raise
             except UserError as error:
                 raise UserError(f"expected an angle like '90 deg' or a length like '200 mm', "
                                 f"got {value!r}", field=field) from error

@@ -290,7 +290,8 @@ def _construct_scalar(node: yaml.ScalarNode, path: Path_, source: YamlSource,
     except Exception as error:  # the timestamp constructor raises ValueError and friends
         raise fail(f"invalid YAML value {shown}: {_short(str(error), 120)}") from None
     if isinstance(value, int) and not isinstance(value, bool) and abs(value) > _FLOAT_MAX:
-        raise fail(f"{shown} is too large: numbers must be finite, below {_FLOAT_MAX:.4g}")
+        raise fail(f"an integer of {len(str(abs(value)))} digits is too large: numbers must be "
+                   f"finite, below {_FLOAT_MAX:.4g}")
     if isinstance(value, float) and not math.isfinite(value):
         raise fail(f"{shown} is not a finite number: numbers must be finite (no .inf or "
                    f".nan), below {_FLOAT_MAX:.4g} in size")
