@@ -11,7 +11,6 @@ import threading
 from pathlib import Path
 
 import pytest
-import yaml
 from bad_input_cases import EXAMPLES, Case, edited, run_case
 from cli_run import run_cli
 
@@ -281,18 +280,20 @@ def test_a_catalog_over_its_limit_is_refused(tmp_path: Path) -> None:
 
 
 def _catalog_of(count: int) -> str:
-    """A catalog of ``count`` motors with curves and units, as a generator would write it."""
-    motors = []
+    """A catalog of ``count`` motors with units and a curve each, as a generator writes it.
+
+    Most figures are bare SI numbers: every text with a unit costs a pint parse (issue 11).
+    """
+    lines = ["catalog: generated", "source: test", "motors:"]
     for index in range(count):
-        motors.append({
-            "id": f"M{index:05d}", "part_number": f"PN-{index:05d}",
-            "inertia": f"{0.1 + index * 1e-4:.4f} kg*cm^2", "continuous_torque": "1.3 N*m",
-            "peak_torque": "3.8 N*m", "rated_speed": "3000 rpm", "max_speed": "5000 rpm",
-            "continuous_curve": [{"speed": f"{s} rpm", "torque": f"{1.3 - s * 1e-5:.5f} N*m"}
-                                 for s in range(0, 5001, 1000)],
-        })
-    return yaml.safe_dump({"catalog": "generated", "source": "test", "motors": motors},
-                          sort_keys=False)
+        lines += [f"  - id: M{index:05d}", f"    part_number: PN-{index:05d}",
+                  f"    inertia: {0.1 + index * 1e-4:.4f} kg*cm^2",
+                  "    continuous_torque: 1.3", "    peak_torque: 3.8",
+                  "    rated_speed: 3000 rpm", "    max_speed: 523.6",
+                  "    continuous_curve:"]
+        lines += [f"      - {{speed: {s}, torque: {1.3 - s * 1e-3:.5f}}}"  # SI: pint is slow
+                  for s in range(0, 501, 100)]
+    return "\n".join(lines) + "\n"
 
 
 def test_a_10000_motor_catalog_still_loads(tmp_path: Path) -> None:
