@@ -11,7 +11,7 @@ import threading
 from pathlib import Path
 
 import pytest
-from bad_input_cases import EXAMPLES, Case, edited, run_case
+from bad_input_cases import EXAMPLES, Case, assert_clean_answer, edited, run_case
 from cli_run import run_cli
 
 from sizer.input_limits import (
@@ -162,6 +162,11 @@ CASES = [
          words=("design.yaml:", "laws[0]", "out of range", "exponent of at most 400")),
     Case("law-fraction-huge", design=_law("trapezoidal(alpha=1/1" + "0" * 400 + ")"),
          words=("design.yaml:", "laws[0]", "at most 100 characters")),
+    Case("law-beyond-float", design=_law("trapezoidal(alpha=1e400)"),
+         words=("design.yaml:", "laws[0]", "beyond the float range", "finite number")),
+    Case("law-fraction-beyond-float", args=("law", "trapezoidal(alpha=1e300/1e-300)",
+                                            "--displacement", "1 rad", "--duration", "1 s"),
+         words=("1e300/1e-300", "beyond the float range")),
     Case("law-nan", design=_law("trapezoidal(alpha=NaN)"),
          words=("design.yaml:", "laws[0]", "not a finite number", "1/3")),
     Case("law-minus-infinity", design=_law("trapezoidal(alpha=-Infinity)"),
@@ -304,3 +309,11 @@ def test_a_10000_motor_catalog_still_loads(tmp_path: Path) -> None:
     assert motors[-1].id == "M09999"
     assert motors[-1].inertia == pytest.approx((0.1 + 9999e-4) * 1e-4)
     assert len(motors[0].continuous_curve) == 6
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root reads any file")
+def test_a_design_without_read_permission(tmp_path: Path) -> None:
+    (tmp_path / "secret.yaml").write_text(TEXT, encoding="utf-8")
+    (tmp_path / "secret.yaml").chmod(0)
+    result = run_cli("size", str(tmp_path / "secret.yaml"))  # run_case could not read it
+    assert_clean_answer(result, 2, ("secret.yaml", "permission denied"))

@@ -29,6 +29,7 @@ _TOKEN = re.compile(
 )
 _EXPONENT = re.compile(r"[eE]([+-]?\d+)$")
 _NON_FINITE = frozenset({"nan", "inf", "infinity"})
+_FLOAT_MAX = Fraction(1.7976931348623157e308)
 
 
 @dataclass(frozen=True)
@@ -117,12 +118,19 @@ def _value(group: list[tuple[str, str]], text: str) -> Fraction | str:
     try:
         if kinds == ["name"] and values[0].lower() == AUTO:
             return AUTO
+        value = None
         if kinds == ["number"]:
-            return _number(values[0], text)
+            value = _number(values[0], text)
         if kinds == ["number", "punct", "number"] and values[1] == "/":
-            return _number(values[0], text) / _number(values[2], text)
+            value = _number(values[0], text) / _number(values[2], text)
     except (ValueError, ZeroDivisionError):
-        pass
+        value = None
+    if value is not None:
+        if abs(value) > _FLOAT_MAX:
+            raise UserError(f"cannot read law spec {_short(text)}: {''.join(values)!r} is "
+                            f"beyond the float range; a parameter must be a finite number "
+                            f"like 0.25 or 1/3")
+        return value
     shown = "".join(values) or "nothing"
     raise UserError(f"cannot read law spec {text!r}: {shown!r} is not a number, "
                     f"a fraction like 1/3, or 'auto'")
