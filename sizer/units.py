@@ -42,7 +42,7 @@ from functools import cache
 from typing import Any
 
 from sizer.errors import UserError
-from sizer.input_limits import MAX_NUMBER_CHARS, MAX_QUANTITY_CHARS, MAX_UNIT_POWER
+from sizer.input_limits import MAX_EXPONENT, MAX_NUMBER_CHARS, MAX_QUANTITY_CHARS, MAX_UNIT_POWER
 
 
 @dataclass(frozen=True)
@@ -137,7 +137,8 @@ def _check_unit_text(unit: str, text: str, spec: Kind, field: str | None) -> Non
             raise wrong
     for factor in _FACTOR.findall(unit):
         exponent = re.search(r"[eE]([+-]?\d+)$", factor)
-        if len(factor) > MAX_NUMBER_CHARS or (exponent and abs(int(exponent.group(1))) > 400):
+        too_big = exponent is not None and abs(int(exponent.group(1))) > MAX_EXPONENT
+        if len(factor) > MAX_NUMBER_CHARS or too_big:
             raise _LimitError(f"unit {unit!r} in {text!r}: the number {factor[:30]!r} is out of "
                             f"range (numbers must be finite)", field=field)
 
