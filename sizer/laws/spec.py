@@ -127,8 +127,8 @@ def _value(group: list[tuple[str, str]], text: str) -> Fraction | str:
         value = None
     if value is not None:
         if abs(value) > _FLOAT_MAX:
-            raise UserError(f"cannot read law spec {_short(text)}: {''.join(values)!r} is "
-                            f"beyond the float range; a parameter must be a finite number "
+            raise UserError(f"cannot read law spec {_short(text)}: {''.join(values)!r} is too "
+                            f"large, beyond the float range; a parameter must be a finite number "
                             f"like 0.25 or 1/3")
         return value
     shown = "".join(values) or "nothing"
