@@ -42,6 +42,7 @@ from functools import cache
 from typing import Any
 
 from sizer.errors import UserError
+from sizer.input_limits import MAX_EXPONENT, MAX_NUMBER_CHARS, MAX_QUANTITY_CHARS, MAX_UNIT_POWER
 
 
 @dataclass(frozen=True)
@@ -95,9 +96,51 @@ def registry() -> Any:
 
 
 _NUMBER_AND_UNIT = re.compile(
-    r"^\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|[+-]?nan|[+-]?inf)\s*(.*?)\s*$",
-    re.IGNORECASE,
+    r"^\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|[+-]?\.?nan|[+-]?\.?inf(?:inity)?)"
+    r"(?![A-Za-z])\s*(.*?)\s*$",
+    re.IGNORECASE | re.ASCII,
 )
+_FLOAT_MAX = 1.7976931348623157e308
+_POWER = re.compile(r"\*\*\s*(\(\s*)?([+-]?\s*\d+(?:\.\d+)?(?:\s*/\s*\d+)?)(?(1)\s*\))")
+_FACTOR = re.compile(r"(?<![A-Za-z_\d.])\d[\d.]*(?:[eE][+-]?\d+)?", re.ASCII)
+
+
+class _LimitError(UserError):
+    """A number or unit text out of bounds: its message stands as it is (not 'expected ...')."""
+
+
+def _not_finite(value: Any, field: str | None) -> UserError:
+    if isinstance(value, int):  # too large for a float (repr fails beyond 4300 digits)
+        shown = f"an integer of about {int(value.bit_length() * 0.30103) + 1} digits"
+    else:
+        shown = repr(value) if len(repr(value)) <= 60 else f"{repr(value)[:57]}..."
+    return _LimitError(f"{shown} is not a finite number: numbers must be finite (no nan or inf), "
+                     f"below {_FLOAT_MAX:.4g} in size", field=field)
+
+
+def _check_unit_text(unit: str, text: str, spec: Kind, field: str | None) -> None:
+    """Refuse powers pint would spend unbounded work on (``10**10**10``, ``m**1e9``)."""
+    wrong = _LimitError(f"unit {unit!r} in {text!r}: a power must be a plain number of at most "
+                      f"{MAX_UNIT_POWER} ({spec.name.replace('_', ' ')} expected, e.g. "
+                      f"{spec.example!r})", field=field)
+    pos = 0
+    while (start := unit.find("**", pos)) >= 0:
+        match = _POWER.match(unit, start)
+        if match is None:
+            raise wrong
+        power = match.group(2).replace(" ", "")
+        num, _, den = power.partition("/")
+        if abs(float(num)) > MAX_UNIT_POWER or (den and float(den) == 0):
+            raise wrong
+        pos = match.end()
+        if unit[pos:].lstrip().startswith("**"):
+            raise wrong
+    for factor in _FACTOR.findall(unit):
+        exponent = re.search(r"[eE]([+-]?\d+)$", factor)
+        too_big = exponent is not None and abs(int(exponent.group(1))) > MAX_EXPONENT
+        if len(factor) > MAX_NUMBER_CHARS or too_big:
+            raise _LimitError(f"unit {unit!r} in {text!r}: the number {factor[:30]!r} is out of "
+                            f"range (numbers must be finite)", field=field)
 
 
 def _expected(spec: Kind, got: Any, field: str | None) -> UserError:
@@ -123,13 +166,20 @@ def to_si(value: Any, kind: str, *, field: str | None = None) -> float:
     if isinstance(value, bool) or value is None:
         raise _expected(spec, value, field)
     if isinstance(value, int | float):
-        result = float(value)
+        try:
+            result = float(value)
+        except OverflowError:  # an int beyond the float range
+            raise _not_finite(value, field) from None
     elif isinstance(value, str):
+        if len(value) > MAX_QUANTITY_CHARS:
+            raise UserError(f"expected {spec.name.replace('_', ' ')} like {spec.example!r}, got "
+                            f"a text of {len(value):,} characters (the limit is "
+                            f"{MAX_QUANTITY_CHARS})", field=field)
         result = _parse_text(value, spec, field)
     else:
         raise _expected(spec, value, field)
     if not math.isfinite(result):
-        raise UserError(f"{value!r} is not a finite number", field=field)
+        raise _not_finite(value, field)
     return result
 
 
@@ -170,6 +220,7 @@ def _parse_text(text: str, spec: Kind, field: str | None) -> float:
     wrong = _expected(spec, text, field)
     if not number:
         raise wrong
+    number = number.replace(".", "") if number[-1:].isalpha() else number  # .inf, .nan
     if not unit:
         return float(number)
     if spec.name == "fraction":
@@ -184,9 +235,11 @@ def _parse_text(text: str, spec: Kind, field: str | None) -> float:
     gd2 = spec.name == "inertia" and _GD2.search(unit) is not None
     if gd2:
         unit = _GD2.sub("", unit)
+    pint_unit = _normalize(unit, spec.name)
+    _check_unit_text(pint_unit, text, spec, field)
     ureg = registry()
     try:
-        quantity = ureg.Quantity(float(number), _normalize(unit, spec.name))
+        quantity = ureg.Quantity(float(number), pint_unit)
     except Exception as error:  # pint raises several unrelated error types
         raise UserError(f"unknown unit {unit!r} in {text!r} ({spec.name.replace('_', ' ')} "
                         f"expected, e.g. {spec.example!r})", field=field) from error
@@ -233,6 +286,8 @@ def parse_displacement(value: Any, *, field: str | None = None) -> tuple[float, 
         if unit and not _ANGLE_UNITS.match(unit):
             try:
                 return to_si(value, "length", field=field), True
+            except _LimitError:
+                raise
             except UserError as error:
                 raise UserError(f"expected an angle like '90 deg' or a length like '200 mm', "
                                 f"got {value!r}", field=field) from error

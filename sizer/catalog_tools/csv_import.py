@@ -29,6 +29,8 @@ from pydantic import ValidationError
 from sizer.catalog_tools.catalog_yaml import render_catalog
 from sizer.catalog_tools.checks import check_motor
 from sizer.errors import UserError
+from sizer.input_limits import MAX_CATALOG_BYTES
+from sizer.io.files import decode_text, read_user_bytes
 from sizer.io.validation import all_problems
 from sizer.io.yaml_source import YamlSource
 from sizer.model.inputs import MotorInput
@@ -194,22 +196,15 @@ def _check_maps(maps: Sequence[ColumnMap], source: str | None) -> None:
 def _read_rows(path: Path, encoding: str, delimiter: str | None) -> list[tuple[int, list[str]]]:
     """(line, cells) of every record, header first; line = where the record starts."""
     try:
-        raw = path.read_bytes()
-    except FileNotFoundError:
-        raise UserError("file not found", file=str(path)) from None
-    except IsADirectoryError:
-        raise UserError("is a directory, not a CSV file", file=str(path)) from None
-    except OSError as error:
-        raise UserError(f"cannot read: {error.strerror or error}", file=str(path)) from None
-    try:
-        text = raw.decode("utf-8-sig" if encoding.lower().replace("_", "-") in ("utf-8", "utf8")
-                          else encoding)
+        "".encode(encoding)
     except LookupError:
         raise UserError(f"unknown encoding {encoding!r}", field="--encoding") from None
-    except UnicodeDecodeError as error:
-        line = raw[: error.start].count(b"\n") + 1
-        raise UserError(f"not {encoding} text (save the spreadsheet as UTF-8 CSV, or give "
-                        f"--encoding, e.g. cp1252)", file=str(path), line=line) from None
+    raw = read_user_bytes(path, limit=MAX_CATALOG_BYTES, what="CSV")
+    try:
+        text = decode_text(raw, str(path), encoding=encoding)
+    except UserError as error:
+        raise UserError(f"{error.message} (save the spreadsheet as UTF-8 CSV, or give "
+                        f"--encoding, e.g. cp1252)", file=error.file, line=error.line) from None
     if not text.strip():
         raise UserError("the file is empty", file=str(path))
     if delimiter is None:

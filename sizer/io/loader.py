@@ -22,6 +22,7 @@ from typing import Any
 from pydantic import BaseModel
 
 from sizer.errors import UserError
+from sizer.input_limits import MAX_DESIGN_BYTES, MAX_DESIGN_NODES
 from sizer.io.motor_checks import impossibilities
 from sizer.io.plausibility import bare_number_warnings, motor_warnings
 from sizer.io.transmission import build_transmission
@@ -115,9 +116,9 @@ def resolve_catalog(reference: PathLike, base: Path, *, source: YamlSource | Non
         path = Path(text).expanduser()
         if not path.is_absolute():
             path = base / path
-        if path.is_file():
-            return path
         is_dir = path.is_dir()
+        if path.is_file() or (path.exists() and not is_dir):
+            return path  # a FIFO or a device: read_yaml refuses it with what it is
     except (OSError, ValueError):  # a name too long, a NUL byte...
         path, is_dir = Path(text), False
     if text in bundled:
@@ -235,7 +236,7 @@ def load_design(path: PathLike, extra_catalogs: Iterable[PathLike] = (), *,
     ``motors: []`` still means none. Without it such a design has no motors.
     """
     path = Path(path)
-    source = read_yaml(path)
+    source = read_yaml(path, limit=MAX_DESIGN_BYTES, max_nodes=MAX_DESIGN_NODES)
     model = validate(DesignFile, source)
     warnings = bare_number_warnings(source)
     task = _task(model, source)

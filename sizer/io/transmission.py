@@ -162,7 +162,7 @@ def _gearbox(item: GearboxInput, source: YamlSource, at, index: int,
               "peak_output_torque": item.peak_output_torque, "backlash": item.backlash}
     if item.catalog is not None:
         path = folder / item.catalog
-        if not path.is_file():
+        if not path.exists() or path.is_dir():
             raise source.error(f"no gearbox catalog file {str(path)!r}", at(index, "catalog"))
         options = load_gearbox_catalog(path)
         return options[0].stage, RatioChoice(gearboxes=options)

@@ -4,11 +4,17 @@
 data (safe loader: dicts, lists, str, int, float, bool, None, dates) and a map from paths
 like ``("task", "duration")`` or ``("motors", 3, "inertia")`` to 1-based line numbers.
 Malformed YAML, duplicate keys and a top level that is not a mapping raise UserError with
-the file and line.
+the file and line. The work is bounded (sizer.input_limits): files are read by
+:func:`sizer.io.files.read_user_text`; nodes are counted as they are composed, aliases by the
+size of what they repeat (an alias bomb is refused before it is walked), and the nesting
+depth, the length of a value and the digits of an integer are limited. A number that is not
+finite (``.inf``, ``.nan``, ``1.0e999``) or an integer beyond the float range is refused
+where it is written.
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Hashable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -17,11 +23,82 @@ from typing import Any
 import yaml
 
 from sizer.errors import UserError
+from sizer.input_limits import (
+    MAX_CATALOG_BYTES,
+    MAX_CATALOG_NODES,
+    MAX_INT_DIGITS,
+    MAX_SCALAR_CHARS,
+    MAX_YAML_DEPTH,
+)
+from sizer.io.files import read_user_text
 
 Path_ = tuple[Any, ...]
 """A path into the YAML data: mapping keys and sequence indices."""
 
 _MERGE_TAG = "tag:yaml.org,2002:merge"
+_INT_TAG = "tag:yaml.org,2002:int"
+_FLOAT_MAX = 1.7976931348623157e308
+
+
+if getattr(yaml, "__with_libyaml__", False):
+    from yaml._yaml import CParser
+
+    class _SafeLoader(yaml.composer.Composer, CParser, yaml.constructor.SafeConstructor,
+                      yaml.resolver.Resolver):
+        """libyaml's scanner and parser (7x faster) under PyYAML's composer, which counts."""
+
+        def __init__(self, text: str) -> None:
+            CParser.__init__(self, text)
+            yaml.constructor.SafeConstructor.__init__(self)
+            yaml.resolver.Resolver.__init__(self)
+            yaml.composer.Composer.__init__(self)
+else:  # pragma: no cover - PyYAML built without libyaml
+    _SafeLoader = yaml.SafeLoader  # type: ignore[misc,assignment]
+
+
+class _BoundedLoader(_SafeLoader):
+    """The safe loader with bounded work: nodes (aliases expanded), depth, scalar length."""
+
+    def __init__(self, text: str, file: str | None, max_nodes: int) -> None:
+        super().__init__(text)
+        self.file = file
+        self.max_nodes = max_nodes
+        self.depth = 0
+        self.expanded = 0  # nodes composed so far, an alias counting what it repeats
+        self.sizes: dict[int, int] = {}  # expanded size of each finished node
+
+    def _fail(self, message: str, event: Any) -> UserError:
+        return UserError(message, file=self.file, line=event.start_mark.line + 1)
+
+    def _add(self, count: int, event: Any) -> None:
+        self.expanded += count
+        if self.expanded > self.max_nodes:
+            raise self._fail(f"too many YAML nodes: more than {self.max_nodes:,} values once "
+                             f"aliases are expanded (an alias bomb?)", event)
+
+    def compose_node(self, parent: Any, index: Any) -> Any:
+        event = self.peek_event()
+        if isinstance(event, yaml.AliasEvent):
+            node = super().compose_node(parent, index)
+            self._add(self.sizes.get(id(node), 1), event)  # unfinished: recursive, see _walk
+            return node
+        self.depth += 1
+        if self.depth > MAX_YAML_DEPTH:
+            raise self._fail(f"nested too deeply: more than {MAX_YAML_DEPTH} levels of "
+                             f"mappings and lists", event)
+        start = self.expanded
+        self._add(1, event)
+        node = super().compose_node(parent, index)
+        self.depth -= 1
+        self.sizes[id(node)] = self.expanded - start
+        return node
+
+    def compose_scalar_node(self, anchor: Any) -> Any:
+        event = self.peek_event()
+        if len(event.value) > MAX_SCALAR_CHARS:
+            raise self._fail(f"a value of {len(event.value):,} characters: the limit is "
+                             f"{MAX_SCALAR_CHARS:,}", event)
+        return super().compose_scalar_node(anchor)
 
 
 def format_path(path: Sequence[Any]) -> str:
@@ -71,29 +148,21 @@ class YamlSource:
                          field=format_path(path) or error.field)
 
 
-def read_yaml(path: str | Path) -> YamlSource:
-    """Read and parse a YAML file whose top level must be a mapping."""
-    path = Path(path)
-    try:
-        raw = path.read_bytes()
-    except FileNotFoundError:
-        raise UserError("file not found", file=str(path)) from None
-    except IsADirectoryError:
-        raise UserError("is a directory, not a YAML file", file=str(path)) from None
-    except OSError as error:
-        raise UserError(f"cannot read: {error.strerror or error}", file=str(path)) from None
-    try:
-        text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError as error:
-        line = raw[: error.start].count(b"\n") + 1
-        raise UserError("not UTF-8 text", file=str(path), line=line) from None
-    return parse_yaml(text, str(path))
+def read_yaml(path: str | Path, *, limit: int = MAX_CATALOG_BYTES,
+              max_nodes: int = MAX_CATALOG_NODES) -> YamlSource:
+    """Read and parse a YAML file whose top level is a mapping.
+
+    At most ``limit`` bytes and ``max_nodes`` nodes (aliases expanded); the defaults are
+    those of a catalog, :func:`sizer.io.loader.load_design` passes a design's.
+    """
+    return parse_yaml(read_user_text(path, limit=limit), str(path), max_nodes=max_nodes)
 
 
-def parse_yaml(text: str, file: str | None = None) -> YamlSource:
+def parse_yaml(text: str, file: str | None = None, *,
+               max_nodes: int = MAX_CATALOG_NODES) -> YamlSource:
     """Parse YAML text (one document, a mapping at the top) keeping line numbers."""
     try:
-        loader = yaml.SafeLoader(text)
+        loader = _BoundedLoader(text, file, max_nodes)
     except yaml.YAMLError as error:
         raise _yaml_error(error, text, file) from None
     try:
@@ -134,7 +203,7 @@ def _kind(value: Any) -> str:
     return type(value).__name__
 
 
-def _walk(node: yaml.Node, path: Path_, source: YamlSource, loader: yaml.SafeLoader,
+def _walk(node: yaml.Node, path: Path_, source: YamlSource, loader: Any,
           seen: set[int], active: set[int]) -> None:
     """Record lines of keys/items under ``node`` and reject duplicate keys.
 
@@ -156,7 +225,7 @@ def _walk(node: yaml.Node, path: Path_, source: YamlSource, loader: yaml.SafeLoa
         active.discard(id(node))
 
 
-def _walk_children(node: yaml.Node, path: Path_, source: YamlSource, loader: yaml.SafeLoader,
+def _walk_children(node: yaml.Node, path: Path_, source: YamlSource, loader: Any,
                    seen: set[int], active: set[int]) -> None:
     if isinstance(node, yaml.ScalarNode):
         _construct_scalar(node, path, source, loader)
@@ -189,7 +258,7 @@ def _walk_children(node: yaml.Node, path: Path_, source: YamlSource, loader: yam
 
 
 def _walk_merged(node: yaml.MappingNode, path: Path_, source: YamlSource,
-                 loader: yaml.SafeLoader, seen: set[int], active: set[int]) -> None:
+                 loader: Any, seen: set[int], active: set[int]) -> None:
     for key_node, value_node in node.value:
         if key_node.tag == _MERGE_TAG:
             continue
@@ -199,19 +268,43 @@ def _walk_merged(node: yaml.MappingNode, path: Path_, source: YamlSource,
 
 
 def _construct_scalar(node: yaml.ScalarNode, path: Path_, source: YamlSource,
-                      loader: yaml.SafeLoader) -> Any:
-    """Construct a scalar now, so that a bad one (e.g. date 2024-02-30) has a line."""
+                      loader: Any) -> Any:
+    """Construct a scalar now, so that a bad one (e.g. date 2024-02-30) has a line.
+
+    Integers of more than MAX_INT_DIGITS digits or beyond the float range and floats that
+    are not finite are refused here, wherever they are written.
+    """
+
+    def fail(message: str) -> UserError:
+        return UserError(message, file=source.file, line=node.start_mark.line + 1,
+                         field=format_path(path) or None)
+
+    shown = _short(node.value)
+    if node.tag == _INT_TAG and sum(c.isdigit() for c in node.value) > MAX_INT_DIGITS:
+        raise fail(f"an integer of {sum(c.isdigit() for c in node.value)} digits is too "
+                   f"large: numbers must be finite, below {_FLOAT_MAX:.4g}")
     try:
-        return loader.construct_object(node)
+        value = loader.construct_object(node)
     except yaml.YAMLError:
         raise
     except Exception as error:  # the timestamp constructor raises ValueError and friends
-        raise UserError(f"invalid YAML value {node.value!r}: {error}", file=source.file,
-                        line=node.start_mark.line + 1,
-                        field=format_path(path) or None) from None
+        raise fail(f"invalid YAML value {shown}: {_short(str(error), 120)}") from None
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) > _FLOAT_MAX:
+        raise fail(f"an integer of {len(str(abs(value)))} digits is too large: numbers must be "
+                   f"finite, below {_FLOAT_MAX:.4g}")
+    if isinstance(value, float) and not math.isfinite(value):
+        raise fail(f"{shown} is not a finite number: numbers must be finite (no .inf or "
+                   f".nan), below {_FLOAT_MAX:.4g} in size")
+    return value
 
 
-def _key(node: yaml.Node, path: Path_, source: YamlSource, loader: yaml.SafeLoader) -> Hashable:
+def _short(text: str, limit: int = 60) -> str:
+    """``repr`` of a text, cut to about ``limit`` characters for a message."""
+    shown = repr(text)
+    return shown if len(shown) <= limit else f"{shown[:limit - 3]}...' ({len(text):,} chars)"
+
+
+def _key(node: yaml.Node, path: Path_, source: YamlSource, loader: Any) -> Hashable:
     """The constructed value of a scalar key; other keys by their position."""
     if isinstance(node, yaml.ScalarNode):
         value = _construct_scalar(node, path, source, loader)
