@@ -74,8 +74,8 @@ def generate(count: int, seed: int) -> list[Any]:
         @settings(max_examples=CHUNK, database=None, phases=[Phase.generate], deadline=None,
                   suppress_health_check=list(HealthCheck))
         @given(case=fuzz_inputs())
-        def draw(case: Any, drawn: list[Any] = drawn) -> None:
-            drawn.append(case)
+        def draw(case: Any) -> None:
+            drawn.append(case)  # noqa: B023 - read before the next chunk rebinds it
 
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
