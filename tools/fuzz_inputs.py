@@ -102,10 +102,9 @@ def _worker(conn: Connection, memory: int) -> None:
             resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
         except (ImportError, ValueError, OSError):
             pass
-    from fuzz_cases import FuzzInput, run_input
+    from fuzz_cases import FuzzInput, run_input, warm_up
 
-    import sizer.cli.app  # noqa: F401 - imported once, before the first case is timed
-
+    warm_up()  # the imports, before the first case is timed
     conn.send("ready")
     while True:
         message = conn.recv()
@@ -160,9 +159,10 @@ class Recorder:
         for failure in failures:
             self.counts[failure] += 1
         first = failures[0]
-        number = len(self.classes[first]) + 1
+        number = sum(where.startswith(_slug(first) + "/") for *_, where in self.classes[first]) + 1
         folder = self.out / _slug(first) / str(number)
-        self.classes[first].append((_size(case), case, str(folder.relative_to(self.out))))
+        for failure in failures:  # the case is kept once, under its first failure
+            self.classes[failure].append((_size(case), case, str(folder.relative_to(self.out))))
         for name, text in case.files.items():
             target = folder / name
             target.parent.mkdir(parents=True, exist_ok=True)
