@@ -71,8 +71,10 @@ _SIZE = ("size", "{tmp}/design.yaml")
 _CHECK = ("check", "{tmp}/design.yaml")
 DESIGN_COMMANDS: tuple[tuple[str, ...], ...] = (
     _SIZE, (*_SIZE, "--format", "json"), (*_SIZE, "--format", "csv"),
-    (*_SIZE, "--all", "--format", "md"), _CHECK, (*_CHECK, "--format", "json"),
+    (*_SIZE, "--all", "--format", "md"), (*_SIZE, "--format", "csv", "--output", "{tmp}/out.csv"),
+    _CHECK, (*_CHECK, "--format", "json"), (*_CHECK, "{tmp}/good.yaml"),
 )
+"""``good.yaml`` is the example unmutated: ``check`` must still check it after a bad file."""
 
 
 def _fast_indexing_table(data: Any) -> Any:
@@ -395,6 +397,8 @@ def base_input(base: Base, args: tuple[str, ...], text: str | None = None,
                mutations: tuple[str, ...] = ()) -> FuzzInput:
     """A case of ``base`` with ``text`` as its file (default: the example unmutated)."""
     files = {base.target: _dump(base_data(base)) if text is None else text}
+    if "{tmp}/good.yaml" in args:
+        files["good.yaml"] = _dump(base_data(base))
     companion = _companion_design(base)
     if companion is not None:
         files["design.yaml"] = companion
@@ -471,7 +475,8 @@ def _without_echoes(stdout: str, case: FuzzInput) -> str:
 
 
 def _echoable(case: FuzzInput) -> list[str]:
-    """The input's strings holding a non-finite token, and 'got <x>' for its non-finite floats."""
+    """The input's strings holding a non-finite token, and its non-finite floats as messages
+    quote them ('got inf', 'inf is not a finite number')."""
     found: set[str] = set()
 
     def walk(node: Any) -> None:
@@ -485,7 +490,7 @@ def _echoable(case: FuzzInput) -> list[str]:
         elif isinstance(node, str) and NON_FINITE.search(node):
             found.add(node)
         elif isinstance(node, float) and not math.isfinite(node):
-            found.add(f"got {node}")
+            found.update((f"got {node}", f"{node} is not a finite"))
 
     for text in case.files.values():
         with contextlib.suppress(Exception):  # an unreadable file echoes nothing
@@ -520,8 +525,11 @@ def check_result(case: FuzzInput, folder: Path, returncode: int, stdout: str, st
             failures.append(f"exit 2 with {len(errors)} 'error:' lines")
         elif not _names_input(errors[0], case):
             failures.append("exit 2: the error line names no input file or option")
-        if stdout:
+        several = "{tmp}/good.yaml" in case.args
+        if stdout and not several:
             failures.append("exit 2 with output on stdout")
+        if several and not stdout:
+            failures.append("check stopped at the bad file: good.yaml not checked")
     elif returncode in (0, 1):
         match = NON_FINITE.search(_without_echoes(stdout, case))
         if match:
