@@ -197,7 +197,8 @@ NASTY_TEXTS = (
 TYPE_SWAPS = st.one_of(
     st.none(), st.booleans(), st.integers(-3, 10**6),
     st.floats(allow_nan=False, allow_infinity=False),
-    st.sampled_from(NASTY_TEXTS), st.just([]), st.just({}), st.lists(st.integers(0, 3), max_size=3),
+    st.sampled_from(NASTY_TEXTS), st.builds(list), st.builds(dict),
+    st.lists(st.integers(0, 3), max_size=3),
     st.dictionaries(st.sampled_from(["a", "id", "value", "speed", "torque"]),
                     st.sampled_from([1, "x", None]), max_size=2),
 )
@@ -319,7 +320,7 @@ def mutated(draw: st.DrawFn, data: Any) -> tuple[Any, list[str]]:
                 continue
             new_key = draw(st.sampled_from(["inertia", "mass", "friction", "torque", "ratio",
                                             "efficiency", "max_speed", "extra", "id", "name"]))
-            new_value = draw(st.one_of(TYPE_SWAPS, st.sampled_from(EXTREME_NUMBERS)))
+            new_value = copy.deepcopy(draw(st.one_of(TYPE_SWAPS, st.sampled_from(EXTREME_NUMBERS))))
             target[new_key] = new_value
             done.append(f"add {new_key}: {new_value!r} beside {where}")
             continue
@@ -333,7 +334,7 @@ def mutated(draw: st.DrawFn, data: Any) -> tuple[Any, list[str]]:
             new = draw(st.one_of(st.text(max_size=12), st.sampled_from(NASTY_TEXTS)))
         if _is_slow(new):
             continue
-        parent[key] = new
+        parent[key] = copy.deepcopy(new)  # a drawn value is never shared between cases
         done.append(f"{action} {where} = {new!r}"[:200])
     return data, done
 
