@@ -1,0 +1,56 @@
+"""The CLI on mutated example designs and catalogs: a clean answer every time (issue 10).
+
+The cases and the invariants are those of ``tests/fuzz_cases.py`` (see its docstring); the seed
+is fixed and the count modest (SIZER_FUZZ_EXAMPLES raises it). ``tools/fuzz_inputs.py`` runs
+the same generator at 10,000 cases.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+
+import pytest
+from fuzz_cases import BASES, TIME_LIMIT, FuzzInput, base_input, fuzz_inputs, run_input
+from hypothesis import HealthCheck, Phase, given, settings
+
+COUNT = int(os.environ.get("SIZER_FUZZ_EXAMPLES", "0")) or None
+FUZZ = dict(deadline=None, derandomize=True, database=None,
+            phases=(Phase.explicit, Phase.generate),  # no shrinking: each run is a CLI call
+            suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much,
+                                   HealthCheck.data_too_large])
+DESIGNS = [b for b in BASES if b.target == "design.yaml"]
+CATALOGS = [b for b in BASES if b.target != "design.yaml"]
+
+
+def _assert_clean(case: FuzzInput) -> None:
+    with tempfile.TemporaryDirectory(prefix="sizer-fuzz-") as folder:
+        outcome = run_input(case, Path(folder))
+    assert not outcome.failures, (
+        f"{case.describe()}\nfailures: {outcome.failures}\nexit code {outcome.returncode}, "
+        f"{outcome.seconds:.2f} s\nstdout:\n{outcome.stdout[-1500:]}\n"
+        f"stderr:\n{outcome.stderr[-3000:]}\nfiles:\n{case.files}")
+
+
+@pytest.mark.parametrize("base", BASES, ids=lambda b: b.name)
+def test_the_unmutated_bases_answer_cleanly_and_fast(base):
+    """The generator starts from valid, fast inputs: each base's first two commands, unmutated."""
+    for args in base.commands[:2]:
+        case = base_input(base, args)
+        with tempfile.TemporaryDirectory(prefix="sizer-fuzz-") as folder:
+            outcome = run_input(case, Path(folder))
+        assert outcome.returncode in (0, 1) and not outcome.failures, (args, outcome)
+        assert outcome.seconds < TIME_LIMIT / 2, (args, outcome.seconds)
+
+
+@settings(max_examples=COUNT or 70, **FUZZ)
+@given(fuzz_inputs(DESIGNS))
+def test_mutated_designs_answer_cleanly(case):
+    _assert_clean(case)
+
+
+@settings(max_examples=COUNT or 50, **FUZZ)
+@given(fuzz_inputs(CATALOGS))
+def test_mutated_catalogs_answer_cleanly(case):
+    _assert_clean(case)
