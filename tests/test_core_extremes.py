@@ -60,6 +60,11 @@ EXTREMES = {
     "dwell-1e6-return": design(dwell=1e6, back=True, T=None),
     "limits": design(T=None, limits=Limits(inertia_ratio=10.0, max_acceleration=1e-6,
                                           max_jerk=1e-6, max_speed=1e-6)),
+    # beyond the plausible ranges (refused at load), still no warning in the core
+    "duration-1e-100": design(T=1e-100),
+    "duration-1e300": design(T=1e300),
+    "displacement-1e200": design(h=1e200, T=None, dwell=1.0),
+    "friction-1e300-dwell": design(friction=1e300, torque=1e300, T=1.0, dwell=1.0),
     "margins-99pc": design(T=None, limits=Limits(torque_margin=0.99, speed_margin=0.99)),
 }
 
@@ -72,7 +77,10 @@ def assert_honest(result: CandidateResult) -> None:
     """Every summary figure finite or absent (None with a reason); no NaN anywhere."""
     for name in ("duration", "peak_torque", "rms_torque", "max_speed", "load_speed",
                  "load_torque"):
-        assert finite_or_none(getattr(result, name)), (result.motor, result.spec, name)
+        value = getattr(result, name)
+        if not finite_or_none(value):  # beyond the float range: infeasible, said so
+            assert value > 0.0 and not result.feasible, (result.motor, result.spec, name)
+            assert "unbounded" in result.reason, result.reason
     if result.duration is None:
         assert not result.feasible and result.reason
     for check in result.checks:
