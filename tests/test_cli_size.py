@@ -29,7 +29,7 @@ RESULT_KEYS = ["motor", "law", "spec", "params", "feasible", "duration", "peak_t
                "rms_torque", "max_speed", "margin_peak", "margin_rms", "margin_speed",
                "limiting", "reason", "price", "mass", "rated_power", "ratio", "gearbox",
                "load_speed", "load_torque", "checks"]
-CHECK_KEYS = ["name", "value", "limit", "unit", "margin", "required", "passed"]
+CHECK_KEYS = ["name", "value", "limit", "unit", "margin", "required", "passed", "reason"]
 
 
 

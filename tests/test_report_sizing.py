@@ -68,7 +68,7 @@ def sizing(*results: CandidateResult) -> SizingResult:
 def test_percent_and_finite_or_none() -> None:
     assert percent(0.1234) == "12.3"
     assert percent(-1e-17) == "0.0"  # never '-0.0'
-    assert percent(-math.inf) == "-inf" and percent(None) == ""
+    assert percent(-math.inf) == "n/a" and percent(None) == "n/a"
     assert finite_or_none(math.inf) is None and finite_or_none(None) is None
     assert finite_or_none(2) == 2.0
 
@@ -79,7 +79,8 @@ def test_result_json_keys_and_nulls() -> None:
     assert data["margin_rms"] == 0.5 and data["price"] is None and data["mass"] == 1.5
     jerk = data["checks"][-1]
     assert jerk == {"name": "jerk", "value": None, "limit": 100.0, "unit": "rad/s^3",
-                    "margin": None, "required": 0.0, "passed": False}
+                    "margin": None, "required": 0.0, "passed": False,
+                    "reason": "jerk: unbounded (the law has jerk impulses)"}
     json.dumps(data, allow_nan=False)  # never NaN or Infinity
 
 
@@ -89,7 +90,7 @@ def test_no_feasible_duration_leaves_the_summary_margins_empty() -> None:
     assert data["duration"] is None and data["margin_peak"] is None
     assert data["checks"][1]["margin"] == 0.5  # the engine's checks are kept
     cells = result_display_cells(3, result)
-    assert cells[4:11] == ("", "", "", "", "", "", "")
+    assert cells[4:11] == ("n/a",) * 7  # with the reason in the note below the table
     assert result_csv_cells(3, result)[5:12] == ("",) * 7
 
 

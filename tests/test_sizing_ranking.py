@@ -43,7 +43,7 @@ def test_default_puts_the_smallest_feasible_motor_first_not_the_roomiest() -> No
     assert motors(rank([big, middle, small], "margin", "duration"))[0] == "big-3500W"
 
 
-def test_ties_go_to_torque_then_margin_then_inertia_never_to_the_id() -> None:
+def test_ties_go_to_torque_then_margin_then_inertia_then_the_id() -> None:
     a = result("a", power=400.0, torque=1.4, slack=0.5)
     b = result("b", power=400.0, torque=1.3, slack=0.1)  # same power, less torque
     assert motors(rank([a, b], "size", "duration")) == ["b", "a"]
@@ -51,9 +51,9 @@ def test_ties_go_to_torque_then_margin_then_inertia_never_to_the_id() -> None:
     assert motors(rank([a, b, c], "size", "duration")) == ["c", "b", "a"]
     heavy = result("a-heavy", power=400.0, torque=1.3, slack=0.3, inertia=3e-4)
     assert motors(rank([heavy, c], "size", "duration")) == ["c", "a-heavy"]
-    # all equal: the design's order is kept, whatever the ids
+    # all equal: the final total order (the motor id), whatever the input order
     z, y = result("z", power=400.0), result("y", power=400.0)
-    assert motors(rank([z, y], "size", "duration")) == ["z", "y"]
+    assert motors(rank([z, y], "size", "duration")) == ["y", "z"]
     assert motors(rank([y, z], "size", "duration")) == ["y", "z"]
 
 

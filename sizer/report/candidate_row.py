@@ -1,8 +1,10 @@
 """One motor/law result (a CandidateResult) as a JSON object, CSV cells and table cells.
 
 JSON and CSV are SI (s, N*m, rad/s) with margins as fractions; the display cells are for
-people: duration in ms, speed in rpm, margins in %. Non-finite numbers are null in JSON,
-``inf``/``-inf`` in CSV and tables; a missing number is null, or an empty cell.
+people: duration in ms, speed in rpm, margins in %. A figure that does not exist
+(no feasible duration, an unbounded requirement) is null in JSON with the reason beside it
+(the result's ``reason``, a check's ``reason``), ``n/a`` in tables and an empty cell in
+CSV (with the ``reason`` column); never ``nan`` or ``inf``.
 """
 
 from __future__ import annotations
@@ -14,7 +16,7 @@ from sizer.laws.base import format_parameter
 from sizer.report.design_summary import finite_or_none
 from sizer.report.numbers import full, short
 from sizer.sizing.checks import TOLERANCE
-from sizer.sizing.results import margin_percent
+from sizer.sizing.results import NOT_AVAILABLE, margin_percent
 
 if TYPE_CHECKING:
     from sizer.sizing import CandidateResult, Check
@@ -66,6 +68,7 @@ def check_json(result: CandidateResult, check: Check) -> dict[str, Any]:
         "margin": finite_or_none(check.margin),
         "required": float(check.required),
         "passed": check_passed(result, check),
+        "reason": check.undefined_reason,
     }
 
 
@@ -97,7 +100,7 @@ def result_json(result: CandidateResult) -> dict[str, Any]:
 
 
 def _csv_number(value: float | None) -> str:
-    return "" if value is None else full(value)
+    return "" if value is None or not math.isfinite(value) else full(value)
 
 
 def result_csv_cells(rank: int, result: CandidateResult, envelope: str = "") -> tuple[str, ...]:
@@ -115,22 +118,22 @@ def result_csv_cells(rank: int, result: CandidateResult, envelope: str = "") -> 
 
 
 def percent(fraction: float | None) -> str:
-    """A margin in % with one decimal: '12.5', '-inf', or '' when missing.
+    """A margin in % with one decimal: '12.5', 'n/a' when missing or not finite.
 
     A negative margin beyond the checks' tolerance (a failing one) shows enough decimals
     to be visibly negative ('-0.0001'); one within it reads '0.0'.
     """
     if fraction is None:
-        return ""
+        return NOT_AVAILABLE
     return margin_percent(fraction, 1, failed=fraction < -TOLERANCE)
 
 
 def _short(value: float | None, scale: float = 1.0) -> str:
     if value is None:
-        return ""
+        return NOT_AVAILABLE
     value = float(value) * scale
     if not math.isfinite(value):
-        return "inf" if value > 0 else "-inf"
+        return NOT_AVAILABLE
     return short(value)
 
 

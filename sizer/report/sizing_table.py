@@ -41,6 +41,9 @@ if TYPE_CHECKING:
     from sizer.sizing import CandidateResult, SizingResult
 
 NO_FEASIBLE = "no feasible motor/law pair"
+NO_DURATION_NOTE = ("n/a: no duration is feasible for the pair, so it has no operating "
+                    "point (duration, torques, speed, margins); the limit that fails and by "
+                    "how much are below")
 
 FEASIBLE = {False: "feasible", True: "ok"}
 SPEED = {False: "max speed [rpm]", True: "speed [rpm]"}
@@ -113,6 +116,8 @@ class SizingDocument:
         if not self.any_feasible:
             lines.append(NO_FEASIBLE)
         failing = [(rank, r) for rank, r in self.rows if not r.feasible]
+        if any(r.duration is None for _, r in failing):
+            lines.append(NO_DURATION_NOTE)
         if failing:
             lines.append("why these pairs fail:")
             lines += [f"  #{rank} {r.motor}, {r.spec}: {r.reason}" for rank, r in failing]

@@ -112,7 +112,7 @@ class CycleCalculator:
         stage_peak = [np.zeros_like(T) for _ in range(n_stages)]
         stage_square = [np.zeros_like(T) for _ in range(n_stages)]
         for direction in self.directions:
-            scales = MoveScales(h / T**2, h / T, direction)
+            scales = MoveScales(h / T / T, h / T, direction)  # no T**2: T may be 1e300
             torque, ratio, load, stages = self._peaks(scales)
             peak_torque = np.maximum(peak_torque, torque)
             peak_ratio = np.maximum(peak_ratio, ratio)
@@ -133,20 +133,22 @@ class CycleCalculator:
             for i in range(n_stages):
                 stage_peak[i] = np.maximum(stage_peak[i], stage_hold[i])
         cycle = n * (T + dwell)
-        rms = np.sqrt((square + n * dwell * hold**2) / cycle)
-        stage_rms = [np.sqrt((stage_square[i] + n * dwell * stage_hold[i] ** 2) / cycle)
-                     for i in range(n_stages)]
+        with np.errstate(over="ignore"):  # beyond the float range: inf, reported unbounded
+            rms = np.sqrt((square + n * dwell * np.square(np.float64(hold))) / cycle)
+            stage_rms = [np.sqrt((stage_square[i] + n * dwell
+                                  * np.square(np.float64(stage_hold[i]))) / cycle)
+                         for i in range(n_stages)]
         if self.thermal_rule == "max":
             thermal = K * load_speed
         elif self.thermal_rule == "rms":
             thermal = K * h * c.C_v_rms * np.sqrt(n * T / cycle) / T
         else:
             thermal = n * K * h / cycle
-        jerk = c.C_j * h / T**3 if c.jerk_bounded else np.full_like(T, np.inf)
+        jerk = c.C_j * h / T / T / T if c.jerk_bounded else np.full_like(T, np.inf)
         return CycleMetrics(
             duration=T, max_speed=K * load_speed, peak_torque=peak_torque,
             peak_ratio=peak_ratio, rms_torque=rms, thermal_speed=thermal,
-            load_speed=load_speed, load_acceleration=c.C_a * h / T**2, load_jerk=jerk,
+            load_speed=load_speed, load_acceleration=c.C_a * h / T / T, load_jerk=jerk,
             load_torque=load_torque, stage_peak=stage_peak, stage_rms=stage_rms,
             stage_speed=[k * load_speed for k in self.drive.input_ratios],
         )
@@ -350,8 +352,16 @@ class CycleCalculator:
 
 
 def _square_mean(p, q, const, c_a_rms: float, c_v_rms: float):
-    """int_0^1 (p a_N + q v_N + const)^2 d tau for a rest-to-rest law."""
-    return (p * c_a_rms) ** 2 + (q * c_v_rms) ** 2 + const**2 + 2.0 * q * const
+    """int_0^1 (p a_N + q v_N + const)^2 d tau for a rest-to-rest law.
+
+    A torque beyond 1e154 N*m (a move of 1e-100 s) squares past the float range: the mean
+    is then inf, which the checks report as unbounded (Check.undefined_reason), never a
+    warning.
+    """
+    with np.errstate(over="ignore", invalid="ignore"):
+        const = np.float64(const)  # a Python float would raise OverflowError
+        mean = (p * c_a_rms) ** 2 + (q * c_v_rms) ** 2 + const**2 + 2.0 * q * const
+    return np.where(np.isnan(mean), np.inf, mean)
 
 
 def _safe_ratio(torque: np.ndarray, limit: np.ndarray) -> np.ndarray:

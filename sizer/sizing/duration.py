@@ -168,20 +168,27 @@ def closed_form_duration(calculator: CycleCalculator, limits: Limits) -> np.ndar
 
 
 def _rms_duration(scale: float, dwell: float) -> float:
-    """Smallest T with T^3 (T + dwell) >= scale^2 (scale = J_t k h C_a_rms / tau_c)."""
+    """Smallest T with T^3 (T + dwell) >= scale^2 (scale = J_t k h C_a_rms / tau_c).
+
+    Solved on logarithms, so that no power leaves the float range (scale up to 1e308):
+    the root lies in [m/2, m] with m the smaller of the dwell-free bound sqrt(scale) and
+    the dwell-dominated one cbrt(scale^2/dwell).
+    """
     if not math.isfinite(scale):
         return math.inf
     if scale == 0.0:
         return 0.0
     if dwell == 0.0:
         return math.sqrt(scale)
-    target = scale * scale
-    hi = math.sqrt(scale)  # T^4 = target is the dwell-free bound, always above the root
+    log_target = 2.0 * math.log(scale)
+    log_m = min(0.5 * math.log(scale), (log_target - math.log(dwell)) / 3.0)
+    hi = math.exp(log_m)
 
     def excess(T: float) -> float:
-        return T**3 * (T + dwell) - target
+        return 3.0 * math.log(T) + math.log(T + dwell) - log_target
 
-    return optimize.brentq(excess, 0.0, hi, xtol=1e-300, rtol=4 * np.finfo(float).eps)
+    return optimize.brentq(excess, 0.5 * hi, hi * (1.0 + 1e-9), xtol=1e-300,
+                           rtol=4 * np.finfo(float).eps)
 
 
 def _initial_guess(calculator: CycleCalculator) -> np.ndarray:

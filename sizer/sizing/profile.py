@@ -74,11 +74,11 @@ def task_curve(design: Design, motor: Motor, law: MotionLaw | str, duration: flo
     t0, start = 0.0, 0.0
     hold, _ = drive.holding_torques()
     for direction in calc.directions:
-        torque, _ = calc.channels(a_n[None], v_n[None], MoveScales(h / T**2, h / T, direction))
+        torque, _ = calc.channels(a_n[None], v_n[None], MoveScales(h / T / T, h / T, direction))
         times.append(t0 + duration * tau)
         positions.append(start + direction * h * q_n)
         speeds.append(direction * h * v_n / duration)
-        accelerations.append(direction * h * a_n / duration**2)
+        accelerations.append(direction * h * a_n / duration / duration)
         torques.append(direction * torque[0])
         t0 += duration
         start += direction * h

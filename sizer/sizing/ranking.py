@@ -2,8 +2,11 @@
 passes with the required margins.
 
 A ranking is a chain of criteria, each "smaller first": the key the user chose, then the
-next meaningful ones (size, margin, rotor inertia), and finally the order of the design
-(its laws as written, the catalog's motors as listed): never the motor's id.
+next meaningful ones (size, margin, rotor inertia), and finally a total order that no
+input order reaches (:data:`TIES`): the motor id, then the canonical law spec, then the
+ratio, then the catalog gearbox. So the same pairs rank the same whatever the order of the
+catalogs, of the motors in them or of the laws in the design (a tie of two pairs that
+differ in nothing the user can see is then harmless).
 
 - ``size`` (the default with a given duration; alias ``power``): the motor's rated power
   tau_c*v_n, then its continuous torque, then the margin, then the rotor inertia.
@@ -60,7 +63,8 @@ def _continuous_torque(r: CandidateResult) -> float:
 
 
 def _margin(r: CandidateResult) -> tuple[float, ...]:
-    return tuple(-s for s in r.slacks)  # the largest smallest slack first, then the next
+    # the largest smallest slack first, then the next; an undefined slack (NaN) last
+    return tuple(math.inf if math.isnan(s) else -s for s in r.slacks)
 
 
 def _inertia(r: CandidateResult) -> float:
@@ -71,6 +75,17 @@ _SIZE: tuple[Criterion, ...] = (_power, _continuous_torque)
 _THEN: tuple[Criterion, ...] = (*_SIZE, _margin, _inertia)
 _THEN_TEXT = ", then the smallest motor (rated power tau_c*v_n), then the largest margin"
 """The ties of every key but size and margin, in words (the criteria of _THEN)."""
+
+
+def _identity(r: CandidateResult) -> tuple[str, str, float, str]:
+    return (r.motor, r.spec, _number(r.ratio), r.gearbox or "")
+
+
+TIES: tuple[Criterion, ...] = (_identity,)
+"""The last criterion of every rule, a total order: motor id, canonical law spec, ratio,
+catalog gearbox name (each ascending)."""
+TIES_TEXT = "motor id, law spec, ratio"
+"""The final tie-break of every rule, in words."""
 
 
 @dataclass(frozen=True)
@@ -126,7 +141,9 @@ def rank(results: Iterable[CandidateResult], rank_by: str | None,
          mode: str) -> list[CandidateResult]:
     """Feasible pairs first, then by the rule of ``rank_by`` (see the module docstring).
 
-    The sort is stable: what every criterion leaves tied keeps the design's order.
+    What the rule's criteria leave tied is ordered by :data:`TIES` (motor id, law spec,
+    ratio, gearbox), never by the order of the input.
     """
     rule = rank_rule(rank_by, mode)
-    return sorted(results, key=lambda r: (not r.feasible, *(c(r) for c in rule.criteria)))
+    return sorted(results, key=lambda r: (not r.feasible, *(c(r) for c in rule.criteria),
+                                          *(c(r) for c in TIES)))

@@ -8,6 +8,14 @@ from dataclasses import dataclass, field
 from sizer.model.domain import Transmission
 from sizer.sizing.checks import TOLERANCE
 
+NOT_AVAILABLE = "n/a"
+"""The text of a figure that does not exist (an unbounded requirement, no feasible
+duration); the reason goes with it (Check.undefined_reason, CandidateResult.reason)."""
+
+UNBOUNDED_WHY = {"jerk": "the law has jerk impulses",
+                 "inertia_ratio": "the motor's inertia is 0"}
+"""Why a check's value can be infinite, by check name."""
+
 
 def margin_percent(margin: float, decimals: int = 2, *, failed: bool = False,
                    required: float = 0.0) -> str:
@@ -18,7 +26,7 @@ def margin_percent(margin: float, decimals: int = 2, *, failed: bool = False,
     shows a minus sign on zero.
     """
     if not math.isfinite(margin):
-        return "inf" if margin > 0 else "-inf"
+        return NOT_AVAILABLE
     value = 100.0 * margin
     text = f"{value:.{decimals}f}"
     if failed:
@@ -53,13 +61,23 @@ class Check:
     def passed(self) -> bool:
         return self.slack >= -TOLERANCE
 
+    @property
+    def undefined_reason(self) -> str | None:
+        """Why the value or margin is no finite number (None when both are finite)."""
+        if math.isfinite(self.value) and math.isfinite(self.margin):
+            return None
+        if math.isnan(self.value) or math.isnan(self.margin):
+            return f"{self.name}: not computable for this candidate"
+        why = UNBOUNDED_WHY.get(self.name, "beyond the range of a float")
+        return f"{self.name}: unbounded ({why})"
+
     def describe(self) -> str:
         """One line: which limit, the values, and by how much it passes or fails."""
         unit = f" {self.unit}" if self.unit else ""
-        if math.isinf(self.value):
-            why = {"jerk": " (the law has jerk impulses)",
-                   "inertia_ratio": " (the motor's inertia is 0)"}.get(self.name, "")
-            return f"{self.name}: unbounded{why} against {self.limit:.6g}{unit} (FAILS)"
+        undefined = self.undefined_reason
+        if undefined is not None:
+            verdict = "ok" if self.passed else "FAILS"
+            return f"{undefined} against {self.limit:.6g}{unit} ({verdict})"
         verdict = "ok" if self.passed else "FAILS"
         need = f", {self.required:.0%} required" if self.required else ""
         margin = margin_percent(self.margin, failed=not self.passed, required=self.required)
