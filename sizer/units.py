@@ -114,7 +114,7 @@ def _not_finite(value: Any, field: str | None) -> UserError:
         shown = f"an integer of about {int(value.bit_length() * 0.30103) + 1} digits"
     else:
         shown = repr(value) if len(repr(value)) <= 60 else f"{repr(value)[:57]}..."
-    return _LimitError(f"{shown} is not a finite number: numbers must be finite (no nan or inf), "
+    return _LimitError(f"{shown} is not a finite number: numbers must be finite, "
                      f"below {_FLOAT_MAX:.4g} in size", field=field)
 
 
@@ -245,6 +245,8 @@ def _parse_text(text: str, spec: Kind, field: str | None) -> float:
                         f"expected, e.g. {spec.example!r})", field=field) from error
     if gd2:
         return _inertia_of_gd2(quantity, text, field)
+    if "[temperature]" in quantity.dimensionality:
+        raise wrong  # degC, degF, K: no kind of ours holds a temperature (and offset units crash)
     expected = ureg.get_dimensionality(spec.dimensionality) if spec.dimensionality else {}
     if quantity.dimensionality != expected and spec.name in ("torque", "inertia"):
         # a mass where a weight is meant: oz*in, lb*ft (torques), oz*in*s^2 (an inertia)

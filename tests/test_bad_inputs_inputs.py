@@ -195,6 +195,12 @@ CASES = [
          words=("design.yaml:", "task.displacement", "expected an angle")),
     Case("unit-text-long", design=_set("load.inertia", "1 " + "kg*" * 60 + "m^2"),
          words=("design.yaml:", "load.inertia", "characters")),
+    Case("unit-offset-celsius", design=_set("load.inertia", "0.25 degC"),
+         words=("design.yaml:", "load.inertia", "expected an inertia")),
+    Case("unit-offset-fahrenheit-product", design=_set("load.torque", "1 degF*m"),
+         words=("design.yaml:", "load.torque")),
+    Case("unit-kelvin-speed", design=_set("task.displacement", "3 K"),
+         words=("design.yaml:", "task.displacement", "expected an angle")),
     # ---- a well-formed file the reader must still accept
     Case("design-utf8-bom-accepted", design="\ufeff" + TEXT, exit_code=0),
 ]
