@@ -121,3 +121,28 @@ def test_a_longer_move_never_needs_more_torque_at_the_extremes() -> None:
         warnings.simplefilter("error")
         result = check_design(base)
     assert result.peak_torque == pytest.approx(0.25 * 0.6 * 2 * math.pi / 1e12, rel=1e-9)
+
+
+def test_a_move_beyond_the_regions_says_the_motor_gives_no_torque_there(tmp_path):
+    """Curves that end at 0 N*m at max speed, a move far beyond it: the peak ratio is
+    unbounded and the RMS limit 0; the reasons say why, not 'beyond the range of a float'."""
+    from sizer.io import load_design
+    from sizer.sizing import size_design
+
+    (tmp_path / "motors.yaml").write_text(
+        "motors:\n  - id: C0\n    inertia: 0.5 kg*cm^2\n    continuous_torque: 1.3 N*m\n"
+        "    peak_torque: 3.8 N*m\n    rated_speed: 3000 rpm\n    max_speed: 6000 rpm\n"
+        "    continuous_curve: [[0 rpm, 1.3 N*m], [3000 rpm, 1.3 N*m], [6000 rpm, 0 N*m]]\n"
+        "    intermittent_curve: [[0 rpm, 3.8 N*m], [3000 rpm, 3.8 N*m], [6000 rpm, 0 N*m]]\n",
+        encoding="utf-8")
+    (tmp_path / "d.yaml").write_text(
+        "task: {displacement: 20 rev, duration: 0.1 s}\nload: {inertia: 1 kg*cm^2}\n"
+        "transmission: {type: direct}\nlaws: [cycloidal]\nmotors: motors.yaml\n",
+        encoding="utf-8")
+    (result,) = size_design(load_design(tmp_path / "d.yaml")).results
+    checks = {c.name: c for c in result.checks}
+    assert not result.feasible
+    assert "gives none" in checks["peak"].undefined_reason
+    assert checks["rms"].limit == 0.0
+    assert "needed where the motor gives none" in checks["rms"].undefined_reason
+    assert "float" not in result.reason

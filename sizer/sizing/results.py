@@ -13,7 +13,9 @@ NOT_AVAILABLE = "n/a"
 duration); the reason goes with it (Check.undefined_reason, CandidateResult.reason)."""
 
 UNBOUNDED_WHY = {"jerk": "the law has jerk impulses",
-                 "inertia_ratio": "the motor's inertia is 0"}
+                 "inertia_ratio": "the motor's inertia is 0",
+                 "peak": "the move needs torque at a speed where the intermittent region "
+                         "gives none"}
 """Why a check's value can be infinite, by check name."""
 
 
@@ -68,6 +70,10 @@ class Check:
             return None
         if math.isnan(self.value) or math.isnan(self.margin):
             return f"{self.name}: not computable for this candidate"
+        if math.isfinite(self.value) and self.limit == 0.0:
+            unit = f" {self.unit}" if self.unit else ""
+            return (f"{self.name}: {self.value:.6g}{unit} needed where the motor gives none "
+                    f"(margin unbounded)")
         why = UNBOUNDED_WHY.get(self.name, "beyond the range of a float")
         return f"{self.name}: unbounded ({why})"
 
