@@ -104,8 +104,8 @@ CASES = [
          design=edited(EX63, set={"load.torque": "1e4 N*m", "task.dwell": "0.1 s"}),
          exit_code=0, fields=("load.torque",)),
     # transmissions
-    Case("ratio-1e-4-json", size("json"),
-         design=edited(EX61, set={"transmission": {"type": "gearbox", "ratio": 1e-4}}),
+    Case("ratio-1e-3-json", size("json"),
+         design=edited(EX61, set={"transmission": {"type": "gearbox", "ratio": 1e-3}}),
          exit_code=0, fields=("transmission.ratio",)),
     Case("ratio-1e5-minimize-table", size("table"),
          design=edited(EX63, set={"transmission": {"type": "gearbox", "ratio": 1e5}}),
@@ -125,8 +125,8 @@ CASES = [
          design=edited(VENDOR, set={"load.mass": "1e-6 kg", "load.friction": "0 N"}),
          exit_code=0, fields=("load.mass",)),
     # motors at the edges
-    Case("motor-rated-speed-1e-6-minimize-json", size("json"),
-         design=on_catalog(EX63), catalog=motors(("m0", 0.0, 14.0, 30.0, 1e-6)),
+    Case("motor-rated-speed-1e-3-minimize-json", size("json"),
+         design=on_catalog(EX63), catalog=motors(("m0", 0.0, 14.0, 30.0, 1e-3)),
          exit_code=0, fields=("motors[0].rated_speed",)),
     Case("motor-peak-equals-continuous-check", check(),
          design=on_catalog(EX63), catalog=motors(("m0", 0.0, 30.0, 30.0, 6.0)),
@@ -134,8 +134,8 @@ CASES = [
     Case("motor-tiny-torques-table", size("table"),
          design=on_catalog(EX63), catalog=motors(("m0", 1e-12, 1e-6, 2e-6, 6.0)),
          exit_code=0, fields=("motors[0].continuous_torque",)),
-    Case("motor-rotor-inertia-1e6-check-json", check("json"),
-         design=on_catalog(EX61), catalog=motors(("m0", 1e6, 14.0, 30.0, 6.0)),
+    Case("motor-rotor-inertia-1000-check-json", check("json"),
+         design=on_catalog(EX61), catalog=motors(("m0", 1e3, 14.0, 30.0, 6.0)),
          exit_code=1, fields=("motors[0].inertia",)),
     # zero-ish load: only the speed bound is left
     Case("nearly-no-load-minimize-csv", size("csv"),
@@ -190,7 +190,7 @@ STDOUT_WORDS: dict[str, tuple[str, ...]] = {
     "inertia-ratio-rotor-0-check": ("inertia_ratio: unbounded", "inertia is 0"),
     "inertia-ratio-rotor-0-json": ("inertia_ratio: unbounded (the motor's inertia is 0)",),
     "jerk-limit-trapezoid-table": ("jerk: unbounded (the law has jerk impulses)",),
-    "motor-rated-speed-1e-6-minimize-json": ("speed",),
+    "motor-rated-speed-1e-3-minimize-json": ("speed",),
 }
 """Words the answer on stdout must hold (a check's verdict, a reason beside an n/a)."""
 
