@@ -26,8 +26,7 @@ MOTORS = (
     Motor("tiny", inertia=1e-12, continuous_torque=1e-6, peak_torque=2e-6, rated_speed=1e-6),
     Motor("huge", inertia=1e6, continuous_torque=1e6, peak_torque=3e6, rated_speed=1e3),
 )
-LAWS = ("cycloidal", "trapezoidal(alpha=1/3)", "double_s(alpha=1/3, beta=1/4)", "poly5",
-        "modified_sinusoidal")
+LAWS = ("cycloidal", "double_s(alpha=1/3, beta=1/4)")  # smooth, and piecewise with flats
 
 
 def design(*, h: float = 0.6, T: float | None = 0.2, dwell: float = 0.0,
