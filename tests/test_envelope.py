@@ -235,3 +235,34 @@ def test_the_speed_torque_diagram_draws_the_completed_regions():
     assert curve.continuous_region[-1] == pytest.approx((6000 * RPM, 1.27 / 2))
     book = task_curve(_design("book"), SGM7J_04A, "trapezoidal(alpha=1/3)", T_MOVE)
     assert book.intermittent_region == ((0.0, 4.46), (3000 * RPM, 4.46))
+
+
+def test_region_lookup_is_exact_at_corners_and_bounded_in_memory():
+    """The segment of every speed equals the brute-force count of corner speeds <= it
+    (corners included), and the lookup needs memory motors x samples, not x curve points
+    (the brute force would take 150 MB here)."""
+    import tracemalloc
+
+    from sizer.envelope.region import RegionTable
+
+    rng = np.random.default_rng(7)
+    curves = []
+    for _ in range(1000):
+        speeds = np.unique(np.concatenate(([0.0], rng.uniform(0.0, 600.0, 299))))
+        curves.append(tuple(zip(speeds, rng.uniform(0.1, 5.0, len(speeds)), strict=True)))
+    table = RegionTable(curves)
+    speed = rng.uniform(0.0, 700.0, (1000, 500))
+    speed[:, :10] = table.speeds[:, :10]  # exactly on corners
+    expected = (table.speeds[:100, None, 1:-1] <= speed[:100, :, None]).sum(axis=-1)
+    tracemalloc.start()
+    index = table._segment(speed)
+    limit = table.limit(speed)
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    assert np.array_equal(index[:100], expected)
+    assert peak < 60e6, peak
+    rows = np.arange(1000)[:, None]
+    s0, s1 = table.speeds[rows, index], table.speeds[rows, index + 1]
+    inside = speed <= table.max_speed[:, None]
+    assert np.all((s0 <= speed) | ~inside) and np.all((speed <= s1) | ~inside)
+    assert np.all(limit[~inside] == 0.0)

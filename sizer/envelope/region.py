@@ -64,13 +64,32 @@ class RegionTable:
         speed = np.abs(np.asarray(speed, dtype=float))
         shape = speed.shape
         flat = speed.reshape(shape[0], -1)
-        index = (self.speeds[:, None, 1:-1] <= flat[:, :, None]).sum(axis=-1)
+        index = self._segment(flat)
         rows = np.arange(shape[0])[:, None]
         s0, s1 = self.speeds[rows, index], self.speeds[rows, index + 1]
         t0, t1 = self.torques[rows, index], self.torques[rows, index + 1]
         value = t0 + (t1 - t0) * (flat - s0) / (s1 - s0)
         value = np.where(flat > self.max_speed[:, None] * (1.0 + 1e-12), 0.0, value)
         return value.reshape(shape)
+
+    def _segment(self, flat: np.ndarray) -> np.ndarray:
+        """Per motor row, the segment of each speed: the count of interior corner speeds
+        <= it (0 .. width-2). One searchsorted over all rows laid end to end (memory
+        motors x samples, not x curve points); the offsets cost a few ulps, so the index
+        is then corrected by one step against the row's own corner speeds (exact)."""
+        count, width = self.speeds.shape
+        if width <= 2:
+            return np.zeros(flat.shape, dtype=np.intp)
+        span = self.speeds[:, -1] - self.speeds[:, 0] + 1.0
+        base = np.concatenate(([0.0], np.cumsum(span)[:-1]))[:, None]
+        laid = (self.speeds - self.speeds[:, :1] + base).ravel()
+        query = np.clip(flat, self.speeds[:, :1], self.speeds[:, -1:]) - self.speeds[:, :1]
+        found = np.searchsorted(laid, query + base, side="right")
+        rows = np.arange(count)[:, None]
+        index = np.clip(found - rows * width - 1, 0, width - 2)
+        index -= (index > 0) & (flat < self.speeds[rows, index])
+        index += (index < width - 2) & (flat >= self.speeds[rows, index + 1])
+        return index
 
     def limit_clipped(self, speed: np.ndarray) -> np.ndarray:
         """Torque limit with the speed clipped into the region (speed is checked apart)."""
