@@ -154,6 +154,6 @@ def _run_with_seed(seed: str, *args: str) -> str:
 
 def test_hash_seed_does_not_change_the_output(tmp_path: Path) -> None:
     design = str(write(tmp_path, design_data("minimize")))
-    for fmt, seeds in (("json", ("0", "1", "4242")), ("csv", ("0", "97"))):
+    for fmt, seeds in (("json", ("0", "4242")), ("csv", ("1", "97"))):
         texts = {_run_with_seed(seed, "size", design, "--all", "-f", fmt) for seed in seeds}
         assert len(texts) == 1, fmt

@@ -51,7 +51,7 @@ def at_duration(design, T):
     return size_design(fixed).results[0]
 
 
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=25, deadline=None)
 @given(designs())
 def test_t_min_is_feasible_and_a_shorter_move_is_not(design):
     r = size_design(design).results[0]
@@ -62,7 +62,7 @@ def test_t_min_is_feasible_and_a_shorter_move_is_not(design):
     assert not at_duration(design, r.duration * (1 - 1e-6)).feasible
 
 
-@settings(max_examples=30, deadline=None)
+@settings(max_examples=20, deadline=None)
 @given(designs(), st.floats(1.0, 3.0), st.sampled_from(["peak", "continuous", "speed"]))
 def test_a_stronger_motor_never_lengthens_t_min(design, factor, what):
     base = size_design(design).results[0]
