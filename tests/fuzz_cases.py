@@ -209,15 +209,15 @@ def _is_slow(value: Any) -> bool:
     return isinstance(value, str) and ("auto" in value or "minimize" in value)
 
 
-def _paths(data: Any, prefix: tuple[Any, ...] = ()) -> list[tuple[Any, ...]]:
+def data_paths(data: Any, prefix: tuple[Any, ...] = ()) -> list[tuple[Any, ...]]:
     """Every path into the data (mapping keys and list indices), the root excluded."""
     out = [prefix] if prefix else []
     if isinstance(data, dict):
         for key, value in data.items():
-            out += _paths(value, (*prefix, key))
+            out += data_paths(value, (*prefix, key))
     elif isinstance(data, list):
         for index, value in enumerate(data):
-            out += _paths(value, (*prefix, index))
+            out += data_paths(value, (*prefix, index))
     return out
 
 
@@ -273,7 +273,7 @@ def mutated(draw: st.DrawFn, data: Any) -> tuple[Any, list[str]]:
     data = copy.deepcopy(data)
     done: list[str] = []
     for _ in range(draw(st.sampled_from([1, 1, 1, 2, 2, 3]))):
-        paths = _paths(data)
+        paths = data_paths(data)
         if not paths:
             break
         path = draw(st.sampled_from(paths))

@@ -9,6 +9,7 @@ from pathlib import Path
 from typing import Any
 
 import yaml
+from fuzz_cases import data_paths
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -86,19 +87,7 @@ values = st.recursive(
 )
 
 
-def _paths(data: Any, prefix: tuple[Any, ...] = ()) -> list[tuple[Any, ...]]:
-    """Every path into the data (mapping keys and list indices)."""
-    out = [prefix]
-    if isinstance(data, dict):
-        for key, value in data.items():
-            out += _paths(value, (*prefix, key))
-    elif isinstance(data, list):
-        for index, value in enumerate(data):
-            out += _paths(value, (*prefix, index))
-    return out
-
-
-PATHS = [p for p in _paths(DATA) if p]
+PATHS = data_paths(DATA)
 
 
 def _set(data: Any, path: tuple[Any, ...], value: Any, *, drop: bool = False) -> None:
@@ -115,7 +104,7 @@ def _set(data: Any, path: tuple[Any, ...], value: Any, *, drop: bool = False) ->
 def mutated_data(draw: st.DrawFn) -> Any:
     data = copy.deepcopy(DATA)
     for _ in range(draw(st.integers(1, 3))):
-        paths = [p for p in _paths(data) if p]
+        paths = data_paths(data)
         if not paths:
             break
         path = draw(st.sampled_from(paths))
