@@ -327,6 +327,9 @@ def _yaml_error(error: yaml.YAMLError, text: str, file: str | None) -> UserError
     if isinstance(error, yaml.MarkedYAMLError):
         parts = [error.context, error.problem]
         message = "; ".join(p for p in parts if p)
+        if "nesting depth" in message:  # libyaml's own limit (PyYAML >= 6.0.4 wheels)
+            message = (f"nested too deeply: more than {MAX_YAML_DEPTH} levels of mappings "
+                       f"and lists")  # libyaml stops deeper than sizer's own limit
     elif isinstance(error, yaml.reader.ReaderError):
         char = error.character
         message = f"unacceptable character {chr(char) if isinstance(char, int) else char!r}"
