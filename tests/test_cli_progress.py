@@ -14,7 +14,7 @@ import pytest
 from sizer.cli.progress import TerminalProgress, sizing_progress
 
 ROOT = Path(__file__).resolve().parent.parent
-DESIGN = ROOT / "examples" / "indexing-table.yaml"
+DESIGN = ROOT / "examples" / "book" / "ex6_4.yaml"  # quick: minimize over two laws
 
 
 def test_size_design_calls_back_per_law_and_gives_the_same_results() -> None:
@@ -65,8 +65,8 @@ def test_piped_output_has_no_progress_text() -> None:
     assert result.returncode == 0
     assert result.stderr == b""
     out = result.stdout.decode()
-    assert "\x1b" not in out and "sizing indexing-table" not in out
-    assert out.startswith("Indexing table, 90 deg in 0.25 s:")
+    assert "\x1b" not in out and "sizing ex6_4" not in out
+    assert out.startswith("B&M Example 6.4:")
 
 
 @pytest.mark.skipif(not hasattr(os, "openpty"), reason="needs a pseudo-terminal")
@@ -94,5 +94,5 @@ def test_a_terminal_on_stderr_shows_the_bar_and_stdout_stays_clean() -> None:
         os.close(master)
     drawn = b"".join(chunks)
     assert result.returncode == 0
-    assert b"sizing indexing-table.yaml" in drawn
+    assert b"sizing ex6_4.yaml" in drawn
     assert b"sizing" not in result.stdout and b"\x1b" not in result.stdout
