@@ -37,6 +37,11 @@ def _from_zero(curve: Curve) -> Curve:
     return tuple(curve)
 
 
+_BRUTE_FORCE_CELLS = 2**25
+"""Up to this many speed x corner comparisons (32 MB of booleans) the segments are
+counted directly; beyond, searched (memory bounded by the samples alone)."""
+
+
 class RegionTable:
     """The regions of many motors as padded arrays, evaluated for all of them at once."""
 
@@ -74,12 +79,15 @@ class RegionTable:
 
     def _segment(self, flat: np.ndarray) -> np.ndarray:
         """Per motor row, the segment of each speed: the count of interior corner speeds
-        <= it (0 .. width-2). One searchsorted over all rows laid end to end (memory
-        motors x samples, not x curve points); the offsets cost a few ulps, so the index
-        is then corrected by one step against the row's own corner speeds (exact)."""
+        <= it (0 .. width-2). Small tables count directly; large ones by one searchsorted
+        over all rows laid end to end (memory motors x samples, not x curve points); the
+        offsets cost a few ulps, so the index is then corrected by one step against the
+        row's own corner speeds (exact)."""
         count, width = self.speeds.shape
         if width <= 2:
             return np.zeros(flat.shape, dtype=np.intp)
+        if flat.size * (width - 2) <= _BRUTE_FORCE_CELLS:  # small: one comparison, faster
+            return (self.speeds[:, None, 1:-1] <= flat[:, :, None]).sum(axis=-1)
         span = self.speeds[:, -1] - self.speeds[:, 0] + 1.0
         base = np.concatenate(([0.0], np.cumsum(span)[:-1]))[:, None]
         laid = (self.speeds - self.speeds[:, :1] + base).ravel()
