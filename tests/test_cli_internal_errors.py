@@ -13,6 +13,7 @@ from cli_run import run_cli
 
 import sizer
 from sizer.cli import app as app_module
+from sizer.cli.exit_codes import ExitCode
 
 ROOT = Path(__file__).resolve().parents[1]
 EX63 = str(ROOT / "examples" / "book" / "ex6_3.yaml")
@@ -209,7 +210,7 @@ def test_a_closed_pipe_prints_no_traceback(args: tuple[str, ...]) -> None:
     process.stdout.close()
     _, stderr = process.communicate(timeout=120)
     assert stderr == b"", stderr
-    assert process.returncode == app_module.BROKEN_PIPE_EXIT_CODE
+    assert process.returncode == ExitCode.BROKEN_PIPE
 
 
 def test_a_pipe_closed_while_writing_is_quiet(monkeypatch) -> None:
@@ -224,7 +225,7 @@ def test_a_pipe_closed_while_writing_is_quiet(monkeypatch) -> None:
             return False
 
     monkeypatch.setattr(sys, "stdout", ClosedPipe())
-    assert app_module.run(["laws"]) == app_module.BROKEN_PIPE_EXIT_CODE
+    assert app_module.run(["laws"]) == ExitCode.BROKEN_PIPE
 
 
 def test_help_imports_no_numerical_or_file_libraries() -> None:

@@ -32,19 +32,9 @@ from sizer.cli import (
     schema_command,
     size_command,
 )
+from sizer.cli.exit_codes import ExitCode
 from sizer.errors import UserError
 from sizer.report.printable import printable
-
-CHECK_FAILED_EXIT_CODE = 1
-"""Exit code of a check that fails (``sizer check``, ``sizer catalog validate``)."""
-USER_ERROR_EXIT_CODE = 2
-"""Exit code for mistakes in the user's input (click uses 2 for usage errors too)."""
-INTERNAL_ERROR_EXIT_CODE = 3
-"""Exit code of a bug in sizer (an exception that is not a UserError)."""
-INTERRUPTED_EXIT_CODE = 130
-"""Exit code after Ctrl-C (128 + SIGINT, as shells report it)."""
-BROKEN_PIPE_EXIT_CODE = 141
-"""Exit code when stdout's reader went away (128 + SIGPIPE, e.g. ``sizer laws | head -1``)."""
 
 EXIT_CODES_HELP = ("Exit codes: 0 ok; 1 a check failed (sizer check: a limit not met; "
                    "catalog validate: a finding); 2 bad input (one 'error: ...' line naming "
@@ -203,26 +193,26 @@ def run(argv: Sequence[str] | None = None) -> int:
             shown = error.format_message()  # typer has printed the help already
             if shown.strip():
                 sys.stderr.write(shown.rstrip("\n") + "\n")
-            return USER_ERROR_EXIT_CODE
+            return ExitCode.USER_ERROR
         except click_exceptions.ClickException as error:
             sys.stderr.write(_usage_error_line(error) + "\n")
             sys.stderr.flush()
-            return USER_ERROR_EXIT_CODE if isinstance(error, click_exceptions.UsageError) \
+            return ExitCode.USER_ERROR if isinstance(error, click_exceptions.UsageError) \
                 else error.exit_code
         except UserError as error:
             report_user_error(error)
-            return USER_ERROR_EXIT_CODE
+            return ExitCode.USER_ERROR
     except (KeyboardInterrupt, Abort):
         sys.stderr.write("interrupted\n")
         sys.stderr.flush()
-        return INTERRUPTED_EXIT_CODE
+        return ExitCode.INTERRUPTED
     except BrokenPipeError:
         _silence_stdout()
-        return BROKEN_PIPE_EXIT_CODE
+        return ExitCode.BROKEN_PIPE
     except Exception as error:  # a bug: one line, the traceback only on request
         report_internal_error(error, f"'{_command_words(args)}'")
-        return INTERNAL_ERROR_EXIT_CODE
-    return 0
+        return ExitCode.INTERNAL_ERROR
+    return ExitCode.OK
 
 
 def main(argv: Sequence[str] | None = None) -> None:
@@ -232,7 +222,7 @@ def main(argv: Sequence[str] | None = None) -> None:
         sys.stdout.flush()
     except BrokenPipeError:  # the reader left after the last write: quiet, like above
         _silence_stdout()
-        code = code or BROKEN_PIPE_EXIT_CODE
+        code = code or ExitCode.BROKEN_PIPE
     except (OSError, ValueError):
         pass
     sys.exit(code)

@@ -10,6 +10,7 @@ from typing import Annotated
 import typer
 
 from sizer.cli.catalog_option import check_catalog_references
+from sizer.cli.exit_codes import ExitCode
 from sizer.cli.options import FormatOption, OutputOption
 from sizer.errors import UserError
 from sizer.report.formats import Format
@@ -227,7 +228,7 @@ def import_command(
         for problem in error.problems:
             sys.stderr.write(printable(f"error: {problem}") + "\n")
         sys.stderr.flush()
-        raise typer.Exit(2) from None
+        raise typer.Exit(ExitCode.USER_ERROR) from None
     from sizer.cli.app import report_warnings
 
     report_warnings(catalog.warnings)

@@ -10,15 +10,13 @@ from typing import TYPE_CHECKING, Annotated
 import typer
 
 from sizer.cli.catalog_option import CatalogOption, check_catalog_references, load_design_file
+from sizer.cli.exit_codes import ExitCode
 from sizer.cli.options import EnvelopeOption
 from sizer.errors import UserError
 
 if TYPE_CHECKING:
     from sizer.report.check_report import CheckDocument
 
-CHECK_FAILED_EXIT_CODE = 1
-INVALID_INPUT_EXIT_CODE = 2
-INTERNAL_ERROR_EXIT_CODE = 3
 
 
 class CheckFormat(StrEnum):
@@ -80,11 +78,11 @@ def check(
         data = [d.data() for d in documents]
         emit(render_json(data[0] if len(designs) == 1 else data), None)
     if internal:
-        raise typer.Exit(INTERNAL_ERROR_EXIT_CODE)
+        raise typer.Exit(ExitCode.INTERNAL_ERROR)
     if invalid:
-        raise typer.Exit(INVALID_INPUT_EXIT_CODE)
+        raise typer.Exit(ExitCode.USER_ERROR)
     if not all(d.passed for d in documents):
-        raise typer.Exit(CHECK_FAILED_EXIT_CODE)
+        raise typer.Exit(ExitCode.CHECK_FAILED)
 
 
 def check_one(design: Path, catalogs: list[str] | tuple[str, ...],
