@@ -64,6 +64,14 @@ class RegionTable:
     def __len__(self) -> int:
         return len(self.max_speed)
 
+    def take(self, index: np.ndarray) -> RegionTable:
+        """The rows at ``index`` (repeats allowed), without rebuilding from the curves."""
+        table = object.__new__(RegionTable)
+        table.speeds = self.speeds[index]
+        table.torques = self.torques[index]
+        table.max_speed = self.max_speed[index]
+        return table
+
     def limit(self, speed: np.ndarray) -> np.ndarray:
         """Torque limit at |speed|; speed has shape (motors, ...). Past the end: 0."""
         speed = np.abs(np.asarray(speed, dtype=float))

@@ -20,66 +20,178 @@ for the last stage's ratio.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
 
-from sizer.model.domain import Load, Transmission
+from sizer.model.domain import Load, Stage, Transmission
+
+LIMITS = ("max_input_speed", "rated_output_torque", "peak_output_torque")
+"""The optional limits of a stage (None: not rated)."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
+class StageArrays:
+    """One stage position of the transmission options, each figure an array over the
+    candidates (length 1 when every candidate has the same transmission).
+
+    A limit is None when no option rates it; otherwise an array with inf where the
+    candidate's option does not, and ``rated[name]`` says which candidates are rated.
+    """
+
+    kind: str
+    name: str
+    ratio: np.ndarray
+    efficiency: np.ndarray
+    inertia: np.ndarray
+    preload_torque: np.ndarray
+    max_input_speed: np.ndarray | None
+    rated_output_torque: np.ndarray | None
+    peak_output_torque: np.ndarray | None
+    rated: dict[str, np.ndarray]
+
+    @classmethod
+    def of(cls, stages: Sequence[Stage], option: np.ndarray | None) -> StageArrays:
+        def column(values):
+            array = np.asarray(values, dtype=float)
+            return array if option is None else array[option]
+
+        limits: dict[str, np.ndarray | None] = {}
+        rated: dict[str, np.ndarray] = {}
+        for name in LIMITS:
+            values = [getattr(s, name) for s in stages]
+            if all(v is None for v in values):
+                limits[name] = None
+                continue
+            limits[name] = column([np.inf if v is None else v for v in values])
+            given = np.array([v is not None for v in values])
+            rated[name] = given if option is None else given[option]
+        first = stages[0]
+        return cls(first.kind, first.name, column([s.ratio for s in stages]),
+                   column([s.efficiency for s in stages]), column([s.inertia for s in stages]),
+                   column([s.preload_torque for s in stages]), limits["max_input_speed"],
+                   limits["rated_output_torque"], limits["peak_output_torque"], rated)
+
+    def take(self, index: np.ndarray) -> StageArrays:
+        def pick(x):
+            return None if x is None else (x if len(x) == 1 else x[index])
+
+        return StageArrays(self.kind, self.name, pick(self.ratio), pick(self.efficiency),
+                           pick(self.inertia), pick(self.preload_torque),
+                           pick(self.max_input_speed), pick(self.rated_output_torque),
+                           pick(self.peak_output_torque),
+                           {k: pick(v) for k, v in self.rated.items()})
+
+
+def _along(values: np.ndarray, like: np.ndarray) -> np.ndarray:
+    """Per-candidate values shaped to broadcast over candidate-major ``like``."""
+    ndim = np.ndim(like)
+    if ndim <= 1:
+        return values
+    return np.reshape(values, (-1,) + (1,) * (ndim - 1))
+
+
 class Drive:
-    """Load plus transmission; everything the motor drives apart from its own rotor."""
+    """Load plus transmission; everything the motor drives apart from its own rotor.
 
-    load: Load
-    transmission: Transmission
+    ``transmissions`` are the options of the candidates (the design's transmission, or it
+    with a chosen ratio or catalog gearbox in place, all with the same stage kinds) and
+    ``option`` the option of each candidate (None: one transmission for all). Every
+    figure is an array over the candidates (length 1 with a single transmission), so
+    that motors x transmission options are evaluated as one flat axis.
+    """
+
+    def __init__(self, load: Load, transmission: Transmission | Sequence[Transmission],
+                 option: np.ndarray | None = None) -> None:
+        options = (transmission,) if isinstance(transmission, Transmission) \
+            else tuple(transmission)
+        counts = {len(t.stages) for t in options}
+        if len(counts) != 1:
+            raise ValueError("transmission options must have the same number of stages")
+        self.load = load
+        self.transmissions = options
+        self.option = None if option is None or len(options) == 1 \
+            else np.asarray(option, dtype=np.intp)
+        self.stages = tuple(StageArrays.of([t.stages[i] for t in options], self.option)
+                            for i in range(counts.pop()))
+
+    def take(self, index: np.ndarray) -> Drive:
+        """The drive of the candidates at ``index`` (repeats allowed)."""
+        if self.option is None:
+            return self
+        out = object.__new__(Drive)
+        out.load, out.transmissions = self.load, self.transmissions
+        out.option = self.option[index]
+        out.stages = tuple(s.take(index) for s in self.stages)
+        return out
 
     @property
-    def stages(self):
-        return self.transmission.stages
+    def transmission(self) -> Transmission:
+        """The first option (the design's when there is one): its stages' kinds and rule."""
+        return self.transmissions[0]
 
-    @property
-    def ratio(self) -> float:
-        """Motor speed over load speed, K."""
-        return self.transmission.ratio
-
-    @property
-    def efficiency(self) -> float:
-        return self.transmission.efficiency
+    def transmission_of(self, candidate: int) -> Transmission:
+        """The transmission of one candidate."""
+        return self.transmissions[0 if self.option is None else int(self.option[candidate])]
 
     @cached_property
-    def input_ratios(self) -> tuple[float, ...]:
+    def ratio(self) -> np.ndarray:
+        """Motor speed over load speed, K, per candidate."""
+        out = np.ones(1)
+        for s in self.stages:
+            out = out * s.ratio
+        return out
+
+    @cached_property
+    def efficiency(self) -> np.ndarray:
+        out = np.ones(1)
+        for s in self.stages:
+            out = out * s.efficiency
+        return out
+
+    @cached_property
+    def input_ratios(self) -> tuple[np.ndarray, ...]:
         """Speed of each stage's input over the load speed."""
-        return self.transmission.input_ratios
+        out, speed = [], np.ones(1)
+        for stage in reversed(self.stages):
+            speed = speed * stage.ratio
+            out.append(speed)
+        return tuple(reversed(out))
 
     @property
     def steady_load_efficiency(self) -> bool:
         """The efficiencies act on the load's steady torque only (Yaskawa's convention)."""
         return self.transmission.efficiency_applies_to == "steady_load"
 
-    @property
+    @cached_property
     def is_ideal(self) -> bool:
         """The motor torque is linear in the load's a, v: all efficiencies are 1, or they
         act on the steady load only. The closed forms (``linear_chain``) then apply."""
-        return self.steady_load_efficiency or all(s.efficiency == 1.0 for s in self.stages)
+        return self.steady_load_efficiency or all(bool(np.all(s.efficiency == 1.0))
+                                                  for s in self.stages)
 
-    @property
-    def transmission_inertia(self) -> float:
+    @cached_property
+    def transmission_inertia(self) -> np.ndarray:
         """Inertia of all stages reflected to the motor shaft (no efficiency)."""
-        return self.transmission.inertia
+        total, upstream = np.zeros(1), np.ones(1)
+        for stage in self.stages:
+            total = total + stage.inertia / upstream**2
+            upstream = upstream * stage.ratio
+        return total
 
-    @property
-    def reflected_load_inertia(self) -> float:
+    @cached_property
+    def reflected_load_inertia(self) -> np.ndarray:
         """J_l/K^2, the load alone reflected to the motor (no efficiency)."""
         return self.load.inertia / self.ratio**2
 
     @property
-    def driven_inertia(self) -> float:
+    def driven_inertia(self) -> np.ndarray:
         """Everything the motor drives, reflected to it: load, screws, gears, couplings."""
         return self.transmission_inertia + self.reflected_load_inertia
 
-    def inertia_ratio_numerator(self, of: str = "driven") -> float:
+    def inertia_ratio_numerator(self, of: str = "driven") -> np.ndarray:
         """The inertia ratio's numerator: ``driven`` (vendors' definition) or ``load``."""
         return self.driven_inertia if of == "driven" else self.reflected_load_inertia
 
@@ -88,50 +200,64 @@ class Drive:
         load = self.load
         return load.inertia * a_l + load.damping * v_l + load.friction + direction * load.torque
 
-    def chain(self, a_l: np.ndarray, v_l: np.ndarray,
-              direction: float) -> tuple[np.ndarray, list[np.ndarray]]:
+    def _stage_values(self, index: np.ndarray | None, like: np.ndarray):
+        """Per stage (ratio, efficiency, inertia, preload, input ratio), each shaped to
+        broadcast over candidate-major ``like`` (rows ``index`` of the candidates)."""
+        def shaped(x):
+            if index is not None and len(x) > 1:
+                x = x[index]
+            return _along(x, like)
+
+        return [(shaped(s.ratio), shaped(s.efficiency), shaped(s.inertia),
+                 shaped(s.preload_torque), shaped(k_in))
+                for s, k_in in zip(self.stages, self.input_ratios, strict=True)]
+
+    def chain(self, a_l: np.ndarray, v_l: np.ndarray, direction: float,
+              index: np.ndarray | None = None) -> tuple[np.ndarray, list[np.ndarray]]:
         """Torque the transmission needs at the motor shaft, and each stage's output torque.
 
         a_l, v_l are the load's acceleration and speed along the motion (magnitudes for
-        the move's direction). Returns (shaft torque without the rotor, [output torque of
-        stage 0, ..., output torque of the last stage = u]).
+        the move's direction), candidate-major; ``index`` names the candidates of their
+        rows (default: all, in order). Returns (shaft torque without the rotor, [output
+        torque of stage 0, ..., output torque of the last stage = u]).
         """
+        values = self._stage_values(index, a_l)
         if self.steady_load_efficiency:
-            return self._steady_load_chain(a_l, v_l, direction)
+            return self._steady_load_chain(a_l, v_l, direction, values)
         x = self.load_torque(a_l, v_l, direction)
         outputs = [x]
-        for stage, k_in in zip(reversed(self.stages), reversed(self.input_ratios), strict=True):
-            reflected = np.where(x >= 0.0, x / (stage.ratio * stage.efficiency),
-                                 x * stage.efficiency / stage.ratio)
-            x = stage.inertia * k_in * a_l + stage.preload_torque + reflected
+        for ratio, efficiency, inertia, preload, k_in in reversed(values):
+            reflected = np.where(x >= 0.0, x / (ratio * efficiency), x * efficiency / ratio)
+            x = inertia * k_in * a_l + preload + reflected
             outputs.append(x)
         outputs.pop()  # the last one is the shaft torque, not a stage output
         return x, outputs[::-1]
 
-    def _steady_load_chain(self, a_l: np.ndarray, v_l: np.ndarray,
-                           direction: float) -> tuple[np.ndarray, list[np.ndarray]]:
+    def _steady_load_chain(self, a_l, v_l, direction: float, values):
         """``chain`` with the efficiencies on the steady torque only (Yaskawa)."""
         load = self.load
         inertial = load.inertia * a_l
         steady = load.damping * v_l + load.friction + direction * load.torque
-        constant = load.friction + direction * load.torque
+        constant = np.float64(load.friction + direction * load.torque)
         outputs = [inertial + steady]
-        for stage, k_in in zip(reversed(self.stages), reversed(self.input_ratios), strict=True):
-            factor = _steady_factor(stage.efficiency, constant)
-            inertial = stage.inertia * k_in * a_l + inertial / stage.ratio
-            steady = stage.preload_torque + steady * factor / stage.ratio
-            constant = stage.preload_torque + constant * factor / stage.ratio
+        for ratio, efficiency, inertia, preload, k_in in reversed(values):
+            factor = _steady_factor(efficiency, constant)
+            inertial = inertia * k_in * a_l + inertial / ratio
+            steady = preload + steady * factor / ratio
+            constant = preload + constant * factor / ratio
             outputs.append(inertial + steady)
         outputs.pop()
         return inertial + steady, outputs[::-1]
 
-    def linear_chain(self, direction: float) -> tuple[float, float, float]:
-        """(A, B, C) with shaft torque = A a_l + B v_l + C, valid when ``is_ideal``."""
+    def linear_chain(self, direction: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(A, B, C) per candidate with shaft torque = A a_l + B v_l + C, valid when
+        ``is_ideal``."""
         K = self.ratio
-        a_part = self.load.inertia / K + sum(
-            s.inertia * k_in**2 / K for s, k_in in zip(self.stages, self.input_ratios, strict=True))
-        v_part = self.load.damping
-        const = self.load.friction + direction * self.load.torque
+        a_part = self.load.inertia / K
+        for s, k_in in zip(self.stages, self.input_ratios, strict=True):
+            a_part = a_part + s.inertia * k_in**2 / K
+        v_part = np.full(1, float(self.load.damping))
+        const = np.full(1, self.load.friction + direction * self.load.torque)
         for stage in reversed(self.stages):
             factor = _steady_factor(stage.efficiency, const) if self.steady_load_efficiency \
                 else 1.0
@@ -139,13 +265,13 @@ class Drive:
             const = stage.preload_torque + const * factor / stage.ratio
         return a_part, v_part, const
 
-    def holding_torques(self) -> tuple[float, list[float]]:
+    def holding_torques(self) -> tuple[np.ndarray, list[np.ndarray]]:
         """|Torque| at the motor shaft and at each stage output holding the constant load.
 
         At rest the power flow is undefined; holding counts as driving (divide by eta),
         the conservative choice.
         """
-        x = abs(self.load.torque)
+        x = np.full(1, abs(self.load.torque))
         outputs = [x]
         for stage in reversed(self.stages):
             x = x / (stage.ratio * stage.efficiency)
@@ -154,10 +280,10 @@ class Drive:
         return x, outputs[::-1]
 
     @property
-    def holding_torque(self) -> float:
+    def holding_torque(self) -> np.ndarray:
         return self.holding_torques()[0]
 
 
-def _steady_factor(efficiency: float, constant: float) -> float:
+def _steady_factor(efficiency, constant):
     """1/eta while the steady torque opposes the motion, eta while it drives."""
-    return 1.0 / efficiency if constant >= 0.0 else efficiency
+    return np.where(np.asarray(constant) >= 0.0, 1.0 / efficiency, efficiency)

@@ -68,11 +68,11 @@ def task_curve(design: Design, motor: Motor, law: MotionLaw | str, duration: flo
                            law=law)
     T = np.array([duration])
     metrics = calc.evaluate(T)
-    h, K = calc.h, drive.ratio
+    h, K = calc.h, float(drive.ratio[0])
     tau, q_n, v_n, a_n = _sample_pieces(law, samples)
     times, positions, speeds, accelerations, torques = [], [], [], [], []
     t0, start = 0.0, 0.0
-    hold, _ = drive.holding_torques()
+    hold = float(drive.holding_torque[0])
     for direction in calc.directions:
         torque, _ = calc.channels(a_n[None], v_n[None], MoveScales(h / T / T, h / T, direction))
         times.append(t0 + duration * tau)
@@ -101,7 +101,7 @@ def task_curve(design: Design, motor: Motor, law: MotionLaw | str, duration: flo
         peak_torque=float(metrics.peak_torque[0]), max_speed=float(metrics.max_speed[0]),
         continuous_region=continuous_region(motor, design.limits.envelope),
         intermittent_region=intermittent_region(motor, design.limits.envelope),
-        total_inertia=motor.inertia + drive.transmission_inertia + drive.reflected_load_inertia,
+        total_inertia=motor.inertia + float(drive.driven_inertia[0]),
     )
 
 
