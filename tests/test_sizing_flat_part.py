@@ -20,7 +20,7 @@ from sizer.mechanics import Drive
 from sizer.model.domain import Design, Limits, Load, Motor, Task
 from sizer.sizing import size_design
 from sizer.sizing.cycle import CycleCalculator
-from sizer.sizing.duration import minimum_duration
+from sizer.sizing.minimum_duration import minimum_duration
 from sizer.sizing.motors import MotorArrays
 
 PLAIN = Motor(id="plain", inertia=1e-4, continuous_torque=1.0, peak_torque=3.0,

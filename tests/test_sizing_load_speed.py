@@ -59,7 +59,7 @@ def test_the_closed_form_has_the_load_speed_bound(tmp_path) -> None:
     from sizer.laws import make_law
     from sizer.mechanics import Drive
     from sizer.sizing.cycle import CycleCalculator
-    from sizer.sizing.duration import closed_form_duration, is_purely_inertial
+    from sizer.sizing.minimum_duration import closed_form_duration, is_purely_inertial
     from sizer.sizing.motors import MotorArrays
 
     design = belt(tmp_path, "minimize", "1 m/s")

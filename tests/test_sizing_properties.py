@@ -99,7 +99,7 @@ def test_minimize_rectangles_pure_inertia_matches_bisection(design):
     """The closed form (eq. 6.2 with dwell) and the bracketing solver agree to 1e-9."""
     from sizer.mechanics import Drive
     from sizer.sizing.cycle import CycleCalculator
-    from sizer.sizing.duration import bisect_duration, closed_form_duration
+    from sizer.sizing.minimum_duration import bisect_duration, closed_form_duration
     from sizer.sizing.motors import MotorArrays
 
     pure = dataclasses.replace(design, load=Load(design.load.inertia),

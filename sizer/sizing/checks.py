@@ -17,6 +17,7 @@ although rounding leaves it one ulp above; a requirement 1e-6 (relative) above f
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -29,25 +30,40 @@ TOLERANCE = 1e-9
 """Relative tolerance of every check: value <= (1 - required + TOLERANCE) * limit passes."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class CheckArrays:
-    """One check for all candidates: value, limit, margin = 1 - value/limit, required."""
+    """One check for all candidates: value, limit, margin = 1 - value/limit, required.
+
+    ``applies`` (None: everywhere) marks the candidates the check is part of: a catalog
+    gearbox without a torque rating has no rating check. Where it does not apply the
+    slack is +inf (it never binds) and the result rows omit it.
+    """
 
     name: str
     value: np.ndarray
     limit: np.ndarray
     unit: str
     required: float
+    applies: np.ndarray | None = None
 
-    @property
+    @cached_property
     def margin(self) -> np.ndarray:
         with np.errstate(divide="ignore", invalid="ignore"):
             margin = 1.0 - self.value / self.limit
         return np.where(self.limit > 0.0, margin, np.where(self.value > 0.0, -np.inf, 1.0))
 
-    @property
+    @cached_property
     def slack(self) -> np.ndarray:
-        return self.margin - self.required
+        slack = self.margin - self.required
+        if self.applies is not None:
+            slack = np.where(self.applies, slack, np.inf)
+        return slack
+
+    def take(self, index: np.ndarray) -> CheckArrays:
+        """The check of the candidates at ``index``."""
+        return CheckArrays(self.name, _pick(self.value, index), _pick(self.limit, index),
+                           self.unit, self.required,
+                           None if self.applies is None else _pick(self.applies, index))
 
     @property
     def passed(self) -> np.ndarray:
@@ -100,18 +116,33 @@ def stage_checks(metrics: CycleMetrics, drive: Drive, limits: Limits,
     last = len(drive.stages) - 1
     for i, (stage, label) in enumerate(zip(drive.stages, stage_labels(drive), strict=True)):
         torque_unit = "N" if linear and i == last else "N*m"
+        rated = stage.rated
         if stage.max_input_speed is not None:
             checks.append(CheckArrays(f"{label}_speed", metrics.stage_speed[i],
-                                      stage.max_input_speed * ones, "rad/s", limits.speed_margin))
+                                      stage.max_input_speed * ones, "rad/s", limits.speed_margin,
+                                      _applies(rated["max_input_speed"], ones)))
         if stage.rated_output_torque is not None:
             checks.append(CheckArrays(f"{label}_rms", metrics.stage_rms[i],
                                       stage.rated_output_torque * ones, torque_unit,
-                                      limits.torque_margin))
+                                      limits.torque_margin,
+                                      _applies(rated["rated_output_torque"], ones)))
         if stage.peak_output_torque is not None:
             checks.append(CheckArrays(f"{label}_peak", metrics.stage_peak[i],
                                       stage.peak_output_torque * ones, torque_unit,
-                                      limits.torque_margin))
+                                      limits.torque_margin,
+                                      _applies(rated["peak_output_torque"], ones)))
     return checks
+
+
+def _applies(rated: np.ndarray, ones: np.ndarray) -> np.ndarray | None:
+    """None where every candidate is rated, else the mask broadcast over candidates."""
+    if bool(np.all(rated)):
+        return None
+    return np.broadcast_to(rated, ones.shape).copy()
+
+
+def _pick(x: np.ndarray, index: np.ndarray) -> np.ndarray:
+    return x if np.ndim(x) == 0 or len(x) == 1 else x[index]
 
 
 def worst_slack(checks: list[CheckArrays]) -> np.ndarray:

@@ -125,10 +125,11 @@ class CycleCalculator:
         dwell = self.task.dwell
         n = len(self.directions)
         hold, stage_hold = self.drive.holding_torques()
-        if dwell > 0.0 and hold > 0.0:
+        hold = np.broadcast_to(hold, T.shape)
+        if dwell > 0.0 and bool(np.any(hold > 0.0)):
             peak_torque = np.maximum(peak_torque, hold)
             hold_limit = self.motors.intermittent.limit(np.zeros_like(T))
-            peak_ratio = np.maximum(peak_ratio, _safe_ratio(np.full_like(T, hold), hold_limit))
+            peak_ratio = np.maximum(peak_ratio, _safe_ratio(hold, hold_limit))
             load_torque = np.maximum(load_torque, abs(self.drive.load.torque))
             for i in range(n_stages):
                 stage_peak[i] = np.maximum(stage_peak[i], stage_hold[i])
@@ -167,8 +168,11 @@ class CycleCalculator:
         shape = (-1,) + (1,) * (np.ndim(a_n) - 1)
         acc, vel, rotor, damping = (np.reshape(x, shape) for x in (acc, vel, rotor, damping))
         a_l, v_l = acc * a_n, vel * v_n
-        shaft, outputs = self.drive.chain(a_l, v_l, scales.direction)
+        shaft, outputs = self.drive.chain(a_l, v_l, scales.direction, index)
         K = self.drive.ratio
+        if index is not None and len(K) > 1:
+            K = K[index]
+        K = np.reshape(K, (-1,) + (1,) * (np.ndim(a_l) - 1)) if np.ndim(a_l) > 1 else K
         return rotor * K * a_l + damping * K * v_l + shaft, outputs
 
     def _mean_squares(self, scales: MoveScales) -> list[np.ndarray]:
@@ -216,7 +220,7 @@ class CycleCalculator:
         _, out_0 = self.drive.chain(zero, zero, scales.direction)
         result = []
         for xa, xv, x0 in zip(out_a, out_v, out_0, strict=True):
-            a_coef, v_coef, const = float(xa[0] - x0[0]), float(xv[0] - x0[0]), float(x0[0])
+            a_coef, v_coef, const = xa - x0, xv - x0, x0
             result.append(_square_mean(a_coef * scales.acc, v_coef * scales.vel, const,
                                        c.C_a_rms, c.C_v_rms))
         return result

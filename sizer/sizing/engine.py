@@ -1,9 +1,11 @@
 """Input -> calculator -> result: size a design for every motor x law (book ch. 6).
 
-``size_design`` evaluates every candidate pair: with a given duration, the requirements
-and margins of each; with ``minimize``, T_min of each. ``check_design`` verifies the one
-motor and law a design names. Laws with ``auto`` shape parameters have them chosen per
-motor (sizer.sizing.shape).
+``size_design`` evaluates every candidate (motor x transmission option, one flat axis:
+sizer.sizing.candidates) for each law: with a given duration, the requirements and
+margins of each; with ``minimize``, T_min of each. Results stay arrays
+(sizer.sizing.table); rows are built for what a report reads. ``check_design`` verifies
+the one motor and law a design names. Laws with ``auto`` shape parameters have them
+chosen per candidate (sizer.sizing.shape).
 """
 
 from __future__ import annotations
@@ -16,25 +18,30 @@ import numpy as np
 from sizer.envelope import envelope_note
 from sizer.errors import UserError
 from sizer.laws import AUTO, MotionLaw, make_law, resolve
-from sizer.mechanics import Drive
-from sizer.model.domain import Design, Motor, Transmission
-from sizer.sizing.checks import CheckArrays, evaluate_checks, limiting_index
+from sizer.model.domain import Design, Motor
+from sizer.sizing.candidates import Candidates
+from sizer.sizing.checks import evaluate_checks
 from sizer.sizing.checks import feasible as all_pass
-from sizer.sizing.cycle import CycleCalculator, CycleMetrics
-from sizer.sizing.duration import minimum_duration
+from sizer.sizing.cycle import CycleCalculator
+from sizer.sizing.minimum_duration import minimum_duration
 from sizer.sizing.motors import MotorArrays
-from sizer.sizing.ranking import rank
-from sizer.sizing.results import CandidateResult, Check, SizingResult
+from sizer.sizing.ranking import rank_order
+from sizer.sizing.results import CandidateResult, SizingResult
 from sizer.sizing.shape import choose_shape
+from sizer.sizing.table import FIGURES, CandidateTable, Mode, Rows, concatenate
 
 Progress = Callable[[int, int], None]
 """Called as ``progress(done, total)``: laws sized so far, of all the laws."""
 
 
+def mode_of(design: Design) -> Mode:
+    return Mode.MINIMIZE if design.task.minimize else Mode.DURATION
+
+
 def size_design(design: Design, rank_by: str | None = None,
                 motors: Sequence[Motor] | None = None,
                 progress: Progress | None = None) -> SizingResult:
-    """Every motor x law of the design, ranked (feasible first).
+    """Every motor x law (x transmission option) of the design, ranked (feasible first).
 
     ``progress``, if given, is called with (0, n) and then after each of the n laws.
     """
@@ -45,48 +52,53 @@ def size_design(design: Design, rank_by: str | None = None,
     if not design.laws:
         raise UserError("no motion laws to consider", field="laws")
     arrays = MotorArrays.of(motors, design.limits.envelope)
-    results: list[CandidateResult] = []
+    tables: list[CandidateTable] = []
     if progress is not None:
         progress(0, len(design.laws))
     for done, spec in enumerate(design.laws, start=1):
-        results.extend(evaluate_candidates(design, spec, arrays))
+        tables.append(evaluate_spec(design, spec, arrays))
         if progress is not None:
             progress(done, len(design.laws))
-    mode = "minimize" if design.task.minimize else "duration"
-    return SizingResult(mode, tuple(rank(results, rank_by, mode)), design.name,
-                        notes=assumptions(design))
+    table = concatenate(tables)
+    order = rank_order(table, rank_by)
+    return SizingResult(table.mode, Rows(table, order), design.name,
+                        notes=assumptions(design), table=table)
 
 
-def evaluate_candidates(design: Design, spec: str,
-                        motors: MotorArrays) -> list[CandidateResult]:
-    """Results of one law spec for all motors, the free ratio chosen if there is one."""
+def evaluate_spec(design: Design, spec: str, motors: MotorArrays) -> CandidateTable:
+    """One law spec for all motors (one row per motor), the free ratio chosen if any."""
     if design.ratio_choice is None:
-        return evaluate_law(design, spec, motors)
-    from sizer.sizing.ratio import choose_ratio
+        candidates = Candidates.single(motors, design.load, design.transmission)
+        return evaluate_law(design, spec, candidates)
+    from sizer.sizing.ratio_choice import choose_ratio
 
-    return choose_ratio(design, spec, motors, evaluate_law)
+    return choose_ratio(design, motors, lambda c: evaluate_law(design, spec, c))
 
 
-def evaluate_law(design: Design, spec: str, motors: MotorArrays) -> list[CandidateResult]:
-    """Results of one law spec (fixed or with auto parameters) for all motors."""
+def evaluate_law(design: Design, spec: str, candidates: Candidates) -> CandidateTable:
+    """One law spec (fixed or with auto parameters) for all candidates, in their order."""
     family, values = resolve(spec)
-    drive = Drive(design.load, design.transmission)
     if any(v == AUTO for v in values.values()):
-        laws = choose_shape(family, values, design, drive, motors)
+        laws = choose_shape(family, values, design, candidates)
     else:
-        law = make_law(spec)
-        laws = [law] * len(motors)
-    results: list[CandidateResult | None] = [None] * len(motors)
-    for law in dict.fromkeys(laws):
-        index = np.array([i for i, chosen in enumerate(laws) if chosen == law])
-        subset = motors.subset(index)
-        for i, result in zip(index, evaluate_fixed_law(design, law, drive, subset), strict=True):
-            results[i] = result
-    return [r for r in results if r is not None]
+        return evaluate_fixed_law(design, make_law(spec), candidates)
+    distinct = list(dict.fromkeys(laws))
+    which = {law: k for k, law in enumerate(distinct)}
+    group = np.array([which[law] for law in laws])
+    parts, positions = [], []
+    for k, law in enumerate(distinct):
+        index = np.flatnonzero(group == k)
+        parts.append(evaluate_fixed_law(design, law, candidates.take(index)))
+        positions.append(index)
+    joined = concatenate(parts)
+    inverse = np.empty(len(candidates), dtype=np.intp)
+    inverse[np.concatenate(positions)] = np.arange(len(candidates))
+    return joined.take(inverse)
 
 
-def evaluate_fixed_law(design: Design, law: MotionLaw, drive: Drive,
-                       motors: MotorArrays) -> list[CandidateResult]:
+def evaluate_fixed_law(design: Design, law: MotionLaw, candidates: Candidates) -> CandidateTable:
+    """The requirements, checks and verdicts of one law for every candidate."""
+    motors, drive = candidates.motors, candidates.drive
     calculator = CycleCalculator(None, design.task, drive, motors,
                                  design.limits.thermal_speed, law=law)
     if design.task.minimize:
@@ -99,55 +111,18 @@ def evaluate_fixed_law(design: Design, law: MotionLaw, drive: Drive,
         checks = evaluate_checks(metrics, motors, drive, design.limits, design.task.linear)
         feasible = all_pass(checks)
         duration = T
-    return to_results(law, motors, metrics, checks, feasible, duration,
-                      minimize=design.task.minimize, transmission=drive.transmission)
-
-
-def to_results(law: MotionLaw, motors: MotorArrays, metrics: CycleMetrics,
-               checks: list[CheckArrays], feasible: np.ndarray, duration: np.ndarray,
-               minimize: bool, transmission: Transmission) -> list[CandidateResult]:
-    binding = limiting_index(checks)
-    out = []
-    for i, motor in enumerate(motors.motors):
-        rows = tuple(
-            Check(c.name, float(c.value[i]), float(c.limit[i]), c.unit, float(c.margin[i]),
-                  c.required)
-            for c in checks
-        )
-        ok = bool(feasible[i])
-        limiting = rows[int(binding[i])]
-        if ok:
-            reason = ""
-        elif minimize:
-            reason = f"no duration is feasible: {limiting.describe()}"
-        else:
-            failed = [r.describe() for r in rows if not r.passed]
-            reason = "; ".join(failed)
-        known = ok or not minimize
-        out.append(CandidateResult(
-            motor=motor.id,
-            law=law.law_id,
-            spec=law.spec,
-            params=dict(law.params),
-            feasible=ok,
-            duration=float(duration[i]) if ok or not minimize else None,
-            peak_torque=float(metrics.peak_torque[i]) if known else None,
-            rms_torque=float(metrics.rms_torque[i]) if known else None,
-            max_speed=float(metrics.max_speed[i]) if known else None,
-            checks=rows,
-            limiting=limiting.name,
-            reason=reason,
-            price=motor.price,
-            mass=motor.mass,
-            ratio=transmission.ratio,
-            transmission=transmission,
-            load_speed=float(metrics.load_speed[i]) if known else None,
-            load_torque=float(metrics.load_torque[i]) if known else None,
-            rated_power=motor.continuous_torque * motor.rated_speed,
-            continuous_torque=motor.continuous_torque,
-            rotor_inertia=motor.inertia,
-        ))
-    return out
+    n = len(motors)
+    figures = {"duration": duration, "peak_torque": metrics.peak_torque,
+               "rms_torque": metrics.rms_torque, "max_speed": metrics.max_speed,
+               "load_speed": metrics.load_speed, "load_torque": metrics.load_torque}
+    assert set(figures) == set(FIGURES)
+    return CandidateTable(
+        mode_of(design), (law,), np.zeros(n, dtype=np.intp), motors.catalog, motors.index,
+        drive.transmissions, candidates.gearbox_names, candidates.option,
+        np.asarray(feasible, dtype=bool),
+        {k: np.broadcast_to(np.asarray(v, dtype=float), (n,)).copy()
+         for k, v in figures.items()},
+        tuple(checks))
 
 
 def check_design(design: Design) -> CandidateResult:
@@ -160,9 +135,9 @@ def check_design(design: Design) -> CandidateResult:
         known = ", ".join(m.id for m in design.motors) or "none"
         raise UserError(f"unknown motor {design.chosen_motor!r}; loaded motors: {known}",
                         field="check.motor")
-    results = evaluate_candidates(design, design.chosen_law,
-                                  MotorArrays.of([motor], design.limits.envelope))
-    return results[0]
+    table = evaluate_spec(design, design.chosen_law,
+                          MotorArrays.of([motor], design.limits.envelope))
+    return table.row(0)
 
 
 def assumptions(design: Design) -> tuple[str, ...]:

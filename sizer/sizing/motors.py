@@ -13,13 +13,17 @@ from sizer.model.domain import EnvelopeRule, Motor
 
 @dataclass(frozen=True)
 class MotorArrays:
-    """Rotor inertia, damping and speed-torque regions of a list of motors.
+    """Rotor inertia, damping and speed-torque regions of the candidates' motors.
+
+    ``catalog`` are the distinct motors, ``index`` the motor of each candidate (a motor
+    repeats once per transmission option); the arrays are per candidate.
 
     ``envelope`` is the rule that completed the regions without curves
     (sizer.envelope.completion); ``book`` keeps the book's rectangles.
     """
 
-    motors: tuple[Motor, ...]
+    catalog: tuple[Motor, ...]
+    index: np.ndarray
     inertia: np.ndarray
     damping: np.ndarray
     intermittent: RegionTable
@@ -31,6 +35,7 @@ class MotorArrays:
         motors = tuple(motors)
         return cls(
             motors,
+            np.arange(len(motors)),
             np.array([m.inertia for m in motors], dtype=float),
             np.array([m.damping for m in motors], dtype=float),
             RegionTable([intermittent_region(m, envelope) for m in motors]),
@@ -39,7 +44,15 @@ class MotorArrays:
         )
 
     def __len__(self) -> int:
-        return len(self.motors)
+        return len(self.index)
+
+    @property
+    def motors(self) -> tuple[Motor, ...]:
+        """The motor of each candidate."""
+        return tuple(self.catalog[int(i)] for i in self.index)
+
+    def motor(self, candidate: int) -> Motor:
+        return self.catalog[int(self.index[candidate])]
 
     @property
     def speed_limit(self) -> np.ndarray:
@@ -69,8 +82,11 @@ class MotorArrays:
         return bool(np.all(self.is_rectangular))
 
     def subset(self, index: np.ndarray) -> MotorArrays:
-        """The motors at the given positions, in that order."""
-        return MotorArrays.of([self.motors[int(i)] for i in index], self.envelope)
+        """The candidates at the given positions, in that order (repeats allowed)."""
+        index = np.asarray(index, dtype=np.intp)
+        return MotorArrays(self.catalog, self.index[index], self.inertia[index],
+                           self.damping[index], self.intermittent.take(index),
+                           self.continuous.take(index), self.envelope)
 
 
 def _flat_end(table: RegionTable) -> np.ndarray:

@@ -20,12 +20,18 @@ differ in nothing the user can see is then harmless).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from enum import StrEnum
+from typing import TYPE_CHECKING
+
+import numpy as np
 
 from sizer.errors import UserError
 from sizer.sizing.results import CandidateResult
+
+if TYPE_CHECKING:
+    from sizer.sizing.table import CandidateTable
 
 
 class RankKey(StrEnum):
@@ -51,37 +57,79 @@ def _number(value: float | None) -> float:
     return math.inf if value is None or math.isnan(value) else float(value)
 
 
-Criterion = Callable[[CandidateResult], float | tuple[float, ...]]
+def _column(values: np.ndarray) -> np.ndarray:
+    """``_number`` over an array: NaN last."""
+    return np.where(np.isnan(values), np.inf, values)
 
 
-def _power(r: CandidateResult) -> float:
-    return _number(r.rated_power)
+@dataclass(frozen=True)
+class Criterion:
+    """One "smaller first" criterion, for a result row and for a whole table.
+
+    ``row`` gives the sort key of one result; ``columns`` the same order as lexsort keys
+    over a table (most significant first), one or several arrays.
+    """
+
+    name: str
+    row: Callable[[CandidateResult], float | tuple]
+    columns: Callable[[CandidateTable], list[np.ndarray]]
 
 
-def _continuous_torque(r: CandidateResult) -> float:
-    return _number(r.continuous_torque)
+def _figure(name: str) -> Criterion:
+    def columns(t: CandidateTable) -> list[np.ndarray]:
+        known = t.feasible | (t.mode != "minimize")
+        return [np.where(known, _column(t.figures[name]), np.inf)]
+    return Criterion(name, lambda r: _number(getattr(r, name)), columns)
 
 
-def _margin(r: CandidateResult) -> tuple[float, ...]:
+def _motor(name: str, attribute: str) -> Criterion:
+    return Criterion(name, lambda r: _number(getattr(r, name)),
+                     lambda t: [_column(t.motor_column(attribute))])
+
+
+def _margin_row(r: CandidateResult) -> tuple[float, ...]:
     # the largest smallest slack first, then the next; an undefined slack (NaN) last
     return tuple(math.inf if math.isnan(s) else -s for s in r.slacks)
 
 
-def _inertia(r: CandidateResult) -> float:
-    return _number(r.rotor_inertia)
+def _margin_columns(t: CandidateTable) -> list[np.ndarray]:
+    slacks = np.sort(np.where(np.isnan(t.slacks), -np.inf, t.slacks), axis=1)
+    return list(-slacks.T)  # a check that does not apply (slack inf) sorts like an absent one
 
 
-_SIZE: tuple[Criterion, ...] = (_power, _continuous_torque)
-_THEN: tuple[Criterion, ...] = (*_SIZE, _margin, _inertia)
+def _rated_power(t: CandidateTable) -> list[np.ndarray]:
+    return [_column(t.motor_column("continuous_torque") * t.motor_column("rated_speed"))]
+
+
+_POWER = Criterion("rated_power", lambda r: _number(r.rated_power), _rated_power)
+_CONTINUOUS = _motor("continuous_torque", "continuous_torque")
+_MARGIN = Criterion("margin", _margin_row, _margin_columns)
+_INERTIA = _motor("rotor_inertia", "inertia")
+
+
+def _ranks(values: Sequence[str]) -> np.ndarray:
+    """The rank of each text in sorted order (equal texts, equal ranks)."""
+    return np.unique(np.array(values, dtype=object), return_inverse=True)[1].reshape(-1)
+
+
+def _identity_columns(t: CandidateTable) -> list[np.ndarray]:
+    motor = _ranks([m.id for m in t.motors])[t.motor]
+    spec = _ranks([law.spec for law in t.laws])[t.law]
+    ratio = _column(np.array([tr.ratio for tr in t.transmissions]))[t.option]
+    gearbox = _ranks([g or "" for g in t.gearboxes])[t.option]
+    return [motor, spec, ratio, gearbox]
+
+
+_IDENTITY = Criterion(
+    "identity", lambda r: (r.motor, r.spec, _number(r.ratio), r.gearbox or ""),
+    _identity_columns)
+
+_SIZE: tuple[Criterion, ...] = (_POWER, _CONTINUOUS)
+_THEN: tuple[Criterion, ...] = (*_SIZE, _MARGIN, _INERTIA)
 _THEN_TEXT = ", then the smallest motor (rated power tau_c*v_n), then the largest margin"
 """The ties of every key but size and margin, in words (the criteria of _THEN)."""
 
-
-def _identity(r: CandidateResult) -> tuple[str, str, float, str]:
-    return (r.motor, r.spec, _number(r.ratio), r.gearbox or "")
-
-
-TIES: tuple[Criterion, ...] = (_identity,)
+TIES: tuple[Criterion, ...] = (_IDENTITY,)
 """The last criterion of every rule, a total order: motor id, canonical law spec, ratio,
 catalog gearbox name (each ascending)."""
 TIES_TEXT = "motor id, law spec, ratio"
@@ -98,21 +146,21 @@ class RankRule:
 
 
 RULES: dict[RankKey, RankRule] = {rule.key: rule for rule in (
-    RankRule(RankKey.SIZE, (*_SIZE, _margin, _inertia),
+    RankRule(RankKey.SIZE, (*_SIZE, _MARGIN, _INERTIA),
              "smallest motor first (rated power tau_c*v_n, then continuous torque), then the "
              "largest margin, then the smallest rotor inertia"),
-    RankRule(RankKey.DURATION, (lambda r: _number(r.duration), *_THEN),
+    RankRule(RankKey.DURATION, (_figure("duration"), *_THEN),
              "shortest duration first" + _THEN_TEXT),
-    RankRule(RankKey.MARGIN, (_margin, *_SIZE, _inertia),
+    RankRule(RankKey.MARGIN, (_MARGIN, *_SIZE, _INERTIA),
              "most room left at the tightest limit first, then the smallest motor (rated "
              "power tau_c*v_n)"),
-    RankRule(RankKey.RMS, (lambda r: _number(r.rms_torque), *_THEN),
+    RankRule(RankKey.RMS, (_figure("rms_torque"), *_THEN),
              "smallest RMS torque first" + _THEN_TEXT),
-    RankRule(RankKey.PEAK, (lambda r: _number(r.peak_torque), *_THEN),
+    RankRule(RankKey.PEAK, (_figure("peak_torque"), *_THEN),
              "smallest peak torque first" + _THEN_TEXT),
-    RankRule(RankKey.PRICE, (lambda r: _number(r.price), *_THEN),
+    RankRule(RankKey.PRICE, (_motor("price", "price"), *_THEN),
              "cheapest motor first (unknown prices last)" + _THEN_TEXT),
-    RankRule(RankKey.MASS, (lambda r: _number(r.mass), *_THEN),
+    RankRule(RankKey.MASS, (_motor("mass", "mass"), *_THEN),
              "lightest motor first (unknown masses last)" + _THEN_TEXT),
 )}
 
@@ -145,5 +193,15 @@ def rank(results: Iterable[CandidateResult], rank_by: str | None,
     ratio, gearbox), never by the order of the input.
     """
     rule = rank_rule(rank_by, mode)
-    return sorted(results, key=lambda r: (not r.feasible, *(c(r) for c in rule.criteria),
-                                          *(c(r) for c in TIES)))
+    return sorted(results, key=lambda r: (not r.feasible, *(c.row(r) for c in rule.criteria),
+                                          *(c.row(r) for c in TIES)))
+
+
+def rank_order(table: CandidateTable, rank_by: str | None) -> np.ndarray:
+    """The order of :func:`rank` for a whole table, by one lexsort over its arrays."""
+    rule = rank_rule(rank_by, table.mode)
+    keys: list[np.ndarray] = [~table.feasible]
+    for criterion in (*rule.criteria, *TIES):
+        keys.extend(criterion.columns(table))
+    keys = [np.broadcast_to(k, (len(table),)) for k in keys]
+    return np.lexsort(keys[::-1])

@@ -4,9 +4,18 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
-from sizer.model.domain import Transmission
+import numpy as np
+
+from sizer.model.domain import Motor, Transmission
 from sizer.sizing.checks import TOLERANCE
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    from sizer.laws import MotionLaw
+    from sizer.sizing.table import CandidateTable
 
 NOT_AVAILABLE = "n/a"
 """The text of a figure that does not exist (an unbounded requirement, no feasible
@@ -127,6 +136,10 @@ class CandidateResult:
     continuous_torque: float | None = None
     rotor_inertia: float | None = None
     extra: dict[str, float] = field(default_factory=dict)
+    motor_object: Motor | None = field(default=None, compare=False, repr=False)
+    """The motor itself (the catalog's object), so that no report looks it up by id."""
+    law_object: MotionLaw | None = field(default=None, compare=False, repr=False)
+    """The law itself, parsed once (its ``spec`` is the canonical text)."""
 
     def check(self, name: str) -> Check | None:
         return next((c for c in self.checks if c.name == name), None)
@@ -150,11 +163,27 @@ class CandidateResult:
 class SizingResult:
     """All candidates of a design, ranked, with what the run assumed."""
 
-    mode: str  # "duration" or "minimize"
-    results: tuple[CandidateResult, ...]
+    mode: str  # a sizer.sizing.table.Mode ("duration" or "minimize")
+    results: Sequence[CandidateResult]
+    """Ranked, best first (rows built when read: sizer.sizing.table.Rows)."""
     design_name: str = ""
     notes: tuple[str, ...] = ()
+    table: CandidateTable | None = field(default=None, compare=False, repr=False)
+    """The same candidates as arrays, in table order (None for hand-made results)."""
 
     @property
     def feasible(self) -> tuple[CandidateResult, ...]:
+        if self.table is not None:  # ranked feasible first: a prefix of the rows
+            return tuple(self.results[: int(np.count_nonzero(self.table.feasible))])
         return tuple(r for r in self.results if r.feasible)
+
+    def to_records(self) -> list[dict[str, object]]:
+        """One plain dict per candidate, ranked (JSON-ready numbers; None where unknown)."""
+        from sizer.sizing.records import record
+
+        return [record(r) for r in self.results]
+
+    def to_dict(self) -> dict[str, object]:
+        """The whole result as plain data: mode, design name, notes and the records."""
+        return {"design": self.design_name, "mode": str(self.mode),
+                "notes": list(self.notes), "candidates": self.to_records()}

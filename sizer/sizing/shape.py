@@ -25,11 +25,10 @@ from sizer.errors import UserError
 from sizer.laws import AUTO, MotionLaw
 from sizer.laws.base import Parameter
 from sizer.laws.piecewise_polynomial import DoubleS, Trapezoidal
-from sizer.mechanics import Drive
 from sizer.model.domain import Design
+from sizer.sizing.candidates import Candidates
 from sizer.sizing.cycle import CycleCalculator
-from sizer.sizing.duration import beyond_flat_part, is_purely_inertial
-from sizer.sizing.motors import MotorArrays
+from sizer.sizing.minimum_duration import beyond_flat_part, is_purely_inertial
 from sizer.sizing.shape_search import search_shape
 from sizer.sizing.time_optimal_shape import bound_scales, optimal_double_s, optimal_trapezoid
 
@@ -41,17 +40,18 @@ not reliable there, so the search keeps 1e-3 of the range away from open ends.""
 
 
 def choose_shape(family: type[MotionLaw], values: dict[str, Fraction | str], design: Design,
-                 drive: Drive, motors: MotorArrays) -> list[MotionLaw]:
-    """The best law of the family for each motor, its auto parameters optimized."""
+                 candidates: Candidates) -> list[MotionLaw]:
+    """The best law of the family for each candidate, its auto parameters optimized."""
+    motors = candidates.motors
     free = [p for p in family.parameters if values.get(p.name) == AUTO]
     fixed = {k: float(v) for k, v in values.items() if v != AUTO}
     ranges = {p.name: search_range(family.law_id, p, OPEN_INSET) for p in free}
-    exact = exact_time_optimal(family, fixed, ranges, design, drive, motors)
+    exact = exact_time_optimal(family, fixed, ranges, design, candidates)
     params, search = (None, np.ones(len(motors), dtype=bool)) if exact is None else exact
     if search.any():
         ranges = {p.name: search_range(family.law_id, p, SEARCH_INSET) for p in free}
         index = np.flatnonzero(search)
-        found = search_shape(family, fixed, ranges, design, drive, motors.subset(index))
+        found = search_shape(family, fixed, ranges, design, candidates.take(index))
         if params is None:
             params = found
         else:
@@ -75,17 +75,19 @@ def search_range(law_id: str, p: Parameter, inset: float) -> tuple[float, float]
 
 
 def exact_time_optimal(family: type[MotionLaw], fixed: dict[str, float],
-                       ranges: dict[str, tuple[float, float]], design: Design, drive: Drive,
-                       motors: MotorArrays) -> tuple[dict[str, np.ndarray], np.ndarray] | None:
+                       ranges: dict[str, tuple[float, float]], design: Design,
+                       candidates: Candidates) -> tuple[dict[str, np.ndarray], np.ndarray] | None:
     """The exact optimum where it is known (minimize mode, book's case), else None.
 
     With it, the mask of the motors left to the search: those whose region goes on past
     the flat part the exact optimum sees, where the optimum reaches the end of it
-    (sizer.sizing.duration.beyond_flat_part).
+    (sizer.sizing.minimum_duration.beyond_flat_part).
     """
     if not design.task.minimize or family not in (Trapezoidal, DoubleS):
         return None
-    calculator = CycleCalculator(None, design.task, drive, motors, design.limits.thermal_speed)
+    motors = candidates.motors
+    calculator = CycleCalculator(None, design.task, candidates.drive, motors,
+                                 design.limits.thermal_speed)
     if not is_purely_inertial(calculator):
         return None
     scales = bound_scales(calculator, design.limits)

@@ -11,7 +11,7 @@ same, nested (the inner search for each outer point), to TOLERANCE[2] per parame
 (coarser: the cost is the product of the two searches). Integer parameters are
 enumerated. Motors at equal points are evaluated together (vectorized). In minimize
 mode each T_min starts from the motor's previous one (warm_duration), falling back to
-the full search of sizer.sizing.duration.
+the full search of sizer.sizing.minimum_duration.
 """
 
 from __future__ import annotations
@@ -22,12 +22,11 @@ from collections.abc import Callable
 import numpy as np
 
 from sizer.laws import MotionLaw
-from sizer.mechanics import Drive
 from sizer.model.domain import Design
+from sizer.sizing.candidates import Candidates
 from sizer.sizing.checks import evaluate_checks, worst_slack
 from sizer.sizing.cycle import CycleCalculator
-from sizer.sizing.duration import evaluate, minimum_duration
-from sizer.sizing.motors import MotorArrays
+from sizer.sizing.minimum_duration import evaluate, minimum_duration
 from sizer.sizing.roots import illinois
 
 GRID = {1: 13, 2: 7}
@@ -45,8 +44,8 @@ Scores = np.ndarray
 
 
 def search_shape(family: type[MotionLaw], fixed: dict[str, float],
-                 ranges: dict[str, tuple[float, float]], design: Design, drive: Drive,
-                 motors: MotorArrays) -> dict[str, np.ndarray]:
+                 ranges: dict[str, tuple[float, float]], design: Design,
+                 motors: Candidates) -> dict[str, np.ndarray]:
     """The best value of each auto parameter per motor (arrays over the motors)."""
     names = list(ranges)
     params = {p.name: p for p in family.parameters}
@@ -56,7 +55,7 @@ def search_shape(family: type[MotionLaw], fixed: dict[str, float],
     guess = np.full(n, np.nan)  # the last T_min of each motor, to start the next one
 
     def score(points: list[np.ndarray]) -> Scores:
-        scores = evaluate_points(family, fixed, names, points, design, drive, motors, guess)
+        scores = evaluate_points(family, fixed, names, points, design, motors, guess)
         if design.task.minimize:
             found = np.isfinite(scores[:, 0])
             guess[found] = -scores[found, 0]
@@ -163,8 +162,8 @@ def beats(new: Scores, old: Scores) -> np.ndarray:
 
 
 def evaluate_points(family: type[MotionLaw], fixed: dict[str, float], names: list[str],
-                    points: list[np.ndarray], design: Design, drive: Drive,
-                    motors: MotorArrays, guess: np.ndarray | None = None) -> Scores:
+                    points: list[np.ndarray], design: Design,
+                    motors: Candidates, guess: np.ndarray | None = None) -> Scores:
     """The score of each motor at its own point (motors at equal points evaluated together)."""
     n = len(motors)
     stacked = np.column_stack(points)
@@ -177,8 +176,8 @@ def evaluate_points(family: type[MotionLaw], fixed: dict[str, float], names: lis
     for k, key in enumerate(keys):
         members = wanted[np.nonzero(inverse == k)[0]]
         law = family(**fixed, **{name: float(v) for name, v in zip(names, key, strict=True)})
-        subset = motors if len(members) == n else motors.subset(members)
-        rows = score_law(law, design, drive, subset,
+        subset = motors if len(members) == n else motors.take(members)
+        rows = score_law(law, design, subset,
                          None if guess is None else guess[members])
         if out is None:
             out = np.full((n, rows.shape[1]), -np.inf)
@@ -187,9 +186,10 @@ def evaluate_points(family: type[MotionLaw], fixed: dict[str, float], names: lis
     return out
 
 
-def score_law(law: MotionLaw, design: Design, drive: Drive, motors: MotorArrays,
+def score_law(law: MotionLaw, design: Design, candidates: Candidates,
               guess: np.ndarray | None = None) -> Scores:
     """(-T_min,) in minimize mode (-inf if infeasible), else the sorted slacks."""
+    motors, drive = candidates.motors, candidates.drive
     calculator = CycleCalculator(None, design.task, drive, motors,
                                  design.limits.thermal_speed, law=law)
     if design.task.minimize:
@@ -208,7 +208,7 @@ def warm_duration(calculator: CycleCalculator, design: Design,
     """T_min near a previous one (a neighbouring shape's): the worst slack bracketed in
     [guess (1 - WARM), guess (1 + WARM)], then the Illinois method on log T to 1e-14
     (the feasible end returned). None when a motor has no guess or no bracket there:
-    the caller then uses the full search of sizer.sizing.duration."""
+    the caller then uses the full search of sizer.sizing.minimum_duration."""
     if not np.all(np.isfinite(guess)):
         return None
 

@@ -8,7 +8,7 @@ shape is the largest of the bounds of eq. (6.2), each a closed form in one coeff
     RMS     T_R: T^3 (T + dwell) = (C_a_rms S_R)^2,  S_R = K h J_t / tau_c
     jerk    T_J = cbrt(C_j S_J)      S_J = h / j_max
 
-(margins applied to the limits as in sizer.sizing.duration). The trapezoid's
+(margins applied to the limits as in sizer.sizing.minimum_duration). The trapezoid's
 coefficients are C_v = 1/(1-a), C_a = 1/(a(1-a)), C_a_rms = sqrt(2/a)/(1-a) (a = alpha,
 sec. 6.2.1); each bound is monotone or unimodal in a (T_V increasing, T_A decreasing, T_R
 smallest at a = 1/3) and the sign of every difference of two bounds changes at most once
@@ -31,8 +31,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from sizer.sizing.duration import duration_bounds
 from sizer.sizing.golden import golden_step, interior_points
+from sizer.sizing.minimum_duration import duration_bounds
 
 SAMPLES = 65
 GOLDEN_WIDTH = 1e-13
@@ -307,7 +307,7 @@ def _finish(scales: BoundScales, params: dict[str, np.ndarray], duration: np.nda
 # --------------------------------------------------------------------------- entry
 def bound_scales(calculator, limits) -> BoundScales:
     """The scales of the bounds for the candidates of a CycleCalculator (law unused):
-    those of eq. (6.2) in sizer.sizing.duration, zeroed where one is infinite (no shape
+    those of eq. (6.2) in sizer.sizing.minimum_duration, zeroed where one is infinite (no shape
     can meet it: ``feasible`` False)."""
     raw = duration_bounds(calculator, limits)
     scales = (raw.speed, raw.torque, raw.rms, raw.jerk)

@@ -19,12 +19,12 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import optimize
 
 from sizer.model.domain import Limits
 from sizer.sizing.checks import TOLERANCE, CheckArrays, evaluate_checks, feasible, worst_slack
 from sizer.sizing.cycle import CycleCalculator, CycleMetrics
 from sizer.sizing.golden import golden_step, interior_points
+from sizer.sizing.roots import illinois
 
 EXPANSIONS = 80
 BISECTIONS = 200
@@ -58,7 +58,7 @@ def is_purely_inertial(calculator: CycleCalculator) -> bool:
     below the end of the flat part (:func:`minimum_duration` searches the others).
     """
     load, drive, motors = calculator.drive.load, calculator.drive, calculator.motors
-    stages_plain = all(s.preload_torque == 0.0 and s.max_input_speed is None
+    stages_plain = all(bool(np.all(s.preload_torque == 0.0)) and s.max_input_speed is None
                        and s.rated_output_torque is None and s.peak_output_torque is None
                        for s in drive.stages)
     return (load.damping == 0.0 and load.friction == 0.0 and load.torque == 0.0
@@ -157,7 +157,7 @@ def closed_form_duration(calculator: CycleCalculator, limits: Limits) -> np.ndar
     """
     c = calculator.law.coefficients
     s = duration_bounds(calculator, limits)
-    rms = np.array([_rms_duration(x, s.dwell) for x in c.C_a_rms * s.rms])
+    rms = rms_duration(c.C_a_rms * s.rms, s.dwell)
     if limits.max_jerk is None:
         jerk = np.zeros_like(s.jerk)
     elif c.jerk_bounded:
@@ -167,28 +167,36 @@ def closed_form_duration(calculator: CycleCalculator, limits: Limits) -> np.ndar
     return np.max(np.stack([c.C_v * s.speed, np.sqrt(c.C_a * s.torque), rms, jerk]), axis=0)
 
 
-def _rms_duration(scale: float, dwell: float) -> float:
-    """Smallest T with T^3 (T + dwell) >= scale^2 (scale = J_t k h C_a_rms / tau_c).
+def rms_duration(scale: np.ndarray, dwell: float) -> np.ndarray:
+    """Smallest T with T^3 (T + dwell) >= scale^2 per candidate (scale = J_t k h C_a_rms /
+    tau_c), vectorized.
 
     Solved on logarithms, so that no power leaves the float range (scale up to 1e308):
     the root lies in [m/2, m] with m the smaller of the dwell-free bound sqrt(scale) and
-    the dwell-dominated one cbrt(scale^2/dwell).
+    the dwell-dominated one cbrt(scale^2/dwell); the bracketing root finder of
+    sizer.sizing.roots (Illinois) closes it to a few ulps.
     """
-    if not math.isfinite(scale):
-        return math.inf
-    if scale == 0.0:
-        return 0.0
+    scale = np.asarray(scale, dtype=float)
+    out = np.where(np.isfinite(scale), 0.0, np.inf)
     if dwell == 0.0:
-        return math.sqrt(scale)
-    log_target = 2.0 * math.log(scale)
-    log_m = min(0.5 * math.log(scale), (log_target - math.log(dwell)) / 3.0)
-    hi = math.exp(log_m)
+        with np.errstate(invalid="ignore"):
+            return np.where(np.isfinite(scale), np.sqrt(scale), np.inf)
+    solve = np.isfinite(scale) & (scale > 0.0)
+    if not solve.any():
+        return out
+    log_scale = np.log(scale[solve])
+    log_target = 2.0 * log_scale
+    log_m = np.minimum(0.5 * log_scale, (log_target - math.log(dwell)) / 3.0)
+    lo, hi = log_m - math.log(2.0), log_m + 1e-9
 
-    def excess(T: float) -> float:
-        return 3.0 * math.log(T) + math.log(T + dwell) - log_target
+    def excess(x, target):
+        return 3.0 * x + np.log(np.exp(x) + dwell) - target
 
-    return optimize.brentq(excess, 0.5 * hi, hi * (1.0 + 1e-9), xtol=1e-300,
-                           rtol=4 * np.finfo(float).eps)
+    def f(x):
+        return excess(x, log_target)
+
+    out[solve] = np.exp(illinois(f, lo, hi, f(lo), f(hi), xtol=1e-16))
+    return out
 
 
 def _initial_guess(calculator: CycleCalculator) -> np.ndarray:

@@ -1,0 +1,133 @@
+"""Which ratio of the free transmission stage suits each motor and law best.
+
+The options are a list of ratios, catalog gearboxes (each ratio with its own efficiency,
+inertia and limits), or a continuous range searched on a logarithmic lattice refined
+around each motor's best point down to 0.25 % steps. All options of a round are one flat
+candidate axis (motors x options, sizer.sizing.candidates) evaluated together. Per motor
+the best option is the feasible one with the shortest T_min (minimize mode) or the
+smallest RMS torque (duration given); when none is feasible, the one closest to feasible
+(the largest worst slack). Ties keep the first option found (gearboxes, then the listed
+ratios, then the lattice).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Callable
+
+import numpy as np
+
+from sizer.model.domain import Design, Transmission
+from sizer.sizing.candidates import Candidates
+from sizer.sizing.motors import MotorArrays
+from sizer.sizing.table import CandidateTable, Mode, concatenate
+
+COARSE = 9
+LOG_STEP = 2.5e-3
+"""Final spacing of the search in log(ratio): the chosen ratio is within ~0.25 %."""
+
+Evaluate = Callable[[Candidates], CandidateTable]
+"""Evaluates one law (spec) for candidates; the table has one row per candidate."""
+
+
+def _score(table: CandidateTable) -> tuple[np.ndarray, np.ndarray]:
+    """(infeasible, value) per candidate, both smaller better."""
+    infeasible = ~table.feasible
+    name = "duration" if table.mode is Mode.MINIMIZE else "rms_torque"
+    value = table.figures[name]
+    worst = np.min(table.slacks, axis=1)
+    key = np.where(infeasible, -worst, value)
+    return infeasible, np.where(np.isnan(key), np.inf, key)
+
+
+class _Best:
+    """The best candidate so far per motor, over the tables of the rounds."""
+
+    def __init__(self, motors: int) -> None:
+        self.tables: list[CandidateTable] = []
+        self.where = np.full((motors, 2), -1, dtype=np.intp)  # (table, row)
+        self.infeasible = np.ones(motors, dtype=bool)
+        self.value = np.full(motors, np.inf)
+        self.found = np.zeros(motors, dtype=bool)
+        self.stage_ratio = np.full(motors, np.nan)
+
+    def update(self, table: CandidateTable, motor: np.ndarray, stage_ratio: np.ndarray) -> None:
+        """Keep, per motor, the first strictly better candidate of ``table`` (rows for
+        motors ``motor``, in evaluation order)."""
+        infeasible, value = _score(table)
+        order = np.lexsort((np.arange(len(table)), value, infeasible, motor))
+        first = np.ones(len(order), dtype=bool)
+        first[1:] = motor[order][1:] != motor[order][:-1]
+        rows = order[first]
+        m = motor[rows]
+        better = ~self.found[m] | (infeasible[rows] < self.infeasible[m]) | \
+            ((infeasible[rows] == self.infeasible[m]) & (value[rows] < self.value[m]))
+        rows, m = rows[better], m[better]
+        self.tables.append(table)
+        self.where[m] = np.column_stack((np.full(len(m), len(self.tables) - 1), rows))
+        self.infeasible[m], self.value[m] = infeasible[rows], value[rows]
+        self.found[m] = True
+        self.stage_ratio[m] = stage_ratio[rows]
+
+    def table(self) -> CandidateTable:
+        joined = concatenate(self.tables)
+        offsets = np.cumsum([0] + [len(t) for t in self.tables])
+        chosen = offsets[self.where[:, 0]] + self.where[:, 1]
+        best = joined.take(chosen)
+        return dataclasses.replace(best, stage_ratio=self.stage_ratio.copy())
+
+
+def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate) -> CandidateTable:
+    """The best option for each motor (one row per motor, carrying ratio and gearbox)."""
+    choice = design.ratio_choice
+    assert choice is not None
+    base = design.transmission.stages[choice.stage]
+    best = _Best(len(motors))
+
+    def consider(transmissions: list[Transmission], gearboxes: list[str | None],
+                 motor: np.ndarray, option: np.ndarray) -> None:
+        candidates = Candidates.pairs(motors, design.load, transmissions, motor, option,
+                                      gearboxes=tuple(gearboxes))
+        table = evaluate(candidates)
+        ratios = np.array([t.stages[choice.stage].ratio for t in transmissions])[option]
+        best.update(table, motor, ratios)
+
+    def with_ratio(ratio: float) -> Transmission:
+        return design.transmission.with_stage(choice.stage, dataclasses.replace(base, ratio=ratio))
+
+    listed = [design.transmission.with_stage(choice.stage, g.stage) for g in choice.gearboxes]
+    names: list[str | None] = [g.gearbox for g in choice.gearboxes]
+    listed += [with_ratio(r) for r in choice.ratios]
+    names += [None] * len(choice.ratios)
+    if listed:
+        n, m = len(motors), len(listed)
+        consider(listed, names, np.repeat(np.arange(n), m), np.tile(np.arange(m), n))
+    if choice.bounds is not None:
+        _continuous(choice.bounds, with_ratio, consider, best, len(motors))
+    return best.table()
+
+
+def _continuous(bounds, with_ratio, consider, best: _Best, motors: int) -> None:
+    """Log-spaced lattice over the bounds, then halving steps around each motor's best.
+
+    All points lie on one lattice in log(ratio), so each round evaluates every needed
+    point once, for all the motors whose neighbourhood contains it.
+    """
+    lo, hi = math.log(bounds[0]), math.log(bounds[1])
+    step = (hi - lo) / (COARSE - 1)
+    points = [with_ratio(math.exp(x)) for x in np.linspace(lo, hi, COARSE)]
+    consider(points, [None] * COARSE, np.repeat(np.arange(motors), COARSE),
+             np.tile(np.arange(COARSE), motors))
+    last = COARSE - 1
+    offsets = np.array([-2, -1, 1, 2])
+    while step > LOG_STEP:
+        step /= 2.0
+        last *= 2
+        centre = np.rint((np.log(best.stage_ratio) - lo) / step).astype(np.intp)
+        keys = centre[:, None] + offsets[None, :]
+        valid = (keys >= 0) & (keys <= last)
+        motor = np.broadcast_to(np.arange(motors)[:, None], keys.shape)[valid]
+        unique, option = np.unique(keys[valid], return_inverse=True)
+        points = [with_ratio(math.exp(lo + int(k) * step)) for k in unique]
+        consider(points, [None] * len(points), motor, option.reshape(-1))
