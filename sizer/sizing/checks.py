@@ -16,6 +16,7 @@ although rounding leaves it one ulp above; a requirement 1e-6 (relative) above f
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -71,34 +72,116 @@ class CheckArrays:
         return self.slack >= -TOLERANCE
 
 
+@dataclass(frozen=True)
+class CheckInput:
+    """What a check reads: the candidates' requirements, motors, drive and the limits."""
+
+    metrics: CycleMetrics
+    motors: MotorArrays
+    drive: Drive
+    limits: Limits
+    linear: bool
+
+    @cached_property
+    def ones(self) -> np.ndarray:
+        return np.ones_like(self.metrics.duration)
+
+    @property
+    def axis_unit(self) -> str:
+        return "m" if self.linear else "rad"
+
+
+@dataclass(frozen=True)
+class CheckKind:
+    """A check of the registry: its name, unit, value, limit and required margin.
+
+    ``given`` says whether a design has the check at all (a user limit left out, no
+    inertia ratio bound); value and limit are arrays over the candidates.
+    """
+
+    name: str
+    unit: Callable[[CheckInput], str]
+    value: Callable[[CheckInput], np.ndarray]
+    limit: Callable[[CheckInput], np.ndarray]
+    required: Callable[[Limits], float]
+    given: Callable[[Limits], bool] = lambda limits: True
+
+    def evaluate(self, x: CheckInput) -> CheckArrays:
+        return CheckArrays(self.name, self.value(x), self.limit(x), self.unit(x),
+                           self.required(x.limits))
+
+
+def _inertia_ratio(x: CheckInput) -> np.ndarray:
+    with np.errstate(divide="ignore"):
+        return x.drive.inertia_ratio_numerator(x.limits.inertia_ratio_of) / x.motors.inertia
+
+
+def _speed_margin(limits: Limits) -> float:
+    return limits.speed_margin
+
+
+def _torque_margin(limits: Limits) -> float:
+    return limits.torque_margin
+
+
+def _none(limits: Limits) -> float:
+    return 0.0
+
+
+CHECKS: tuple[CheckKind, ...] = (
+    CheckKind("speed", lambda x: "rad/s", lambda x: x.metrics.max_speed,
+              lambda x: x.motors.speed_limit, _speed_margin),
+    CheckKind("peak", lambda x: "", lambda x: x.metrics.peak_ratio, lambda x: x.ones,
+              _torque_margin),
+    CheckKind("rms", lambda x: "N*m", lambda x: x.metrics.rms_torque,
+              lambda x: x.motors.continuous.limit_clipped(x.metrics.thermal_speed),
+              _torque_margin),
+    CheckKind("thermal_speed", lambda x: "rad/s", lambda x: x.metrics.thermal_speed,
+              lambda x: x.motors.continuous.max_speed, _speed_margin),
+    CheckKind("inertia_ratio", lambda x: "", _inertia_ratio,
+              lambda x: x.limits.inertia_ratio * x.ones, _none,
+              lambda limits: limits.inertia_ratio is not None),
+    CheckKind("load_speed", lambda x: f"{x.axis_unit}/s", lambda x: x.metrics.load_speed,
+              lambda x: x.limits.max_speed * x.ones, _none,
+              lambda limits: limits.max_speed is not None),
+    CheckKind("acceleration", lambda x: f"{x.axis_unit}/s^2",
+              lambda x: x.metrics.load_acceleration,
+              lambda x: x.limits.max_acceleration * x.ones, _none,
+              lambda limits: limits.max_acceleration is not None),
+    CheckKind("jerk", lambda x: f"{x.axis_unit}/s^3", lambda x: x.metrics.load_jerk,
+              lambda x: x.limits.max_jerk * x.ones, _none,
+              lambda limits: limits.max_jerk is not None),
+)
+"""The checks of sec. 6.1.1 and the user's load limits, in the order results list them;
+then the stage checks (:data:`STAGE_CHECKS`), per stage."""
+
+
+@dataclass(frozen=True)
+class StageCheckKind:
+    """A rating of a transmission stage checked like the motor's: ``rating`` names the
+    Stage field, ``metric`` the CycleMetrics list of per-stage values."""
+
+    suffix: str
+    rating: str
+    metric: str
+    torque: bool
+    required: Callable[[Limits], float]
+
+
+STAGE_CHECKS: tuple[StageCheckKind, ...] = (
+    StageCheckKind("speed", "max_input_speed", "stage_speed", False, _speed_margin),
+    StageCheckKind("rms", "rated_output_torque", "stage_rms", True, _torque_margin),
+    StageCheckKind("peak", "peak_output_torque", "stage_peak", True, _torque_margin),
+)
+"""Per stage: input speed, RMS and peak output torque against its ratings."""
+
+
 def evaluate_checks(metrics: CycleMetrics, motors: MotorArrays, drive: Drive,
                     limits: Limits, linear: bool = False) -> list[CheckArrays]:
-    """All checks for the candidates described by ``metrics``."""
-    ones = np.ones_like(metrics.duration)
-    checks = [
-        CheckArrays("speed", metrics.max_speed, motors.speed_limit, "rad/s", limits.speed_margin),
-        CheckArrays("peak", metrics.peak_ratio, ones, "", limits.torque_margin),
-        CheckArrays("rms", metrics.rms_torque,
-                    motors.continuous.limit_clipped(metrics.thermal_speed), "N*m",
-                    limits.torque_margin),
-        CheckArrays("thermal_speed", metrics.thermal_speed, motors.continuous.max_speed,
-                    "rad/s", limits.speed_margin),
-    ]
-    if limits.inertia_ratio is not None:
-        with np.errstate(divide="ignore"):
-            ratio = drive.inertia_ratio_numerator(limits.inertia_ratio_of) / motors.inertia
-        checks.append(CheckArrays("inertia_ratio", ratio, limits.inertia_ratio * ones, "", 0.0))
-    unit = "m" if linear else "rad"
-    if limits.max_speed is not None:
-        checks.append(CheckArrays("load_speed", metrics.load_speed,
-                                  limits.max_speed * ones, f"{unit}/s", 0.0))
-    if limits.max_acceleration is not None:
-        checks.append(CheckArrays("acceleration", metrics.load_acceleration,
-                                  limits.max_acceleration * ones, f"{unit}/s^2", 0.0))
-    if limits.max_jerk is not None:
-        checks.append(CheckArrays("jerk", metrics.load_jerk, limits.max_jerk * ones,
-                                  f"{unit}/s^3", 0.0))
-    checks.extend(stage_checks(metrics, drive, limits, linear))
+    """All checks of the registry that the design has, for the candidates of ``metrics``."""
+    x = CheckInput(metrics, motors, drive, limits, linear)
+    checks = [kind.evaluate(x) for kind in CHECKS if kind.given(limits)]
+    checks.extend(stage_checks(x))
     return checks
 
 
@@ -108,29 +191,19 @@ def stage_labels(drive: Drive) -> list[str]:
     return [k if kinds.count(k) == 1 else f"{k}{i + 1}" for i, k in enumerate(kinds)]
 
 
-def stage_checks(metrics: CycleMetrics, drive: Drive, limits: Limits,
-                 linear: bool) -> list[CheckArrays]:
-    """Limits of the transmission stages: input speed, RMS and peak output torque."""
-    ones = np.ones_like(metrics.duration)
+def stage_checks(x: CheckInput) -> list[CheckArrays]:
+    """The ratings of the transmission stages (:data:`STAGE_CHECKS`) that are given."""
     checks = []
-    last = len(drive.stages) - 1
-    for i, (stage, label) in enumerate(zip(drive.stages, stage_labels(drive), strict=True)):
-        torque_unit = "N" if linear and i == last else "N*m"
-        rated = stage.rated
-        if stage.max_input_speed is not None:
-            checks.append(CheckArrays(f"{label}_speed", metrics.stage_speed[i],
-                                      stage.max_input_speed * ones, "rad/s", limits.speed_margin,
-                                      _applies(rated["max_input_speed"], ones)))
-        if stage.rated_output_torque is not None:
-            checks.append(CheckArrays(f"{label}_rms", metrics.stage_rms[i],
-                                      stage.rated_output_torque * ones, torque_unit,
-                                      limits.torque_margin,
-                                      _applies(rated["rated_output_torque"], ones)))
-        if stage.peak_output_torque is not None:
-            checks.append(CheckArrays(f"{label}_peak", metrics.stage_peak[i],
-                                      stage.peak_output_torque * ones, torque_unit,
-                                      limits.torque_margin,
-                                      _applies(rated["peak_output_torque"], ones)))
+    last = len(x.drive.stages) - 1
+    for i, (stage, label) in enumerate(zip(x.drive.stages, stage_labels(x.drive), strict=True)):
+        for kind in STAGE_CHECKS:
+            rating = getattr(stage, kind.rating)
+            if rating is None:
+                continue
+            unit = ("N" if x.linear and i == last else "N*m") if kind.torque else "rad/s"
+            checks.append(CheckArrays(f"{label}_{kind.suffix}", getattr(x.metrics, kind.metric)[i],
+                                      rating * x.ones, unit, kind.required(x.limits),
+                                      _applies(stage.rated[kind.rating], x.ones)))
     return checks
 
 

@@ -273,7 +273,69 @@ class CycleCalculator:
 
     # ------------------------------------------------------------------ peaks
     def _peaks(self, scales: MoveScales):
-        """Per move: max |tau|, max |tau|/tau_int(|speed|), max |u| and stage output peaks."""
+        """Per move: max |tau|, max |tau|/tau_int(|speed|), max |u| and stage output peaks.
+
+        Closed forms where the torques are proportional to the acceleration (the book's
+        purely inertial case, :meth:`_inertial_peaks`); the grid search elsewhere, and for
+        the candidates whose move leaves the flat part of their intermittent region.
+        """
+        inertial = self._inertial_peaks(scales)
+        if inertial is None:
+            return self._sampled_peaks(scales)
+        (peak, ratio, load, stages), flat = inertial
+        if not flat.all():
+            index = np.flatnonzero(~flat)
+            sub = self.take(index)
+            found = sub._sampled_peaks(MoveScales(scales.acc[index], scales.vel[index],
+                                                  scales.direction))
+            for mine, theirs in zip((peak, ratio, load, *stages), (found[0], found[1],
+                                                                   found[2], *found[3]),
+                                    strict=True):
+                mine[index] = theirs
+        return peak, ratio, load, stages
+
+    def take(self, index: np.ndarray) -> CycleCalculator:
+        """The calculator of the candidates at ``index`` (same law and grid)."""
+        return CycleCalculator(self._grid, self.task, self.drive.take(index),
+                               self.motors.subset(index), self.thermal_rule, law=self.law)
+
+    def _inertial_peaks(self, scales: MoveScales):
+        """Exact peaks when every torque is a constant times the load's acceleration.
+
+        With an ideal chain, no damping, friction, constant load or preload (eq. 6.1 with
+        B_t = 0), tau(t) = J_t K a(t) and each stage's output torque is a constant times
+        a(t): the peaks are those constants times C_a h/T^2 (sec. 6.2). The peak ratio is
+        the peak over the intermittent torque at rest for the candidates whose peak speed
+        stays on the flat part of the region (``flat``); None when the case does not apply.
+        """
+        drive = self.drive
+        if not drive.is_ideal:
+            return None
+        a_part, v_part, const = drive.linear_chain(scales.direction)
+        if np.any(v_part != 0.0) or np.any(const != 0.0) or np.any(self.motors.damping != 0.0):
+            return None
+        c = self.law.coefficients
+        n = len(self.motors)
+        peak_acc = c.C_a * scales.acc
+        peak = np.abs(self.motors.inertia * drive.ratio + a_part) * peak_acc
+        speed = drive.ratio * scales.vel * c.C_v
+        # speeds past the region are clipped into it for the ratio (the speed check covers
+        # them): a region flat to its end is flat at every speed
+        flat = (speed <= self.motors.flat_speed) | \
+            (self.motors.flat_speed >= self.motors.speed_limit)
+        ratio = _safe_ratio(peak, self.motors.intermittent.torques[:, 0])
+        load = np.broadcast_to(abs(drive.load.inertia) * peak_acc, (n,)).copy()
+        stages = []
+        if self.stage_checks:
+            zero, one = np.zeros(1), np.ones(1)
+            _, out_a = drive.chain(one, zero, scales.direction)
+            stages = [np.broadcast_to(np.abs(x) * peak_acc, (n,)).copy() for x in out_a]
+        else:
+            stages = [np.zeros(n) for _ in drive.stages]
+        return (peak, ratio, load, stages), np.broadcast_to(flat, (n,))
+
+    def _sampled_peaks(self, scales: MoveScales):
+        """Peaks on the law's grid, the largest samples refined (:meth:`_refine`)."""
         g = self.grid
         tau = np.concatenate((g.left[:, None], g.nodes, g.right[:, None]), axis=1)
         a_n = np.concatenate((g.end_acceleration[:, :1], g.acceleration,

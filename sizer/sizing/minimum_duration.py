@@ -192,10 +192,8 @@ def rms_duration(scale: np.ndarray, dwell: float) -> np.ndarray:
     def excess(x, target):
         return 3.0 * x + np.log(np.exp(x) + dwell) - target
 
-    def f(x):
-        return excess(x, log_target)
-
-    out[solve] = np.exp(illinois(f, lo, hi, f(lo), f(hi), xtol=1e-16))
+    out[solve] = np.exp(illinois(excess, lo, hi, excess(lo, log_target), excess(hi, log_target),
+                                 xtol=1e-16, args=(log_target,)))
     return out
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -59,7 +60,7 @@ class MotorArrays:
         """Highest speed of the intermittent region (rated speed for the book's rectangles)."""
         return self.intermittent.max_speed
 
-    @property
+    @cached_property
     def is_rectangular(self) -> np.ndarray:
         """True where both regions are flat up to one common speed (the book's case).
 
@@ -70,14 +71,14 @@ class MotorArrays:
         flat_c = np.all(self.continuous.torques == self.continuous.torques[:, :1], axis=1)
         return flat_i & flat_c & (self.intermittent.max_speed == self.continuous.max_speed)
 
-    @property
+    @cached_property
     def flat_speed(self) -> np.ndarray:
         """Speed up to which both regions keep their standstill torque: the rectangle that
         eq. (6.2) sees (the rated speed for a motor whose regions the envelope rule
         extended, the whole region for the book's rectangles)."""
         return np.minimum(_flat_end(self.intermittent), _flat_end(self.continuous))
 
-    @property
+    @cached_property
     def all_rectangular(self) -> bool:
         return bool(np.all(self.is_rectangular))
 
