@@ -203,6 +203,15 @@ class Drive:
     def _stage_values(self, index: np.ndarray | None, like: np.ndarray):
         """Per stage (ratio, efficiency, inertia, preload, input ratio), each shaped to
         broadcast over candidate-major ``like`` (rows ``index`` of the candidates)."""
+        if index is None:  # the common case, kept per number of dimensions
+            key = np.ndim(like)
+            cache = self.__dict__.setdefault("_shaped", {})
+            if key not in cache:
+                cache[key] = self._shaped_values(None, like)
+            return cache[key]
+        return self._shaped_values(index, like)
+
+    def _shaped_values(self, index: np.ndarray | None, like: np.ndarray):
         def shaped(x):
             if index is not None and len(x) > 1:
                 x = x[index]

@@ -21,6 +21,7 @@ golden-section search.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -63,6 +64,10 @@ class CycleMetrics:
     stage_peak: list[np.ndarray]
     stage_rms: list[np.ndarray]
     stage_speed: list[np.ndarray]
+
+
+Objective = Callable[[np.ndarray, np.ndarray], np.ndarray]
+"""A channel's value at normalized (a_N, v_N) arrays of shape (candidates, k)."""
 
 
 @dataclass(frozen=True)
@@ -111,9 +116,9 @@ class CycleCalculator:
         square = np.zeros_like(T)
         stage_peak = [np.zeros_like(T) for _ in range(n_stages)]
         stage_square = [np.zeros_like(T) for _ in range(n_stages)]
-        for direction in self.directions:
-            scales = MoveScales(h / T / T, h / T, direction)  # no T**2: T may be 1e300
-            torque, ratio, load, stages = self._peaks(scales)
+        moves = [MoveScales(h / T / T, h / T, d) for d in self.directions]  # no T**2: T may
+        for scales, (torque, ratio, load, stages) in zip(moves, self._peaks(moves),  # be 1e300
+                                                         strict=True):
             peak_torque = np.maximum(peak_torque, torque)
             peak_ratio = np.maximum(peak_ratio, ratio)
             load_torque = np.maximum(load_torque, load)
@@ -272,27 +277,28 @@ class CycleCalculator:
         return totals
 
     # ------------------------------------------------------------------ peaks
-    def _peaks(self, scales: MoveScales):
+    def _peaks(self, moves: list[MoveScales]):
         """Per move: max |tau|, max |tau|/tau_int(|speed|), max |u| and stage output peaks.
 
         Closed forms where the torques are proportional to the acceleration (the book's
         purely inertial case, :meth:`_inertial_peaks`); the grid search elsewhere, and for
         the candidates whose move leaves the flat part of their intermittent region.
         """
-        inertial = self._inertial_peaks(scales)
-        if inertial is None:
-            return self._sampled_peaks(scales)
-        (peak, ratio, load, stages), flat = inertial
-        if not flat.all():
-            index = np.flatnonzero(~flat)
-            sub = self.take(index)
-            found = sub._sampled_peaks(MoveScales(scales.acc[index], scales.vel[index],
-                                                  scales.direction))
-            for mine, theirs in zip((peak, ratio, load, *stages), (found[0], found[1],
-                                                                   found[2], *found[3]),
-                                    strict=True):
-                mine[index] = theirs
-        return peak, ratio, load, stages
+        inertial = [self._inertial_peaks(scales) for scales in moves]
+        if any(found is None for found in inertial):
+            return self._sampled_peaks(moves)
+        out = []
+        for scales, ((peak, ratio, load, stages), flat) in zip(moves, inertial, strict=True):
+            if not flat.all():
+                index = np.flatnonzero(~flat)
+                sub = self.take(index)
+                found = sub._sampled_peaks([MoveScales(scales.acc[index], scales.vel[index],
+                                                       scales.direction)])[0]
+                for mine, theirs in zip((peak, ratio, load, *stages),
+                                        (found[0], found[1], found[2], *found[3]), strict=True):
+                    mine[index] = theirs
+            out.append((peak, ratio, load, stages))
+        return out
 
     def take(self, index: np.ndarray) -> CycleCalculator:
         """The calculator of the candidates at ``index`` (same law and grid)."""
@@ -334,53 +340,105 @@ class CycleCalculator:
             stages = [np.zeros(n) for _ in drive.stages]
         return (peak, ratio, load, stages), np.broadcast_to(flat, (n,))
 
-    def _sampled_peaks(self, scales: MoveScales):
-        """Peaks on the law's grid, the largest samples refined (:meth:`_refine`)."""
+    def _sampled_peaks(self, moves: list[MoveScales]):
+        """Peaks on the law's grid, the largest samples of every channel and move refined
+        together (:meth:`_refine`: one golden-section search for all of them)."""
         g = self.grid
         tau = np.concatenate((g.left[:, None], g.nodes, g.right[:, None]), axis=1)
         a_n = np.concatenate((g.end_acceleration[:, :1], g.acceleration,
                               g.end_acceleration[:, 1:]), axis=1)
         v_n = np.concatenate((g.end_velocity[:, :1], g.velocity, g.end_velocity[:, 1:]), axis=1)
-        motor, outputs = self.channels(a_n[None], v_n[None], scales)
-        speed_scale = self.drive.ratio * scales.vel
-
-        def channel(which, by_ratio=False):
-            def objective(a, v):
-                motor_torque, stage_torques = self.channels(a, v, scales)
-                torque = np.abs(motor_torque if which < 0 else stage_torques[which])
-                if by_ratio:
-                    speed = np.reshape(speed_scale, (-1,) + (1,) * (np.ndim(v) - 1)) * v
-                    return _safe_ratio(torque, self.motors.intermittent.limit_clipped(speed))
-                return torque
-            return objective
-
-        peak = self._refine(np.abs(motor), tau, channel(-1))
-        if self.motors.all_rectangular:  # flat limit: the ratio peaks with the torque
-            ratio = _safe_ratio(peak, self.motors.intermittent.torques[:, 0])
-        else:
-            speed = speed_scale[:, None, None] * v_n[None]
-            limit = self.motors.intermittent.limit_clipped(speed)
-            ratio = self._refine(_safe_ratio(np.abs(motor), limit), tau, channel(-1, True))
         n_stages = len(self.drive.stages)
-        # the load's torque is reported, not checked: its sampled peak (grid of 14 points
-        # per interval) is enough
-        a_l, v_l = scales.acc[:, None, None] * a_n[None], scales.vel[:, None, None] * v_n[None]
-        load = np.abs(self.drive.load_torque(a_l, v_l, scales.direction)).max(axis=(1, 2))
-        stages = [self._refine(np.abs(outputs[i]), tau, channel(i)) if self.stage_checks
-                  else np.zeros_like(peak) for i in range(n_stages)]
-        return peak, ratio, load, stages
+        searches: list[tuple[np.ndarray, Objective]] = []
+        plans = []
+        for scales in moves:
+            motor, outputs = self.channels(a_n[None], v_n[None], scales)
+            speed_scale = self.drive.ratio * scales.vel
 
-    def _refine(self, values, tau, objective_of) -> np.ndarray:
-        """The maximum over the move: the best samples, each refined by golden section.
+            def channel(which, by_ratio=False, scales=scales, speed_scale=speed_scale):
+                def objective(a, v):
+                    motor_torque, stage_torques = self.channels(a, v, scales)
+                    torque = np.abs(motor_torque if which < 0 else stage_torques[which])
+                    if by_ratio:
+                        speed = np.reshape(speed_scale, (-1,) + (1,) * (np.ndim(v) - 1)) * v
+                        return _safe_ratio(torque, self.motors.intermittent.limit_clipped(speed))
+                    return torque
+                return objective
 
-        ``values`` are the samples (candidates, intervals, columns) at ``tau`` (intervals,
-        columns: each interval's left end, nodes, right end, so breakpoints and the ends of
-        the move are samples, one-sided). Every sample that is a local maximum of the
+            plan = {"peak": len(searches)}
+            searches.append((np.abs(motor), channel(-1)))
+            if not self.motors.all_rectangular:
+                speed = speed_scale[:, None, None] * v_n[None]
+                limit = self.motors.intermittent.limit_clipped(speed)
+                plan["ratio"] = len(searches)
+                searches.append((_safe_ratio(np.abs(motor), limit), channel(-1, True)))
+            if self.stage_checks:
+                plan["stages"] = len(searches)
+                searches.extend((np.abs(outputs[i]), channel(i)) for i in range(n_stages))
+            # the load's torque is reported, not checked: its sampled peak (grid of 14
+            # points per interval) is enough
+            a_l = scales.acc[:, None, None] * a_n[None]
+            v_l = scales.vel[:, None, None] * v_n[None]
+            plan["load"] = np.abs(self.drive.load_torque(a_l, v_l, scales.direction)).max(
+                axis=(1, 2))
+            plans.append(plan)
+        found = self._refine(searches, tau)
+        out = []
+        for plan in plans:
+            peak = found[plan["peak"]]
+            if "ratio" in plan:
+                ratio = found[plan["ratio"]]
+            else:  # flat limit: the ratio peaks with the torque
+                ratio = _safe_ratio(peak, self.motors.intermittent.torques[:, 0])
+            if "stages" in plan:
+                stages = found[plan["stages"]:plan["stages"] + n_stages]
+            else:
+                stages = [np.zeros_like(peak) for _ in range(n_stages)]
+            out.append((peak, ratio, plan["load"], stages))
+        return out
+
+    def _refine(self, searches: list[tuple[np.ndarray, Objective]],
+                tau: np.ndarray) -> list[np.ndarray]:
+        """The maximum over the move of each search: the best samples, refined by golden
+        section, all searches in one pass (the law is evaluated once per step).
+
+        Each search is (samples, objective): the samples (candidates, intervals, columns)
+        at ``tau`` (intervals, columns: each interval's left end, nodes, right end, so
+        breakpoints and the ends of the move are samples, one-sided) and the objective at
+        (a_N, v_N) of shape (candidates, k). Every sample that is a local maximum of the
         samples of its piece and within REFINE_SHARE of the best is a candidate peak (the
-        REFINED largest of them); each is refined between its neighbours in its interval. A peak
-        on a sample is that sample; one between samples is found in whichever interval or
-        piece it lies, not only next to the best sample.
+        REFINED largest of them); each is refined between its neighbours in its interval.
+        A peak on a sample is that sample; one between samples is found in whichever
+        interval or piece it lies, not only next to the best sample.
         """
+        starts = [self._candidate_peaks(values, tau) for values, _ in searches]
+        shape = starts[0][0].shape  # (candidates, keep)
+        lo = np.concatenate([s[0] for s in starts], axis=1)
+        hi = np.concatenate([s[1] for s in starts], axis=1)
+        piece = np.concatenate([s[2] for s in starts], axis=1)
+        at = PieceEvaluator(self.law, piece)
+        width = shape[1]
+
+        def objective(x):
+            a, v = at(x, 2), at(x, 1)
+            return np.concatenate([f(a[:, k * width:(k + 1) * width],
+                                     v[:, k * width:(k + 1) * width])
+                                   for k, (_, f) in enumerate(searches)], axis=1)
+
+        x1, x2 = interior_points(lo, hi)
+        bracket = (lo, hi, x1, x2, objective(x1), objective(x2))
+        for _ in range(GOLDEN_STEPS):
+            bracket = golden_step(objective, bracket, bracket[4] >= bracket[5])  # max in [lo, x2]
+        best = np.maximum(bracket[4], bracket[5])
+        out = []
+        for k, (valid, best_value) in enumerate((s[3], s[4]) for s in starts):
+            part = best[:, k * width:(k + 1) * width]
+            refined = np.where(valid, part, -np.inf).max(axis=1)
+            out.append(np.maximum(best_value, refined))
+        return out
+
+    def _candidate_peaks(self, values: np.ndarray, tau: np.ndarray):
+        """(lo, hi, piece, valid, best) of :meth:`_refine`'s candidate peaks of one search."""
         g = self.grid
         count, columns = len(values), tau.shape[1]
         best_value = values.reshape(count, -1).max(axis=1)
@@ -403,18 +461,7 @@ class CycleCalculator:
         interval, column = np.divmod(chosen, columns)
         lo = tau[interval, np.maximum(column - 1, 0)]
         hi = tau[interval, np.minimum(column + 1, columns - 1)]
-        at = PieceEvaluator(self.law, g.piece[interval])
-
-        def objective(x):
-            return objective_of(at(x, 2), at(x, 1))
-
-        x1, x2 = interior_points(lo, hi)
-        bracket = (lo, hi, x1, x2, objective(x1), objective(x2))
-        for _ in range(GOLDEN_STEPS):
-            bracket = golden_step(objective, bracket, bracket[4] >= bracket[5])  # max in [lo, x2]
-        f1, f2 = bracket[4], bracket[5]
-        refined = np.where(valid, np.maximum(f1, f2), -np.inf).max(axis=1)
-        return np.maximum(best_value, refined)
+        return lo, hi, g.piece[interval], valid, best_value
 
 
 def _square_mean(p, q, const, c_a_rms: float, c_v_rms: float):

@@ -27,7 +27,6 @@ from sizer.sizing.golden import golden_step, interior_points
 from sizer.sizing.roots import illinois
 
 EXPANSIONS = 80
-BISECTIONS = 200
 GOLDEN_STEPS = 80
 STEP = math.log(2.0)
 
@@ -346,29 +345,15 @@ def _golden_max(checks_at, lo: np.ndarray, hi: np.ndarray, active: np.ndarray):
 def _crossing(slack, x_lo, x_hi, f_lo, f_hi, active) -> np.ndarray:
     """log T where the worst slack reaches 0 between an infeasible x_lo and a feasible x_hi.
 
-    Illinois steps with a bisection every fourth step, on g = f (or on f + TOLERANCE
-    where x_hi reaches only the tolerance). x_hi stays feasible, so the answer is; it
-    stops at a relative width of 1e-13 or when g(x_hi) < 1e-14.
+    The project's root finder (sizer.sizing.roots) on g = f (or on f + TOLERANCE where
+    x_hi reaches only the tolerance), to a relative width of 1e-13; the feasible end of
+    the bracket is returned, so the answer is feasible.
     """
     offset = np.where(f_hi >= 0.0, 0.0, TOLERANCE)
-    g_lo, g_hi = f_lo + offset, f_hi + offset
     rest = np.where(np.isfinite(x_hi), x_hi, 0.0)  # where inactive candidates are evaluated
-    side = np.zeros(len(x_hi))  # which end moved last: -1 lo, +1 hi (Illinois weighting)
-    for step in range(BISECTIONS):
-        open_ = active & (x_hi - x_lo > 1e-13) & (g_hi > 1e-14)
-        if not open_.any():
-            break
-        finite = np.isfinite(g_lo) & np.isfinite(g_hi) & (g_hi > g_lo)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            secant = x_hi - g_hi * (x_hi - x_lo) / (g_hi - g_lo)
-        inside = finite & (secant > x_lo) & (secant < x_hi) & (step % 4 != 3)
-        x = np.where(open_, np.where(inside, secant, 0.5 * (x_lo + x_hi)), rest)
-        g = slack(x) + offset
-        good = g >= 0.0
-        move_hi, move_lo = open_ & good, open_ & ~good
-        g_lo = np.where(move_hi & (side == 1), 0.5 * g_lo, g_lo)
-        g_hi = np.where(move_lo & (side == -1), 0.5 * g_hi, g_hi)
-        x_hi, g_hi = np.where(move_hi, x, x_hi), np.where(move_hi, g, g_hi)
-        x_lo, g_lo = np.where(move_lo, x, x_lo), np.where(move_lo, g, g_lo)
-        side = np.where(move_hi, 1, np.where(move_lo, -1, side))
-    return x_hi
+    lo, hi = np.where(active, x_lo, rest), np.where(active, x_hi, rest)
+    g_lo = np.where(active, f_lo + offset, -1.0)
+    g_hi = np.where(active, f_hi + offset, 1.0)
+    _, hi = illinois(lambda x: slack(x) + offset, lo, hi, g_lo, g_hi, xtol=1e-13,
+                     bracket=True)
+    return np.where(active, hi, x_hi)

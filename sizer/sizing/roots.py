@@ -11,13 +11,16 @@ MAX_STEPS = 60
 
 def illinois(f: Callable[..., np.ndarray], lo: np.ndarray, hi: np.ndarray,
              f_lo: np.ndarray, f_hi: np.ndarray, xtol: float = 1e-15,
-             args: tuple[np.ndarray, ...] | None = None) -> np.ndarray:
+             args: tuple[np.ndarray, ...] | None = None, bracket: bool = False):
     """Roots of f in [lo, hi] where f_lo and f_hi have opposite signs (elementwise).
 
     Superlinear like the secant method, never leaves the bracket like bisection: about
     8 evaluations reach machine precision where plain bisection takes 50. ``f(x)`` is
     called on whole arrays; with ``args`` it is elementwise, called as ``f(x, *args)``
     on the elements still open only (with their args).
+
+    With ``bracket`` the final (lo, hi) is returned instead of its midpoint: the end on
+    the side of f_hi's sign stays there (a feasible end stays feasible).
 
     This is the project's one root finder (sizer.sizing and sizer.laws use it).
     """
@@ -32,7 +35,7 @@ def illinois(f: Callable[..., np.ndarray], lo: np.ndarray, hi: np.ndarray,
             break
         x = _point(lo, hi, f_lo, f_hi, step)
         lo, hi, f_lo, f_hi, side = _step(f(x), open_, x, lo, hi, f_lo, f_hi, side)
-    return 0.5 * (lo + hi)
+    return (lo, hi) if bracket else 0.5 * (lo + hi)
 
 
 def _point(lo, hi, f_lo, f_hi, step: int) -> np.ndarray:
