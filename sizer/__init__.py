@@ -7,3 +7,15 @@ continuous region.
 """
 
 __version__ = "0.1.0"
+
+__all__ = ["__version__", "check", "load", "size"]
+
+
+def __getattr__(name: str):
+    """``sizer.size``, ``sizer.check``, ``sizer.load`` (sizer.api), imported on first use
+    so that ``import sizer`` stays light."""
+    if name in ("size", "check", "load"):
+        from sizer import api
+
+        return getattr(api, name)
+    raise AttributeError(f"module 'sizer' has no attribute {name!r}")

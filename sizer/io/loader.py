@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import difflib
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from importlib import resources
 from pathlib import Path
@@ -27,7 +27,7 @@ from sizer.io.motor_checks import impossibilities
 from sizer.io.plausibility import bare_number_warnings, motor_warnings
 from sizer.io.transmission import build_transmission
 from sizer.io.validation import validate
-from sizer.io.yaml_source import YamlSource, format_path, read_yaml
+from sizer.io.yaml_source import YamlSource, format_path, parse_yaml, read_yaml
 from sizer.mechanics import linear_load
 from sizer.model.domain import Design, Limits, Load, Motor, Task
 from sizer.model.inputs import (
@@ -237,6 +237,31 @@ def load_design(path: PathLike, extra_catalogs: Iterable[PathLike] = (), *,
     """
     path = Path(path)
     source = read_yaml(path, limit=MAX_DESIGN_BYTES, max_nodes=MAX_DESIGN_NODES)
+    return _design_of(source, path.parent, path.stem, [path], extra_catalogs,
+                      default_motors)
+
+
+def load_design_data(data: Mapping[str, Any], extra_catalogs: Iterable[PathLike] = (), *,
+                     default_motors: bool = False, base: Path | None = None,
+                     name: str = "design") -> Design:
+    """A design given as a mapping (the content of a design file, e.g. from Python or
+    JSON): the same checks and messages as a file (``<design>`` for the file name, with
+    the line of the mapping written out as YAML); catalog paths relative to ``base``."""
+    import yaml
+
+    try:
+        text = yaml.safe_dump(dict(data), sort_keys=False, allow_unicode=True)
+    except yaml.YAMLError as error:
+        raise UserError(f"the design mapping cannot be written as YAML: {error}") from None
+    if len(text.encode()) > MAX_DESIGN_BYTES:
+        raise UserError(f"the design mapping is larger than {MAX_DESIGN_BYTES} bytes")
+    source = parse_yaml(text, file="<design>", max_nodes=MAX_DESIGN_NODES)
+    return _design_of(source, base or Path.cwd(), name, [], extra_catalogs, default_motors)
+
+
+def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
+               extra_catalogs: Iterable[PathLike], default_motors: bool) -> Design:
+    """The Design of a parsed design document (``folder``: where relative paths start)."""
     model = validate(DesignFile, source)
     warnings = bare_number_warnings(source)
     task = _task(model, source)
@@ -245,11 +270,11 @@ def load_design(path: PathLike, extra_catalogs: Iterable[PathLike] = (), *,
     extra = list(extra_catalogs)
     if default_motors and model.motors is None and not extra:
         extra = list(default_catalogs().values())
-    transmission, ratio_choice = build_transmission(model.transmission, source, path.parent,
+    transmission, ratio_choice = build_transmission(model.transmission, source, folder,
                                                     linear)
     transmission = replace(transmission, efficiency_applies_to=model.efficiency_applies_to)
-    files = [path, *_gearbox_catalog_files(model.transmission, path.parent)]
-    motors = _design_motors(model, source, path.parent, extra, warnings, files)
+    files = [*files, *_gearbox_catalog_files(model.transmission, folder)]
+    motors = _design_motors(model, source, folder, extra, warnings, files)
     by_id = {m.id: m for m in motors}
     chosen_motor = chosen_law = None
     if model.check is not None:
@@ -266,7 +291,7 @@ def load_design(path: PathLike, extra_catalogs: Iterable[PathLike] = (), *,
         limits=_limits(model, source, linear),
         chosen_motor=chosen_motor,
         chosen_law=chosen_law,
-        name=model.name if model.name is not None else path.stem,
+        name=model.name if model.name is not None else name,
         warnings=tuple(warnings),
         files=tuple(files),
     )

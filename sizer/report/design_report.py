@@ -117,7 +117,7 @@ class DesignReport:
         if any(any(v == AUTO for v in resolve(s)[1].values()) for s in self.design.laws):
             for result in self._shown_results():
                 if result.spec not in laws:
-                    laws[result.spec] = make_law(result.spec)
+                    laws[result.spec] = result.law_object or make_law(result.spec)
         return list(laws.values())
 
     def _ranking_document(self) -> SizingDocument:
@@ -357,7 +357,8 @@ class DesignReport:
     def _candidate(self, candidate: Candidate) -> str:
         r = candidate.result
         lines = [f"### {candidate.rank}. {md(r.motor)} with {md(r.spec)}", ""]
-        motor = next((m for m in self.design.motors if m.id == r.motor), None)
+        motor = r.motor_object or next((m for m in self.design.motors if m.id == r.motor),
+                                       None)
         if motor is not None:
             lines.append(f"- {md(_motor_text(motor))}")
         lines.append(f"- {md(self._requirements(r))}")

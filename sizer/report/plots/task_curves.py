@@ -19,7 +19,10 @@ def transmission_for(design: Design, result: CandidateResult) -> Transmission:
 
 
 def motor_of(design: Design, result: CandidateResult) -> Motor:
-    """The design's motor the result is about."""
+    """The motor the result is about (the object the engine sized; for a hand-made result
+    the design's motor of that id)."""
+    if result.motor_object is not None:
+        return result.motor_object
     motor = next((m for m in design.motors if m.id == result.motor), None)
     if motor is None:
         raise ValueError(f"motor {result.motor!r} is not among the design's motors")
@@ -35,5 +38,6 @@ def curve_for(design: Design, result: CandidateResult, samples: int = 401) -> Ta
     if result.duration is None:
         raise UserError(f"{result.motor} with {result.spec} has no feasible duration "
                         f"({result.reason}): no task curve to draw")
-    return task_curve(design, motor_of(design, result), result.spec, result.duration,
+    law = result.law_object if result.law_object is not None else result.spec
+    return task_curve(design, motor_of(design, result), law, result.duration,
                       transmission=transmission_for(design, result), samples=samples)
