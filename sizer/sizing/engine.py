@@ -96,8 +96,39 @@ def evaluate_law(design: Design, spec: str, candidates: Candidates) -> Candidate
     return joined.take(inverse)
 
 
+CHUNK_SAMPLES = 2**21
+"""Candidates x law samples evaluated at once (each array of that size is 16 MiB): larger
+candidate sets are evaluated in chunks, so memory stays bounded whatever the catalog."""
+MIN_CHUNK = 64
+"""The smallest chunk (the per-evaluation overhead stays small against the work)."""
+
+
+def chunk_size(law: MotionLaw) -> int:
+    """How many candidates one evaluation of ``law`` takes (its grid's samples each)."""
+    from sizer.sizing.grid import law_grid
+
+    samples = law_grid(law).nodes.size + 2 * law_grid(law).size
+    return max(MIN_CHUNK, CHUNK_SAMPLES // samples)
+
+
 def evaluate_fixed_law(design: Design, law: MotionLaw, candidates: Candidates) -> CandidateTable:
-    """The requirements, checks and verdicts of one law for every candidate."""
+    """The requirements, checks and verdicts of one law for every candidate, in chunks
+    of :func:`chunk_size` candidates."""
+    from sizer.sizing.minimum_duration import is_purely_inertial
+
+    calculator = CycleCalculator(None, design.task, candidates.drive, candidates.motors,
+                                 design.limits.thermal_speed, law=law)
+    if is_purely_inertial(calculator):  # closed forms: memory per candidate, no grid
+        return _evaluate_chunk(design, law, candidates)
+    size = chunk_size(law)
+    if len(candidates) <= size:
+        return _evaluate_chunk(design, law, candidates)
+    starts = range(0, len(candidates), size)
+    return concatenate([_evaluate_chunk(design, law, candidates.take(
+        np.arange(start, min(start + size, len(candidates))))) for start in starts])
+
+
+def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates) -> CandidateTable:
     motors, drive = candidates.motors, candidates.drive
     calculator = CycleCalculator(None, design.task, drive, motors,
                                  design.limits.thermal_speed, law=law)
