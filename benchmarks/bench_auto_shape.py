@@ -5,7 +5,7 @@
 The book's case of eq. (6.2) (rectangular regions, purely inertial load, ideal gearbox),
 minimize mode, synthetic motors (a geometric family of ratings, NOT datasheet figures),
 a load jerk limit for the double S. For each family it times: the exact choice of the auto parameters for
-all motors (sizer.sizing.shape.choose_shape), the whole size_design with the auto spec
+all motors (sizer.sizing.auto_shape.choose_shape), the whole size_design with the auto spec
 (which then evaluates each motor's own law), and size_design with one fixed law of the
 family. Results are in benchmarks/README.md.
 """
@@ -20,8 +20,8 @@ from sizer.laws import resolve
 from sizer.mechanics import Drive
 from sizer.model import Design, Limits, Load, Motor, Stage, Task, Transmission
 from sizer.sizing import size_design
+from sizer.sizing.auto_shape import choose_shape
 from sizer.sizing.motors import MotorArrays
-from sizer.sizing.shape import choose_shape
 
 FAMILIES = (("trapezoidal(alpha=auto)", "trapezoidal(alpha=1/3)"),
             ("double_s(alpha=auto, beta=auto)", "double_s(alpha=1/3, beta=1/4)"))

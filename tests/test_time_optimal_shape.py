@@ -22,7 +22,7 @@ from sizer.sizing.time_optimal_shape import (
     trapezoid_coefficients,
 )
 
-LOW = 5e-11  # the open ends alpha, beta -> 0 inset as in sizer.sizing.shape
+LOW = 5e-11  # the open ends alpha, beta -> 0 inset as in sizer.sizing.auto_shape
 CASES = 120
 
 

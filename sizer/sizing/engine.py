@@ -5,7 +5,7 @@ sizer.sizing.candidates) for each law: with a given duration, the requirements a
 margins of each; with ``minimize``, T_min of each. Results stay arrays
 (sizer.sizing.table); rows are built for what a report reads. ``check_design`` verifies
 the one motor and law a design names. Laws with ``auto`` shape parameters have them
-chosen per candidate (sizer.sizing.shape).
+chosen per candidate (sizer.sizing.auto_shape).
 """
 
 from __future__ import annotations
@@ -19,6 +19,7 @@ from sizer.envelope import envelope_note
 from sizer.errors import UserError
 from sizer.laws import AUTO, MotionLaw, make_law, resolve
 from sizer.model.domain import Design, Motor
+from sizer.sizing.auto_shape import choose_shape
 from sizer.sizing.candidates import Candidates
 from sizer.sizing.checks import evaluate_checks
 from sizer.sizing.checks import feasible as all_pass
@@ -27,7 +28,6 @@ from sizer.sizing.minimum_duration import minimum_duration
 from sizer.sizing.motors import MotorArrays
 from sizer.sizing.ranking import rank_order
 from sizer.sizing.results import CandidateResult, SizingResult
-from sizer.sizing.shape import choose_shape
 from sizer.sizing.table import FIGURES, CandidateTable, Mode, Rows, concatenate
 
 Progress = Callable[[int, int], None]

@@ -4,7 +4,7 @@ In minimize mode the parameters minimize T_min; with a given duration they maxim
 smallest margin (ties broken by the next smallest). The trapezoid and the double S in
 the book's case (rectangular regions, purely inertial load, ideal transmission) have
 their time-optimal shape computed exactly (sizer.sizing.time_optimal_shape, sec. 3.2-3.4
-and 6.2); every other case is searched to tolerance (sizer.sizing.shape_search). The
+and 6.2); every other case is searched to tolerance (sizer.sizing.auto_shape_search). The
 chosen parameters are kept at full precision: the duration and margins reported are
 those of the law with exactly these parameters.
 
@@ -26,10 +26,10 @@ from sizer.laws import AUTO, MotionLaw
 from sizer.laws.base import Parameter
 from sizer.laws.piecewise_polynomial import DoubleS, Trapezoidal
 from sizer.model.domain import Design
+from sizer.sizing.auto_shape_search import search_shape
 from sizer.sizing.candidates import Candidates
 from sizer.sizing.cycle import CycleCalculator
 from sizer.sizing.minimum_duration import beyond_flat_part, is_purely_inertial
-from sizer.sizing.shape_search import search_shape
 from sizer.sizing.time_optimal_shape import bound_scales, optimal_double_s, optimal_trapezoid
 
 OPEN_INSET = 1e-10
