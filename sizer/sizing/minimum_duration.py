@@ -74,14 +74,16 @@ def minimum_duration(calculator: CycleCalculator, limits: Limits) -> DurationSol
         T = closed_form_duration(calculator, limits)
         method = "closed form (eq. 6.2)"
         finite = np.isfinite(T)
-        _, checks = evaluate(calculator, limits, np.where(finite, T, 1.0))
+        probe = np.where(finite, T, _largest_tried(calculator))
+        metrics, checks = evaluate(calculator, limits, probe)
         missed = finite & ~feasible(checks)
         beyond = beyond_flat_part(calculator, limits, T)
-        if (missed | beyond).any():
-            start = np.where(missed & (T > 0.0), T, _initial_guess(calculator))
-            searched = bisect_duration(calculator, limits, guess=start,
-                                       active=missed | beyond)
-            T = np.where(missed | beyond, searched, T)
+        if not (missed | beyond).any():  # the closed form is the answer: no search
+            ok = finite & feasible(checks)
+            return DurationSolution(np.where(ok, probe, np.nan), ok, metrics, checks, method)
+        start = np.where(missed & (T > 0.0), T, _initial_guess(calculator))
+        searched = bisect_duration(calculator, limits, guess=start, active=missed | beyond)
+        T = np.where(missed | beyond, searched, T)
     else:
         T = bisect_duration(calculator, limits)
         method = "bisection"
