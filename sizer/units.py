@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cache
 from typing import Any
@@ -394,6 +395,69 @@ def _gd2_factor(quantity: Any, text: str, field: str | None) -> float:
     if quantity.dimensionality == ureg.get_dimensionality("[mass]*[length]**2"):
         return float(quantity.to("kg*m**2").magnitude)
     raise UserError(f"expected a GD^2 like '0.04 kgf*m^2 GD^2', got {text!r}", field=field)
+
+
+_ASCII_SPACE = " \t\n\r\f\v"
+_NUMBER_CHARS = "0123456789.eE+-"
+
+
+def column_to_si(values: Sequence[Any], kind: str) -> list[float | None]:
+    """The SI floats of a column of values of one kind (a catalog's inertias, say).
+
+    Each distinct unit of the column is converted once (see :func:`to_si`), each value is
+    then its number times the unit's factor, bit for bit as :func:`to_si` gives it. None
+    where :func:`to_si` refuses the value (it is left to word what is wrong).
+    """
+    spec = KINDS[kind]
+    match = _NUMBER_AND_UNIT.match
+    recipes = _BY_TEXT
+    result: list[float | None] = []
+    append = result.append
+    for value in values:
+        kind_of = type(value)
+        if kind_of is float or kind_of is int:
+            try:
+                number = float(value)
+            except OverflowError:
+                number = math.inf
+            append(number if math.isfinite(number) else None)
+            continue
+        if kind_of is not str or len(value) > MAX_QUANTITY_CHARS:
+            append(None)
+            continue
+        if "%" in value:
+            try:
+                append(to_si(value, kind))
+            except UserError:
+                append(None)
+            continue
+        number_text, _, unit = value.partition(" ")
+        unit = unit.strip(_ASCII_SPACE)
+        if not number_text or number_text.strip(_NUMBER_CHARS) or not unit:
+            # not the common 'number unit' with digits only: the pattern decides
+            parts = match(value)
+            if parts is None or parts.group(1)[-1:].isalpha():  # not a number, inf, nan
+                append(None)
+                continue
+            number_text, unit = parts.groups()
+        if not unit:
+            number = float(number_text)
+        else:
+            recipe = recipes.get((spec.name, unit))
+            if recipe is None:
+                try:
+                    number = to_si(value, kind)  # finds the unit, remembers it
+                except UserError:
+                    append(None)
+                    continue
+            else:
+                try:
+                    number = recipe.apply(float(number_text))
+                except ValueError:  # '1.2.3 rpm'
+                    append(None)
+                    continue
+        append(number if math.isfinite(number) else None)
+    return result
 
 
 def to_si_with_pint(value: Any, kind: str, *, field: str | None = None) -> float:

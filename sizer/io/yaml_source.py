@@ -16,7 +16,8 @@ from __future__ import annotations
 
 import gc
 import math
-from collections.abc import Hashable, Sequence
+from collections.abc import Hashable, Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -111,12 +112,21 @@ def _parse_plain(text: str, file: str | None, max_nodes: int) -> YamlSource | No
     """
     if not getattr(yaml, "__with_libyaml__", False):  # pragma: no cover
         return None
+    with no_garbage_collection():
+        try:
+            return _plain_events(CParser(text), file, max_nodes)
+        except Exception:  # _NotPlainError, or an error the general path words
+            return None
+
+
+@contextmanager
+def no_garbage_collection() -> Iterator[None]:
+    """The cyclic garbage collector paused: building many small containers (none of them
+    garbage) would run it again and again for nothing."""
     collecting = gc.isenabled()
-    gc.disable()  # building many small containers: the collector would run for nothing
+    gc.disable()
     try:
-        return _plain_events(CParser(text), file, max_nodes)
-    except Exception:  # _NotPlainError, or an error the general path words
-        return None
+        yield
     finally:
         if collecting:
             gc.enable()
