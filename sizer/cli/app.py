@@ -57,6 +57,7 @@ app = typer.Typer(
          "    sizer law cycloidal --displacement '90 deg' --duration '0.2 s'\n\n"
          + EXIT_CODES_HELP,
     no_args_is_help=True,
+    add_help_option=False,  # our own --help below: typer's would import pydantic to coerce
     rich_markup_mode=None,  # click's plain help: typer's rich help imports ~0.15 s of rich
     add_completion=False,
     pretty_exceptions_enable=False,
@@ -67,6 +68,12 @@ app = typer.Typer(
 def _show_version(value: bool) -> None:
     if value:
         typer.echo(f"sizer {__version__}")
+        raise typer.Exit()
+
+
+def _show_help(context: typer.Context, value: bool) -> None:
+    if value and not context.resilient_parsing:
+        typer.echo(context.get_help())
         raise typer.Exit()
 
 
@@ -83,6 +90,9 @@ def _root(
         "--debug",
         help="On an internal error (exit code 3) show the traceback (so does "
              "SIZER_DEBUG=1).")] = False,
+    show_help: Annotated[bool, typer.Option(
+        "--help", callback=_show_help, is_eager=True, expose_value=False,
+        help="Show this message and exit.")] = False,
 ) -> None:
     """Size servo motors and choose motion laws for automatic machines."""
     global _debug
