@@ -1,0 +1,120 @@
+"""Time loading a large motor catalog (issue 11: 10,000 motors in <= 1 s).
+
+    python benchmarks/bench_catalog_load.py --motors 10000
+
+Writes a synthetic catalog (a geometric family of ratings, NOT datasheet figures) into a
+temporary directory, with units as the bundled catalogs write them (``kg*cm^2``,
+``e-4 kg*m^2``, ``g*cm^2``, ``N*m``, ``mN*m``, ``rpm``, ``kg``) and speed-torque curves
+on every fourth motor, then times ``sizer.io.read_catalog`` on it in fresh processes
+(the load only, imports excluded; best of ``--repeat``). ``python -c "import numpy"`` is
+timed in the same run for scale. Exits 1 if the load takes more than ``--goal`` seconds.
+Results are in benchmarks/README.md.
+"""
+
+from __future__ import annotations
+
+import argparse
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+LOAD = """
+import sys, time
+from sizer.io import read_catalog
+start = time.perf_counter()
+catalog = read_catalog(sys.argv[1])
+elapsed = time.perf_counter() - start
+assert len(catalog.motors) == int(sys.argv[2]), len(catalog.motors)
+print(elapsed)
+"""
+
+
+def motor_yaml(i: int, count: int) -> str:
+    """One motor's mapping; the units vary along the catalog like in real ones."""
+    torque = 0.1 * 500.0 ** (i / max(count - 1, 1))  # 0.1 .. 50 N*m continuous
+    inertia = 2e-5 * torque**1.3  # kg*m^2
+    rated = (1500, 2000, 3000, 3000, 4500)[i % 5]
+    peak = 3.0 * torque
+    if i % 3 == 0:
+        inertia_text = f"{inertia * 1e4:.4g} kg*cm^2"
+    elif i % 3 == 1:
+        inertia_text = f"{inertia * 1e4:.3g}e-4 kg*m^2"
+    else:
+        inertia_text = f"{inertia * 1e7:.4g} g*cm^2"
+    if torque < 1.0:
+        torques = f"{torque * 1e3:.4g} mN*m", f"{peak * 1e3:.4g} mN*m"
+    else:
+        torques = f"{torque:.4g} N*m", f"{peak:.4g} N*m"
+    lines = [
+        f"  - id: SYN-{i:05d}",
+        f"    inertia: {inertia_text}",
+        f"    continuous_torque: {torques[0]}",
+        f"    peak_torque: {torques[1]}",
+        f"    rated_speed: {rated} rpm",
+        f"    max_speed: {int(rated * 1.5)} rpm",
+        f"    mass: {0.3 + torque * 0.4:.3g} kg",
+    ]
+    if i % 4 == 0:
+        top = int(rated * 1.5)
+        lines.append(f"    continuous_curve: [[0 rpm, {torques[0]}], [{rated} rpm, {torques[0]}], "
+                     f"[{top} rpm, {torque * 0.6:.4g} N*m]]")
+        lines.append(f"    intermittent_curve: [[0 rpm, {torques[1]}], [{rated} rpm, "
+                     f"{torques[1]}], [{top} rpm, {peak * 0.5:.4g} N*m]]")
+    return "\n".join(lines)
+
+
+def write_catalog(folder: Path, count: int) -> Path:
+    path = folder / f"synthetic-{count}.yaml"
+    body = "\n".join(motor_yaml(i, count) for i in range(count))
+    path.write_text("catalog: synthetic motors (a benchmark, not a datasheet)\n"
+                    "manufacturer: nobody\nsource: benchmarks/bench_catalog_load.py\n"
+                    f"motors:\n{body}\n", encoding="utf-8")
+    return path
+
+
+def best_of(command: list[str], repeat: int) -> float:
+    """The shortest wall time of ``command`` in ``repeat`` runs."""
+    best = float("inf")
+    for _ in range(repeat):
+        start = time.perf_counter()
+        subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
+        best = min(best, time.perf_counter() - start)
+    return best
+
+
+def best_load(path: Path, count: int, repeat: int) -> float:
+    """The shortest in-process load time over ``repeat`` fresh processes."""
+    times = []
+    for _ in range(repeat):
+        done = subprocess.run([sys.executable, "-c", LOAD, str(path), str(count)],
+                              check=True, capture_output=True, text=True)
+        times.append(float(done.stdout.split()[-1]))
+    return min(times)
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--motors", type=int, default=10_000)
+    parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--goal", type=float, default=1.0, help="seconds (default 1)")
+    args = parser.parse_args()
+    numpy = best_of([sys.executable, "-c", "import numpy"], 5)
+    with tempfile.TemporaryDirectory() as folder:
+        path = write_catalog(Path(folder), args.motors)
+        size = path.stat().st_size
+        load = best_load(path, args.motors, args.repeat)
+    ok = load <= args.goal
+    print(f"{'what':34s} {'motors':>7s} {'MB':>6s} {'seconds':>8s} {'x numpy':>8s} "
+          f"{'goal [s]':>8s}  met")
+    baseline = 'python -c "import numpy"'
+    print(f"{baseline:34s} {'':>7s} {'':>6s} {numpy:8.3f} {1.0:8.2f}")
+    print(f"{'read_catalog (load only)':34s} {args.motors:7d} {size / 1e6:6.2f} {load:8.3f} "
+          f"{load / numpy:8.2f} {args.goal:8.2f}  {'yes' if ok else 'NO'}")
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
