@@ -14,12 +14,15 @@ Results are in benchmarks/README.md.
 from __future__ import annotations
 
 import argparse
+import os
 import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
 
+ROOT = Path(__file__).resolve().parents[1]
+ENVIRONMENT = {**os.environ, "PYTHONPATH": str(ROOT)}
 LOAD = """
 import sys, time
 from sizer.io import read_catalog
@@ -79,7 +82,8 @@ def best_of(command: list[str], repeat: int) -> float:
     best = float("inf")
     for _ in range(repeat):
         start = time.perf_counter()
-        subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
+        subprocess.run(command, check=True, stdout=subprocess.DEVNULL, cwd=ROOT,
+                       env=ENVIRONMENT)
         best = min(best, time.perf_counter() - start)
     return best
 
@@ -89,7 +93,8 @@ def best_load(path: Path, count: int, repeat: int) -> float:
     times = []
     for _ in range(repeat):
         done = subprocess.run([sys.executable, "-c", LOAD, str(path), str(count)],
-                              check=True, capture_output=True, text=True)
+                              check=True, capture_output=True, text=True, cwd=ROOT,
+                              env=ENVIRONMENT)
         times.append(float(done.stdout.split()[-1]))
     return min(times)
 

@@ -411,6 +411,7 @@ def column_to_si(values: Sequence[Any], kind: str) -> list[float | None]:
     spec = KINDS[kind]
     match = _NUMBER_AND_UNIT.match
     recipes = _BY_TEXT
+    factors: dict[str, float] = {}
     result: list[float | None] = []
     append = result.append
     for value in values:
@@ -443,17 +444,28 @@ def column_to_si(values: Sequence[Any], kind: str) -> list[float | None]:
         if not unit:
             number = float(number_text)
         else:
-            recipe = recipes.get((spec.name, unit))
-            if recipe is None:
+            factor = factors.get(unit)  # this column's units: a plain factor, or None
+            if factor is None:
+                recipe = recipes.get((spec.name, unit))
+                if recipe is None:
+                    try:
+                        number = to_si(value, kind)  # finds the unit, remembers it
+                    except UserError:
+                        append(None)
+                        continue
+                    append(number if math.isfinite(number) else None)
+                    continue
+                if not (recipe.revolutions or recipe.gd2):
+                    factors[unit] = recipe.factor
                 try:
-                    number = to_si(value, kind)  # finds the unit, remembers it
-                except UserError:
+                    number = recipe.apply(float(number_text))
+                except ValueError:  # '1.2.3 rpm'
                     append(None)
                     continue
             else:
                 try:
-                    number = recipe.apply(float(number_text))
-                except ValueError:  # '1.2.3 rpm'
+                    number = float(number_text) * factor  # _Recipe.apply of a plain factor
+                except ValueError:
                     append(None)
                     continue
         append(number if math.isfinite(number) else None)

@@ -139,20 +139,11 @@ _PLAIN_STR_FIRST = frozenset(chr(c) for c in range(32, 127)) - set(_RESOLVERS)
 """First characters of a plain scalar that no implicit resolver can match: a string."""
 
 
-def _scalar_value(event: Any) -> Any:
-    """:func:`_plain_scalar`, with the common strings decided without the resolvers: a
-    quoted scalar, a first character no resolver starts with, or a space inside a value
-    that is not a timestamp (only the timestamp pattern admits a space, after
-    'YYYY-')."""
-    value = event.value
-    if event.tag is None and len(value) <= MAX_SCALAR_CHARS and (
-            not event.implicit[0] or (value and value[0] in _PLAIN_STR_FIRST)
-            or (" " in value and value[4:5] != "-")):
-        return value
-    return _plain_scalar(event)
-
-
 def _plain_events(parser: Any, file: str | None, max_nodes: int) -> YamlSource:
+    """The loop of :func:`_parse_plain`: one pass over the events, the innermost open
+    collection in locals. A scalar is a string without the resolvers when it is quoted,
+    starts with a character no resolver starts with, or holds a space and is not a
+    timestamp (only the timestamp pattern admits a space, after 'YYYY-')."""
     get = parser.get_event
     if type(get()) is not yaml.StreamStartEvent or \
             type(get()) is not yaml.DocumentStartEvent:
@@ -164,65 +155,72 @@ def _plain_events(parser: Any, file: str | None, max_nodes: int) -> YamlSource:
     source = YamlSource({}, file)
     lines = source.lines
     lines[()] = event.start_mark.line + 1
-    # the open collections, innermost last: container, path, pending key (of a mapping)
-    containers: list[Any] = [source.data]
-    paths: list[Path_] = [()]
-    keys: list[Any] = [_NO_KEY]
+    # the innermost open collection, its path, its pending key (a mapping's), and the
+    # enclosing ones as (container, path, key, is_mapping)
+    container: Any = source.data
+    path: Path_ = ()
+    key: Any = _NO_KEY
+    is_mapping = True
+    outer: list[tuple[Any, Path_, Any, bool]] = []
     count = 1
+    deepest = MAX_YAML_DEPTH - 1  # enclosing collections of the innermost, at most
     scalar_event, mapping_start = yaml.ScalarEvent, yaml.MappingStartEvent
     sequence_start = yaml.SequenceStartEvent
     ends = (yaml.MappingEndEvent, yaml.SequenceEndEvent)
-    while containers:
+    first_str, longest, no_key = _PLAIN_STR_FIRST, MAX_SCALAR_CHARS, _NO_KEY
+    while True:
         event = get()
         kind = type(event)
-        if kind in ends:
-            done = containers.pop()
-            paths.pop()
-            keys.pop()
-            if containers:
-                parent = containers[-1]
-                if type(parent) is dict:
-                    parent[keys[-1]] = done
-                    keys[-1] = _NO_KEY
+        if kind is scalar_event:
+            count += 1
+            if count > max_nodes or len(outer) >= deepest or event.anchor is not None:
+                raise _NotPlainError
+            value = event.value
+            if event.tag is not None or len(value) > longest or not (
+                    not event.implicit[0] or (value and value[0] in first_str)
+                    or (" " in value and value[4:5] != "-")):
+                value = _plain_scalar(event)
+            if is_mapping:
+                if key is no_key:
+                    at = (*path, value)
+                    if value in container or at in lines:
+                        raise _NotPlainError  # a duplicate key
+                    key = value
+                    lines[at] = event.start_mark.line + 1
                 else:
-                    parent.append(done)
+                    container[key] = value
+                    key = no_key
+            else:
+                lines[(*path, len(container))] = event.start_mark.line + 1
+                container.append(value)
             continue
-        if kind is not scalar_event and kind is not mapping_start \
-                and kind is not sequence_start:
+        if kind in ends:
+            if not outer:
+                break
+            done = container
+            container, path, key, is_mapping = outer.pop()
+            if is_mapping:
+                container[key] = done
+                key = no_key
+            else:
+                container.append(done)
+            continue
+        if kind is not mapping_start and kind is not sequence_start:
             raise _NotPlainError  # an alias
         count += 1
-        if count > max_nodes or len(containers) >= MAX_YAML_DEPTH \
-                or event.anchor is not None:
+        if count > max_nodes or len(outer) >= deepest or event.anchor is not None \
+                or event.tag is not None:
             raise _NotPlainError
-        container = containers[-1]
-        if type(container) is dict:
-            key = keys[-1]
-            if key is _NO_KEY:  # a key
-                if kind is not scalar_event:
-                    raise _NotPlainError
-                key = _scalar_value(event)
-                at = (*paths[-1], key)
-                if key in container or at in lines:
-                    raise _NotPlainError  # a duplicate
-                keys[-1] = key
-                lines[at] = event.start_mark.line + 1
-                continue
-            if kind is scalar_event:
-                container[key] = _scalar_value(event)
-                keys[-1] = _NO_KEY
-                continue
-            at = (*paths[-1], key)
+        if is_mapping:
+            if key is no_key:
+                raise _NotPlainError  # a key that is a collection
+            at = (*path, key)
         else:
-            at = (*paths[-1], len(container))
+            at = (*path, len(container))
             lines[at] = event.start_mark.line + 1
-            if kind is scalar_event:
-                container.append(_scalar_value(event))
-                continue
-        if event.tag is not None:
-            raise _NotPlainError
-        containers.append({} if kind is mapping_start else [])
-        paths.append(at)
-        keys.append(_NO_KEY)
+        outer.append((container, path, key, is_mapping))
+        container, path, key = ({} if kind is mapping_start else []), at, no_key
+        is_mapping = kind is mapping_start
     if type(get()) is not yaml.DocumentEndEvent or type(get()) is not yaml.StreamEndEvent:
         raise _NotPlainError  # more than one document
     return source
