@@ -6,8 +6,9 @@ Writes a synthetic catalog (a geometric family of ratings, NOT datasheet figures
 temporary directory, with units as the bundled catalogs write them (``kg*cm^2``,
 ``e-4 kg*m^2``, ``g*cm^2``, ``N*m``, ``mN*m``, ``rpm``, ``kg``) and speed-torque curves
 on every fourth motor, then times ``sizer.io.read_catalog`` on it in fresh processes
-(the load only, imports excluded; best of ``--repeat``). ``python -c "import numpy"`` is
-timed in the same run for scale. Exits 1 if the load takes more than ``--goal`` seconds.
+(the load only, imports excluded; best of ``--repeat``; wall and CPU time).
+``python -c "import numpy"`` is timed in the same run for scale. Exits 1 if the load
+takes more than ``--goal`` seconds of CPU time (``--wall``: of wall time).
 Results are in benchmarks/README.md.
 """
 
@@ -26,11 +27,11 @@ ENVIRONMENT = {**os.environ, "PYTHONPATH": str(ROOT)}
 LOAD = """
 import sys, time
 from sizer.io import read_catalog
-start = time.perf_counter()
+start, used = time.perf_counter(), time.process_time()
 catalog = read_catalog(sys.argv[1])
-elapsed = time.perf_counter() - start
+elapsed, used = time.perf_counter() - start, time.process_time() - used
 assert len(catalog.motors) == int(sys.argv[2]), len(catalog.motors)
-print(elapsed)
+print(elapsed, used)
 """
 
 
@@ -88,15 +89,16 @@ def best_of(command: list[str], repeat: int) -> float:
     return best
 
 
-def best_load(path: Path, count: int, repeat: int) -> float:
-    """The shortest in-process load time over ``repeat`` fresh processes."""
-    times = []
+def best_load(path: Path, count: int, repeat: int) -> tuple[float, float]:
+    """The shortest in-process load times (wall, CPU) over ``repeat`` fresh processes."""
+    wall, cpu = float("inf"), float("inf")
     for _ in range(repeat):
         done = subprocess.run([sys.executable, "-c", LOAD, str(path), str(count)],
                               check=True, capture_output=True, text=True, cwd=ROOT,
                               env=ENVIRONMENT)
-        times.append(float(done.stdout.split()[-1]))
-    return min(times)
+        seconds, used = (float(x) for x in done.stdout.split()[-2:])
+        wall, cpu = min(wall, seconds), min(cpu, used)
+    return wall, cpu
 
 
 def main() -> int:
@@ -105,19 +107,22 @@ def main() -> int:
     parser.add_argument("--motors", type=int, default=10_000)
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--goal", type=float, default=1.0, help="seconds (default 1)")
+    parser.add_argument("--wall", action="store_true",
+                        help="judge the goal on the wall time (default: the CPU time, "
+                             "steadier on a shared machine)")
     args = parser.parse_args()
     numpy = best_of([sys.executable, "-c", "import numpy"], 5)
     with tempfile.TemporaryDirectory() as folder:
         path = write_catalog(Path(folder), args.motors)
         size = path.stat().st_size
-        load = best_load(path, args.motors, args.repeat)
-    ok = load <= args.goal
-    print(f"{'what':34s} {'motors':>7s} {'MB':>6s} {'seconds':>8s} {'x numpy':>8s} "
-          f"{'goal [s]':>8s}  met")
+        wall, cpu = best_load(path, args.motors, args.repeat)
+    ok = (wall if args.wall else cpu) <= args.goal
     baseline = 'python -c "import numpy"'
-    print(f"{baseline:34s} {'':>7s} {'':>6s} {numpy:8.3f} {1.0:8.2f}")
-    print(f"{'read_catalog (load only)':34s} {args.motors:7d} {size / 1e6:6.2f} {load:8.3f} "
-          f"{load / numpy:8.2f} {args.goal:8.2f}  {'yes' if ok else 'NO'}")
+    print(f"{'what':26s} {'motors':>7s} {'MB':>6s} {'wall [s]':>9s} {'x numpy':>8s} "
+          f"{'cpu [s]':>8s} {'goal [s]':>8s}  met")
+    print(f"{baseline:26s} {'':>7s} {'':>6s} {numpy:9.3f} {1.0:8.2f}")
+    print(f"{'read_catalog (load only)':26s} {args.motors:7d} {size / 1e6:6.2f} {wall:9.3f} "
+          f"{wall / numpy:8.2f} {cpu:8.3f} {args.goal:8.2f}  {'yes' if ok else 'NO'}")
     return 0 if ok else 1
 
 
