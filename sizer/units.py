@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cache
 from typing import Any
@@ -215,36 +216,126 @@ def _normalize(unit: str, kind: str) -> str:
     return _WORD.sub(word, unit).replace("^", "**")
 
 
-def _parse_text(text: str, spec: Kind, field: str | None) -> float:
+@dataclass(frozen=True)
+class _Recipe:
+    """How a number written with one unit becomes SI: ``number * factor``, then (for an
+    angular quantity whose unit has no angle) ``* 2.0 * pi``, or (a GD^2) ``/ 4.0``.
+
+    The operations are pint's own, in pint's order (pint converts a magnitude by one
+    multiplication by a factor of the units alone), so the result is bit-identical to
+    converting each value with pint.
+    """
+
+    factor: float
+    revolutions: bool = False
+    gd2: bool = False
+
+    def apply(self, number: float) -> float:
+        value = number * self.factor
+        if self.revolutions:
+            return value * 2.0 * math.pi
+        if self.gd2:
+            return value / 4.0
+        return value
+
+
+_SI_FACTORS: dict[str, dict[str, float]] = {
+    "time": {"s": 1.0, "ms": 0.001, "min": 60.0},
+    "angle": {"rad": 1.0, "deg": 0.017453292519943295, "rev": 6.283185307179586,
+              "arcmin": 0.00029088820866572163},
+    "length": {"m": 1.0, "mm": 0.001, "cm": 0.01, "um": 1e-06},
+    "angular_speed": {"rad/s": 1.0, "rpm": 0.10471975511965977,
+                      "rev/min": 0.10471975511965977, "rev/s": 6.283185307179586,
+                      "deg/s": 0.017453292519943295},
+    "linear_speed": {"m/s": 1.0, "mm/s": 0.001, "m/min": 0.016666666666666666},
+    "angular_acceleration": {"rad/s**2": 1.0},
+    "linear_acceleration": {"m/s**2": 1.0, "mm/s**2": 0.001},
+    "angular_jerk": {"rad/s**3": 1.0},
+    "linear_jerk": {"m/s**3": 1.0},
+    "torque": {"N*m": 1.0, "mN*m": 0.001, "N*cm": 0.01},
+    "force": {"N": 1.0, "kN": 1000.0},
+    "inertia": {"kg*m**2": 1.0, "kg*cm**2": 0.0001, "g*cm**2": 1.0000000000000001e-07},
+    "mass": {"kg": 1.0, "g": 0.001},
+    "density": {"kg/m**3": 1.0},
+    "rotary_damping": {"N*m*s/rad": 1.0},
+    "linear_damping": {"N*s/m": 1.0},
+}
+"""SI factors of the units written most often, per kind, so that those never need pint:
+each equals pint's factor for that unit bit for bit (tests/test_units_fast_path.py)."""
+
+_FAST: dict[tuple[str, str], _Recipe] = {
+    (kind, unit): _Recipe(factor)
+    for kind, units in _SI_FACTORS.items() for unit, factor in units.items()
+}
+_CACHE: dict[tuple[str, str, bool], _Recipe] = {}
+"""Recipes found with pint, by (kind, unit in pint's syntax, GD^2): pint once per unit."""
+_BY_TEXT: dict[tuple[str, str], _Recipe] = {}
+"""Recipes by (kind, unit as written): a column of one unit costs one dictionary look-up
+per value."""
+_CACHE_SIZE = 10_000
+"""At most this many units are remembered (a file of junk units cannot grow them)."""
+
+
+def _parse_text(text: str, spec: Kind, field: str | None, *, reference: bool = False) -> float:
+    """The SI value of a text like '3000 rpm'.
+
+    A unit is converted once per process (:data:`_FAST`, else pint once, then
+    :data:`_CACHE`); ``reference=True`` converts the value with pint directly, the way
+    every value was converted before (for the tests that compare the two).
+    """
     number, unit = _split(text.replace("%", " percent"))
-    wrong = _expected(spec, text, field)
     if not number:
-        raise wrong
+        raise _expected(spec, text, field)
     number = number.replace(".", "") if number[-1:].isalpha() else number  # .inf, .nan
     if not unit:
         return float(number)
+    if not reference:
+        known = _BY_TEXT.get((spec.name, unit))
+        if known is not None:
+            return known.apply(float(number))
     if spec.name == "fraction":
         if unit not in ("percent", "pct"):
-            raise wrong
+            raise _expected(spec, text, field)
         return float(number) / 100.0
     if spec.name in ("ratio", "money"):
-        raise wrong
+        raise _expected(spec, text, field)
     if spec.name == "angle" and not _ANGLE_UNITS.match(unit):
-        raise wrong
+        raise _expected(spec, text, field)
+    written = unit
     unit = _SUPERSCRIPT.sub(lambda m: "^" + m.group(0).translate(_SUPERSCRIPT_DIGITS), unit)
     gd2 = spec.name == "inertia" and _GD2.search(unit) is not None
     if gd2:
         unit = _GD2.sub("", unit)
     pint_unit = _normalize(unit, spec.name)
-    _check_unit_text(pint_unit, text, spec, field)
+    if reference:
+        _check_unit_text(pint_unit, text, spec, field)
+        return _with_pint(float(number), pint_unit, unit, text, spec, field, gd2)
+    recipe = None if gd2 else _FAST.get((spec.name, pint_unit))
+    if recipe is None:
+        recipe = _CACHE.get((spec.name, pint_unit, gd2))
+    if recipe is None:
+        _check_unit_text(pint_unit, text, spec, field)
+        recipe = _pint_recipe(pint_unit, unit, text, spec, field, gd2)
+        if len(_CACHE) < _CACHE_SIZE:
+            _CACHE[(spec.name, pint_unit, gd2)] = recipe
+    if len(_BY_TEXT) < _CACHE_SIZE:
+        _BY_TEXT[(spec.name, written)] = recipe
+    return recipe.apply(float(number))
+
+
+def _pint_quantity(number: float, pint_unit: str, unit: str, text: str, spec: Kind,
+                   field: str | None, gd2: bool) -> Any:
+    """``number`` in ``pint_unit`` as a pint quantity of the dimension of ``spec`` (a mass
+    read as its weight where a torque or an inertia is expected)."""
     ureg = registry()
     try:
-        quantity = ureg.Quantity(float(number), pint_unit)
+        quantity = ureg.Quantity(number, pint_unit)
     except Exception as error:  # pint raises several unrelated error types
         raise UserError(f"unknown unit {unit!r} in {text!r} ({spec.name.replace('_', ' ')} "
                         f"expected, e.g. {spec.example!r})", field=field) from error
     if gd2:
-        return _inertia_of_gd2(quantity, text, field)
+        return quantity
+    wrong = _expected(spec, text, field)
     if "[temperature]" in quantity.dimensionality:
         raise wrong  # degC, degF, K: no kind of ours holds a temperature (and offset units crash)
     expected = ureg.get_dimensionality(spec.dimensionality) if spec.dimensionality else {}
@@ -255,30 +346,142 @@ def _parse_text(text: str, spec: Kind, field: str | None) -> float:
             quantity = weight
     if quantity.dimensionality != expected:
         raise wrong
+    return quantity
+
+
+def _pint_recipe(pint_unit: str, unit: str, text: str, spec: Kind, field: str | None,
+                 gd2: bool) -> _Recipe:
+    """The recipe of one unit: pint's factor (the value of 1.0 in that unit, in SI) and
+    the steps after it; UserError for a unit that is unknown or of another kind."""
+    quantity = _pint_quantity(1.0, pint_unit, unit, text, spec, field, gd2)
+    if gd2:
+        return _Recipe(_gd2_factor(quantity, text, field), gd2=True)
     if spec.name in _ANGULAR_MOTION:
-        return _angular(quantity, wrong)
+        factor, angle = _root_and_angle(quantity)
+        if angle not in (0, 1):
+            raise _expected(spec, text, field)
+        return _Recipe(factor, revolutions=angle == 0)
+    return _Recipe(float(quantity.to_base_units().magnitude))
+
+
+def _with_pint(number: float, pint_unit: str, unit: str, text: str, spec: Kind,
+               field: str | None, gd2: bool) -> float:
+    """``number`` converted by pint itself (the reference of :class:`_Recipe`)."""
+    quantity = _pint_quantity(number, pint_unit, unit, text, spec, field, gd2)
+    if gd2:
+        return _gd2_factor(quantity, text, field) / 4.0
+    if spec.name in _ANGULAR_MOTION:
+        magnitude, angle = _root_and_angle(quantity)
+        if angle == 1:
+            return magnitude
+        if angle == 0:
+            return magnitude * 2.0 * math.pi
+        raise _expected(spec, text, field)
     return float(quantity.to_base_units().magnitude)
 
 
-def _angular(quantity: Any, wrong: UserError) -> float:
-    """rad/s (or /s^2, /s^3) of an angular quantity; no angle in the unit = revolutions."""
+def _root_and_angle(quantity: Any) -> tuple[float, float]:
+    """The magnitude in root units and the power of the radian in them: 1 for an angular
+    quantity, 0 when the unit has no angle (then it counts revolutions)."""
     root = quantity.to_root_units()
-    angle = dict(root.unit_items()).get("radian", 0)
-    if angle == 1:
-        return float(root.magnitude)
-    if angle == 0:
-        return float(root.magnitude) * 2.0 * math.pi
-    raise wrong
+    return float(root.magnitude), dict(root.unit_items()).get("radian", 0)
 
 
-def _inertia_of_gd2(quantity: Any, text: str, field: str | None) -> float:
-    """J = GD^2/4 in kg*m^2: G in kgf (numerically the mass in kg) or in kg, D in m."""
+def _gd2_factor(quantity: Any, text: str, field: str | None) -> float:
+    """GD^2 in kgf*m^2 (G in kgf, numerically the mass in kg) or in kg*m^2; J = GD^2/4."""
     ureg = registry()
     if quantity.dimensionality == ureg.get_dimensionality("[mass]*[length]**3/[time]**2"):
-        return float(quantity.to("kgf*m**2").magnitude) / 4.0
+        return float(quantity.to("kgf*m**2").magnitude)
     if quantity.dimensionality == ureg.get_dimensionality("[mass]*[length]**2"):
-        return float(quantity.to("kg*m**2").magnitude) / 4.0
+        return float(quantity.to("kg*m**2").magnitude)
     raise UserError(f"expected a GD^2 like '0.04 kgf*m^2 GD^2', got {text!r}", field=field)
+
+
+_ASCII_SPACE = " \t\n\r\f\v"
+_NUMBER_CHARS = "0123456789.eE+-"
+
+
+def column_to_si(values: Sequence[Any], kind: str) -> list[float | None]:
+    """The SI floats of a column of values of one kind (a catalog's inertias, say).
+
+    Each distinct unit of the column is converted once (see :func:`to_si`), each value is
+    then its number times the unit's factor, bit for bit as :func:`to_si` gives it. None
+    where :func:`to_si` refuses the value (it is left to word what is wrong).
+    """
+    spec = KINDS[kind]
+    match = _NUMBER_AND_UNIT.match
+    recipes = _BY_TEXT
+    factors: dict[str, float] = {}
+    result: list[float | None] = []
+    append = result.append
+    for value in values:
+        kind_of = type(value)
+        if kind_of is float or kind_of is int:
+            try:
+                number = float(value)
+            except OverflowError:
+                number = math.inf
+            append(number if math.isfinite(number) else None)
+            continue
+        if kind_of is not str or len(value) > MAX_QUANTITY_CHARS:
+            append(None)
+            continue
+        if "%" in value:
+            try:
+                append(to_si(value, kind))
+            except UserError:
+                append(None)
+            continue
+        number_text, _, unit = value.partition(" ")
+        unit = unit.strip(_ASCII_SPACE)
+        if not number_text or number_text.strip(_NUMBER_CHARS) or not unit:
+            # not the common 'number unit' with digits only: the pattern decides
+            parts = match(value)
+            if parts is None or parts.group(1)[-1:].isalpha():  # not a number, inf, nan
+                append(None)
+                continue
+            number_text, unit = parts.groups()
+        if not unit:
+            number = float(number_text)
+        else:
+            factor = factors.get(unit)  # this column's units: a plain factor, or None
+            if factor is None:
+                recipe = recipes.get((spec.name, unit))
+                if recipe is None:
+                    try:
+                        number = to_si(value, kind)  # finds the unit, remembers it
+                    except UserError:
+                        append(None)
+                        continue
+                    append(number if math.isfinite(number) else None)
+                    continue
+                if not (recipe.revolutions or recipe.gd2):
+                    factors[unit] = recipe.factor
+                try:
+                    number = recipe.apply(float(number_text))
+                except ValueError:  # '1.2.3 rpm'
+                    append(None)
+                    continue
+            else:
+                try:
+                    number = float(number_text) * factor  # _Recipe.apply of a plain factor
+                except ValueError:
+                    append(None)
+                    continue
+        append(number if math.isfinite(number) else None)
+    return result
+
+
+def to_si_with_pint(value: Any, kind: str, *, field: str | None = None) -> float:
+    """:func:`to_si` with every text converted by pint itself, value by value (slow; the
+    reference the tests compare the fast path with)."""
+    if isinstance(value, str) and len(value) <= MAX_QUANTITY_CHARS:
+        spec = KINDS[kind]
+        result = _parse_text(value, spec, field, reference=True)
+        if not math.isfinite(result):
+            raise _not_finite(value, field)
+        return result
+    return to_si(value, kind, field=field)
 
 
 def parse_displacement(value: Any, *, field: str | None = None) -> tuple[float, bool]:

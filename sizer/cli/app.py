@@ -6,11 +6,12 @@ command (``size``, ``check``, ``catalog ...``) is a new module listed in COMMAND
 
 from __future__ import annotations
 
+import inspect
 import os
 import sys
 import traceback
 from collections.abc import Iterable, Sequence
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 import typer.main
@@ -56,7 +57,8 @@ app = typer.Typer(
          "    sizer law cycloidal --displacement '90 deg' --duration '0.2 s'\n\n"
          + EXIT_CODES_HELP,
     no_args_is_help=True,
-    rich_markup_mode="markdown",
+    add_help_option=False,  # our own --help below: typer's would import pydantic to coerce
+    rich_markup_mode=None,  # click's plain help: typer's rich help imports ~0.15 s of rich
     add_completion=False,
     pretty_exceptions_enable=False,
     pretty_exceptions_show_locals=False,
@@ -66,6 +68,12 @@ app = typer.Typer(
 def _show_version(value: bool) -> None:
     if value:
         typer.echo(f"sizer {__version__}")
+        raise typer.Exit()
+
+
+def _show_help(context: typer.Context, value: bool) -> None:
+    if value and not context.resilient_parsing:
+        typer.echo(context.get_help())
         raise typer.Exit()
 
 
@@ -82,6 +90,9 @@ def _root(
         "--debug",
         help="On an internal error (exit code 3) show the traceback (so does "
              "SIZER_DEBUG=1).")] = False,
+    show_help: Annotated[bool, typer.Option(
+        "--help", callback=_show_help, is_eager=True, expose_value=False,
+        help="Show this message and exit.")] = False,
 ) -> None:
     """Size servo motors and choose motion laws for automatic machines."""
     global _debug
@@ -172,6 +183,15 @@ def _silence_stdout() -> None:
         pass
 
 
+def _whole_summaries(command: Any) -> None:
+    """The first paragraph of each command's help as its line in the command lists, whole
+    (click would cut it to ~45 characters)."""
+    for sub in getattr(command, "commands", {}).values():
+        if not sub.short_help and sub.help:
+            sub.short_help = " ".join(inspect.cleandoc(sub.help).split("\n\n")[0].split())
+        _whole_summaries(sub)
+
+
 def run(argv: Sequence[str] | None = None) -> int:
     """Run the app on ``argv`` (default: the command line) and return the exit code.
 
@@ -183,6 +203,7 @@ def run(argv: Sequence[str] | None = None) -> int:
     _debug = False
     args = sys.argv[1:] if argv is None else list(argv)
     command = typer.main.get_command(app)
+    _whole_summaries(command)
     try:
         try:
             with command.make_context("sizer", args) as context:
@@ -190,9 +211,9 @@ def run(argv: Sequence[str] | None = None) -> int:
         except Exit as exit_:
             return exit_.exit_code
         except click_exceptions.NoArgsIsHelpError as error:
-            shown = error.format_message()  # typer has printed the help already
+            shown = error.format_message()  # the help of the command group
             if shown.strip():
-                sys.stderr.write(shown.rstrip("\n") + "\n")
+                sys.stdout.write(shown.rstrip("\n") + "\n")
             return ExitCode.USER_ERROR
         except click_exceptions.ClickException as error:
             sys.stderr.write(_usage_error_line(error) + "\n")

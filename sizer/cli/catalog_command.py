@@ -21,7 +21,7 @@ catalog_app = typer.Typer(
     help="Motor catalogs: list the bundled ones and their motors, show one motor, "
          "validate catalog files (for CI), import a vendor's CSV.",
     no_args_is_help=True,
-    rich_markup_mode="markdown",
+    rich_markup_mode=None,  # plain help, as the app (sizer.cli.app)
     add_completion=False,
 )
 

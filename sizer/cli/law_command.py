@@ -9,7 +9,6 @@ import typer
 from sizer.cli.options import FormatOption, OutputOption, blame_option
 from sizer.errors import UserError
 from sizer.report.formats import Format
-from sizer.units import parse_displacement, to_si
 
 MAX_SAMPLES = 1_000_000
 
@@ -48,6 +47,7 @@ def law(
     from sizer.laws import ScaledMotion, make_law  # lazy: keeps --help fast
     from sizer.report.document import publish
     from sizer.report.series_table import SeriesDocument
+    from sizer.units import parse_displacement, to_si
 
     check_output(output)
     h, linear = parse_displacement(displacement, field="--displacement")

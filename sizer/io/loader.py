@@ -15,6 +15,7 @@ import difflib
 import math
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, replace
+from functools import cache
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -27,7 +28,13 @@ from sizer.io.motor_checks import impossibilities
 from sizer.io.plausibility import bare_number_warnings, motor_warnings
 from sizer.io.transmission import build_transmission
 from sizer.io.validation import validate
-from sizer.io.yaml_source import YamlSource, format_path, parse_yaml, read_yaml
+from sizer.io.yaml_source import (
+    YamlSource,
+    format_path,
+    no_garbage_collection,
+    parse_yaml,
+    read_yaml,
+)
 from sizer.mechanics import linear_load
 from sizer.model.domain import Design, Limits, Load, Motor, Task
 from sizer.model.inputs import (
@@ -39,9 +46,16 @@ from sizer.model.inputs import (
     MotorInput,
     TaskInput,
 )
-from sizer.model.inputs_base import axis_range, convert_in, given_text, show_value
+from sizer.model.inputs_base import (
+    RangeRef,
+    axis_range,
+    convert_in,
+    field_markers,
+    given_text,
+    show_value,
+)
 from sizer.model.ranges import RANGES, check_range, number_text
-from sizer.units import parse_displacement
+from sizer.units import column_to_si, parse_displacement
 
 PathLike = str | Path
 
@@ -147,26 +161,89 @@ class _Located:
 
 def _read_catalog(path: Path, warnings: list[str]) -> list[_Located]:
     """The motors of a catalog file; warnings about them are appended to ``warnings``."""
-    source = read_yaml(path)
-    catalog = validate(CatalogFile, source)
-    if not catalog.motors:
-        raise source.error("the catalog has no motors", ("motors",))
-    located = []
-    for index, item in enumerate(catalog.motors):
-        at = ("motors", index)
-        motor = _motor(item, source, at)
-        motor = replace(motor,
-                        manufacturer=motor.manufacturer or catalog.manufacturer,
-                        source=motor.source or catalog.source)
-        warnings += _motor_warnings(motor, source, at)
-        located.append(_Located(motor, source.file, source.line_of((*at, "id")),
-                                format_path((*at, "id"))))
+    with no_garbage_collection():  # many small objects, none of them garbage
+        source = read_yaml(path)
+        catalog = validate(CatalogFile, _with_si_columns(source))
+        if not catalog.motors:
+            raise source.error("the catalog has no motors", ("motors",))
+        located = []
+        for index, item in enumerate(catalog.motors):
+            at = ("motors", index)
+            motor = _motor(item, source, at, manufacturer=catalog.manufacturer,
+                           source_text=catalog.source)
+            warnings += _motor_warnings(motor, source, at)
+            located.append(_Located(motor, source.file, source.line_of((*at, "id")),
+                                    format_path((*at, "id"))))
     return located
 
 
-def _motor(item: MotorInput, source: YamlSource, at: tuple[Any, ...]) -> Motor:
+@cache
+def _quantity_columns() -> tuple[tuple[tuple[str, str], ...], tuple[str, ...],
+                                 tuple[str, str]]:
+    """The motor fields that are ranged quantities (key, range name), the curve fields,
+    and the range names of a curve point's speed and torque (from the input models)."""
+
+    def ranged(model: type[BaseModel], name: str) -> str | None:
+        return next((m.name for m in field_markers(model, name) if isinstance(m, RangeRef)),
+                    None)
+
+    fields = tuple((info.alias or name, found) for name, info in MotorInput.model_fields.items()
+                   if (found := ranged(MotorInput, name)) is not None)
+    point = (ranged(CurvePointInput, "speed"), ranged(CurvePointInput, "torque"))
+    assert None not in point
+    return fields, ("continuous_curve", "intermittent_curve"), point  # type: ignore[return-value]
+
+
+def _with_si_columns(source: YamlSource) -> YamlSource:
+    """``source`` with the motors' quantities converted column by column (one unit
+    conversion per distinct unit of a column, :func:`sizer.units.column_to_si`).
+
+    Only values that convert and lie in their field's range are replaced, by the float
+    the field's validator would give; every other value stays as written, so that the
+    validation words its problem as before. ``source`` itself is left as it is (the
+    warnings name the values as written).
+    """
+    data = source.data
+    motors = data.get("motors") if isinstance(data, dict) else None
+    if not isinstance(motors, list):
+        return source
+    rows = [dict(row) if type(row) is dict else row for row in motors]
+    fields, curves, (speed_range, torque_range) = _quantity_columns()
+
+    def convert(cells: list[tuple[Any, Any]], values: list[Any], name: str) -> None:
+        allowed = RANGES[name]
+        for (holder, key), x in zip(cells, column_to_si(values, allowed.kind), strict=True):
+            if x is not None and allowed.contains(x):
+                holder[key] = x + 0.0
+
+    for key, name in fields:
+        cells = [(row, key) for row in rows if type(row) is dict and key in row]
+        convert(cells, [holder[k] for holder, k in cells], name)
+    speeds: list[tuple[Any, Any]] = []
+    torques: list[tuple[Any, Any]] = []
+    for row in rows:
+        for key in curves:
+            if type(row) is not dict or type(row.get(key)) is not list:
+                continue
+            points = row[key] = [list(p) if type(p) is list else
+                                 dict(p) if type(p) is dict else p for p in row[key]]
+            for point in points:
+                if type(point) is list and len(point) == 2:
+                    speeds.append((point, 0))
+                    torques.append((point, 1))
+                elif type(point) is dict:
+                    speeds += [(point, "speed")] if "speed" in point else []
+                    torques += [(point, "torque")] if "torque" in point else []
+    convert(speeds, [holder[k] for holder, k in speeds], speed_range)
+    convert(torques, [holder[k] for holder, k in torques], torque_range)
+    return YamlSource({**data, "motors": rows}, source.file, source.lines)
+
+
+def _motor(item: MotorInput, source: YamlSource, at: tuple[Any, ...], *,
+           manufacturer: str | None = None, source_text: str | None = None) -> Motor:
     """A Motor from its validated input; an impossible motor (see
-    :mod:`sizer.io.motor_checks`) is refused at its first problem, with its id."""
+    :mod:`sizer.io.motor_checks`) is refused at its first problem, with its id.
+    ``manufacturer`` and ``source_text`` are the catalog's, for a motor without its own."""
     problems = impossibilities(item)
     if problems:
         first = problems[0]
@@ -183,9 +260,9 @@ def _motor(item: MotorInput, source: YamlSource, at: tuple[Any, ...]) -> Motor:
         continuous_curve=_curve(item.continuous_curve),
         intermittent_curve=_curve(item.intermittent_curve),
         damping=item.damping,
-        source=item.source,
+        source=item.source or source_text,
         part_number=item.part_number,
-        manufacturer=item.manufacturer,
+        manufacturer=item.manufacturer or manufacturer,
         price=item.price,
         mass=item.mass,
     )

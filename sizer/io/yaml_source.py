@@ -14,8 +14,10 @@ where it is written.
 
 from __future__ import annotations
 
+import gc
 import math
-from collections.abc import Hashable, Sequence
+from collections.abc import Hashable, Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -54,6 +56,174 @@ if getattr(yaml, "__with_libyaml__", False):
             yaml.composer.Composer.__init__(self)
 else:  # pragma: no cover - PyYAML built without libyaml
     _SafeLoader = yaml.SafeLoader  # type: ignore[misc,assignment]
+
+
+class _NotPlainError(Exception):
+    """The document needs the general path (an anchor, a tag, an error...)."""
+
+
+_STR_TAG = "tag:yaml.org,2002:str"
+_FLOAT_TAG = "tag:yaml.org,2002:float"
+_SCALAR_TAGS = frozenset({_STR_TAG, _INT_TAG, _FLOAT_TAG, "tag:yaml.org,2002:bool",
+                          "tag:yaml.org,2002:null", "tag:yaml.org,2002:timestamp"})
+_RESOLVERS = yaml.resolver.Resolver.yaml_implicit_resolvers
+_CONSTRUCTOR = yaml.constructor.SafeConstructor()
+
+
+def _plain_scalar(event: Any) -> Any:
+    """The value of a scalar event, as SafeConstructor gives it, with the checks of
+    :func:`_construct_scalar`; _NotPlainError where those would fail or for an explicit tag."""
+    value = event.value
+    if event.tag is not None or len(value) > MAX_SCALAR_CHARS:
+        raise _NotPlainError
+    if not event.implicit[0]:
+        return value  # quoted: a string
+    tag = _STR_TAG
+    for candidate, pattern in _RESOLVERS.get(value[0] if value else "", ()):
+        if pattern.match(value):
+            tag = candidate
+            break
+    if tag == _STR_TAG:
+        return value
+    if tag not in _SCALAR_TAGS:
+        raise _NotPlainError  # '<<' (merge), '=' (value)
+    if tag == _INT_TAG and sum(c.isdigit() for c in value) > MAX_INT_DIGITS:
+        raise _NotPlainError
+    try:
+        result = _CONSTRUCTOR.yaml_constructors[tag](
+            _CONSTRUCTOR, yaml.ScalarNode(tag, value, event.start_mark, event.end_mark))
+    except Exception:
+        raise _NotPlainError from None
+    if isinstance(result, int) and not isinstance(result, bool) and abs(result) > _FLOAT_MAX:
+        raise _NotPlainError
+    if isinstance(result, float) and not math.isfinite(result):
+        raise _NotPlainError
+    return result
+
+
+def _parse_plain(text: str, file: str | None, max_nodes: int) -> YamlSource | None:
+    """The data and lines of a plain document read in one pass over libyaml's events, or
+    None when the document needs the general path (see :func:`parse_yaml`).
+
+    The same data, lines and limits as the general path: each node counts one, a node
+    deeper than MAX_YAML_DEPTH, a scalar longer than MAX_SCALAR_CHARS, an anchor, an
+    alias, a tag, a merge key, a key that is not a scalar, a duplicate key, a value that
+    does not construct and a top level that is not a mapping all mean None.
+    """
+    if not getattr(yaml, "__with_libyaml__", False):  # pragma: no cover
+        return None
+    with no_garbage_collection():
+        try:
+            return _plain_events(CParser(text), file, max_nodes)
+        except Exception:  # _NotPlainError, or an error the general path words
+            return None
+
+
+@contextmanager
+def no_garbage_collection() -> Iterator[None]:
+    """The cyclic garbage collector paused: building many small containers (none of them
+    garbage) would run it again and again for nothing."""
+    collecting = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if collecting:
+            gc.enable()
+
+
+_NO_KEY = object()
+
+
+_PLAIN_STR_FIRST = frozenset(chr(c) for c in range(32, 127)) - set(_RESOLVERS)
+"""First characters of a plain scalar that no implicit resolver can match: a string."""
+
+
+def _plain_events(parser: Any, file: str | None, max_nodes: int) -> YamlSource:
+    """The loop of :func:`_parse_plain`: one pass over the events, the innermost open
+    collection in locals. A scalar is a string without the resolvers when it is quoted,
+    starts with a character no resolver starts with, or holds a space and is not a
+    timestamp (only the timestamp pattern admits a space, after 'YYYY-')."""
+    get = parser.get_event
+    if type(get()) is not yaml.StreamStartEvent or \
+            type(get()) is not yaml.DocumentStartEvent:
+        raise _NotPlainError
+    event = get()
+    if type(event) is not yaml.MappingStartEvent or event.anchor is not None \
+            or event.tag is not None:
+        raise _NotPlainError
+    source = YamlSource({}, file)
+    lines = source.lines
+    lines[()] = event.start_mark.line + 1
+    # the innermost open collection, its path, its pending key (a mapping's), and the
+    # enclosing ones as (container, path, key, is_mapping)
+    container: Any = source.data
+    path: Path_ = ()
+    key: Any = _NO_KEY
+    is_mapping = True
+    outer: list[tuple[Any, Path_, Any, bool]] = []
+    count = 1
+    deepest = MAX_YAML_DEPTH - 1  # enclosing collections of the innermost, at most
+    scalar_event, mapping_start = yaml.ScalarEvent, yaml.MappingStartEvent
+    sequence_start = yaml.SequenceStartEvent
+    ends = (yaml.MappingEndEvent, yaml.SequenceEndEvent)
+    first_str, longest, no_key = _PLAIN_STR_FIRST, MAX_SCALAR_CHARS, _NO_KEY
+    while True:
+        event = get()
+        kind = type(event)
+        if kind is scalar_event:
+            count += 1
+            if count > max_nodes or len(outer) >= deepest or event.anchor is not None:
+                raise _NotPlainError
+            value = event.value
+            if event.tag is not None or len(value) > longest or not (
+                    not event.implicit[0] or (value and value[0] in first_str)
+                    or (" " in value and value[4:5] != "-")):
+                value = _plain_scalar(event)
+            if is_mapping:
+                if key is no_key:
+                    at = (*path, value)
+                    if value in container or at in lines:
+                        raise _NotPlainError  # a duplicate key
+                    key = value
+                    lines[at] = event.start_mark.line + 1
+                else:
+                    container[key] = value
+                    key = no_key
+            else:
+                lines[(*path, len(container))] = event.start_mark.line + 1
+                container.append(value)
+            continue
+        if kind in ends:
+            if not outer:
+                break
+            done = container
+            container, path, key, is_mapping = outer.pop()
+            if is_mapping:
+                container[key] = done
+                key = no_key
+            else:
+                container.append(done)
+            continue
+        if kind is not mapping_start and kind is not sequence_start:
+            raise _NotPlainError  # an alias
+        count += 1
+        if count > max_nodes or len(outer) >= deepest or event.anchor is not None \
+                or event.tag is not None:
+            raise _NotPlainError
+        if is_mapping:
+            if key is no_key:
+                raise _NotPlainError  # a key that is a collection
+            at = (*path, key)
+        else:
+            at = (*path, len(container))
+            lines[at] = event.start_mark.line + 1
+        outer.append((container, path, key, is_mapping))
+        container, path, key = ({} if kind is mapping_start else []), at, no_key
+        is_mapping = kind is mapping_start
+    if type(get()) is not yaml.DocumentEndEvent or type(get()) is not yaml.StreamEndEvent:
+        raise _NotPlainError  # more than one document
+    return source
 
 
 class _BoundedLoader(_SafeLoader):
@@ -160,7 +330,16 @@ def read_yaml(path: str | Path, *, limit: int = MAX_CATALOG_BYTES,
 
 def parse_yaml(text: str, file: str | None = None, *,
                max_nodes: int = MAX_CATALOG_NODES) -> YamlSource:
-    """Parse YAML text (one document, a mapping at the top) keeping line numbers."""
+    """Parse YAML text (one document, a mapping at the top) keeping line numbers.
+
+    A plain document (no anchor, alias, tag or merge key, within the limits, no
+    duplicate key or bad value) is read straight from libyaml's events
+    (:func:`_parse_plain`); anything else, including every error, takes the general
+    path below, which gives the same data and lines and words every error.
+    """
+    fast = _parse_plain(text, file, max_nodes)
+    if fast is not None:
+        return fast
     try:
         loader = _BoundedLoader(text, file, max_nodes)
     except yaml.YAMLError as error:

@@ -1,0 +1,86 @@
+"""Time sizer's start-up against ``python -c "import numpy"`` (issue 11).
+
+    python benchmarks/bench_startup.py --repeat 7
+
+Runs, in fresh processes from the repository root, ``python -c "import numpy"``,
+``python -m sizer --help`` and ``python -m sizer size`` of each book example, ``--repeat``
+rounds with the commands interleaved (so that a busy machine slows them alike), and
+prints the best wall time and the best CPU time (user + system) of each and their ratios
+to the numpy import. The goals: --help at most 2x, each ``size`` at most 6x, judged on the
+CPU times (on a machine shared with other jobs the wall times wait for the processor;
+``--wall`` judges the wall times). Exits 1 if a goal is missed. Results are in
+benchmarks/README.md.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+BOOK = ("ex6_1-6_2", "ex6_3", "ex6_3-vmax4", "ex6_4", "ex6_5")
+
+
+def timed(command: list[str]) -> tuple[float, float]:
+    """The wall time and the CPU time (user + system) of one run of ``command``."""
+    environment = {**os.environ, "PYTHONPATH": str(ROOT)}
+    start = time.perf_counter()
+    process = subprocess.Popen(command, cwd=ROOT, env=environment,
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    _, status, usage = os.wait4(process.pid, 0)
+    wall = time.perf_counter() - start
+    process.returncode = os.waitstatus_to_exitcode(status)
+    if process.returncode != 0:
+        raise SystemExit(f"failed ({process.returncode}): {' '.join(command)}")
+    return wall, usage.ru_utime + usage.ru_stime
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--repeat", type=int, default=7, help="rounds (best of; default 7)")
+    parser.add_argument("--examples", nargs="*", default=list(BOOK),
+                        help="book examples to size (default: all five)")
+    parser.add_argument("--help-goal", type=float, default=2.0)
+    parser.add_argument("--size-goal", type=float, default=6.0)
+    parser.add_argument("--wall", action="store_true",
+                        help="judge the goals on wall time (default: CPU time, steadier on "
+                             "a shared machine)")
+    args = parser.parse_args()
+    python = sys.executable
+    commands: list[tuple[str, list[str], float | None]] = [
+        ('python -c "import numpy"', [python, "-c", "import numpy"], None),
+        ("sizer --help", [python, "-m", "sizer", "--help"], args.help_goal),
+    ]
+    for name in args.examples:
+        path = f"examples/book/{name}.yaml"
+        commands.append((f"sizer size {path}", [python, "-m", "sizer", "size", path],
+                         args.size_goal))
+    wall = [float("inf")] * len(commands)
+    cpu = [float("inf")] * len(commands)
+    for _ in range(args.repeat):
+        for i, (_, command, _) in enumerate(commands):
+            seconds, used = timed(command)
+            wall[i], cpu[i] = min(wall[i], seconds), min(cpu[i], used)
+    width = max(len(label) for label, _, _ in commands)
+    print(f"{'command':{width}s} {'wall [s]':>9s} {'x numpy':>8s} {'cpu [s]':>8s} "
+          f"{'x numpy':>8s} {'goal':>6s}  met")
+    missed = 0
+    for (label, _, goal), seconds, used in zip(commands, wall, cpu, strict=True):
+        ratio, cpu_ratio = seconds / wall[0], used / cpu[0]
+        line = f"{label:{width}s} {seconds:9.3f} {ratio:8.2f} {used:8.3f} {cpu_ratio:8.2f}"
+        if goal is None:
+            print(line)
+            continue
+        met = (ratio if args.wall else cpu_ratio) <= goal
+        missed += not met
+        print(f"{line} {goal:5.1f}x  {'yes' if met else 'NO'}")
+    return 1 if missed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
