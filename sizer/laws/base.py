@@ -24,6 +24,7 @@ from sizer.errors import UserError
 
 if TYPE_CHECKING:
     from sizer.laws.coefficients import LawCoefficients
+    from sizer.laws.linear_peaks import LinearPeaks
     from sizer.laws.quadrature import QuadratureRule
 
 PieceFunction = Callable[[np.ndarray, int], np.ndarray]
@@ -319,3 +320,10 @@ class MotionLaw:
         from sizer.laws.quadrature import quadrature_rule
 
         return quadrature_rule(self)
+
+    @cached_property
+    def linear_peaks(self) -> LinearPeaks:
+        """Sampled (v_N, a_N) curve and its convex hull, for exact peaks of p*a_N + q*v_N."""
+        from sizer.laws.linear_peaks import LinearPeaks
+
+        return LinearPeaks(self)
