@@ -26,7 +26,7 @@ def solve_tau_m(tau: np.ndarray, kappa: float) -> np.ndarray:
     tau = np.asarray(tau, dtype=float)
     spread = abs(kappa) / TWO_PI
     lo, hi = tau - spread, tau + spread
-    x = tau.copy()
+    x = tau + kappa * np.sin(TWO_PI * tau) / TWO_PI  # one fixed-point step: inside [lo, hi]
     for _ in range(100):
         theta = TWO_PI * x
         f = x - kappa * np.sin(theta) / TWO_PI - tau
@@ -34,7 +34,9 @@ def solve_tau_m(tau: np.ndarray, kappa: float) -> np.ndarray:
         hi = np.where(f > 0.0, x, hi)
         step = f / (1.0 - kappa * np.cos(theta))
         new = x - step
-        outside = (new <= lo) | (new >= hi)
+        # strictly outside: a converged x is itself a bracket end, and its Newton step
+        # (zero, or an ulp toward the root) must not be taken for a divergence
+        outside = (new < lo) | (new > hi)
         new = np.where(outside, 0.5 * (lo + hi), new)
         if np.all(np.abs(new - x) <= 4e-16 * np.maximum(1.0, np.abs(x))):
             return new
