@@ -60,8 +60,19 @@ class ModifiedCycloidal(MotionLaw):
         kappa = self.params["kappa"]
         scale = 1.0 - kappa
 
-        def evaluate(tau: np.ndarray, order: int) -> np.ndarray:
+        last: list[tuple[np.ndarray, np.ndarray]] = []  # the latest (tau, theta) solved
+
+        def angle(tau: np.ndarray) -> np.ndarray:
+            """2 pi tau_m; the derivatives of one set of points share one inversion."""
+            memo = last[-1] if last else None
+            if memo is not None and memo[0].shape == tau.shape and np.array_equal(memo[0], tau):
+                return memo[1]
             theta = TWO_PI * solve_tau_m(tau, kappa)
+            last[:] = [(tau.copy(), theta)]
+            return theta
+
+        def evaluate(tau: np.ndarray, order: int) -> np.ndarray:
+            theta = angle(np.asarray(tau, dtype=float))
             s, c = np.sin(theta), np.cos(theta)
             g = 1.0 - kappa * c  # d tau / d tau_m
             if order == 0:
