@@ -8,6 +8,7 @@ from sizer.laws.registry import (
     DEFAULT_LAW_SPECS,
     LAW_FAMILIES,
     known_law_ids,
+    law_of,
     make_law,
     resolve,
 )
@@ -27,6 +28,7 @@ __all__ = [
     "Piece",
     "ScaledMotion",
     "known_law_ids",
+    "law_of",
     "make_law",
     "parse_law_spec",
     "resolve",

@@ -15,6 +15,7 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import cached_property
+from types import MappingProxyType
 from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
@@ -23,6 +24,8 @@ from sizer.errors import UserError
 
 if TYPE_CHECKING:
     from sizer.laws.coefficients import LawCoefficients
+    from sizer.laws.linear_peaks import LinearPeaks
+    from sizer.laws.quadrature import QuadratureRule
 
 PieceFunction = Callable[[np.ndarray, int], np.ndarray]
 """Evaluate the derivative of the given order of q_N at an array of tau in the piece."""
@@ -33,11 +36,17 @@ INFINITELY_SMOOTH = math.inf
 
 @dataclass(frozen=True)
 class Piece:
-    """One smooth piece of a law: q_N restricted to [start, end]."""
+    """One smooth piece of a law: q_N restricted to [start, end].
+
+    ``degree`` is the degree of q_N on the piece when it is a polynomial (the trapezoid,
+    double S and polynomial laws), None otherwise; quadrature is then exact with a node
+    count chosen from it.
+    """
 
     start: float
     end: float
     evaluate: PieceFunction
+    degree: int | None = None
 
     def clamp(self, tau: np.ndarray) -> np.ndarray:
         """tau moved into [start, end]: a point one ulp outside reads the end's value."""
@@ -62,7 +71,7 @@ def mirrored(pieces: Sequence[Piece]) -> list[Piece]:
                 return 1.0 - value
             return -((-1.0) ** order) * value
 
-        return Piece(start, end, evaluate)
+        return Piece(start, end, evaluate, piece.degree)
 
     return list(pieces) + [reflect(p) for p in reversed(pieces)]
 
@@ -182,23 +191,7 @@ class MotionLaw:
         return ()
 
     def __init__(self, **params: float) -> None:
-        unknown = set(params) - {p.name for p in self.parameters}
-        if unknown:
-            names = ", ".join(p.name for p in self.parameters) or "none"
-            raise UserError(
-                f"{self.law_id}: unknown parameter(s) {', '.join(sorted(unknown))}; "
-                f"parameters: {names}"
-            )
-        values: dict[str, float] = {}
-        for p in self.parameters:
-            if p.name in params:
-                values[p.name] = p.validate(self.law_id, params[p.name])
-            elif p.default is not None:
-                values[p.name] = float(p.default)
-            else:
-                raise UserError(f"{self.law_id}: parameter {p.name} is required "
-                                f"({p.name} {p.range_text()})")
-        self.params: Mapping[str, float] = values
+        self.params: Mapping[str, float] = MappingProxyType(self.canonical_params(params))
         pieces, continuity = self._build()
         self.pieces: tuple[Piece, ...] = tuple(p for p in pieces if p.end > p.start)
         self.continuity: float = continuity
@@ -206,18 +199,48 @@ class MotionLaw:
         self._starts = starts
         self.breakpoints = np.append(starts, self.pieces[-1].end)
 
+    @classmethod
+    def canonical_params(cls, params: Mapping[str, float]) -> dict[str, float]:
+        """Every parameter of the family by name, in declaration order: the given values
+        validated, the others at their defaults. UserError for an unknown, missing or
+        out-of-range parameter."""
+        unknown = set(params) - {p.name for p in cls.parameters}
+        if unknown:
+            names = ", ".join(p.name for p in cls.parameters) or "none"
+            raise UserError(
+                f"{cls.law_id}: unknown parameter(s) {', '.join(sorted(unknown))}; "
+                f"parameters: {names}"
+            )
+        values: dict[str, float] = {}
+        for p in cls.parameters:
+            if p.name in params:
+                values[p.name] = p.validate(cls.law_id, params[p.name])
+            elif p.default is not None:
+                values[p.name] = float(p.default)
+            else:
+                raise UserError(f"{cls.law_id}: parameter {p.name} is required "
+                                f"({p.name} {p.range_text()})")
+        return values
+
+    @classmethod
+    def canonical_spec(cls, params: Mapping[str, float]) -> str:
+        """The canonical spec text of the family's law with these (canonical) parameters."""
+        if not cls.parameters:
+            return cls.law_id
+        args = ", ".join(f"{k}={format_parameter(v)}" for k, v in params.items())
+        return f"{cls.law_id}({args})"
+
     def _build(self) -> tuple[Sequence[Piece], float]:
         """Return the pieces covering [0, 1] in order and the continuity class k (C^k)."""
         raise NotImplementedError
 
     # ----------------------------------------------------------------- naming
-    @property
+    @cached_property
     def spec(self) -> str:
-        """Canonical spec text, e.g. 'trapezoidal(alpha=1/3)'; parses back to this law."""
-        if not self.parameters:
-            return self.law_id
-        args = ", ".join(f"{k}={format_parameter(v)}" for k, v in self.params.items())
-        return f"{self.law_id}({args})"
+        """Canonical spec text, e.g. 'trapezoidal(alpha=1/3)'; parses back to this law.
+
+        Laws compare and hash by it, so equal laws share dictionary entries and caches."""
+        return self.canonical_spec(self.params)
 
     def __repr__(self) -> str:
         return f"<MotionLaw {self.spec}>"
@@ -290,3 +313,17 @@ class MotionLaw:
         from sizer.laws.coefficients import compute_coefficients
 
         return compute_coefficients(self, use_closed_form=False)
+
+    @cached_property
+    def quadrature(self) -> QuadratureRule:
+        """The law's fixed Gauss-Legendre rule over its pieces (computed once per law)."""
+        from sizer.laws.quadrature import quadrature_rule
+
+        return quadrature_rule(self)
+
+    @cached_property
+    def linear_peaks(self) -> LinearPeaks:
+        """Sampled (v_N, a_N) curve and its convex hull, for exact peaks of p*a_N + q*v_N."""
+        from sizer.laws.linear_peaks import LinearPeaks
+
+        return LinearPeaks(self)

@@ -5,7 +5,8 @@ C_v_rms, C_a_rms the RMS values over [0, 1]. Peaks are found exactly: the candid
 are every point of a scan grid of each piece (its ends included, one-sided), the roots
 of the next derivative inside it (brentq) and a bounded search around each local maximum
 of the samples; the grid is graded toward the piece ends and the law's fine points.
-RMS values integrate each smooth piece with adaptive Gauss-Legendre quadrature.
+RMS values are the law's fixed Gauss-Legendre rule (sizer.laws.quadrature: exact on
+polynomial pieces). scipy is imported by the functions that use it, not at import time.
 Where the acceleration jumps (between pieces, or against rest at tau = 0 and 1) the
 jerk has an impulse: those jumps are reported, and ``jerk_bounded`` is False.
 """
@@ -17,8 +18,6 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.polynomial.legendre import leggauss
-from scipy import optimize
 
 from sizer.laws.base import MotionLaw, Piece
 
@@ -31,12 +30,6 @@ have their steepest features within 1e-6 of the ends)."""
 
 REFINED_MAXIMA = 16
 """Local maxima of the samples refined by a bounded search, largest first, per piece."""
-
-RMS_TOLERANCE = 1e-14
-"""Error allowed on each interval of the RMS integral, relative to the whole integral."""
-
-RMS_LEVELS = 60
-"""Halvings allowed per interval of the RMS integral."""
 
 JUMP_TOLERANCE = 1e-9
 """Relative size below which a difference of one-sided limits is rounding, not a jump."""
@@ -107,6 +100,8 @@ def peak(law: MotionLaw, order: int) -> tuple[float, float]:
 
 def _peak_candidates(law: MotionLaw, index: int, order: int) -> np.ndarray:
     """Points of a piece where |q_N^(order)| may peak (its grid points among them)."""
+    from scipy import optimize
+
     grid = scan_grid(law.pieces[index], toward=law.fine_points())
     points = [grid]
     if order + 1 <= law.max_order:
@@ -124,6 +119,8 @@ def _peak_candidates(law: MotionLaw, index: int, order: int) -> np.ndarray:
 
 def _refined_maxima(law: MotionLaw, index: int, order: int, grid: np.ndarray) -> np.ndarray:
     """Bounded Brent maximization of |f| around the largest local maxima of the samples."""
+    from scipy import optimize
+
     values = np.abs(law.piece_derivative(index, grid, order))
     padded = np.concatenate(([-np.inf], values, [-np.inf]))
     mid, left, right = padded[1:-1], padded[:-2], padded[2:]
@@ -157,37 +154,9 @@ def scan_grid(piece: Piece, uniform: int = GRID_PER_PIECE, toward: Sequence[floa
 
 
 def rms(law: MotionLaw, order: int) -> float:
-    """sqrt( integral over [0, 1] of (q_N^(order))^2 ), piece by piece."""
-    total = 0.0
-    for index, piece in enumerate(law.pieces):
-        grid = scan_grid(piece, uniform=16, toward=law.fine_points(), per_decade=1)
-        total += _integral_of_square(law, index, order, grid)
-    return math.sqrt(total)
-
-
-def _integral_of_square(law: MotionLaw, index: int, order: int, edges: np.ndarray) -> float:
-    """Adaptive Gauss-Legendre over the intervals of ``edges`` (vectorized): an interval
-    is accepted when its 20- and 30-node rules agree to RMS_TOLERANCE of the piece's
-    integral or to 1e-13 of its own (rounding level), else halved."""
-    rules = [leggauss(20), leggauss(30)]
-    lo, hi = edges[:-1], edges[1:]
-    total, scale = 0.0, None
-    for level in range(RMS_LEVELS):
-        mid, half = 0.5 * (lo + hi), 0.5 * (hi - lo)
-        coarse, fine = (
-            (law.piece_derivative(index, mid[:, None] + half[:, None] * x, order) ** 2 @ w) * half
-            for x, w in rules
-        )
-        if scale is None:
-            scale = float(np.sum(fine))
-        error = np.abs(fine - coarse)
-        ok = (error <= RMS_TOLERANCE * max(scale, 1e-300)) | (error <= 1e-13 * np.abs(fine))
-        ok |= (half <= 1e-17) | (level == RMS_LEVELS - 1) | (len(lo) > 100_000)
-        total += float(np.sum(fine[ok]))
-        if ok.all():
-            break
-        lo, hi = np.concatenate((lo[~ok], mid[~ok])), np.concatenate((mid[~ok], hi[~ok]))
-    return total
+    """sqrt( integral over [0, 1] of (q_N^(order))^2 ), with the law's fixed rule."""
+    rule = law.quadrature
+    return math.sqrt(rule.integral(rule.values(law, order) ** 2))
 
 
 def one_sided_limits(law: MotionLaw, order: int) -> list[tuple[float, float, float]]:

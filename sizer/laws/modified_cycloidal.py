@@ -26,7 +26,7 @@ def solve_tau_m(tau: np.ndarray, kappa: float) -> np.ndarray:
     tau = np.asarray(tau, dtype=float)
     spread = abs(kappa) / TWO_PI
     lo, hi = tau - spread, tau + spread
-    x = tau.copy()
+    x = tau + kappa * np.sin(TWO_PI * tau) / TWO_PI  # one fixed-point step: inside [lo, hi]
     for _ in range(100):
         theta = TWO_PI * x
         f = x - kappa * np.sin(theta) / TWO_PI - tau
@@ -34,7 +34,9 @@ def solve_tau_m(tau: np.ndarray, kappa: float) -> np.ndarray:
         hi = np.where(f > 0.0, x, hi)
         step = f / (1.0 - kappa * np.cos(theta))
         new = x - step
-        outside = (new <= lo) | (new >= hi)
+        # strictly outside: a converged x is itself a bracket end, and its Newton step
+        # (zero, or an ulp toward the root) must not be taken for a divergence
+        outside = (new < lo) | (new > hi)
         new = np.where(outside, 0.5 * (lo + hi), new)
         if np.all(np.abs(new - x) <= 4e-16 * np.maximum(1.0, np.abs(x))):
             return new
@@ -58,8 +60,19 @@ class ModifiedCycloidal(MotionLaw):
         kappa = self.params["kappa"]
         scale = 1.0 - kappa
 
-        def evaluate(tau: np.ndarray, order: int) -> np.ndarray:
+        last: list[tuple[np.ndarray, np.ndarray]] = []  # the latest (tau, theta) solved
+
+        def angle(tau: np.ndarray) -> np.ndarray:
+            """2 pi tau_m; the derivatives of one set of points share one inversion."""
+            memo = last[-1] if last else None
+            if memo is not None and memo[0].shape == tau.shape and np.array_equal(memo[0], tau):
+                return memo[1]
             theta = TWO_PI * solve_tau_m(tau, kappa)
+            last[:] = [(tau.copy(), theta)]
+            return theta
+
+        def evaluate(tau: np.ndarray, order: int) -> np.ndarray:
+            theta = angle(np.asarray(tau, dtype=float))
             s, c = np.sin(theta), np.cos(theta)
             g = 1.0 - kappa * c  # d tau / d tau_m
             if order == 0:

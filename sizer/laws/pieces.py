@@ -37,7 +37,7 @@ def trig_poly_piece(
             out = out + amplitude * omega**order * np.sin(omega * tau + phase + order * math.pi / 2)
         return out
 
-    return Piece(start, end, evaluate)
+    return Piece(start, end, evaluate, None if sines else len(coef) - 1)
 
 
 def constant_jerk_pieces(

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from fractions import Fraction
+from functools import lru_cache
 
 from sizer.errors import UserError
 from sizer.laws.base import MotionLaw
@@ -57,8 +58,24 @@ def known_law_ids() -> list[str]:
     return sorted([*LAW_FAMILIES, *ALIASES])
 
 
+LAW_CACHE_SIZE = 4096
+"""Laws kept by canonical spec; past it the least recently used are rebuilt on demand."""
+
+
 def resolve(spec: LawSpec | str) -> tuple[type[MotionLaw], dict[str, Fraction | str]]:
-    """The family of a spec and its arguments by parameter name (positional ones named)."""
+    """The family of a spec and its arguments by parameter name (positional ones named).
+
+    Parsed once per spec text (cached); the dictionary returned is the caller's copy.
+    """
+    family, values = _resolved(spec)
+    return family, dict(values)
+
+
+Arguments = tuple[tuple[str, Fraction | str], ...]
+
+
+@lru_cache(maxsize=LAW_CACHE_SIZE)
+def _resolved(spec: LawSpec | str) -> tuple[type[MotionLaw], Arguments]:
     if isinstance(spec, str):
         spec = parse_law_spec(spec)
     name, fixed = spec.name, {}
@@ -78,13 +95,42 @@ def resolve(spec: LawSpec | str) -> tuple[type[MotionLaw], dict[str, Fraction | 
         if key in values:
             raise UserError(f"{spec.name}: parameter {key} given twice")
         values[key] = value
-    return family, values
+    return family, tuple(values.items())
 
 
-def make_law(spec: LawSpec | str) -> MotionLaw:
-    """Build a law from its spec text, e.g. ``make_law('double_s(alpha=1/3, beta=1/4)')``."""
-    family, values = resolve(spec)
-    if any(v == AUTO for v in values.values()):
+def make_law(spec: LawSpec | str | MotionLaw) -> MotionLaw:
+    """The law of a spec text, e.g. ``make_law('double_s(alpha=1/3, beta=1/4)')``.
+
+    Laws are built once per canonical spec: two spellings of one law ('double_s',
+    'double_s(beta=0.25, alpha=1/3)') give the same object, whose coefficients, grids and
+    peak tables are then computed once per process. A law passes through unchanged.
+    """
+    if isinstance(spec, MotionLaw):
+        return spec
+    return _law_of_text(spec)
+
+
+@lru_cache(maxsize=LAW_CACHE_SIZE)
+def _law_of_text(spec: LawSpec | str) -> MotionLaw:
+    family, values = _resolved(spec)
+    if any(v == AUTO for _, v in values):
         raise UserError(f"{family.law_id}: 'auto' parameters are chosen by the sizing "
                         f"solver and need a design file; give a number here")
-    return family(**{k: float(v) for k, v in values.items()})
+    return law_of(family, {k: float(v) for k, v in values})
+
+
+def law_of(family: type[MotionLaw], params: Mapping[str, float]) -> MotionLaw:
+    """The (cached) law of a family with these parameter values, defaults filled in.
+
+    The key is the canonical spec, so equal parameter values give the same object; use it
+    where laws are built from numbers (auto-shape searches) to share their computations.
+    """
+    values = family.canonical_params(params)
+    return _law_of_spec(family, family.canonical_spec(values), tuple(values.items()))
+
+
+@lru_cache(maxsize=LAW_CACHE_SIZE)
+def _law_of_spec(family: type[MotionLaw], spec: str,
+                 values: tuple[tuple[str, float], ...]) -> MotionLaw:
+    """Keyed by the canonical spec text (the values ride along to build the law)."""
+    return family(**dict(values))
