@@ -274,6 +274,40 @@ class Drive:
             const = stage.preload_torque + const * factor / stage.ratio
         return a_part, v_part, const
 
+    def linear_pieces(self, direction: float):
+        """The shaft torque (without the rotor) and each stage's output torque as maxima of
+        linear functions of the load's (a_l, v_l): lists of (A, B, C) arrays over the
+        candidates, value = max over the list of A a_l + B v_l + C.
+
+        With power-flow efficiencies a stage's reflection is max(x/(k eta), x eta/k) (the
+        first while power flows to the load, x >= 0), increasing in x; so every choice of
+        direction per stage gives one linear function and the torque is their maximum.
+        With the steady-load rule or ideal stages each list has one function
+        (:meth:`linear_chain`). Returns (shaft list, [list of stage 0's output, ...]).
+        """
+        load = self.load
+        if self.is_ideal:
+            shaft = [self.linear_chain(direction)]
+            zero, one = np.zeros(1), np.ones(1)
+            _, out_a = self.chain(one, zero, direction)
+            _, out_v = self.chain(zero, one, direction)
+            _, out_0 = self.chain(zero, zero, direction)
+            stages = [[(xa - x0, xv - x0, x0)]
+                      for xa, xv, x0 in zip(out_a, out_v, out_0, strict=True)]
+            return shaft, stages
+        x = [(np.full(1, float(load.inertia)), np.full(1, float(load.damping)),
+              np.full(1, load.friction + direction * load.torque))]
+        outputs = [x]
+        for stage, k_in in zip(reversed(self.stages), reversed(self.input_ratios), strict=True):
+            factors = [1.0 / (stage.ratio * stage.efficiency)]
+            if not np.all(stage.efficiency == 1.0):
+                factors.append(stage.efficiency / stage.ratio)
+            x = [(stage.inertia * k_in + A * f, B * f, stage.preload_torque + C * f)
+                 for A, B, C in x for f in factors]
+            outputs.append(x)
+        outputs.pop()
+        return x, outputs[::-1]
+
     def holding_torques(self) -> tuple[np.ndarray, list[np.ndarray]]:
         """|Torque| at the motor shaft and at each stage output holding the constant load.
 

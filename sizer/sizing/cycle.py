@@ -27,6 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.polynomial.legendre import leggauss
 
+from sizer.laws.linear_peaks import piece_values
 from sizer.mechanics import Drive
 from sizer.model.domain import Task, ThermalSpeedRule
 from sizer.sizing.golden import golden_step, interior_points
@@ -280,23 +281,25 @@ class CycleCalculator:
     def _peaks(self, moves: list[MoveScales]):
         """Per move: max |tau|, max |tau|/tau_int(|speed|), max |u| and stage output peaks.
 
-        Closed forms where the torques are proportional to the acceleration (the book's
-        purely inertial case, :meth:`_inertial_peaks`); the grid search elsewhere, and for
-        the candidates whose move leaves the flat part of their intermittent region.
+        Exact by the law's linear peaks (:meth:`_exact_peaks`) wherever their conditions
+        hold; the grid search (:meth:`_sampled_peaks`) for the other candidates.
         """
-        inertial = [self._inertial_peaks(scales) for scales in moves]
-        if any(found is None for found in inertial):
-            return self._sampled_peaks(moves)
         out = []
-        for scales, ((peak, ratio, load, stages), flat) in zip(moves, inertial, strict=True):
-            if not flat.all():
-                index = np.flatnonzero(~flat)
+        for scales in moves:
+            (peak, ratio, load, stages), exact, certified = self._exact_peaks(scales)
+            if not exact.all():
+                index = np.flatnonzero(~exact)
                 sub = self.take(index)
-                found = sub._sampled_peaks([MoveScales(scales.acc[index], scales.vel[index],
-                                                       scales.direction)])[0]
-                for mine, theirs in zip((peak, ratio, load, *stages),
-                                        (found[0], found[1], found[2], *found[3]), strict=True):
-                    mine[index] = theirs
+                move = MoveScales(scales.acc[index], scales.vel[index], scales.direction)
+                if bool(np.all(certified[index])):
+                    # only the ratio against a falling region is left to the grid search
+                    ratio[index] = sub._sampled_peaks([move], ratio_only=True)[0][1]
+                else:
+                    found = sub._sampled_peaks([move])[0]
+                    for mine, theirs in zip((peak, ratio, load, *stages),
+                                            (found[0], found[1], found[2], *found[3]),
+                                            strict=True):
+                        mine[index] = theirs
             out.append((peak, ratio, load, stages))
         return out
 
@@ -305,44 +308,76 @@ class CycleCalculator:
         return CycleCalculator(self._grid, self.task, self.drive.take(index),
                                self.motors.subset(index), self.thermal_rule, law=self.law)
 
-    def _inertial_peaks(self, scales: MoveScales):
-        """Exact peaks when every torque is a constant times the load's acceleration.
+    def _exact_peaks(self, scales: MoveScales):
+        """Exact peaks of a move from the law's linear peaks (sizer.laws.linear_peaks).
 
-        With an ideal chain, no damping, friction, constant load or preload (eq. 6.1 with
-        B_t = 0), tau(t) = J_t K a(t) and each stage's output torque is a constant times
-        a(t): the peaks are those constants times C_a h/T^2 (sec. 6.2). The peak ratio is
-        the peak over the intermittent torque at rest for the candidates whose peak speed
-        stays on the flat part of the region (``flat``); None when the case does not apply.
+        Every torque is a maximum of linear functions of the load's (a, v): the motor
+        torque and each stage's output torque (sizer.mechanics.drive.Drive.linear_pieces:
+        one function per choice of power-flow direction in the stages, their maximum
+        because each stage's reflection max(x/(k eta), x eta/k) is increasing in x). So
+        max tau = max_j max_t L_j: one support query per function. For min tau, the
+        largest of the functions' own minima is a lower bound, reached where that
+        function is the active one at its own minimizer (checked at that point): then it
+        is exact; elsewhere the candidate is left to the grid search. The peak ratio is
+        the peak over the intermittent torque at rest where the move's speed stays on the
+        flat part of the region. Returns the peaks, the mask of the exact candidates and that of
+        those whose torques are exact (their ratio may still need the grid search).
         """
-        drive = self.drive
-        if not drive.is_ideal:
-            return None
-        a_part, v_part, const = drive.linear_chain(scales.direction)
-        if np.any(v_part != 0.0) or np.any(const != 0.0) or np.any(self.motors.damping != 0.0):
-            return None
-        c = self.law.coefficients
         n = len(self.motors)
-        peak_acc = c.C_a * scales.acc
-        peak = np.abs(self.motors.inertia * drive.ratio + a_part) * peak_acc
-        speed = drive.ratio * scales.vel * c.C_v
+        c = self.law.coefficients
+        motors, drive = self.motors, self.drive
+        K = drive.ratio
+        peaks = self.law.linear_peaks
+        shaft, outputs = drive.linear_pieces(scales.direction)
+        rotor_a = motors.inertia * K
+        rotor_v = motors.damping * K
+        exact = np.ones(n, dtype=bool)
+
+        def channel(pieces, with_rotor):
+            coefficients = [((A + rotor_a if with_rotor else A) * scales.acc,
+                             (B + rotor_v if with_rotor else B) * scales.vel,
+                             np.broadcast_to(C, (n,))) for A, B, C in pieces]
+            top = np.full(n, -np.inf)
+            for P, Q, C in coefficients:
+                top = np.maximum(top, peaks.maximum(P, Q).value + C)
+            lows = [peaks.minimum(P, Q) for P, Q, _ in coefficients]
+            floors = np.stack([low.value + C for low, (_, _, C) in zip(lows, coefficients,
+                                                                       strict=True)])
+            best = np.argmax(floors, axis=0)
+            bottom = floors[best, np.arange(n)]
+            if len(coefficients) > 1:
+                tau = np.choose(best, [low.tau for low in lows])
+                piece = np.choose(best, [low.piece for low in lows])
+                v_n, a_n = piece_values(self.law, tau, piece, (1, 2))
+                values = np.stack([P * a_n + Q * v_n + C for P, Q, C in coefficients])
+                scale = np.max(np.abs(values), axis=0) + np.abs(bottom)
+                active = values.max(axis=0) <= bottom + 1e-12 * scale
+                nonlocal exact
+                exact &= active
+            return np.maximum(top, -bottom)
+
+        peak = channel(shaft, True)
+        speed = K * scales.vel * c.C_v
         # speeds past the region are clipped into it for the ratio (the speed check covers
         # them): a region flat to its end is flat at every speed
-        flat = (speed <= self.motors.flat_speed) | \
-            (self.motors.flat_speed >= self.motors.speed_limit)
-        ratio = _safe_ratio(peak, self.motors.intermittent.torques[:, 0])
-        load = np.broadcast_to(abs(drive.load.inertia) * peak_acc, (n,)).copy()
-        stages = []
+        flat = (speed <= motors.flat_speed) | (motors.flat_speed >= motors.speed_limit)
+        flat = np.broadcast_to(flat, (n,))
+        certified = exact.copy()
+        exact &= flat
+        ratio = _safe_ratio(peak, motors.intermittent.torques[:, 0])
+        load = channel([(np.full(1, drive.load.inertia), np.full(1, drive.load.damping),
+                         np.full(1, drive.load.friction + scales.direction * drive.load.torque))],
+                       False)
         if self.stage_checks:
-            zero, one = np.zeros(1), np.ones(1)
-            _, out_a = drive.chain(one, zero, scales.direction)
-            stages = [np.broadcast_to(np.abs(x) * peak_acc, (n,)).copy() for x in out_a]
+            stages = [channel(pieces, False) for pieces in outputs]
         else:
             stages = [np.zeros(n) for _ in drive.stages]
-        return (peak, ratio, load, stages), np.broadcast_to(flat, (n,))
+        return (peak, ratio, load, stages), exact, certified
 
-    def _sampled_peaks(self, moves: list[MoveScales]):
+    def _sampled_peaks(self, moves: list[MoveScales], ratio_only: bool = False):
         """Peaks on the law's grid, the largest samples of every channel and move refined
-        together (:meth:`_refine`: one golden-section search for all of them)."""
+        together (:meth:`_refine`: one golden-section search for all of them). With
+        ``ratio_only`` only the peak ratio is searched (the torques known exactly)."""
         g = self.grid
         tau = np.concatenate((g.left[:, None], g.nodes, g.right[:, None]), axis=1)
         a_n = np.concatenate((g.end_acceleration[:, :1], g.acceleration,
@@ -365,14 +400,16 @@ class CycleCalculator:
                     return torque
                 return objective
 
-            plan = {"peak": len(searches)}
-            searches.append((np.abs(motor), channel(-1)))
+            plan = {}
+            if not ratio_only or self.motors.all_rectangular:
+                plan["peak"] = len(searches)
+                searches.append((np.abs(motor), channel(-1)))
             if not self.motors.all_rectangular:
                 speed = speed_scale[:, None, None] * v_n[None]
                 limit = self.motors.intermittent.limit_clipped(speed)
                 plan["ratio"] = len(searches)
                 searches.append((_safe_ratio(np.abs(motor), limit), channel(-1, True)))
-            if self.stage_checks:
+            if self.stage_checks and not ratio_only:
                 plan["stages"] = len(searches)
                 searches.extend((np.abs(outputs[i]), channel(i)) for i in range(n_stages))
             # the load's torque is reported, not checked: its sampled peak (grid of 14
@@ -385,7 +422,7 @@ class CycleCalculator:
         found = self._refine(searches, tau)
         out = []
         for plan in plans:
-            peak = found[plan["peak"]]
+            peak = found[plan["peak"]] if "peak" in plan else np.full(len(self.motors), np.nan)
             if "ratio" in plan:
                 ratio = found[plan["ratio"]]
             else:  # flat limit: the ratio peaks with the torque
