@@ -4,10 +4,10 @@
 
 The book's case of eq. (6.2) (rectangular regions, purely inertial load, ideal gearbox),
 minimize mode, synthetic motors (a geometric family of ratings, NOT datasheet figures),
-a load jerk limit for the double S. For each family it times: the exact choice of the auto parameters for
-all motors (sizer.sizing.shape.choose_shape), the whole size_design with the auto spec
-(which then evaluates each motor's own law), and size_design with one fixed law of the
-family. Results are in benchmarks/README.md.
+a load jerk limit for the double S. For each family it times: the exact choice of the
+auto parameters for all motors (sizer.sizing.shape.choose_shape), the whole size_design
+with the auto spec (which then evaluates each motor's own law), and size_design with one
+fixed law of the family. Results are in benchmarks/README.md.
 """
 
 from __future__ import annotations
