@@ -56,7 +56,7 @@ def random_design(seed: int) -> Design:
     """A small design (2 motors, 2 laws, 2 or 3 ratios) with a given duration."""
     rng = np.random.default_rng(seed)
     maybe = rng.random
-    load = Load(float(rng.uniform(0.005, 0.05)),
+    load = Load(float(rng.uniform(0.01, 0.1)),
                 damping=float(rng.uniform(0.0, 0.02)) if maybe() < 0.5 else 0.0,
                 friction=float(rng.uniform(0.05, 0.5)) if maybe() < 0.5 else 0.0,
                 torque=float(rng.uniform(-0.5, 0.5)) if maybe() < 0.4 else 0.0)
@@ -75,7 +75,7 @@ def random_design(seed: int) -> Design:
                                                 replace=False))
     dwell = float(rng.uniform(0.05, 0.3)) if maybe() < 0.7 else 0.0
     task = Task(float(rng.choice([-1.0, 1.0]) * rng.uniform(0.5, 3.0)),
-                float(rng.uniform(0.15, 0.6)), dwell=dwell, return_move=bool(maybe() < 0.5))
+                float(rng.uniform(0.06, 0.4)), dwell=dwell, return_move=bool(maybe() < 0.5))
     limits = Limits(
         torque_margin=float(rng.uniform(0.0, 0.2)),
         speed_margin=0.05 if maybe() < 0.3 else 0.0,
