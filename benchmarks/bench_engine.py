@@ -54,14 +54,15 @@ GOAL_REL = 1e-9
 def rms_duration(scale: np.ndarray, dwell: float) -> np.ndarray:
     """Smallest T with T^3 (T + dwell) = scale^2, by Newton on u = log T (g' in [3, 4])."""
     log_target = 2.0 * np.log(scale)
-    u = np.minimum(0.5 * np.log(scale), (log_target - np.log(dwell)) / 3.0) if dwell > 0 \
-        else 0.5 * np.log(scale)
-    for _ in range(50):
+    u = (log_target - np.log(np.sqrt(scale) + dwell)) / 3.0  # exact for dwell 0 or T << dwell
+    for _ in range(50):  # quadratic: after a step below 1e-8, one more reaches rounding
         T = np.exp(u)
         g = 3.0 * u + np.log(T + dwell) - log_target
         step = g / (3.0 + T / (T + dwell))
         u = u - step
-        if np.max(np.abs(step)) < 1e-15:
+        if np.max(np.abs(step)) < 1e-8:
+            T = np.exp(u)
+            u = u - (3.0 * u + np.log(T + dwell) - log_target) / (3.0 + T / (T + dwell))
             break
     return np.exp(u)
 
