@@ -4,10 +4,10 @@
 
 The book's case of eq. (6.2) (rectangular regions, purely inertial load, ideal gearbox),
 minimize mode, synthetic motors (a geometric family of ratings, NOT datasheet figures),
-a load jerk limit for the double S. For each family it times: the exact choice of the auto parameters for
-all motors (sizer.sizing.auto_shape.choose_shape), the whole size_design with the auto spec
-(which then evaluates each motor's own law), and size_design with one fixed law of the
-family. Results are in benchmarks/README.md.
+a load jerk limit for the double S. For each family it times: the exact choice of the
+auto parameters for all motors (sizer.sizing.auto_shape.choose_shape), the whole size_design
+with the auto spec (which then evaluates each motor's own law), and size_design with one
+fixed law of the family. Results are in benchmarks/README.md.
 """
 
 from __future__ import annotations
@@ -17,10 +17,10 @@ import math
 import time
 
 from sizer.laws import resolve
-from sizer.mechanics import Drive
 from sizer.model import Design, Limits, Load, Motor, Stage, Task, Transmission
 from sizer.sizing import size_design
 from sizer.sizing.auto_shape import choose_shape
+from sizer.sizing.candidates import Candidates
 from sizer.sizing.motors import MotorArrays
 
 FAMILIES = (("trapezoidal(alpha=auto)", "trapezoidal(alpha=1/3)"),
@@ -61,9 +61,8 @@ def main() -> None:
     for auto, fixed in FAMILIES:
         d = design(args.motors, auto)
         family, values = resolve(auto)
-        drive = Drive(d.load, d.transmission)
-        motors = MotorArrays.of(d.motors)
-        choose = timed(lambda: choose_shape(family, values, d, drive, motors))  # noqa: B023
+        candidates = Candidates.single(MotorArrays.of(d.motors), d.load, d.transmission)
+        choose = timed(lambda: choose_shape(family, values, d, candidates))  # noqa: B023
         whole = timed(lambda: size_design(d))  # noqa: B023
         one = timed(lambda: size_design(design(args.motors, fixed)))  # noqa: B023
         print(f"{auto:32s} {args.motors:6d} {1000 * choose:11.1f} {whole:13.2f} {one:14.2f}")

@@ -1,0 +1,100 @@
+"""sizer at catalog scale: 10,000 motors x 12 ratios x 20 laws, minimize (issue 11).
+
+    python benchmarks/bench_scale.py                  # 2.4 M candidates
+    python benchmarks/bench_scale.py --motors 20      # smaller; the time is extrapolated
+    python benchmarks/bench_scale.py --progress       # laws done so far, on stderr
+
+Every motor has intermittent and continuous speed-torque curves; the load has friction,
+damping and a constant torque, the gearbox an efficiency of 0.95 and a ratio chosen from
+12; the cycle is move, dwell 0.15 s, return, dwell (benchmarks/synthetic.py). The sizing
+runs in a child process (the design is built there before the clock starts), so that its
+peak resident memory is measured alone (resource.getrusage(RUSAGE_CHILDREN).ru_maxrss,
+imports included).
+
+Goals: size_design <= 10 s and peak memory <= 1 GB for 10,000 motors. With --motors N
+below that, the time is extrapolated linearly to 10,000 motors (labelled so) and judged;
+the memory is judged as measured. Exits 1 when a goal is missed.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import resource
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+FULL = 10_000
+GOAL_SECONDS = 10.0
+GOAL_BYTES = 1 << 30
+
+
+def child(motors: int, verbose: bool) -> None:
+    """Build the design, size it, print the seconds and the result count as JSON."""
+    sys.path.insert(0, str(HERE))
+    from synthetic import RATIOS, SCALE_LAWS, scale_problem
+
+    from sizer.sizing import size_design
+
+    design = scale_problem(motors)
+    start, cpu = time.perf_counter(), time.process_time()
+
+    def progress(done: int, total: int) -> None:  # on stderr, for a long run
+        print(f"  {done}/{total} laws, {time.perf_counter() - start:.1f} s", file=sys.stderr,
+              flush=True)
+
+    result = size_design(design, progress=progress if verbose else None)
+    seconds = time.perf_counter() - start
+    print(json.dumps({"seconds": seconds, "cpu": time.process_time() - cpu,
+                      "results": len(result.results),
+                      "feasible": sum(r.feasible for r in result.results),
+                      "candidates": motors * len(RATIOS) * len(SCALE_LAWS)}))
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--motors", type=int, default=FULL)
+    parser.add_argument("--progress", action="store_true", help="laws done, on stderr")
+    parser.add_argument("--child", action="store_true", help=argparse.SUPPRESS)
+    args = parser.parse_args()
+    if args.child:
+        child(args.motors, args.progress)
+        return 0
+    command = [sys.executable, __file__, "--child", "--motors", str(args.motors)]
+    run = subprocess.run(command + (["--progress"] if args.progress else []),
+                         stdout=subprocess.PIPE, text=True, check=False)
+    if run.returncode != 0:
+        print(run.stdout, file=sys.stderr)
+        return 2
+    figures = json.loads(run.stdout.strip().splitlines()[-1])
+    peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * 1024  # KiB on Linux
+    seconds = figures["seconds"]
+    full = args.motors >= FULL
+    judged = seconds if full else seconds * FULL / args.motors
+    print(f"bench_scale: {args.motors} motors x 12 ratios x 20 laws = "
+          f"{figures['candidates']:,} candidates, minimize, curves, friction, damping, "
+          f"constant load, efficiency 0.95, dwell with return")
+    print(f"{'what':40s} {'measured':>12s}  {'goal':10s} verdict")
+    rows = [("size_design [s]", f"{seconds:.2f}", "", True),
+            ("size_design, CPU time of the process [s]", f"{figures['cpu']:.2f}", "", True)]
+    if not full:
+        rows.append((f"extrapolated to {FULL:,} motors [s] (linear)", f"{judged:.0f}",
+                     f"<= {GOAL_SECONDS:g}", judged <= GOAL_SECONDS))
+    else:
+        rows[0] = ("size_design [s]", f"{seconds:.2f}", f"<= {GOAL_SECONDS:g}",
+                   seconds <= GOAL_SECONDS)
+    rows += [("peak memory of the run [MiB]", f"{peak / 2**20:.0f}",
+              f"<= {GOAL_BYTES / 2**20:.0f}", peak <= GOAL_BYTES),
+             ("results (motor x law)", f"{figures['results']}", "", True),
+             ("feasible results", f"{figures['feasible']}", "", True)]
+    for name, value, goal, ok in rows:
+        print(f"{name:40s} {value:>12s}  {goal:10s} {'' if not goal else 'ok' if ok else 'MISSED'}")
+    return 0 if all(ok for *_, ok in rows) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
