@@ -34,7 +34,7 @@ GOAL_BYTES = 1 << 30
 
 def child(motors: int, verbose: bool) -> None:
     """Build the design, size it, print the seconds and the result count as JSON."""
-    sys.path.insert(0, str(HERE))
+    sys.path[:0] = [str(HERE), str(HERE.parent)]  # this checkout's sizer, not an installed one
     from synthetic import RATIOS, SCALE_LAWS, scale_problem
 
     from sizer.sizing import size_design

@@ -337,6 +337,10 @@ class CycleCalculator:
             coefficients = [((A + rotor_a if with_rotor else A) * scales.acc,
                              (B + rotor_v if with_rotor else B) * scales.vel,
                              np.broadcast_to(C, (n,))) for A, B, C in pieces]
+            if len(coefficients) == 1 and not np.any(coefficients[0][1]) \
+                    and not np.any(coefficients[0][2]):
+                # proportional to the acceleration (the book's inertial case): |P| C_a
+                return np.broadcast_to(np.abs(coefficients[0][0]) * c.C_a, (n,)).copy()
             top = np.full(n, -np.inf)
             for P, Q, C in coefficients:
                 top = np.maximum(top, peaks.maximum(P, Q).value + C)
