@@ -99,7 +99,15 @@ def peak(law: MotionLaw, order: int) -> tuple[float, float]:
 
 
 def _peak_candidates(law: MotionLaw, index: int, order: int) -> np.ndarray:
-    """Points of a piece where |q_N^(order)| may peak (its grid points among them)."""
+    """Points of a piece where |q_N^(order)| may peak (its grid points among them).
+
+    On a polynomial piece whose derivative of this order is linear or constant the ends
+    are the only candidates (exact; no search, no scipy).
+    """
+    degree = law.pieces[index].degree
+    if degree is not None and degree - order <= 1:
+        piece = law.pieces[index]
+        return np.array([piece.start, piece.end])
     from scipy import optimize
 
     grid = scan_grid(law.pieces[index], toward=law.fine_points())
