@@ -132,24 +132,21 @@ class Drive:
         """The first option (the design's when there is one): its stages' kinds and rule."""
         return self.transmissions[0]
 
-    def transmission_of(self, candidate: int) -> Transmission:
-        """The transmission of one candidate."""
-        return self.transmissions[0 if self.option is None else int(self.option[candidate])]
+    def _product(self, figure: str) -> np.ndarray:
+        out = np.ones(1)
+        for s in self.stages:
+            out = out * getattr(s, figure)
+        return out
 
     @cached_property
     def ratio(self) -> np.ndarray:
         """Motor speed over load speed, K, per candidate."""
-        out = np.ones(1)
-        for s in self.stages:
-            out = out * s.ratio
-        return out
+        return self._product("ratio")
 
     @cached_property
     def efficiency(self) -> np.ndarray:
-        out = np.ones(1)
-        for s in self.stages:
-            out = out * s.efficiency
-        return out
+        """The stages' efficiencies multiplied, per candidate."""
+        return self._product("efficiency")
 
     @cached_property
     def input_ratios(self) -> tuple[np.ndarray, ...]:
