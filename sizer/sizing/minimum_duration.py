@@ -174,8 +174,11 @@ def rms_duration(scale: np.ndarray, dwell: float) -> np.ndarray:
 
     Solved on logarithms, so that no power leaves the float range (scale up to 1e308):
     the root lies in [m/2, m] with m the smaller of the dwell-free bound sqrt(scale) and
-    the dwell-dominated one cbrt(scale^2/dwell); the bracketing root finder of
-    sizer.sizing.roots (Illinois) closes it to a few ulps.
+    the dwell-dominated one cbrt(scale^2/dwell). In x = log T the excess
+    f = 3x + log(e^x + dwell) - 2 log(scale) rises with a slope between 3 and 4, so from
+    a point with f > 0 the root lies in [x - f/3, x - f/4]: two such contractions leave a
+    bracket 1/64 of f wide, which the bracketing root finder of sizer.sizing.roots
+    (Illinois) closes to a few ulps.
     """
     scale = np.asarray(scale, dtype=float)
     out = np.where(np.isfinite(scale), 0.0, np.inf)
@@ -188,10 +191,16 @@ def rms_duration(scale: np.ndarray, dwell: float) -> np.ndarray:
     log_scale = np.log(scale[solve])
     log_target = 2.0 * log_scale
     log_m = np.minimum(0.5 * log_scale, (log_target - math.log(dwell)) / 3.0)
-    lo, hi = log_m - math.log(2.0), log_m + 1e-9
+    hi = log_m + 1e-9
 
     def excess(x, target):
         return 3.0 * x + np.log(np.exp(x) + dwell) - target
+
+    for _ in range(2):
+        f_hi = np.maximum(excess(hi, log_target), 0.0)
+        lo, hi = hi - f_hi / 3.0 - 1e-15 * np.abs(hi), hi - f_hi / 4.0
+        hi = np.where(excess(hi, log_target) >= 0.0, hi, hi + f_hi / 4.0)  # rounding
+    lo = np.minimum(lo, hi - 1e-15 * np.maximum(1.0, np.abs(hi)))
 
     out[solve] = np.exp(illinois(excess, lo, hi, excess(lo, log_target), excess(hi, log_target),
                                  xtol=1e-16, args=(log_target,)))
