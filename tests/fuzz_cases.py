@@ -12,7 +12,8 @@ whose ``failures`` list every broken invariant (issue 10):
   refusing ``NaN`` and ``Infinity``;
 - with exit code 2, nothing on stdout and exactly one ``error:`` line, naming an input file
   (or the option at fault);
-- no input file changed; no run longer than :data:`TIME_LIMIT` seconds.
+- no input file changed; no run longer than :data:`HANG_LIMIT` seconds in the suite,
+  :data:`TIME_LIMIT` in tools/fuzz_inputs.py.
 
 The mutations work on the parsed YAML (deleted keys, swapped types, wrong units, extreme numbers,
 truncated and duplicated lists, swapped fields, random strings) and then, sometimes, on the text
@@ -43,7 +44,11 @@ ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
 BUNDLED = ROOT / "sizer" / "catalogs"
 TIME_LIMIT = 10.0
-"""Seconds a run may take (issue 10: no hang over 10 s)."""
+"""Seconds a run may take (issue 10: no hang over 10 s): judged by tools/fuzz_inputs.py,
+whose report is the measurement (issue 11: no test asserts a time)."""
+HANG_LIMIT = 120.0
+"""What the test suite calls a hang: far above any run, so that a shared, loaded machine
+never fails a test for being slow."""
 
 NON_FINITE = re.compile(r"(?<![A-Za-z_])(nan|-?inf(inity)?)(?![A-Za-z_])", re.IGNORECASE)
 """A ``nan`` or ``inf`` token (the pattern of tests/bad_input_cases.py)."""
@@ -505,7 +510,7 @@ def _refuse_constant(name: str) -> None:
 
 def check_result(case: FuzzInput, folder: Path, returncode: int, stdout: str, stderr: str,
                  caught: list[warnings.WarningMessage], before: dict[Path, bytes],
-                 seconds: float) -> list[str]:
+                 seconds: float, time_limit: float = HANG_LIMIT) -> list[str]:
     """The invariants a run broke, one line each, its class first."""
     failures = []
     if returncode not in (0, 1, 2):
@@ -546,8 +551,8 @@ def check_result(case: FuzzInput, folder: Path, returncode: int, stdout: str, st
     for path, content in before.items():
         if not path.exists() or path.read_bytes() != content:
             failures.append(f"input changed: {path.relative_to(folder)}")
-    if seconds > TIME_LIMIT:
-        failures.append(f"slow: over {TIME_LIMIT:g} s")
+    if seconds > time_limit:
+        failures.append(f"slow: over {time_limit:g} s")
     return list(dict.fromkeys(failures))
 
 
@@ -572,8 +577,9 @@ def warm_up() -> None:
         run_cli("size", str(EXAMPLES / "book" / "ex6_4.yaml"), "--format", "json")
 
 
-def run_input(case: FuzzInput, folder: Path) -> Outcome:
-    """Write the case into ``folder``, run its command in-process, check every invariant."""
+def run_input(case: FuzzInput, folder: Path, time_limit: float = HANG_LIMIT) -> Outcome:
+    """Write the case into ``folder``, run its command in-process, check every invariant
+    (a run over ``time_limit`` seconds is a failure)."""
     from cli_run import run_cli
 
     warm_up()
@@ -594,7 +600,7 @@ def run_input(case: FuzzInput, folder: Path) -> Outcome:
                            [f"crash: {type(error).__name__} at {_where(tb)}"])
     seconds = time.perf_counter() - start
     failures = check_result(case, folder, result.returncode, result.stdout, result.stderr,
-                            list(caught), before, seconds)
+                            list(caught), before, seconds, time_limit)
     return Outcome(result.returncode, result.stdout, result.stderr, seconds, failures)
 
 

@@ -12,7 +12,7 @@ import tempfile
 from pathlib import Path
 
 import pytest
-from fuzz_cases import BASES, TIME_LIMIT, FuzzInput, base_input, fuzz_inputs, run_input
+from fuzz_cases import BASES, FuzzInput, base_input, fuzz_inputs, run_input
 from hypothesis import HealthCheck, Phase, given, settings
 
 COUNT = int(os.environ.get("SIZER_FUZZ_EXAMPLES", "0")) or None
@@ -34,14 +34,14 @@ def _assert_clean(case: FuzzInput) -> None:
 
 
 @pytest.mark.parametrize("base", BASES, ids=lambda b: b.name)
-def test_the_unmutated_bases_answer_cleanly_and_fast(base):
-    """The generator starts from valid, fast inputs: each base's first two commands, unmutated."""
+def test_the_unmutated_bases_answer_cleanly(base):
+    """The generator starts from valid inputs: each base's first two commands, unmutated
+    (their speed is measured by tools/fuzz_inputs.py, not asserted here)."""
     for args in base.commands[:2]:
         case = base_input(base, args)
         with tempfile.TemporaryDirectory(prefix="sizer-fuzz-") as folder:
             outcome = run_input(case, Path(folder))
         assert outcome.returncode in (0, 1) and not outcome.failures, (args, outcome)
-        assert outcome.seconds < TIME_LIMIT / 2, (args, outcome.seconds)
 
 
 @settings(max_examples=COUNT or 70, **FUZZ)

@@ -102,7 +102,7 @@ def _worker(conn: Connection, memory: int) -> None:
             resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
         except (ImportError, ValueError, OSError):
             pass
-    from fuzz_cases import FuzzInput, run_input, warm_up
+    from fuzz_cases import TIME_LIMIT, FuzzInput, run_input, warm_up
 
     warm_up()  # the imports, before the first case is timed
     conn.send("ready")
@@ -113,7 +113,7 @@ def _worker(conn: Connection, memory: int) -> None:
         index, data = message
         case = FuzzInput.from_json(data)
         with tempfile.TemporaryDirectory(prefix="sizer-fuzz-") as folder:
-            outcome = run_input(case, Path(folder))
+            outcome = run_input(case, Path(folder), TIME_LIMIT)
         conn.send((index, outcome.returncode, outcome.stdout[-20000:], outcome.stderr[-20000:],
                    outcome.seconds, outcome.failures))
 
