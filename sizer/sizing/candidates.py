@@ -43,16 +43,6 @@ class Candidates:
         rows of ``motors``."""
         return cls(motors.subset(motor), Drive(load, transmissions, option), gearboxes)
 
-    @classmethod
-    def cross(cls, motors: MotorArrays, load: Load,
-              transmissions: Sequence[Transmission]) -> Candidates:
-        """Every motor with every option, motor-major (candidate = motor*options + option)."""
-        n, m = len(motors), len(transmissions)
-        motor = np.repeat(np.arange(n), m)
-        option = np.tile(np.arange(m), n)
-        return cls.pairs(motors, load, transmissions, motor, option)
-
-
     def take(self, index: np.ndarray) -> Candidates:
         """The candidates at ``index`` (repeats allowed), in that order."""
         index = np.asarray(index, dtype=np.intp)

@@ -331,9 +331,11 @@ class CycleCalculator:
         shaft, outputs = drive.linear_pieces(scales.direction)
         rotor_a = motors.inertia * K
         rotor_v = motors.damping * K
-        exact = np.ones(n, dtype=bool)
+        certified = np.ones(n, dtype=bool)
 
         def channel(pieces, with_rotor):
+            """max |value| of a maximum of linear functions; clears ``certified`` where the
+            minimum could not be certified."""
             coefficients = [((A + rotor_a if with_rotor else A) * scales.acc,
                              (B + rotor_v if with_rotor else B) * scales.vel,
                              np.broadcast_to(C, (n,))) for A, B, C in pieces]
@@ -355,20 +357,10 @@ class CycleCalculator:
                 v_n, a_n = piece_values(self.law, tau, piece, (1, 2))
                 values = np.stack([P * a_n + Q * v_n + C for P, Q, C in coefficients])
                 scale = np.max(np.abs(values), axis=0) + np.abs(bottom)
-                active = values.max(axis=0) <= bottom + 1e-12 * scale
-                nonlocal exact
-                exact &= active
+                certified[:] &= values.max(axis=0) <= bottom + 1e-12 * scale
             return np.maximum(top, -bottom)
 
         peak = channel(shaft, True)
-        speed = K * scales.vel * c.C_v
-        # speeds past the region are clipped into it for the ratio (the speed check covers
-        # them): a region flat to its end is flat at every speed
-        flat = (speed <= motors.flat_speed) | (motors.flat_speed >= motors.speed_limit)
-        flat = np.broadcast_to(flat, (n,))
-        certified = exact.copy()
-        exact &= flat
-        ratio = _safe_ratio(peak, motors.intermittent.torques[:, 0])
         load = channel([(np.full(1, drive.load.inertia), np.full(1, drive.load.damping),
                          np.full(1, drive.load.friction + scales.direction * drive.load.torque))],
                        False)
@@ -376,6 +368,12 @@ class CycleCalculator:
             stages = [channel(pieces, False) for pieces in outputs]
         else:
             stages = [np.zeros(n) for _ in drive.stages]
+        speed = K * scales.vel * c.C_v
+        # speeds past the region are clipped into it for the ratio (the speed check covers
+        # them): a region flat to its end is flat at every speed
+        flat = (speed <= motors.flat_speed) | (motors.flat_speed >= motors.speed_limit)
+        exact = certified & np.broadcast_to(flat, (n,))
+        ratio = _safe_ratio(peak, motors.intermittent.torques[:, 0])
         return (peak, ratio, load, stages), exact, certified
 
     def _sampled_peaks(self, moves: list[MoveScales], ratio_only: bool = False):

@@ -52,8 +52,6 @@ class MotorArrays:
         """The motor of each candidate."""
         return tuple(self.catalog[int(i)] for i in self.index)
 
-    def motor(self, candidate: int) -> Motor:
-        return self.catalog[int(self.index[candidate])]
 
     @property
     def speed_limit(self) -> np.ndarray:
