@@ -102,15 +102,20 @@ def _peak_candidates(law: MotionLaw, index: int, order: int) -> np.ndarray:
     """Points of a piece where |q_N^(order)| may peak (its grid points among them).
 
     On a polynomial piece whose derivative of this order is linear or constant the ends
-    are the only candidates (exact; no search, no scipy).
+    are the only candidates; on another polynomial piece the grid points and the roots of
+    the next derivative's interpolant (exact; no search, no scipy). Other pieces: the
+    grid, brentq on the next derivative's sign changes and a bounded search.
     """
-    degree = law.pieces[index].degree
+    piece = law.pieces[index]
+    degree = piece.degree
     if degree is not None and degree - order <= 1:
-        piece = law.pieces[index]
         return np.array([piece.start, piece.end])
+    grid = scan_grid(piece, toward=law.fine_points())
+    if degree is not None:  # exact: the stationary points are the roots of a polynomial
+        return np.concatenate((grid, _polynomial_roots(law, index, order + 1,
+                                                       degree - order - 1)))
     from scipy import optimize
 
-    grid = scan_grid(law.pieces[index], toward=law.fine_points())
     points = [grid]
     if order + 1 <= law.max_order:
         slope = law.piece_derivative(index, grid, order + 1)
@@ -123,6 +128,21 @@ def _peak_candidates(law: MotionLaw, index: int, order: int) -> np.ndarray:
                                                     rtol=1e-15)]))
     points.append(_refined_maxima(law, index, order, grid))
     return np.concatenate(points)
+
+
+def _polynomial_roots(law: MotionLaw, index: int, order: int, degree: int) -> np.ndarray:
+    """The real roots inside a polynomial piece of its derivative of ``order`` (itself a
+    polynomial of ``degree``): interpolated exactly at degree + 1 Chebyshev points of the
+    piece, then the roots of that interpolant (numpy's companion matrix)."""
+    piece = law.pieces[index]
+    k = np.arange(degree + 1)
+    nodes = np.cos(np.pi * (k + 0.5) / (degree + 1))  # Chebyshev points on [-1, 1]
+    half, mid = 0.5 * (piece.end - piece.start), 0.5 * (piece.end + piece.start)
+    values = law.piece_derivative(index, mid + half * nodes, order)
+    series = np.polynomial.Chebyshev.fit(nodes, values, degree, domain=[-1, 1])
+    roots = series.roots()
+    real = roots[np.abs(roots.imag) <= 1e-9].real
+    return mid + half * real[(real >= -1.0) & (real <= 1.0)]
 
 
 def _refined_maxima(law: MotionLaw, index: int, order: int, grid: np.ndarray) -> np.ndarray:
