@@ -91,20 +91,8 @@ def piece_values(law: MotionLaw, tau: np.ndarray, piece: np.ndarray,
 
 
 def _convex_hull(x: np.ndarray, y: np.ndarray) -> np.ndarray:
-    """Indices of the hull vertices of the points (x, y), counterclockwise, collinear and
-    repeated points dropped: qhull (scipy.spatial, compiled: a law built per point of an
-    auto-shape search needs its hull in a millisecond), else the monotone chain."""
-    from scipy.spatial import ConvexHull, QhullError
-
-    scale = (np.max(np.abs(x)) or 1.0, np.max(np.abs(y)) or 1.0)  # qhull's tolerances
-    try:  # are absolute: both axes of order 1 (an axis scaling keeps the hull's vertices)
-        return np.asarray(ConvexHull(np.column_stack((x / scale[0], y / scale[1]))).vertices)
-    except (QhullError, ValueError):  # degenerate (all points on a line): the plain chain
-        return _monotone_chain(x, y)
-
-
-def _monotone_chain(x: np.ndarray, y: np.ndarray) -> np.ndarray:
-    """The hull by Andrew's monotone chain (Python loop; for degenerate point sets)."""
+    """Indices of the hull vertices of the points (x, y), counterclockwise (monotone
+    chain; collinear and repeated points dropped)."""
     order = np.lexsort((y, x))
     xs, ys = x[order].tolist(), y[order].tolist()
 
