@@ -24,7 +24,8 @@ from sizer.sizing.candidates import Candidates
 from sizer.sizing.checks import evaluate_checks
 from sizer.sizing.checks import feasible as all_pass
 from sizer.sizing.cycle import CycleCalculator
-from sizer.sizing.minimum_duration import minimum_duration
+from sizer.sizing.grid import law_grid
+from sizer.sizing.minimum_duration import is_purely_inertial, minimum_duration
 from sizer.sizing.motors import MotorArrays
 from sizer.sizing.ranking import rank_order
 from sizer.sizing.results import CandidateResult, SizingResult
@@ -105,17 +106,14 @@ MIN_CHUNK = 64
 
 def chunk_size(law: MotionLaw) -> int:
     """How many candidates one evaluation of ``law`` takes (its grid's samples each)."""
-    from sizer.sizing.grid import law_grid
-
-    samples = law_grid(law).nodes.size + 2 * law_grid(law).size
+    grid = law_grid(law)
+    samples = grid.nodes.size + 2 * grid.size
     return max(MIN_CHUNK, CHUNK_SAMPLES // samples)
 
 
 def evaluate_fixed_law(design: Design, law: MotionLaw, candidates: Candidates) -> CandidateTable:
     """The requirements, checks and verdicts of one law for every candidate, in chunks
     of :func:`chunk_size` candidates."""
-    from sizer.sizing.minimum_duration import is_purely_inertial
-
     calculator = CycleCalculator(None, design.task, candidates.drive, candidates.motors,
                                  design.limits.thermal_speed, law=law)
     if is_purely_inertial(calculator):  # closed forms: memory per candidate, no grid

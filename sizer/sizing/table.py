@@ -10,8 +10,9 @@ candidate's numbers into a :class:`~sizer.sizing.results.CandidateResult`.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from enum import StrEnum
+from functools import cached_property
 from typing import overload
 
 import numpy as np
@@ -54,7 +55,6 @@ class CandidateTable:
     figures: dict[str, np.ndarray]
     checks: tuple[CheckArrays, ...]
     stage_ratio: np.ndarray | None = None
-    _binding: list[np.ndarray] = field(default_factory=list, repr=False)
 
     def __len__(self) -> int:
         return len(self.motor)
@@ -69,12 +69,10 @@ class CandidateTable:
             tuple(c.take(index) for c in self.checks),
             None if self.stage_ratio is None else self.stage_ratio[index])
 
-    @property
+    @cached_property
     def binding(self) -> np.ndarray:
         """Index of each candidate's binding check (smallest slack)."""
-        if not self._binding:
-            self._binding.append(limiting_index(list(self.checks)))
-        return self._binding[0]
+        return limiting_index(list(self.checks))
 
     @property
     def slacks(self) -> np.ndarray:
