@@ -26,7 +26,7 @@ def illinois(f: Callable[..., np.ndarray], lo: np.ndarray, hi: np.ndarray,
     """
     lo, hi, f_lo, f_hi = (np.array(x, dtype=float) for x in (lo, hi, f_lo, f_hi))
     if args is not None:
-        return _compacting(f, lo, hi, f_lo, f_hi, xtol, args)
+        return _compacting(f, lo, hi, f_lo, f_hi, xtol, args, bracket)
     side = np.zeros(lo.shape)
     for step in range(MAX_STEPS):
         width = np.maximum(xtol * np.maximum(1.0, np.abs(lo)), 2.0 * np.spacing(np.abs(hi)))
@@ -58,22 +58,26 @@ def _step(fx, open_, x, lo, hi, f_lo, f_hi, side):
     return np.where(exact, x, lo), np.where(exact, x, hi), f_lo, f_hi, side
 
 
-def _compacting(f, lo, hi, f_lo, f_hi, xtol, args):
+def _compacting(f, lo, hi, f_lo, f_hi, xtol, args, bracket=False):
     """The elementwise mode: each step works on the elements still open only."""
-    out = 0.5 * (lo + hi)
+    out_lo, out_hi = lo.copy(), hi.copy()
     index = np.arange(lo.size)
     side = np.zeros(lo.shape)
     args = tuple(np.asarray(a) for a in args)
+
+    def result():
+        return (out_lo, out_hi) if bracket else 0.5 * (out_lo + out_hi)
+
     for step in range(MAX_STEPS):
         width = np.maximum(xtol * np.maximum(1.0, np.abs(lo)), 2.0 * np.spacing(np.abs(hi)))
         open_ = (hi - lo) > width
-        out[index[~open_]] = 0.5 * (lo + hi)[~open_]
+        out_lo[index], out_hi[index] = lo, hi
         if not open_.any():
-            return out
+            return result()
         index, lo, hi, f_lo, f_hi, side = (v[open_] for v in (index, lo, hi, f_lo, f_hi, side))
         args = tuple(a[open_] for a in args)
         x = _point(lo, hi, f_lo, f_hi, step)
         lo, hi, f_lo, f_hi, side = _step(f(x, *args), np.ones(len(x), bool), x, lo, hi, f_lo,
                                          f_hi, side)
-    out[index] = 0.5 * (lo + hi)
-    return out
+    out_lo[index], out_hi[index] = lo, hi
+    return result()
