@@ -56,6 +56,9 @@ NEWTON_STEPS = 6
 """Safeguarded Newton steps on the cubic model of the derivative (from the secant
 estimate three reach rounding; the rest are margin)."""
 
+DINKELBACH_STEPS = 20
+"""Dinkelbach iterations at most for a peak ratio (superlinear: 3 to 5 reach rounding)."""
+
 NEAR_TIE_SAFETY = 4.0
 """Factor on the second-order bound of the sampling error that flags near ties."""
 
@@ -177,6 +180,36 @@ class LinearPeaks:
         combination), with the tau and piece index where it is reached."""
         peak = self.maximum(-np.asarray(p, dtype=float), -np.asarray(q, dtype=float))
         return LinearPeak(-peak.value, peak.tau, peak.piece)
+
+    def ratio_maximum(self, p: np.ndarray, q: np.ndarray, c: np.ndarray, alpha: np.ndarray,
+                      rate: np.ndarray) -> LinearPeak:
+        """max over tau of (p a_N + q v_N + c) / (alpha + rate v_N), elementwise, where the
+        denominator is positive along the whole move (a torque over a speed-dependent
+        limit, book sec. 6.1.1).
+
+        Dinkelbach's method: r_{k+1} = N/D at the maximizer of N - r_k D, a linear peak
+        (:meth:`maximum`). Each r_k is a value the law reaches; the sequence rises to the
+        maximum superlinearly and stops when N - r_k D <= 0 everywhere (to rounding).
+        """
+        p, q, c, alpha, rate = (np.asarray(x, dtype=float).ravel()
+                                for x in np.broadcast_arrays(p, q, c, alpha, rate))
+        start = self.maximum(p, q)
+        tau, piece = start.tau.copy(), start.piece.copy()
+        v, a = piece_values(self.law, tau, piece, (1, 2))
+        r = (p * a + q * v + c) / (alpha + rate * v)
+        index = np.arange(len(p))
+        for _ in range(DINKELBACH_STEPS):
+            if len(index) == 0:
+                break
+            peak = self.maximum(p[index], q[index] - r[index] * rate[index])
+            v, a = piece_values(self.law, peak.tau, peak.piece, (1, 2))
+            new = (p[index] * a + q[index] * v + c[index]) / (alpha[index] + rate[index] * v)
+            better = new > r[index]
+            rows = index[better]
+            gain = new[better] - r[rows]
+            r[rows], tau[rows], piece[rows] = new[better], peak.tau[better], peak.piece[better]
+            index = rows[gain > 1e-15 * np.abs(r[rows])]
+        return LinearPeak(r, tau, piece)
 
     # ------------------------------------------------------------------ steps
     def _stationary_points(self, lo: np.ndarray, P: np.ndarray, Q: np.ndarray) -> np.ndarray:
