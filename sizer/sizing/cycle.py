@@ -12,17 +12,21 @@ direction of power flow (sizer.mechanics.drive). During a dwell the motor holds 
 constant external load. The RMS torque covers the whole cycle; so do the RMS torques at
 the outputs of transmission stages that have torque ratings.
 
-Integrals are exact: Gauss-Legendre on the law's grid, each interval cut where a stage's
-power flow reverses; with ideal stages the RMS is the closed form in C_v_rms, C_a_rms.
-Peaks are found on the grid (piece ends and the ends of the move included) and the
-largest local maxima of the samples, in whatever interval or piece, are refined by
-golden-section search.
+Integrals are exact: Gauss-Legendre on the law's grid (as quadratic forms of the law's
+moments per interval), each interval cut where a stage's power flow reverses; with ideal
+stages the RMS is the closed form in C_v_rms, C_a_rms. Peaks are exact where they can be
+(:meth:`CycleCalculator._exact_peaks`: the law's linear peaks, and against a concave
+speed-torque region the linear-fractional peaks of Dinkelbach's method); elsewhere they
+are found on the grid (piece ends and the ends of the move included) and the largest
+local maxima of the samples, in whatever interval or piece, are refined by golden-section
+search.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 from numpy.polynomial.legendre import leggauss
@@ -105,7 +109,10 @@ class CycleCalculator:
         return self._grid
 
     # ------------------------------------------------------------------ public
-    def evaluate(self, duration: np.ndarray) -> CycleMetrics:
+    def evaluate(self, duration: np.ndarray, peaks: bool = True) -> CycleMetrics:
+        """The requirements at the given durations. Without ``peaks`` the peak torques
+        and ratios are left at zero (a search on the other checks, where the peaks are
+        known to pass: sizer.sizing.minimum_duration)."""
         T = np.broadcast_to(np.asarray(duration, dtype=float), (len(self.motors),)).copy()
         c = self.law.coefficients
         K, h = self.drive.ratio, self.h
@@ -117,9 +124,12 @@ class CycleCalculator:
         square = np.zeros_like(T)
         stage_peak = [np.zeros_like(T) for _ in range(n_stages)]
         stage_square = [np.zeros_like(T) for _ in range(n_stages)]
-        moves = [MoveScales(h / T / T, h / T, d) for d in self.directions]  # no T**2: T may
-        for scales, (torque, ratio, load, stages) in zip(moves, self._peaks(moves),  # be 1e300
-                                                         strict=True):
+        # no T**2: T may be 1e300
+        moves = [MoveScales(h / T / T, h / T, d) for d in self.directions]
+        found = self._peaks(moves) if peaks else [
+            (np.zeros_like(T), np.zeros_like(T), np.zeros_like(T),
+             [np.zeros_like(T) for _ in range(n_stages)]) for _ in moves]
+        for scales, (torque, ratio, load, stages) in zip(moves, found, strict=True):
             peak_torque = np.maximum(peak_torque, torque)
             peak_ratio = np.maximum(peak_ratio, ratio)
             load_torque = np.maximum(load_torque, load)
@@ -182,26 +192,64 @@ class CycleCalculator:
         return rotor * K * a_l + damping * K * v_l + shaft, outputs
 
     def _mean_squares(self, scales: MoveScales) -> list[np.ndarray]:
-        """(1/T) * integral of the squared motor torque (then of each stage output) per move."""
+        """(1/T) * integral of the squared motor torque (then of each stage output) per move.
+
+        Each torque is a maximum of linear functions of (a, v) (Drive.linear_pieces); on an
+        interval of the law's grid where no stage's power flow reverses one function is
+        the torque throughout, so its Gauss-Legendre integral is the quadratic form of the
+        function's coefficients with the interval's moments of the law (int a_N^2, a_N v_N,
+        v_N^2, a_N, v_N, 1: :func:`interval_moments`, once per law), and the function is
+        the one with the largest integral there. Intervals where a flow reverses are cut at
+        the root and integrated apart (:meth:`_split_integrals`).
+        """
         drive = self.drive
-        n_stages = len(drive.stages)
         if drive.is_ideal:
             return self._ideal_mean_squares(scales)
         g = self.grid
-        motor, outputs = self.channels(g.acceleration[None], g.velocity[None], scales)
         _, end_outputs = self.channels(g.end_acceleration[None], g.end_velocity[None], scales)
-        crossing = np.zeros(motor.shape[:2], dtype=bool)
+        crossing = np.zeros((len(self.motors), g.size), dtype=bool)
         for x in end_outputs:
             crossing |= x[..., 0] * x[..., 1] < 0.0
-        totals = []
-        for channel in (motor, *outputs[:n_stages]):
-            plain = np.where(crossing[..., None], 0.0, g.weights[None] * channel**2)
-            totals.append(plain.sum(axis=(1, 2)))
+        moments = interval_moments(self.law)
+        shaft, outputs = drive.linear_pieces(scales.direction)
+        K = drive.ratio
+        rotor = (self.motors.inertia * K, self.motors.damping * K)
+        totals = [self._piecewise_square(shaft, scales, moments, crossing, rotor)]
+        totals += [self._piecewise_square(pieces, scales, moments, crossing, None)
+                   for pieces in outputs]
         if crossing.any():
             for total, extra in zip(totals, self._split_integrals(np.nonzero(crossing), scales),
                                     strict=True):
                 total += extra
         return totals
+
+    def _piecewise_square(self, pieces, scales: MoveScales, moments: np.ndarray,
+                          crossing: np.ndarray, rotor) -> np.ndarray:
+        """int of max_k L_k^2 over the intervals without a reversal (see _mean_squares)."""
+        n = len(self.motors)
+        terms = []
+        for A, B, C in pieces:
+            if rotor is not None:
+                A, B = A + rotor[0], B + rotor[1]
+            P = np.broadcast_to(A * scales.acc, (n,))
+            Q = np.broadcast_to(B * scales.vel, (n,))
+            C = np.broadcast_to(np.asarray(C, dtype=float), (n,))
+            terms.append((P, Q, C))
+        # moments columns: a^2, v^2, 1, a v, a, v
+        if len(terms) == 1:
+            use = [~crossing]
+        else:
+            means = np.stack([P[:, None] * moments[:, 4] + Q[:, None] * moments[:, 5]
+                              + C[:, None] * moments[:, 2] for P, Q, C in terms])
+            best = np.argmax(means, axis=0)
+            use = [(best == k) & ~crossing for k in range(len(terms))]
+        total = np.zeros(n)
+        with np.errstate(over="ignore", invalid="ignore"):
+            for (P, Q, C), mask in zip(terms, use, strict=True):
+                m = mask.astype(float) @ moments  # (n, 6)
+                total += (P * P * m[:, 0] + Q * Q * m[:, 1] + C * C * m[:, 2]
+                          + 2.0 * (P * Q * m[:, 3] + P * C * m[:, 4] + Q * C * m[:, 5]))
+        return np.where(np.isnan(total), np.inf, total)
 
     def _ideal_mean_squares(self, scales: MoveScales) -> list[np.ndarray]:
         """Closed forms: int a_N = 0, int a_N v_N = 0, int v_N = 1 over a rest-to-rest move."""
@@ -251,15 +299,22 @@ class CycleCalculator:
             root = hi_edge.copy()
             if crossing.any():
                 where_ = np.nonzero(crossing)[0]
-                sub = PieceEvaluator(law, g.piece[interval][where_])
+                piece = g.piece[interval][where_]
+                left, width = lo_edge[where_], hi_edge[where_] - lo_edge[where_]
 
-                def restricted(tau, stage=stage, where_=where_, sub=sub):
-                    _, outputs = self.channels(sub(tau, 2), sub(tau, 1), scales,
-                                               index=cand[where_])
+                def restricted(z, rows, stage=stage, where_=where_, piece=piece, left=left,
+                               width=width):
+                    v_n, a_n = piece_values(law, left[rows] + z * width[rows], piece[rows],
+                                            (1, 2))
+                    _, outputs = self.channels(a_n, v_n, scales, index=cand[where_][rows])
                     return outputs[stage]
 
-                root[where_] = illinois(restricted, lo_edge[where_], hi_edge[where_],
-                                        f_lo[where_], f_hi[where_])
+                # in the interval's own coordinate z: a root error dz changes the integral
+                # by O(dz^2) (the two reflections agree at the root), so 1e-9 is rounding
+                z = illinois(restricted, np.zeros(len(where_)), np.ones(len(where_)),
+                             f_lo[where_], f_hi[where_], xtol=1e-9,
+                             args=(np.arange(len(where_)),))
+                root[where_] = np.clip(left + z * width, lo_edge[where_], hi_edge[where_])
             cuts.append(root)
         edges = np.sort(np.column_stack([lo_edge, *cuts, hi_edge]), axis=1)
         x, w = leggauss(g.nodes.shape[1])
@@ -342,6 +397,7 @@ class CycleCalculator:
             if len(coefficients) == 1 and not np.any(coefficients[0][1]) \
                     and not np.any(coefficients[0][2]):
                 # proportional to the acceleration (the book's inertial case): |P| C_a
+                terms.append(coefficients)
                 return np.broadcast_to(np.abs(coefficients[0][0]) * c.C_a, (n,)).copy()
             top = np.full(n, -np.inf)
             for P, Q, C in coefficients:
@@ -358,9 +414,12 @@ class CycleCalculator:
                 values = np.stack([P * a_n + Q * v_n + C for P, Q, C in coefficients])
                 scale = np.max(np.abs(values), axis=0) + np.abs(bottom)
                 certified[:] &= values.max(axis=0) <= bottom + 1e-12 * scale
+            terms.append(coefficients)
             return np.maximum(top, -bottom)
 
+        terms: list[list[tuple[np.ndarray, np.ndarray, np.ndarray]]] = []
         peak = channel(shaft, True)
+        shaft_terms = terms[-1]
         load = channel([(np.full(1, drive.load.inertia), np.full(1, drive.load.damping),
                          np.full(1, drive.load.friction + scales.direction * drive.load.torque))],
                        False)
@@ -371,10 +430,81 @@ class CycleCalculator:
         speed = K * scales.vel * c.C_v
         # speeds past the region are clipped into it for the ratio (the speed check covers
         # them): a region flat to its end is flat at every speed
-        flat = (speed <= motors.flat_speed) | (motors.flat_speed >= motors.speed_limit)
-        exact = certified & np.broadcast_to(flat, (n,))
+        flat = np.broadcast_to((speed <= motors.flat_speed)
+                               | (motors.flat_speed >= motors.speed_limit), (n,))
         ratio = _safe_ratio(peak, motors.intermittent.torques[:, 0])
+        exact = certified & flat
+        curved = np.flatnonzero(certified & ~flat)
+        if len(curved):
+            speed_scale = np.broadcast_to(K * scales.vel, (n,))
+            exact[curved] = self._curve_ratio(shaft_terms, curved, speed_scale[curved], c.C_v,
+                                              ratio)
         return (peak, ratio, load, stages), exact, certified
+
+    def _curve_ratio(self, terms, rows: np.ndarray, speed_scale: np.ndarray, C_v: float,
+                     ratio: np.ndarray) -> np.ndarray:
+        """The peak ratio |tau|/tau_int(speed) of the candidates at ``rows`` against a
+        concave region, exactly; returns where it was found (written into ``ratio``).
+
+        A concave region is the minimum of its segments' lines (sizer.sizing.peak_duration
+        .region_lines), so the ratio is the largest over the lines the move reaches of
+        |tau| over the line: for the torque's functions L_k a linear-fractional peak each
+        (LinearPeaks.ratio_maximum); for -tau = min_k(-L_k) the smallest of the -L_k
+        peaks, exact where its function is the torque at its maximizer (as for the torque
+        minimum in :meth:`_exact_peaks`). Candidates whose region is not concave, whose
+        move leaves the region or reaches a line's zero are left to the grid search.
+        """
+        from sizer.sizing.peak_duration import region_lines
+
+        region = self.motors.intermittent.take(rows)
+        alpha, sigma, concave = region_lines(region)
+        rate = sigma * speed_scale[:, None]  # the line over v_N: alpha + sigma K vel v_N
+        peak_speed = speed_scale * C_v
+        starts = region.speeds[:, :-1]
+        used = (starts < peak_speed[:, None]) & np.isfinite(alpha)
+        used[:, 0] = False  # the flat line: the torque peak over the standstill torque
+        ok = concave & (peak_speed <= region.max_speed)
+        ok &= np.all(~used | (alpha + sigma * peak_speed[:, None] > 0.0), axis=1)
+        n = len(self.motors)
+        parts = [tuple(np.broadcast_to(x, (n,))[rows] for x in part) for part in terms]
+        # every (line, function, side) problem in one Dinkelbach run: blocks per line of
+        # the functions' +L_k, then their -L_k, over the candidates that reach the line
+        blocks, queries = [], []
+        for column in range(1, alpha.shape[1]):
+            sel = np.flatnonzero(ok & used[:, column])
+            if len(sel):
+                blocks.append(sel)
+                line = (alpha[sel, column], rate[sel, column])
+                for sign in (1.0, -1.0):
+                    queries += [(sign * P[sel], sign * Q[sel], sign * C[sel], *line)
+                                for P, Q, C in parts]
+        found = ratio[rows].copy()
+        if not blocks:
+            ratio[rows[ok]] = found[ok]
+            return ok
+        solved = self.law.linear_peaks.ratio_maximum(
+            *(np.concatenate([q[i] for q in queries]) for i in range(5)))
+        start, count = 0, len(parts)
+        for sel in blocks:
+            m = len(sel)
+            take = [slice(start + i * m, start + (i + 1) * m) for i in range(2 * count)]
+            start += 2 * count * m
+            tops = np.stack([solved.value[t] for t in take[:count]])
+            lows = np.stack([solved.value[t] for t in take[count:]])
+            k = np.argmin(lows, axis=0)
+            bottom = lows[k, np.arange(m)]
+            if count > 1:  # -tau = min_k(-L_k): exact where L_k is the torque there
+                tau = np.choose(k, [solved.tau[t] for t in take[count:]])
+                piece = np.choose(k, [solved.piece[t] for t in take[count:]])
+                v_n, a_n = piece_values(self.law, tau, piece, (1, 2))
+                torques = np.stack([P[sel] * a_n + Q[sel] * v_n + C[sel] for P, Q, C in parts])
+                mine = torques[k, np.arange(m)]
+                scale = np.max(np.abs(torques), axis=0)
+                ok[sel] &= mine >= torques.max(axis=0) - 1e-12 * scale
+            found[sel] = np.maximum(found[sel], np.maximum(tops.max(axis=0), bottom))
+        done = ok
+        ratio[rows[done]] = found[done]
+        return done
 
     def _sampled_peaks(self, moves: list[MoveScales], ratio_only: bool = False):
         """Peaks on the law's grid, the largest samples of every channel and move refined
@@ -501,6 +631,16 @@ class CycleCalculator:
         lo = tau[interval, np.maximum(column - 1, 0)]
         hi = tau[interval, np.minimum(column + 1, columns - 1)]
         return lo, hi, g.piece[interval], valid, best_value
+
+
+@lru_cache(maxsize=256)
+def interval_moments(law) -> np.ndarray:
+    """Per interval of the law's grid the Gauss-Legendre integrals of a_N^2, v_N^2, 1,
+    a_N v_N, a_N and v_N (columns in that order), shape (intervals, 6)."""
+    g = law_grid(law)
+    a, v, w = g.acceleration, g.velocity, g.weights
+    return np.column_stack([(w * a * a).sum(axis=1), (w * v * v).sum(axis=1), w.sum(axis=1),
+                            (w * a * v).sum(axis=1), (w * a).sum(axis=1), (w * v).sum(axis=1)])
 
 
 def _square_mean(p, q, const, c_a_rms: float, c_v_rms: float):

@@ -1,0 +1,170 @@
+"""A lower bound on T_min from the checks that only grow stricter as the move gets faster.
+
+The speed check, the load's speed, acceleration and jerk limits and the peak torque
+checks (motor against its intermittent region, stage outputs against their peak ratings)
+each hold for every duration from a threshold on (book sec. 6.1.1, eq. 6.2 in the
+rectangular case). Their largest threshold is a lower bound on T_min: where the cycle is
+feasible there, it is T_min, found without a search (sizer.sizing.minimum_duration).
+
+The peak check in u = 1/T. Every torque is a maximum of linear functions of the load's
+(a, v) (sizer.mechanics.drive.Drive.linear_pieces), a = h u^2 a_N, v = h u v_N, so one of
+its functions under one line of the region, alpha + sigma * omega with omega = K v, reads
+
+    F(u) = max over tau of (P a_N u^2 + Q v_N u)  <=  D,
+    P = A h,  Q = (B - c sigma K) h,  D = c alpha - C,
+
+with c = 1 - torque margin. For a rest-to-rest law (v_N >= 0) F(u) = u g(u) with g a
+maximum of linear functions of u, nondecreasing from u = 0: F is convex and increasing,
+so the condition holds on [0, u*], and Newton's method from a point where F >= D
+decreases monotonically to u* (each step's F and F' from the law's exact linear peak,
+sizer.laws.linear_peaks, F' by the envelope theorem). Stopped anywhere, the iterate is
+>= u*, so 1/u is a valid bound. The condition is necessary where the line lies on or
+above the region at every speed the move may reach: true of every segment's line of a
+concave region (a flat part, then falling segments that fall faster and faster), and of
+the flat line at the region's largest torque for any region. Only the motoring side
+(torque >= 0) is bounded: -tau is a minimum of the functions, for which a single
+function gives no necessary condition.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from sizer.envelope import RegionTable
+from sizer.laws.linear_peaks import piece_values
+from sizer.model.domain import Limits
+from sizer.sizing.cycle import CycleCalculator
+
+NEWTON_STEPS = 40
+"""Newton steps at most (quadratic convergence: about 6 from the start used here)."""
+CONCAVE_TOLERANCE = 1e-12
+"""Relative rise of a segment's slope still read as concave (rounding of the corners)."""
+
+
+def region_lines(region: RegionTable) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(alpha, sigma, concave): per candidate and segment lines alpha + sigma * speed that
+    lie on or above the region at every speed up to its end (alpha inf where a segment is
+    no such line), and whether the region is the minimum of them (concave).
+
+    A concave region is the minimum of its segments' lines; any other region keeps one
+    line, flat at its largest torque.
+    """
+    s, t = region.speeds, region.torques
+    with np.errstate(divide="ignore", invalid="ignore"):
+        sigma = np.diff(t, axis=1) / np.diff(s, axis=1)
+    alpha = t[:, :-1] - sigma * s[:, :-1]
+    inside = s[:, :-1] < region.max_speed[:, None]
+    inside[:, 0] = True
+    rise = np.diff(np.where(inside, sigma, -np.inf), axis=1)
+    scale = np.abs(t).max(axis=1, keepdims=True) / np.maximum(region.max_speed[:, None], 1e-300)
+    concave = np.all((rise <= CONCAVE_TOLERANCE * scale) | ~inside[:, 1:], axis=1)
+    alpha = np.where(inside & concave[:, None], alpha, np.inf)
+    sigma = np.where(inside & concave[:, None], sigma, 0.0)
+    alpha[~concave, 0] = t[~concave].max(axis=1)
+    return alpha, sigma, concave
+
+
+def peak_duration(calculator: CycleCalculator, limits: Limits) -> np.ndarray | None:
+    """A lower bound on T_min per candidate (inf where no duration passes a peak or speed
+    check; None where the law may move backwards, v_N < 0, and the bound does not hold)."""
+    law = calculator.law
+    peaks = law.linear_peaks
+    if float(peaks.minimum(0.0, 1.0).value) < -1e-12:
+        return None
+    c = law.coefficients
+    motors, drive, h = calculator.motors, calculator.drive, calculator.h
+    n = len(motors)
+    K = np.broadcast_to(drive.ratio, (n,))
+    bounds = [_speed_bounds(calculator, limits, K)]
+    if h == 0.0:
+        return np.zeros(n)
+    grip = 1.0 - limits.torque_margin
+    alpha, sigma, _ = region_lines(motors.intermittent)
+    rows, cols = np.nonzero(np.isfinite(alpha))
+    queries: list[tuple[np.ndarray, ...]] = []
+    for direction in calculator.directions:
+        shaft, outputs = drive.linear_pieces(direction)
+        for A, B, C in shaft:
+            A = np.broadcast_to(A + motors.inertia * K, (n,))
+            B = np.broadcast_to(B + motors.damping * K, (n,))
+            C = np.broadcast_to(C, (n,))
+            queries.append((rows, A[rows] * h, (B[rows] - grip * sigma[rows, cols] * K[rows]) * h,
+                            grip * alpha[rows, cols] - C[rows]))
+        for stage, pieces in zip(drive.stages, outputs, strict=True):
+            if stage.peak_output_torque is None:
+                continue
+            rated = np.flatnonzero(np.broadcast_to(stage.rated["peak_output_torque"], (n,)))
+            rating = np.broadcast_to(stage.peak_output_torque, (n,))[rated]
+            for A, B, C in pieces:
+                queries.append((rated, np.broadcast_to(A, (n,))[rated] * h,
+                                np.broadcast_to(B, (n,))[rated] * h,
+                                grip * rating - np.broadcast_to(C, (n,))[rated]))
+    if queries:
+        who = np.concatenate([q[0] for q in queries])
+        P, Q, D = (np.concatenate([q[i] for q in queries]) for i in (1, 2, 3))
+        u = _largest_u(peaks, law, P, Q, D, c.C_a, c.C_v)
+        with np.errstate(divide="ignore"):
+            T = np.where(u > 0.0, 1.0 / u, np.inf)
+        worst = np.zeros(n)
+        np.maximum.at(worst, who, T)
+        bounds.append(worst)
+    return np.max(np.stack(bounds), axis=0)
+
+
+def _speed_bounds(calculator: CycleCalculator, limits: Limits, K: np.ndarray) -> np.ndarray:
+    """The durations below which the speed check or a load limit fails (closed forms)."""
+    c = calculator.law.coefficients
+    h, motors = calculator.h, calculator.motors
+    with np.errstate(divide="ignore", invalid="ignore"):
+        T = c.C_v * K * h / (motors.speed_limit * (1.0 - limits.speed_margin))
+        T = np.where(np.isnan(T), np.inf, T)
+    if calculator.thermal_rule == "max":  # the thermal speed is the peak speed
+        with np.errstate(divide="ignore", invalid="ignore"):
+            thermal = c.C_v * K * h / (motors.continuous.max_speed * (1.0 - limits.speed_margin))
+        T = np.maximum(T, np.where(np.isnan(thermal), np.inf, thermal))
+    if limits.max_speed is not None:
+        T = np.maximum(T, c.C_v * h / limits.max_speed)
+    if limits.max_acceleration is not None:
+        T = np.maximum(T, np.sqrt(c.C_a * h / limits.max_acceleration))
+    if limits.max_jerk is not None:
+        T = np.maximum(T, np.cbrt(c.C_j * h / limits.max_jerk) if c.jerk_bounded else np.inf)
+    for k, stage in zip(calculator.drive.input_ratios, calculator.drive.stages, strict=True):
+        if stage.max_input_speed is not None:
+            rated = np.broadcast_to(stage.rated["max_input_speed"], T.shape)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                bound = c.C_v * k * h / (stage.max_input_speed * (1.0 - limits.speed_margin))
+            T = np.where(rated, np.maximum(T, bound), T)
+    return T
+
+
+def _largest_u(peaks, law, P: np.ndarray, Q: np.ndarray, D: np.ndarray,
+               C_a: float, C_v: float) -> np.ndarray:
+    """Per query the largest u with max_tau (P a_N u^2 + Q v_N u) <= D (0 where D <= 0,
+    inf where nothing limits u): Newton from the right (see the module docs)."""
+    u = np.full(P.shape, np.inf)
+    u[D <= 0.0] = 0.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        # F(u) >= max(P C_a u^2, Q C_v u) (v_N >= 0, a_N >= 0 at the peaks), so the smaller
+        # of these two roots has F >= D: a start on the right of u*
+        start = np.minimum(np.sqrt(D / (P * C_a)), D / (Q * C_v))
+    open_ = (D > 0.0) & np.isfinite(start)
+    index = np.flatnonzero(open_)
+    x = start[index]
+    P, Q, D = P[index], Q[index], D[index]
+    for _ in range(NEWTON_STEPS):
+        if len(index) == 0:
+            break
+        peak = peaks.maximum(P * x * x, Q * x)
+        v, a = piece_values(law, peak.tau, peak.piece, (1, 2))
+        excess = peak.value - D
+        slope = 2.0 * P * a * x + Q * v
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = excess / slope
+        nxt = np.where((excess > 0.0) & (slope > 0.0), x - step, x)
+        # a point where F >= D is on the right of u* (to rounding: F is exact to a few ulps)
+        right = excess >= -1e-14 * np.abs(D)
+        u[index] = np.minimum(u[index], np.where(right, x, u[index]))
+        moving = (nxt < x) & (x - nxt > 1e-15 * x)
+        x = nxt
+        index, x, P, Q, D = (z[moving] for z in (index, x, P, Q, D))
+    return u
