@@ -24,10 +24,12 @@ from sizer.model.domain import Limits
 from sizer.sizing.checks import TOLERANCE, CheckArrays, evaluate_checks, feasible, worst_slack
 from sizer.sizing.cycle import CycleCalculator, CycleMetrics
 from sizer.sizing.golden import golden_step, interior_points
+from sizer.sizing.peak_duration import peak_duration
 from sizer.sizing.roots import illinois
 
 EXPANSIONS = 80
 GOLDEN_STEPS = 80
+GOLDEN_WIDTH = 1e-7
 STEP = math.log(2.0)
 
 
@@ -42,8 +44,8 @@ class DurationSolution:
     method: str
 
 
-def evaluate(calculator: CycleCalculator, limits: Limits, T: np.ndarray):
-    metrics = calculator.evaluate(T)
+def evaluate(calculator: CycleCalculator, limits: Limits, T: np.ndarray, peaks: bool = True):
+    metrics = calculator.evaluate(T, peaks)
     checks = evaluate_checks(metrics, calculator.motors, calculator.drive, limits,
                              calculator.task.linear)
     return metrics, checks
@@ -85,13 +87,47 @@ def minimum_duration(calculator: CycleCalculator, limits: Limits) -> DurationSol
         searched = bisect_duration(calculator, limits, guess=start, active=missed | beyond)
         T = np.where(missed | beyond, searched, T)
     else:
-        T = bisect_duration(calculator, limits)
-        method = "bisection"
+        bound = peak_duration(calculator, limits)
+        if bound is None:
+            T = bisect_duration(calculator, limits)
+            method = "bisection"
+        else:
+            return _from_bound(calculator, limits, bound)
     finite = np.isfinite(T)
     probe = np.where(finite, T, _largest_tried(calculator))
     metrics, checks = evaluate(calculator, limits, probe)
     ok = finite & feasible(checks)
     return DurationSolution(np.where(ok, probe, np.nan), ok, metrics, checks, method)
+
+
+def _from_bound(calculator: CycleCalculator, limits: Limits,
+                bound: np.ndarray) -> DurationSolution:
+    """T_min from a lower bound (sizer.sizing.peak_duration): the bound itself where the
+    cycle is feasible there; elsewhere a search from it, first on the checks other than
+    the peaks (which pass from the bound on: the cheap part of an evaluation), then, where
+    the duration found still fails a check, on all of them. inf bounds: no duration."""
+    usable = np.isfinite(bound) & (bound > 0.0)
+    probe = np.where(usable, bound, _largest_tried(calculator))
+    metrics, checks = evaluate(calculator, limits, probe)
+    ok = usable & feasible(checks)
+    method = "peak and speed bounds"
+    rest = ~ok & np.isfinite(bound)
+    if not rest.any():
+        return DurationSolution(np.where(ok, probe, np.nan), ok, metrics, checks, method)
+    start = np.where(usable, bound, _initial_guess(calculator))
+    T = np.where(ok, bound, np.inf)
+    T[rest] = bisect_duration(calculator, limits, guess=start, active=rest, peaks=False)[rest]
+    method += " and bisection"
+    for attempt in range(2):
+        finite = np.isfinite(T)
+        probe = np.where(finite, T, _largest_tried(calculator))
+        metrics, checks = evaluate(calculator, limits, probe)
+        passed = finite & feasible(checks)
+        again = rest & finite & ~passed
+        if attempt == 1 or not again.any():
+            break
+        T[again] = bisect_duration(calculator, limits, guess=T, active=again)[again]
+    return DurationSolution(np.where(passed, probe, np.nan), passed, metrics, checks, method)
 
 
 def beyond_flat_part(calculator: CycleCalculator, limits: Limits, T: np.ndarray,
@@ -220,24 +256,48 @@ def _initial_guess(calculator: CycleCalculator) -> np.ndarray:
 
 def bisect_duration(calculator: CycleCalculator, limits: Limits,
                     guess: np.ndarray | None = None,
-                    active: np.ndarray | None = None) -> np.ndarray:
+                    active: np.ndarray | None = None, peaks: bool = True) -> np.ndarray:
     """T_min per candidate by search on the worst slack; inf where no duration is feasible.
 
     First a bracket (:func:`_bracket`): a feasible log T and an infeasible one below it,
     then the crossing between them (:func:`_crossing`). ``guess`` is where the search
     starts (default: the speed and inertial bounds), ``active`` which candidates to solve
-    (the others get inf).
+    (the others get inf); without ``peaks`` the peak checks are left out (they are
+    known to pass).
     """
     x0 = np.log(_initial_guess(calculator) if guess is None else np.asarray(guess, float))
     active = np.ones(len(x0), dtype=bool) if active is None else np.asarray(active, bool)
+    if not active.all():  # the search works on the active candidates only
+        out = np.full(len(x0), np.inf)
+        index = np.flatnonzero(active)
+        if len(index):
+            out[index] = bisect_duration(calculator.take(index), limits,
+                                         guess=np.exp(x0[index]), peaks=peaks)
+        return out
 
-    def checks_at(x: np.ndarray) -> list[CheckArrays]:
-        return evaluate(calculator, limits, np.exp(x))[1]
-
-    found, x_bad, x_ok, f_bad, f_ok = _bracket(checks_at, x0, active)
-    x = _crossing(lambda x: worst_slack(checks_at(x)), x_bad, x_ok, f_bad, f_ok,
-                  found & np.isfinite(x_bad))
+    slack = _Slack(calculator, limits, peaks)
+    found, x_bad, x_ok, f_bad, f_ok = _bracket(slack, x0, active)
+    x = _crossing(slack, x_bad, x_ok, f_bad, f_ok, found & np.isfinite(x_bad))
     return np.where(found, np.exp(x), np.inf)
+
+
+@dataclass(frozen=True)
+class _Slack:
+    """The worst slack at log durations x, for all candidates or those at ``index`` (each
+    step of a search evaluates only the candidates still searching)."""
+
+    calculator: CycleCalculator
+    limits: Limits
+    peaks: bool
+
+    def checks(self, x: np.ndarray, index: np.ndarray | None = None) -> list[CheckArrays]:
+        calculator = self.calculator if index is None else self.calculator.take(index)
+        return evaluate(calculator, self.limits, np.exp(x), self.peaks)[1]
+
+    def __call__(self, x: np.ndarray, index: np.ndarray | None = None) -> np.ndarray:
+        if index is not None and len(index) == 0:
+            return np.empty(0)
+        return worst_slack(self.checks(x, index))
 
 
 def _unfixable(*samples: list[CheckArrays]) -> np.ndarray:
@@ -254,7 +314,7 @@ def _unfixable(*samples: list[CheckArrays]) -> np.ndarray:
     return out
 
 
-def _bracket(checks_at, x0: np.ndarray, active: np.ndarray):
+def _bracket(slack: _Slack, x0: np.ndarray, active: np.ndarray):
     """Per candidate a feasible x_ok = log T and an infeasible x_bad < x_ok.
 
     The worst slack f is a minimum of checks that each fall or rise with T, or rise and
@@ -267,13 +327,13 @@ def _bracket(checks_at, x0: np.ndarray, active: np.ndarray):
     """
     n = len(x0)
     nan = np.full(n, np.nan)
-    first = checks_at(x0)
+    first = slack.checks(x0)
     f0 = worst_slack(first)
     x1 = x0 + STEP
-    second = checks_at(x1)
+    second = slack.checks(x1)
     f1 = worst_slack(second)
     ok0, ok1 = f0 >= -TOLERANCE, f1 >= -TOLERANCE
-    stuck = _unfixable(first, second, checks_at(x0 + EXPANSIONS / 2 * STEP))
+    stuck = _unfixable(first, second, slack.checks(x0 + EXPANSIONS / 2 * STEP))
     found = active & (ok0 | ok1)
     x_ok, f_ok = np.where(ok0, x0, np.where(ok1, x1, nan)), np.where(ok0, f0, f1)
     x_bad, f_bad = np.where(ok0, nan, x0), np.where(ok0, nan, f0)
@@ -290,7 +350,9 @@ def _bracket(checks_at, x0: np.ndarray, active: np.ndarray):
         if not (climbing.any() or descending.any()):
             break
         x_next = np.where(descending, x_ok - STEP, x_cur + d)
-        f_next = worst_slack(checks_at(x_next))
+        moving = np.flatnonzero(climbing | descending)
+        f_next = np.full(n, np.nan)  # read only where climbing or descending
+        f_next[moving] = slack(x_next[moving], moving)
         good = f_next >= -TOLERANCE
         # descending: a feasible point moves x_ok down, an infeasible one ends the walk
         down_ok = descending & good
@@ -314,57 +376,68 @@ def _bracket(checks_at, x0: np.ndarray, active: np.ndarray):
         x_cur, f_cur = np.where(rising, x_next, x_cur), np.where(rising, f_next, f_cur)
         climbing = rising
     if peaked.any():
-        hit, x_top, f_top, x_below, f_below = _golden_max(checks_at, x_lo, x_hi, peaked)
+        hit, x_top, f_top, x_below, f_below = _golden_max(slack, x_lo, x_hi, peaked)
         found |= hit
         x_ok, f_ok = np.where(hit, x_top, x_ok), np.where(hit, f_top, f_ok)
         x_bad, f_bad = np.where(hit, x_below, x_bad), np.where(hit, f_below, f_bad)
     return found, x_bad, x_ok, f_bad, f_ok
 
 
-def _golden_max(checks_at, lo: np.ndarray, hi: np.ndarray, active: np.ndarray):
+def _golden_max(slack: _Slack, lo: np.ndarray, hi: np.ndarray, active: np.ndarray):
     """Golden-section search for a feasible point where the slack peaks in [lo, hi].
 
     Stops for a candidate at its first feasible point; every point below it that was
     evaluated is infeasible, so the lower end of the current interval brackets the
-    crossing. Returns (hit, x_ok, f_ok, x_bad, f_bad).
+    crossing. Also stops where the interval is narrower than GOLDEN_WIDTH: the slack's
+    maximum is then known to about GOLDEN_WIDTH^2 times its curvature, far below the
+    tolerance. Returns (hit, x_ok, f_ok, x_bad, f_bad).
     """
-    def slack(x):
-        return worst_slack(checks_at(np.where(active, x, 0.0)))
-
-    f_lo = slack(lo)
+    n = len(lo)
+    hit = np.zeros(n, dtype=bool)
+    x_ok, f_ok = np.full(n, np.nan), np.full(n, np.nan)
+    x_bad, f_bad = lo.copy(), np.full(n, np.nan)
+    index = np.flatnonzero(active)
+    lo, hi = lo[index], hi[index]
+    f_lo = slack(lo, index)
+    f_bad[index] = f_lo
     x1, x2 = interior_points(lo, hi)
-    f1, f2 = slack(x1), slack(x2)
-    hit = np.zeros(len(lo), dtype=bool)
-    x_ok, f_ok = np.full(len(lo), np.nan), np.full(len(lo), np.nan)
-    x_bad, f_bad = lo.copy(), f_lo.copy()
-    open_ = active.copy()
+    f1, f2 = slack(x1, index), slack(x2, index)
     for _ in range(GOLDEN_STEPS):
+        open_ = np.ones(len(index), dtype=bool)
         for x, f, below, f_below in ((x1, f1, lo, f_lo), (x2, f2, x1, f1)):
             new = open_ & (f >= -TOLERANCE)
-            hit |= new
-            x_ok, f_ok = np.where(new, x, x_ok), np.where(new, f, f_ok)
-            x_bad, f_bad = np.where(new, below, x_bad), np.where(new, f_below, f_bad)
+            where = index[new]
+            hit[where] = True
+            x_ok[where], f_ok[where] = x[new], f[new]
+            x_bad[where], f_bad[where] = below[new], f_below[new]
             open_ &= ~new
-        if not open_.any():
+        open_ &= (hi - lo) > GOLDEN_WIDTH
+        index, lo, hi, x1, x2, f1, f2, f_lo = (v[open_] for v in
+                                               (index, lo, hi, x1, x2, f1, f2, f_lo))
+        if len(index) == 0:
             break
         left = f1 >= f2  # the maximum lies in [lo, x2]
         f_lo = np.where(left, f_lo, f1)
-        lo, hi, x1, x2, f1, f2 = golden_step(slack, (lo, hi, x1, x2, f1, f2), left)
+        lo, hi, x1, x2, f1, f2 = golden_step(lambda x, index=index: slack(x, index),
+                                             (lo, hi, x1, x2, f1, f2), left)
     return hit, x_ok, f_ok, x_bad, f_bad
 
 
-def _crossing(slack, x_lo, x_hi, f_lo, f_hi, active) -> np.ndarray:
+def _crossing(slack: _Slack, x_lo, x_hi, f_lo, f_hi, active) -> np.ndarray:
     """log T where the worst slack reaches 0 between an infeasible x_lo and a feasible x_hi.
 
     The project's root finder (sizer.sizing.roots) on g = f (or on f + TOLERANCE where
-    x_hi reaches only the tolerance), to a relative width of 1e-13; the feasible end of
-    the bracket is returned, so the answer is feasible.
+    x_hi reaches only the tolerance), to a relative width of 1e-13, each step on the
+    candidates still open; the feasible end of the bracket is returned, so the answer is
+    feasible.
     """
-    offset = np.where(f_hi >= 0.0, 0.0, TOLERANCE)
-    rest = np.where(np.isfinite(x_hi), x_hi, 0.0)  # where inactive candidates are evaluated
-    lo, hi = np.where(active, x_lo, rest), np.where(active, x_hi, rest)
-    g_lo = np.where(active, f_lo + offset, -1.0)
-    g_hi = np.where(active, f_hi + offset, 1.0)
-    _, hi = illinois(lambda x: slack(x) + offset, lo, hi, g_lo, g_hi, xtol=1e-13,
-                     bracket=True)
-    return np.where(active, hi, x_hi)
+    out = np.array(x_hi, dtype=float)
+    index = np.flatnonzero(active)
+    if len(index) == 0:
+        return out
+    offset = np.where(f_hi[index] >= 0.0, 0.0, TOLERANCE)
+    _, hi = illinois(lambda x, where, shift: slack(x, where) + shift, x_lo[index], x_hi[index],
+                     f_lo[index] + offset, f_hi[index] + offset, xtol=1e-13,
+                     args=(index, offset), bracket=True)
+    out[index] = hi
+    return out

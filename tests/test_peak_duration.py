@@ -1,0 +1,116 @@
+"""The exact peak ratio against a falling region and the lower bound on T_min from the
+peak and speed checks (sizer.laws.linear_peaks.ratio_maximum,
+sizer.sizing.peak_duration), against independent computations.
+
+- ratio_maximum: the largest (p a_N + q v_N + c)/(alpha + rate v_N) over 400,001 samples
+  of the law (a dense brute force, from law.derivative alone) is reached, to the sampling
+  error, and never exceeded.
+- peak_duration: on the random designs of test_engine_vs_scalar, the plain scalar
+  reference (tests/scalar_reference.py) finds the candidate infeasible just below the
+  bound, with a check the bound accounts for failing there (speed, peak, thermal speed,
+  a load or stage limit): the bound is a lower bound on T_min and it is tight.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+from scalar_reference import evaluate
+from test_engine_vs_scalar import LAWS, candidate, random_design
+
+from sizer.laws import make_law
+from sizer.mechanics import Drive
+from sizer.model import Transmission
+from sizer.sizing.cycle import CycleCalculator
+from sizer.sizing.motors import MotorArrays
+from sizer.sizing.peak_duration import peak_duration, region_lines
+
+BRUTE = 400_001
+
+
+@pytest.mark.parametrize("spec", ["cycloidal", "poly5", "trapezoidal(alpha=1/3)",
+                                  "double_s(alpha=1/3, beta=1/4)", "modified_trapezoidal",
+                                  "harmonic"])
+def test_ratio_maximum_equals_a_dense_brute_force(spec):
+    law = make_law(spec)
+    rng = np.random.default_rng(7)
+    n = 40
+    p = rng.uniform(0.1, 5.0, n) * rng.choice([-1.0, 1.0], n)
+    q = rng.uniform(0.0, 3.0, n) * rng.choice([-1.0, 1.0], n)
+    c = rng.uniform(-1.0, 1.0, n)
+    alpha = rng.uniform(1.0, 4.0, n)
+    # the denominator stays above 0.2 alpha over v_N in [0, C_v]
+    rate = -rng.uniform(0.0, 0.8, n) * alpha / law.coefficients.C_v
+    tau = np.linspace(0.0, 1.0, BRUTE)
+    a, v = law.derivative(tau, 2), law.derivative(tau, 1)
+    brute = ((p[:, None] * a + q[:, None] * v + c[:, None])
+             / (alpha[:, None] + rate[:, None] * v)).max(axis=1)
+    exact = law.linear_peaks.ratio_maximum(p, q, c, alpha, rate)
+    scale = (np.abs(p) * law.coefficients.C_a + np.abs(q) * law.coefficients.C_v
+             + np.abs(c)) / (0.2 * alpha)
+    assert np.all(exact.value >= brute - 1e-12 * scale)
+    # with samples 2.5e-6 apart the brute force misses a smooth maximum by the curvature
+    # times about 1e-12; a maximum at a breakpoint or a kink of a_N (the ratio's slope
+    # jumps there) by the slope times the spacing
+    smooth = len(law.pieces) == 1
+    assert np.all(exact.value <= brute + (1e-9 if smooth else 1e-4) * scale)
+    # the value is one the law reaches, at the tau and piece returned
+    v1 = np.array([law.piece_derivative(int(k), t, 1) for k, t in zip(exact.piece, exact.tau,
+                                                                        strict=True)])
+    a1 = np.array([law.piece_derivative(int(k), t, 2) for k, t in zip(exact.piece, exact.tau,
+                                                                        strict=True)])
+    np.testing.assert_allclose((p * a1 + q * v1 + c) / (alpha + rate * v1), exact.value,
+                               rtol=1e-12, atol=1e-14)
+
+
+BOUNDED = ("speed", "peak", "thermal_speed", "load_speed", "acceleration", "jerk")
+
+
+def bounded(name: str) -> bool:
+    return name in BOUNDED or name.endswith("_peak") or name.endswith("_speed")
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_the_bound_is_a_tight_lower_bound_on_t_min(seed):
+    design = random_design(seed)
+    design = dataclasses.replace(design, task=dataclasses.replace(design.task, duration=None))
+    checked = 0
+    for motor in design.motors:
+        arrays = MotorArrays.of([motor], design.limits.envelope)
+        for spec in design.laws[:1] + LAWS[seed % len(LAWS):][:1]:
+            law = make_law(spec)
+            for ratio in design.ratio_choice.ratios[:2]:
+                stages = list(design.transmission.stages)
+                stages[0] = dataclasses.replace(stages[0], ratio=ratio)
+                drive = Drive(design.load, Transmission(tuple(stages)))
+                calculator = CycleCalculator(None, design.task, drive, arrays,
+                                             design.limits.thermal_speed, law=law)
+                bound = peak_duration(calculator, design.limits)
+                assert bound is not None
+                T = float(bound[0])
+                if not np.isfinite(T) or T <= 0.0:
+                    continue
+                below = evaluate(candidate(design, motor, spec, ratio), T * (1.0 - 1e-7))
+                failing = [name for name, (value, limit, required) in below.checks.items()
+                           if (1.0 - value / limit if limit > 0 else -np.inf)
+                           < required - 1e-9]
+                assert failing, f"{motor.id} {spec} {ratio}: feasible below the bound {T}"
+                assert any(bounded(name) for name in failing), (motor.id, spec, ratio,
+                                                               failing)
+                checked += 1
+    assert checked >= 4
+
+
+def test_region_lines_of_a_concave_and_a_convex_region():
+    from sizer.envelope import RegionTable
+
+    concave = ((0.0, 3.0), (100.0, 3.0), (200.0, 2.0), (300.0, 0.5))
+    convex = ((0.0, 3.0), (100.0, 1.0), (200.0, 0.8))
+    alpha, sigma, is_concave = region_lines(RegionTable([concave, convex]))
+    assert list(is_concave) == [True, False]
+    np.testing.assert_allclose(alpha[0], [3.0, 4.0, 5.0])
+    np.testing.assert_allclose(sigma[0], [0.0, -0.01, -0.015])
+    # a convex region keeps one line: flat at its largest torque, above it everywhere
+    assert alpha[1, 0] == 3.0 and sigma[1, 0] == 0.0 and np.all(np.isinf(alpha[1, 1:]))
