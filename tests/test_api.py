@@ -186,3 +186,17 @@ def test_the_commands_load_and_size_through_the_api(monkeypatch, tmp_path, comma
     run = run_cli(*(part.format(tmp=tmp_path) for part in command))
     assert run.returncode == 0, run.stderr
     assert list(dict.fromkeys(called)) == calls  # the design loaded first, then sized
+
+
+def test_the_readme_example_runs(monkeypatch, capsys):
+    """The Python API section's code block, run from the repository root as it stands."""
+    import re
+
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    section = text[text.index("## Python API"):text.index("## Layout")]
+    (code,) = re.findall(r"```python\n(.*?)```", section, re.S)
+    monkeypatch.chdir(ROOT)
+    exec(compile(code, "README.md", "exec"), {})
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].startswith("ex6_1 ") and lines[0].endswith(" True")
+    assert lines[-4:] == ["0/2 laws", "1/2 laws", "2/2 laws", "True"]
