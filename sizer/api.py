@@ -5,58 +5,166 @@
     >>> result.to_records()[0]["motor"]                           # doctest: +SKIP
 
 ``size`` is what ``sizer size`` runs, without the terminal: the same loading (units,
-ranges, located errors as :class:`sizer.errors.UserError`), the same engine and ranking.
-The result is a :class:`sizer.sizing.SizingResult`: ``results`` ranked (rows built when
-read), ``table`` the same candidates as arrays, ``to_records()`` / ``to_dict()`` plain
-data.
+ranges, located errors as :class:`sizer.errors.UserError`), the same engine and ranking
+(book ch. 6). The result is a :class:`sizer.sizing.SizingResult`: ``results`` ranked (rows
+built when read), ``table`` the same candidates as arrays, ``to_records()`` /
+``to_dict()`` plain data.
+
+The command line is built on these functions: each command parses its options, calls
+:func:`load`, :func:`override`, then :func:`size` or :func:`check`, and formats what they
+return. A UserError about one of their parameters names it (``field="motors"``,
+``"rank_by"``, ``"envelope"``); the command line names its option instead.
+
+The engine is imported when a function runs, not with this module.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import replace
 from os import PathLike
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
+from sizer.errors import UserError
 from sizer.model.domain import Design, Motor
-from sizer.sizing.engine import Progress, check_design, size_design
-from sizer.sizing.results import CandidateResult, SizingResult
+
+if TYPE_CHECKING:
+    from sizer.sizing.results import CandidateResult, SizingResult
 
 DesignLike = str | PathLike[str] | Mapping[str, Any] | Design
 """A design file's path, the same content as a mapping, or a :class:`Design`."""
 
+CatalogRef = str | PathLike[str]
+"""A motor catalog: a YAML file (relative to the working directory) or a bundled name."""
 
-def load(design: DesignLike, catalogs: Iterable[str | PathLike[str]] = (), *,
+Progress = Callable[[int, int], None]
+"""``progress(done, total)``: called with (0, n), then after each of the design's n laws."""
+
+ENVELOPES = ("book", "linear", "linear_intermittent")
+"""The ``envelope`` rules (sizer.envelope.completion.ENVELOPE_RULES)."""
+
+
+def load(design: DesignLike, catalogs: Iterable[CatalogRef] = (), *,
          base: str | PathLike[str] | None = None) -> Design:
     """The :class:`Design` of a path, a mapping (relative catalog paths from ``base``, the
     working directory by default) or a Design (returned as it is).
 
-    A design that names no motors and gets no ``catalogs`` is sized against the bundled
-    catalogs, as on the command line.
+    ``catalogs`` add their motors to those the design names (``--catalog``). A design that
+    names no motors and gets no ``catalogs`` is sized against the bundled catalogs, as on
+    the command line. The Design keeps the loader's warnings (``Design.warnings``, located
+    lines) and the files it read (``Design.files``).
     """
     from sizer.io.loader import load_design, load_design_data
 
+    extra = tuple(catalogs)
     if isinstance(design, Design):
+        if extra:
+            raise TypeError("catalogs are read with a design file or mapping; a Design "
+                            "has its motors (pass motors= to replace them)")
         return design
     if isinstance(design, Mapping):
-        return load_design_data(design, extra_catalogs=tuple(catalogs), default_motors=True,
+        return load_design_data(design, extra_catalogs=extra, default_motors=True,
                                 base=Path(base) if base is not None else Path.cwd())
-    return load_design(Path(design), extra_catalogs=tuple(catalogs), default_motors=True)
+    return load_design(Path(design), extra_catalogs=extra, default_motors=True)
 
 
-def size(design: DesignLike, *, catalogs: Iterable[str | PathLike[str]] = (),
-         rank_by: str | None = None, motors: Sequence[Motor] | None = None,
-         progress: Progress | None = None) -> SizingResult:
-    """Every motor x law (x transmission option) of ``design``, ranked feasible first.
+def override(design: Design, *, motors: Sequence[str] | Sequence[Motor] | None = None,
+             laws: Sequence[str] | None = None, envelope: str | None = None) -> Design:
+    """``design`` with what a command's options change (None keeps the design's own).
 
-    ``rank_by`` is a ``--rank-by`` key (None: the mode's default); ``motors`` replaces
-    the design's motors; ``progress(done, total)`` is called per law.
+    - ``motors``: motor ids, to size only those among the design's motors (in catalog
+      order; ``--motor``; an unknown id is a UserError with ``field="motors"``), or
+      Motor objects to size instead of the design's;
+    - ``laws``: law specs to consider instead of the design's ``laws:``;
+    - ``envelope``: the completion rule of regions without curves (``book``, ``linear``,
+      ``linear_intermittent``; ``--envelope``), instead of the design's
+      ``limits.envelope`` (sec. 6.1.1).
+
+    The notes of a sizing (:func:`assumptions`) follow the motors and envelope given.
     """
-    return size_design(load(design, catalogs), rank_by=rank_by, motors=motors,
-                       progress=progress)
+    if motors is not None:
+        design = replace(design, motors=_motors(design.motors, motors))
+    if laws is not None:
+        design = replace(design, laws=tuple(laws))
+    if envelope is not None:
+        rule = str(envelope)
+        if rule not in ENVELOPES:
+            raise UserError(f"unknown rule {rule!r}; choose one of {', '.join(ENVELOPES)}",
+                            field="envelope")
+        limits = replace(design.limits, envelope=rule)  # type: ignore[arg-type]
+        design = replace(design, limits=limits)
+    return design
 
 
-def check(design: DesignLike, *, catalogs: Iterable[str | PathLike[str]] = ()
-          ) -> CandidateResult:
-    """The result of the motor and law the design's ``check:`` names (``sizer check``)."""
-    return check_design(load(design, catalogs))
+def _motors(loaded: Sequence[Motor], chosen: Sequence[str] | Sequence[Motor]
+            ) -> tuple[Motor, ...]:
+    """The motors ``override`` sizes: ids selected from ``loaded``, or Motor objects."""
+    if isinstance(chosen, str):
+        raise TypeError("motors: a sequence of ids or Motor objects, not one string")
+    kinds = {isinstance(m, Motor) for m in chosen}
+    if kinds == {True}:
+        return tuple(chosen)  # type: ignore[arg-type]
+    if True in kinds:
+        raise TypeError("motors: all ids or all Motor objects, not both")
+    ids = [str(i) for i in chosen]
+    known = {m.id for m in loaded}
+    unknown = [i for i in dict.fromkeys(ids) if i not in known]
+    if unknown:
+        shown = ", ".join(m.id for m in loaded[:12]) + (", ..." if len(loaded) > 12 else "")
+        raise UserError(f"unknown motor {unknown[0]!r}; loaded motors: {shown or 'none'}",
+                        field="motors")
+    wanted = set(ids)
+    return tuple(m for m in loaded if m.id in wanted)
+
+
+def check_rank_by(rank_by: str | None) -> None:
+    """A UserError (``field="rank_by"``) naming the choices when ``rank_by`` is not a
+    ranking key (sizer.sizing.ranking.RankKey or an alias); None is the mode's default."""
+    from sizer.sizing.ranking import RANK_ALIASES, RankKey
+
+    if rank_by is None:
+        return
+    name = rank_by.strip().lower()
+    if name in RANK_ALIASES or name in {k.value for k in RankKey}:
+        return
+    choices = ", ".join([*(k.value for k in RankKey), *RANK_ALIASES])
+    raise UserError(f"unknown key {rank_by!r}; choose one of {choices}", field="rank_by")
+
+
+def size(design: DesignLike, *, catalogs: Iterable[CatalogRef] = (),
+         rank_by: str | None = None, motors: Sequence[str] | Sequence[Motor] | None = None,
+         laws: Sequence[str] | None = None, envelope: str | None = None,
+         progress: Progress | None = None) -> SizingResult:
+    """Every motor x law (x transmission option) of ``design``, ranked feasible first
+    (``sizer size``; the checks of sec. 6.1, T_min of eq. (6.2) with ``minimize``).
+
+    ``catalogs`` as in :func:`load`; ``motors``, ``laws`` and ``envelope`` as in
+    :func:`override`; ``rank_by`` a ``--rank-by`` key (``size``, ``duration``,
+    ``margin``, ``rms``, ``peak``, ``price``, ``mass``, alias ``power``; None: ``duration``
+    with ``minimize``, else ``size``), checked before any work; ``progress(done, total)``
+    is called per law.
+    """
+    from sizer import sizing  # looked up when called: the engine stays replaceable
+
+    check_rank_by(rank_by)
+    sized = override(load(design, catalogs), motors=motors, laws=laws, envelope=envelope)
+    return sizing.size_design(sized, rank_by=rank_by, progress=progress)
+
+
+def check(design: DesignLike, *, catalogs: Iterable[CatalogRef] = (),
+          envelope: str | None = None) -> CandidateResult:
+    """The result of the motor and law the design's ``check:`` names (``sizer check``):
+    ``feasible`` is the verdict, ``checks`` every limit with its value and margin."""
+    from sizer import sizing
+
+    return sizing.check_design(override(load(design, catalogs), envelope=envelope))
+
+
+def assumptions(design: Design) -> tuple[str, ...]:
+    """What sizing ``design`` assumes, as the notes under a table say it (the envelope
+    rule of motors without curves, the efficiency convention, the inertia ratio's
+    definition...); the same as ``size(design).notes``."""
+    from sizer import sizing
+
+    return sizing.assumptions(design)

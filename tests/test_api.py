@@ -8,6 +8,7 @@ from pathlib import Path
 
 import pytest
 import yaml
+from cli_run import run_cli
 
 import sizer
 from sizer.errors import UserError
@@ -62,3 +63,140 @@ def test_check_gives_the_named_pair():
     checked = sizer.check(sizer.load(data, base=EXAMPLE.parent))
     assert checked.motor == first.motor and checked.feasible == first.feasible
     assert checked.duration == pytest.approx(first.duration, rel=1e-12)
+
+
+# ------------------------------------------------- the CLI is built on the API (issue 11)
+BOOK = ROOT / "examples" / "book" / "ex6_1-6_2.yaml"  # 3 motors x 2 laws, a check pair
+
+
+def _cli_json(*args: str) -> dict:
+    run = run_cli(*args, "--format", "json")
+    assert run.returncode == 0, run.stderr
+    return json.loads(run.stdout)
+
+
+def _same_records(cli: list[dict], api: list[dict]) -> None:
+    """Every field of every API record, as the CLI's JSON gives it, in the same order."""
+    assert len(cli) == len(api) > 1
+    for shown, record in zip(cli, api, strict=True):
+        checks = record.pop("checks")
+        assert {key: shown[key] for key in record} == record
+        assert [{key: c[key] for key in check} for c, check in
+                zip(shown["checks"], checks, strict=True)] == checks
+
+
+def test_the_cli_size_result_is_the_api_result():
+    cli = _cli_json("size", str(BOOK), "--all")
+    result = sizer.size(BOOK)
+    _same_records(cli["results"], result.to_records())
+    assert cli["design"]["notes"] == list(result.notes)
+
+
+def test_the_cli_options_are_the_api_parameters():
+    cli = _cli_json("size", str(BOOK), "--all", "--motor", "ex6_3", "--motor", "ex6_1",
+                    "--envelope", "book", "--rank-by", "margin")
+    result = sizer.size(BOOK, motors=["ex6_1", "ex6_3"], envelope="book", rank_by="margin")
+    assert {r.motor for r in result.results} == {"ex6_1", "ex6_3"}
+    _same_records(cli["results"], result.to_records())
+    assert cli["design"]["notes"] == list(result.notes)
+    assert "rectangular regions up to the rated speed (sec. 6.1.1)" in result.notes[0]
+
+
+def test_the_cli_check_result_is_the_api_result():
+    cli = _cli_json("check", str(BOOK), "--envelope", "book")
+    checked = sizer.check(BOOK, envelope="book")
+    assert cli["passed"] is checked.feasible
+    shown = cli["result"]
+    assert (shown["motor"], shown["spec"], shown["duration"]) == (
+        checked.motor, checked.spec, checked.duration)
+    assert [c["name"] for c in shown["checks"]] == [c.name for c in checked.checks]
+    assert [c["margin"] for c in shown["checks"]] == [c.margin for c in checked.checks]
+
+
+def test_size_takes_a_path_a_dict_and_a_design_alike():
+    from_path = sizer.size(BOOK).to_records()
+    data = yaml.safe_load(BOOK.read_text())
+    assert sizer.size(data).to_records() == from_path  # catalogs by bundled name
+    assert sizer.size(str(BOOK)).to_records() == from_path
+    design = sizer.load(BOOK)
+    assert sizer.size(design).to_records() == from_path
+    assert sizer.size(sizer.load(data)).to_dict() == sizer.size(design).to_dict()
+
+
+def test_motors_as_objects_or_ids_and_laws_replace_the_designs():
+    design = sizer.load(BOOK)
+    motor = next(m for m in design.motors if m.id == "ex6_3")
+    by_id = sizer.size(design, motors=["ex6_3"], laws=["poly5"]).to_records()
+    by_object = sizer.size(design, motors=[motor], laws=["poly5"]).to_records()
+    assert by_id == by_object
+    assert [(r["motor"], r["spec"]) for r in by_id] == [("ex6_3", "polynomial(degree=5)")]
+
+
+def test_progress_is_called_once_per_law():
+    calls: list[tuple[int, int]] = []
+    sizer.size(BOOK, progress=lambda done, total: calls.append((done, total)))
+    laws = len(sizer.load(BOOK).laws)
+    assert calls == [(i, laws) for i in range(laws + 1)]
+
+
+def test_parameter_mistakes_name_the_parameter():
+    with pytest.raises(UserError) as error:
+        sizer.size(ROOT / "missing.yaml", rank_by="speed")  # before the file is read
+    assert error.value.field == "rank_by" and "choose one of size" in error.value.message
+    with pytest.raises(UserError) as error:
+        sizer.size(BOOK, motors=["nope"])
+    assert error.value.field == "motors" and "loaded motors: ex6_1" in error.value.message
+    with pytest.raises(UserError) as error:
+        sizer.check(BOOK, envelope="square")
+    assert error.value.field == "envelope"
+    with pytest.raises(TypeError):
+        sizer.size(sizer.load(BOOK), catalogs=["book-examples"])  # a Design has its motors
+    with pytest.raises(TypeError):
+        sizer.size(BOOK, motors="ex6_1")  # one string is not a list of ids
+
+
+def test_the_notes_are_the_assumptions_of_the_sizing():
+    from sizer import api
+
+    design = sizer.load(BOOK)
+    assert api.assumptions(design) == sizer.size(design).notes
+
+
+@pytest.mark.parametrize("command,calls", [
+    (["size", str(BOOK), "--top", "1"], ["load", "size"]),
+    (["check", str(BOOK)], ["load", "check"]),
+    (["report", str(BOOK), "--best", "0", "-o", "{tmp}/report"], ["load", "size"]),
+    (["plot", str(BOOK), "--motor", "ex6_1", "-o", "{tmp}/plot.svg"], ["load", "size"]),
+])
+def test_the_commands_load_and_size_through_the_api(monkeypatch, tmp_path, command, calls):
+    from sizer import api
+
+    called: list[str] = []
+
+    def spy(name: str):
+        real = getattr(api, name)
+
+        def call(*args, **kwargs):
+            called.append(name)
+            return real(*args, **kwargs)
+        return call
+
+    for name in ("load", "size", "check"):
+        monkeypatch.setattr(api, name, spy(name))
+    run = run_cli(*(part.format(tmp=tmp_path) for part in command))
+    assert run.returncode == 0, run.stderr
+    assert list(dict.fromkeys(called)) == calls  # the design loaded first, then sized
+
+
+def test_the_readme_example_runs(monkeypatch, capsys):
+    """The Python API section's code block, run from the repository root as it stands."""
+    import re
+
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    section = text[text.index("## Python API"):text.index("## Layout")]
+    (code,) = re.findall(r"```python\n(.*?)```", section, re.S)
+    monkeypatch.chdir(ROOT)
+    exec(compile(code, "README.md", "exec"), {})
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].startswith("ex6_1 ") and lines[0].endswith(" True")
+    assert lines[-4:] == ["0/2 laws", "1/2 laws", "2/2 laws", "True"]

@@ -55,7 +55,8 @@ def test_a_crash_in_the_sizing_is_exit_code_3_and_one_line(monkeypatch) -> None:
     monkeypatch.setattr("sizer.sizing.size_design", crash)
     line = assert_internal_error(run_cli("size", EX63), "'sizer size'")
     assert "test_cli_internal_errors.py" not in line  # where in sizer, not in the test
-    assert "sizer/cli/size_command.py" in line
+    # the innermost frame of sizer: the API function the command calls (sizer.api.size)
+    assert "(at sizer/api.py:" in line and " in size)" in line
 
 
 def test_debug_option_shows_the_traceback(monkeypatch) -> None:

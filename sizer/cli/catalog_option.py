@@ -43,12 +43,12 @@ def check_catalog_references(catalogs: Sequence[str], field: str = "--catalog") 
 
 
 def load_design_file(design: Path, catalogs: Sequence[str] | None) -> Design:
-    """The design with its catalogs plus ``--catalog`` ones; a design that names no
-    catalog (and no --catalog) gets the bundled motors."""
+    """The design with its catalogs plus ``--catalog`` ones (sizer.api.load; a design that
+    names no catalog, and no --catalog, gets the bundled motors); its warnings on stderr."""
+    from sizer import api  # lazy: keeps --help fast
     from sizer.cli.app import report_warnings
-    from sizer.io import load_design  # lazy: keeps --help fast
 
     check_catalog_references(catalogs or ())
-    loaded = load_design(design, extra_catalogs=catalogs or (), default_motors=True)
+    loaded = api.load(design, catalogs or ())
     report_warnings(loaded.warnings)
     return loaded

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from dataclasses import replace
 from enum import StrEnum
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated
@@ -87,19 +86,17 @@ def check(
 
 def check_one(design: Path, catalogs: list[str] | tuple[str, ...],
               envelope: str | None = None) -> CheckDocument:
-    """Load a design (with --envelope) and check its chosen pair; UserErrors name the file."""
+    """Load a design (with --envelope) and check its chosen pair (sizer.api); UserErrors
+    name the file."""
+    from sizer import api
     from sizer.report.check_report import CheckDocument
-    from sizer.sizing import assumptions, check_design
 
-    loaded = load_design_file(design, catalogs)
-    if envelope:
-        limits = replace(loaded.limits, envelope=str(envelope))  # type: ignore[arg-type]
-        loaded = replace(loaded, limits=limits)
+    loaded = api.override(load_design_file(design, catalogs), envelope=envelope or None)
     try:
-        result = check_design(loaded)
+        result = api.check(loaded)
     except UserError as error:
         raise error.located(file=str(design)) from None
-    return CheckDocument(result, loaded, assumptions(loaded))
+    return CheckDocument(result, loaded, api.assumptions(loaded))
 
 
 def register(app: typer.Typer) -> None:

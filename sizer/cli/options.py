@@ -23,6 +23,19 @@ def blame_option(field: str) -> Iterator[None]:
         raise error.located(field=field) from None
 
 
+@contextmanager
+def as_option(parameter: str, option: str) -> Iterator[None]:
+    """A UserError that sizer.api raises about its ``parameter`` (``motors``,
+    ``rank_by``...) names the command's ``option`` (``--motor``, ``--rank-by``) instead."""
+    try:
+        yield
+    except UserError as error:
+        if error.field != parameter:
+            raise
+        raise UserError(error.message, file=error.file, line=error.line,
+                        field=option) from None
+
+
 def check_law_specs(specs: list[str] | tuple[str, ...], field: str) -> None:
     """Every spec reads as a law (``auto`` parameters allowed), else a UserError naming
     ``field``: checked before any file is read or any work done."""

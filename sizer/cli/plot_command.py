@@ -9,19 +9,18 @@ from __future__ import annotations
 import re
 import sys
 from collections.abc import Sequence
-from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated
 
 import typer
 
 from sizer.cli.catalog_option import CatalogOption, DesignArgument, load_design_file
-from sizer.cli.options import blame_option, check_law_specs
+from sizer.cli.options import as_option, blame_option, check_law_specs
 from sizer.errors import UserError
 from sizer.report.printable import printable
 
 if TYPE_CHECKING:
-    from sizer.model.domain import Design, Motor
+    from sizer.model.domain import Design
     from sizer.sizing import CandidateResult
 
 FigureOutput = Annotated[
@@ -155,9 +154,10 @@ def plot_pairs(design: Design, motor: str | None = None, laws: Sequence[str] = (
     - laws only: for the check motor if the design names one, else for the motor of the
       best-ranked feasible pair among those laws;
     - both: those.
-    Each law is sized on its own (its ratio or auto shape chosen as in ``sizer size``).
+    Each law is sized on its own (sizer.api.size; its ratio or auto shape chosen as in
+    ``sizer size``).
     """
-    from sizer.sizing import size_design
+    from sizer import api
     from sizer.sizing.ranking import rank
 
     field = "--motor"
@@ -166,11 +166,12 @@ def plot_pairs(design: Design, motor: str | None = None, laws: Sequence[str] = (
     elif motor is None and laws and design.chosen_motor:
         motor, field = design.chosen_motor, "check.motor"
     if motor is not None:
-        design = replace(design, motors=(find_motor(design.motors, motor, field),))
+        with as_option("motors", field):
+            design = api.override(design, motors=[motor])
     laws = tuple(dict.fromkeys(laws))
     if not laws:
-        return [best_of(size_design(design, rank_by).results)]
-    per_law = [size_design(replace(design, laws=(spec,)), rank_by) for spec in laws]
+        return [best_of(api.size(design, rank_by=rank_by).results)]
+    per_law = [api.size(design, laws=[spec], rank_by=rank_by) for spec in laws]
     if motor is None:
         pooled = [r for sizing in per_law for r in sizing.results]
         motor = best_of(rank(pooled, rank_by, per_law[0].mode)).motor
@@ -180,15 +181,6 @@ def plot_pairs(design: Design, motor: str | None = None, laws: Sequence[str] = (
 def best_of(results: Sequence[CandidateResult]) -> CandidateResult:
     """The first feasible result of a ranked list, else the first."""
     return next((r for r in results if r.feasible), results[0])
-
-
-def find_motor(motors: Sequence[Motor], motor_id: str, field: str) -> Motor:
-    found = next((m for m in motors if m.id == motor_id), None)
-    if found is None:
-        shown = ", ".join(m.id for m in motors[:12]) + (", ..." if len(motors) > 12 else "")
-        raise UserError(f"unknown motor {motor_id!r}; loaded motors: {shown or 'none'}",
-                        field=field)
-    return found
 
 
 # ------------------------------------------------------------------- sizer plot-law

@@ -3,21 +3,19 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import replace
 from typing import TYPE_CHECKING, Annotated
 
 import typer
 
 from sizer.cli.catalog_option import CatalogOption, DesignArgument, load_design_file
-from sizer.cli.options import EnvelopeOption, FormatOption, OutputOption
+from sizer.cli.options import EnvelopeOption, FormatOption, OutputOption, as_option
 from sizer.errors import UserError
 from sizer.report.formats import Format
-from sizer.report.printable import printable
 
 if TYPE_CHECKING:
     from pathlib import Path
 
-    from sizer.model.domain import Design, Motor
+    from sizer.model.domain import Design
     from sizer.sizing import SizingResult
 
 RANK_HELP = ("Rank the feasible pairs by size (alias power: the smallest motor first, by "
@@ -80,53 +78,32 @@ def size(
 def load_and_size(design: Path, catalog: Sequence[str] | None, motor: Sequence[str] | None,
                   rank_by: str | None, *, envelope: str | None = None,
                   outputs: Sequence[Path] = ()) -> tuple[Design, SizingResult]:
-    """Load a design (plus --catalog, restricted to --motor ids, with --envelope) and size
-    it; UserErrors of the sizing name the design file. None of the ``outputs`` may be a
-    file the load read (checked before the sizing)."""
+    """Load a design (plus --catalog), restrict it to the --motor ids, with --envelope, and
+    size it (sizer.api); UserErrors of the sizing name the design file. None of the
+    ``outputs`` may be a file the load read (checked before the sizing)."""
+    from sizer import api
     from sizer.cli.output_guard import check_outputs
     from sizer.cli.progress import sizing_progress
-    from sizer.sizing import size_design
 
     check_rank_key(rank_by)  # an unknown key fails before any work
     loaded = load_design_file(design, catalog)
     check_outputs(outputs, loaded.files)
-    if envelope:
-        limits = replace(loaded.limits, envelope=str(envelope))  # type: ignore[arg-type]
-        loaded = replace(loaded, limits=limits)
-    if motor:
-        loaded = replace(loaded, motors=select_motors(loaded.motors, motor))
+    with as_option("motors", "--motor"):
+        loaded = api.override(loaded, motors=motor or None, envelope=envelope or None)
     try:
         with sizing_progress(f"sizing {design.name}") as progress:
-            return loaded, size_design(loaded, rank_by=rank_by, progress=progress)
+            return loaded, api.size(loaded, rank_by=rank_by, progress=progress)
     except UserError as error:
         raise error.located(file=str(design)) from None
 
 
 def check_rank_key(rank_by: str | None, field: str = "--rank-by") -> None:
-    """UserError naming the option and its choices (sizer.sizing.ranking.RankKey) when
+    """UserError naming the option and its choices (sizer.api.check_rank_by) when
     ``rank_by`` is not a key."""
-    from sizer.sizing.ranking import RANK_ALIASES, RankKey
+    from sizer import api
 
-    if rank_by is None:
-        return
-    name = rank_by.strip().lower()
-    if name in RANK_ALIASES or name in {k.value for k in RankKey}:
-        return
-    choices = ", ".join([*(k.value for k in RankKey), *RANK_ALIASES])
-    raise UserError(f"unknown key {printable(repr(rank_by))}; choose one of {choices}",
-                    field=field)
-
-
-def select_motors(motors: Sequence[Motor], ids: Sequence[str]) -> tuple[Motor, ...]:
-    """The motors with the given ids, in catalog order; an unknown id is a UserError."""
-    known = {m.id for m in motors}
-    unknown = [i for i in dict.fromkeys(ids) if i not in known]
-    if unknown:
-        shown = ", ".join(m.id for m in motors[:12]) + (", ..." if len(motors) > 12 else "")
-        raise UserError(f"unknown motor {unknown[0]!r}; loaded motors: {shown or 'none'}",
-                        field="--motor")
-    wanted = set(ids)
-    return tuple(m for m in motors if m.id in wanted)
+    with as_option("rank_by", field):
+        api.check_rank_by(rank_by)
 
 
 def register(app: typer.Typer) -> None:
