@@ -1,11 +1,12 @@
 """A catalog's quantities are converted column by column, with the same floats and errors.
 
-``sizer.io.loader`` converts the motors' quantities of a catalog one column at a time
-(``sizer.units.column_to_si``: one unit conversion per distinct unit of the column) before
-the validation, which then receives floats; values that do not convert or lie outside
-their range are left as written for the validation to word. Here the loaded motors and
-the error messages are compared with the field-by-field validation (the column pass
-switched off), and ``column_to_si`` with ``to_si`` value by value.
+``sizer.io.loader`` reads a catalog in the common form as columns
+(``sizer.io.catalog_table``: one unit conversion per distinct unit of a column,
+``sizer.units.column_to_si``, the ranges checked as arrays, no model per motor); any
+other catalog, and every catalog with a mistake, is validated field by field, which words
+the problem. Here the loaded motors and the error messages are compared with the
+field-by-field validation (the columns switched off), and ``column_to_si`` with ``to_si``
+value by value.
 """
 
 from __future__ import annotations
@@ -18,7 +19,8 @@ import pytest
 
 from sizer import units
 from sizer.errors import UserError
-from sizer.io import loader, read_catalog
+from sizer.io import loader, read_catalog, read_yaml
+from sizer.io.catalog_table import read_table
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -56,7 +58,7 @@ def test_column_to_si_equals_to_si_value_by_value(kind: str) -> None:
 
 
 def _field_by_field(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(loader, "_with_si_columns", lambda source: source)
+    monkeypatch.setattr(loader, "read_table", lambda data: None)
 
 
 def _load(path: Path) -> object:
@@ -69,6 +71,7 @@ def _load(path: Path) -> object:
 def test_bundled_catalogs_load_as_field_by_field(monkeypatch: pytest.MonkeyPatch) -> None:
     paths = [*sorted(ROOT.glob("sizer/catalogs/*.yaml")),
              ROOT / "examples/catalogs/example-servo.yaml"]
+    assert all(read_table(read_yaml(p).data) is not None for p in paths)  # read as columns
     columns = [repr(_load(p)) for p in paths]
     _field_by_field(monkeypatch)
     assert columns == [repr(_load(p)) for p in paths]

@@ -291,7 +291,7 @@ def _bundled_figures() -> list[dict[str, float]]:
 def test_the_bands_are_wide_around_every_bundled_motor():
     # every bundled motor is inside each band with room to spare: at least a factor 2.4
     # (speeds) or 3 (ratios) from its edges, where the band has an edge on that side
-    from sizer.io import plausibility as p
+    from sizer.io import motor_rules as p
 
     figures = _bundled_figures()
     assert len(figures) == 64

@@ -9,7 +9,6 @@ in :mod:`sizer.cli.catalog_command` is a thin layer over them.
     find_motor("SGM7J-02A")                   -> MotorEntry (fields as written, SI motor)
 """
 
-from sizer.catalog_tools.checks import MotorProblem, check_motor
 from sizer.catalog_tools.csv_import import (
     CatalogImportError,
     ColumnMap,
@@ -27,6 +26,7 @@ from sizer.catalog_tools.listing import (
     summarize_catalog,
 )
 from sizer.catalog_tools.validate import ValidationReport, validate_catalogs
+from sizer.io.motor_rules import MotorProblem, check_motor
 
 __all__ = [
     "CatalogImportError",

@@ -27,10 +27,10 @@ from typing import Any
 from pydantic import ValidationError
 
 from sizer.catalog_tools.catalog_yaml import render_catalog
-from sizer.catalog_tools.checks import check_motor
 from sizer.errors import UserError
 from sizer.input_limits import MAX_CATALOG_BYTES
 from sizer.io.files import decode_text, read_user_bytes
+from sizer.io.motor_rules import check_motor
 from sizer.io.validation import all_problems
 from sizer.io.yaml_source import YamlSource
 from sizer.model.inputs import MotorInput

@@ -19,10 +19,10 @@ from typing import Any
 
 from pydantic import ValidationError
 
-from sizer.catalog_tools.checks import check_motor
 from sizer.catalog_tools.findings import Finding
 from sizer.errors import UserError
 from sizer.io.loader import resolve_catalog
+from sizer.io.motor_rules import check_motor
 from sizer.io.validation import all_problems
 from sizer.io.yaml_source import YamlSource, format_path, read_yaml
 from sizer.model.inputs import CatalogFile, MotorInput

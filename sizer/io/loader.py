@@ -15,16 +15,23 @@ import difflib
 import math
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, replace
-from functools import cache
 from importlib import resources
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 from pydantic import BaseModel
 
 from sizer.errors import UserError
 from sizer.input_limits import MAX_DESIGN_BYTES, MAX_DESIGN_NODES
-from sizer.io.motor_checks import impossibilities
+from sizer.io.catalog_table import read_table
+from sizer.io.motor_rules import (
+    MotorProblem,
+    impossibilities,
+    maybe_implausible,
+    maybe_impossible,
+    motor_of,
+)
 from sizer.io.plausibility import bare_number_warnings, motor_warnings
 from sizer.io.transmission import build_transmission
 from sizer.io.validation import validate
@@ -39,23 +46,15 @@ from sizer.mechanics import linear_load
 from sizer.model.domain import Design, Limits, Load, Motor, Task
 from sizer.model.inputs import (
     CatalogFile,
-    CurvePointInput,
     DesignFile,
     LimitsInput,
     LoadInput,
     MotorInput,
     TaskInput,
 )
-from sizer.model.inputs_base import (
-    RangeRef,
-    axis_range,
-    convert_in,
-    field_markers,
-    given_text,
-    show_value,
-)
+from sizer.model.inputs_base import axis_range, convert_in, given_text, show_value
 from sizer.model.ranges import RANGES, check_range, number_text
-from sizer.units import column_to_si, parse_displacement
+from sizer.units import parse_displacement
 
 PathLike = str | Path
 
@@ -154,134 +153,81 @@ class _Located:
     """A motor and where it was defined (for duplicate-id messages)."""
 
     motor: Motor
-    file: str | None
-    line: int | None
-    field: str
+    source: YamlSource
+    at: tuple[Any, ...]
+
+    @property
+    def line(self) -> int | None:
+        return self.source.line_of((*self.at, "id"))
+
+    @property
+    def field(self) -> str:
+        return format_path((*self.at, "id"))
 
 
 def _read_catalog(path: Path, warnings: list[str]) -> list[_Located]:
-    """The motors of a catalog file; warnings about them are appended to ``warnings``."""
+    """The motors of a catalog file; warnings about them are appended to ``warnings``.
+
+    A catalog in the common form is read as columns (:mod:`sizer.io.catalog_table`), the
+    rules that loading applies screened on the columns at once and run on the motors they
+    may concern; any other is validated field by field, which words its first problem.
+    """
     with no_garbage_collection():  # many small objects, none of them garbage
         source = read_yaml(path)
-        catalog = validate(CatalogFile, _with_si_columns(source))
-        if not catalog.motors:
-            raise source.error("the catalog has no motors", ("motors",))
-        located = []
-        for index, item in enumerate(catalog.motors):
-            at = ("motors", index)
-            motor = _motor(item, source, at, manufacturer=catalog.manufacturer,
-                           source_text=catalog.source)
-            warnings += _motor_warnings(motor, source, at)
-            located.append(_Located(motor, source.file, source.line_of((*at, "id")),
-                                    format_path((*at, "id"))))
+        table = read_table(source.data)
+        if table is None:
+            return _validated_catalog(source, warnings)
+        rows = source.data["motors"]
+        for index in np.flatnonzero(maybe_impossible(table.columns)).tolist():
+            _refuse_impossible(table.motors[index], source, ("motors", index))
+        for index in np.flatnonzero(maybe_implausible(table.columns)).tolist():
+            warnings += motor_warnings(source, ("motors", index), rows[index],
+                                       table.motors[index])
+        return [_Located(motor, source, ("motors", index))
+                for index, motor in enumerate(table.motors)]
+
+
+def _validated_catalog(source: YamlSource, warnings: list[str]) -> list[_Located]:
+    """The motors of a catalog validated by its model, field by field."""
+    catalog = validate(CatalogFile, source)
+    if not catalog.motors:
+        raise source.error("the catalog has no motors", ("motors",))
+    located = []
+    for index, item in enumerate(catalog.motors):
+        at = ("motors", index)
+        motor = _motor(item, source, at, manufacturer=catalog.manufacturer,
+                       source_text=catalog.source)
+        warnings += _motor_warnings(motor, source, at)
+        located.append(_Located(motor, source, at))
     return located
-
-
-@cache
-def _quantity_columns() -> tuple[tuple[tuple[str, str], ...], tuple[str, ...],
-                                 tuple[str, str]]:
-    """The motor fields that are ranged quantities (key, range name), the curve fields,
-    and the range names of a curve point's speed and torque (from the input models)."""
-
-    def ranged(model: type[BaseModel], name: str) -> str | None:
-        return next((m.name for m in field_markers(model, name) if isinstance(m, RangeRef)),
-                    None)
-
-    fields = tuple((info.alias or name, found) for name, info in MotorInput.model_fields.items()
-                   if (found := ranged(MotorInput, name)) is not None)
-    point = (ranged(CurvePointInput, "speed"), ranged(CurvePointInput, "torque"))
-    assert None not in point
-    return fields, ("continuous_curve", "intermittent_curve"), point  # type: ignore[return-value]
-
-
-def _with_si_columns(source: YamlSource) -> YamlSource:
-    """``source`` with the motors' quantities converted column by column (one unit
-    conversion per distinct unit of a column, :func:`sizer.units.column_to_si`).
-
-    Only values that convert and lie in their field's range are replaced, by the float
-    the field's validator would give; every other value stays as written, so that the
-    validation words its problem as before. ``source`` itself is left as it is (the
-    warnings name the values as written).
-    """
-    data = source.data
-    motors = data.get("motors") if isinstance(data, dict) else None
-    if not isinstance(motors, list):
-        return source
-    rows = [dict(row) if type(row) is dict else row for row in motors]
-    fields, curves, (speed_range, torque_range) = _quantity_columns()
-
-    def convert(cells: list[tuple[Any, Any]], values: list[Any], name: str) -> None:
-        allowed = RANGES[name]
-        for (holder, key), x in zip(cells, column_to_si(values, allowed.kind), strict=True):
-            if x is not None and allowed.contains(x):
-                holder[key] = x + 0.0
-
-    for key, name in fields:
-        cells = [(row, key) for row in rows if type(row) is dict and key in row]
-        convert(cells, [holder[k] for holder, k in cells], name)
-    speeds: list[tuple[Any, Any]] = []
-    torques: list[tuple[Any, Any]] = []
-    for row in rows:
-        for key in curves:
-            if type(row) is not dict or type(row.get(key)) is not list:
-                continue
-            points = row[key] = [list(p) if type(p) is list else
-                                 dict(p) if type(p) is dict else p for p in row[key]]
-            for point in points:
-                if type(point) is list and len(point) == 2:
-                    speeds.append((point, 0))
-                    torques.append((point, 1))
-                elif type(point) is dict:
-                    speeds += [(point, "speed")] if "speed" in point else []
-                    torques += [(point, "torque")] if "torque" in point else []
-    convert(speeds, [holder[k] for holder, k in speeds], speed_range)
-    convert(torques, [holder[k] for holder, k in torques], torque_range)
-    return YamlSource({**data, "motors": rows}, source.file, source.lines)
 
 
 def _motor(item: MotorInput, source: YamlSource, at: tuple[Any, ...], *,
            manufacturer: str | None = None, source_text: str | None = None) -> Motor:
-    """A Motor from its validated input; an impossible motor (see
-    :mod:`sizer.io.motor_checks`) is refused at its first problem, with its id.
+    """A Motor from its validated input; an impossible motor (the impossible rules of
+    :mod:`sizer.io.motor_rules`) is refused at its first problem, with its id.
     ``manufacturer`` and ``source_text`` are the catalog's, for a motor without its own."""
-    problems = impossibilities(item)
+    motor = motor_of(item)
+    _refuse_impossible(motor, source, at)
+    return replace(motor, source=item.source or source_text,
+                   manufacturer=item.manufacturer or manufacturer)
+
+
+def _refuse_impossible(motor: Motor, source: YamlSource, at: tuple[Any, ...]) -> None:
+    """A UserError at the first impossibility of ``motor`` (defined at ``at``), if any."""
+    problems: list[MotorProblem] = impossibilities(motor)
     if problems:
         first = problems[0]
         more = len(problems) - 1
         tail = f" (and {more} more problem{'s' * (more > 1)} of this motor)" if more else ""
-        raise source.error(f"motor {item.id!r}: {first.message}{tail}", (*at, *first.path))
-    return Motor(
-        id=item.id,
-        inertia=item.inertia,
-        continuous_torque=item.continuous_torque,
-        peak_torque=item.peak_torque,
-        rated_speed=item.rated_speed,
-        max_speed=item.max_speed,
-        continuous_curve=_curve(item.continuous_curve),
-        intermittent_curve=_curve(item.intermittent_curve),
-        damping=item.damping,
-        source=item.source or source_text,
-        part_number=item.part_number,
-        manufacturer=item.manufacturer or manufacturer,
-        price=item.price,
-        mass=item.mass,
-    )
+        raise source.error(f"motor {motor.id!r}: {first.message}{tail}", (*at, *first.path))
 
 
 def _motor_warnings(motor: Motor, source: YamlSource, at: tuple[Any, ...]) -> list[str]:
     given = source.data
     for part in at:
         given = given[part]
-    return motor_warnings(source, at, given, motor.inertia, motor.continuous_torque,
-                          motor.peak_torque, motor.rated_speed, motor.max_speed,
-                          motor.manufacturer)
-
-
-def _curve(points: list[CurvePointInput] | None) -> tuple[tuple[float, float], ...] | None:
-    """The (speed, torque) points of a checked curve."""
-    if points is None:
-        return None
-    return tuple((p.speed, p.torque) for p in points)
+    return motor_warnings(source, at, given, motor)
 
 
 def _check_unique(motors: Iterable[_Located]) -> None:
@@ -289,11 +235,11 @@ def _check_unique(motors: Iterable[_Located]) -> None:
     for item in motors:
         earlier = first.get(item.motor.id)
         if earlier is not None:
-            where = earlier.file or "?"
+            where = earlier.source.file or "?"
             if earlier.line is not None:
                 where += f":{earlier.line}"
             raise UserError(f"duplicate motor id {item.motor.id!r} (first defined at {where})",
-                            file=item.file, line=item.line, field=item.field)
+                            file=item.source.file, line=item.line, field=item.field)
         first[item.motor.id] = item
 
 
@@ -504,8 +450,7 @@ def _design_motors(model: DesignFile, source: YamlSource, folder: Path,
         else:
             motor = _motor(item, source, at)
             warnings += _motor_warnings(motor, source, at)
-            located.append(_Located(motor, source.file,
-                                    source.line_of((*at, "id")), format_path((*at, "id"))))
+            located.append(_Located(motor, source, at))
     for reference in extra_catalogs:
         add_catalog(resolve_catalog(reference, Path.cwd()))
     _check_unique(located)

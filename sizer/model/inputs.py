@@ -4,8 +4,9 @@ They check the shape of a file (known fields, types) and convert every quantity 
 is fixed to an SI float with :func:`sizer.units.to_si` ("3000 rpm" -> 314.159...). The
 quantities whose kind depends on the axis (a rotary or a linear load) stay as given and are
 converted by :mod:`sizer.io.loader`, which also runs the checks that span several fields
-(curve order, max speed >= rated speed, ...) and builds the domain objects of
-:mod:`sizer.model.domain`.
+(curve order, max speed >= rated speed, ...: the rules of :mod:`sizer.io.motor_rules`) and
+builds the domain objects of :mod:`sizer.model.domain`; a catalog in the common form is
+read as columns without these models (:mod:`sizer.io.catalog_table`), to the same motors.
 
 Validators raise ValueError with a one-line message; the loader turns pydantic's
 ValidationError into a UserError at the file, line and field.

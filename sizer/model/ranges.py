@@ -18,6 +18,8 @@ import re
 import sys
 from dataclasses import dataclass
 
+import numpy as np
+
 from sizer.units import KINDS
 
 
@@ -58,12 +60,14 @@ class Range:
 
     def contains(self, x: float) -> bool:
         """True if ``x`` (SI) is allowed."""
-        if not math.isfinite(x):
-            return False
-        if x == 0.0:
-            return self.zero or (self.low == 0.0 and not self.signed)
-        size = abs(x) if self.signed else x
-        return self.low <= size <= self.high
+        return bool(self.contains_all(np.float64(x)))
+
+    def contains_all(self, x: np.ndarray) -> np.ndarray:
+        """:meth:`contains` of each value of an array (SI), as a boolean array."""
+        size = np.abs(x) if self.signed else x
+        inside = (self.low <= size) & (size <= self.high)
+        zero = self.zero or (self.low == 0.0 and not self.signed)
+        return np.where(x == 0.0, zero, inside) & np.isfinite(x)
 
     def text(self) -> str:
         """'in [1e-6, 1e6] s', '0 or in [...]', '0 or of magnitude in [...]'."""
