@@ -42,7 +42,8 @@ GRADED_DECADES = 12
 """Decades of geometric grading toward a fine point or a steep end (one edge a decade)."""
 
 CONVERGED = 1e-15
-"""Relative agreement of two successive levels at which a piece's rule is accepted."""
+"""Relative agreement of two successive levels at which a base interval's level is
+accepted."""
 
 STALLED = 1e-12
 """Largest change between levels read as rounding when halving stops cutting it."""
@@ -75,8 +76,8 @@ class PieceIntervals:
     nodes: int
 
     def gauss(self, nodes: int | None = None) -> tuple[np.ndarray, np.ndarray]:
-        """Nodes and weights, arrays (intervals, nodes): ``nodes`` (at least the piece's
-        own count, still exact) or the piece's own count."""
+        """Nodes and weights, arrays (intervals, nodes), with the piece's own node count
+        or a larger ``nodes`` (as exact: the engine's rectangular grid)."""
         return gauss(self.edges, self.nodes if nodes is None else nodes)
 
 
@@ -187,8 +188,10 @@ def _refined(law: MotionLaw, index: int, base: np.ndarray) -> np.ndarray:
             change = new_change
         previous = sums
     parts = 2**level
-    edges = [base[j] + width[j] * np.arange(parts[j]) / parts[j] for j in range(count)]
-    return np.append(np.concatenate(edges), base[-1])
+    first = np.repeat(np.cumsum(parts) - parts, parts)  # each part's interval's first part
+    step = np.arange(first.size) - first
+    edges = np.repeat(base[:-1], parts) + np.repeat(width / parts, parts) * step
+    return np.append(edges, base[-1])
 
 
 def _interval_sums(law: MotionLaw, index: int, base: np.ndarray, level: int) -> np.ndarray:
