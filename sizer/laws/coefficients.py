@@ -2,11 +2,11 @@
 
 C_v = max|q_N'|, C_a = max|q_N''|, C_j = max|q_N'''| inside the smooth pieces, and
 C_v_rms, C_a_rms the RMS values over [0, 1]. Peaks are found exactly: the candidates
-are every point of a scan grid of each piece (its ends included, one-sided), the roots
-of the next derivative inside it (brentq) and a bounded search around each local maximum
-of the samples; the grid is graded toward the piece ends and the law's fine points.
-RMS values are the law's fixed Gauss-Legendre rule (sizer.laws.quadrature: exact on
-polynomial pieces). scipy is imported by the functions that use it, not at import time.
+are every point of a scan grid of each piece (its ends included, one-sided) and the
+roots of the next derivative inside it (the project's one root finder,
+sizer.numerics.roots, on all sign changes of a piece at once); the grid is graded toward
+the piece ends and the law's fine points. RMS values are the law's fixed Gauss-Legendre
+rule (sizer.laws.quadrature: exact on polynomial pieces). No scipy.
 Where the acceleration jumps (between pieces, or against rest at tau = 0 and 1) the
 jerk has an impulse: those jumps are reported, and ``jerk_bounded`` is False.
 """
@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from sizer.laws.base import MotionLaw, Piece
+from sizer.numerics.roots import illinois
 
 GRID_PER_PIECE = 256
 """Uniform sub-intervals per piece scanned for sign changes of the next derivative."""
@@ -27,9 +28,6 @@ GRID_PER_PIECE = 256
 END_REFINEMENT = 12
 """Decades of geometric refinement toward each piece end (laws like the exponential one
 have their steepest features within 1e-6 of the ends)."""
-
-REFINED_MAXIMA = 16
-"""Local maxima of the samples refined by a bounded search, largest first, per piece."""
 
 JUMP_TOLERANCE = 1e-9
 """Relative size below which a difference of one-sided limits is rounding, not a jump."""
@@ -83,9 +81,9 @@ def peak(law: MotionLaw, order: int) -> tuple[float, float]:
     """max |q_N^(order)| over the smooth pieces and the tau where it occurs.
 
     Each piece is evaluated on its own (one-sided values at both sides of every
-    breakpoint). The candidates are every point of its scan grid, the roots of the next
-    derivative inside each sign change, and a bounded search around each local maximum
-    of the samples: a peak exactly on a grid point or a piece end is a candidate itself,
+    breakpoint). The candidates are every point of its scan grid and the roots of the
+    next derivative inside each sign change of its samples, where the value is then
+    evaluated: a peak exactly on a grid point or a piece end is a candidate itself,
     whatever the rounding of the next derivative there.
     """
     best_value, best_tau = -1.0, 0.0
@@ -102,67 +100,32 @@ def _peak_candidates(law: MotionLaw, index: int, order: int) -> np.ndarray:
     """Points of a piece where |q_N^(order)| may peak (its grid points among them).
 
     On a polynomial piece whose derivative of this order is linear or constant the ends
-    are the only candidates; on another polynomial piece the grid points and the roots of
-    the next derivative's interpolant (exact; no search, no scipy). Other pieces: the
-    grid, brentq on the next derivative's sign changes and a bounded search.
+    are the only candidates. On any other piece: the scan grid and the roots of the next
+    derivative in each sign change of its samples (a maximum of |f| inside a smooth piece
+    is a root of f'; no scalar search).
     """
     piece = law.pieces[index]
     degree = piece.degree
     if degree is not None and degree - order <= 1:
         return np.array([piece.start, piece.end])
+    if order >= law.max_order:
+        raise ValueError(f"{law.law_id}: the peak of order {order} needs the derivative of "
+                         f"order {order + 1}, above the law's {law.max_order}")
     grid = scan_grid(piece, toward=law.fine_points())
-    if degree is not None:  # exact: the stationary points are the roots of a polynomial
-        return np.concatenate((grid, _polynomial_roots(law, index, order + 1,
-                                                       degree - order - 1)))
-    from scipy import optimize
-
-    points = [grid]
-    if order + 1 <= law.max_order:
-        slope = law.piece_derivative(index, grid, order + 1)
-
-        def f(x: float) -> float:
-            return float(law.piece_derivative(index, np.array([x]), order + 1)[0])
-
-        for k in np.nonzero(slope[:-1] * slope[1:] < 0.0)[0]:
-            points.append(np.array([optimize.brentq(f, grid[k], grid[k + 1], xtol=1e-15,
-                                                    rtol=1e-15)]))
-    points.append(_refined_maxima(law, index, order, grid))
-    return np.concatenate(points)
+    return np.concatenate((grid, _stationary_points(law, index, order, grid)))
 
 
-def _polynomial_roots(law: MotionLaw, index: int, order: int, degree: int) -> np.ndarray:
-    """The real roots inside a polynomial piece of its derivative of ``order`` (itself a
-    polynomial of ``degree``): interpolated exactly at degree + 1 Chebyshev points of the
-    piece, then the roots of that interpolant (numpy's companion matrix)."""
-    piece = law.pieces[index]
-    k = np.arange(degree + 1)
-    nodes = np.cos(np.pi * (k + 0.5) / (degree + 1))  # Chebyshev points on [-1, 1]
-    half, mid = 0.5 * (piece.end - piece.start), 0.5 * (piece.end + piece.start)
-    values = law.piece_derivative(index, mid + half * nodes, order)
-    series = np.polynomial.Chebyshev.fit(nodes, values, degree, domain=[-1, 1])
-    roots = series.roots()
-    real = roots[np.abs(roots.imag) <= 1e-9].real
-    return mid + half * real[(real >= -1.0) & (real <= 1.0)]
-
-
-def _refined_maxima(law: MotionLaw, index: int, order: int, grid: np.ndarray) -> np.ndarray:
-    """Bounded Brent maximization of |f| around the largest local maxima of the samples."""
-    from scipy import optimize
-
-    values = np.abs(law.piece_derivative(index, grid, order))
-    padded = np.concatenate(([-np.inf], values, [-np.inf]))
-    mid, left, right = padded[1:-1], padded[:-2], padded[2:]
-    local = np.nonzero(((mid > left) & (mid >= right)) | ((mid >= left) & (mid > right)))[0]
-    local = local[np.argsort(values[local])[::-1][:REFINED_MAXIMA]]
-    found = []
-    for k in local:
-        lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, len(grid) - 1)]
-        result = optimize.minimize_scalar(
-            lambda x: -abs(float(law.piece_derivative(index, np.array([x]), order)[0])),
-            bounds=(lo, hi), method="bounded", options={"xatol": 1e-15 * max(1.0, abs(hi))},
-        )
-        found.append(float(result.x))
-    return np.array(found)
+def _stationary_points(law: MotionLaw, index: int, order: int,
+                       grid: np.ndarray) -> np.ndarray:
+    """The roots of q_N^(order + 1) in every sign change of its samples on ``grid``, all
+    brackets of the piece at once (sizer.numerics.roots.illinois, to an ulp or so): the
+    interior extrema of q_N^(order), where its value is then evaluated."""
+    slope = law.piece_derivative(index, grid, order + 1)
+    k = np.nonzero(slope[:-1] * slope[1:] < 0.0)[0]
+    if not k.size:
+        return k.astype(float)
+    return illinois(lambda x: law.piece_derivative(index, x, order + 1), grid[k], grid[k + 1],
+                    slope[k], slope[k + 1])
 
 
 def scan_grid(piece: Piece, uniform: int = GRID_PER_PIECE, toward: Sequence[float] = (),

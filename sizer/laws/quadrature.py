@@ -1,20 +1,25 @@
-"""The one integration scheme of a law: fixed Gauss-Legendre nodes per smooth piece.
+"""The one integration scheme of a law: Gauss-Legendre nodes on intervals of its pieces.
 
-Integrals over a move (the RMS coefficients of sec. 6.2, and any integral the sizing
-engine needs of q_N and its derivatives) are weighted sums over these nodes, built once
-per law (``MotionLaw.quadrature``).
+Integrals over a move (the RMS coefficients of sec. 6.2, and the integrals the sizing
+engine needs of q_N and its derivatives: sizer.sizing.grid) are weighted sums over the
+nodes of a law's intervals. The intervals and nodes are defined here once (the grading
+rules, the node counts, the level of refinement); the callers only choose how many
+uniform intervals a piece starts from (:class:`Resolution`).
 
-- A polynomial piece of degree d (trapezoid, double S, polynomial laws) gets one
-  interval with d + 1 nodes: exact for the square of q_N and of every derivative
-  (a polynomial of degree <= 2d <= 2(d + 1) - 1).
+- A polynomial piece of degree d (trapezoid, double S, polynomial laws) gets its uniform
+  intervals (one for the laws' coefficients) with the fewest nodes exact for the square
+  of every derivative of q_N from a lowest order on: the square of q_N^(k) has degree
+  2(d - k), and n nodes are exact to degree 2n - 1, so n = d - k + 1 (d + 1 from q_N
+  itself, d from the velocity on).
 - Any other piece (sines, the exponential, elliptic, modified cycloidal laws) is cut into
-  base intervals (a few uniform ones, graded by decades toward the law's fine points, and
-  toward the piece ends for laws with steep ends), each split into 2^k equal parts with
-  NODES nodes on each. k is the first level at which the integrals of v_N^2 and a_N^2
-  over the piece agree with the previous level to CONVERGED relative, or at which the
-  change stops shrinking (the Gauss rules converge like h^(2 NODES) on analytic pieces,
-  so a change that halving does not cut by 16 is the rounding of the law's own values,
-  e.g. an elliptic law with n = 1000): a fixed rule, chosen once per law.
+  base intervals (uniform ones, graded by decades toward the law's fine points, and
+  toward the piece ends for laws with steep ends), each split into its own 2^k equal parts
+  with NODES nodes on each. k is the first level whose integrals of v_N^2 and a_N^2 over
+  the base interval agree with the next level's to CONVERGED of its share of the piece,
+  or past which the change stops shrinking while below STALLED (the Gauss rules converge
+  like h^(2 NODES) on analytic pieces, so a change that halving does not cut by 16 is the
+  rounding of the law's own values, e.g. an elliptic law with n = 1000): a fixed rule,
+  chosen once per law and resolution.
 """
 
 from __future__ import annotations
@@ -26,20 +31,54 @@ from numpy.polynomial.legendre import leggauss
 
 from sizer.laws.base import MotionLaw, Piece
 
-NODES = 20
+NODES = 12
 """Gauss-Legendre nodes per interval of a non-polynomial piece."""
 
 BASE_INTERVALS = 4
-"""Uniform base intervals of a non-polynomial piece before grading and splitting."""
+"""Uniform base intervals of a non-polynomial piece (the laws' rule) before grading and
+splitting."""
 
 GRADED_DECADES = 12
-"""Decades of geometric grading toward a fine point or a steep end (two edges a decade)."""
+"""Decades of geometric grading toward a fine point or a steep end (one edge a decade)."""
 
 CONVERGED = 1e-15
-"""Relative agreement of two successive levels at which a piece's rule is accepted."""
+"""Relative agreement of two successive levels at which a base interval's level is
+accepted."""
+
+STALLED = 1e-12
+"""Largest change between levels read as rounding when halving stops cutting it."""
 
 MAX_LEVEL = 8
-"""Most halvings of the base intervals (2^8 parts each)."""
+"""Most halvings of a base interval (2^8 parts)."""
+
+
+@dataclass(frozen=True)
+class Resolution:
+    """How finely a caller wants a law cut: the uniform intervals a polynomial piece gets
+    (exact with one) and those a non-polynomial piece starts from, and the lowest order
+    of derivative whose square must be exact on polynomial pieces."""
+
+    polynomial_intervals: int = 1
+    smooth_intervals: int = BASE_INTERVALS
+    lowest_order: int = 0
+
+
+LAW_RESOLUTION = Resolution()
+"""The laws' own rule: one interval per polynomial piece, exact for q_N^2 and up."""
+
+
+@dataclass(frozen=True)
+class PieceIntervals:
+    """The intervals of one piece (``edges``, increasing) and the nodes on each."""
+
+    index: int
+    edges: np.ndarray
+    nodes: int
+
+    def gauss(self, nodes: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """Nodes and weights, arrays (intervals, nodes), with the piece's own node count
+        or a larger ``nodes`` (as exact: the engine's rectangular grid)."""
+        return gauss(self.edges, self.nodes if nodes is None else nodes)
 
 
 @dataclass(frozen=True)
@@ -68,30 +107,42 @@ class QuadratureRule:
 def quadrature_rule(law: MotionLaw) -> QuadratureRule:
     """The fixed rule of a law (use ``law.quadrature``, which caches it)."""
     taus, weights = [], []
-    for index, piece in enumerate(law.pieces):
-        tau, weight = _piece_rule(law, index, piece)
-        taus.append(tau)
-        weights.append(weight)
+    for part in law_intervals(law, LAW_RESOLUTION):
+        tau, weight = part.gauss()
+        taus.append(tau.ravel())
+        weights.append(weight.ravel())
     sizes = [len(t) for t in taus]
     bounds = np.concatenate(([0], np.cumsum(sizes)))
     piece = np.repeat(np.arange(len(sizes)), sizes)
     return QuadratureRule(np.concatenate(taus), np.concatenate(weights), piece, bounds)
 
 
-def _gauss(edges: np.ndarray, nodes: int) -> tuple[np.ndarray, np.ndarray]:
-    """Composite Gauss-Legendre nodes and weights over the intervals of ``edges``."""
+def law_intervals(law: MotionLaw, resolution: Resolution = LAW_RESOLUTION
+                  ) -> list[PieceIntervals]:
+    """The intervals and node counts of every piece of a law, in order."""
+    return [piece_intervals(law, index, resolution) for index in range(len(law.pieces))]
+
+
+def exact_nodes(degree: int, lowest_order: int) -> int:
+    """Gauss-Legendre nodes exact for the square of q_N^(k), k >= lowest_order, on a
+    polynomial piece of this degree (degree 2(d - k) <= 2n - 1)."""
+    return max(1, degree - lowest_order + 1)
+
+
+def gauss(edges: np.ndarray, nodes: int) -> tuple[np.ndarray, np.ndarray]:
+    """Composite Gauss-Legendre nodes and weights, arrays (intervals, nodes)."""
     x, w = leggauss(nodes)
     half = 0.5 * np.diff(edges)
     mid = 0.5 * (edges[:-1] + edges[1:])
-    return (mid[:, None] + half[:, None] * x).ravel(), (half[:, None] * w).ravel()
+    return mid[:, None] + half[:, None] * x, half[:, None] * w
 
 
-def base_edges(law: MotionLaw, piece: Piece) -> np.ndarray:
+def base_edges(law: MotionLaw, piece: Piece, uniform: int = BASE_INTERVALS) -> np.ndarray:
     """Uniform edges over a piece, graded by decades toward the law's fine points in it
     (both sides) and toward the piece ends for laws with steep ends."""
     width = piece.end - piece.start
-    graded = width * 10.0 ** -np.arange(1.0, GRADED_DECADES + 0.25, 0.5)
-    parts = [np.linspace(piece.start, piece.end, BASE_INTERVALS + 1)]
+    graded = width * 10.0 ** -np.arange(1.0, GRADED_DECADES + 0.5, 1.0)
+    parts = [np.linspace(piece.start, piece.end, uniform + 1)]
     if law.steep_ends:
         parts += [piece.start + graded, piece.end - graded]
     for point in law.fine_points():
@@ -101,23 +152,56 @@ def base_edges(law: MotionLaw, piece: Piece) -> np.ndarray:
     return np.unique(edges[(edges >= piece.start) & (edges <= piece.end)])
 
 
-def _piece_rule(law: MotionLaw, index: int, piece: Piece) -> tuple[np.ndarray, np.ndarray]:
+def piece_intervals(law: MotionLaw, index: int,
+                    resolution: Resolution = LAW_RESOLUTION) -> PieceIntervals:
+    """The intervals of one piece and the nodes on each (the rules of the module doc)."""
+    piece = law.pieces[index]
     if piece.degree is not None:
-        return _gauss(np.array([piece.start, piece.end]), piece.degree + 1)
-    base = base_edges(law, piece)
-    previous, change = None, None
-    for level in range(MAX_LEVEL + 1):
-        parts = 2**level
-        steps = np.arange(parts) / parts
-        edges = np.append((base[:-1, None] + np.diff(base)[:, None] * steps).ravel(), base[-1])
-        tau, weight = _gauss(edges, NODES)
-        sums = np.array([law.piece_derivative(index, tau, order) ** 2 @ weight
-                         for order in (1, 2)])
+        edges = np.linspace(piece.start, piece.end, resolution.polynomial_intervals + 1)
+        return PieceIntervals(index, edges, exact_nodes(piece.degree, resolution.lowest_order))
+    return PieceIntervals(index, _refined(law, index, base_edges(law, piece,
+                                                                 resolution.smooth_intervals)),
+                          NODES)
+
+
+def _refined(law: MotionLaw, index: int, base: np.ndarray) -> np.ndarray:
+    """The base intervals of a smooth piece, each split into its own 2^k equal parts."""
+    count = len(base) - 1
+    width = np.diff(base)
+    level = np.full(count, MAX_LEVEL)
+    open_ = np.ones(count, dtype=bool)
+    previous = change = None
+    for k in range(MAX_LEVEL + 1):
+        sums = _interval_sums(law, index, base, k)  # (2, count): v_N^2 and a_N^2
         if previous is not None:
-            new_change = np.abs(sums - previous) / np.maximum(np.abs(sums), 1e-300)
-            if np.all(new_change <= CONVERGED) or (
-                    change is not None and np.all(new_change > change / 16.0)):
+            # the change is the coarser level's error (the finer one's is far smaller)
+            # relative to the interval's share of the piece, at least an average share
+            share = np.maximum(sums, sums.sum(axis=1, keepdims=True) / count)
+            new_change = np.abs(sums - previous) / np.maximum(share, 1e-300)
+            done = np.all(new_change <= CONVERGED, axis=0)
+            if change is not None:  # rounding: halving no longer cuts the change
+                done |= np.all((new_change > change / 16.0) & (new_change <= STALLED), axis=0)
+            level[open_ & done] = k - 1
+            open_ &= ~done
+            if not open_.any():
                 break
             change = new_change
         previous = sums
-    return tau, weight
+    parts = 2**level
+    first = np.repeat(np.cumsum(parts) - parts, parts)  # each part's interval's first part
+    step = np.arange(first.size) - first
+    edges = np.repeat(base[:-1], parts) + np.repeat(width / parts, parts) * step
+    return np.append(edges, base[-1])
+
+
+def _interval_sums(law: MotionLaw, index: int, base: np.ndarray, level: int) -> np.ndarray:
+    """Integrals of v_N^2 and a_N^2 over each base interval, cut into 2^level parts."""
+    parts = 2**level
+    steps = np.arange(parts + 1) / parts
+    edges = (base[:-1, None] + np.diff(base)[:, None] * steps)  # (count, parts + 1)
+    x, w = leggauss(NODES)
+    half = 0.5 * np.diff(edges, axis=1)
+    tau = (0.5 * (edges[:, :-1] + edges[:, 1:]))[..., None] + half[..., None] * x
+    weight = half[..., None] * w
+    return np.stack([np.sum(law.piece_derivative(index, tau, order) ** 2 * weight, axis=(1, 2))
+                     for order in (1, 2)])

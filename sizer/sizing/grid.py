@@ -1,9 +1,12 @@
 """A law's fixed sampling and quadrature grid on [0, 1], computed once per law.
 
-Each piece is cut into base intervals (uniform, graded toward the ends for laws with
-steep ends); each interval carries Gauss-Legendre nodes and weights and the one-sided
-values of the normalized velocity and acceleration at its ends. Polynomial pieces of
-the trapezoid or double S are integrated exactly; smooth pieces to machine precision.
+The intervals and nodes are the law's one integration scheme (sizer.laws.quadrature) at
+the engine's resolution (ENGINE_RESOLUTION); each interval carries Gauss-Legendre nodes
+and weights and the one-sided values of the normalized velocity and acceleration at its
+ends. Polynomial pieces (trapezoid, double S, polynomial laws) are integrated exactly
+with few nodes (their degree plus one), the other pieces to machine
+precision; all intervals of a law carry the same count (the largest its pieces need:
+arrays are rectangular).
 """
 
 from __future__ import annotations
@@ -12,16 +15,28 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
-from numpy.polynomial.legendre import leggauss
 
 from sizer.laws import MotionLaw
+from sizer.laws.quadrature import Resolution, law_intervals
 
-INTERVALS_PER_PIECE = 16
-NODES = 12
-GRADED_DECADES = np.arange(2.0, 11.0)
-FINE_DECADES = np.arange(1.0, 11.0, 0.25)
-"""Graded edges toward a law's fine points: four per decade, from 1e-1 to 1e-10 of the
-piece width (the profile varies there on scales down to its distance from the point)."""
+POLYNOMIAL_INTERVALS = 16
+"""Uniform intervals per polynomial piece. One would be exact for the integrals, but the
+engine needs more (sizer.sizing.cycle): it finds the power-flow reversals of a stage
+inside a move from the signs of the output torque at interval ends (a reversal and its
+return within one interval go unseen: with one interval per piece the RMS torque of
+3-4-5 and 4-5-6-7 laws through a reversing stage was 5e-4 low against
+tests/scalar_reference.py), and it samples the load's torque at the nodes without
+refinement (then 4.5e-3 below its peak on a 3-4-5 law, tests/test_exact_peaks.py
+allows 1e-3)."""
+
+SMOOTH_INTERVALS = 16
+"""Uniform base intervals per non-polynomial piece (before grading and halving), for
+the same reasons."""
+
+ENGINE_RESOLUTION = Resolution(POLYNOMIAL_INTERVALS, SMOOTH_INTERVALS)
+"""Node counts as the laws' own rule: d + 1 on a polynomial piece of degree d, exact for
+q_N^2 and up (d would do for the torques' squares, but the load's torque sampled at the
+nodes of a 3-4-5 law then misses its peak by 1.3e-3, 6.8e-4 with d + 1)."""
 
 
 @dataclass(frozen=True)
@@ -44,35 +59,17 @@ class LawGrid:
         return len(self.left)
 
 
-def _edges(law: MotionLaw, start: float, end: float) -> np.ndarray:
-    """Uniform edges over a piece, graded by decades toward its ends (steep_ends laws)
-    and toward the law's fine points inside or at the ends of the piece."""
-    edges = [np.linspace(start, end, INTERVALS_PER_PIECE + 1)]
-    graded = (end - start) * 10.0**-GRADED_DECADES
-    if law.steep_ends:
-        edges += [start + graded, end - graded]
-    fine = (end - start) * 10.0**-FINE_DECADES
-    for point in law.fine_points():
-        if start <= point <= end:
-            edges += [np.array([point]), point - fine, point + fine]
-    edges = np.concatenate(edges)
-    return np.unique(edges[(edges >= start) & (edges <= end)])
-
-
 @lru_cache(maxsize=256)
 def law_grid(law: MotionLaw) -> LawGrid:
     """The grid of a law (cached: laws hash by their canonical spec)."""
-    x, w = leggauss(NODES)
-    lefts, rights, pieces = [], [], []
-    for index, piece in enumerate(law.pieces):
-        edges = _edges(law, piece.start, piece.end)
-        lefts.append(edges[:-1])
-        rights.append(edges[1:])
-        pieces.append(np.full(len(edges) - 1, index))
-    left, right, piece = np.concatenate(lefts), np.concatenate(rights), np.concatenate(pieces)
-    half = 0.5 * (right - left)
-    nodes = (0.5 * (left + right))[:, None] + half[:, None] * x
-    weights = half[:, None] * w
+    parts = law_intervals(law, ENGINE_RESOLUTION)
+    count = max(part.nodes for part in parts)
+    rules = [part.gauss(count) for part in parts]
+    left = np.concatenate([part.edges[:-1] for part in parts])
+    right = np.concatenate([part.edges[1:] for part in parts])
+    piece = np.concatenate([np.full(len(part.edges) - 1, part.index) for part in parts])
+    nodes = np.concatenate([tau for tau, _ in rules])
+    weights = np.concatenate([weight for _, weight in rules])
     end_v = np.empty((len(left), 2))
     end_a = np.empty((len(left), 2))
     for index in range(len(law.pieces)):

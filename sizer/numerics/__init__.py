@@ -1,0 +1,6 @@
+"""Numerical building blocks shared by the laws and the sizing engine (pure numpy).
+
+- :mod:`sizer.numerics.roots`: the project's one bracketing root finder (Illinois).
+- :mod:`sizer.numerics.golden`: the golden-section step of the bracketed extremum
+  searches (used where no derivative of the objective is available).
+"""
