@@ -129,9 +129,18 @@ class LinearPeaks:
         self.piece = np.repeat(np.arange(len(grids)), [len(g) for g in grids])
         self.v, self.a, self.j, self.snap = (piece_values(law, self.tau, self.piece, order)
                                              for order in (1, 2, 3, 4))
-        snap = self.snap
         self.first = np.concatenate(([True], self.piece[1:] != self.piece[:-1]))
         self.last = np.concatenate((self.piece[1:] != self.piece[:-1], [True]))
+        # a piece of constant acceleration (zero jerk: the trapezoid's) is a straight
+        # segment of the curve, whose hull is its two ends: the samples between go
+        jerkless = np.ones(len(grids), dtype=bool)
+        np.logical_and.at(jerkless, self.piece, self.j == 0.0)
+        keep = ~jerkless[self.piece] | self.first | self.last
+        if not keep.all():
+            self.tau, self.piece, self.v, self.a, self.j, self.snap, self.first, self.last = (
+                x[keep] for x in (self.tau, self.piece, self.v, self.a, self.j, self.snap,
+                                  self.first, self.last))
+        snap = self.snap
         # second-order bound of what the samples miss of a maximum inside an interval
         inner = ~self.last[:-1]
         width2 = np.diff(self.tau)[inner] ** 2 / 8.0
