@@ -25,7 +25,7 @@ from sizer.mechanics import Drive
 from sizer.model import Transmission
 from sizer.sizing.cycle import CycleCalculator
 from sizer.sizing.motors import MotorArrays
-from sizer.sizing.peak_duration import peak_duration, region_lines
+from sizer.sizing.peak_duration import peak_duration
 
 BRUTE = 400_001
 
@@ -108,7 +108,7 @@ def test_region_lines_of_a_concave_and_a_convex_region():
 
     concave = ((0.0, 3.0), (100.0, 3.0), (200.0, 2.0), (300.0, 0.5))
     convex = ((0.0, 3.0), (100.0, 1.0), (200.0, 0.8))
-    alpha, sigma, is_concave = region_lines(RegionTable([concave, convex]))
+    alpha, sigma, is_concave = RegionTable([concave, convex]).lines()
     assert list(is_concave) == [True, False]
     np.testing.assert_allclose(alpha[0], [3.0, 4.0, 5.0])
     np.testing.assert_allclose(sigma[0], [0.0, -0.01, -0.015])

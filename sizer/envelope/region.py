@@ -42,6 +42,10 @@ _BRUTE_FORCE_CELLS = 2**25
 counted directly; beyond, searched (memory bounded by the samples alone)."""
 
 
+_CONCAVE_TOLERANCE = 1e-12
+"""Relative rise of a segment's slope still read as concave (rounding of the corners)."""
+
+
 class RegionTable:
     """The regions of many motors as padded arrays, evaluated for all of them at once."""
 
@@ -106,6 +110,28 @@ class RegionTable:
         index -= (index > 0) & (flat < self.speeds[rows, index])
         index += (index < width - 2) & (flat >= self.speeds[rows, index + 1])
         return index
+
+    def lines(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(alpha, sigma, concave): per candidate and segment lines alpha + sigma * speed that
+        lie on or above the region at every speed up to its end (alpha inf where a segment is
+        no such line), and whether the region is the minimum of them (concave).
+
+        A concave region is the minimum of its segments' lines; any other region keeps one
+        line, flat at its largest torque.
+        """
+        s, t = self.speeds, self.torques
+        with np.errstate(divide="ignore", invalid="ignore"):
+            sigma = np.diff(t, axis=1) / np.diff(s, axis=1)
+        alpha = t[:, :-1] - sigma * s[:, :-1]
+        inside = s[:, :-1] < self.max_speed[:, None]
+        inside[:, 0] = True
+        rise = np.diff(np.where(inside, sigma, -np.inf), axis=1)
+        scale = np.abs(t).max(axis=1, keepdims=True) / np.maximum(self.max_speed[:, None], 1e-300)
+        concave = np.all((rise <= _CONCAVE_TOLERANCE * scale) | ~inside[:, 1:], axis=1)
+        alpha = np.where(inside & concave[:, None], alpha, np.inf)
+        sigma = np.where(inside & concave[:, None], sigma, 0.0)
+        alpha[~concave, 0] = t[~concave].max(axis=1)
+        return alpha, sigma, concave
 
     def limit_clipped(self, speed: np.ndarray) -> np.ndarray:
         """Torque limit with the speed clipped into the region (speed is checked apart)."""

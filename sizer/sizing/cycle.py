@@ -446,18 +446,16 @@ class CycleCalculator:
         """The peak ratio |tau|/tau_int(speed) of the candidates at ``rows`` against a
         concave region, exactly; returns where it was found (written into ``ratio``).
 
-        A concave region is the minimum of its segments' lines (sizer.sizing.peak_duration
-        .region_lines), so the ratio is the largest over the lines the move reaches of
-        |tau| over the line: for the torque's functions L_k a linear-fractional peak each
+        A concave region is the minimum of its segments' lines (RegionTable.lines), so
+        the ratio is the largest over the lines the move reaches of |tau| over the line:
+        for the torque's functions L_k a linear-fractional peak each
         (LinearPeaks.ratio_maximum); for -tau = min_k(-L_k) the smallest of the -L_k
         peaks, exact where its function is the torque at its maximizer (as for the torque
         minimum in :meth:`_exact_peaks`). Candidates whose region is not concave, whose
         move leaves the region or reaches a line's zero are left to the grid search.
         """
-        from sizer.sizing.peak_duration import region_lines
-
         region = self.motors.intermittent.take(rows)
-        alpha, sigma, concave = region_lines(region)
+        alpha, sigma, concave = region.lines()
         rate = sigma * speed_scale[:, None]  # the line over v_N: alpha + sigma K vel v_N
         peak_speed = speed_scale * C_v
         starts = region.speeds[:, :-1]

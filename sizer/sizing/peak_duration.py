@@ -30,38 +30,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from sizer.envelope import RegionTable
 from sizer.laws.linear_peaks import piece_values
 from sizer.model.domain import Limits
 from sizer.sizing.cycle import CycleCalculator
 
 NEWTON_STEPS = 40
 """Newton steps at most (quadratic convergence: about 6 from the start used here)."""
-CONCAVE_TOLERANCE = 1e-12
-"""Relative rise of a segment's slope still read as concave (rounding of the corners)."""
-
-
-def region_lines(region: RegionTable) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(alpha, sigma, concave): per candidate and segment lines alpha + sigma * speed that
-    lie on or above the region at every speed up to its end (alpha inf where a segment is
-    no such line), and whether the region is the minimum of them (concave).
-
-    A concave region is the minimum of its segments' lines; any other region keeps one
-    line, flat at its largest torque.
-    """
-    s, t = region.speeds, region.torques
-    with np.errstate(divide="ignore", invalid="ignore"):
-        sigma = np.diff(t, axis=1) / np.diff(s, axis=1)
-    alpha = t[:, :-1] - sigma * s[:, :-1]
-    inside = s[:, :-1] < region.max_speed[:, None]
-    inside[:, 0] = True
-    rise = np.diff(np.where(inside, sigma, -np.inf), axis=1)
-    scale = np.abs(t).max(axis=1, keepdims=True) / np.maximum(region.max_speed[:, None], 1e-300)
-    concave = np.all((rise <= CONCAVE_TOLERANCE * scale) | ~inside[:, 1:], axis=1)
-    alpha = np.where(inside & concave[:, None], alpha, np.inf)
-    sigma = np.where(inside & concave[:, None], sigma, 0.0)
-    alpha[~concave, 0] = t[~concave].max(axis=1)
-    return alpha, sigma, concave
 
 
 def peak_duration(calculator: CycleCalculator, limits: Limits) -> np.ndarray | None:
@@ -79,7 +53,7 @@ def peak_duration(calculator: CycleCalculator, limits: Limits) -> np.ndarray | N
     if h == 0.0:
         return np.zeros(n)
     grip = 1.0 - limits.torque_margin
-    alpha, sigma, _ = region_lines(motors.intermittent)
+    alpha, sigma, _ = motors.intermittent.lines()
     rows, cols = np.nonzero(np.isfinite(alpha))
     queries: list[tuple[np.ndarray, ...]] = []
     for direction in calculator.directions:
