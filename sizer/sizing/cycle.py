@@ -194,13 +194,13 @@ class CycleCalculator:
     def _mean_squares(self, scales: MoveScales) -> list[np.ndarray]:
         """(1/T) * integral of the squared motor torque (then of each stage output) per move.
 
-        Each torque is a maximum of linear functions of (a, v) (Drive.linear_pieces); on an
-        interval of the law's grid where no stage's power flow reverses one function is
-        the torque throughout, so its Gauss-Legendre integral is the quadratic form of the
-        function's coefficients with the interval's moments of the law (int a_N^2, a_N v_N,
-        v_N^2, a_N, v_N, 1: :func:`interval_moments`, once per law), and the function is
-        the one with the largest integral there. Intervals where a flow reverses are cut at
-        the root and integrated apart (:meth:`_split_integrals`).
+        Each torque is a maximum of linear functions L_k = P a_N + Q v_N + C of the law
+        (Drive.linear_pieces); on an interval of the law's grid where no stage's power flow
+        reverses one of them is the torque throughout (the one with the largest integral
+        there), so its Gauss-Legendre integral is the quadratic form of (P, Q, C) with the
+        interval's moments of the law (int a_N^2, v_N^2, 1, a_N v_N, a_N, v_N:
+        :func:`interval_moments`, once per law). Intervals where a flow reverses are cut
+        at the root and each part integrated the same way (:meth:`_split_integrals`).
         """
         drive = self.drive
         if drive.is_ideal:
@@ -210,46 +210,30 @@ class CycleCalculator:
         crossing = np.zeros((len(self.motors), g.size), dtype=bool)
         for x in end_outputs:
             crossing |= x[..., 0] * x[..., 1] < 0.0
+        terms = self._channel_terms(scales)
         moments = interval_moments(self.law)
-        shaft, outputs = drive.linear_pieces(scales.direction)
-        K = drive.ratio
-        rotor = (self.motors.inertia * K, self.motors.damping * K)
-        totals = [self._piecewise_square(shaft, scales, moments, crossing, rotor)]
-        totals += [self._piecewise_square(pieces, scales, moments, crossing, None)
-                   for pieces in outputs]
+        totals = [_square_integral(channel, moments, ~crossing) for channel in terms]
         if crossing.any():
-            for total, extra in zip(totals, self._split_integrals(np.nonzero(crossing), scales),
+            for total, extra in zip(totals, self._split_integrals(np.nonzero(crossing), terms),
                                     strict=True):
                 total += extra
         return totals
 
-    def _piecewise_square(self, pieces, scales: MoveScales, moments: np.ndarray,
-                          crossing: np.ndarray, rotor) -> np.ndarray:
-        """int of max_k L_k^2 over the intervals without a reversal (see _mean_squares)."""
+    def _channel_terms(self, scales: MoveScales) -> list[list[tuple[np.ndarray, ...]]]:
+        """Per channel (the motor, then each stage's output) its linear functions of the
+        normalized law, (P, Q, C) arrays over the candidates: value = max_k P a_N + Q v_N + C."""
         n = len(self.motors)
-        terms = []
-        for A, B, C in pieces:
-            if rotor is not None:
-                A, B = A + rotor[0], B + rotor[1]
-            P = np.broadcast_to(A * scales.acc, (n,))
-            Q = np.broadcast_to(B * scales.vel, (n,))
-            C = np.broadcast_to(np.asarray(C, dtype=float), (n,))
-            terms.append((P, Q, C))
-        # moments columns: a^2, v^2, 1, a v, a, v
-        if len(terms) == 1:
-            use = [~crossing]
-        else:
-            means = np.stack([P[:, None] * moments[:, 4] + Q[:, None] * moments[:, 5]
-                              + C[:, None] * moments[:, 2] for P, Q, C in terms])
-            best = np.argmax(means, axis=0)
-            use = [(best == k) & ~crossing for k in range(len(terms))]
-        total = np.zeros(n)
-        with np.errstate(over="ignore", invalid="ignore"):
-            for (P, Q, C), mask in zip(terms, use, strict=True):
-                m = mask.astype(float) @ moments  # (n, 6)
-                total += (P * P * m[:, 0] + Q * Q * m[:, 1] + C * C * m[:, 2]
-                          + 2.0 * (P * Q * m[:, 3] + P * C * m[:, 4] + Q * C * m[:, 5]))
-        return np.where(np.isnan(total), np.inf, total)
+        shaft, outputs = self.drive.linear_pieces(scales.direction)
+        K = self.drive.ratio
+        rotor = (self.motors.inertia * K, self.motors.damping * K)
+
+        def scaled(pieces, with_rotor):
+            return [(np.broadcast_to((A + rotor[0] if with_rotor else A) * scales.acc, (n,)),
+                     np.broadcast_to((B + rotor[1] if with_rotor else B) * scales.vel, (n,)),
+                     np.broadcast_to(np.asarray(C, dtype=float), (n,)))
+                    for A, B, C in pieces]
+
+        return [scaled(shaft, True)] + [scaled(pieces, False) for pieces in outputs]
 
     def _ideal_mean_squares(self, scales: MoveScales) -> list[np.ndarray]:
         """Closed forms: int a_N = 0, int a_N v_N = 0, int v_N = 1 over a rest-to-rest move."""
@@ -279,57 +263,60 @@ class CycleCalculator:
                                        c.C_a_rms, c.C_v_rms))
         return result
 
-    def _split_integrals(self, where, scales: MoveScales) -> list[np.ndarray]:
+    def _split_integrals(self, where, terms) -> list[np.ndarray]:
         """Integrals of the squared channels over intervals where a power flow reverses.
 
-        The interval is cut at each root of a stage's output torque (Illinois), and each
-        part is integrated with Gauss-Legendre, so no kink of a reflection lies inside a rule.
+        The interval is cut at each root of a stage's output torque (Illinois, in the
+        interval's own coordinate), and each part is integrated by Gauss-Legendre moments
+        with the function that is the torque there, so no kink of a reflection lies inside
+        a rule. A root error dz changes an integral by O(dz^2) (the two reflections agree
+        at the root): 1e-9 is rounding.
         """
         cand, interval = where
         g, law = self.grid, self.law
-        at = PieceEvaluator(law, g.piece[interval])
+        piece = g.piece[interval]
         lo_edge, hi_edge = g.left[interval], g.right[interval]
+        width = hi_edge - lo_edge
         cuts = []
         for stage in range(len(self.drive.stages)):
-            def argument(tau, stage=stage):
-                _, outputs = self.channels(at(tau, 2), at(tau, 1), scales, index=cand)
-                return outputs[stage]
-            f_lo, f_hi = argument(lo_edge), argument(hi_edge)
-            crossing = f_lo * f_hi < 0.0
+            pieces = [tuple(x[cand] for x in part) for part in terms[1 + stage]]
+
+            def output(tau, rows, piece=piece, pieces=pieces):
+                v_n, a_n = piece_values(law, tau, piece[rows], (1, 2))
+                return np.max([P[rows] * a_n + Q[rows] * v_n + C[rows]
+                               for P, Q, C in pieces], axis=0)
+
+            every = np.arange(len(cand))
+            f_lo, f_hi = output(lo_edge, every), output(hi_edge, every)
             root = hi_edge.copy()
-            if crossing.any():
-                where_ = np.nonzero(crossing)[0]
-                piece = g.piece[interval][where_]
-                left, width = lo_edge[where_], hi_edge[where_] - lo_edge[where_]
+            crossing = np.flatnonzero(f_lo * f_hi < 0.0)
+            if len(crossing):
+                def along(z, rows):
+                    return output(lo_edge[rows] + z * width[rows], rows)
 
-                def restricted(z, rows, stage=stage, where_=where_, piece=piece, left=left,
-                               width=width):
-                    v_n, a_n = piece_values(law, left[rows] + z * width[rows], piece[rows],
-                                            (1, 2))
-                    _, outputs = self.channels(a_n, v_n, scales, index=cand[where_][rows])
-                    return outputs[stage]
-
-                # in the interval's own coordinate z: a root error dz changes the integral
-                # by O(dz^2) (the two reflections agree at the root), so 1e-9 is rounding
-                z = illinois(restricted, np.zeros(len(where_)), np.ones(len(where_)),
-                             f_lo[where_], f_hi[where_], xtol=1e-9,
-                             args=(np.arange(len(where_)),))
-                root[where_] = np.clip(left + z * width, lo_edge[where_], hi_edge[where_])
+                z = illinois(along, np.zeros(len(crossing)), np.ones(len(crossing)),
+                             f_lo[crossing], f_hi[crossing], xtol=1e-9, args=(crossing,))
+                root[crossing] = np.clip(lo_edge[crossing] + z * width[crossing],
+                                         lo_edge[crossing], hi_edge[crossing])
             cuts.append(root)
         edges = np.sort(np.column_stack([lo_edge, *cuts, hi_edge]), axis=1)
         x, w = leggauss(g.nodes.shape[1])
-        count = len(self.drive.stages) + 1
-        totals = [np.zeros(len(self.motors)) for _ in range(count)]
-        pieces = np.broadcast_to(g.piece[interval][:, None], (len(cand), len(x)))
-        on_pieces = PieceEvaluator(law, pieces)
+        totals = [np.zeros(len(self.motors)) for _ in terms]
+        nodes_piece = np.broadcast_to(piece[:, None], (len(cand), len(x)))
+        on_pieces = PieceEvaluator(law, nodes_piece)
+        chosen = [[tuple(x[cand] for x in part) for part in channel] for channel in terms]
         for part in range(edges.shape[1] - 1):
             a, b = edges[:, part], edges[:, part + 1]
             half = 0.5 * (b - a)
             tau = (0.5 * (a + b))[:, None] + half[:, None] * x
-            motor, outputs = self.channels(on_pieces(tau, 2), on_pieces(tau, 1), scales,
-                                            index=cand)
-            for total, channel in zip(totals, (motor, *outputs), strict=False):
-                np.add.at(total, cand, (half[:, None] * w * channel**2).sum(axis=1))
+            a_n, v_n = on_pieces(tau, 2), on_pieces(tau, 1)
+            weight = half[:, None] * w
+            moments = np.column_stack([(weight * a_n * a_n).sum(axis=1),
+                                       (weight * v_n * v_n).sum(axis=1), weight.sum(axis=1),
+                                       (weight * a_n * v_n).sum(axis=1),
+                                       (weight * a_n).sum(axis=1), (weight * v_n).sum(axis=1)])
+            for total, channel in zip(totals, chosen, strict=True):
+                np.add.at(total, cand, _quadratic_form(channel, moments))
         return totals
 
     # ------------------------------------------------------------------ peaks
@@ -629,6 +616,40 @@ class CycleCalculator:
         lo = tau[interval, np.maximum(column - 1, 0)]
         hi = tau[interval, np.minimum(column + 1, columns - 1)]
         return lo, hi, g.piece[interval], valid, best_value
+
+
+def _form(P, Q, C, m: np.ndarray) -> np.ndarray:
+    """int (P a + Q v + C)^2 from the moments m (rows, 6: a^2, v^2, 1, a v, a, v)."""
+    return (P * P * m[:, 0] + Q * Q * m[:, 1] + C * C * m[:, 2]
+            + 2.0 * (P * Q * m[:, 3] + P * C * m[:, 4] + Q * C * m[:, 5]))
+
+
+def _quadratic_form(pieces, moments: np.ndarray) -> np.ndarray:
+    """Per row the integral of the square of the largest-integral function of ``pieces``
+    ((P, Q, C) arrays over rows) given the rows' moments."""
+    values = [_form(P, Q, C, moments) for P, Q, C in pieces]
+    if len(pieces) == 1:
+        return values[0]
+    means = np.stack([P * moments[:, 4] + Q * moments[:, 5] + C * moments[:, 2]
+                      for P, Q, C in pieces])
+    return np.choose(np.argmax(means, axis=0), values)
+
+
+def _square_integral(pieces, moments: np.ndarray, use: np.ndarray) -> np.ndarray:
+    """Per candidate the integral of max_k L_k^2 over the intervals marked in ``use``
+    (candidates, intervals): each interval's moments in the quadratic form of the
+    function with the largest integral there (CycleCalculator._mean_squares)."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        if len(pieces) == 1:
+            best = np.zeros(use.shape, dtype=np.intp)
+        else:
+            best = np.argmax(np.stack([P[:, None] * moments[:, 4] + Q[:, None] * moments[:, 5]
+                                       + C[:, None] * moments[:, 2] for P, Q, C in pieces]),
+                             axis=0)
+        total = np.zeros(len(use))
+        for k, (P, Q, C) in enumerate(pieces):
+            total += _form(P, Q, C, ((best == k) & use).astype(float) @ moments)
+    return np.where(np.isnan(total), np.inf, total)
 
 
 @lru_cache(maxsize=256)
