@@ -69,6 +69,38 @@ class CycleMetrics:
     stage_peak: list[np.ndarray]
     stage_rms: list[np.ndarray]
     stage_speed: list[np.ndarray]
+    rms_model: RmsModel | None = None
+
+
+@dataclass(frozen=True)
+class RmsModel:
+    """The motor's RMS torque near the durations it was built at, T0, with the power
+    flow's split points held (book sec. 6.1.1; :meth:`CycleCalculator.evaluate` with
+    ``model``): per move the motor's linear functions at T0 and the law's moments where
+    each is the torque. At T the coefficient of a_N scales as (T0/T)^2, that of v_N as
+    T0/T. Exact at T0 (and for an ideal drive at every T); elsewhere off by O((T - T0)^2),
+    as the torque is continuous across a split point, so moving it changes the integral
+    to second order only.
+    """
+
+    duration: np.ndarray
+    moves: list[list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]]
+    dwell: float
+    hold: np.ndarray
+
+    def rms(self, T: np.ndarray, index: np.ndarray | None = None) -> np.ndarray:
+        """RMS torque at durations T (of the candidates at ``index``, default all)."""
+        pick = (lambda x: x) if index is None else (lambda x: x[index])
+        scale = pick(self.duration) / T
+        square = np.zeros_like(T)
+        with np.errstate(over="ignore", invalid="ignore"):
+            for move in self.moves:
+                for P, Q, C, M in move:
+                    square += T * _form(pick(P) * scale * scale, pick(Q) * scale, pick(C),
+                                        pick(M))
+            n = len(self.moves)
+            mean = (square + n * self.dwell * np.square(pick(self.hold))) / (n * (T + self.dwell))
+        return np.sqrt(np.where(np.isnan(mean), np.inf, mean))
 
 
 Objective = Callable[[np.ndarray, np.ndarray], np.ndarray]
@@ -109,10 +141,12 @@ class CycleCalculator:
         return self._grid
 
     # ------------------------------------------------------------------ public
-    def evaluate(self, duration: np.ndarray, peaks: bool = True) -> CycleMetrics:
+    def evaluate(self, duration: np.ndarray, peaks: bool = True,
+                 model: bool = False) -> CycleMetrics:
         """The requirements at the given durations. Without ``peaks`` the peak torques
         and ratios are left at zero (a search on the other checks, where the peaks are
-        known to pass: sizer.sizing.minimum_duration)."""
+        known to pass: sizer.sizing.minimum_duration); with ``model`` the metrics carry
+        the RMS model at these durations (:class:`RmsModel`)."""
         T = np.broadcast_to(np.asarray(duration, dtype=float), (len(self.motors),)).copy()
         c = self.law.coefficients
         K, h = self.drive.ratio, self.h
@@ -129,11 +163,12 @@ class CycleCalculator:
         found = self._peaks(moves) if peaks else [
             (np.zeros_like(T), np.zeros_like(T), np.zeros_like(T),
              [np.zeros_like(T) for _ in range(n_stages)]) for _ in moves]
+        parts: list | None = [] if model else None
         for scales, (torque, ratio, load, stages) in zip(moves, found, strict=True):
             peak_torque = np.maximum(peak_torque, torque)
             peak_ratio = np.maximum(peak_ratio, ratio)
             load_torque = np.maximum(load_torque, load)
-            means = self._mean_squares(scales)
+            means = self._mean_squares(scales, parts)
             square += T * means[0]
             for i in range(n_stages):
                 stage_peak[i] = np.maximum(stage_peak[i], stages[i])
@@ -155,12 +190,7 @@ class CycleCalculator:
             stage_rms = [np.sqrt((stage_square[i] + n * dwell
                                   * np.square(np.float64(stage_hold[i]))) / cycle)
                          for i in range(n_stages)]
-        if self.thermal_rule == "max":
-            thermal = K * load_speed
-        elif self.thermal_rule == "rms":
-            thermal = K * h * c.C_v_rms * np.sqrt(n * T / cycle) / T
-        else:
-            thermal = n * K * h / cycle
+        thermal = self.thermal_speed(T)
         jerk = c.C_j * h / T / T / T if c.jerk_bounded else np.full_like(T, np.inf)
         return CycleMetrics(
             duration=T, max_speed=K * load_speed, peak_torque=peak_torque,
@@ -168,7 +198,21 @@ class CycleCalculator:
             load_speed=load_speed, load_acceleration=c.C_a * h / T / T, load_jerk=jerk,
             load_torque=load_torque, stage_peak=stage_peak, stage_rms=stage_rms,
             stage_speed=[k * load_speed for k in self.drive.input_ratios],
+            rms_model=None if parts is None else RmsModel(T, parts, dwell, hold),
         )
+
+    def thermal_speed(self, T: np.ndarray) -> np.ndarray:
+        """The speed the continuous region is read at (the thermal rule): the peak speed
+        as in the book, or the RMS or mean speed over the cycle."""
+        c = self.law.coefficients
+        K, h, dwell = self.drive.ratio, self.h, self.task.dwell
+        n = len(self.directions)
+        cycle = n * (T + dwell)
+        if self.thermal_rule == "max":
+            return K * c.C_v * h / T
+        if self.thermal_rule == "rms":
+            return K * h * c.C_v_rms * np.sqrt(n * T / cycle) / T
+        return n * K * h / cycle
 
     # ---------------------------------------------------------------- torques
     def channels(self, a_n: np.ndarray, v_n: np.ndarray, scales: MoveScales,
@@ -191,7 +235,8 @@ class CycleCalculator:
         K = np.reshape(K, (-1,) + (1,) * (np.ndim(a_l) - 1)) if np.ndim(a_l) > 1 else K
         return rotor * K * a_l + damping * K * v_l + shaft, outputs
 
-    def _mean_squares(self, scales: MoveScales) -> list[np.ndarray]:
+    def _mean_squares(self, scales: MoveScales,
+                      model: list | None = None) -> list[np.ndarray]:
         """(1/T) * integral of the squared motor torque (then of each stage output) per move.
 
         Each torque is a maximum of linear functions L_k = P a_N + Q v_N + C of the law
@@ -201,9 +246,13 @@ class CycleCalculator:
         interval's moments of the law (int a_N^2, v_N^2, 1, a_N v_N, a_N, v_N:
         :func:`interval_moments`, once per law). Intervals where a flow reverses are cut
         at the root and each part integrated the same way (:meth:`_split_integrals`).
+        With ``model`` the motor's functions and their summed moments are appended to it
+        (:class:`RmsModel`).
         """
         drive = self.drive
         if drive.is_ideal:
+            if model is not None:
+                model.append(self._ideal_motor_terms(scales))
             return self._ideal_mean_squares(scales)
         g = self.grid
         _, end_outputs = self.channels(g.end_acceleration[None], g.end_velocity[None], scales)
@@ -212,12 +261,32 @@ class CycleCalculator:
             crossing |= x[..., 0] * x[..., 1] < 0.0
         terms = self._channel_terms(scales)
         moments = interval_moments(self.law)
-        totals = [_square_integral(channel, moments, ~crossing) for channel in terms]
+        sums = [_moment_sums(channel, moments, ~crossing) for channel in terms]
         if crossing.any():
-            for total, extra in zip(totals, self._split_integrals(np.nonzero(crossing), terms),
-                                    strict=True):
-                total += extra
-        return totals
+            for mine, extra in zip(sums, self._split_integrals(np.nonzero(crossing), terms),
+                                   strict=True):
+                for k, more in enumerate(extra):
+                    mine[k] += more
+        if model is not None:
+            model.append([(*piece, m) for piece, m in zip(terms[0], sums[0], strict=True)])
+        with np.errstate(over="ignore", invalid="ignore"):
+            totals = [sum(_form(P, Q, C, m) for (P, Q, C), m in zip(channel, sum_k, strict=True))
+                      for channel, sum_k in zip(terms, sums, strict=True)]
+        return [np.where(np.isnan(total), np.inf, total) for total in totals]
+
+    def _ideal_motor_terms(self, scales: MoveScales):
+        """The motor's one linear function with an ideal drive, and the law's moments over
+        the move (int a_N^2 = C_a_rms^2, int v_N^2 = C_v_rms^2, int a_N = int a_N v_N = 0,
+        int v_N = 1)."""
+        n = len(self.motors)
+        c = self.law.coefficients
+        K = self.drive.ratio
+        a_part, v_part, const = self.drive.linear_chain(scales.direction)
+        moments = np.array([c.C_a_rms**2, c.C_v_rms**2, 1.0, 0.0, 0.0, 1.0])
+        return [(np.broadcast_to((self.motors.inertia * K + a_part) * scales.acc, (n,)),
+                 np.broadcast_to((self.motors.damping * K + v_part) * scales.vel, (n,)),
+                 np.broadcast_to(np.asarray(const, dtype=float), (n,)),
+                 np.broadcast_to(moments, (n, 6)))]
 
     def _channel_terms(self, scales: MoveScales) -> list[list[tuple[np.ndarray, ...]]]:
         """Per channel (the motor, then each stage's output) its linear functions of the
@@ -263,14 +332,15 @@ class CycleCalculator:
                                        c.C_a_rms, c.C_v_rms))
         return result
 
-    def _split_integrals(self, where, terms) -> list[np.ndarray]:
-        """Integrals of the squared channels over intervals where a power flow reverses.
+    def _split_integrals(self, where, terms) -> list[list[np.ndarray]]:
+        """Moments of the law over intervals where a power flow reverses, summed per
+        candidate for each channel's function that is the torque there.
 
         The interval is cut at each root of a stage's output torque (Illinois, in the
-        interval's own coordinate), and each part is integrated by Gauss-Legendre moments
-        with the function that is the torque there, so no kink of a reflection lies inside
-        a rule. A root error dz changes an integral by O(dz^2) (the two reflections agree
-        at the root): 1e-9 is rounding.
+        interval's own coordinate), and each part's Gauss-Legendre moments go to the
+        function that is the torque there, so no kink of a reflection lies inside a rule.
+        A root error dz changes an integral by O(dz^2) (the two reflections agree at the
+        root): 1e-9 is rounding.
         """
         cand, interval = where
         g, law = self.grid, self.law
@@ -301,10 +371,10 @@ class CycleCalculator:
             cuts.append(root)
         edges = np.sort(np.column_stack([lo_edge, *cuts, hi_edge]), axis=1)
         x, w = leggauss(g.nodes.shape[1])
-        totals = [np.zeros(len(self.motors)) for _ in terms]
         nodes_piece = np.broadcast_to(piece[:, None], (len(cand), len(x)))
         on_pieces = PieceEvaluator(law, nodes_piece)
         chosen = [[tuple(x[cand] for x in part) for part in channel] for channel in terms]
+        sums = [[np.zeros((len(self.motors), 6)) for _ in channel] for channel in terms]
         for part in range(edges.shape[1] - 1):
             a, b = edges[:, part], edges[:, part + 1]
             half = 0.5 * (b - a)
@@ -315,9 +385,11 @@ class CycleCalculator:
                                        (weight * v_n * v_n).sum(axis=1), weight.sum(axis=1),
                                        (weight * a_n * v_n).sum(axis=1),
                                        (weight * a_n).sum(axis=1), (weight * v_n).sum(axis=1)])
-            for total, channel in zip(totals, chosen, strict=True):
-                np.add.at(total, cand, _quadratic_form(channel, moments))
-        return totals
+            for mine, channel in zip(sums, chosen, strict=True):
+                best = _largest_integral(channel, moments)
+                for k, m in enumerate(mine):
+                    np.add.at(m, cand[best == k], moments[best == k])
+        return sums
 
     # ------------------------------------------------------------------ peaks
     def _peaks(self, moves: list[MoveScales]):
@@ -624,32 +696,24 @@ def _form(P, Q, C, m: np.ndarray) -> np.ndarray:
             + 2.0 * (P * Q * m[:, 3] + P * C * m[:, 4] + Q * C * m[:, 5]))
 
 
-def _quadratic_form(pieces, moments: np.ndarray) -> np.ndarray:
-    """Per row the integral of the square of the largest-integral function of ``pieces``
-    ((P, Q, C) arrays over rows) given the rows' moments."""
-    values = [_form(P, Q, C, moments) for P, Q, C in pieces]
+def _largest_integral(pieces, moments: np.ndarray) -> np.ndarray:
+    """Per row the index of the function of ``pieces`` ((P, Q, C) arrays over rows, or
+    over rows x columns of ``moments`` (..., 6)) with the largest integral: where no flow
+    reverses, the one that is the torque."""
     if len(pieces) == 1:
-        return values[0]
-    means = np.stack([P * moments[:, 4] + Q * moments[:, 5] + C * moments[:, 2]
-                      for P, Q, C in pieces])
-    return np.choose(np.argmax(means, axis=0), values)
+        return np.zeros(moments.shape[:-1], dtype=np.intp)
+    shape = (-1,) + (1,) * (moments.ndim - 2)
+    return np.argmax(np.stack([np.reshape(P, shape) * moments[..., 4]
+                               + np.reshape(Q, shape) * moments[..., 5]
+                               + np.reshape(C, shape) * moments[..., 2]
+                               for P, Q, C in pieces]), axis=0)
 
 
-def _square_integral(pieces, moments: np.ndarray, use: np.ndarray) -> np.ndarray:
-    """Per candidate the integral of max_k L_k^2 over the intervals marked in ``use``
-    (candidates, intervals): each interval's moments in the quadratic form of the
-    function with the largest integral there (CycleCalculator._mean_squares)."""
-    with np.errstate(over="ignore", invalid="ignore"):
-        if len(pieces) == 1:
-            best = np.zeros(use.shape, dtype=np.intp)
-        else:
-            best = np.argmax(np.stack([P[:, None] * moments[:, 4] + Q[:, None] * moments[:, 5]
-                                       + C[:, None] * moments[:, 2] for P, Q, C in pieces]),
-                             axis=0)
-        total = np.zeros(len(use))
-        for k, (P, Q, C) in enumerate(pieces):
-            total += _form(P, Q, C, ((best == k) & use).astype(float) @ moments)
-    return np.where(np.isnan(total), np.inf, total)
+def _moment_sums(pieces, moments: np.ndarray, use: np.ndarray) -> list[np.ndarray]:
+    """Per function of ``pieces`` the law's moments summed over the intervals marked in
+    ``use`` (candidates, intervals) where it is the torque: (candidates, 6) each."""
+    best = _largest_integral(pieces, np.broadcast_to(moments, (*use.shape, 6)))
+    return [((best == k) & use).astype(float) @ moments for k in range(len(pieces))]
 
 
 @lru_cache(maxsize=256)

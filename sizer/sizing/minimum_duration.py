@@ -103,9 +103,11 @@ def minimum_duration(calculator: CycleCalculator, limits: Limits) -> DurationSol
 def _from_bound(calculator: CycleCalculator, limits: Limits,
                 bound: np.ndarray) -> DurationSolution:
     """T_min from a lower bound (sizer.sizing.peak_duration): the bound itself where the
-    cycle is feasible there; elsewhere a search from it, first on the checks other than
-    the peaks (which pass from the bound on: the cheap part of an evaluation), then, where
-    the duration found still fails a check, on all of them. inf bounds: no duration."""
+    cycle is feasible there. Elsewhere, in turn, each step for the candidates the last
+    one left infeasible: where the motor's RMS check reaches its limit above the bound
+    (:func:`rms_crossing`); a search from the bound on the checks other than the peaks
+    (which pass from the bound on: the cheap part of an evaluation); a search on all the
+    checks from there. inf bounds: no duration."""
     usable = np.isfinite(bound) & (bound > 0.0)
     probe = np.where(usable, bound, _largest_tried(calculator))
     metrics, checks = evaluate(calculator, limits, probe)
@@ -114,20 +116,96 @@ def _from_bound(calculator: CycleCalculator, limits: Limits,
     rest = ~ok & np.isfinite(bound)
     if not rest.any():
         return DurationSolution(np.where(ok, probe, np.nan), ok, metrics, checks, method)
+    method += " and searches"
     start = np.where(usable, bound, _initial_guess(calculator))
     T = np.where(ok, bound, np.inf)
-    T[rest] = bisect_duration(calculator, limits, guess=start, active=rest, peaks=False)[rest]
-    method += " and bisection"
-    for attempt in range(2):
+    passed = ok
+
+    def from_rms(left: np.ndarray) -> np.ndarray:
+        out = np.full(len(T), np.nan)
+        index = np.flatnonzero(left & usable)
+        if len(index):
+            found = rms_crossing(calculator.take(index), limits, bound[index])
+            out[index] = np.where(found >= bound[index] * (1.0 - 1e-12), found, np.nan)
+        return out
+
+    steps = (from_rms,
+             lambda left: bisect_duration(calculator, limits, guess=start, active=left,
+                                          peaks=False),
+             lambda left: bisect_duration(calculator, limits, guess=T, active=left))
+    for number, step in enumerate(steps):
+        left = rest & ~passed
+        if number == 2:  # no duration passes the other checks: none passes them all
+            left &= np.isfinite(T)
+        if not left.any():
+            break
+        found = step(left)
+        T[left] = np.where(np.isnan(found[left]), T[left], found[left])
         finite = np.isfinite(T)
         probe = np.where(finite, T, _largest_tried(calculator))
         metrics, checks = evaluate(calculator, limits, probe)
         passed = finite & feasible(checks)
-        again = rest & finite & ~passed
-        if attempt == 1 or not again.any():
-            break
-        T[again] = bisect_duration(calculator, limits, guess=T, active=again)[again]
     return DurationSolution(np.where(passed, probe, np.nan), passed, metrics, checks, method)
+
+
+RMS_ROUNDS = 8
+"""Rounds of the RMS crossing at most (each an evaluation and the model's root: the
+model's error is of second order, so three or four reach rounding)."""
+
+
+def rms_crossing(calculator: CycleCalculator, limits: Limits,
+                 start: np.ndarray) -> np.ndarray:
+    """Per candidate the duration above ``start`` where the motor's RMS torque reaches the
+    continuous limit at the thermal speed (margin applied); nan where none was found.
+
+    Each round evaluates the cycle at the current durations with its RMS model
+    (sizer.sizing.cycle.RmsModel: exact there, second-order near) and moves to the
+    model's crossing: from the current point up (or down) by factors of 2 to a change of
+    sign, then the project's root finder. The rounds converge like Newton's method; a
+    candidate is done when a round moves it by less than 1e-13.
+    """
+    grip = 1.0 - limits.torque_margin
+    n = len(start)
+    out = np.full(n, np.nan)
+    T = np.asarray(start, dtype=float).copy()
+    index = np.arange(n)
+    for _ in range(RMS_ROUNDS):
+        sub = calculator if len(index) == n else calculator.take(index)
+        model = sub.evaluate(T, peaks=False, model=True).rms_model
+        assert model is not None
+
+        def excess(x: np.ndarray, sub=sub, model=model) -> np.ndarray:
+            at = np.exp(x)
+            limit = sub.motors.continuous.limit_clipped(sub.thermal_speed(at))
+            with np.errstate(divide="ignore"):
+                return np.log(model.rms(at)) - np.log(grip * limit)
+
+        x0 = np.log(T)
+        g0 = excess(x0)
+        step = np.where(g0 > 0.0, STEP, -STEP)
+        x_a, g_a, x_b = x0, g0, x0 + step
+        g_b = excess(x_b)
+        for _ in range(EXPANSIONS // 2):
+            same = (np.sign(g_b) == np.sign(g_a)) & np.isfinite(g_b)
+            if not same.any():
+                break
+            x_a, g_a = np.where(same, x_b, x_a), np.where(same, g_b, g_a)
+            x_b = np.where(same, x_b + step, x_b)
+            g_b = np.where(same, excess(x_b), g_b)
+        found = (np.sign(g_b) != np.sign(g_a)) & np.isfinite(g_a) & np.isfinite(g_b)
+        lo, hi = np.minimum(x_a, x_b), np.maximum(x_a, x_b)
+        g_lo, g_hi = np.where(x_a < x_b, g_a, g_b), np.where(x_a < x_b, g_b, g_a)
+        x = np.where(found, 0.5 * (lo + hi), x0)
+        if found.any():
+            x[found] = illinois(excess, lo, hi, g_lo, g_hi, xtol=1e-15)[found]
+        new = np.exp(x)
+        done = found & ((np.abs(new - T) <= 1e-13 * T) | (g0 == 0.0))
+        out[index[done]] = new[done]
+        keep = found & ~done
+        index, T = index[keep], new[keep]
+        if len(index) == 0:
+            break
+    return out
 
 
 def beyond_flat_part(calculator: CycleCalculator, limits: Limits, T: np.ndarray,

@@ -1,0 +1,90 @@
+"""The RMS model of a cycle and the RMS crossing built on it (sizer.sizing.cycle.RmsModel,
+sizer.sizing.minimum_duration.rms_crossing).
+
+- The model equals the cycle's own RMS at the durations it was built at, and near them
+  its error falls like the square of the step (the power-flow split points are held,
+  and moving them changes the integral to second order only); with an ideal drive (no
+  split points) it is exact at every duration.
+- rms_crossing lands where the plain scalar reference (tests/scalar_reference.py) finds
+  the RMS check exactly at its required margin, with the check failing just below.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+from scalar_reference import evaluate
+from test_engine_vs_scalar import candidate, random_design
+
+from sizer.laws import make_law
+from sizer.mechanics import Drive
+from sizer.model import Load, Motor, Stage, Task, Transmission
+from sizer.sizing.cycle import CycleCalculator
+from sizer.sizing.minimum_duration import rms_crossing
+from sizer.sizing.motors import MotorArrays
+
+
+def calculator_of(efficiency: float, spec: str = "cycloidal") -> CycleCalculator:
+    motors = MotorArrays.of([Motor(f"m{i}", 1e-4 * (i + 1), 1.0 + i, 3.0 + 3 * i, 300.0)
+                             for i in range(4)], "book")
+    drive = Drive(Load(0.05, damping=0.02, friction=0.3, torque=0.4),
+                  Transmission((Stage("gearbox", 8.0, efficiency, 2e-5),)))
+    return CycleCalculator(None, Task(1.5, None, dwell=0.2, return_move=True), drive, motors,
+                           law=make_law(spec))
+
+
+@pytest.mark.parametrize("spec", ["cycloidal", "poly5", "double_s(alpha=1/3, beta=1/4)"])
+def test_the_model_is_exact_where_built_and_second_order_near(spec):
+    calc = calculator_of(0.9, spec)
+    T = np.array([0.15, 0.2, 0.3, 0.5])
+    model = calc.evaluate(T, peaks=False, model=True).rms_model
+    np.testing.assert_allclose(model.rms(T), calc.evaluate(T, peaks=False).rms_torque,
+                               rtol=1e-14)
+    errors = []
+    for step in (1e-2, 1e-3):
+        exact = calc.evaluate(T * (1 + step), peaks=False).rms_torque
+        errors.append(np.max(np.abs(model.rms(T * (1 + step)) / exact - 1.0)))
+    assert errors[0] < 1e-5
+    assert errors[1] < errors[0] / 30.0  # at least second order (1e-3 vs 1e-2: 100x)
+
+
+def test_the_model_is_exact_everywhere_with_an_ideal_drive():
+    calc = calculator_of(1.0)
+    T = np.array([0.15, 0.2, 0.3, 0.5])
+    model = calc.evaluate(T, peaks=False, model=True).rms_model
+    for factor in (0.5, 1.7, 4.0):
+        np.testing.assert_allclose(model.rms(T * factor),
+                                   calc.evaluate(T * factor, peaks=False).rms_torque,
+                                   rtol=1e-13)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_the_crossing_is_where_the_reference_rms_check_binds(seed):
+    design = random_design(seed)
+    design = dataclasses.replace(design, task=dataclasses.replace(design.task, duration=None))
+    checked = 0
+    for motor in design.motors:
+        for spec in design.laws:
+            ratio = design.ratio_choice.ratios[0]
+            stages = list(design.transmission.stages)
+            stages[0] = dataclasses.replace(stages[0], ratio=ratio)
+            calc = CycleCalculator(None, design.task, Drive(design.load,
+                                                            Transmission(tuple(stages))),
+                                   MotorArrays.of([motor], design.limits.envelope),
+                                   design.limits.thermal_speed, law=make_law(spec))
+            start = np.array([0.02])
+            if calc.evaluate(start, peaks=False).rms_torque[0] <= 0.0:
+                continue
+            T = float(rms_crossing(calc, design.limits, start)[0])
+            if not np.isfinite(T):
+                continue
+            c = candidate(design, motor, spec, ratio)
+            at = evaluate(c, T)
+            value, limit, required = at.checks["rms"]
+            assert 1.0 - value / limit == pytest.approx(required, abs=1e-9)
+            value, limit, required = evaluate(c, T * (1 - 1e-6)).checks["rms"]
+            assert 1.0 - value / limit < required
+            checked += 1
+    assert checked >= 1
