@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from sizer.laws.base import MotionLaw, Piece
+from sizer.numerics.arrays import sorted_unique
 from sizer.numerics.roots import illinois
 
 GRID_PER_PIECE = 256
@@ -141,7 +142,7 @@ def scan_grid(piece: Piece, uniform: int = GRID_PER_PIECE, toward: Sequence[floa
         if piece.start <= point <= piece.end:
             parts += [np.array([point]), point - graded, point + graded]
     grid = np.concatenate(parts)
-    return np.unique(grid[(grid >= piece.start) & (grid <= piece.end)])
+    return sorted_unique(grid[(grid >= piece.start) & (grid <= piece.end)])
 
 
 def rms(law: MotionLaw, order: int) -> float:

@@ -12,6 +12,7 @@ import numpy as np
 from numpy.polynomial.legendre import leggauss
 
 from sizer.laws.base import INFINITELY_SMOOTH, MotionLaw, Parameter, Piece
+from sizer.numerics.arrays import sorted_unique
 
 PANELS = 64
 NODES = 24
@@ -49,7 +50,7 @@ class Exponential(MotionLaw):
         # the velocity falls steeply for small sigma or lam), Gauss-Legendre nodes.
         nodes, weights = leggauss(NODES)
         graded = 1.0 - 10.0 ** -np.arange(2.0, 15.0, 0.5)
-        edges = np.unique(np.concatenate((np.linspace(0.0, 1.0, PANELS + 1), graded)))
+        edges = sorted_unique(np.concatenate((np.linspace(0.0, 1.0, PANELS + 1), graded)))
         half = 0.5 * (edges[1:] - edges[:-1])
         mid = 0.5 * (edges[1:] + edges[:-1])
         panel = (shape(mid[:, None] + half[:, None] * nodes) * weights).sum(axis=1) * half

@@ -30,6 +30,7 @@ import numpy as np
 from numpy.polynomial.legendre import leggauss
 
 from sizer.laws.base import MotionLaw, Piece
+from sizer.numerics.arrays import sorted_unique
 
 NODES = 12
 """Gauss-Legendre nodes per interval of a non-polynomial piece."""
@@ -149,7 +150,7 @@ def base_edges(law: MotionLaw, piece: Piece, uniform: int = BASE_INTERVALS) -> n
         if piece.start <= point <= piece.end:
             parts += [np.array([point]), point - graded, point + graded]
     edges = np.concatenate(parts)
-    return np.unique(edges[(edges >= piece.start) & (edges <= piece.end)])
+    return sorted_unique(edges[(edges >= piece.start) & (edges <= piece.end)])
 
 
 def piece_intervals(law: MotionLaw, index: int,

@@ -3,4 +3,5 @@
 - :mod:`sizer.numerics.roots`: the project's one bracketing root finder (Illinois).
 - :mod:`sizer.numerics.golden`: the golden-section step of the bracketed extremum
   searches (used where no derivative of the objective is available).
+- :mod:`sizer.numerics.arrays`: array helpers of the start-up path (``sorted_unique``).
 """

@@ -18,6 +18,7 @@ import numpy as np
 
 from sizer.laws import MotionLaw
 from sizer.laws.quadrature import Resolution, law_intervals
+from sizer.numerics.arrays import sorted_unique
 
 POLYNOMIAL_INTERVALS = 16
 """Uniform intervals per polynomial piece. One would be exact for the integrals, but the
@@ -98,7 +99,7 @@ class PieceEvaluator:
         self.law = law
         self.shape = piece.shape
         flat = piece.ravel()
-        self.groups = [(int(i), np.nonzero(flat == i)[0]) for i in np.unique(flat)]
+        self.groups = [(int(i), np.nonzero(flat == i)[0]) for i in sorted_unique(flat)]
 
     def __call__(self, tau: np.ndarray, order: int) -> np.ndarray:
         flat = tau.ravel()

@@ -31,6 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from sizer.numerics.arrays import sorted_unique
 from sizer.sizing.golden import golden_step, interior_points
 from sizer.sizing.minimum_duration import duration_bounds
 
@@ -172,7 +173,7 @@ def optimal_double_s(scales: BoundScales, low_a: float, low_b: float,
         b = best_beta(scales, a, low_b, high_b)
         return double_s_duration(scales, a, b), b
 
-    grid = np.unique(np.concatenate((np.linspace(low_a, high_a, SAMPLES),
+    grid = sorted_unique(np.concatenate((np.linspace(low_a, high_a, SAMPLES),
                                      [min(max(1.0 / 3.0, low_a), high_a)])))
     T_grid, _ = reduced(np.broadcast_to(grid, (n, len(grid))).copy())
     best = np.argmin(np.where(np.isnan(T_grid), np.inf, T_grid), axis=1)
