@@ -3,10 +3,15 @@
 With the book's rectangular regions and a purely inertial load (no damping, friction or
 constant load, efficiency 1) T_min is the closed form of eq. (6.2), extended to a cycle
 with dwell: the RMS bound T^3 (T + t_dwell) >= (J_t k h C_a_rms / tau_c)^2 is solved
-exactly. Otherwise T_min is found by a search on the worst slack, vectorized over
-candidates: a walk in log T up the slack until a feasible duration (or a golden-section
-search for the slack's maximum where it stops rising), then the Illinois method down to
-where the binding check reaches its limit, to a relative width of 1e-13.
+exactly. Otherwise T_min starts from a lower bound, the largest duration below which a
+peak or speed check fails (sizer.sizing.peak_duration): where the cycle is feasible
+there it is T_min; where the RMS check fails there, T_min is where the RMS reaches its
+limit, by rounds on the cycle's RMS model (:func:`rms_crossing`). What these leave (and
+the designs whose laws move backwards, where the bound does not hold) is found by a
+search on the worst slack, vectorized over candidates: a walk in log T up the slack
+until a feasible duration (or a golden-section search for the slack's maximum where it
+stops rising), then the Illinois method down to where the binding check reaches its
+limit, to a relative width of 1e-13; each step evaluates only the candidates still open.
 
 Feasible means what it means everywhere (sizer.sizing.checks.feasible: every slack
 >= -TOLERANCE). T_min is where the binding check is exactly at its limit; only where no
