@@ -99,6 +99,25 @@ def candidate(design: Design, motor: Motor, spec: str, option: float) -> Candida
                      design.limits)
 
 
+def minimize_design(seed: int) -> Design:
+    """:func:`random_design` as fast as possible (no duration given)."""
+    design = random_design(seed)
+    return dataclasses.replace(design, task=dataclasses.replace(design.task, duration=None))
+
+
+def engine_calculator(design: Design, motor: Motor, spec: str, option: float):
+    """The engine's cycle calculator of the same single candidate as :func:`candidate`."""
+    from sizer.mechanics import Drive
+    from sizer.sizing.cycle import CycleCalculator
+    from sizer.sizing.motors import MotorArrays
+
+    stages = list(design.transmission.stages)
+    stages[design.ratio_choice.stage] = dataclasses.replace(stages[0], ratio=option)
+    return CycleCalculator(None, design.task, Drive(design.load, Transmission(tuple(stages))),
+                           MotorArrays.of([motor], design.limits.envelope),
+                           design.limits.thermal_speed, law=make_law(spec))
+
+
 def option_of(design: Design, total: float) -> float:
     """The ratio option of the choice whose total ratio is ``total``."""
     others = math.prod(s.ratio for i, s in enumerate(design.transmission.stages)

@@ -13,18 +13,12 @@ sizer.sizing.peak_duration), against independent computations.
 
 from __future__ import annotations
 
-import dataclasses
-
 import numpy as np
 import pytest
 from scalar_reference import evaluate
-from test_engine_vs_scalar import LAWS, candidate, random_design
+from test_engine_vs_scalar import LAWS, candidate, engine_calculator, minimize_design
 
 from sizer.laws import make_law
-from sizer.mechanics import Drive
-from sizer.model import Transmission
-from sizer.sizing.cycle import CycleCalculator
-from sizer.sizing.motors import MotorArrays
 from sizer.sizing.peak_duration import peak_duration
 
 BRUTE = 400_001
@@ -74,19 +68,12 @@ def bounded(name: str) -> bool:
 
 @pytest.mark.parametrize("seed", range(6))
 def test_the_bound_is_a_tight_lower_bound_on_t_min(seed):
-    design = random_design(seed)
-    design = dataclasses.replace(design, task=dataclasses.replace(design.task, duration=None))
+    design = minimize_design(seed)
     checked = 0
     for motor in design.motors:
-        arrays = MotorArrays.of([motor], design.limits.envelope)
         for spec in design.laws[:1] + LAWS[seed % len(LAWS):][:1]:
-            law = make_law(spec)
             for ratio in design.ratio_choice.ratios[:2]:
-                stages = list(design.transmission.stages)
-                stages[0] = dataclasses.replace(stages[0], ratio=ratio)
-                drive = Drive(design.load, Transmission(tuple(stages)))
-                calculator = CycleCalculator(None, design.task, drive, arrays,
-                                             design.limits.thermal_speed, law=law)
+                calculator = engine_calculator(design, motor, spec, ratio)
                 bound = peak_duration(calculator, design.limits)
                 assert bound is not None
                 T = float(bound[0])
