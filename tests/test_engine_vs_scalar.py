@@ -263,3 +263,28 @@ def test_the_reference_meets_the_closed_form():
     assert ev.peak_torque == pytest.approx(J_t * K * C_a * h / 0.04, rel=1e-13)
     assert ev.rms_torque == pytest.approx(J_t * K * C_a_rms * h / 0.04 * math.sqrt(0.2 / 0.3),
                                           rel=1e-12)
+
+
+def convex_motor(rng: np.random.Generator, index: int) -> Motor:
+    """A motor whose intermittent curve falls convexly (steep, then flatter: a constant
+    power region), so that no line of it lies above the whole region (not concave)."""
+    tau_c = float(rng.uniform(0.3, 4.0))
+    tau_p = tau_c * float(rng.uniform(2.5, 4.0))
+    v_n = float(rng.uniform(200.0, 400.0))
+    curve = ((0.0, tau_p), (v_n, tau_p), (1.2 * v_n, 0.6 * tau_p), (1.8 * v_n, 0.45 * tau_p))
+    return Motor(f"c{index}", inertia=5e-5 * tau_c**1.3, continuous_torque=tau_c,
+                 peak_torque=tau_p, rated_speed=v_n, max_speed=1.8 * v_n,
+                 intermittent_curve=curve)
+
+
+@pytest.mark.parametrize("minimize", [False, True])
+def test_convex_regions_equal_the_scalar_reference(minimize):
+    """Regions that are not concave: the engine's exact ratio and its peak bound do not
+    apply there (the grid search and a weaker bound do)."""
+    design = minimize_design(1) if minimize else random_design(1)
+    rng = np.random.default_rng(101)
+    design = dataclasses.replace(design, motors=tuple(convex_motor(rng, i) for i in range(2)),
+                                 ratio_choice=dataclasses.replace(
+                                     design.ratio_choice, ratios=design.ratio_choice.ratios[:2]))
+    errors = check_design(design)
+    assert not errors, "\n".join(errors)
