@@ -13,12 +13,15 @@ sizer.sizing.peak_duration), against independent computations.
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 from scalar_reference import evaluate
-from test_engine_vs_scalar import LAWS, candidate, engine_calculator, minimize_design
+from test_engine_vs_scalar import LAWS, candidate, engine_calculator, minimize_design, random_design
 
 from sizer.laws import make_law
+from sizer.sizing.cycle import CycleCalculator
 from sizer.sizing.peak_duration import peak_duration
 
 BRUTE = 400_001
@@ -101,3 +104,41 @@ def test_region_lines_of_a_concave_and_a_convex_region():
     np.testing.assert_allclose(sigma[0], [0.0, -0.01, -0.015])
     # a convex region keeps one line: flat at its largest torque, above it everywhere
     assert alpha[1, 0] == 3.0 and sigma[1, 0] == 0.0 and np.all(np.isinf(alpha[1, 1:]))
+
+
+def test_the_peak_ratio_of_moves_past_the_region_equals_the_reference(monkeypatch):
+    """Moves faster than the region's top speed (they fail the speed check, and their
+    peak ratio is still reported): the engine's ratio, exact where the torque peaks past
+    the region's end, against the scalar reference's dense search."""
+    design = random_design(2)
+    design = dataclasses.replace(design, motors=tuple(
+        dataclasses.replace(m, max_speed=m.rated_speed * 1.2,
+                            intermittent_curve=((0.0, m.peak_torque),
+                                                (m.rated_speed, m.peak_torque),
+                                                (m.rated_speed * 1.2, 0.5 * m.peak_torque)),
+                            continuous_curve=None)
+        for m in design.motors))
+    taken = []
+    original = CycleCalculator._beyond_ratio
+
+    def spy(self, *args):
+        done = original(self, *args)
+        taken.append(int(done.sum()))
+        return done
+
+    monkeypatch.setattr(CycleCalculator, "_beyond_ratio", spy)
+    compared = 0
+    for motor in design.motors:
+        for spec in ("cycloidal", "poly5", "trapezoidal(alpha=1/3)"):
+            for ratio in design.ratio_choice.ratios:
+                calculator = engine_calculator(design, motor, spec, ratio)
+                top = motor.max_speed
+                K = float(np.broadcast_to(calculator.drive.ratio, (1,))[0])
+                fast = make_law(spec).coefficients.C_v * K * calculator.h / top
+                for T in (0.5 * fast, 0.8 * fast):
+                    mine = calculator.evaluate(np.array([T])).peak_ratio[0]
+                    theirs = evaluate(candidate(design, motor, spec, ratio), T).peak_ratio
+                    assert mine == pytest.approx(theirs, rel=1e-9), (motor.id, spec, ratio, T)
+                    compared += 1
+    assert compared >= 12
+    assert sum(taken) > 0  # some ratios were taken by the exact path for such moves

@@ -457,28 +457,38 @@ class CycleCalculator:
                     and not np.any(coefficients[0][2]):
                 # proportional to the acceleration (the book's inertial case): |P| C_a
                 terms.append(coefficients)
+                places.append(None)
                 return np.broadcast_to(np.abs(coefficients[0][0]) * c.C_a, (n,)).copy()
             top = np.full(n, -np.inf)
+            top_tau, top_piece = np.zeros(n), np.zeros(n, dtype=np.intp)
             for P, Q, C in coefficients:
-                top = np.maximum(top, peaks.maximum(P, Q).value + C)
+                high = peaks.maximum(P, Q)
+                value = high.value + C
+                better = value > top
+                top = np.where(better, value, top)
+                top_tau = np.where(better, high.tau, top_tau)
+                top_piece = np.where(better, high.piece, top_piece)
             lows = [peaks.minimum(P, Q) for P, Q, _ in coefficients]
             floors = np.stack([low.value + C for low, (_, _, C) in zip(lows, coefficients,
                                                                        strict=True)])
             best = np.argmax(floors, axis=0)
             bottom = floors[best, np.arange(n)]
+            tau = np.choose(best, [low.tau for low in lows])
+            piece = np.choose(best, [low.piece for low in lows])
             if len(coefficients) > 1:
-                tau = np.choose(best, [low.tau for low in lows])
-                piece = np.choose(best, [low.piece for low in lows])
                 v_n, a_n = piece_values(self.law, tau, piece, (1, 2))
                 values = np.stack([P * a_n + Q * v_n + C for P, Q, C in coefficients])
                 scale = np.max(np.abs(values), axis=0) + np.abs(bottom)
                 certified[:] &= values.max(axis=0) <= bottom + 1e-12 * scale
             terms.append(coefficients)
+            upper = top >= -bottom
+            places.append((np.where(upper, top_tau, tau), np.where(upper, top_piece, piece)))
             return np.maximum(top, -bottom)
 
         terms: list[list[tuple[np.ndarray, np.ndarray, np.ndarray]]] = []
+        places: list[tuple[np.ndarray, np.ndarray] | None] = []  # where each |peak| is
         peak = channel(shaft, True)
-        shaft_terms = terms[-1]
+        shaft_terms, peak_place = terms[-1], places[-1]
         load = channel([(np.full(1, drive.load.inertia), np.full(1, drive.load.damping),
                          np.full(1, drive.load.friction + scales.direction * drive.load.torque))],
                        False)
@@ -494,11 +504,31 @@ class CycleCalculator:
         ratio = _safe_ratio(peak, motors.intermittent.torques[:, 0])
         exact = certified & flat
         curved = np.flatnonzero(certified & ~flat)
+        speed_scale = np.broadcast_to(K * scales.vel, (n,))
         if len(curved):
-            speed_scale = np.broadcast_to(K * scales.vel, (n,))
             exact[curved] = self._curve_ratio(shaft_terms, curved, speed_scale[curved], c.C_v,
                                               ratio)
+        beyond = np.flatnonzero(certified & ~exact & (np.broadcast_to(speed, (n,))
+                                                      > motors.speed_limit))
+        if len(beyond) and peak_place is not None:
+            exact[beyond] = self._beyond_ratio(peak, peak_place, beyond, speed_scale[beyond],
+                                               ratio)
         return (peak, ratio, load, stages), exact, certified
+
+    def _beyond_ratio(self, peak: np.ndarray, place, rows: np.ndarray,
+                      speed_scale: np.ndarray, ratio: np.ndarray) -> np.ndarray:
+        """The peak ratio of moves that leave the region (the speed check fails them),
+        where it is the torque peak over the region's lowest torque: past its end the
+        region is read at its end (clipped), so |tau|/limit <= peak/lowest everywhere, with
+        equality at the torque's peak when that lies past the end and the end is the
+        lowest point. Returns where that holds (written into ``ratio``)."""
+        region = self.motors.intermittent.take(rows)
+        tau, piece = place[0][rows], place[1][rows]
+        at_peak = speed_scale * piece_values(self.law, tau, piece, 1)
+        end = region.limit(region.max_speed)
+        done = (at_peak >= region.max_speed) & (end <= region.torques.min(axis=1))
+        ratio[rows[done]] = _safe_ratio(peak[rows[done]], end[done])
+        return done
 
     def _curve_ratio(self, terms, rows: np.ndarray, speed_scale: np.ndarray, C_v: float,
                      ratio: np.ndarray) -> np.ndarray:
