@@ -442,21 +442,14 @@ class CycleCalculator:
         motors, drive = self.motors, self.drive
         K = drive.ratio
         peaks = self.law.linear_peaks
-        shaft, outputs = drive.linear_pieces(scales.direction)
-        rotor_a = motors.inertia * K
-        rotor_v = motors.damping * K
         certified = np.ones(n, dtype=bool)
 
-        def channel(pieces, with_rotor):
-            """max |value| of a maximum of linear functions; clears ``certified`` where the
-            minimum could not be certified."""
-            coefficients = [((A + rotor_a if with_rotor else A) * scales.acc,
-                             (B + rotor_v if with_rotor else B) * scales.vel,
-                             np.broadcast_to(C, (n,))) for A, B, C in pieces]
+        def channel(coefficients):
+            """max |value| of a maximum of linear functions of (a_N, v_N); clears
+            ``certified`` where the minimum could not be certified."""
             if len(coefficients) == 1 and not np.any(coefficients[0][1]) \
                     and not np.any(coefficients[0][2]):
                 # proportional to the acceleration (the book's inertial case): |P| C_a
-                terms.append(coefficients)
                 places.append(None)
                 return np.broadcast_to(np.abs(coefficients[0][0]) * c.C_a, (n,)).copy()
             top = np.full(n, -np.inf)
@@ -480,20 +473,19 @@ class CycleCalculator:
                 values = np.stack([P * a_n + Q * v_n + C for P, Q, C in coefficients])
                 scale = np.max(np.abs(values), axis=0) + np.abs(bottom)
                 certified[:] &= values.max(axis=0) <= bottom + 1e-12 * scale
-            terms.append(coefficients)
             upper = top >= -bottom
             places.append((np.where(upper, top_tau, tau), np.where(upper, top_piece, piece)))
             return np.maximum(top, -bottom)
 
-        terms: list[list[tuple[np.ndarray, np.ndarray, np.ndarray]]] = []
         places: list[tuple[np.ndarray, np.ndarray] | None] = []  # where each |peak| is
-        peak = channel(shaft, True)
-        shaft_terms, peak_place = terms[-1], places[-1]
-        load = channel([(np.full(1, drive.load.inertia), np.full(1, drive.load.damping),
-                         np.full(1, drive.load.friction + scales.direction * drive.load.torque))],
-                       False)
+        motor_terms, *stage_terms = self._channel_terms(scales)
+        peak = channel(motor_terms)
+        peak_place = places[-1]
+        load = channel([(np.broadcast_to(drive.load.inertia * scales.acc, (n,)),
+                         np.broadcast_to(drive.load.damping * scales.vel, (n,)),
+                         np.full(n, drive.load.friction + scales.direction * drive.load.torque))])
         if self.stage_checks:
-            stages = [channel(pieces, False) for pieces in outputs]
+            stages = [channel(pieces) for pieces in stage_terms]
         else:
             stages = [np.zeros(n) for _ in drive.stages]
         speed = K * scales.vel * c.C_v
@@ -506,7 +498,7 @@ class CycleCalculator:
         curved = np.flatnonzero(certified & ~flat)
         speed_scale = np.broadcast_to(K * scales.vel, (n,))
         if len(curved):
-            exact[curved] = self._curve_ratio(shaft_terms, curved, speed_scale[curved], c.C_v,
+            exact[curved] = self._curve_ratio(motor_terms, curved, speed_scale[curved], c.C_v,
                                               ratio)
         beyond = np.flatnonzero(certified & ~exact & (np.broadcast_to(speed, (n,))
                                                       > motors.speed_limit))

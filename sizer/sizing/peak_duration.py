@@ -48,10 +48,10 @@ def peak_duration(calculator: CycleCalculator, limits: Limits) -> np.ndarray | N
     c = law.coefficients
     motors, drive, h = calculator.motors, calculator.drive, calculator.h
     n = len(motors)
+    if h == 0.0:  # no move: nothing bounds the duration
+        return np.zeros(n)
     K = np.broadcast_to(drive.ratio, (n,))
     bounds = [_speed_bounds(calculator, limits, K)]
-    if h == 0.0:
-        return np.zeros(n)
     grip = 1.0 - limits.torque_margin
     alpha, sigma, _ = motors.intermittent.lines()
     rows, cols = np.nonzero(np.isfinite(alpha))
