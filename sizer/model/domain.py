@@ -9,7 +9,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
+
+if TYPE_CHECKING:
+    from sizer.model.cycle import Cycle
 
 ThermalSpeedRule = Literal["max", "rms", "mean"]
 """Speed at which the RMS torque is checked against the continuous region (sec. 6.1.1)."""
@@ -231,3 +234,13 @@ class Design:
     files: tuple[Path, ...] = ()
     """The files the loader read: the design file, the motor catalogs (named by the design
     or added), the gearbox catalogs. A command never writes its output over one of them."""
+    cycle: Cycle | None = None
+    """The machine cycle of several segments (``cycle:``); None: the ``task`` shorthand.
+    With a cycle, ``task`` summarizes it (its first move, minimize or not, the axis)."""
+
+    @property
+    def machine_cycle(self) -> Cycle:
+        """The cycle the design runs: ``cycle``, or the task shorthand expanded."""
+        from sizer.model.cycle import from_task
+
+        return self.cycle if self.cycle is not None else from_task(self.task)

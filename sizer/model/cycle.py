@@ -1,0 +1,186 @@
+"""A machine cycle of several segments, in SI units (issue 12; book sec. 5.2).
+
+A cycle is an ordered list of segments: moves (a displacement by a motion law, from a
+start speed to an end speed), constant-speed runs and dwells. Each segment may change
+the load while it lasts: an added inertia (or mass, on a linear axis: a part picked up)
+and an external torque (or force: pressing, cutting, gravity on a vertical leg), on top
+of the design's load. The design's ``task`` (move, dwell, move back, dwell) is the
+shorthand :func:`from_task` expands.
+
+Durations: a segment's duration is fixed (``duration``) or free (None). Free durations
+are one scale s times each segment's weight, T_i = w_i * s (book sec. 5.2: time scaling
+keeps the shape of every free segment); the weights come from ``ShareRule``. Minimize
+is the smallest s; a cycle time target fixes s.
+"""
+
+from __future__ import annotations
+
+import enum
+import math
+from dataclasses import dataclass, field
+
+from sizer.model.domain import Task
+
+
+class ShareRule(enum.Enum):
+    """How free durations share the time: the weight w_i of each free segment."""
+
+    EQUAL = "equal"
+    """Every free segment takes the same time (the task shorthand: move and return)."""
+    DISPLACEMENT = "displacement"
+    """In proportion to |h| (the same mean speed)."""
+    SQRT_DISPLACEMENT = "sqrt_displacement"
+    """In proportion to sqrt(|h|): with the same law, the same peak acceleration."""
+    WEIGHTS = "weights"
+    """The ``weight`` each free segment gives."""
+
+
+@dataclass(frozen=True)
+class SegmentLoad:
+    """What a segment adds to the design's load while it lasts (SI, at the load).
+
+    ``inertia``: added inertia (kg*m^2) or mass (kg, linear axis), >= 0. ``torque``:
+    added external torque (N*m) or force (N), signed like ``Load.torque`` (positive
+    opposes a positive move).
+    """
+
+    inertia: float = 0.0
+    torque: float = 0.0
+
+    @property
+    def is_zero(self) -> bool:
+        return self.inertia == 0.0 and self.torque == 0.0
+
+
+@dataclass(frozen=True)
+class Move:
+    """A move of ``displacement`` (signed) from ``start_speed`` to ``end_speed`` (signed,
+    at the load), by ``law`` (a spec; None: each of the design's laws in turn)."""
+
+    displacement: float
+    duration: float | None = None
+    law: str | None = None
+    start_speed: float = 0.0
+    end_speed: float = 0.0
+    weight: float = 1.0
+    load: SegmentLoad = field(default_factory=SegmentLoad)
+    name: str = ""
+
+    @property
+    def rest_to_rest(self) -> bool:
+        return self.start_speed == 0.0 and self.end_speed == 0.0
+
+
+@dataclass(frozen=True)
+class Run:
+    """A constant-speed run: ``speed`` (signed, nonzero) for ``duration`` (fixed: a
+    process speed and time, e.g. a flying saw synchronous with the line)."""
+
+    speed: float
+    duration: float
+    load: SegmentLoad = field(default_factory=SegmentLoad)
+    name: str = ""
+
+    @property
+    def displacement(self) -> float:
+        return self.speed * self.duration
+
+    @property
+    def start_speed(self) -> float:
+        return self.speed
+
+    @property
+    def end_speed(self) -> float:
+        return self.speed
+
+
+@dataclass(frozen=True)
+class Dwell:
+    """A rest of ``duration`` (None: free, scaled with the moves), holding the design's
+    constant load plus the segment's own torque or force."""
+
+    duration: float | None
+    weight: float = 1.0
+    load: SegmentLoad = field(default_factory=SegmentLoad)
+    name: str = ""
+
+    displacement = 0.0
+    start_speed = 0.0
+    end_speed = 0.0
+
+
+Segment = Move | Run | Dwell
+
+
+@dataclass(frozen=True)
+class Cycle:
+    """The segments of one machine cycle, repeated.
+
+    ``cycle_time``: a target (s) that fixes the scale of the free durations; None with
+    free segments means minimize. ``minimize_segment``: the name of the one segment to
+    minimize (the others must be fixed). ``closed``: the cycle must end where it starts.
+    ``shorthand``: the task it was expanded from, if any (results then report the move
+    duration T, as always; otherwise the cycle time).
+    """
+
+    segments: tuple[Segment, ...]
+    share: ShareRule = ShareRule.EQUAL
+    cycle_time: float | None = None
+    minimize_segment: str | None = None
+    closed: bool = False
+    linear: bool = False
+    shorthand: Task | None = None
+
+    @property
+    def moves(self) -> tuple[Move, ...]:
+        return tuple(s for s in self.segments if isinstance(s, Move))
+
+    @property
+    def free(self) -> tuple[int, ...]:
+        """Indices of the segments with free durations."""
+        return tuple(i for i, s in enumerate(self.segments)
+                     if not isinstance(s, Run) and s.duration is None)
+
+    @property
+    def minimize(self) -> bool:
+        return bool(self.free) and self.cycle_time is None
+
+    @property
+    def fixed_time(self) -> float:
+        """The sum of the fixed durations."""
+        return math.fsum(s.duration for s in self.segments if s.duration is not None)
+
+    @property
+    def net_displacement(self) -> float:
+        return math.fsum(s.displacement for s in self.segments)
+
+    def weights(self) -> tuple[float, ...]:
+        """w_i of every segment (0 for fixed ones): T_i = w_i * s for the free ones."""
+        out = []
+        for i, s in enumerate(self.segments):
+            if i not in self.free:
+                out.append(0.0)
+            elif self.share is ShareRule.EQUAL:
+                out.append(1.0)
+            elif self.share is ShareRule.WEIGHTS:
+                out.append(s.weight)
+            elif isinstance(s, Dwell):
+                raise ValueError("a free dwell needs the `weights` share rule")
+            elif self.share is ShareRule.DISPLACEMENT:
+                out.append(abs(s.displacement))
+            else:
+                out.append(math.sqrt(abs(s.displacement)))
+        return tuple(out)
+
+
+def from_task(task: Task) -> Cycle:
+    """The cycle the task shorthand means: move, dwell (and move back, dwell)."""
+    segments: list[Segment] = [Move(task.displacement, task.duration, name="move")]
+    if task.dwell > 0.0:
+        segments.append(Dwell(task.dwell, name="dwell"))
+    if task.return_move:
+        segments.append(Move(-task.displacement, task.duration, name="return"))
+        if task.dwell > 0.0:
+            segments.append(Dwell(task.dwell, name="dwell 2"))
+    return Cycle(tuple(segments), linear=task.linear, closed=task.return_move,
+                 shorthand=task)
