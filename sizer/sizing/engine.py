@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
+from dataclasses import replace
 
 import numpy as np
 
@@ -24,11 +25,13 @@ from sizer.sizing.candidates import Candidates
 from sizer.sizing.checks import evaluate_checks
 from sizer.sizing.checks import feasible as all_pass
 from sizer.sizing.cycle import CycleCalculator
+from sizer.sizing.cycle_shape import given_scale, ranked_laws, shorthand_task
 from sizer.sizing.grid import law_grid
 from sizer.sizing.minimum_duration import is_purely_inertial, minimum_duration
 from sizer.sizing.motors import MotorArrays
 from sizer.sizing.ranking import rank_order
 from sizer.sizing.results import CandidateResult, SizingResult
+from sizer.sizing.segment_cycle import SegmentCycle
 from sizer.sizing.table import FIGURES, CandidateTable, Mode, Rows, concatenate
 
 Progress = Callable[[int, int], None]
@@ -36,7 +39,18 @@ Progress = Callable[[int, int], None]
 
 
 def mode_of(design: Design) -> Mode:
-    return Mode.MINIMIZE if design.task.minimize else Mode.DURATION
+    minimize = design.cycle.minimize if design.cycle is not None else design.task.minimize
+    return Mode.MINIMIZE if minimize else Mode.DURATION
+
+
+def plain_design(design: Design) -> Design:
+    """The design with a cycle that is the task shorthand (move, dwell, move back, dwell)
+    written as a task, so that it is sized by the single-law engine with identical
+    results (sizer.sizing.cycle_shape.shorthand_task); other designs unchanged."""
+    if design.cycle is None:
+        return design
+    task = shorthand_task(design.cycle)
+    return design if task is None else replace(design, task=task, cycle=None)
 
 
 def size_design(design: Design, rank_by: str | None = None,
@@ -46,20 +60,20 @@ def size_design(design: Design, rank_by: str | None = None,
 
     ``progress``, if given, is called with (0, n) and then after each of the n laws.
     """
+    design = plain_design(design)
     motors = tuple(motors if motors is not None else design.motors)
     if not motors:
         raise UserError("no motors to size: give a catalog in the design or with --catalog",
                         field="motors")
-    if not design.laws:
-        raise UserError("no motion laws to consider", field="laws")
+    specs = ranked_laws(design)
     arrays = MotorArrays.of(motors, design.limits.envelope)
     tables: list[CandidateTable] = []
     if progress is not None:
-        progress(0, len(design.laws))
-    for done, spec in enumerate(design.laws, start=1):
+        progress(0, len(specs))
+    for done, spec in enumerate(specs, start=1):
         tables.append(evaluate_spec(design, spec, arrays))
         if progress is not None:
-            progress(done, len(design.laws))
+            progress(done, len(specs))
     table = concatenate(tables)
     order = rank_order(table, rank_by)
     return SizingResult(table.mode, Rows(table, order), design.name,
@@ -80,6 +94,10 @@ def evaluate_law(design: Design, spec: str, candidates: Candidates) -> Candidate
     """One law spec (fixed or with auto parameters) for all candidates, in their order."""
     family, values = resolve(spec)
     if any(v == AUTO for v in values.values()):
+        if design.cycle is not None:
+            raise UserError(f"{spec}: `auto` shape parameters are chosen for the task "
+                            "shorthand only, not yet for a cycle of segments; give the "
+                            "shape", field="laws")
         laws = choose_shape(family, values, design, candidates)
     else:
         return evaluate_fixed_law(design, make_law(spec), candidates)
@@ -104,21 +122,25 @@ MIN_CHUNK = 64
 """The smallest chunk (the per-evaluation overhead stays small against the work)."""
 
 
-def chunk_size(law: MotionLaw) -> int:
-    """How many candidates one evaluation of ``law`` takes (its grid's samples each)."""
+def chunk_size(law: MotionLaw, moves: int = 1) -> int:
+    """How many candidates one evaluation of ``law`` takes (its grid's samples each, for
+    each of ``moves`` moves evaluated together)."""
     grid = law_grid(law)
-    samples = grid.nodes.size + 2 * grid.size
+    samples = (grid.nodes.size + 2 * grid.size) * max(moves, 1)
     return max(MIN_CHUNK, CHUNK_SAMPLES // samples)
 
 
 def evaluate_fixed_law(design: Design, law: MotionLaw, candidates: Candidates) -> CandidateTable:
     """The requirements, checks and verdicts of one law for every candidate, in chunks
     of :func:`chunk_size` candidates."""
-    calculator = CycleCalculator(None, design.task, candidates.drive, candidates.motors,
-                                 design.limits.thermal_speed, law=law)
-    if is_purely_inertial(calculator):  # closed forms: memory per candidate, no grid
-        return _evaluate_chunk(design, law, candidates)
-    size = chunk_size(law)
+    if design.cycle is not None:
+        size = chunk_size(law, len(design.cycle.moves))
+    else:
+        calculator = CycleCalculator(None, design.task, candidates.drive, candidates.motors,
+                                     design.limits.thermal_speed, law=law)
+        if is_purely_inertial(calculator):  # closed forms: memory per candidate, no grid
+            return _evaluate_chunk(design, law, candidates)
+        size = chunk_size(law)
     if len(candidates) <= size:
         return _evaluate_chunk(design, law, candidates)
     starts = range(0, len(candidates), size)
@@ -127,6 +149,8 @@ def evaluate_fixed_law(design: Design, law: MotionLaw, candidates: Candidates) -
 
 
 def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates) -> CandidateTable:
+    if design.cycle is not None:
+        return _evaluate_cycle_chunk(design, law, candidates)
     motors, drive = candidates.motors, candidates.drive
     calculator = CycleCalculator(None, design.task, drive, motors,
                                  design.limits.thermal_speed, law=law)
@@ -140,6 +164,34 @@ def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates) -> C
         checks = evaluate_checks(metrics, motors, drive, design.limits, design.task.linear)
         feasible = all_pass(checks)
         duration = T
+    return _table(design, law, candidates, duration, metrics, checks, feasible)
+
+
+def _evaluate_cycle_chunk(design: Design, law: MotionLaw,
+                          candidates: Candidates) -> CandidateTable:
+    """A cycle of segments (sizer.sizing.segment_cycle): minimize is the smallest scale
+    of the free durations (time scaling, book sec. 5.2), searched per candidate; the
+    duration reported is the cycle time."""
+    cycle = design.cycle
+    assert cycle is not None
+    motors = candidates.motors
+    calculator = SegmentCycle(cycle, law, candidates.drive, motors,
+                              design.limits.thermal_speed)
+    if cycle.minimize:
+        solution = minimum_duration(calculator, design.limits)
+        metrics, checks, feasible = solution.metrics, solution.checks, solution.feasible
+    else:
+        metrics = calculator.evaluate(np.full(len(motors), given_scale(cycle)))
+        checks = evaluate_checks(metrics, motors, calculator.drive, design.limits, cycle.linear)
+        feasible = all_pass(checks)
+    duration = np.where(feasible, metrics.duration, np.nan) if cycle.minimize \
+        else metrics.duration
+    return _table(design, law, candidates, duration, metrics, checks, feasible)
+
+
+def _table(design: Design, law: MotionLaw, candidates: Candidates, duration: np.ndarray,
+           metrics, checks, feasible) -> CandidateTable:
+    motors, drive = candidates.motors, candidates.drive
     n = len(motors)
     figures = {"duration": duration, "peak_torque": metrics.peak_torque,
                "rms_torque": metrics.rms_torque, "max_speed": metrics.max_speed,
@@ -164,7 +216,7 @@ def check_design(design: Design) -> CandidateResult:
         known = ", ".join(m.id for m in design.motors) or "none"
         raise UserError(f"unknown motor {design.chosen_motor!r}; loaded motors: {known}",
                         field="check.motor")
-    table = evaluate_spec(design, design.chosen_law,
+    table = evaluate_spec(plain_design(design), design.chosen_law,
                           MotorArrays.of([motor], design.limits.envelope))
     return table.row(0)
 

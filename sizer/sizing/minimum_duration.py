@@ -77,7 +77,10 @@ def minimum_duration(calculator: CycleCalculator, limits: Limits) -> DurationSol
     The closed form is checked like any duration; where it misses (a check it does not
     model, or rounding beyond the tolerance) the search starts from it.
     """
-    if is_purely_inertial(calculator):
+    if getattr(calculator, "segmented", False):  # a cycle of segments: time scaling
+        T = bisect_duration(calculator, limits)
+        method = "search on the scale of the free durations"
+    elif is_purely_inertial(calculator):
         T = closed_form_duration(calculator, limits)
         method = "closed form (eq. 6.2)"
         finite = np.isfinite(T)
@@ -335,6 +338,8 @@ def rms_duration(scale: np.ndarray, dwell: float) -> np.ndarray:
 
 def _initial_guess(calculator: CycleCalculator) -> np.ndarray:
     """A duration scale from the speed and inertial bounds (never zero)."""
+    if getattr(calculator, "segmented", False):
+        return calculator.initial_guess()
     c = calculator.law.coefficients
     drive, motors = calculator.drive, calculator.motors
     k, h = drive.ratio, calculator.h

@@ -1,0 +1,295 @@
+"""The requirements of a machine cycle of several segments, for many candidates at once.
+
+A cycle (sizer.model.cycle) is a list of moves, constant-speed runs and dwells, each with
+its own load (the design's plus the segment's added inertia and external torque). For a
+scale s of the free durations (book sec. 5.2: T_i = w_i s, the fixed ones stay) every
+segment is evaluated exactly and the cycle's requirements combine them (DESIGN.md):
+
+- peaks (torque, ratio to the intermittent region, speeds, stage outputs) are the
+  maxima over the segments;
+- the RMS torque is the square root of the sum of the segments' integrals of tau^2 over
+  the cycle time (the same for each stage output and for the RMS speed).
+
+A rest-to-rest move is one move of the single-law engine (sizer.sizing.cycle); a move
+with boundary speeds is a piecewise polynomial of each candidate's duration
+(sizer.laws.boundary_speeds), evaluated exactly by sizer.sizing.polynomial_move. A run
+has a constant torque; a dwell holds its constant load (holding counts as driving, as
+in the single-law engine).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from sizer.laws import MotionLaw, make_law
+from sizer.mechanics import Drive
+from sizer.model.cycle import Cycle, Move, Run, Segment
+from sizer.model.domain import Load, Task, ThermalSpeedRule
+from sizer.sizing.cycle import CycleCalculator, CycleMetrics, MoveScales, _safe_ratio
+from sizer.sizing.motors import MotorArrays
+
+
+@dataclass(frozen=True)
+class SegmentFigures:
+    """One segment's requirements per candidate (arrays, SI): the peaks, the integrals
+    over the segment (tau^2, each stage's output^2, omega^2, |omega|, tau*omega) and
+    its duration."""
+
+    duration: np.ndarray
+    peak_torque: np.ndarray
+    peak_ratio: np.ndarray
+    load_torque: np.ndarray
+    max_speed: np.ndarray
+    load_speed: np.ndarray
+    load_acceleration: np.ndarray
+    load_jerk: np.ndarray
+    stage_peak: list[np.ndarray]
+    stage_speed: list[np.ndarray]
+    torque_square: np.ndarray
+    stage_square: list[np.ndarray]
+    speed_square: np.ndarray
+    speed_abs: np.ndarray
+    energy: np.ndarray
+
+
+def segment_load(base: Load, segment: Segment) -> Load:
+    """The design's load with the segment's added inertia (or mass) and torque (force)."""
+    if segment.load.is_zero:
+        return base
+    return replace(base, inertia=base.inertia + segment.load.inertia,
+                   torque=base.torque + segment.load.torque)
+
+
+def cycle_laws(cycle: Cycle, law: MotionLaw | None) -> tuple[MotionLaw | None, ...]:
+    """The law of each segment: a move's own law, else ``law`` (the one being ranked)."""
+    return tuple((make_law(s.law) if s.law else law) if isinstance(s, Move) else None
+                 for s in cycle.segments)
+
+
+class SegmentCycle:
+    """Evaluates a cycle of segments for candidate motors at candidate scales s.
+
+    Has the interface of :class:`sizer.sizing.cycle.CycleCalculator` that the checks and
+    the T_min search use (``evaluate``, ``take``, ``motors``, ``drive``, ``task``); the
+    duration the search varies is the scale s of the free durations.
+    """
+
+    segmented = True
+
+    def __init__(self, cycle: Cycle, law: MotionLaw | None, drive: Drive,
+                 motors: MotorArrays, thermal_speed: ThermalSpeedRule = "max") -> None:
+        self.cycle = cycle
+        self.law = law
+        self.laws = cycle_laws(cycle, law)
+        self.motors = motors
+        self.thermal_rule = thermal_speed
+        self.weights = np.array(cycle.weights())
+        self.fixed = np.array([np.nan if s.duration is None else s.duration
+                               for s in cycle.segments], dtype=float)
+        self.drives = tuple(Drive(segment_load(drive.load, s), drive.transmissions, drive.option)
+                            if not s.load.is_zero else drive for s in cycle.segments)
+        heaviest = max(cycle.segments, key=lambda s: s.load.inertia)
+        self.drive = (Drive(segment_load(drive.load, heaviest), drive.transmissions,
+                            drive.option) if heaviest.load.inertia > 0.0 else drive)
+        """The drive the checks read (the inertia ratio): the largest load of the cycle."""
+        self.task = Task(cycle.moves[0].displacement if cycle.moves else 0.0, None,
+                         linear=cycle.linear)
+        self._base = drive
+
+    # ------------------------------------------------------------------ public
+    def durations(self, s: np.ndarray) -> list[np.ndarray]:
+        """Each segment's duration per candidate at scales s."""
+        return [np.full_like(s, fixed) if np.isfinite(fixed) else w * s
+                for fixed, w in zip(self.fixed, self.weights, strict=True)]
+
+    def cycle_time(self, s: np.ndarray) -> np.ndarray:
+        return sum(self.durations(np.asarray(s, dtype=float)), np.zeros_like(s))
+
+    def take(self, index: np.ndarray) -> SegmentCycle:
+        out = object.__new__(SegmentCycle)
+        out.__dict__.update(self.__dict__)
+        out.motors = self.motors.subset(index)
+        out.drives = tuple(d.take(index) for d in self.drives)
+        out.drive = self.drive.take(index)
+        out._base = self._base.take(index)
+        return out
+
+    def initial_guess(self) -> np.ndarray:
+        """A scale to start the search from: the free moves' speed and inertial bounds."""
+        n = len(self.motors)
+        guess = np.full(n, 1e-3)
+        tau_p = np.maximum(self.motors.intermittent.torques.max(axis=1), 1e-300)
+        for segment, law, drive, w in zip(self.cycle.segments, self.laws, self.drives,
+                                          self.weights, strict=True):
+            if not isinstance(segment, Move) or w == 0.0 or law is None:
+                continue
+            c, k, h = law.coefficients, drive.ratio, abs(segment.displacement)
+            J_t = self.motors.inertia + drive.transmission_inertia + drive.reflected_load_inertia
+            T = np.maximum(c.C_v * k * h / self.motors.speed_limit,
+                           np.sqrt(c.C_a * k * h * J_t / tau_p))
+            guess = np.maximum(guess, np.broadcast_to(T / w, (n,)))
+        return np.where(np.isfinite(guess) & (guess > 0.0), guess, 1.0)
+
+    def figures(self, s: np.ndarray, peaks: bool = True) -> list[SegmentFigures]:
+        """Each segment's requirements at scales s."""
+        s = np.broadcast_to(np.asarray(s, dtype=float), (len(self.motors),)).copy()
+        out = []
+        for segment, law, drive, T in zip(self.cycle.segments, self.laws, self.drives,
+                                          self.durations(s), strict=True):
+            if isinstance(segment, Move):
+                out.append(self._move(segment, law, drive, T, peaks))
+            elif isinstance(segment, Run):
+                out.append(self._run(segment, drive, T))
+            else:
+                out.append(self._dwell(drive, T))
+        return out
+
+    def evaluate(self, duration: np.ndarray, peaks: bool = True,
+                 model: bool = False) -> CycleMetrics:
+        """The cycle's requirements at scales s = ``duration`` (``model`` is not built:
+        the searches over a cycle do not use the RMS model)."""
+        parts = self.figures(duration, peaks)
+        T = parts[0].duration * 0.0 + self.cycle_time(np.broadcast_to(
+            np.asarray(duration, dtype=float), (len(self.motors),)))
+        n_stages = len(self._base.stages)
+
+        def most(name: str) -> np.ndarray:
+            return np.max(np.stack([getattr(p, name) for p in parts]), axis=0)
+
+        def total(name: str) -> np.ndarray:
+            return np.sum(np.stack([getattr(p, name) for p in parts]), axis=0)
+
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            rms = np.sqrt(total("torque_square") / T)
+            stage_rms = [np.sqrt(np.sum(np.stack([p.stage_square[i] for p in parts]), axis=0)
+                                 / T) for i in range(n_stages)]
+            if self.thermal_rule == "max":
+                thermal = most("max_speed")
+            elif self.thermal_rule == "rms":
+                thermal = np.sqrt(total("speed_square") / T)
+            else:
+                thermal = total("speed_abs") / T
+        return CycleMetrics(
+            duration=T, max_speed=most("max_speed"), peak_torque=most("peak_torque"),
+            peak_ratio=most("peak_ratio"), rms_torque=_finite_or_inf(rms),
+            thermal_speed=_finite_or_inf(thermal), load_speed=most("load_speed"),
+            load_acceleration=most("load_acceleration"), load_jerk=most("load_jerk"),
+            load_torque=most("load_torque"),
+            stage_peak=[np.max(np.stack([p.stage_peak[i] for p in parts]), axis=0)
+                        for i in range(n_stages)],
+            stage_rms=[_finite_or_inf(x) for x in stage_rms],
+            stage_speed=[np.max(np.stack([p.stage_speed[i] for p in parts]), axis=0)
+                         for i in range(n_stages)],
+        )
+
+    # ------------------------------------------------------------- segments
+    def _move(self, move: Move, law: MotionLaw | None, drive: Drive, T: np.ndarray,
+              peaks: bool) -> SegmentFigures:
+        if move.rest_to_rest:
+            assert law is not None
+            return self._rest_move(move, law, drive, T, peaks)
+        return self._boundary_move(move, law, drive, T)
+
+    def _rest_move(self, move: Move, law: MotionLaw, drive: Drive, T: np.ndarray,
+                   peaks: bool) -> SegmentFigures:
+        """A rest-to-rest move: the single-law engine for a one-move task."""
+        task = Task(move.displacement, None, linear=self.cycle.linear)
+        calc = CycleCalculator(None, task, drive, self.motors, "max", law=law)
+        m = calc.evaluate(T, peaks)
+        c, K, h = law.coefficients, np.broadcast_to(drive.ratio, T.shape), abs(move.displacement)
+        with np.errstate(over="ignore", invalid="ignore"):
+            rms_speed = K * h * c.C_v_rms / T
+            energy = self._rest_energy(calc, T)
+            return SegmentFigures(
+                duration=T, peak_torque=m.peak_torque, peak_ratio=m.peak_ratio,
+                load_torque=m.load_torque, max_speed=m.max_speed, load_speed=m.load_speed,
+                load_acceleration=m.load_acceleration, load_jerk=m.load_jerk,
+                stage_peak=m.stage_peak, stage_speed=m.stage_speed,
+                torque_square=np.square(m.rms_torque) * T,
+                stage_square=[np.square(x) * T for x in m.stage_rms],
+                speed_square=np.square(rms_speed) * T, speed_abs=K * h, energy=energy)
+
+    def _rest_energy(self, calc: CycleCalculator, T: np.ndarray) -> np.ndarray:
+        """Work at the motor shaft over the move, the integral of tau*omega (signed along
+        the move), by the law grid's Gauss-Legendre rule (exact for polynomial pieces of
+        an ideal drive; to the grid's accuracy where a stage's power flow reverses)."""
+        grid = calc.grid
+        sign = 1.0 if calc.task.displacement >= 0 else -1.0
+        scales = MoveScales(calc.h / T / T, calc.h / T, sign)
+        torque, _ = calc.channels(grid.acceleration[None], grid.velocity[None], scales)
+        K = np.broadcast_to(calc.drive.ratio, T.shape)
+        omega = (K * calc.h / T)[:, None, None] * grid.velocity[None]
+        return np.sum(grid.weights[None] * torque * omega, axis=(1, 2)) * T
+
+    def _boundary_move(self, move: Move, law: MotionLaw | None, drive: Drive,
+                       T: np.ndarray) -> SegmentFigures:
+        """A move with boundary speeds: each candidate's piecewise polynomial, exactly."""
+        from sizer.laws.boundary_speeds import boundary_form
+        from sizer.sizing.polynomial_move import polynomial_move
+
+        spec = law.spec if law is not None else None
+        basis = boundary_form(spec) if spec is not None else None
+        if basis is None:
+            raise ValueError(f"{spec} has no form with boundary speeds")
+        h = move.displacement
+        with np.errstate(over="ignore", invalid="ignore"):
+            s0, s1 = move.start_speed * T / h, move.end_speed * T / h
+            normalized = basis.combine(s0, s1)  # (n, P, d+1) in u
+            powers = np.arange(normalized.shape[2])
+            coefficients = h * normalized / T[:, None, None] ** powers
+            breaks = T[:, None] * basis.breaks[None, :]
+        f = polynomial_move(breaks, coefficients, drive, self.motors,
+                            1.0 if h >= 0 else -1.0)
+        jerk = f.load_jerk if basis.jerk_bounded else np.full_like(T, np.inf)
+        return SegmentFigures(
+            duration=T, peak_torque=f.peak_torque, peak_ratio=f.peak_ratio,
+            load_torque=f.load_torque, max_speed=f.max_speed, load_speed=f.load_speed,
+            load_acceleration=f.load_acceleration, load_jerk=jerk, stage_peak=f.stage_peak,
+            stage_speed=f.stage_speed, torque_square=f.torque_square,
+            stage_square=f.stage_square, speed_square=f.speed_square, speed_abs=f.speed_abs,
+            energy=f.energy)
+
+    def _run(self, run: Run, drive: Drive, T: np.ndarray) -> SegmentFigures:
+        """A constant-speed run: a = 0, the torque constant over T."""
+        n = len(T)
+        direction = 1.0 if run.speed > 0 else -1.0
+        v = np.full((n, 1), run.speed * direction)  # along the motion
+        shaft, outputs = drive.chain(np.zeros((n, 1)), v, direction)
+        K = np.broadcast_to(drive.ratio, (n,))
+        torque = (self.motors.damping * K * v[:, 0] + shaft[:, 0])
+        speed = K * abs(run.speed)
+        limit = self.motors.intermittent.limit(speed)
+        stage_out = [np.abs(x[:, 0]) for x in outputs]
+        u = np.abs(drive.load_torque(np.zeros(n), v[:, 0], direction))
+        return SegmentFigures(
+            duration=T, peak_torque=np.abs(torque), peak_ratio=_safe_ratio(np.abs(torque), limit),
+            load_torque=u, max_speed=speed, load_speed=np.full(n, abs(run.speed)),
+            load_acceleration=np.zeros(n), load_jerk=np.zeros(n), stage_peak=stage_out,
+            stage_speed=[np.broadcast_to(k * abs(run.speed), (n,)) for k in drive.input_ratios],
+            torque_square=np.square(torque) * T, stage_square=[x * x * T for x in stage_out],
+            speed_square=speed * speed * T, speed_abs=speed * T, energy=torque * speed * T)
+
+    def _dwell(self, drive: Drive, T: np.ndarray) -> SegmentFigures:
+        """A dwell holding the segment's constant load (counts as driving)."""
+        n = len(T)
+        hold, stage_hold = drive.holding_torques()
+        hold = np.broadcast_to(hold, (n,))
+        stage_hold = [np.broadcast_to(x, (n,)) for x in stage_hold]
+        held = hold > 0.0
+        ratio = np.where(held, _safe_ratio(hold, self.motors.intermittent.limit(np.zeros(n))),
+                         0.0)
+        zero = np.zeros(n)
+        return SegmentFigures(
+            duration=T, peak_torque=hold.copy(), peak_ratio=ratio,
+            load_torque=np.full(n, abs(drive.load.torque)), max_speed=zero, load_speed=zero,
+            load_acceleration=zero, load_jerk=zero,
+            stage_peak=[x.copy() for x in stage_hold],
+            stage_speed=[zero for _ in drive.stages], torque_square=hold * hold * T,
+            stage_square=[x * x * T for x in stage_hold], speed_square=zero, speed_abs=zero,
+            energy=zero)
+
+
+def _finite_or_inf(x: np.ndarray) -> np.ndarray:
+    return np.where(np.isnan(x), np.inf, x)

@@ -1,0 +1,194 @@
+"""A machine cycle of segments (issue 12): the segment engine against the single-law
+engine on the task shorthand, closed forms of the RMS over segments, time scaling."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from sizer.laws import make_law
+from sizer.mechanics import Drive
+from sizer.model.cycle import Cycle, Dwell, Move, Run, SegmentLoad, ShareRule, from_task
+from sizer.model.domain import (
+    Design,
+    Limits,
+    Load,
+    Motor,
+    RatioChoice,
+    Stage,
+    Task,
+    Transmission,
+)
+from sizer.sizing import size_design
+from sizer.sizing.cycle import CycleCalculator
+from sizer.sizing.cycle_shape import shorthand_task
+from sizer.sizing.motors import MotorArrays
+from sizer.sizing.segment_cycle import SegmentCycle
+
+RPM = math.pi / 30.0
+FIELDS = ("max_speed", "peak_torque", "peak_ratio", "rms_torque", "thermal_speed",
+          "load_speed", "load_acceleration", "load_torque")
+
+
+def curved_motors(count: int) -> tuple[Motor, ...]:
+    out = []
+    for i in range(count):
+        tau = 0.5 * 40.0 ** (i / max(count - 1, 1))
+        v_n = 3000.0 * RPM
+        out.append(Motor(f"m{i}", 2e-5 * tau**1.3, tau, 3.0 * tau, v_n, max_speed=2 * v_n,
+                         intermittent_curve=((0.0, 3 * tau), (0.8 * v_n, 3 * tau),
+                                             (1.4 * v_n, 2.1 * tau), (2 * v_n, tau)),
+                         continuous_curve=((0.0, 1.05 * tau), (v_n, tau), (2 * v_n, 0.5 * tau))))
+    return tuple(out)
+
+
+def real_design(**task) -> Design:
+    """Friction, damping, a constant load, an efficiency of 0.9 and a ratio choice."""
+    return Design(Task(1.2, **task), Load(0.3, damping=0.02, friction=0.3, torque=0.8),
+                  Transmission((Stage("gearbox", 5.0, 0.9, 1e-4),)),
+                  laws=("cycloidal", "trapezoidal(alpha=1/3)", "poly5"),
+                  motors=curved_motors(5), limits=Limits(torque_margin=0.1),
+                  ratio_choice=RatioChoice(ratios=(3.0, 5.0, 8.0)))
+
+
+@pytest.mark.parametrize("spec", ["cycloidal", "trapezoidal(alpha=1/4)", "poly7",
+                                  "modified_sinusoidal", "double_s(alpha=1/3, beta=1/4)"])
+@pytest.mark.parametrize("rule", ["max", "rms", "mean"])
+def test_segments_of_the_shorthand_equal_the_single_law_engine(spec, rule):
+    task = Task(1.2, None, dwell=0.2, return_move=True)
+    design = real_design(duration=None, dwell=0.2, return_move=True)
+    motors = MotorArrays.of(design.motors, design.limits.envelope)
+    drive = Drive(design.load, design.transmission)
+    law = make_law(spec)
+    single = CycleCalculator(None, task, drive, motors, rule, law=law)
+    segments = SegmentCycle(from_task(task), law, drive, motors, rule)
+    T = np.linspace(0.15, 1.5, len(design.motors))
+    a, b = single.evaluate(T), segments.evaluate(T)
+    for name in FIELDS:
+        np.testing.assert_allclose(getattr(b, name), getattr(a, name), rtol=1e-12,
+                                   err_msg=name)
+    np.testing.assert_allclose(b.duration, 2 * (T + 0.2), rtol=1e-15)
+
+
+@pytest.mark.parametrize("duration", [None, 0.6])
+def test_a_dwell_split_in_two_changes_nothing(duration):
+    """Sized through the segment engine (the split dwell is no shorthand) and through the
+    single-law engine: the same verdicts, T_min (as cycle times) and torques."""
+    design = real_design(duration=duration, dwell=0.3, return_move=True)
+    h = design.task.displacement
+    split = Cycle((Move(h, duration), Dwell(0.1), Dwell(0.2), Move(-h, duration), Dwell(0.3)),
+                  closed=True)
+    assert shorthand_task(split) is None
+    plain, cycled = size_design(design), size_design(replace(design, cycle=split))
+    by_key = {(r.motor, r.law): r for r in plain.results}
+    assert len(by_key) == len(cycled.results) == 15
+    for r in cycled.results:
+        x = by_key[(r.motor, r.law)]
+        assert r.feasible == x.feasible
+        if not x.feasible:
+            continue
+        assert r.duration == pytest.approx(2 * (x.duration + 0.3), rel=1e-9)
+        assert r.peak_torque == pytest.approx(x.peak_torque, rel=1e-9)
+        assert r.rms_torque == pytest.approx(x.rms_torque, rel=1e-9)
+
+
+def test_the_expanded_task_is_sized_as_the_task():
+    design = real_design(duration=None, dwell=0.3, return_move=True)
+    expanded = replace(from_task(design.task), shorthand=None)
+    assert shorthand_task(expanded) == design.task
+    a, b = size_design(design), size_design(replace(design, cycle=expanded))
+    assert [(r.motor, r.law, r.duration, r.rms_torque) for r in a.results] == \
+        [(r.motor, r.law, r.duration, r.rms_torque) for r in b.results]
+
+
+def inertial_cycle_parts():
+    """Two moves of different laws and a payload, a dwell holding a torque: ideal gearbox,
+    rectangular regions."""
+    motor = Motor("m", 1e-3, 5.0, 15.0, 300.0)
+    load = Load(0.2)
+    transmission = Transmission((Stage("gearbox", 10.0, 1.0, 2e-4),))
+    cycle = Cycle((Move(1.0, 0.5, law="cycloidal"),
+                   Dwell(0.25, load=SegmentLoad(torque=4.0)),
+                   Move(-1.0, None, law="poly5", load=SegmentLoad(inertia=0.1)),
+                   Dwell(0.25)), share=ShareRule.EQUAL)
+    return motor, load, transmission, cycle
+
+
+def test_rms_over_a_cycle_is_the_sum_of_the_segments_integrals():
+    motor, load, transmission, cycle = inertial_cycle_parts()
+    motors = MotorArrays.of([motor], "book")
+    calc = SegmentCycle(cycle, None, Drive(load, transmission), motors)
+    s = np.array([0.4])
+    m = calc.evaluate(s)
+    K = 10.0
+
+    def j_t(inertia):
+        return 1e-3 + 2e-4 + inertia / K**2
+
+    c1, c2 = make_law("cycloidal").coefficients, make_law("poly5").coefficients
+    assert c1.C_a_rms == pytest.approx(math.sqrt(2 * math.pi**2))  # (2 pi)^2 / 2
+    first = (j_t(0.2) * K * 1.0 * c1.C_a_rms / 0.5**2) ** 2 * 0.5
+    second = (j_t(0.3) * K * 1.0 * c2.C_a_rms / 0.4**2) ** 2 * 0.4
+    hold = (4.0 / K) ** 2 * 0.25
+    total = 0.5 + 0.25 + 0.4 + 0.25
+    assert m.duration[0] == pytest.approx(total, rel=1e-15)
+    assert m.rms_torque[0] == pytest.approx(math.sqrt((first + second + hold) / total), rel=1e-12)
+    peak = max(j_t(0.2) * K * c1.C_a / 0.25, j_t(0.3) * K * c2.C_a / 0.16, 4.0 / K)
+    assert m.peak_torque[0] == pytest.approx(peak, rel=1e-12)
+
+
+def test_doubling_the_free_durations_divides_the_inertial_torques_by_four():
+    motor, load, transmission, _ = inertial_cycle_parts()
+    cycle = Cycle((Move(1.0, None, law="cycloidal"), Dwell(0.25),
+                   Move(-0.5, None, law="poly5"), Dwell(0.25)), share=ShareRule.DISPLACEMENT)
+    calc = SegmentCycle(cycle, None, Drive(load, transmission), MotorArrays.of([motor], "book"))
+    a, b = calc.figures(np.array([0.3])), calc.figures(np.array([0.6]))
+    for x, y in zip(a, b, strict=True):
+        if x.duration[0] != y.duration[0]:
+            assert y.duration[0] == pytest.approx(2 * x.duration[0], rel=1e-15)
+            assert y.peak_torque[0] == pytest.approx(x.peak_torque[0] / 4, rel=1e-12)
+    assert a[2].duration[0] == pytest.approx(0.5 * a[0].duration[0], rel=1e-15)
+
+
+def test_a_run_has_the_closed_form_torque_of_its_constant_speed():
+    motor = Motor("m", 1e-3, 5.0, 15.0, 300.0, damping=1e-4)
+    load = Load(0.2, damping=0.05, friction=0.4, torque=1.0)
+    transmission = Transmission((Stage("gearbox", 10.0, 0.8, 2e-4),))
+    cycle = Cycle((Run(2.0, 0.5, load=SegmentLoad(torque=3.0)),))
+    calc = SegmentCycle(cycle, None, Drive(load, transmission), MotorArrays.of([motor], "book"))
+    f = calc.figures(np.array([1.0]))[0]
+    u = 0.05 * 2.0 + 0.4 + 4.0  # the load's torque along the motion (opposes it)
+    torque = 1e-4 * 10.0 * 2.0 + u / (10.0 * 0.8)
+    assert f.peak_torque[0] == pytest.approx(torque, rel=1e-13)
+    assert f.torque_square[0] == pytest.approx(torque**2 * 0.5, rel=1e-13)
+    assert f.energy[0] == pytest.approx(torque * 20.0 * 0.5, rel=1e-13)
+    assert f.max_speed[0] == pytest.approx(20.0)
+
+
+def test_the_minimized_cycle_is_feasible_at_t_min_and_not_just_below():
+    motor, load, transmission, cycle = inertial_cycle_parts()
+    free = Cycle(tuple(replace(s, duration=None) if isinstance(s, Move) else s
+                       for s in cycle.segments), share=ShareRule.DISPLACEMENT)
+    design = Design(Task(1.0, None), Load(0.2, friction=0.2), transmission,
+                    laws=("cycloidal",), motors=curved_motors(4), cycle=free)
+    result = size_design(design)
+    feasible = [r for r in result.results if r.feasible]
+    assert feasible
+    from sizer.sizing.checks import evaluate_checks, worst_slack
+
+    motors = MotorArrays.of(design.motors, design.limits.envelope)
+    drive = Drive(design.load, transmission)
+    calc = SegmentCycle(free, make_law("cycloidal"), drive, motors)
+    durations = {r.motor: r.duration for r in feasible}
+    index = np.array([i for i, m in enumerate(design.motors) if m.id in durations])
+    sub = calc.take(index)
+    T = np.array([durations[design.motors[i].id] for i in index])
+    s = (T - 0.5) / 2.0  # free moves of weights 1 and 1 (|h| = 1 each); dwells 0.25 + 0.25
+    at = worst_slack(evaluate_checks(sub.evaluate(s), sub.motors, sub.drive, design.limits))
+    below = worst_slack(evaluate_checks(sub.evaluate(s * (1 - 1e-7)), sub.motors, sub.drive,
+                                        design.limits))
+    assert np.all(at >= -1e-9)
+    assert np.all(below < 0.0)
