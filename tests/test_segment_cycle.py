@@ -169,7 +169,7 @@ def test_a_run_has_the_closed_form_torque_of_its_constant_speed():
 
 
 def test_the_minimized_cycle_is_feasible_at_t_min_and_not_just_below():
-    motor, load, transmission, cycle = inertial_cycle_parts()
+    _, _, transmission, cycle = inertial_cycle_parts()
     free = Cycle(tuple(replace(s, duration=None) if isinstance(s, Move) else s
                        for s in cycle.segments), share=ShareRule.DISPLACEMENT)
     design = Design(Task(1.0, None), Load(0.2, friction=0.2), transmission,
@@ -192,3 +192,32 @@ def test_the_minimized_cycle_is_feasible_at_t_min_and_not_just_below():
                                         design.limits))
     assert np.all(at >= -1e-9)
     assert np.all(below < 0.0)
+
+
+def test_the_breakdown_of_a_cycle_per_segment():
+    """Ideal gearbox, Coulomb friction only: over a rest-to-rest move the motor's work is
+    the friction's, F |h| (the kinetic energy returns); shares of tau^2 sum to one; the
+    times add up; the cycloidal law joins a dwell without an acceleration step, the
+    trapezoid with one of its acceleration h C_a / T^2."""
+    from sizer.sizing.segment_breakdown import segment_breakdown
+
+    motor = Motor("m", 1e-3, 5.0, 15.0, 300.0)
+    design = Design(Task(1.0, None), Load(0.2, friction=0.5),
+                    Transmission((Stage("gearbox", 10.0, 1.0, 2e-4),)), laws=("cycloidal",),
+                    motors=(motor,),
+                    cycle=Cycle((Move(1.0, 0.5, law="cycloidal", name="out"), Dwell(0.25),
+                                 Move(-1.0, 0.4, law="trapezoidal(alpha=1/4)", name="back"),
+                                 Dwell(0.3, load=SegmentLoad(torque=2.0)))))
+    b = segment_breakdown(design, motor, "cycloidal", 1.45)
+    assert [r.name for r in b.rows] == ["out", "dwell", "back", "dwell"]
+    assert [(r.start, r.end) for r in b.rows] == pytest.approx(
+        [(0, 0.5), (0.5, 0.75), (0.75, 1.15), (1.15, 1.45)], abs=1e-15)
+    assert b.rows[0].energy == pytest.approx(0.5 * 1.0, rel=1e-12)
+    assert b.rows[2].energy == pytest.approx(0.5 * 1.0, rel=1e-12)
+    assert b.rows[1].energy == 0.0
+    assert sum(r.rms_share for r in b.rows) == pytest.approx(1.0, rel=1e-14)
+    assert b.rows[3].peak_torque == pytest.approx(2.0 / 10.0, rel=1e-15)
+    assert b.rows[0].acceleration_step == 0.0 and b.rows[1].acceleration_step == 0.0
+    C_a = 1.0 / (0.25 * 0.75)
+    assert b.rows[2].acceleration_step == pytest.approx(-C_a / 0.4**2, rel=1e-12)
+    assert b.rows[3].acceleration_step == pytest.approx(-C_a / 0.4**2, rel=1e-12)

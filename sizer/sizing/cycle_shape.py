@@ -4,6 +4,7 @@ of its free durations, and the laws that are ranked over it (issue 12)."""
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 from sizer.errors import UserError
 from sizer.model.cycle import Cycle, Dwell, Move
@@ -43,6 +44,16 @@ def shorthand_task(cycle: Cycle) -> Task | None:
         return None
     return Task(first.displacement, first.duration, dwell=dwell or 0.0,
                 return_move=len(moves) == 2, linear=cycle.linear)
+
+
+def plain_design(design: Design) -> Design:
+    """The design with a cycle that is the task shorthand (move, dwell, move back, dwell)
+    written as a task, so that it is sized by the single-law engine with identical
+    results (:func:`shorthand_task`); other designs unchanged."""
+    if design.cycle is None:
+        return design
+    task = shorthand_task(design.cycle)
+    return design if task is None else replace(design, task=task, cycle=None)
 
 
 def given_scale(cycle: Cycle) -> float:

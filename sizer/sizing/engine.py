@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import replace
 
 import numpy as np
 
@@ -25,7 +24,7 @@ from sizer.sizing.candidates import Candidates
 from sizer.sizing.checks import evaluate_checks
 from sizer.sizing.checks import feasible as all_pass
 from sizer.sizing.cycle import CycleCalculator
-from sizer.sizing.cycle_shape import given_scale, ranked_laws, shorthand_task
+from sizer.sizing.cycle_shape import given_scale, plain_design, ranked_laws
 from sizer.sizing.grid import law_grid
 from sizer.sizing.minimum_duration import is_purely_inertial, minimum_duration
 from sizer.sizing.motors import MotorArrays
@@ -41,16 +40,6 @@ Progress = Callable[[int, int], None]
 def mode_of(design: Design) -> Mode:
     minimize = design.cycle.minimize if design.cycle is not None else design.task.minimize
     return Mode.MINIMIZE if minimize else Mode.DURATION
-
-
-def plain_design(design: Design) -> Design:
-    """The design with a cycle that is the task shorthand (move, dwell, move back, dwell)
-    written as a task, so that it is sized by the single-law engine with identical
-    results (sizer.sizing.cycle_shape.shorthand_task); other designs unchanged."""
-    if design.cycle is None:
-        return design
-    task = shorthand_task(design.cycle)
-    return design if task is None else replace(design, task=task, cycle=None)
 
 
 def size_design(design: Design, rank_by: str | None = None,

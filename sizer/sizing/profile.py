@@ -15,9 +15,13 @@ import numpy as np
 from sizer.envelope import continuous_region, intermittent_region
 from sizer.laws import MotionLaw, make_law
 from sizer.mechanics import Drive
+from sizer.model.cycle import Cycle, Dwell, Move, Run
 from sizer.model.domain import Curve, Design, Motor, Transmission
 from sizer.sizing.cycle import CycleCalculator, MoveScales
+from sizer.sizing.cycle_shape import plain_design
 from sizer.sizing.motors import MotorArrays
+from sizer.sizing.segment_breakdown import design_cycle, scale_of
+from sizer.sizing.segment_cycle import SegmentCycle
 
 
 @dataclass(frozen=True)
@@ -44,6 +48,8 @@ class TaskCurve:
     total_inertia: float
     """J_t at the motor shaft (rotor + transmission + load/K^2), for the speed-acceleration
     plane of Fig. 6.7, where each region's torque becomes an acceleration tau/J_t."""
+    segments: tuple[tuple[str, float, float], ...] = ()
+    """(name, start, end) of each segment of the cycle, s: the plots mark them."""
 
     @property
     def acceleration_regions(self) -> tuple[Curve, Curve]:
@@ -62,6 +68,8 @@ def task_curve(design: Design, motor: Motor, law: MotionLaw | str, duration: flo
     """
     if isinstance(law, str):
         law = make_law(law)
+    if plain_design(design).cycle is not None:
+        return _cycle_curve(design, motor, law, duration, transmission, samples)
     drive = Drive(design.load, transmission or design.transmission)
     motors = MotorArrays.of([motor], design.limits.envelope)
     calc = CycleCalculator(None, design.task, drive, motors, design.limits.thermal_speed,
@@ -102,7 +110,112 @@ def task_curve(design: Design, motor: Motor, law: MotionLaw | str, duration: flo
         continuous_region=continuous_region(motor, design.limits.envelope),
         intermittent_region=intermittent_region(motor, design.limits.envelope),
         total_inertia=motor.inertia + float(drive.driven_inertia[0]),
+        segments=_segment_times(design_cycle(design), scale_of(design, duration)),
     )
+
+
+def _segment_times(cycle: Cycle, s: float) -> tuple[tuple[str, float, float], ...]:
+    out, start = [], 0.0
+    for segment, w in zip(cycle.segments, cycle.weights(), strict=True):
+        T = segment.duration if segment.duration is not None else w * s
+        out.append((segment.name or type(segment).__name__.lower(), start, start + T))
+        start += T
+    return tuple(out)
+
+
+def _cycle_curve(design: Design, motor: Motor, law: MotionLaw, duration: float,
+                 transmission: Transmission | None, samples: int) -> TaskCurve:
+    """The task curve of a cycle of segments: each segment sampled in its own time (a
+    move by its law, its boundary speeds met), each with its own load."""
+    cycle = design_cycle(design)
+    motors = MotorArrays.of([motor], design.limits.envelope)
+    base = Drive(design.load, transmission or design.transmission)
+    calc = SegmentCycle(cycle, law, base, motors, design.limits.thermal_speed)
+    s = np.array([scale_of(design, duration)])
+    metrics = calc.evaluate(s)
+    K = float(base.ratio[0])
+    times, positions, speeds, accelerations, torques = [], [], [], [], []
+    t0, q0 = 0.0, 0.0
+    for segment, own, drive, T in zip(cycle.segments, calc.laws, calc.drives,
+                                      calc.durations(s), strict=True):
+        T = float(T[0])
+        if isinstance(segment, Move):
+            u, q, v, a = _move_samples(segment, own, T, samples)
+            time = t0 + T * u
+        else:
+            speed = segment.speed if isinstance(segment, Run) else 0.0
+            time = np.array([t0, t0 + T])
+            q, v, a = speed * (time - t0), np.full(2, speed), np.zeros(2)
+        direction = np.where(v > 0, 1.0, np.where(v < 0, -1.0, np.sign(segment.displacement)
+                                                   or 1.0))
+        torque = _signed_torque(drive, motors, a, v, direction)
+        if isinstance(segment, Dwell):
+            hold = float(drive.holding_torque[0])
+            torque = np.full(2, hold * np.sign(drive.load.torque))
+        times.append(time)
+        positions.append(q0 + q)
+        speeds.append(v)
+        accelerations.append(a)
+        torques.append(torque)
+        t0 += T
+        q0 += segment.displacement
+    load_speed = np.concatenate(speeds)
+    load_acceleration = np.concatenate(accelerations)
+    return TaskCurve(
+        motor=motor.id, law=law.spec, duration=duration, ratio=K,
+        time=np.concatenate(times), position=np.concatenate(positions),
+        load_speed=load_speed, load_acceleration=load_acceleration,
+        motor_speed=K * load_speed, motor_acceleration=K * load_acceleration,
+        motor_torque=np.concatenate(torques),
+        rms_torque=float(metrics.rms_torque[0]), thermal_speed=float(metrics.thermal_speed[0]),
+        peak_torque=float(metrics.peak_torque[0]), max_speed=float(metrics.max_speed[0]),
+        continuous_region=continuous_region(motor, design.limits.envelope),
+        intermittent_region=intermittent_region(motor, design.limits.envelope),
+        total_inertia=motor.inertia + float(calc.drive.driven_inertia[0]),
+        segments=_segment_times(cycle, float(s[0])),
+    )
+
+
+def _move_samples(move: Move, law: MotionLaw | None, T: float, samples: int):
+    """u, q, v, a of a move (SI, q from the move's start), both ends of every piece."""
+    h = move.displacement
+    if move.rest_to_rest:
+        assert law is not None
+        u, q_n, v_n, a_n = _sample_pieces(law, samples)
+        return u, h * q_n, h * v_n / T, h * a_n / T / T
+    from sizer.laws.boundary_speeds import boundary_form
+
+    assert law is not None
+    basis = boundary_form(law.spec)
+    assert basis is not None
+    c = basis.combine(np.array([move.start_speed * T / h]), np.array([move.end_speed * T / h]))[0]
+    parts: list[list[np.ndarray]] = [[], [], [], []]
+    for p in range(len(basis.breaks) - 1):
+        lo, hi = basis.breaks[p], basis.breaks[p + 1]
+        u = np.linspace(lo, hi, max(2, round(samples * (hi - lo))))
+        poly = np.polynomial.Polynomial(c[p])
+        x = u - lo
+        for k, values in enumerate((u, poly(x), poly.deriv(1)(x), poly.deriv(2)(x))):
+            parts[k].append(values)
+    u, q_n, v_n, a_n = (np.concatenate(x) for x in parts)
+    return u, h * q_n, h * v_n / T, h * a_n / T / T
+
+
+def _signed_torque(drive: Drive, motors: MotorArrays, a: np.ndarray, v: np.ndarray,
+                   direction: np.ndarray) -> np.ndarray:
+    """The motor torque (signed like the motion) at the load's a, v: the torque along the
+    motion of the direction of each sample (Coulomb friction and the power flow follow it)."""
+    K = float(drive.ratio[0])
+    out = np.empty_like(a)
+    for sign in (1.0, -1.0):
+        where = direction == sign
+        if not where.any():
+            continue
+        shaft, _ = drive.chain(sign * a[where][None], sign * v[where][None], sign)
+        along = (float(motors.inertia[0]) * K * sign * a[where]
+                 + float(motors.damping[0]) * K * sign * v[where] + shaft[0])
+        out[where] = sign * along
+    return out
 
 
 def _sample_pieces(law: MotionLaw, samples: int) -> tuple[np.ndarray, ...]:
