@@ -221,3 +221,23 @@ def test_the_breakdown_of_a_cycle_per_segment():
     C_a = 1.0 / (0.25 * 0.75)
     assert b.rows[2].acceleration_step == pytest.approx(-C_a / 0.4**2, rel=1e-12)
     assert b.rows[3].acceleration_step == pytest.approx(-C_a / 0.4**2, rel=1e-12)
+
+
+def test_minimizing_one_named_segment_keeps_the_others():
+    """The press dwell's neighbours fixed; the return move minimized: its T_min is the
+    eq. (6.2) peak bound of poly5 alone (ideal gearbox, inertial load, rectangular regions,
+    the peak binds: a large continuous torque)."""
+    motor = Motor("m", 1e-3, 14.0, 15.0, 300.0)
+    transmission = Transmission((Stage("gearbox", 10.0, 1.0, 2e-4),))
+    cycle = Cycle((Move(1.0, 0.5, law="cycloidal"), Dwell(0.25),
+                   Move(-1.0, 0.3, law="poly5", name="back"), Dwell(0.25)),
+                  minimize_segment="back")
+    design = Design(Task(1.0, None), Load(0.2), transmission, laws=("cycloidal",),
+                    motors=(motor,), limits=Limits(envelope="book"), cycle=cycle)
+    (result,) = size_design(design).results
+    J_t = 1e-3 + 2e-4 + 0.2 / 100.0
+    C_a = make_law("poly5").coefficients.C_a  # 10 / sqrt(3)
+    assert C_a == pytest.approx(10 / math.sqrt(3), rel=1e-12)
+    T_back = math.sqrt(J_t * 10.0 * 1.0 * C_a / 15.0)
+    assert result.feasible
+    assert result.duration == pytest.approx(0.5 + 0.25 + T_back + 0.25, rel=1e-9)

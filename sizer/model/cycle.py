@@ -137,7 +137,11 @@ class Cycle:
 
     @property
     def free(self) -> tuple[int, ...]:
-        """Indices of the segments with free durations."""
+        """Indices of the segments with free durations (with ``minimize_segment``, that
+        segment alone)."""
+        if self.minimize_segment is not None:
+            return tuple(i for i, s in enumerate(self.segments)
+                         if s.name == self.minimize_segment)
         return tuple(i for i, s in enumerate(self.segments)
                      if not isinstance(s, Run) and s.duration is None)
 
@@ -148,7 +152,9 @@ class Cycle:
     @property
     def fixed_time(self) -> float:
         """The sum of the fixed durations."""
-        return math.fsum(s.duration for s in self.segments if s.duration is not None)
+        free = self.free
+        return math.fsum(s.duration for i, s in enumerate(self.segments)
+                         if s.duration is not None and i not in free)
 
     @property
     def net_displacement(self) -> float:

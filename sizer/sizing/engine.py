@@ -18,13 +18,14 @@ import numpy as np
 from sizer.envelope import envelope_note
 from sizer.errors import UserError
 from sizer.laws import AUTO, MotionLaw, make_law, resolve
+from sizer.model.cycle import Dwell
 from sizer.model.domain import Design, Motor
 from sizer.sizing.auto_shape import choose_shape
 from sizer.sizing.candidates import Candidates
 from sizer.sizing.checks import evaluate_checks
 from sizer.sizing.checks import feasible as all_pass
 from sizer.sizing.cycle import CycleCalculator
-from sizer.sizing.cycle_shape import given_scale, plain_design, ranked_laws
+from sizer.sizing.cycle_shape import given_scale, left_out_laws, plain_design, ranked_laws
 from sizer.sizing.grid import law_grid
 from sizer.sizing.minimum_duration import is_purely_inertial, minimum_duration
 from sizer.sizing.motors import MotorArrays
@@ -210,12 +211,38 @@ def check_design(design: Design) -> CandidateResult:
     return table.row(0)
 
 
+def cycle_notes(design: Design) -> list[str]:
+    """What sizing a cycle of segments assumed, for reports."""
+    cycle = design.cycle
+    assert cycle is not None
+    notes = [f"a cycle of {len(cycle.segments)} segments; durations are cycle times"]
+    if cycle.minimize_segment is not None:
+        notes.append(f"minimize: segment {cycle.minimize_segment!r}, the others fixed")
+    elif cycle.minimize:
+        notes.append("minimize: every free duration scaled by one factor (time scaling, book "
+                     f"sec. 5.2), shared by the rule {cycle.share.value!r}")
+    elif cycle.cycle_time is not None:
+        notes.append(f"free durations fill the cycle time, shared by the rule "
+                     f"{cycle.share.value!r}")
+    left = left_out_laws(design)
+    if left:
+        notes.append("left out, no form with boundary speeds: " + ", ".join(left))
+    return notes
+
+
 def assumptions(design: Design) -> tuple[str, ...]:
     """What the computation assumed, for reports."""
     notes = []
     if any(m.continuous_curve is None or m.intermittent_curve is None for m in design.motors):
         notes.append(envelope_note(design.limits.envelope))
-    if design.load.torque and design.task.dwell:
+    cycle = plain_design(design).cycle
+    if cycle is not None:
+        notes.extend(cycle_notes(design))
+        holds = any(isinstance(s, Dwell) and (design.load.torque + s.load.torque) != 0.0
+                    for s in cycle.segments)
+    else:
+        holds = bool(design.load.torque and design.task.dwell)
+    if holds:
         notes.append("holding the constant load at rest counts as driving (torque / efficiency)")
     if not math.isclose(design.transmission.efficiency, 1.0):
         if design.transmission.efficiency_applies_to == "steady_load":

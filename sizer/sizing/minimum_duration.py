@@ -78,6 +78,9 @@ def minimum_duration(calculator: CycleCalculator, limits: Limits) -> DurationSol
     model, or rounding beyond the tolerance) the search starts from it.
     """
     if getattr(calculator, "segmented", False):  # a cycle of segments: time scaling
+        bound = calculator.peak_bound(limits)
+        if bound is not None:
+            return _from_bound(calculator, limits, bound)
         T = bisect_duration(calculator, limits)
         method = "search on the scale of the free durations"
     elif is_purely_inertial(calculator):
@@ -130,6 +133,8 @@ def _from_bound(calculator: CycleCalculator, limits: Limits,
 
     def from_rms(left: np.ndarray) -> np.ndarray:
         out = np.full(len(T), np.nan)
+        if getattr(calculator, "segmented", False):  # no RMS model of a cycle: the search
+            return out
         index = np.flatnonzero(left & usable)
         if len(index):
             found = rms_crossing(calculator.take(index), limits, bound[index])

@@ -116,8 +116,8 @@ def task_curve(design: Design, motor: Motor, law: MotionLaw | str, duration: flo
 
 def _segment_times(cycle: Cycle, s: float) -> tuple[tuple[str, float, float], ...]:
     out, start = [], 0.0
-    for segment, w in zip(cycle.segments, cycle.weights(), strict=True):
-        T = segment.duration if segment.duration is not None else w * s
+    for i, (segment, w) in enumerate(zip(cycle.segments, cycle.weights(), strict=True)):
+        T = w * s if i in cycle.free else segment.duration
         out.append((segment.name or type(segment).__name__.lower(), start, start + T))
         start += T
     return tuple(out)

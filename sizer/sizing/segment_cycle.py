@@ -26,7 +26,7 @@ import numpy as np
 from sizer.laws import MotionLaw, make_law
 from sizer.mechanics import Drive
 from sizer.model.cycle import Cycle, Move, Run, Segment
-from sizer.model.domain import Load, Task, ThermalSpeedRule
+from sizer.model.domain import Limits, Load, Task, ThermalSpeedRule
 from sizer.sizing.cycle import CycleCalculator, CycleMetrics, MoveScales, _safe_ratio
 from sizer.sizing.motors import MotorArrays
 
@@ -86,8 +86,9 @@ class SegmentCycle:
         self.motors = motors
         self.thermal_rule = thermal_speed
         self.weights = np.array(cycle.weights())
-        self.fixed = np.array([np.nan if s.duration is None else s.duration
-                               for s in cycle.segments], dtype=float)
+        free = cycle.free
+        self.fixed = np.array([np.nan if s.duration is None or i in free else s.duration
+                               for i, s in enumerate(cycle.segments)], dtype=float)
         self.drives = tuple(Drive(segment_load(drive.load, s), drive.transmissions, drive.option)
                             if not s.load.is_zero else drive for s in cycle.segments)
         heaviest = max(cycle.segments, key=lambda s: s.load.inertia)
@@ -131,6 +132,27 @@ class SegmentCycle:
                            np.sqrt(c.C_a * k * h * J_t / tau_p))
             guess = np.maximum(guess, np.broadcast_to(T / w, (n,)))
         return np.where(np.isfinite(guess) & (guess > 0.0), guess, 1.0)
+
+    def peak_bound(self, limits: Limits) -> np.ndarray | None:
+        """A lower bound on the minimized scale s: each free rest-to-rest move's bound on
+        its duration from its speed, load-limit and peak checks
+        (sizer.sizing.peak_duration), over its weight; the cycle's peaks are the maxima
+        over its segments, so below the largest of these no scale is feasible. None where
+        a law moves backwards (the bound does not hold)."""
+        from sizer.sizing.peak_duration import peak_duration
+
+        bound = np.zeros(len(self.motors))
+        for segment, law, drive, w in zip(self.cycle.segments, self.laws, self.drives,
+                                          self.weights, strict=True):
+            if not isinstance(segment, Move) or w == 0.0 or not segment.rest_to_rest:
+                continue
+            task = Task(segment.displacement, None, linear=self.cycle.linear)
+            found = peak_duration(CycleCalculator(None, task, drive, self.motors, "max",
+                                                  law=law), limits)
+            if found is None:
+                return None
+            bound = np.maximum(bound, found / w)
+        return bound
 
     def figures(self, s: np.ndarray, peaks: bool = True) -> list[SegmentFigures]:
         """Each segment's requirements at scales s."""
