@@ -27,6 +27,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import Protocol
 
 import numpy as np
 from numpy.polynomial.legendre import leggauss
@@ -69,7 +70,14 @@ class CycleMetrics:
     stage_peak: list[np.ndarray]
     stage_rms: list[np.ndarray]
     stage_speed: list[np.ndarray]
-    rms_model: RmsModel | None = None
+    rms_model: RmsCurve | None = None
+
+
+class RmsCurve(Protocol):
+    """The RMS torque as a function of the duration near where it was built: a law's
+    :class:`RmsModel`, or a cycle's (sizer.sizing.segment_cycle.CycleRmsModel)."""
+
+    def rms(self, T: np.ndarray, index: np.ndarray | None = None) -> np.ndarray: ...
 
 
 @dataclass(frozen=True)

@@ -133,8 +133,6 @@ def _from_bound(calculator: CycleCalculator, limits: Limits,
 
     def from_rms(left: np.ndarray) -> np.ndarray:
         out = np.full(len(T), np.nan)
-        if getattr(calculator, "segmented", False):  # no RMS model of a cycle: the search
-            return out
         index = np.flatnonzero(left & usable)
         if len(index):
             found = rms_crossing(calculator.take(index), limits, bound[index])
@@ -190,7 +188,8 @@ def rms_crossing(calculator: CycleCalculator, limits: Limits,
     for _ in range(RMS_ROUNDS):
         sub = calculator if len(index) == n else calculator.take(index)
         model = sub.evaluate(T, peaks=False, model=True).rms_model
-        assert model is not None
+        if model is None:  # a cycle with a free move that has boundary speeds: no model
+            break
 
         def excess(x: np.ndarray, sub=sub, model=model) -> np.ndarray:
             at = np.exp(x)

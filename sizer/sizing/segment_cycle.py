@@ -27,7 +27,13 @@ from sizer.laws import MotionLaw, make_law
 from sizer.mechanics import Drive
 from sizer.model.cycle import Cycle, Move, Run, Segment
 from sizer.model.domain import Limits, Load, Task, ThermalSpeedRule
-from sizer.sizing.cycle import CycleCalculator, CycleMetrics, MoveScales, _safe_ratio
+from sizer.sizing.cycle import (
+    CycleCalculator,
+    CycleMetrics,
+    MoveScales,
+    RmsModel,
+    _safe_ratio,
+)
 from sizer.sizing.motors import MotorArrays
 
 
@@ -52,6 +58,34 @@ class SegmentFigures:
     speed_square: np.ndarray
     speed_abs: np.ndarray
     energy: np.ndarray
+    rms_model: RmsModel | None = None
+    """A rest-to-rest move's RMS model (sizer.sizing.cycle.RmsModel), when asked for."""
+
+
+@dataclass(frozen=True)
+class CycleRmsModel:
+    """The cycle's RMS torque near the scales s0 it was built at: each free rest-to-rest
+    move's RMS model (exact at s0, second-order near: sizer.sizing.cycle.RmsModel), the
+    fixed segments' integrals (constant) and the free dwells' (linear in s). With it
+    sizer.sizing.minimum_duration.rms_crossing finds where the RMS check binds in a few
+    rounds, as for a single law."""
+
+    moves: tuple[tuple[RmsModel, float], ...]
+    constant: np.ndarray
+    hold_rate: np.ndarray
+    fixed_time: float
+    weight_sum: float
+
+    def rms(self, s: np.ndarray, index: np.ndarray | None = None) -> np.ndarray:
+        def pick(x):
+            return x if index is None else x[index]
+
+        square = pick(self.constant) + pick(self.hold_rate) * s
+        with np.errstate(over="ignore", invalid="ignore"):
+            for model, w in self.moves:
+                square = square + np.square(model.rms(w * s, index)) * (w * s)
+            mean = square / (self.fixed_time + self.weight_sum * s)
+        return np.sqrt(np.where(np.isnan(mean), np.inf, mean))
 
 
 def segment_load(base: Load, segment: Segment) -> Load:
@@ -154,25 +188,59 @@ class SegmentCycle:
             bound = np.maximum(bound, found / w)
         return bound
 
-    def figures(self, s: np.ndarray, peaks: bool = True) -> list[SegmentFigures]:
-        """Each segment's requirements at scales s."""
+    def figures(self, s: np.ndarray, peaks: bool = True,
+                model: bool = False) -> list[SegmentFigures]:
+        """Each segment's requirements at scales s (with ``model``, the rest-to-rest
+        moves' RMS models)."""
         s = np.broadcast_to(np.asarray(s, dtype=float), (len(self.motors),)).copy()
         out = []
         for segment, law, drive, T in zip(self.cycle.segments, self.laws, self.drives,
                                           self.durations(s), strict=True):
             if isinstance(segment, Move):
-                out.append(self._move(segment, law, drive, T, peaks))
+                out.append(self._move(segment, law, drive, T, peaks, model))
             elif isinstance(segment, Run):
                 out.append(self._run(segment, drive, T))
             else:
                 out.append(self._dwell(drive, T))
         return out
 
+    def thermal_speed(self, s: np.ndarray) -> np.ndarray:
+        """The speed the continuous region is read at (the thermal rule) at scales s, in
+        closed form over rest-to-rest moves, runs and dwells (a move with boundary speeds
+        is evaluated)."""
+        s = np.asarray(s, dtype=float)
+        T = self.durations(s)
+        cycle_time = sum(T, np.zeros_like(s))
+        peak, square, travel = np.zeros_like(s), np.zeros_like(s), np.zeros_like(s)
+        for segment, law, drive, t in zip(self.cycle.segments, self.laws, self.drives, T,
+                                          strict=True):
+            if isinstance(segment, Move) and not segment.rest_to_rest:
+                return self.evaluate(s, peaks=False).thermal_speed
+            K = drive.ratio
+            if isinstance(segment, Move):
+                assert law is not None
+                c, h = law.coefficients, abs(segment.displacement)
+                with np.errstate(divide="ignore", over="ignore"):
+                    peak = np.maximum(peak, K * h * c.C_v / t)
+                    square = square + np.square(K * h * c.C_v_rms) / t
+                travel = travel + K * h
+            elif isinstance(segment, Run):
+                speed = K * abs(segment.speed)
+                peak = np.maximum(peak, speed)
+                square = square + speed * speed * t
+                travel = travel + speed * t
+        if self.thermal_rule == "max":
+            return peak
+        if self.thermal_rule == "rms":
+            return np.sqrt(square / cycle_time)
+        return travel / cycle_time
+
     def evaluate(self, duration: np.ndarray, peaks: bool = True,
                  model: bool = False) -> CycleMetrics:
-        """The cycle's requirements at scales s = ``duration`` (``model`` is not built:
-        the searches over a cycle do not use the RMS model)."""
-        parts = self.figures(duration, peaks)
+        """The cycle's requirements at scales s = ``duration``; with ``model`` the RMS
+        model of the cycle (:class:`CycleRmsModel`; None with a free move that has
+        boundary speeds)."""
+        parts = self.figures(duration, peaks, model)
         T = parts[0].duration * 0.0 + self.cycle_time(np.broadcast_to(
             np.asarray(duration, dtype=float), (len(self.motors),)))
         n_stages = len(self._base.stages)
@@ -204,22 +272,39 @@ class SegmentCycle:
             stage_rms=[_finite_or_inf(x) for x in stage_rms],
             stage_speed=[np.max(np.stack([p.stage_speed[i] for p in parts]), axis=0)
                          for i in range(n_stages)],
+            rms_model=self._rms_model(parts) if model else None,
         )
+
+    def _rms_model(self, parts: list[SegmentFigures]):
+        moves, n = [], len(self.motors)
+        constant, hold_rate = np.zeros(n), np.zeros(n)
+        for segment, w, f in zip(self.cycle.segments, self.weights, parts, strict=True):
+            if w == 0.0:
+                constant = constant + f.torque_square
+            elif isinstance(segment, Move):
+                if f.rms_model is None:
+                    return None
+                moves.append((f.rms_model, float(w)))
+            else:  # a free dwell: hold^2 * w * s
+                hold = f.peak_torque
+                hold_rate = hold_rate + hold * hold * w
+        return CycleRmsModel(tuple(moves), constant, hold_rate, self.cycle.fixed_time,
+                             float(np.sum(self.weights)))
 
     # ------------------------------------------------------------- segments
     def _move(self, move: Move, law: MotionLaw | None, drive: Drive, T: np.ndarray,
-              peaks: bool) -> SegmentFigures:
+              peaks: bool, model: bool) -> SegmentFigures:
         if move.rest_to_rest:
             assert law is not None
-            return self._rest_move(move, law, drive, T, peaks)
+            return self._rest_move(move, law, drive, T, peaks, model)
         return self._boundary_move(move, law, drive, T)
 
     def _rest_move(self, move: Move, law: MotionLaw, drive: Drive, T: np.ndarray,
-                   peaks: bool) -> SegmentFigures:
+                   peaks: bool, model: bool = False) -> SegmentFigures:
         """A rest-to-rest move: the single-law engine for a one-move task."""
         task = Task(move.displacement, None, linear=self.cycle.linear)
         calc = CycleCalculator(None, task, drive, self.motors, "max", law=law)
-        m = calc.evaluate(T, peaks)
+        m = calc.evaluate(T, peaks, model)
         c, K, h = law.coefficients, np.broadcast_to(drive.ratio, T.shape), abs(move.displacement)
         with np.errstate(over="ignore", invalid="ignore"):
             rms_speed = K * h * c.C_v_rms / T
@@ -231,7 +316,8 @@ class SegmentCycle:
                 stage_peak=m.stage_peak, stage_speed=m.stage_speed,
                 torque_square=np.square(m.rms_torque) * T,
                 stage_square=[np.square(x) * T for x in m.stage_rms],
-                speed_square=np.square(rms_speed) * T, speed_abs=K * h, energy=energy)
+                speed_square=np.square(rms_speed) * T, speed_abs=K * h, energy=energy,
+                rms_model=m.rms_model)
 
     def _rest_energy(self, calc: CycleCalculator, T: np.ndarray) -> np.ndarray:
         """Work at the motor shaft over the move, the integral of tau*omega (signed along
