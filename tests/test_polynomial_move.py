@@ -162,8 +162,8 @@ class Scalar:
                  + shaft)
         return sense * along, self.K * v, outputs[::-1], u
 
-    def ratio(self, t: float) -> float:
-        torque, speed, _, _ = self.channels(t)
+    def ratio(self, torque: float, speed: float) -> float:
+        """|tau| / tau_int(|omega|), the speed clipped into the region."""
         limit = np.interp(min(abs(speed), self.speeds[-1]), self.speeds, self.torques)
         return abs(torque) / limit
 
@@ -221,18 +221,16 @@ def _integral(f, scalar: Scalar, T: float) -> float:
     return value
 
 
-def _maximum(f, T: float, samples: int = 20001):
-    """max of f by dense sampling, then minimize_scalar between the best sample's
-    neighbours (in the offset from the left one, so that its relative tolerance reaches a
-    peak at a jump of the friction): (sampled, refined)."""
+def _refined(f, t: np.ndarray, values: np.ndarray) -> tuple[float, float]:
+    """max of f from its dense samples ``values`` at ``t``, then by minimize_scalar
+    between the best sample's neighbours (in the offset from the left one, so that its
+    relative tolerance reaches a peak at a jump of the friction): (sampled, refined)."""
     from scipy.optimize import minimize_scalar
 
-    t = np.linspace(0.0, T, samples)
-    values = np.array([f(x) for x in t])
     best = int(np.argmax(values))
-    lo, hi = t[max(best - 1, 0)], t[min(best + 1, samples - 1)]
+    lo, hi = t[max(best - 1, 0)], t[min(best + 1, len(t) - 1)]
     found = minimize_scalar(lambda x: -f(lo + x), bounds=(0.0, hi - lo), method="bounded",
-                            options={"xatol": 1e-16 * T})
+                            options={"xatol": 1e-16 * t[-1]})
     return values[best], max(values[best], -found.fun)
 
 
@@ -277,20 +275,23 @@ def test_integrals_with_boundary_speeds_equal_quad(boundary_case, row):
 def test_peaks_with_boundary_speeds_equal_sampling_and_refinement(boundary_case, row):
     figures, scalars, T = boundary_case
     s, duration = scalars[row], T[row]
-    checks = [
-        (figures.peak_torque[row], lambda t: abs(s.channels(t)[0])),
-        (figures.peak_ratio[row], s.ratio),
-        (figures.load_torque[row], lambda t: abs(s.channels(t)[3])),
-        (figures.max_speed[row], lambda t: abs(s.channels(t)[1])),
-        (figures.load_acceleration[row], lambda t: abs(s.motion(t)[2])),
-        *((figures.stage_peak[i][row], lambda t, i=i: abs(s.channels(t)[2][i]))
-          for i in range(len(STAGES))),
-    ]
-    for exact, f in checks:
-        sampled, refined = _maximum(f, duration)
-        assert sampled <= exact * (1.0 + 1e-12)
-        assert exact <= sampled * (1.0 + 1e-3)  # the sampling's resolution
-        np.testing.assert_allclose(exact, refined, rtol=1e-9)
+    exact = [figures.peak_torque[row], figures.peak_ratio[row], figures.load_torque[row],
+             figures.max_speed[row], figures.load_acceleration[row],
+             *(figures.stage_peak[i][row] for i in range(len(STAGES)))]
+
+    def plain(t: float) -> list[float]:
+        """|tau|, the ratio, |u|, |omega|, |a| and each |stage output| at t."""
+        torque, speed, stages, load = s.channels(t)
+        return [abs(torque), s.ratio(torque, speed), abs(load), abs(speed), abs(s.motion(t)[2]),
+                *(abs(x) for x in stages)]
+
+    t = np.linspace(0.0, duration, 20001)
+    samples = np.array([plain(x) for x in t])
+    for k, value in enumerate(exact):
+        sampled, refined = _refined(lambda x, k=k: plain(x)[k], t, samples[:, k])
+        assert sampled <= value * (1.0 + 1e-12)
+        assert value <= sampled * (1.0 + 1e-3)  # the sampling's resolution
+        np.testing.assert_allclose(value, refined, rtol=1e-9)
     assert figures.max_speed[row] == pytest.approx(s.K * figures.load_speed[row], rel=1e-15)
 
 
