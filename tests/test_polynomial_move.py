@@ -46,8 +46,17 @@ STAGES = (Stage("gearbox", 5.0, 0.9, 2e-5, preload_torque=0.02, rated_output_tor
 LOAD = Load(0.05, damping=0.02, friction=0.3, torque=0.4)
 
 
-def real_drive(rule: str = "power_flow") -> Drive:
-    return Drive(LOAD, Transmission(STAGES, efficiency_applies_to=rule))
+def real_drive(rule: str = "power_flow", count: int | None = None) -> Drive:
+    """The drive; with ``count``, two transmission options (the second with other ratios
+    and efficiencies) alternating over ``count`` candidates."""
+    if count is None:
+        return Drive(LOAD, Transmission(STAGES, efficiency_applies_to=rule))
+    other = (Stage("gearbox", 7.0, 0.8, 3e-5, preload_torque=0.01, rated_output_torque=40.0,
+                   peak_output_torque=90.0),
+             Stage("belt", 1.5, 0.95, 2e-5, rated_output_torque=50.0))
+    options = [Transmission(STAGES, efficiency_applies_to=rule),
+               Transmission(other, efficiency_applies_to=rule)]
+    return Drive(LOAD, options, option=np.arange(count) % 2)
 
 
 def poly5(h: float, T: np.ndarray):
@@ -80,13 +89,14 @@ def trapezoid(h: float, T: np.ndarray, alpha: float):
 DURATIONS = np.array([0.02, 0.025, 0.03, 0.04, 0.05, 0.06, 0.12, 0.5])
 
 
+@pytest.mark.parametrize("options", [False, True])
 @pytest.mark.parametrize("rule", ["power_flow", "steady_load"])
 @pytest.mark.parametrize("h", [1.0, -1.0])
 @pytest.mark.parametrize("law", ["poly5", "trapezoidal(alpha=1/4)"])
-def test_rest_to_rest_moves_equal_the_engine(law, h, rule):
+def test_rest_to_rest_moves_equal_the_engine(law, h, rule, options):
     n = len(DURATIONS)
     motors = curved_motors(4).subset(np.arange(n) % 4)
-    drive = real_drive(rule)
+    drive = real_drive(rule, n if options else None)
     T = DURATIONS
     engine = CycleCalculator(None, Task(h, 0.1, 0.0, False), drive, motors,
                              law=make_law(law)).evaluate(T)
@@ -94,6 +104,7 @@ def test_rest_to_rest_moves_equal_the_engine(law, h, rule):
     mine = polynomial_move(*shape, drive, motors, math.copysign(1.0, h))
     assert np.any(engine.max_speed > 0.8 * RATED)  # the falling region is reached
     assert np.any(engine.max_speed > 2.0 * RATED)  # and left
+    assert np.any(engine.stage_peak[0] > 0.0)
     close = {"rtol": 1e-9, "atol": 0.0}
     np.testing.assert_allclose(mine.peak_torque, engine.peak_torque, **close)
     np.testing.assert_allclose(mine.peak_ratio, engine.peak_ratio, **close)

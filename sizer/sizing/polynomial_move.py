@@ -186,8 +186,8 @@ class _Cuts:
         edges = np.sort(np.concatenate((self.lo[..., None], at, self.hi[..., None]), axis=-1),
                         axis=-1)
         parts = edges.shape[-1] - 1
-        lo = edges[..., :-1].reshape(n, -1)
-        hi = edges[..., 1:].reshape(n, -1)
+        lo = edges[..., :-1].reshape(n, self.lo.shape[1] * parts)
+        hi = edges[..., 1:].reshape(n, self.lo.shape[1] * parts)
         piece = np.repeat(self.piece, parts, axis=1)
         empty = hi <= lo
         order = np.argsort(empty, axis=1, kind="stable")
@@ -285,12 +285,13 @@ def _acceleration_jumps(breaks: np.ndarray, coefficients: np.ndarray) -> np.ndar
     """Per candidate, whether the acceleration jumps at an interior break (infinite jerk)."""
     if coefficients.shape[1] < 2:
         return np.zeros(len(coefficients), dtype=bool)
-    width = np.diff(breaks, axis=1)[:, :-1, None]
+    widths = np.diff(breaks, axis=1)
     acc = _derivative(_derivative(coefficients))
-    end = _polyval(acc[:, :-1], width)[..., 0]
+    end = _polyval(acc[:, :-1], widths[:, :-1, None])[..., 0]
     start = acc[:, 1:, 0]
     scale = np.maximum(np.abs(end), np.abs(start)).max(axis=1)
-    return np.any(np.abs(end - start) > 1e-9 * scale[:, None], axis=1)
+    real = (widths[:, :-1] > 0.0) & (widths[:, 1:] > 0.0)  # empty pieces pad rows
+    return np.any(real & (np.abs(end - start) > 1e-9 * scale[:, None]), axis=1)
 
 
 def _critical_points(poly: np.ndarray) -> np.ndarray:
