@@ -201,11 +201,12 @@ def quintic(x0: float, x1: float, v0: float, v1: float, T: float) -> np.ndarray:
 
 
 def boundary_moves():
-    """Three candidates with boundary speeds: a cubic (two pieces of one polynomial), a
-    quintic, and a move of two quintics that starts forward, reverses and ends forward."""
-    T = np.array([0.05, 0.08, 0.11])
-    breaks = np.zeros((3, 3))
-    coefficients = np.zeros((3, 2, 6))
+    """Four candidates with boundary speeds: a cubic (two pieces of one polynomial), a
+    quintic, a move of two quintics that starts forward, reverses and ends forward, and a
+    cubic whose speed k (t - t0)^2 stops for an instant and goes on."""
+    T = np.array([0.05, 0.08, 0.11, 0.09])
+    breaks = np.zeros((4, 3))
+    coefficients = np.zeros((4, 2, 6))
     c = hermite(0.0, 0.9, 10.0, 35.0, T[0])
     cut = 0.4 * T[0]
     breaks[0] = (0.0, cut, T[0])
@@ -221,6 +222,12 @@ def boundary_moves():
     breaks[2] = (0.0, half, T[2])
     coefficients[2, 0] = quintic(0.0, 0.1, 20.0, -8.0, half)
     coefficients[2, 1] = quintic(0.1, 0.3, -8.0, 28.0, half)
+    t0 = 0.4 * T[3]
+    k = 30.0 / (T[3] - t0) ** 2
+    breaks[3] = (0.0, 0.5 * T[3], T[3])
+    coefficients[3, 0, :4] = (0.0, k * t0**2, -k * t0, k / 3.0)
+    coefficients[3, 1, :4] = np.polynomial.Polynomial(coefficients[3, 0, :4])(
+        np.polynomial.Polynomial([0.5 * T[3], 1.0])).coef
     return breaks, coefficients
 
 
@@ -248,9 +255,9 @@ def _refined(f, t: np.ndarray, values: np.ndarray) -> tuple[float, float]:
 @pytest.fixture(scope="module")
 def boundary_case():
     breaks, coefficients = boundary_moves()
-    motors = curved_motors(3)
+    motors = curved_motors(4)
     figures = polynomial_move(breaks, coefficients, real_drive(), motors, 1.0)
-    scalars = [Scalar(breaks[i], coefficients[i], motors.motors[i], 1.0) for i in range(3)]
+    scalars = [Scalar(breaks[i], coefficients[i], motors.motors[i], 1.0) for i in range(4)]
     return figures, scalars, breaks[:, -1]
 
 
@@ -258,9 +265,11 @@ def test_the_reversing_move_reverses(boundary_case):
     _, scalars, _ = boundary_case
     assert len(scalars[2].speed_roots()) == 2
     assert not scalars[0].speed_roots() and not scalars[1].speed_roots()
+    t0 = 0.4 * scalars[3].breaks[-1]
+    assert scalars[3].motion(t0)[1] == pytest.approx(0.0, abs=1e-12)
 
 
-@pytest.mark.parametrize("row", range(3))
+@pytest.mark.parametrize("row", range(4))
 def test_integrals_with_boundary_speeds_equal_quad(boundary_case, row):
     figures, scalars, T = boundary_case
     s, duration = scalars[row], T[row]
@@ -282,7 +291,7 @@ def test_integrals_with_boundary_speeds_equal_quad(boundary_case, row):
     np.testing.assert_allclose(figures.energy[row], energy, **close)
 
 
-@pytest.mark.parametrize("row", range(3))
+@pytest.mark.parametrize("row", range(4))
 def test_peaks_with_boundary_speeds_equal_sampling_and_refinement(boundary_case, row):
     figures, scalars, T = boundary_case
     s, duration = scalars[row], T[row]

@@ -20,8 +20,9 @@ polynomial: the one of Drive.linear_pieces' linear functions that is the channel
 is at most the channel, equal where its choice of flow directions holds). Then:
 
 - integrals by Gauss-Legendre with enough nodes for the degree (exact);
-- peaks at the sub-pieces' ends and the real roots of the derivative (companion matrices,
-  all rows at once by np.linalg.eigvals, polished by Newton steps);
+- peaks at the sub-pieces' ends and the real roots of the derivative (:func:`_unit_roots`:
+  closed forms to degree 2; above, the derivative's roots cut [0, 1] into monotone
+  intervals and each sign change is found by safeguarded Newton steps, all rows at once);
 - the peak ratio |tau| / tau_int(|omega|) (the speed clipped into the region, as in the
   engine) at the ends, at the torque's stationary points, where |omega| crosses a corner of
   the region and at the stationary points of tau / (c0 + c1 |omega|) on each of its
@@ -44,9 +45,11 @@ from sizer.sizing.motors import MotorArrays
 _DEGREE_TOLERANCE = 1e-12
 """Coefficients below this share of a row's largest (on the unit interval) are zero."""
 _IMAGINARY_TOLERANCE = 1e-7
-"""Eigenvalues this close to the real axis (unit interval's scale) are kept as cuts: a
-spurious cut costs nothing, a missed crossing of a near-double root would."""
+"""Complex roots of a quadratic this close to the real axis (the unit interval's scale)
+are kept as roots: a spurious cut costs nothing, a missed pair of close crossings would."""
 _NEWTON_STEPS = 3
+_BRACKET_STEPS = 80
+"""At most this many safeguarded Newton steps per bracketed root (bisection needs ~52)."""
 _SPEED_NOISE = 1e-12
 """Speeds below this share of the piece's largest possible speed have no sign."""
 
@@ -377,9 +380,11 @@ def _safe_ratio(torque: np.ndarray, limit: np.ndarray) -> np.ndarray:
 def _polyval(c: np.ndarray, u: np.ndarray) -> np.ndarray:
     """Horner: coefficients c (..., m+1) ascending, points u (..., k) -> (..., k)."""
     out = np.broadcast_to(c[..., -1:], np.broadcast_shapes((*c.shape[:-1], 1), u.shape))
+    if c.shape[-1] == 1:
+        return out.copy()
     for k in range(c.shape[-1] - 2, -1, -1):
         out = out * u + c[..., k:k + 1]
-    return np.array(out, dtype=float)
+    return out
 
 
 def _derivative(c: np.ndarray) -> np.ndarray:
@@ -427,33 +432,31 @@ def _unit_roots(c: np.ndarray) -> np.ndarray:
     u, or in 1-u, are below _DEGREE_TOLERANCE of the largest: a double root at a rest
     end would otherwise come back as two roots off the end by sqrt(eps)), then the
     negligible top coefficients are dropped (on [0, 1] either moves the polynomial by
-    less than that share). Degrees 1 and 2 are solved in closed form, higher ones by one
-    batch of companion matrices per degree (np.linalg.eigvals); eigenvalues within
-    _IMAGINARY_TOLERANCE of the real axis are kept (a spurious cut costs nothing, a
-    missed pair of close crossings would), and Newton steps polish them (a step is taken
-    only where it lowers |c(u)|).
+    less than that share). The rows of each degree are solved together
+    (:func:`_real_roots`), and Newton steps polish the roots (a step is taken only where
+    it lowers |c(u)|).
     """
     shape = c.shape
     m = shape[-1] - 1
     width = max(m, 1)
-    flat = c.reshape(-1, m + 1)
+    flat = np.array(c.reshape(-1, m + 1), dtype=float)  # a copy: rows are deflated in place
     out = np.full((len(flat), width), np.nan)
     if m == 0 or not len(flat):
         return out.reshape((*shape[:-1], width))
     flat = _deflate(flat)
-    flat = _compose(_deflate(_compose(flat, np.ones(len(flat)), -np.ones(len(flat)))),
-                    np.ones(len(flat)), -np.ones(len(flat)))
+    size = np.abs(flat)
+    ends = np.flatnonzero(np.abs(flat.sum(axis=1))
+                          <= _DEGREE_TOLERANCE * size.max(axis=1))  # c(1) = 0
+    if len(ends):
+        ones = np.ones(len(ends))
+        flat[ends] = _compose(_deflate(_compose(flat[ends], ones, -ones)), ones, -ones)
     size = np.abs(flat)
     big = size > _DEGREE_TOLERANCE * size.max(axis=1, keepdims=True)
     degree = np.where(big.any(axis=1), m - np.argmax(big[:, ::-1], axis=1), 0)
     for k in range(1, m + 1):
         rows = np.flatnonzero(degree == k)
-        if not len(rows):
-            continue
-        z = _roots_of_degree(flat[rows, :k + 1])
-        real = z.real
-        keep = (np.abs(z.imag) <= _IMAGINARY_TOLERANCE) & (real > 0.0) & (real < 1.0)
-        out[rows, :k] = np.where(keep, real, np.nan)
+        if len(rows):
+            out[rows, :k] = _real_roots(flat[rows, :k + 1])
     slope = _derivative(flat)
     u = np.nan_to_num(out, nan=0.5)
     value = _polyval(flat, u)
@@ -482,23 +485,71 @@ def _deflate(flat: np.ndarray) -> np.ndarray:
     return np.where(inside, shifted, 0.0)
 
 
-def _roots_of_degree(c: np.ndarray) -> np.ndarray:
-    """All complex roots of rows c (rows, k+1) of degree exactly k: (rows, k)."""
+def _real_roots(c: np.ndarray) -> np.ndarray:
+    """Roots in (0, 1) of rows c (rows, k+1) of degree exactly k: (rows, k), NaN for none.
+
+    Degrees 1 and 2 in closed form (a complex pair within _IMAGINARY_TOLERANCE of the
+    axis counts as a root: a spurious cut costs nothing). Above, every root where the
+    sign changes: the derivative's roots (recursively) cut [0, 1] into intervals where
+    the polynomial is monotone, and each one that brackets a sign change holds one root,
+    found by Newton's method safeguarded by bisection. A root where the sign does not
+    change (even multiplicity) is of no use: it cuts no sign of speed or flow, and the
+    maxima of a smooth function are where its derivative changes sign.
+    """
     k = c.shape[1] - 1
-    if k == 1:
+    if k <= 2:
+        z = _roots_of_degree(c)
+        keep = (np.abs(z.imag) <= _IMAGINARY_TOLERANCE) & (z.real > 0.0) & (z.real < 1.0)
+        return np.where(keep, z.real, np.nan)
+    count = len(c)
+    turns = np.nan_to_num(_real_roots(_derivative(c)), nan=1.0)
+    edges = np.sort(np.concatenate((np.zeros((count, 1)), turns, np.ones((count, 1))), axis=1),
+                    axis=1)
+    lo, hi = edges[:, :-1], edges[:, 1:]
+    f_lo, f_hi = _polyval(c, lo), _polyval(c, hi)
+    rows, cols = np.nonzero(f_lo * f_hi < 0.0)
+    out = np.full((count, k), np.nan)
+    if len(rows):
+        out[rows, cols] = _bracketed(c[rows], lo[rows, cols], hi[rows, cols], f_lo[rows, cols])
+    return out
+
+
+def _bracketed(c: np.ndarray, a: np.ndarray, b: np.ndarray, f_a: np.ndarray) -> np.ndarray:
+    """The root of each row c in [a, b], where c changes sign once (f_a = c(a)): Newton
+    steps, a bisection wherever a step leaves the shrinking bracket."""
+    slope = _derivative(c)
+    size = np.abs(c)
+    x = 0.5 * (a + b)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        for _ in range(_BRACKET_STEPS):
+            f_x = _polyval(c, x[:, None])[:, 0]
+            # done where c(x) is within the rounding of its evaluation, or the step stalls
+            noise = 8.0 * np.finfo(float).eps * _polyval(size, x[:, None])[:, 0]
+            same = np.sign(f_x) == np.sign(f_a)
+            a = np.where(same, x, a)
+            f_a = np.where(same, f_x, f_a)
+            b = np.where(same, b, x)
+            newton = x - f_x / _polyval(slope, x[:, None])[:, 0]
+            step = np.where((newton > a) & (newton < b), newton, 0.5 * (a + b))
+            done = (np.abs(f_x) <= noise) | (b - a <= 4.0 * np.finfo(float).eps)
+            step = np.where(done, x, step)
+            if np.all(done):
+                break
+            x = step
+    return x
+
+
+def _roots_of_degree(c: np.ndarray) -> np.ndarray:
+    """All complex roots of rows c (rows, k+1) of degree exactly k = 1 or 2: (rows, k)."""
+    if c.shape[1] == 2:
         return (-c[:, :1] / c[:, 1:]).astype(complex)
-    if k == 2:  # the stable quadratic formula
-        a, b, const = c[:, 2], c[:, 1], c[:, 0]
-        disc = b * b - 4.0 * a * const
-        root = np.sqrt(np.abs(disc))
-        real_q = -0.5 * (b + np.copysign(root, b))
-        with np.errstate(divide="ignore", invalid="ignore"):
-            real = np.column_stack((real_q / a, const / real_q))
-        pair = np.column_stack((-b / (2.0 * a), -b / (2.0 * a)))
-        imag = (0.5 * root / np.abs(a))[:, None] * np.array([1.0, -1.0])
-        return np.where((disc >= 0.0)[:, None], real + 0j, pair + 1j * imag)
-    monic = c[:, :k] / c[:, k:]
-    companion = np.zeros((len(c), k, k))
-    companion[:, np.arange(1, k), np.arange(k - 1)] = 1.0
-    companion[:, :, -1] = -monic
-    return np.linalg.eigvals(companion)
+    # the stable quadratic formula
+    a, b, const = c[:, 2], c[:, 1], c[:, 0]
+    disc = b * b - 4.0 * a * const
+    root = np.sqrt(np.abs(disc))
+    real_q = -0.5 * (b + np.copysign(root, b))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        real = np.column_stack((real_q / a, const / real_q))
+    pair = np.column_stack((-b / (2.0 * a), -b / (2.0 * a)))
+    imag = (0.5 * root / np.abs(a))[:, None] * np.array([1.0, -1.0])
+    return np.where((disc >= 0.0)[:, None], real + 0j, pair + 1j * imag)
