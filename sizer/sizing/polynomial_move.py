@@ -9,8 +9,10 @@ t - breaks[:, p]. The physics is the engine's (sizer.sizing.cycle.CycleCalculato
     tau = J_m K a_l + B_m K v_l + shaft(a_l, v_l),   (a_l, v_l) = s (a, v)
 
 along the motion, with s the sign of the load's speed, pointwise (a move with boundary
-speeds may reverse; ``direction`` where the speed is exactly zero) and shaft() the drive's
-chain (sizer.mechanics.drive.Drive), efficiencies in the direction of power flow.
+speeds may reverse; ``direction`` where the speed is zero, and on a sub-piece where it
+stays within rounding of zero, such as one cut off next to a rest end by a root that
+rounding moved) and shaft() the drive's chain (sizer.mechanics.drive.Drive), efficiencies
+in the direction of power flow.
 
 Every piece is cut at the real roots of v and, stage by stage from the load up, at the
 roots of each stage's output torque (where its power flow reverses), so that on every
@@ -103,19 +105,18 @@ def polynomial_move(breaks: np.ndarray, coefficients: np.ndarray, drive: Drive,
     sign = 1.0 if direction >= 0 else -1.0
     channels = _Channels(drive, motors, n)
     piece = np.broadcast_to(np.arange(count), (n, count)).copy()
-    lo = np.zeros((n, count))
-    hi = np.diff(breaks, axis=1)
-    cuts = _Cuts(piece, lo, hi)
+    widths = np.diff(breaks, axis=1)
+    cuts = _Cuts(piece, np.zeros((n, count)), widths)
     # where the speed changes sign (Coulomb friction, the external load's sense)
-    cuts = cuts.split(_Kinematics(coefficients, hi, cuts, sign).V)
+    cuts = cuts.split(_Kinematics(coefficients, widths, cuts, sign).V)
     # where a stage's power flow reverses, from the load up: the output of stage i is
     # one function where the stages after it keep their flow
     if channels.reversing:
         for i in reversed(range(len(drive.stages))):
             if not np.all(drive.stages[i].efficiency == 1.0):
-                kin = _Kinematics(coefficients, hi, cuts, sign)
+                kin = _Kinematics(coefficients, widths, cuts, sign)
                 cuts = cuts.split(channels.polynomial(channels.stages[i], kin))
-    kin = _Kinematics(coefficients, hi, cuts, sign)
+    kin = _Kinematics(coefficients, widths, cuts, sign)
     return _figures(kin, channels, drive, motors, breaks, coefficients)
 
 
