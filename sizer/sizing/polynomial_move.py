@@ -24,7 +24,8 @@ is at most the channel, equal where its choice of flow directions holds). Then:
 - integrals by Gauss-Legendre with enough nodes for the degree (exact);
 - peaks at the sub-pieces' ends and the real roots of the derivative (:func:`_unit_roots`:
   closed forms to degree 2; above, the derivative's roots cut [0, 1] into monotone
-  intervals and each sign change is found by safeguarded Newton steps, all rows at once);
+  intervals and each sign change is found by the project's root finder, all rows at
+  once);
 - the peak ratio |tau| / tau_int(|omega|) (the speed clipped into the region, as in the
   engine) at the ends, at the torque's stationary points, where |omega| crosses a corner of
   the region and at the stationary points of tau / (c0 + c1 |omega|) on each of its
@@ -42,6 +43,7 @@ import numpy as np
 from numpy.polynomial.legendre import leggauss
 
 from sizer.mechanics import Drive
+from sizer.numerics.roots import illinois
 from sizer.sizing.motors import MotorArrays
 
 _DEGREE_TOLERANCE = 1e-12
@@ -50,8 +52,8 @@ _IMAGINARY_TOLERANCE = 1e-7
 """Complex roots of a quadratic this close to the real axis (the unit interval's scale)
 are kept as roots: a spurious cut costs nothing, a missed pair of close crossings would."""
 _NEWTON_STEPS = 3
-_BRACKET_STEPS = 80
-"""At most this many safeguarded Newton steps per bracketed root (bisection needs ~52)."""
+"""Newton steps polishing the closed-form roots of degree 1 and 2 (each taken only where
+it lowers |c(u)|)."""
 _SPEED_NOISE = 1e-12
 """Speeds below this share of the piece's largest possible speed have no sign."""
 
@@ -493,7 +495,7 @@ def _real_roots(c: np.ndarray) -> np.ndarray:
     axis counts as a root: a spurious cut costs nothing). Above, every root where the
     sign changes: the derivative's roots (recursively) cut [0, 1] into intervals where
     the polynomial is monotone, and each one that brackets a sign change holds one root,
-    found by Newton's method safeguarded by bisection. A root where the sign does not
+    found by the project's root finder (Illinois). A root where the sign does not
     change (even multiplicity) is of no use: it cuts no sign of speed or flow, and the
     maxima of a smooth function are where its derivative changes sign.
     """
@@ -516,28 +518,12 @@ def _real_roots(c: np.ndarray) -> np.ndarray:
 
 
 def _bracketed(c: np.ndarray, a: np.ndarray, b: np.ndarray, f_a: np.ndarray) -> np.ndarray:
-    """The root of each row c in [a, b], where c changes sign once (f_a = c(a)): Newton
-    steps, a bisection wherever a step leaves the shrinking bracket."""
-    slope = _derivative(c)
-    size = np.abs(c)
-    x = 0.5 * (a + b)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        for _ in range(_BRACKET_STEPS):
-            f_x = _polyval(c, x[:, None])[:, 0]
-            # done where c(x) is within the rounding of its evaluation, or the step stalls
-            noise = 8.0 * np.finfo(float).eps * _polyval(size, x[:, None])[:, 0]
-            same = np.sign(f_x) == np.sign(f_a)
-            a = np.where(same, x, a)
-            f_a = np.where(same, f_x, f_a)
-            b = np.where(same, b, x)
-            newton = x - f_x / _polyval(slope, x[:, None])[:, 0]
-            step = np.where((newton > a) & (newton < b), newton, 0.5 * (a + b))
-            done = (np.abs(f_x) <= noise) | (b - a <= 4.0 * np.finfo(float).eps)
-            step = np.where(done, x, step)
-            if np.all(done):
-                break
-            x = step
-    return x
+    """The root of each row c in [a, b], where c changes sign once (f_a = c(a)): the
+    project's root finder (sizer.numerics.roots, Illinois), each row on its own
+    polynomial, to a few ulps."""
+    f_b = _polyval(c, b[:, None])[:, 0]
+    return illinois(lambda x, rows: _polyval(rows, x[:, None])[:, 0], a, b, f_a, f_b,
+                    xtol=4.0 * np.finfo(float).eps, args=(c,))
 
 
 def _roots_of_degree(c: np.ndarray) -> np.ndarray:
