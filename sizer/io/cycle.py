@@ -26,7 +26,7 @@ from sizer.model.domain import Task
 from sizer.model.inputs import TaskInput
 from sizer.model.inputs_base import axis_range, convert_in, given_text, show_value
 from sizer.model.ranges import RANGES, check_range, number_text
-from sizer.units import parse_displacement
+from sizer.units import parse_displacement, to_si
 
 SPEED_TOLERANCE = 1e-9
 """Relative: consecutive speeds are equal when they differ by at most this fraction of the
@@ -85,8 +85,8 @@ class _Axis:
             rotary, linear = key, pairs[key]
             right, wrong = (linear, rotary) if self.linear else (rotary, linear)
             if getattr(given, wrong) is not None:
-                raise self.source.error(f"a {self.name} axis takes '{right}', not "
-                                        f"'{wrong}' ({self.why})", (*at, wrong))
+                raise self.source.error(f"takes '{right}', not '{wrong}' ({self.why})",
+                                        (*at, wrong))
             value = getattr(given, right)
             values[key] = 0.0 if value is None else self.quantity(model, right, value,
                                                                   (*at, right))
@@ -97,10 +97,15 @@ def displacement_of(given: Any, source: YamlSource, at: Path_, *, zero_note: str
                     linear: bool | None = None) -> tuple[float, bool]:
     """A displacement h in SI and whether it is a length, not zero, within its range.
 
-    ``linear``: the axis it must be on (None: any; it then decides the axis).
+    ``linear``: the axis it must be on (None: any; it then decides the axis, and a bare
+    number is rad as for ``task.displacement``); on a known axis a bare number is SI (m on
+    a linear axis).
     """
     try:
-        h, is_linear = parse_displacement(given)
+        if linear is not None and not isinstance(given, str):
+            h, is_linear = to_si(given, "length" if linear else "angle"), linear
+        else:
+            h, is_linear = parse_displacement(given)
     except UserError as error:
         raise source.error(error.message, at) from None
     except OverflowError:
@@ -226,9 +231,10 @@ def _run(given: RunInput, axis: _Axis, at: Path_) -> Run:
                                zero_note="a run moves: give its duration or a displacement",
                                linear=axis.linear)
         if (h > 0.0) != (speed > 0.0):
+            length = RANGES[axis_range(RunInput, "displacement", axis.linear)].unit
             raise source.error(f"a run's displacement has the sign of its speed: "
-                               f"{number_text(h)} against {number_text(speed)} {unit}",
-                               where)
+                               f"{number_text(h)} {length} against {number_text(speed)} "
+                               f"{unit}", where)
         duration = h / speed
         try:
             check_range("duration", duration)

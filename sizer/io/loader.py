@@ -32,7 +32,11 @@ from sizer.io.motor_rules import (
     maybe_impossible,
     motor_of,
 )
-from sizer.io.plausibility import bare_number_warnings, motor_warnings
+from sizer.io.plausibility import (
+    bare_number_warnings,
+    cycle_bare_number_warnings,
+    motor_warnings,
+)
 from sizer.io.transmission import build_transmission
 from sizer.io.validation import validate
 from sizer.io.yaml_source import (
@@ -287,6 +291,8 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
     cycle = build_cycle(model.cycle, source) if model.cycle is not None else None
     task = summary_task(cycle) if cycle is not None else _task(model, source)
     linear = task.linear
+    if cycle is not None:
+        warnings += cycle_bare_number_warnings(source, linear)
     load = _load(model, source, linear)
     extra = list(extra_catalogs)
     if default_motors and model.motors is None and not extra:

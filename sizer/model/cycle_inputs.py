@@ -100,22 +100,20 @@ LawSpec = Annotated[
 """A law spec, checked as ``laws:`` entries are (sizer.model.inputs.check_law_spec)."""
 
 
-class _LoadChange(Strict):
-    """What a segment adds to the design's load (sizer.model.cycle.SegmentLoad)."""
+AddedInertia = RawQuantity("'0.1 kg*m^2'", rotary="added_inertia")
+AddedMass = RawQuantity("'2 kg'", linear="added_mass")
+AddedTorque = RawQuantity("'15 N*m'", rotary="load_torque")
+AddedForce = RawQuantity("'20 N'", linear="load_force")
+"""What a segment adds to the design's load (sizer.model.cycle.SegmentLoad), per axis."""
 
-    inertia: RawQuantity("'0.1 kg*m^2'", rotary="added_inertia") | None = Field(  # type: ignore[valid-type]
-        None, description="rotary axis: inertia added while the segment lasts")
-    mass: RawQuantity("'2 kg'", linear="added_mass") | None = Field(  # type: ignore[valid-type]
-        None, description="linear axis: mass added while the segment lasts (a part held)")
-    torque: RawQuantity("'15 N*m'", rotary="load_torque") | None = Field(  # type: ignore[valid-type]
-        None, description="rotary axis: external torque added, positive opposes a positive "
-                          "move")
-    force: RawQuantity("'20 N'", linear="load_force") | None = Field(  # type: ignore[valid-type]
-        None, description="linear axis: external force added (pressing, gravity on a "
-                          "payload), positive opposes a positive move")
+_INERTIA = "rotary axis: inertia added while the segment lasts"
+_MASS = "linear axis: mass added while the segment lasts (a part held)"
+_TORQUE = "rotary axis: external torque added, positive opposes a positive move"
+_FORCE = ("linear axis: external force added (pressing, a payload's weight), positive "
+          "opposes a positive move")
 
 
-class MoveInput(_LoadChange):
+class MoveInput(Strict):
     """A move of ``displacement`` by a motion law, from ``start_speed`` to ``end_speed``."""
 
     displacement: _displacement() = Field(  # type: ignore[valid-type]
@@ -132,10 +130,14 @@ class MoveInput(_LoadChange):
         None, description="signed speed at the end (at the load); 0 = to rest")
     weight: Ranged("segment_weight",  # type: ignore[valid-type]
                    note="its share of the free time with `share: weights`") | None = None
+    inertia: AddedInertia | None = Field(None, description=_INERTIA)  # type: ignore[valid-type]
+    mass: AddedMass | None = Field(None, description=_MASS)  # type: ignore[valid-type]
+    torque: AddedTorque | None = Field(None, description=_TORQUE)  # type: ignore[valid-type]
+    force: AddedForce | None = Field(None, description=_FORCE)  # type: ignore[valid-type]
     name: Identifier | None = None
 
 
-class RunInput(_LoadChange):
+class RunInput(Strict):
     """A run at constant ``speed`` for a ``duration`` or over a ``displacement``."""
 
     speed: _speed() = Field(  # type: ignore[valid-type]
@@ -144,6 +146,10 @@ class RunInput(_LoadChange):
         None, description="the run's time; or give its displacement")
     displacement: _displacement() | None = Field(  # type: ignore[valid-type]
         None, description="the run's displacement, of the speed's sign; or give its duration")
+    inertia: AddedInertia | None = Field(None, description=_INERTIA)  # type: ignore[valid-type]
+    mass: AddedMass | None = Field(None, description=_MASS)  # type: ignore[valid-type]
+    torque: AddedTorque | None = Field(None, description=_TORQUE)  # type: ignore[valid-type]
+    force: AddedForce | None = Field(None, description=_FORCE)  # type: ignore[valid-type]
     name: Identifier | None = None
 
 
@@ -154,9 +160,9 @@ class DwellInput(Strict):
                                                "`share: weights`)")
     weight: Ranged("segment_weight",  # type: ignore[valid-type]
                    note="its share of the free time with `share: weights`") | None = None
-    torque: RawQuantity("'15 N*m'", rotary="load_torque") | None = Field(  # type: ignore[valid-type]
+    torque: AddedTorque | None = Field(  # type: ignore[valid-type]
         None, description="rotary axis: external torque held while resting (pressing)")
-    force: RawQuantity("'20 N'", linear="load_force") | None = Field(  # type: ignore[valid-type]
+    force: AddedForce | None = Field(  # type: ignore[valid-type]
         None, description="linear axis: external force held while resting")
     name: Identifier | None = None
 
