@@ -543,3 +543,20 @@ def test_bare_numbers_far_from_plausible_warn(tmp_path: Path) -> None:
                            "cycle.segments[2].move.displacement": -20})
     design = load_design_data(linear)  # -20 m, not rad, on a linear axis: no warning
     assert design.cycle.segments[2].displacement == -20.0 and design.warnings == ()
+
+
+def test_the_documented_cycle_loads() -> None:
+    import re
+
+    doc = (Path(__file__).resolve().parents[1] / "docs" / "input-files.md").read_text()
+    block = re.search(r"```yaml\n(cycle:.*?)```", doc, re.S)
+    assert block is not None
+    data = {**yaml.safe_load(block.group(1)), "load": {"inertia": "0.05 kg*m^2"},
+            "motors": "book-examples"}
+    cycle = load_design_data(data).cycle
+    assert cycle is not None and [type(s) for s in cycle.segments] == [Move, Dwell, Move,
+                                                                        Run, Move]
+    assert cycle.free == (2, 4) and cycle.cycle_time == 2.0
+    assert cycle.fixed_time == pytest.approx(0.7, rel=1e-15)
+    assert cycle.segments[3].speed == pytest.approx(math.pi, rel=1e-15)  # 30 rpm
+    assert cycle.segments[4].start_speed == pytest.approx(math.pi, rel=1e-15)  # 180 deg/s
