@@ -172,7 +172,7 @@ def test_units_as_datasheets_write_them(tmp_path: Path) -> None:
 
 @pytest.mark.parametrize(("rate", "cycle_time"), [
     ("50 /min", 1.2), ("50/min", 1.2), ("50 1/min", 1.2), ("50 min^-1", 1.2),
-    ("0.8 Hz", 1.25), (2, 0.5), ("3600 1/h", 1.0),
+    ("50 rpm", 1.2), ("50 cycles/min", 1.2), ("0.8 Hz", 1.25), (2, 0.5), ("3600 1/h", 1.0),
 ])
 def test_a_rate_is_cycles_per_time(rate: Any, cycle_time: float) -> None:
     data = edit(ROTARY, {"cycle.rate": rate, "cycle.segments[1].dwell.duration": "free",
@@ -343,6 +343,8 @@ CYCLE = [
          ("cycle.rate", "not both"), ("cycle.rate",)),
     case("rate-a-length", edit(ROTARY, {"cycle.rate": "50 m"}),
          ("cycle.rate", "expected a rate"), ("cycle.rate",)),
+    case("rate-negative", edit(ROTARY, {"cycle.rate": "-50 /min"}),
+         ("cycle.rate", "[1e-6, 1e6] 1/s", "got -0.833333 1/s (-50 /min)"), ("cycle.rate",)),
     case("rate-below-the-fixed-time", edit(LINEAR, {"cycle.rate": "200 /min"}),
          ("cycle.rate", "1 / rate", "leaves no time", "0.6 s"), ("cycle.rate",)),
     case("cycle-time-below-the-fixed-time", edit(LINEAR, {"cycle.cycle_time": "0.6 s"}),

@@ -11,6 +11,7 @@ segments (speed continuity, a closed cycle, the time budget) and builds the
 from __future__ import annotations
 
 import difflib
+import math
 import re
 from typing import Annotated, Any, Literal
 
@@ -22,12 +23,13 @@ from sizer.model.inputs_base import (
     RangeRef,
     RawQuantity,
     Strict,
+    convert,
     convert_in,
     not_null,
     range_schema,
     show_value,
 )
-from sizer.model.ranges import RANGES
+from sizer.model.ranges import RANGES, check_range
 
 SEGMENT_KINDS = ("move", "run", "dwell")
 """The keys of a segment's one-key mapping."""
@@ -59,10 +61,22 @@ _SLASH = re.compile(r"^(\s*[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*/")
 
 
 def _rate(value: Any) -> float:
-    """Cycles per second from '50 /min', '50 1/min', '0.8 Hz' or a bare number (1/s)."""
-    if isinstance(value, str):
-        value = _SLASH.sub(r"\1 1/", value, count=1)  # '50 /min' = '50 1/min'
-    return convert_in(value, "cycle_rate")
+    """Cycles per second from '50 /min', '50 1/min', '50 cycles/min', '0.8 Hz' or a bare
+    number (1/s): a unit with an angle counts it in cycles (rev, turn), one without counts
+    cycles (the angular speed's rule, sizer.units)."""
+    if not isinstance(value, str):
+        return convert_in(value, "cycle_rate")
+    text = _SLASH.sub(r"\1 1/", value, count=1)  # '50 /min' = '50 1/min'
+    try:
+        cycles = convert(text, "angular_speed") / (2 * math.pi)
+    except ValueError:
+        raise ValueError(f"expected a rate like '50 /min', '50 1/min' or '0.8 Hz', got "
+                         f"{show_value(value)}") from None
+    try:
+        check_range("cycle_rate", cycles)
+    except ValueError as error:
+        raise ValueError(f"{error} ({value.strip()})") from None
+    return cycles
 
 
 Rate = Annotated[
