@@ -78,6 +78,7 @@ KINDS: dict[str, Kind] = {
         Kind("fraction", "", "10 %", "1"),
         Kind("ratio", "", "10", "1"),
         Kind("money", "", "450", "1"),
+        Kind("rate", "1/[time]", "50 1/min", "1/s"),  # cycles per time (a machine cycle's)
         Kind("temperature_rise", "[temperature]", "100 K", "K"),
     )
 }

@@ -297,8 +297,9 @@ def test_case_ids_are_unique():
 
 def test_every_field_of_the_input_files_has_a_case():
     from test_bad_inputs_catalogs import CASES as CATALOG_CASES
+    from test_cycle_input import CASES as CYCLE_CASES  # the fields of `cycle:`
 
-    named = {f for c in (*CASES, *CATALOG_CASES) for f in c.fields}
+    named = {f for c in (*CASES, *CATALOG_CASES, *CYCLE_CASES) for f in c.fields}
     fields = set(input_fields())
     assert sorted(fields - named) == [], "fields without a bad-input case"
     assert sorted(named - fields) == [], "cases naming no field of the models"

@@ -30,7 +30,7 @@ NOT_SIZER_FILES = {"examples/ci"}  # CI and pre-commit configurations, not sizer
 
 
 def kind_of(data: Any) -> str:
-    if isinstance(data, dict) and "task" in data:
+    if isinstance(data, dict) and ("task" in data or "cycle" in data):
         return "design"
     if isinstance(data, dict) and "gearboxes" in data:
         return "gearboxes"

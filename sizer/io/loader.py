@@ -12,7 +12,6 @@ Every mistake in a file ends in a UserError naming the file, the line and the fi
 from __future__ import annotations
 
 import difflib
-import math
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from importlib import resources
@@ -25,6 +24,7 @@ from pydantic import BaseModel
 from sizer.errors import UserError
 from sizer.input_limits import MAX_DESIGN_BYTES, MAX_DESIGN_NODES
 from sizer.io.catalog_table import read_table
+from sizer.io.cycle import build_cycle, displacement_of, summary_task
 from sizer.io.motor_rules import (
     MotorProblem,
     impossibilities,
@@ -32,7 +32,11 @@ from sizer.io.motor_rules import (
     maybe_impossible,
     motor_of,
 )
-from sizer.io.plausibility import bare_number_warnings, motor_warnings
+from sizer.io.plausibility import (
+    bare_number_warnings,
+    cycle_bare_number_warnings,
+    motor_warnings,
+)
 from sizer.io.transmission import build_transmission
 from sizer.io.validation import validate
 from sizer.io.yaml_source import (
@@ -50,11 +54,8 @@ from sizer.model.inputs import (
     LimitsInput,
     LoadInput,
     MotorInput,
-    TaskInput,
 )
-from sizer.model.inputs_base import axis_range, convert_in, given_text, show_value
-from sizer.model.ranges import RANGES, check_range, number_text
-from sizer.units import parse_displacement
+from sizer.model.inputs_base import axis_range, convert_in
 
 PathLike = str | Path
 
@@ -287,8 +288,11 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
     """The Design of a parsed design document (``folder``: where relative paths start)."""
     model = validate(DesignFile, source)
     warnings = bare_number_warnings(source)
-    task = _task(model, source)
+    cycle = build_cycle(model.cycle, source) if model.cycle is not None else None
+    task = summary_task(cycle) if cycle is not None else _task(model, source)
     linear = task.linear
+    if cycle is not None:
+        warnings += cycle_bare_number_warnings(source, linear)
     load = _load(model, source, linear)
     extra = list(extra_catalogs)
     if default_motors and model.motors is None and not extra:
@@ -317,6 +321,7 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
         name=model.name if model.name is not None else name,
         warnings=tuple(warnings),
         files=tuple(files),
+        cycle=cycle,
     )
 
 
@@ -343,25 +348,9 @@ def _quantity(source: YamlSource, at: tuple[Any, ...], value: Any, name: str) ->
 
 
 def _task(model: DesignFile, source: YamlSource) -> Task:
-    at = ("task", "displacement")
-    given = model.task.displacement
-    try:
-        h, linear = parse_displacement(given)
-    except UserError as error:
-        raise source.error(error.message, at) from None
-    except OverflowError:
-        allowed = RANGES[axis_range(TaskInput, "displacement", False)]
-        raise source.error(f"{show_value(given)} is too large for a number; must be "
-                           f"{allowed.text()} (or a length)", at) from None
-    if not (math.isfinite(h) and h != 0.0):
-        raise source.error(f"must not be zero, got {given!r} (a negative "
-                           f"displacement moves back first)", at)
-    name = axis_range(TaskInput, "displacement", linear)
-    try:
-        check_range(name, h)
-    except ValueError as error:
-        shown = f"{number_text(h)} {RANGES[name].unit}"
-        raise source.error(f"{error}{given_text(given, shown)}", at) from None
+    assert model.task is not None
+    h, linear = displacement_of(model.task.displacement, source, ("task", "displacement"),
+                                zero_note="a negative displacement moves back first")
     return Task(displacement=h, duration=model.task.duration, dwell=model.task.dwell,
                 return_move=model.task.return_move, linear=linear)
 

@@ -77,6 +77,38 @@ def bare_number_warnings(source: YamlSource) -> list[str]:
     return out
 
 
+def cycle_bare_number_warnings(source: YamlSource, linear: bool) -> list[str]:
+    """Warnings for the bare durations of a ``cycle:``'s segments and, on a rotary axis,
+    its bare displacements, far from a plausible range (as a task's)."""
+    cycle = source.data.get("cycle") if isinstance(source.data, dict) else None
+    segments = cycle.get("segments") if isinstance(cycle, dict) else None
+    if not isinstance(segments, list):
+        return []
+    out = []
+    for index, item in enumerate(segments):
+        if not (isinstance(item, dict) and len(item) == 1):
+            continue
+        kind, fields = next(iter(item.items()))
+        if not isinstance(fields, dict):
+            continue
+        at = ("cycle", "segments", index, kind)
+        number = _bare_float(fields.get("duration"))
+        limit = LONG_DWELL if kind == "dwell" else LONG_MOVE
+        if number is not None and number > limit:
+            shown = f"{number:g}"
+            out.append(warning_text(source, (*at, "duration"),
+                                    f"bare number {shown} read as {shown} s; write "
+                                    f"'{shown} ms' if that was meant"))
+        number = _bare_float(fields.get("displacement"))
+        if not linear and number is not None and abs(number) > LARGE_ANGLE:
+            shown = f"{number:g}"
+            turns = abs(number) / (2 * math.pi)
+            out.append(warning_text(source, (*at, "displacement"),
+                                    f"bare number {shown} read as {shown} rad ({turns:.3g} "
+                                    f"turns); write '{shown} deg' if that was meant"))
+    return out
+
+
 def _bare_float(value: Any) -> float | None:
     """The float of a bare number, None for anything else or a number beyond the floats
     (the field's range refuses it)."""

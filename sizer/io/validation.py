@@ -52,7 +52,7 @@ def all_problems(error: ValidationError, model: type[BaseModel],
 def _ordered(error: ValidationError, model: type[BaseModel],
              source: YamlSource) -> tuple[list[UserError], list[int]]:
     """The problems of ``error`` and their order: file order, a typo before what it hides."""
-    items = error.errors(include_url=False)
+    items = [_placed(item) for item in error.errors(include_url=False)]
     problems = [_problem(item, model, source) for item in items]
     # An unknown field is often a typo of a missing one in the same mapping: report it
     # first, in place of the missing one. Otherwise, file order.
@@ -67,6 +67,15 @@ def _ordered(error: ValidationError, model: type[BaseModel],
         keys.append((line, item.get("type") != "extra_forbidden"))
     order = sorted(range(len(problems)), key=lambda i: keys[i])
     return problems, order
+
+
+def _placed(item: Any) -> Any:
+    """The item with ``ctx["at"]`` appended to its loc: a model's own check (one of two
+    sections, say) names the field it is about (PydanticCustomError(..., {"at": path}))."""
+    at = (item.get("ctx") or {}).get("at")
+    if not at:
+        return item
+    return {**item, "loc": (*item.get("loc", ()), *at)}
 
 
 def _problem(item: Any, model: type[BaseModel], source: YamlSource) -> UserError:

@@ -18,14 +18,18 @@ from typing import Annotated, Any, Literal
 
 from pydantic import (
     BeforeValidator,
+    ConfigDict,
     Discriminator,
     Field,
     StrictBool,
     Tag,
     WithJsonSchema,
+    model_validator,
 )
+from pydantic_core import PydanticCustomError
 
 from sizer.errors import UserError
+from sizer.model.cycle_inputs import CycleInput
 from sizer.model.inputs_base import (
     Identifier,
     OneOrList,
@@ -36,6 +40,8 @@ from sizer.model.inputs_base import (
     Strict,
     Text,
     convert_in,
+    given,
+    not_null,
     show_value,
 )
 from sizer.model.ranges import RANGES
@@ -271,10 +277,18 @@ def _efficiency_rule(value: Any) -> Any:
 
 
 class DesignFile(_Strict):
-    """A design file: the task, the load, the transmission, laws, motors and limits."""
+    """A design file: the task (or a cycle), the load, the transmission, laws, motors and
+    limits."""
+
+    model_config = ConfigDict(json_schema_extra=not_null(
+        "task", "cycle", oneOf=[{"required": ["task"]}, {"required": ["cycle"]}]))
 
     name: Text | None = None
-    task: TaskInput
+    task: Annotated[TaskInput | None, BeforeValidator(given)] = Field(
+        None, description="one move, a dwell and an optional return; or give `cycle`")
+    cycle: Annotated[CycleInput | None, BeforeValidator(given)] = Field(
+        None, description="a machine cycle of segments (moves, runs, dwells); instead of "
+                          "`task`")
     load: LoadInput
     transmission: Annotated[list[TransmissionStageInput] | None,
                             OneOrList("object")] = Field(
@@ -297,3 +311,15 @@ class DesignFile(_Strict):
                                        "direction of power flow, 'steady_load' (alias yaskawa) "
                                        "on the load's steady torque only"}),
     ] = "power_flow"
+
+    @model_validator(mode="after")
+    def _task_or_cycle(self) -> DesignFile:
+        """One of ``task`` and ``cycle``: the error at the field to add or remove."""
+        if self.task is None and self.cycle is None:
+            raise PydanticCustomError("missing", "required field is missing",
+                                      {"at": ("task",)})
+        if self.task is not None and self.cycle is not None:
+            raise PydanticCustomError("task_and_cycle", "give `task:` (one move, a dwell, a "
+                                      "return) or `cycle:` (segments), not both",
+                                      {"at": ("cycle",)})
+        return self

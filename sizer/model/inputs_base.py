@@ -287,6 +287,31 @@ def _identifier(value: Any) -> str:
 Identifier = Annotated[str, BeforeValidator(_identifier)]
 
 
+def given(value: Any) -> Any:
+    """A before-validator of an optional section: written out, it must not be null."""
+    if value is None:
+        raise ValueError("expected a mapping of fields (key: value), got None")
+    return value
+
+
+def not_null(*names: str, **extra: Any) -> Any:
+    """A ``json_schema_extra`` that drops the null branch of the optional fields ``names``
+    (omitted, not null: see :func:`given`) and adds ``extra`` to the model's schema."""
+
+    def edit(schema: dict[str, Any]) -> None:
+        for name in names:
+            prop = schema["properties"][name]
+            branches = [b for b in prop.pop("anyOf", ()) if b != {"type": "null"}]
+            if len(branches) == 1:
+                prop.update(branches[0])
+            elif branches:
+                prop["anyOf"] = branches
+            prop.pop("default", None)
+        schema.update(extra)
+
+    return edit
+
+
 class Strict(BaseModel):
     """Unknown fields are errors; models are immutable."""
 

@@ -97,6 +97,18 @@ RANGES: dict[str, Range] = {
                              "sign is the direction", signed=True),
     "length_displacement": _r("length", 1e-7, 1e4, "0.1 um to 10 km; the sign is the "
                               "direction", signed=True),
+    # cycle (segments of a machine cycle)
+    "cycle_rate": _r("rate", 1e-6, 1e6, "cycles per second: the inverse of the durations' "
+                     "range (one cycle in 11.6 days to one in 1 us)"),
+    "segment_angular_speed": _r("angular_speed", 1e-6, 1e6, "a boundary or run speed at "
+                                "the load, as limits.max_speed; the sign is the direction, "
+                                "0 = at rest", zero=True, signed=True),
+    "segment_linear_speed": _r("linear_speed", 1e-6, 1e4, "as limits.max_speed on a linear "
+                               "axis; the sign is the direction, 0 = at rest", zero=True,
+                               signed=True),
+    "segment_weight": _r("ratio", 1e-6, 1e6, "relative shares of the free time"),
+    "added_inertia": _r("inertia", 1e-12, 1e8, "as the load's inertia; 0 = none", zero=True),
+    "added_mass": _r("mass", 1e-6, 1e7, "as the load's mass; 0 = none", zero=True),
     # load
     "load_inertia": _r("inertia", 1e-12, 1e8, "a watch gear (1e-12 kg*m^2) to a 500 t "
                        "turntable of 20 m diameter"),

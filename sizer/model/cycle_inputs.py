@@ -1,0 +1,239 @@
+"""Input models of a design's ``cycle:``: a machine cycle of segments (issue 12).
+
+A segment is a one-key mapping: ``move``, ``run`` or ``dwell``. Quantities whose kind is
+fixed (durations, weights, the rate) are converted to SI here; those whose kind depends on
+the axis (displacements, speeds, added inertia or mass, torque or force) stay as given and
+are converted by :mod:`sizer.io.cycle`, which also runs the checks that span several
+segments (speed continuity, a closed cycle, the time budget) and builds the
+:class:`sizer.model.cycle.Cycle`.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import re
+from typing import Annotated, Any, Literal
+
+from pydantic import BeforeValidator, ConfigDict, Field, StrictBool, WithJsonSchema, model_validator
+
+from sizer.model.inputs_base import (
+    Identifier,
+    Ranged,
+    RangeRef,
+    RawQuantity,
+    Strict,
+    convert,
+    convert_in,
+    not_null,
+    range_schema,
+    show_value,
+)
+from sizer.model.ranges import RANGES, check_range
+
+SEGMENT_KINDS = ("move", "run", "dwell")
+"""The keys of a segment's one-key mapping."""
+
+SHARE_RULES = ("equal", "displacement", "sqrt_displacement", "weights")
+"""The values of ``cycle.share`` (sizer.model.cycle.ShareRule)."""
+
+
+def _free_duration(value: Any) -> float | None:
+    if isinstance(value, str) and value.strip().lower() == "free":
+        return None
+    return convert_in(value, "duration")
+
+
+FreeDuration = Annotated[
+    float | None,
+    BeforeValidator(_free_duration),
+    WithJsonSchema({"anyOf": [{"type": "number", "minimum": RANGES["duration"].low,
+                               "maximum": RANGES["duration"].high},
+                              {"type": "string"}],
+                    "description": "time like '0.3 s', or 'free' (scaled with the other "
+                                   "free segments, sec. 5.2); must be "
+                                   f"{RANGES['duration'].text()} (SI)"}),
+    RangeRef("duration"),
+]
+"""A segment's duration: a time, or ``free``."""
+
+_SLASH = re.compile(r"^(\s*[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*/")
+
+
+def _rate(value: Any) -> float:
+    """Cycles per second from '50 /min', '50 1/min', '50 cycles/min', '0.8 Hz' or a bare
+    number (1/s): a unit with an angle counts it in cycles (rev, turn), one without counts
+    cycles (the angular speed's rule, sizer.units)."""
+    if not isinstance(value, str):
+        return convert_in(value, "cycle_rate")
+    text = _SLASH.sub(r"\1 1/", value, count=1)  # '50 /min' = '50 1/min'
+    try:
+        cycles = convert(text, "angular_speed") / (2 * math.pi)
+    except ValueError:
+        raise ValueError(f"expected a rate like '50 /min', '50 1/min' or '0.8 Hz', got "
+                         f"{show_value(value)}") from None
+    try:
+        check_range("cycle_rate", cycles)
+    except ValueError as error:
+        raise ValueError(f"{error} ({value.strip()})") from None
+    return cycles
+
+
+Rate = Annotated[
+    float,
+    BeforeValidator(_rate),
+    WithJsonSchema(range_schema(RANGES["cycle_rate"],
+                                "cycles per time, e.g. '50 /min' (a cycle time of 1.2 s)")),
+    RangeRef("cycle_rate"),
+]
+
+
+def _displacement() -> Any:
+    return RawQuantity("'90 deg' or '200 mm'", rotary="angle_displacement",
+                       linear="length_displacement")
+
+
+def _speed() -> Any:
+    return RawQuantity("'30 rpm' or '0.5 m/s'", rotary="segment_angular_speed",
+                       linear="segment_linear_speed")
+
+
+def _law(value: Any) -> str:
+    from sizer.model.inputs import check_law_spec  # inputs imports this module
+
+    return check_law_spec(value)
+
+
+LawSpec = Annotated[
+    str,
+    BeforeValidator(_law),
+    WithJsonSchema({"type": "string",
+                    "description": "a motion law spec like 'cycloidal', 'poly5' or "
+                                   "'trapezoidal(alpha=1/3)'"}),
+]
+"""A law spec, checked as ``laws:`` entries are (sizer.model.inputs.check_law_spec)."""
+
+
+AddedInertia = RawQuantity("'0.1 kg*m^2'", rotary="added_inertia")
+AddedMass = RawQuantity("'2 kg'", linear="added_mass")
+AddedTorque = RawQuantity("'15 N*m'", rotary="load_torque")
+AddedForce = RawQuantity("'20 N'", linear="load_force")
+"""What a segment adds to the design's load (sizer.model.cycle.SegmentLoad), per axis."""
+
+_INERTIA = "rotary axis: inertia added while the segment lasts"
+_MASS = "linear axis: mass added while the segment lasts (a part held)"
+_TORQUE = "rotary axis: external torque added, positive opposes a positive move"
+_FORCE = ("linear axis: external force added (pressing, a payload's weight), positive "
+          "opposes a positive move")
+
+
+class MoveInput(Strict):
+    """A move of ``displacement`` by a motion law, from ``start_speed`` to ``end_speed``."""
+
+    displacement: _displacement() = Field(  # type: ignore[valid-type]
+        description="h of this move, signed: an angle (rotary axis) or a length (linear); "
+                    "not zero")
+    duration: FreeDuration = None
+    law: LawSpec | None = Field(
+        None, description="this move's law; omitted = each of the design's laws in turn; "
+                          "with start or end speeds not 0, a law with boundary speeds "
+                          "(trapezoidal, double_s, polynomial, constant_acceleration)")
+    start_speed: _speed() | None = Field(  # type: ignore[valid-type]
+        None, description="signed speed at the start (at the load); 0 = from rest")
+    end_speed: _speed() | None = Field(  # type: ignore[valid-type]
+        None, description="signed speed at the end (at the load); 0 = to rest")
+    weight: Ranged("segment_weight",  # type: ignore[valid-type]
+                   note="its share of the free time with `share: weights`") | None = None
+    inertia: AddedInertia | None = Field(None, description=_INERTIA)  # type: ignore[valid-type]
+    mass: AddedMass | None = Field(None, description=_MASS)  # type: ignore[valid-type]
+    torque: AddedTorque | None = Field(None, description=_TORQUE)  # type: ignore[valid-type]
+    force: AddedForce | None = Field(None, description=_FORCE)  # type: ignore[valid-type]
+    name: Identifier | None = None
+
+
+class RunInput(Strict):
+    """A run at constant ``speed`` for a ``duration`` or over a ``displacement``."""
+
+    speed: _speed() = Field(  # type: ignore[valid-type]
+        description="signed constant speed at the load, not zero")
+    duration: Ranged("duration") | None = Field(  # type: ignore[valid-type]
+        None, description="the run's time; or give its displacement")
+    displacement: _displacement() | None = Field(  # type: ignore[valid-type]
+        None, description="the run's displacement, of the speed's sign; or give its duration")
+    inertia: AddedInertia | None = Field(None, description=_INERTIA)  # type: ignore[valid-type]
+    mass: AddedMass | None = Field(None, description=_MASS)  # type: ignore[valid-type]
+    torque: AddedTorque | None = Field(None, description=_TORQUE)  # type: ignore[valid-type]
+    force: AddedForce | None = Field(None, description=_FORCE)  # type: ignore[valid-type]
+    name: Identifier | None = None
+
+
+class DwellInput(Strict):
+    """A rest of ``duration``, holding the design's load plus a torque or force."""
+
+    duration: FreeDuration = Field(description="time like '0.2 s', or 'free' (needs "
+                                               "`share: weights`)")
+    weight: Ranged("segment_weight",  # type: ignore[valid-type]
+                   note="its share of the free time with `share: weights`") | None = None
+    torque: AddedTorque | None = Field(  # type: ignore[valid-type]
+        None, description="rotary axis: external torque held while resting (pressing)")
+    force: AddedForce | None = Field(  # type: ignore[valid-type]
+        None, description="linear axis: external force held while resting")
+    name: Identifier | None = None
+
+
+class SegmentInput(Strict):
+    """One segment: a one-key mapping ``move: {...}``, ``run: {...}`` or ``dwell: {...}``."""
+
+    model_config = ConfigDict(json_schema_extra=not_null(
+        *SEGMENT_KINDS, minProperties=1, maxProperties=1))
+
+    move: MoveInput | None = None
+    run: RunInput | None = None
+    dwell: DwellInput | None = None
+
+    @model_validator(mode="before")
+    @classmethod
+    def _one_kind(cls, data: Any) -> Any:
+        kinds = ", ".join(SEGMENT_KINDS)
+        if not isinstance(data, dict):
+            raise ValueError(f"a segment is a one-key mapping like {{move: {{displacement: "
+                             f"90 deg}}}} ({kinds}), got {show_value(data)}")
+        for key in data:
+            if key not in SEGMENT_KINDS:
+                close = difflib.get_close_matches(str(key), SEGMENT_KINDS, n=1)
+                hint = f" (did you mean {close[0]!r}?)" if close else ""
+                raise ValueError(f"unknown segment kind {show_value(key)}{hint}; a segment "
+                                 f"is one of: {kinds}")
+        if len(data) != 1:
+            found = " and ".join(data) if data else "none"
+            raise ValueError(f"a segment has exactly one kind ({kinds}), got {found}: write "
+                             f"each as its own item of the list")
+        kind, fields = next(iter(data.items()))
+        if fields is None:
+            raise ValueError(f"a {kind} needs its fields, e.g. {_EXAMPLES[kind]}")
+        return data
+
+
+_EXAMPLES = {"move": "{move: {displacement: 90 deg, duration: 0.3 s}}",
+             "run": "{run: {speed: 0.5 m/s, duration: 0.2 s}}",
+             "dwell": "{dwell: {duration: 0.2 s}}"}
+
+
+class CycleInput(Strict):
+    """A machine cycle: its segments, in order, repeated; how free durations share time."""
+
+    share: Literal["equal", "displacement", "sqrt_displacement", "weights"] = Field(
+        "equal", description="how free durations share the time: equal, in proportion to "
+                             "|h| (displacement) or sqrt(|h|) (sqrt_displacement), or by "
+                             "each segment's weight (weights)")
+    cycle_time: Ranged("duration",  # type: ignore[valid-type]
+                       note="the target period of the cycle; omitted with free segments: "
+                            "the shortest") | None = None
+    rate: Rate | None = None
+    minimize: Identifier | None = Field(
+        None, description="the name of the one segment whose duration is minimized (every "
+                          "other has a fixed duration)")
+    closed: StrictBool = Field(
+        False, description="the cycle ends where it starts: net displacement 0, and the "
+                           "last end speed equals the first start speed")
+    segments: list[SegmentInput] = Field(min_length=1, description="the segments, in order")
