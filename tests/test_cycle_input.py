@@ -369,11 +369,12 @@ CYCLE = [
          ("cycle.closed", "expected true or false"), ("cycle.closed",)),
     case("closed-net-displacement", edit(LINEAR, {f"{S}[2].move.displacement": "-150 mm"}),
          ("cycle.closed", "sum to 0.05 m"), ("cycle.closed",)),
-    case("closed-speed", edit(ROTARY, {"cycle.closed": True, "cycle.segments": [
+    case("repeat-speed", edit(ROTARY, {"cycle.segments": [
         {"run": {"speed": "30 deg/s", "duration": "1 s"}},
         {"move": {"displacement": "-30 deg", "start_speed": "30 deg/s", "law": "poly5",
                   "duration": "1 s"}}]}),
-         ("cycle.closed", "ends at 0 rad/s", "starts at 0.523599 rad/s"), ("cycle.closed",)),
+         ("cycle.segments", "a cycle repeats", "ends at 0 rad/s", "starts at 0.523599 rad/s"),
+         ("cycle.segments",)),
     case("segments-empty", edit(ROTARY, {"cycle.segments": []}),
          ("cycle.segments", "at least 1 item"), ("cycle.segments",)),
     case("segments-not-a-list", edit(ROTARY, {"cycle.segments": "move"}),

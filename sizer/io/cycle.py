@@ -161,6 +161,7 @@ def build_cycle(given: CycleInput, source: YamlSource) -> Cycle:
     _check_continuity(segments, kinds, source, at, axis)
     if given.closed:
         _check_closed(segments, source, base, axis)
+    _check_repeats(segments, source, base, axis)
     cycle_time = _cycle_time(given, source, base)
     cycle = Cycle(tuple(segments), share=share, cycle_time=cycle_time,
                   minimize_segment=given.minimize, closed=given.closed, linear=linear)
@@ -303,8 +304,7 @@ def _check_continuity(segments: list[Segment], kinds: list[str], source: YamlSou
 
 def _check_closed(segments: list[Segment], source: YamlSource, base: Path_,
                   axis: _Axis) -> None:
-    """A closed cycle: net displacement 0 (to CLOSURE_TOLERANCE of the largest one) and
-    the last end speed equal to the first start speed."""
+    """A closed cycle: net displacement 0 (to CLOSURE_TOLERANCE of the largest one)."""
     net = math.fsum(s.displacement for s in segments)
     largest = max(abs(s.displacement) for s in segments)
     units = (RANGES[axis_range(MoveInput, "displacement", axis.linear)].unit,
@@ -314,11 +314,18 @@ def _check_closed(segments: list[Segment], source: YamlSource, base: Path_,
                            f"to {number_text(net)} {units[0]} (within "
                            f"{CLOSURE_TOLERANCE:g} of the largest, {number_text(largest)} "
                            f"{units[0]})", (*base, "closed"))
+
+
+def _check_repeats(segments: list[Segment], source: YamlSource, base: Path_,
+                   axis: _Axis) -> None:
+    """Every cycle repeats (closed or not, an indexing table goes on round): the last
+    segment's end speed is the first one's start speed."""
+    unit = RANGES[axis_range(MoveInput, "start_speed", axis.linear)].unit
     last, first = segments[-1].end_speed, segments[0].start_speed
     if not _same_speed(last, first):
-        raise source.error(f"a closed cycle repeats: its last segment ends at "
-                           f"{_speed_text(last, units[1])}, its first starts at "
-                           f"{_speed_text(first, units[1])}", (*base, "closed"))
+        raise source.error(f"a cycle repeats: its last segment ends at "
+                           f"{_speed_text(last, unit)}, its first starts at "
+                           f"{_speed_text(first, unit)}", (*base, "segments"))
 
 
 def _cycle_time(given: CycleInput, source: YamlSource, base: Path_) -> float | None:
@@ -343,10 +350,12 @@ def _check_minimize(cycle: Cycle, source: YamlSource, base: Path_, at: list[Path
         raise source.error("minimize a segment or give the cycle time (cycle_time or rate), "
                            "not both", where)
     index = names_index(cycle, name)
-    if index not in cycle.free:
+    free = [i for i, s in enumerate(cycle.segments)
+            if not isinstance(s, Run) and s.duration is None]  # as written
+    if index not in free:
         raise source.error(f"segment {name!r} has a fixed duration: nothing to minimize "
                            f"(write `duration: free`)", where)
-    for i in cycle.free:
+    for i in free:
         if i != index:
             raise source.error(f"with `minimize: {name}` every other segment has a fixed "
                                f"duration; {_label(cycle.segments[i], at[i])} is free",
