@@ -184,6 +184,7 @@ def _book_double_s(t, q0, q1, v0, v1, Ta, Tv, Td, Tj1, Tj2):
     j_a, j_d = a_a / Tj1, -a_d / Tj2
     t = np.asarray(t, dtype=float)
     x = t - T + Td
+    rest = np.ones(t.shape, dtype=bool)  # the last piece takes the rest (T rounds)
     pieces = [
         (t < Tj1, q0 + v0 * t + j_a * t**3 / 6, v0 + j_a * t**2 / 2, j_a * t),
         (t < Ta - Tj1, q0 + v0 * t + a_a / 6 * (3 * t**2 - 3 * Tj1 * t + Tj1**2),
@@ -195,7 +196,7 @@ def _book_double_s(t, q0, q1, v0, v1, Ta, Tv, Td, Tj1, Tj2):
          v_lim - j_d * x**2 / 2, -j_d * x),
         (t < T - Tj2, q1 - (v_lim + v1) * Td / 2 + v_lim * x
          + a_d / 6 * (3 * x**2 - 3 * Tj2 * x + Tj2**2), v_lim + a_d * (x - Tj2 / 2), a_d + 0 * t),
-        (t <= T, q1 - v1 * (T - t) - j_d * (T - t) ** 3 / 6, v1 + j_d * (T - t) ** 2 / 2,
+        (rest, q1 - v1 * (T - t) - j_d * (T - t) ** 3 / 6, v1 + j_d * (T - t) ** 2 / 2,
          -j_d * (T - t)),
     ]
     conditions = [p[0] for p in pieces]
