@@ -1,6 +1,7 @@
 """Motion-law library: normalized shapes, exact coefficients, spec parsing."""
 
 from sizer.laws.base import INFINITELY_SMOOTH, MotionLaw, Parameter, Piece
+from sizer.laws.boundary_speeds import BoundaryBasis, boundary_form, has_boundary_form
 from sizer.laws.coefficients import AccelerationJump, LawCoefficients
 from sizer.laws.motion import ScaledMotion
 from sizer.laws.registry import (
@@ -21,12 +22,15 @@ __all__ = [
     "INFINITELY_SMOOTH",
     "LAW_FAMILIES",
     "AccelerationJump",
+    "BoundaryBasis",
     "LawCoefficients",
     "LawSpec",
     "MotionLaw",
     "Parameter",
     "Piece",
     "ScaledMotion",
+    "boundary_form",
+    "has_boundary_form",
     "known_law_ids",
     "law_of",
     "make_law",
