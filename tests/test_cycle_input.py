@@ -220,13 +220,21 @@ def test_a_closed_cycle_within_the_tolerance(tmp_path: Path) -> None:
 
 
 @pytest.mark.parametrize("spec", [
-    "trapezoidal(alpha=1/3)", "trapezoidal(alpha=auto)", "double_s(alpha=1/3, beta=1/4)",
-    "poly3", "poly5", "poly7", "polynomial(degree=5)", "constant_acceleration",
+    "trapezoidal(alpha=1/3)", "trapezoidal(alpha=1/4, alpha_d=1/3)",
+    "double_s(alpha=1/3, beta=1/4)", "poly3", "poly5", "poly7", "polynomial(degree=5)",
+    "constant_acceleration",
 ])
 def test_laws_with_a_boundary_speed_form(spec: str) -> None:
     assert has_boundary_form(spec)
     data = edit(LINEAR, {"cycle.segments[0].move.law": spec})
     assert load_design_data(data).cycle.segments[0].law == spec
+
+
+def test_a_move_law_with_auto_is_refused(tmp_path: Path) -> None:
+    error = error_of(tmp_path, edit(ROTARY, {"cycle.segments[0].move.law":
+                                             "trapezoidal(alpha=auto)"}))
+    assert error.field == "cycle.segments[0].move.law"
+    assert "`auto` shape parameters" in str(error)
 
 
 @pytest.mark.parametrize("spec", ["cycloidal", "harmonic", "modified_sinusoidal",

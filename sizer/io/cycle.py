@@ -40,18 +40,21 @@ TIME_TOLERANCE = 1e-9
 """Relative: a cycle time without free segments equals the sum of the durations."""
 
 BOUNDARY_SPEED_FAMILIES = ("trapezoidal", "double_s", "polynomial", "constant_acceleration")
-"""The law families with a form between non-zero boundary speeds. Local copy until the
-merge: sizer.laws.boundary_speeds.has_boundary_form(spec) is the check to use then."""
+"""The law families with a form between non-zero boundary speeds, for the messages
+(sizer.laws.boundary_speeds decides: polynomials of degree 3, 5 and 7)."""
+
+
+def _has_auto(spec: str) -> bool:
+    from sizer.laws import AUTO, resolve
+
+    return any(v == AUTO for v in resolve(spec)[1].values())
 
 
 def has_boundary_form(spec: str) -> bool:
-    """Whether law ``spec`` has a form with non-zero start and end speeds (by family).
+    """Whether law ``spec`` has a form with non-zero start and end speeds."""
+    from sizer.laws.boundary_speeds import has_boundary_form as decides
 
-    Stand-in for sizer.laws.boundary_speeds.has_boundary_form, written at the same time.
-    """
-    from sizer.laws import resolve
-
-    return resolve(spec)[0].law_id in BOUNDARY_SPEED_FAMILIES
+    return decides(spec)
 
 
 Path_ = tuple[Any, ...]
@@ -201,6 +204,10 @@ def _move(given: MoveInput, axis: _Axis, at: Path_, share: ShareRule) -> Move:
         return 0.0 if value is None else axis.quantity(MoveInput, key, value, (*at, key))
 
     start, end = speed("start_speed"), speed("end_speed")
+    if given.law is not None and _has_auto(given.law):
+        raise source.error(f"law {given.law!r}: `auto` shape parameters are chosen for the "
+                           "task shorthand only, not yet for a move of a cycle; give the "
+                           "shape", (*at, "law"))
     if given.law is not None and (start != 0.0 or end != 0.0) \
             and not has_boundary_form(given.law):
         laws = ", ".join(BOUNDARY_SPEED_FAMILIES).replace(

@@ -85,6 +85,8 @@ def exact_time_optimal(family: type[MotionLaw], fixed: dict[str, float],
     """
     if not design.task.minimize or family not in (Trapezoidal, DoubleS):
         return None
+    if "alpha_d" in fixed or "beta_d" in fixed:  # the closed form is the symmetric law's
+        return None
     motors = candidates.motors
     calculator = CycleCalculator(None, design.task, candidates.drive, motors,
                                  design.limits.thermal_speed)
