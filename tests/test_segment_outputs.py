@@ -147,6 +147,26 @@ def test_display_table_units_and_footer(cycled):
     assert document.markdown().count("\n| ") == 2 + len(breakdown.rows)
 
 
+@pytest.mark.parametrize("width", [80, 200])
+def test_terminal_table_has_the_rows_and_the_summary(cycled, monkeypatch, capsys, width):
+    import sizer.report.segment_table as module
+    from sizer.report.formats import Format
+
+    design, _, _, breakdown = cycled
+    monkeypatch.setattr(module, "stdout_is_terminal", lambda: True)
+    monkeypatch.setenv("COLUMNS", str(width))
+    module.publish_segments(SegmentDocument(breakdown, design), Format.TABLE, None)
+    out = capsys.readouterr().out
+    assert "─" in out  # drawn by rich, not the plain table
+    for name in ("out", "press", "back", "dwell", "cycle time 1450 ms"):
+        assert name in out
+    words = " ".join(out.split())
+    if width == 80:  # a column left out to fit is named under the table, never silently
+        assert "not shown at this terminal width: kind, energy [J]" in words
+    else:
+        assert "not shown" not in words and "energy" in words
+
+
 def test_linear_axis_states_its_acceleration_unit():
     assert csv_headers(True)[10] == "acceleration_step [m/s^2]"
 

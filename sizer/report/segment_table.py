@@ -48,6 +48,9 @@ JERK_IMPULSE = "jerk impulse"
 
 SHARE_HEADER = "share of rms^2 [%]"
 
+DROPPABLE = ("kind", "energy [J]", "start [ms]", "peak speed [rpm]", "rms torque [N*m]")
+"""Columns a narrow terminal may leave out, first to last (the footer names them)."""
+
 
 def acceleration_unit(linear: bool) -> str:
     """The load's acceleration unit of the axis."""
@@ -167,8 +170,8 @@ class SegmentDocument:
         return (f"{JERK_IMPULSE} (acceleration step {short(row.acceleration_step)} "
                 f"{acceleration_unit(self.linear)})")
 
-    def footer(self) -> list[str]:
-        """The summary under a human-readable table."""
+    def summary(self) -> list[str]:
+        """The cycle time and the cycle's RMS torque, and what a jerk impulse means."""
         b = self.breakdown
         lines = [f"cycle time {_short(b.cycle_time, 1000.0)} ms, cycle rms torque "
                  f"{_short(b.rms_torque)} N*m (at the motor shaft); the shares are of the "
@@ -176,6 +179,12 @@ class SegmentDocument:
         if any(row.acceleration_step != 0.0 for row in b.rows):
             lines.append(f"{JERK_IMPULSE}: the acceleration steps at the segment's start (at "
                          f"the load), so the jerk is an impulse there")
+        return lines
+
+    def footer(self) -> list[str]:
+        """The lines under a human-readable table: the summary, then the notes."""
+        b = self.breakdown
+        lines = self.summary()
         if self.feasible is False:
             lines.append(f"note: {b.motor} with {b.law} does not meet every limit (sizer "
                          f"check or sizer size --all say which)")
@@ -237,9 +246,7 @@ def indented_text(document: SegmentDocument, indent: str = "  ") -> str:
     """The plain table and its summary, each line indented (inside a ``sizer check``
     report)."""
     lines = ["segments:", *render_text_table(document.table()).splitlines(),
-             *document.footer()[:1]]
-    if any(row.acceleration_step != 0.0 for row in document.breakdown.rows):
-        lines.append(document.footer()[1])
+             *document.summary()]
     return "".join(f"{indent}{line}".rstrip() + "\n" for line in lines)
 
 
@@ -253,9 +260,14 @@ def publish_segments(document: SegmentDocument, fmt: Format, output: Path | None
         from sizer.report.rich_table import print_rich_table
 
         console = Console(highlight=False)
-        print_rich_table(document.table(), title_above=True, console=console)
+        dropped = print_rich_table(document.table(), wrap_headers=True, droppable=DROPPABLE,
+                                   title_above=True, console=console)
         console.print()
-        for line in document.footer():
+        lines = document.footer()
+        if dropped:
+            lines.insert(0, f"not shown at this terminal width: {', '.join(dropped)} (a wider "
+                            f"terminal, --format md or csv show every column)")
+        for line in lines:
             console.print(Text(printable(line)))
         return
     emit(document.render(fmt), output, escape=fmt in (Format.TABLE, Format.MD))
