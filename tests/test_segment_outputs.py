@@ -289,6 +289,19 @@ def test_design_summary_describes_a_cycle_and_not_a_task(cycled):
     assert "cycle" not in design_summary(api.load(INDEXING))
 
 
+def test_a_cycle_is_sized_by_its_cycle_time_and_says_so(cycled):
+    from sizer.report.cycle_summary import duration_name
+    from sizer.report.sizing_table import SizingDocument
+
+    design, sizing, _, _ = cycled
+    assert duration_name(design) == "cycle time"
+    assert duration_name(api.load(INDEXING)) == "T"
+    document = SizingDocument(sizing, design)
+    assert document.title.startswith("two steps: a cycle of 4 segments in 1450 ms; ")
+    assert "cycle time [ms]" in document.table().headers
+    assert all(r.duration == pytest.approx(1.45, rel=1e-15) for r in sizing.results)
+
+
 def test_report_of_a_cycle(cycled, tmp_path):
     from sizer.report.design_report import write_report
 

@@ -114,6 +114,7 @@ def plot(
         --law 'trapezoidal(alpha=0.12732200375003505)' --speed-unit rad/s -o fig6_2.svg
     """
     from sizer.cli.output_guard import check_output, check_outputs
+    from sizer.report.cycle_summary import duration_name as cycle_duration_name
     from sizer.report.plots import (
         curve_for,
         figure_format,
@@ -153,7 +154,7 @@ def plot(
     if not curves:
         raise UserError(f"{results[0].motor}: no law with a feasible duration, nothing to "
                         f"draw", file=str(design))
-    duration_name = "T_min" if loaded.task.minimize else "T"
+    duration_name = cycle_duration_name(loaded)
     if over_time:
         figure = time_figure(curves, speed_unit=speed_unit, size=figure_size, dpi=dpi,
                              title=loaded.name, duration_name=duration_name)

@@ -12,6 +12,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from sizer.report.candidate_row import RPM_PER_RAD_S, check_line, check_passed, result_json
+from sizer.report.cycle_summary import duration_name
 from sizer.report.design_summary import design_summary
 from sizer.report.json_text import render_json
 from sizer.report.numbers import short
@@ -26,16 +27,6 @@ if TYPE_CHECKING:
 
 FORMAT = "sizer.check/1"
 """The ``format`` of the JSON document: its name and version, bumped on incompatible changes."""
-
-
-def duration_label(design: Design) -> str:
-    """What a result's duration is: the move's T (T_min) for the task shorthand, the
-    cycle time for a cycle of segments (sizer.sizing.segment_breakdown.scale_of)."""
-    from sizer.sizing.cycle_shape import plain_design
-
-    if design.cycle is not None and plain_design(design).cycle is not None:
-        return "shortest cycle time" if design.cycle.minimize else "cycle time"
-    return "T_min" if design.task.minimize else "T"
 
 
 class CheckDocument:
@@ -57,7 +48,7 @@ class CheckDocument:
         r = self.result
         if r.duration is None:
             return "no feasible duration"
-        parts = [f"{duration_label(self.design)} = {short(r.duration * 1000.0)} ms"]
+        parts = [f"{duration_name(self.design)} = {short(r.duration * 1000.0)} ms"]
         if r.peak_torque is not None:
             parts.append(f"peak torque {short(r.peak_torque)} N*m")
         if r.rms_torque is not None:

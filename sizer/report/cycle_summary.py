@@ -11,6 +11,7 @@ import math
 from typing import Any
 
 from sizer.model.cycle import Cycle, Dwell, Move, Run
+from sizer.model.domain import Design
 from sizer.report.numbers import short
 from sizer.report.table import Column, Table, make_table
 
@@ -119,3 +120,31 @@ def cycle_text(cycle: Cycle) -> str:
                   f"cycle (book sec. 5.2; shared by {cycle.share.value}).")
     closed = " The cycle ends where it starts." if cycle.closed else ""
     return timing + closed
+
+
+def sized_as_cycle(design: Design) -> bool:
+    """True when the design's results have the cycle time as their duration (a cycle of
+    segments that is not the task shorthand; sizer.sizing.segment_breakdown.scale_of),
+    False when it is the move's duration T."""
+    from sizer.sizing.cycle_shape import plain_design
+
+    return design.cycle is not None and plain_design(design).cycle is not None
+
+
+def duration_name(design: Design) -> str:
+    """What a result's duration is called: T or T_min for a task (the move), 'cycle time'
+    or 'min cycle time' for a cycle of segments."""
+    minimize = design.cycle.minimize if design.cycle is not None else design.task.minimize
+    if sized_as_cycle(design):
+        return "min cycle time" if minimize else "cycle time"
+    return "T_min" if minimize else "T"
+
+
+def cycle_heading(cycle: Cycle) -> str:
+    """'a cycle of 4 segments in 1450 ms' (or ', shortest cycle time')."""
+    count = len(cycle.segments)
+    text = f"a cycle of {count} segment{'s' if count != 1 else ''}"
+    if cycle.minimize:
+        return text + ", shortest cycle time"
+    total = cycle.cycle_time if cycle.cycle_time is not None else cycle.fixed_time
+    return f"{text} in {short(total * 1000.0)} ms"

@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING
 
 from sizer import __version__
 from sizer.report.candidate_row import RPM_PER_RAD_S, check_line, percent
+from sizer.report.cycle_summary import duration_name
 from sizer.report.laws_table import LawsDocument
 from sizer.report.markdown_table import render_markdown_table
 from sizer.report.numbers import short
@@ -169,7 +170,7 @@ class DesignReport:
                    f"{feasible} of {total} pairs feasible")
         if feasible:
             best = self.sizing.feasible[0]
-            label = "T_min" if self.minimize else "T"
+            label = duration_name(self.design)
             summary += (f". Best, ranked by {self.rank_key}: {best.motor} with {best.spec} "
                         f"({label} = {short(best.duration * 1000.0)} ms, limiting: "
                         f"{best.limiting}).")
@@ -341,7 +342,7 @@ class DesignReport:
         document = self._ranking_document()
         total = len(self.sizing.results)
         feasible = len(self.sizing.feasible)
-        label = "T_min" if self.minimize else "T"
+        label = duration_name(self.design)
         text = md(f"{feasible} of {total} motor/law pairs are feasible; ranked by "
                   f"{self.rank_key} ({self.rank_rule.text}). Durations {label} in "
                   f"ms, speeds in rpm, margins in %.") + "\n\n"
@@ -450,7 +451,7 @@ class DesignReport:
     def _requirements(self, r: CandidateResult) -> str:
         if r.duration is None:
             return "No feasible duration"
-        label = "T_min" if self.minimize else "T"
+        label = duration_name(self.design)
         parts = [f"{label} = {short(r.duration * 1000.0)} ms"]
         if r.peak_torque is not None:
             parts.append(f"peak torque {short(r.peak_torque)} N*m")
@@ -514,7 +515,7 @@ def write_report(design: Design, sizing: SizingResult, directory: Path | str, *,
         curve = curve_for(design, result, samples=samples)
         figure = speed_torque_figure([curve], [result], size=FIGURE_SIZE, dpi=dpi,
                                      title=f"#{candidate.rank} {design.name}".rstrip(),
-                                     duration_name="T_min" if report.minimize else "T",
+                                     duration_name=duration_name(design),
                                      mark_segments=design.cycle is not None)
         written.append(save_figure(figure, directory / candidate.figure, dpi=dpi))
     if report.time_figure:
@@ -522,7 +523,7 @@ def write_report(design: Design, sizing: SizingResult, directory: Path | str, *,
         curve = curve_for(design, first.result, samples=samples)
         figure = time_figure([curve], size=TIME_FIGURE_SIZE, dpi=dpi,
                              title=f"#{first.rank} {design.name}".rstrip(),
-                             duration_name="T_min" if report.minimize else "T")
+                             duration_name=duration_name(design))
         written.append(save_figure(figure, directory / report.time_figure, dpi=dpi))
     path = directory / REPORT_FILE
     try:
