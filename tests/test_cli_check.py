@@ -70,7 +70,7 @@ def test_json_verdict(failing: Path) -> None:
     good = run("check", str(INDEXING), "--format", "json")
     assert good.returncode == 0
     data = json.loads(good.stdout)
-    assert list(data) == ["format", "design", "passed", "units", "result"]
+    assert list(data) == ["format", "design", "passed", "units", "result", "segments"]
     assert data["format"] == "sizer.check/1"
     assert data["passed"] is True and data["result"]["motor"] == "HG-KN43J"
     assert data["result"]["feasible"] is True and data["result"]["duration"] == 0.25

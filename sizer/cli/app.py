@@ -31,6 +31,7 @@ from sizer.cli import (
     plot_command,
     report_command,
     schema_command,
+    segments_command,
     size_command,
 )
 from sizer.cli.exit_codes import ExitCode
@@ -44,7 +45,7 @@ EXIT_CODES_HELP = ("Exit codes: 0 ok; 1 a check failed (sizer check: a limit not
                    "130 interrupted.")
 
 COMMAND_MODULES = (laws_command, law_command, size_command, check_command, schema_command,
-                   catalog_command, plot_command, report_command)
+                   catalog_command, plot_command, report_command, segments_command)
 
 app = typer.Typer(
     name="sizer",

@@ -90,13 +90,15 @@ def check_one(design: Path, catalogs: list[str] | tuple[str, ...],
     name the file."""
     from sizer import api
     from sizer.report.check_report import CheckDocument
+    from sizer.report.segment_table import breakdown_for
 
     loaded = api.override(load_design_file(design, catalogs), envelope=envelope or None)
     try:
         result = api.check(loaded)
+        segments = breakdown_for(loaded, result) if result.duration is not None else None
     except UserError as error:
         raise error.located(file=str(design)) from None
-    return CheckDocument(result, loaded, api.assumptions(loaded))
+    return CheckDocument(result, loaded, api.assumptions(loaded), segments)
 
 
 def register(app: typer.Typer) -> None:

@@ -42,7 +42,8 @@ SizeOption = Annotated[
     str | None,
     typer.Option("--size", metavar="WxH",
                  help="Figure size in inches, e.g. 8x6. Default: 8x6 (13x6 with "
-                      "--acceleration) for plot, 8x9 for plot-law.", show_default=False),
+                      "--acceleration, 10x6 with --time) for plot, 8x9 for plot-law.",
+                 show_default=False),
 ]
 
 SIZE_PATTERN = re.compile(r"^\s*([0-9]*\.?[0-9]+)\s*[xX*,]\s*([0-9]*\.?[0-9]+)\s*$")
@@ -78,6 +79,10 @@ def plot(
     acceleration: Annotated[bool, typer.Option(
         "--acceleration", "-a",
         help="Add a panel in the speed-acceleration plane (Fig. 6.7 b).")] = False,
+    over_time: Annotated[bool, typer.Option(
+        "--time", "-t",
+        help="Draw motor torque and motor speed over time instead, over the whole "
+             "machine cycle with its segments marked.")] = False,
     speed_unit: Annotated[str, typer.Option(
         "--speed-unit", metavar="rpm|rad/s", help="Unit of the speed axis.")] = "rpm",
     samples: Annotated[int, typer.Option(
@@ -92,7 +97,9 @@ def plot(
     torque(t)) over the machine cycle of each law at its duration (T_min with
     'duration: minimize') and its RMS point (book Figs. 6.1-6.3), at the motor shaft;
     the title gives the peak, rms and speed margins. --acceleration adds the
-    speed-acceleration plane (Fig. 6.7).
+    speed-acceleration plane (Fig. 6.7). A cycle of segments ('cycle:') has the start of
+    each segment marked on the task curve. --time draws motor torque and speed over time
+    instead, each segment of the cycle shaded and named.
 
     Without --motor and --law: the design's `check` pair if it names one, else the
     best-ranked feasible pair.
@@ -101,14 +108,26 @@ def plot(
 
         sizer plot examples/indexing-table.yaml -o indexing.png
 
+        sizer plot examples/indexing-table.yaml --time -o indexing-time.png
+
         sizer plot examples/book/ex6_1-6_2.yaml --motor ex6_1 --law cycloidal
         --law 'trapezoidal(alpha=0.12732200375003505)' --speed-unit rad/s -o fig6_2.svg
     """
     from sizer.cli.output_guard import check_output, check_outputs
-    from sizer.report.plots import curve_for, figure_format, save_figure, speed_torque_figure
+    from sizer.report.cycle_summary import duration_name as cycle_duration_name
+    from sizer.report.plots import (
+        curve_for,
+        figure_format,
+        save_figure,
+        speed_torque_figure,
+        time_figure,
+    )
     from sizer.report.plots.speed_torque import SPEED_UNITS
 
     figure_format(output)
+    if over_time and acceleration:
+        raise UserError("the speed-acceleration panel belongs to the speed-torque diagram; "
+                        "--time draws torque and speed over time instead", field="--time")
     if speed_unit not in SPEED_UNITS:
         raise UserError(f"expected one of {', '.join(SPEED_UNITS)}, got "
                         f"{printable(repr(speed_unit))}", field="--speed-unit")
@@ -135,12 +154,19 @@ def plot(
     if not curves:
         raise UserError(f"{results[0].motor}: no law with a feasible duration, nothing to "
                         f"draw", file=str(design))
-    figure = speed_torque_figure(curves, drawn, acceleration=acceleration,
-                                 speed_unit=speed_unit, size=figure_size, dpi=dpi,
-                                 title=loaded.name,
-                                 duration_name="T_min" if loaded.task.minimize else "T")
+    duration_name = cycle_duration_name(loaded)
+    if over_time:
+        figure = time_figure(curves, speed_unit=speed_unit, size=figure_size, dpi=dpi,
+                             title=loaded.name, duration_name=duration_name)
+        what = "torque and speed over time"
+    else:
+        figure = speed_torque_figure(curves, drawn, acceleration=acceleration,
+                                     speed_unit=speed_unit, size=figure_size, dpi=dpi,
+                                     title=loaded.name, duration_name=duration_name,
+                                     mark_segments=loaded.cycle is not None)
+        what = "speed-torque diagram"
     save_figure(figure, output, dpi=dpi)
-    typer.echo(printable(f"{output}: speed-torque diagram of {drawn[0].motor} with "
+    typer.echo(printable(f"{output}: {what} of {drawn[0].motor} with "
                          f"{', '.join(r.spec for r in drawn)}"))
 
 

@@ -40,7 +40,9 @@ def report(
 
     The task, load, transmission and limits; the coefficient table and the profiles of
     the laws considered; the ranking (first N feasible pairs, and how many are not); for
-    the best candidates the speed-torque diagram and every check with its margin.
+    the best candidates the speed-torque diagram and every check with its margin; the
+    machine cycle of the first one segment by segment (with a cycle of segments, also its
+    torque and speed over time).
 
     Example:
 
@@ -51,6 +53,7 @@ def report(
     from sizer.report.design_report import (
         LAWS_FIGURE,
         REPORT_FILE,
+        TIME_FIGURE,
         candidate_figure,
         write_report,
     )
@@ -62,7 +65,7 @@ def report(
     if output.exists() and not output.is_dir():
         raise UserError(f"{printable(str(output))} is not a folder; name a folder",
                         field="--output")
-    targets = [output / REPORT_FILE, output / LAWS_FIGURE,
+    targets = [output / REPORT_FILE, output / LAWS_FIGURE, output / TIME_FIGURE,
                *(output / candidate_figure(rank) for rank in range(1, best + 1))]
     check_outputs(targets, [design, *(catalog or ())])
     loaded, sizing = load_and_size(design, catalog, motor, rank_by, outputs=targets)

@@ -1,8 +1,10 @@
 """The verdict of ``sizer check`` on the design's chosen motor and law: text and JSON.
 
-The text lists every check (``Check.describe()``) and ends with one line: ``PASS`` with
-the binding limit, or ``FAIL`` with each limit that fails and by how much (in minimize
-mode with no feasible duration: the engine's reason).
+The text lists every check (``Check.describe()``), then the machine cycle segment by
+segment (:mod:`sizer.report.segment_table`, when the pair has a duration), and ends with
+one line: ``PASS`` with the binding limit, or ``FAIL`` with each limit that fails and by
+how much (in minimize mode with no feasible duration: the engine's reason). The JSON
+object has the same segments under ``segments`` (null without a duration).
 """
 
 from __future__ import annotations
@@ -10,14 +12,17 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from sizer.report.candidate_row import RPM_PER_RAD_S, check_line, check_passed, result_json
+from sizer.report.cycle_summary import duration_name
 from sizer.report.design_summary import design_summary
 from sizer.report.json_text import render_json
 from sizer.report.numbers import short
+from sizer.report.segment_table import SegmentDocument, breakdown_json, indented_text
 from sizer.report.sizing_table import RESULT_UNITS
 
 if TYPE_CHECKING:
     from sizer.model.domain import Design
     from sizer.sizing import CandidateResult
+    from sizer.sizing.segment_breakdown import SegmentBreakdown
 
 
 FORMAT = "sizer.check/1"
@@ -28,10 +33,12 @@ class CheckDocument:
     """One motor with one law against the design's limits."""
 
     def __init__(self, result: CandidateResult, design: Design,
-                 notes: tuple[str, ...] = ()) -> None:
+                 notes: tuple[str, ...] = (),
+                 segments: SegmentBreakdown | None = None) -> None:
         self.result = result
         self.design = design
         self.notes = notes
+        self.segments = segments
 
     @property
     def passed(self) -> bool:
@@ -41,8 +48,7 @@ class CheckDocument:
         r = self.result
         if r.duration is None:
             return "no feasible duration"
-        label = "T_min" if self.design.task.minimize else "T"
-        parts = [f"{label} = {short(r.duration * 1000.0)} ms"]
+        parts = [f"{duration_name(self.design)} = {short(r.duration * 1000.0)} ms"]
         if r.peak_torque is not None:
             parts.append(f"peak torque {short(r.peak_torque)} N*m")
         if r.rms_torque is not None:
@@ -59,6 +65,8 @@ class CheckDocument:
         if r.duration is not None:  # else the checks are at no real duration: see FAIL
             lines += [f"  {check_line(r, c)}" for c in r.checks]
         lines += [f"  note: {note}" for note in self.notes]
+        if self.segments is not None:
+            lines += indented_text(SegmentDocument(self.segments, self.design)).splitlines()
         if self.passed:
             lines.append(f"PASS: {r.motor} with {r.spec} meets every limit with the required "
                          f"margins (limiting: {r.limiting})")
@@ -77,6 +85,8 @@ class CheckDocument:
             "passed": self.passed,
             "units": RESULT_UNITS,
             "result": result_json(self.result),
+            "segments": (None if self.segments is None
+                         else breakdown_json(self.segments, self.design.task.linear)),
         }
 
     def json(self) -> str:

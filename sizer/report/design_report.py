@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING
 
 from sizer import __version__
 from sizer.report.candidate_row import RPM_PER_RAD_S, check_line, percent
+from sizer.report.cycle_summary import duration_name
 from sizer.report.laws_table import LawsDocument
 from sizer.report.markdown_table import render_markdown_table
 from sizer.report.numbers import short
@@ -36,6 +37,10 @@ if TYPE_CHECKING:
 
 REPORT_FILE = "report.md"
 LAWS_FIGURE = "laws.png"
+TIME_FIGURE = "cycle-1.png"
+"""Motor torque and speed over the cycle of the first candidate (designs with a cycle of
+segments only; a task's single move is the speed-torque diagram's curve)."""
+TIME_FIGURE_SIZE = (10.0, 6.0)
 MAX_LAWS_IN_FIGURE = 8
 DEFAULT_TOP = 5
 DEFAULT_BEST = 3
@@ -91,6 +96,9 @@ class DesignReport:
             for rank, r in chosen
         ]
         self.laws = self._laws()
+        first = self.candidates[0] if self.candidates else None
+        self.time_figure = (TIME_FIGURE if design.cycle is not None and first is not None
+                            and first.result.duration is not None else None)
 
     # ------------------------------------------------------------------ content
     @property
@@ -101,7 +109,8 @@ class DesignReport:
     def figures(self) -> list[str]:
         """Every figure file the report links to, relative to its directory."""
         files = [LAWS_FIGURE] if self.laws else []
-        return files + [c.figure for c in self.candidates if c.figure]
+        files += [c.figure for c in self.candidates if c.figure]
+        return files + ([self.time_figure] if self.time_figure else [])
 
     def _laws(self) -> list[MotionLaw]:
         """The design's laws with fixed shapes, then the shapes the solver chose for 'auto'
@@ -141,6 +150,7 @@ class DesignReport:
             self._laws_section(),
             self._ranking(),
             self._best(),
+            self._segments(),
         ]
         return "\n".join(parts)
 
@@ -160,7 +170,7 @@ class DesignReport:
                    f"{feasible} of {total} pairs feasible")
         if feasible:
             best = self.sizing.feasible[0]
-            label = "T_min" if self.minimize else "T"
+            label = duration_name(self.design)
             summary += (f". Best, ranked by {self.rank_key}: {best.motor} with {best.spec} "
                         f"({label} = {short(best.duration * 1000.0)} ms, limiting: "
                         f"{best.limiting}).")
@@ -174,6 +184,8 @@ class DesignReport:
 
     def _task(self) -> str:
         task = self.design.task
+        if self.design.cycle is not None:
+            return self._cycle()
         if task.linear:
             move = f"{short(task.displacement)} m ({short(task.displacement * 1000.0)} mm)"
         else:
@@ -191,6 +203,19 @@ class DesignReport:
             ("machine cycle (for the RMS torque)", cycle),
         ]
         return _section("Task", _key_value_table(rows))
+
+    def _cycle(self) -> str:
+        """The Task section of a design with a cycle of segments: its segments."""
+        from sizer.report.cycle_summary import cycle_table, cycle_text
+
+        cycle = self.design.cycle
+        assert cycle is not None
+        count = len(cycle.segments)
+        text = md(f"Axis {'linear' if cycle.linear else 'rotary'}; a machine cycle of "
+                  f"{count} segment{'s' if count != 1 else ''}, repeated (the RMS torque "
+                  f"is over the whole cycle):") + "\n\n"
+        text += md(render_markdown_table(cycle_table(cycle)))
+        return _section("Task", text + "\n" + md(cycle_text(cycle)) + "\n")
 
     def _load(self) -> str:
         load, linear = self.design.load, self.design.task.linear
@@ -317,7 +342,7 @@ class DesignReport:
         document = self._ranking_document()
         total = len(self.sizing.results)
         feasible = len(self.sizing.feasible)
-        label = "T_min" if self.minimize else "T"
+        label = duration_name(self.design)
         text = md(f"{feasible} of {total} motor/law pairs are feasible; ranked by "
                   f"{self.rank_key} ({self.rank_rule.text}). Durations {label} in "
                   f"ms, speeds in rpm, margins in %.") + "\n\n"
@@ -353,6 +378,28 @@ class DesignReport:
         for candidate in self.candidates:
             parts.append(self._candidate(candidate))
         return "\n".join(parts)
+
+    def _segments(self) -> str:
+        """The machine cycle segment by segment for the first candidate (the core's
+        breakdown, sizer.sizing.segment_breakdown)."""
+        from sizer.report.segment_table import SegmentDocument, breakdown_for
+
+        heading = "Cycle by segment"
+        first = self.candidates[0] if self.candidates else None
+        if first is None or first.result.duration is None:
+            return _section(heading, "No breakdown: the first pair has no feasible "
+                                     "duration.\n")
+        r = first.result
+        document = SegmentDocument(breakdown_for(self.design, r), self.design)
+        text = md(f"#{first.rank} {r.motor} with {r.spec}: each segment's start and end, "
+                  f"peak and RMS torque, share of the cycle's RMS^2, peak motor speed and "
+                  f"work at the motor shaft; a jerk impulse where the acceleration steps at "
+                  f"a join.") + "\n\n"
+        text += md(document.markdown(title=False))
+        if self.time_figure:
+            alt = f"Motor torque and speed over the cycle of {r.motor} with {r.spec}"
+            text += f"\n![{md(alt)}]({self.time_figure})\n"
+        return _section(heading, text)
 
     def _candidate(self, candidate: Candidate) -> str:
         r = candidate.result
@@ -404,7 +451,7 @@ class DesignReport:
     def _requirements(self, r: CandidateResult) -> str:
         if r.duration is None:
             return "No feasible duration"
-        label = "T_min" if self.minimize else "T"
+        label = duration_name(self.design)
         parts = [f"{label} = {short(r.duration * 1000.0)} ms"]
         if r.peak_torque is not None:
             parts.append(f"peak torque {short(r.peak_torque)} N*m")
@@ -445,6 +492,7 @@ def write_report(design: Design, sizing: SizingResult, directory: Path | str, *,
         law_profiles_figure,
         save_figure,
         speed_torque_figure,
+        time_figure,
     )
 
     directory = Path(directory)
@@ -467,8 +515,16 @@ def write_report(design: Design, sizing: SizingResult, directory: Path | str, *,
         curve = curve_for(design, result, samples=samples)
         figure = speed_torque_figure([curve], [result], size=FIGURE_SIZE, dpi=dpi,
                                      title=f"#{candidate.rank} {design.name}".rstrip(),
-                                     duration_name="T_min" if report.minimize else "T")
+                                     duration_name=duration_name(design),
+                                     mark_segments=design.cycle is not None)
         written.append(save_figure(figure, directory / candidate.figure, dpi=dpi))
+    if report.time_figure:
+        first = report.candidates[0]
+        curve = curve_for(design, first.result, samples=samples)
+        figure = time_figure([curve], size=TIME_FIGURE_SIZE, dpi=dpi,
+                             title=f"#{first.rank} {design.name}".rstrip(),
+                             duration_name=duration_name(design))
+        written.append(save_figure(figure, directory / report.time_figure, dpi=dpi))
     path = directory / REPORT_FILE
     try:
         write_text_atomically(path, report.markdown())

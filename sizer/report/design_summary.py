@@ -48,7 +48,7 @@ def design_summary(design: Design, notes: tuple[str, ...] = ()) -> dict[str, Any
     choice = design.ratio_choice
     chosen = choice.stage if choice is not None else None
     catalog = choice is not None and bool(choice.gearboxes)
-    return {
+    summary = {
         "name": design.name,
         "mode": "minimize" if task.minimize else "duration",
         "task": {
@@ -103,3 +103,10 @@ def design_summary(design: Design, notes: tuple[str, ...] = ()) -> dict[str, Any
                   if design.chosen_motor or design.chosen_law else None),
         "notes": list(notes),
     }
+    if design.cycle is None:  # the task shorthand: the summary as it always was
+        return summary
+    from sizer.report.cycle_summary import cycle_json
+
+    items = list(summary.items())
+    at = [key for key, _ in items].index("task") + 1
+    return dict([*items[:at], ("cycle", cycle_json(design.cycle)), *items[at:]])

@@ -25,6 +25,7 @@ from sizer.report.candidate_row import (
     result_json,
 )
 from sizer.report.csv_text import render_csv
+from sizer.report.cycle_summary import cycle_heading, duration_name, sized_as_cycle
 from sizer.report.design_summary import design_summary
 from sizer.report.formats import Format
 from sizer.report.json_text import render_json
@@ -99,6 +100,8 @@ class SizingDocument:
         move = f"h = {short(task.displacement)} {unit}"
         move += (", shortest duration" if task.minimize
                  else f" in T = {short(task.duration * 1000.0)} ms")
+        if self.design.cycle is not None and sized_as_cycle(self.design):
+            move = cycle_heading(self.design.cycle)
         feasible = sum(r.feasible for r in self.sizing.results)
         name = self.design.name or "design"
         return (f"{name}: {move}; {feasible} of {len(self.sizing.results)} motor/law pairs "
@@ -141,6 +144,8 @@ class SizingDocument:
     def table(self, compact: bool = False) -> Table:
         """The display table; ``compact`` headers for a terminal (they wrap in rich)."""
         duration = "T_min [ms]" if self.sizing.mode == "minimize" else "T [ms]"
+        if sized_as_cycle(self.design):
+            duration = f"{duration_name(self.design)} [ms]"
         with_ratio = self.ratio_varies
         columns = (
             Column("#"), Column("motor", "left"), Column("law", "left"),

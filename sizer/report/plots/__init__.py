@@ -1,5 +1,6 @@
 """Figures of results: speed-torque diagrams (book Figs. 6.1-6.3, 6.7) and law profiles
-(Figs. 6.4-6.6), drawn with matplotlib.
+(Figs. 6.4-6.6), motor torque and speed over a machine cycle with its segments marked,
+drawn with matplotlib.
 
 matplotlib is imported lazily, inside the functions that draw, so importing this package
 (or running ``sizer size``) does not load it. Each figure is built by a function that returns
@@ -17,6 +18,7 @@ from sizer.report.plots.figure_files import (
 from sizer.report.plots.law_profiles import law_profiles_figure
 from sizer.report.plots.speed_torque import speed_torque_figure
 from sizer.report.plots.task_curves import curve_for, transmission_for
+from sizer.report.plots.time_curves import time_figure
 
 __all__ = [
     "FIGURE_FORMATS",
@@ -26,5 +28,6 @@ __all__ = [
     "new_figure",
     "save_figure",
     "speed_torque_figure",
+    "time_figure",
     "transmission_for",
 ]

@@ -45,6 +45,7 @@ GID_INTERMITTENT = "intermittent-region"
 GID_CONTINUOUS = "continuous-region"
 GID_TASK = "task-curve"
 GID_RMS = "rms-point"
+GID_SEGMENT_START = "segment-start"
 """Artist ids (``get_gid()``), so a reader of the figure (a test) finds what is what."""
 
 
@@ -66,13 +67,16 @@ def speed_torque_figure(curves: Sequence[TaskCurve],
                         results: Sequence[CandidateResult] | None = None, *,
                         acceleration: bool = False, speed_unit: str = "rpm",
                         size: tuple[float, float] | None = None, dpi: float = 100.0,
-                        title: str = "", duration_name: str = "T") -> Figure:
+                        title: str = "", duration_name: str = "T",
+                        mark_segments: bool = False) -> Figure:
     """The speed-torque diagram of one motor with the task curves of its laws.
 
     ``curves`` are TaskCurves of the same motor (one per law); ``results`` the matching
     sizing results (same order) whose margins go in the title. ``title`` is a first
     title line (e.g. the design's name); ``duration_name`` labels the durations ('T_min'
-    in minimize mode). Returns the Figure.
+    in minimize mode). With ``mark_segments`` (a cycle of segments) the point where each
+    segment starts is marked on the first curve with the segment's name. Returns the
+    Figure.
     """
     if not curves:
         raise ValueError("no task curve to draw")
@@ -98,6 +102,8 @@ def speed_torque_figure(curves: Sequence[TaskCurve],
         torque_axes.plot([curve.thermal_speed * scale], [curve.rms_torque], ls="none",
                          marker="o", ms=7, mfc="white", mec=color, mew=2.0, gid=GID_RMS,
                          label=f"RMS point: {short(curve.rms_torque)} N*m", zorder=5)
+    if mark_segments:
+        _mark_segment_starts(torque_axes, first, scale)
     _finish(torque_axes, f"motor speed [{speed_unit}]", "motor torque [N*m]",
             "speed-torque plane (Figs. 6.1-6.3)")
 
@@ -131,6 +137,20 @@ def _draw_acceleration_panel(ax: Axes, curves: Sequence[TaskCurve], both: bool,
     inertias = dict.fromkeys(short(c.total_inertia) for c in curves)
     _finish(ax, f"motor speed [{speed_unit}]", "motor acceleration [rad/s^2]",
             f"speed-acceleration plane (Fig. 6.7 b), J_t = {', '.join(inertias)} kg*m^2")
+
+
+def _mark_segment_starts(ax: Axes, curve: TaskCurve, scale: float) -> None:
+    """A small square where each segment of the cycle starts, with its name."""
+    from sizer.report.plots.time_curves import segment_points
+
+    points = segment_points(curve)
+    if not points:
+        return
+    ax.plot([p[1] * scale for p in points], [p[2] for p in points], ls="none", marker="s",
+            ms=4, color="0.2", gid=GID_SEGMENT_START, zorder=6, label="segment starts")
+    for name, speed, torque in points:
+        ax.annotate(name, (speed * scale, torque), xytext=(4, 4),
+                    textcoords="offset points", fontsize="x-small", color="0.2", zorder=6)
 
 
 def _draw_regions(ax: Axes, continuous: Curve, intermittent: Curve, both: bool,
