@@ -519,11 +519,11 @@ def _real_roots(c: np.ndarray) -> np.ndarray:
 
 def _bracketed(c: np.ndarray, a: np.ndarray, b: np.ndarray, f_a: np.ndarray) -> np.ndarray:
     """The root of each row c in [a, b], where c changes sign once (f_a = c(a)): the
-    project's root finder (sizer.numerics.roots, Illinois), each row on its own
-    polynomial, to a few ulps."""
+    project's root finder (sizer.numerics.roots, Illinois), all rows together, to 1e-14
+    of [0, 1] (a cut's error moves an integral by its square, a stationary point's a
+    peak by its square too)."""
     f_b = _polyval(c, b[:, None])[:, 0]
-    return illinois(lambda x, rows: _polyval(rows, x[:, None])[:, 0], a, b, f_a, f_b,
-                    xtol=4.0 * np.finfo(float).eps, args=(c,))
+    return illinois(lambda x: _polyval(c, x[:, None])[:, 0], a, b, f_a, f_b, xtol=1e-14)
 
 
 def _roots_of_degree(c: np.ndarray) -> np.ndarray:
