@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -241,3 +242,40 @@ def test_minimizing_one_named_segment_keeps_the_others():
     T_back = math.sqrt(J_t * 10.0 * 1.0 * C_a / 15.0)
     assert result.feasible
     assert result.duration == pytest.approx(0.5 + 0.25 + T_back + 0.25, rel=1e-9)
+
+
+FLYING_SAW = Path(__file__).resolve().parent.parent / "examples" / "flying-saw.yaml"
+
+
+def test_the_flying_saw_meets_the_line_speed_and_its_t_min():
+    """examples/flying-saw.yaml: moves between boundary speeds sized exactly. The best
+    pair's curve reaches the line's 0.5 m/s at the cut's start and leaves it at its end
+    (to 1e-12), the cut's torque is its closed form, and the minimized cycle is feasible
+    at T_min and not 1e-7 below it."""
+    from sizer.api import load
+    from sizer.sizing.checks import evaluate_checks, worst_slack
+    from sizer.sizing.profile import task_curve
+    from sizer.sizing.segment_breakdown import scale_of
+
+    design = load(FLYING_SAW)
+    best = size_design(design).results[0]
+    assert best.feasible
+    curve = task_curve(design, best.motor_object, best.law_object, best.duration)
+    (_, _, end), (_, cut_start, cut_end) = curve.segments[0], curve.segments[1]
+    assert end == cut_start
+    for t in (cut_start, cut_end):
+        at = np.flatnonzero(np.isclose(curve.time, t, rtol=0, atol=1e-15))
+        assert np.allclose(curve.load_speed[at], 0.5, rtol=1e-12, atol=0)
+    K = 3.0 / 0.03
+    cut = (30.0 + 120.0) / (K * 0.95 * 0.95)  # friction and cut force through two stages
+    assert np.allclose(curve.motor_torque[(curve.time > cut_start) & (curve.time < cut_end)],
+                       cut, rtol=1e-12)
+    motors = MotorArrays.of([best.motor_object], design.limits.envelope)
+    calc = SegmentCycle(design.cycle, best.law_object, Drive(design.load, design.transmission),
+                        motors)
+    s = np.array([scale_of(design, best.duration)])
+    at = worst_slack(evaluate_checks(calc.evaluate(s), calc.motors, calc.drive, design.limits,
+                                     True))
+    below = worst_slack(evaluate_checks(calc.evaluate(s * (1 - 1e-7)), calc.motors,
+                                        calc.drive, design.limits, True))
+    assert at[0] >= -1e-9 and below[0] < 0.0
