@@ -65,10 +65,15 @@ class Move:
     weight: float = 1.0
     load: SegmentLoad = field(default_factory=SegmentLoad)
     name: str = ""
+    start_acceleration: float = 0.0
+    end_acceleration: float = 0.0
+    """Boundary accelerations (signed, at the load), for the laws that can meet them
+    (polynomials of degree 5 and 7, sizer.laws.boundary_speeds); 0 by default."""
 
     @property
     def rest_to_rest(self) -> bool:
-        return self.start_speed == 0.0 and self.end_speed == 0.0
+        return (self.start_speed == 0.0 and self.end_speed == 0.0
+                and self.start_acceleration == 0.0 and self.end_acceleration == 0.0)
 
 
 @dataclass(frozen=True)
