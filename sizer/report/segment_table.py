@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING, Any
 from sizer.report.candidate_row import RPM_PER_RAD_S
 from sizer.report.csv_text import render_csv
 from sizer.report.design_summary import design_summary, finite_or_none
-from sizer.report.formats import Format
+from sizer.report.formats import Format, Rendered
 from sizer.report.json_text import render_json
 from sizer.report.markdown_table import render_markdown_table
 from sizer.report.numbers import full, short
@@ -134,7 +134,7 @@ def breakdown_for(design: Design, result: CandidateResult) -> SegmentBreakdown:
                              transmission_for(design, result))
 
 
-class SegmentDocument:
+class SegmentDocument(Rendered):
     """The segments of a design's cycle for one motor and law, in every format."""
 
     def __init__(self, breakdown: SegmentBreakdown, design: Design,
@@ -224,15 +224,6 @@ class SegmentDocument:
     def plain_text(self) -> str:
         return (self.title + "\n\n" + render_text_table(self.table()) + "\n"
                 + "\n".join(self.footer()) + "\n")
-
-    def render(self, fmt: Format) -> str:
-        if fmt is Format.CSV:
-            return self.csv()
-        if fmt is Format.JSON:
-            return self.json()
-        if fmt is Format.MD:
-            return self.markdown()
-        return self.plain_text()
 
 
 def _share(fraction: float) -> str:

@@ -27,7 +27,7 @@ from sizer.report.candidate_row import (
 from sizer.report.csv_text import render_csv
 from sizer.report.cycle_summary import cycle_heading, duration_name, sized_as_cycle
 from sizer.report.design_summary import design_summary
-from sizer.report.formats import Format
+from sizer.report.formats import Format, Rendered
 from sizer.report.json_text import render_json
 from sizer.report.markdown_table import render_markdown_table
 from sizer.report.numbers import short
@@ -71,7 +71,7 @@ def default_rank_key(mode: str) -> str:
     return default(mode).value
 
 
-class SizingDocument:
+class SizingDocument(Rendered):
     """The ranked results of a design, filtered for display, in every format."""
 
     def __init__(self, sizing: SizingResult, design: Design, *, rank_by: str | None = None,
@@ -196,15 +196,6 @@ class SizingDocument:
         if footer:
             text += "\n" + "\n".join(footer) + "\n"
         return text
-
-    def render(self, fmt: Format) -> str:
-        if fmt is Format.CSV:
-            return self.csv()
-        if fmt is Format.JSON:
-            return self.json()
-        if fmt is Format.MD:
-            return self.markdown()
-        return self.plain_text()
 
 
 def _markdown_item(line: str) -> str:

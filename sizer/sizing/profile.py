@@ -97,21 +97,26 @@ def task_curve(design: Design, motor: Motor, law: MotionLaw | str, duration: flo
             accelerations.append(np.zeros(2))
             torques.append(np.full(2, hold * np.sign(design.load.torque)))
             t0 += design.task.dwell
-    load_speed = np.concatenate(speeds)
-    load_acceleration = np.concatenate(accelerations)
+    return _curve(design, motor, law, duration, K, (times, positions, speeds, accelerations,
+                                                     torques), metrics,
+                  motor.inertia + float(drive.driven_inertia[0]),
+                  _segment_times(design_cycle(design), scale_of(design, duration)))
+
+
+def _curve(design: Design, motor: Motor, law: MotionLaw, duration: float, K: float,
+           samples: tuple[list[np.ndarray], ...], metrics, total_inertia: float,
+           segments: tuple[tuple[str, float, float], ...]) -> TaskCurve:
+    """The TaskCurve of the sampled (times, positions, speeds, accelerations, torques)."""
+    times, positions, speeds, accelerations, torques = (np.concatenate(x) for x in samples)
     return TaskCurve(
-        motor=motor.id, law=law.spec, duration=duration, ratio=K,
-        time=np.concatenate(times), position=np.concatenate(positions),
-        load_speed=load_speed, load_acceleration=load_acceleration,
-        motor_speed=K * load_speed, motor_acceleration=K * load_acceleration,
-        motor_torque=np.concatenate(torques),
+        motor=motor.id, law=law.spec, duration=duration, ratio=K, time=times,
+        position=positions, load_speed=speeds, load_acceleration=accelerations,
+        motor_speed=K * speeds, motor_acceleration=K * accelerations, motor_torque=torques,
         rms_torque=float(metrics.rms_torque[0]), thermal_speed=float(metrics.thermal_speed[0]),
         peak_torque=float(metrics.peak_torque[0]), max_speed=float(metrics.max_speed[0]),
         continuous_region=continuous_region(motor, design.limits.envelope),
         intermittent_region=intermittent_region(motor, design.limits.envelope),
-        total_inertia=motor.inertia + float(drive.driven_inertia[0]),
-        segments=_segment_times(design_cycle(design), scale_of(design, duration)),
-    )
+        total_inertia=total_inertia, segments=segments)
 
 
 def _segment_times(cycle: Cycle, s: float) -> tuple[tuple[str, float, float], ...]:
@@ -159,21 +164,10 @@ def _cycle_curve(design: Design, motor: Motor, law: MotionLaw, duration: float,
         torques.append(torque)
         t0 += T
         q0 += segment.displacement
-    load_speed = np.concatenate(speeds)
-    load_acceleration = np.concatenate(accelerations)
-    return TaskCurve(
-        motor=motor.id, law=law.spec, duration=duration, ratio=K,
-        time=np.concatenate(times), position=np.concatenate(positions),
-        load_speed=load_speed, load_acceleration=load_acceleration,
-        motor_speed=K * load_speed, motor_acceleration=K * load_acceleration,
-        motor_torque=np.concatenate(torques),
-        rms_torque=float(metrics.rms_torque[0]), thermal_speed=float(metrics.thermal_speed[0]),
-        peak_torque=float(metrics.peak_torque[0]), max_speed=float(metrics.max_speed[0]),
-        continuous_region=continuous_region(motor, design.limits.envelope),
-        intermittent_region=intermittent_region(motor, design.limits.envelope),
-        total_inertia=motor.inertia + float(calc.drive.driven_inertia[0]),
-        segments=_segment_times(cycle, float(s[0])),
-    )
+    return _curve(design, motor, law, duration, K, (times, positions, speeds, accelerations,
+                                                     torques), metrics,
+                  motor.inertia + float(calc.drive.driven_inertia[0]),
+                  _segment_times(cycle, float(s[0])))
 
 
 def _move_samples(move: Move, law: MotionLaw | None, T: float, samples: int):

@@ -35,31 +35,19 @@ from sizer.sizing.cycle import (
     _safe_ratio,
 )
 from sizer.sizing.motors import MotorArrays
+from sizer.sizing.polynomial_move import MoveFigures, polynomial_move
 
 
 @dataclass(frozen=True)
-class SegmentFigures:
-    """One segment's requirements per candidate (arrays, SI): the peaks, the integrals
-    over the segment (tau^2, each stage's output^2, omega^2, |omega|, tau*omega) and
-    its duration."""
+class SegmentFigures(MoveFigures):
+    """One segment's requirements per candidate (arrays, SI): a move's figures
+    (sizer.sizing.polynomial_move.MoveFigures: the peaks and the integrals over the
+    segment of tau^2, each stage's output^2, omega^2, |omega|, tau*omega), its duration
+    and, for a rest-to-rest move when asked for, its RMS model
+    (sizer.sizing.cycle.RmsModel)."""
 
     duration: np.ndarray
-    peak_torque: np.ndarray
-    peak_ratio: np.ndarray
-    load_torque: np.ndarray
-    max_speed: np.ndarray
-    load_speed: np.ndarray
-    load_acceleration: np.ndarray
-    load_jerk: np.ndarray
-    stage_peak: list[np.ndarray]
-    stage_speed: list[np.ndarray]
-    torque_square: np.ndarray
-    stage_square: list[np.ndarray]
-    speed_square: np.ndarray
-    speed_abs: np.ndarray
-    energy: np.ndarray
     rms_model: RmsModel | None = None
-    """A rest-to-rest move's RMS model (sizer.sizing.cycle.RmsModel), when asked for."""
 
 
 @dataclass(frozen=True)
@@ -335,7 +323,6 @@ class SegmentCycle:
                        T: np.ndarray) -> SegmentFigures:
         """A move with boundary speeds: each candidate's piecewise polynomial, exactly."""
         from sizer.laws.boundary_speeds import boundary_form
-        from sizer.sizing.polynomial_move import polynomial_move
 
         spec = law.spec if law is not None else None
         basis = boundary_form(spec) if spec is not None else None
@@ -351,13 +338,7 @@ class SegmentCycle:
         f = polynomial_move(breaks, coefficients, drive, self.motors,
                             1.0 if h >= 0 else -1.0)
         jerk = f.load_jerk if basis.jerk_bounded else np.full_like(T, np.inf)
-        return SegmentFigures(
-            duration=T, peak_torque=f.peak_torque, peak_ratio=f.peak_ratio,
-            load_torque=f.load_torque, max_speed=f.max_speed, load_speed=f.load_speed,
-            load_acceleration=f.load_acceleration, load_jerk=jerk, stage_peak=f.stage_peak,
-            stage_speed=f.stage_speed, torque_square=f.torque_square,
-            stage_square=f.stage_square, speed_square=f.speed_square, speed_abs=f.speed_abs,
-            energy=f.energy)
+        return SegmentFigures(**{**vars(f), "load_jerk": jerk}, duration=T)
 
     def _run(self, run: Run, drive: Drive, T: np.ndarray) -> SegmentFigures:
         """A constant-speed run: a = 0, the torque constant over T."""
