@@ -82,18 +82,35 @@ def ranked_laws(design: Design) -> tuple[str, ...]:
                         field="laws")
     if all(m.rest_to_rest for m in open_moves):
         return design.laws
-    from sizer.laws.boundary_speeds import has_boundary_form
+    from sizer.laws.boundary_speeds import boundary_form
 
-    usable = tuple(spec for spec in design.laws if has_boundary_form(spec))
-    if not usable:
-        raise UserError("none of the laws can start or end a move at a non-zero speed (those "
-                        "that can: trapezoidal, double_s, polynomial, constant_acceleration);"
-                        " name one in `laws:` or give the move its own `law:`", field="laws")
-    return usable
+    accelerated = any(m.start_acceleration != 0.0 or m.end_acceleration != 0.0
+                      for m in open_moves)
+
+    def usable(spec: str) -> bool:
+        basis = boundary_form(spec) if not _has_auto(spec) else None
+        return basis is not None and (not accelerated or basis.meets_accelerations)
+
+    kept = tuple(spec for spec in design.laws if usable(spec))
+    if not kept:
+        raise UserError("none of the laws can start or end a move at a non-zero speed"
+                        + (" or acceleration (polynomials of degree 5 and 7 can)" if accelerated
+                           else " (those that can: trapezoidal, double_s, polynomial of "
+                                "degree 3, 5 or 7, constant_acceleration)")
+                        + "; name one in `laws:` or give the move its own `law:`",
+                        field="laws")
+    return kept
+
+
+def _has_auto(spec: str) -> bool:
+    from sizer.laws import AUTO, resolve
+
+    return any(v == AUTO for v in resolve(spec)[1].values())
 
 
 def left_out_laws(design: Design) -> tuple[str, ...]:
-    """The design's laws the ranking leaves out (no form with boundary speeds)."""
+    """The design's laws the ranking leaves out (no form with the moves' boundary speeds
+    or accelerations)."""
     if design.cycle is None or not any(m.law is None for m in design.cycle.moves):
         return ()
     kept = set(ranked_laws(design))

@@ -21,7 +21,7 @@ from sizer.sizing.cycle import CycleCalculator, MoveScales
 from sizer.sizing.cycle_shape import plain_design
 from sizer.sizing.motors import MotorArrays
 from sizer.sizing.segment_breakdown import design_cycle, scale_of
-from sizer.sizing.segment_cycle import SegmentCycle
+from sizer.sizing.segment_cycle import SegmentCycle, normalized_move
 
 
 @dataclass(frozen=True)
@@ -182,7 +182,7 @@ def _move_samples(move: Move, law: MotionLaw | None, T: float, samples: int):
     assert law is not None
     basis = boundary_form(law.spec)
     assert basis is not None
-    c = basis.combine(np.array([move.start_speed * T / h]), np.array([move.end_speed * T / h]))[0]
+    c = normalized_move(basis, move, np.array([T]))[0]
     parts: list[list[np.ndarray]] = [[], [], [], []]
     for p in range(len(basis.breaks) - 1):
         lo, hi = basis.breaks[p], basis.breaks[p + 1]

@@ -20,7 +20,7 @@ from sizer.model.cycle import Cycle, Dwell, Move, Run, from_task
 from sizer.model.domain import Design, Motor, Transmission
 from sizer.sizing.cycle_shape import plain_design
 from sizer.sizing.motors import MotorArrays
-from sizer.sizing.segment_cycle import SegmentCycle
+from sizer.sizing.segment_cycle import SegmentCycle, normalized_move
 
 JOIN_TOLERANCE = 1e-9
 """A step of the acceleration at a join is reported when it exceeds this share of the
@@ -121,8 +121,7 @@ def end_accelerations(segment, law: MotionLaw | None, T: float) -> tuple[float, 
 
     basis = boundary_form(law.spec)
     assert basis is not None
-    c = basis.combine(np.array([segment.start_speed * T / h]),
-                      np.array([segment.end_speed * T / h]))[0]
+    c = normalized_move(basis, segment, np.array([T]))[0]
     width = basis.breaks[-1] - basis.breaks[-2]
     powers = np.arange(c.shape[1])
     end = float(np.sum(c[-1, 2:] * powers[2:] * (powers[2:] - 1) * width ** (powers[2:] - 2)))

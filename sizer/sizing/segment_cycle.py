@@ -84,6 +84,19 @@ def segment_load(base: Load, segment: Segment) -> Load:
                    torque=base.torque + segment.load.torque)
 
 
+def normalized_move(basis, move: Move, T: np.ndarray) -> np.ndarray:
+    """The normalized shape q_N(u) of a move between boundary conditions for durations T,
+    as piece coefficients (n, P, d+1) (sizer.laws.boundary_speeds): s = v T / h and, where
+    the move gives boundary accelerations, r = a T^2 / h."""
+    h = move.displacement
+    T = np.asarray(T, dtype=float)
+    s0, s1 = move.start_speed * T / h, move.end_speed * T / h
+    if move.start_acceleration == 0.0 and move.end_acceleration == 0.0:
+        return basis.combine(s0, s1)
+    return basis.combine(s0, s1, r0=move.start_acceleration * T * T / h,
+                         r1=move.end_acceleration * T * T / h)
+
+
 def cycle_laws(cycle: Cycle, law: MotionLaw | None) -> tuple[MotionLaw | None, ...]:
     """The law of each segment: a move's own law, else ``law`` (the one being ranked)."""
     return tuple((make_law(s.law) if s.law else law) if isinstance(s, Move) else None
@@ -330,8 +343,7 @@ class SegmentCycle:
             raise ValueError(f"{spec} has no form with boundary speeds")
         h = move.displacement
         with np.errstate(over="ignore", invalid="ignore"):
-            s0, s1 = move.start_speed * T / h, move.end_speed * T / h
-            normalized = basis.combine(s0, s1)  # (n, P, d+1) in u
+            normalized = normalized_move(basis, move, T)  # (n, P, d+1) in u
             powers = np.arange(normalized.shape[2])
             coefficients = h * normalized / T[:, None, None] ** powers
             breaks = T[:, None] * basis.breaks[None, :]
