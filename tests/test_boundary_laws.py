@@ -20,7 +20,12 @@ from hypothesis import strategies as st
 
 from sizer.errors import UserError
 from sizer.laws import make_law
-from sizer.laws.boundary_speeds import BoundaryBasis, boundary_form, has_boundary_form
+from sizer.laws.boundary_speeds import (
+    BoundaryBasis,
+    boundary_form,
+    has_boundary_form,
+    meets_accelerations,
+)
 from sizer.model.inputs import check_law_spec
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -310,6 +315,97 @@ def test_polynomial_against_the_book_coefficients(degree, v0, v1):
     # and the coefficients themselves, in powers of u = t/T
     scaled = np.array(_book_polynomial(degree, 1.0, 1.0, v0 * T / h, v1 * T / h))
     assert form.combine(v0 * T / h, v1 * T / h)[0, 0] == pytest.approx(scaled, abs=1e-12)
+
+
+# ------------------------------------- boundary accelerations (sec. 2.1.5-2.1.6)
+
+def _book_polynomial_with_accelerations(degree, h, T, v0, v1, a0, a1):
+    """Eq. (2.5) (degree 5) and sec. 2.1.6 with j0 = j1 = 0 (degree 7), q0 = 0: the
+    coefficients a_0..a_n with the boundary accelerations a0, a1 given."""
+    if degree == 5:
+        return [0.0, v0, a0 / 2,
+                (20 * h - (8 * v1 + 12 * v0) * T - (3 * a0 - a1) * T**2) / (2 * T**3),
+                (-30 * h + (14 * v1 + 16 * v0) * T + (3 * a0 - 2 * a1) * T**2) / (2 * T**4),
+                (12 * h - 6 * (v1 + v0) * T + (a1 - a0) * T**2) / (2 * T**5)]
+    return [0.0, v0, a0 / 2, 0.0,
+            (210 * h - T * (120 * v0 + 90 * v1) - T**2 * (30 * a0 - 15 * a1)) / (6 * T**4),
+            (-168 * h + T * (90 * v0 + 78 * v1) + T**2 * (20 * a0 - 14 * a1)) / (2 * T**5),
+            (420 * h - T * (216 * v0 + 204 * v1) - T**2 * (45 * a0 - 39 * a1)) / (6 * T**6),
+            (-120 * h + T * (60 * v0 + 60 * v1) + T**2 * (12 * a0 - 12 * a1)) / (6 * T**7)]
+
+
+@pytest.mark.parametrize("degree", [5, 7])
+@pytest.mark.parametrize(("v0", "v1", "a0", "a1"), [
+    (0.0, 0.0, 2.0, -3.0), (-5.0, -10.0, 1.5, 4.0), (3.0, 1.25, -0.75, 0.0),
+    (0.0, 0.0, 0.0, 0.0),
+])
+def test_polynomial_with_boundary_accelerations_against_the_book(degree, v0, v1, a0, a1):
+    h, T = 10.0, 8.0  # the book's q0 = 0, q1 = 10, t1 = 8, in rad, s
+    book = np.polynomial.Polynomial(
+        _book_polynomial_with_accelerations(degree, h, T, v0, v1, a0, a1))
+    form = boundary_form(f"poly{degree}")
+    assert form.meets_accelerations
+    s0, s1, r0, r1 = v0 * T / h, v1 * T / h, a0 * T**2 / h, a1 * T**2 / h
+    t = np.linspace(0.0, T, 801)
+    for k in range(4):
+        got = h / T**k * form.derivative(t / T, k, s0, s1, r0=r0, r1=r1)[0]
+        want = book.deriv(k)(t) if k else book(t)
+        assert np.abs(got - want).max() <= 1e-12 * max(1.0, np.abs(want).max()), k
+    scaled = np.array(_book_polynomial_with_accelerations(degree, 1.0, 1.0, s0, s1, r0, r1))
+    assert form.combine(s0, s1, r0=np.array([r0]), r1=np.array([r1]))[0, 0] == pytest.approx(
+        scaled, abs=1e-12 * max(1.0, np.abs(scaled).max()))
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.sampled_from([5, 7]), st.floats(-20.0, 20.0), st.floats(-20.0, 20.0),
+       st.floats(-200.0, 200.0), st.floats(-200.0, 200.0))
+def test_boundary_accelerations_are_met(degree, s0, s1, r0, r1):
+    form = boundary_form(f"polynomial(degree={degree})")
+    scale = 1.0 + abs(s0) + abs(s1) + abs(r0) + abs(r1)
+    targets = [(0.0, 1.0), (s0, s1), (r0, r1)] + [(0.0, 0.0)] * (degree == 7)
+    for order, (start, end) in enumerate(targets):
+        got = form.derivative([0.0, 1.0], order, s0, s1, r0=r0, r1=r1)[0]
+        assert got[0] == pytest.approx(start, abs=1e-12 * scale), order
+        assert got[1] == pytest.approx(end, abs=1e-12 * scale), order
+
+
+def test_accelerations_are_two_more_basis_functions():
+    form = boundary_form("poly7")
+    s0, s1 = np.array([0.0, 1.5, -2.0]), np.array([0.0, 0.25, 3.0])
+    r0, r1 = np.array([0.0, -4.0, 7.0]), np.array([0.0, 2.0, 0.5])
+    combined = form.combine(s0, s1, 2, r0=r0, r1=r1)
+    plain = form.combine(s0, s1, 2)
+    extra = form.acceleration_basis(2)
+    assert extra.shape == (2, 1, 6) and form.acceleration_coefficients.flags.writeable is False
+    for i in range(3):
+        assert np.array_equal(combined[i], plain[i] + r0[i] * extra[0] + r1[i] * extra[1])
+    # no accelerations given: the speeds' form exactly, as every caller had it
+    assert np.array_equal(form.combine(s0, s1, r0=np.zeros(3), r1=None), form.combine(s0, s1))
+    assert np.array_equal(combined[0], form.combine(0.0, 0.0, 2)[0])
+
+
+@pytest.mark.parametrize("spec", ["trapezoidal(alpha=1/3)", "constant_acceleration",
+                                  "double_s", "poly3", "trapezoidal(alpha=0.2, alpha_d=0.7)"])
+def test_the_other_forms_cannot_meet_accelerations(spec):
+    form = boundary_form(spec)
+    assert not form.meets_accelerations and form.acceleration_coefficients is None
+    # zeros are no accelerations: accepted, and the form unchanged
+    assert np.array_equal(form.combine(1.0, -2.0, 1, r0=np.zeros(1), r1=np.zeros(1)),
+                          form.combine(1.0, -2.0, 1))
+    with pytest.raises(ValueError, match="cannot start or end at a non-zero acceleration"):
+        form.combine(1.0, -2.0, r0=np.array([0.5]))
+    with pytest.raises(ValueError, match="polynomials of degree 5 and 7 can"):
+        form.derivative(0.5, 2, r1=-1.0)
+    with pytest.raises(ValueError, match="cannot start or end"):
+        form.acceleration_basis(0)
+
+
+def test_which_laws_meet_accelerations():
+    for spec in ("poly5", "poly7", "polynomial(degree=5)", "polynomial(7)"):
+        assert meets_accelerations(spec), spec
+    for spec in ("poly3", "trapezoidal", "double_s", "constant_acceleration", "cycloidal",
+                 "polynomial(9)", "modified_sinusoidal"):
+        assert not meets_accelerations(spec), spec
 
 
 def test_only_the_families_with_a_boundary_speed_form_have_one():

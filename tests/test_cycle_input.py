@@ -20,7 +20,7 @@ from jsonschema import Draft202012Validator
 from pydantic import ValidationError
 
 from sizer.errors import UserError
-from sizer.io.cycle import BOUNDARY_SPEED_FAMILIES, has_boundary_form
+from sizer.io.cycle import BOUNDARY_SPEED_FAMILIES, has_boundary_form, meets_accelerations
 from sizer.io.loader import design_schema, load_design, load_design_data
 from sizer.model.cycle import Dwell, Move, Run, SegmentLoad, ShareRule
 from sizer.model.domain import Task
@@ -168,6 +168,59 @@ def test_units_as_datasheets_write_them(tmp_path: Path) -> None:
     assert cycle.weights() == (2.0, 0.0, 1.0, 0.5)
     assert design.task == Task(speed_up.displacement, pytest.approx(1.2, rel=1e-15),
                                linear=False)
+
+
+DEG = math.pi / 180
+
+
+@pytest.mark.parametrize(("axis", "given", "si"), [
+    ("rotary", "500 deg/s^2", 500 * DEG), ("rotary", "-12.5 rad/s^2", -12.5),
+    ("rotary", "2 rev/s^2", 4 * math.pi), ("rotary", 3, 3.0), ("rotary", "0 deg/s^2", 0.0),
+    ("linear", "2 m/s^2", 2.0), ("linear", "-500 mm/s^2", -0.5), ("linear", 0.25, 0.25),
+])
+def test_boundary_accelerations_as_datasheets_write_them(axis: str, given: Any,
+                                                         si: float) -> None:
+    """A move's start and end accelerations in SI at the load; a step against the
+    neighbour's (a dwell and a run are at 0) is allowed: a jerk impulse, not an error."""
+    base, index = (ROTARY, 0) if axis == "rotary" else (LINEAR, 2)
+    move = f"cycle.segments[{index}].move"
+    data = edit(base, {f"{move}.law": "poly5" if axis == "rotary" else "poly7",
+                       f"{move}.start_acceleration": given,
+                       f"{move}.end_acceleration": given})
+    segment = load_design_data(data).cycle.segments[index]
+    assert isinstance(segment, Move)
+    assert segment.start_acceleration == pytest.approx(si, rel=1e-15)
+    assert segment.end_acceleration == pytest.approx(si, rel=1e-15)
+    assert segment.rest_to_rest is (axis == "rotary" and si == 0.0)
+    plain = load_design_data(base).cycle.segments[index]
+    assert (plain.start_acceleration, plain.end_acceleration) == (0.0, 0.0)
+
+
+@pytest.mark.parametrize("spec", ["poly5", "poly7", "polynomial(degree=5)", "polynomial(7)"])
+def test_laws_that_meet_boundary_accelerations(spec: str) -> None:
+    assert meets_accelerations(spec)
+    data = edit(LINEAR, {"cycle.segments[0].move.law": spec,
+                         "cycle.segments[0].move.start_acceleration": "1 m/s^2"})
+    assert load_design_data(data).cycle.segments[0].start_acceleration == 1.0
+
+
+@pytest.mark.parametrize("spec", ["trapezoidal(alpha=1/3)", "constant_acceleration",
+                                  "double_s(alpha=1/3, beta=1/4)", "poly3", "cycloidal"])
+def test_laws_that_cannot_meet_them_are_refused(spec: str, tmp_path: Path) -> None:
+    assert not meets_accelerations(spec)
+    at_zero = edit(LINEAR, {"cycle.segments[0].move.law": spec,
+                            "cycle.segments[0].move.end_acceleration": "0 m/s^2"})
+    if spec != "cycloidal":  # 0 is no acceleration: the speeds' rule alone
+        assert load_design_data(at_zero).cycle.segments[0].end_acceleration == 0.0
+    data = edit(ROTARY, {"cycle.segments[0].move.law": spec,
+                         "cycle.segments[0].move.start_acceleration": "-100 deg/s^2"})
+    error = error_of(tmp_path, data)
+    assert error.field == "cycle.segments[0].move.law"
+    assert error.line == line_of(text(data), "law: ")
+    assert error.message.startswith(
+        f"law {spec!r} cannot start or end at a non-zero acceleration; polynomials of "
+        f"degree 5 and 7 can")
+    assert "start_acceleration is not 0" in error.message
 
 
 @pytest.mark.parametrize(("rate", "cycle_time"), [
@@ -443,6 +496,31 @@ CYCLE = [
     case("move-end-speed-out-of-range", edit(ROTARY, {f"{S}[0].move.end_speed": "1e7 rad/s"}),
          (seg(0, "move", "end_speed"), "[1e-6, 1e6] rad/s"),
          ("cycle.segments.move.end_speed",)),
+    case("move-start-acceleration-a-speed",
+         edit(LINEAR, {f"{S}[2].move.start_acceleration": "1 m/s"}),
+         (seg(2, "move", "start_acceleration"), "expected a linear acceleration",
+          "a linear axis"), ("cycle.segments.move.start_acceleration",)),
+    case("move-start-acceleration-a-bool", edit(ROTARY, {f"{S}[0].move.start_acceleration": True}),
+         (seg(0, "move", "start_acceleration"), "expected a number or a quantity",
+          "500 deg/s^2"), ("cycle.segments.move.start_acceleration",)),
+    case("move-end-acceleration-of-another-axis",
+         edit(ROTARY, {f"{S}[0].move.end_acceleration": "2 m/s^2"}),
+         (seg(0, "move", "end_acceleration"), "expected an angular acceleration",
+          "a rotary axis"), ("cycle.segments.move.end_acceleration",)),
+    case("move-end-acceleration-out-of-range",
+         edit(ROTARY, {f"{S}[0].move.end_acceleration": "1e10 rad/s^2",
+                       f"{S}[0].move.law": "poly5"}),
+         (seg(0, "move", "end_acceleration"), "0 or of magnitude in [1e-6, 1e9] rad/s^2",
+          "got 1e10 rad/s^2"), ("cycle.segments.move.end_acceleration",)),
+    case("move-end-acceleration-subnormal",
+         edit(LINEAR, {f"{S}[0].move.end_acceleration": "1e-320 m/s^2"}),
+         (seg(0, "move", "end_acceleration"), "[1e-6, 1e8] m/s^2"),
+         ("cycle.segments.move.end_acceleration",)),
+    case("move-law-without-boundary-accelerations",
+         edit(LINEAR, {f"{S}[0].move.end_acceleration": "2 m/s^2"}),
+         (seg(0, "move", "law"), "law 'trapezoidal(alpha=1/3)' cannot start or end at a "
+          "non-zero acceleration; polynomials of degree 5 and 7 can"),
+         ("cycle.segments.move.law",)),
     case("move-weight-without-weights", edit(ROTARY, {f"{S}[0].move.weight": 2}),
          (seg(0, "move", "weight"), "share: weights", "'equal'"),
          ("cycle.segments.move.weight",)),
@@ -571,3 +649,20 @@ def test_the_documented_cycle_loads() -> None:
     assert cycle.fixed_time == pytest.approx(0.7, rel=1e-15)
     assert cycle.segments[3].speed == pytest.approx(math.pi, rel=1e-15)  # 30 rpm
     assert cycle.segments[4].start_speed == pytest.approx(math.pi, rel=1e-15)  # 180 deg/s
+
+
+def test_the_documented_boundary_acceleration_loads() -> None:
+    import re
+
+    doc = (Path(__file__).resolve().parents[1] / "docs" / "input-files.md").read_text()
+    block = re.search(r"```yaml\n(\s*- move:[^`]*end_acceleration[^`]*)```", doc)
+    assert block is not None
+    hand_over = yaml.safe_load(block.group(1))[0]
+    data = {"cycle": {"segments": [
+        hand_over, {"run": {"speed": "60 rpm", "duration": "0.1 s"}},
+        {"move": {"displacement": "45 deg", "start_speed": "60 rpm", "law": "poly7",
+                  "duration": "0.2 s"}}]},
+        "load": {"inertia": "0.05 kg*m^2"}, "motors": "book-examples"}
+    move = load_design_data(data).cycle.segments[0]
+    assert move.end_acceleration == pytest.approx(500 * DEG, rel=1e-15)
+    assert move.end_speed == pytest.approx(60 * RPM, rel=1e-15) and move.law == "poly5"

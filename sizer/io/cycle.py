@@ -4,8 +4,10 @@ The checks that span fields or segments, each a UserError at the file, line and 
 (``cycle.segments[2].move.end_speed``): one axis for every displacement and speed, the
 load-change fields of that axis, a run's speed and extent, speed continuity between
 segments, a closed cycle, the time budget (cycle time or rate against the fixed
-durations), ``minimize``, the share rule, and boundary speeds only with laws that have a
-form with boundary speeds.
+durations), ``minimize``, the share rule, boundary speeds only with laws that have a
+form with boundary speeds, and boundary accelerations only with laws that meet them
+(polynomials of degree 5 and 7). Accelerations need not be continuous between segments:
+a step is a jerk impulse, which the reports mark.
 
     build_cycle(given, source)   -> Cycle
     summary_task(cycle)          -> Task (for code that reads ``Design.task``)
@@ -53,6 +55,13 @@ def _has_auto(spec: str) -> bool:
 def has_boundary_form(spec: str) -> bool:
     """Whether law ``spec`` has a form with non-zero start and end speeds."""
     from sizer.laws.boundary_speeds import has_boundary_form as decides
+
+    return decides(spec)
+
+
+def meets_accelerations(spec: str) -> bool:
+    """Whether law ``spec`` can start and end at non-zero accelerations."""
+    from sizer.laws.boundary_speeds import meets_accelerations as decides
 
     return decides(spec)
 
@@ -199,11 +208,13 @@ def _move(given: MoveInput, axis: _Axis, at: Path_, share: ShareRule) -> Move:
                            zero_note="a segment without motion is a `dwell:`",
                            linear=axis.linear)
 
-    def speed(key: str) -> float:
+    def boundary(key: str) -> float:
         value = getattr(given, key)
         return 0.0 if value is None else axis.quantity(MoveInput, key, value, (*at, key))
 
-    start, end = speed("start_speed"), speed("end_speed")
+    start, end = boundary("start_speed"), boundary("end_speed")
+    start_acceleration = boundary("start_acceleration")
+    end_acceleration = boundary("end_acceleration")
     if given.law is not None and _has_auto(given.law):
         raise source.error(f"law {given.law!r}: `auto` shape parameters are chosen for the "
                            "task shorthand only, not yet for a move of a cycle; give the "
@@ -215,9 +226,16 @@ def _move(given: MoveInput, axis: _Axis, at: Path_, share: ShareRule) -> Move:
         raise source.error(f"law {given.law!r} has no form with boundary speeds (this "
                            f"move's start_speed or end_speed is not 0); laws with one: "
                            f"{laws}", (*at, "law"))
+    if given.law is not None and (start_acceleration != 0.0 or end_acceleration != 0.0) \
+            and not meets_accelerations(given.law):
+        key = "start_acceleration" if start_acceleration != 0.0 else "end_acceleration"
+        raise source.error(f"law {given.law!r} cannot start or end at a non-zero "
+                           f"acceleration; polynomials of degree 5 and 7 can (poly5, poly7; "
+                           f"this move's {key} is not 0)", (*at, "law"))
     return Move(displacement=h, duration=given.duration, law=given.law, start_speed=start,
                 end_speed=end, weight=_check_weight(given.weight, share, source, at),
-                load=axis.load_change(MoveInput, given, at), name=given.name or "")
+                load=axis.load_change(MoveInput, given, at), name=given.name or "",
+                start_acceleration=start_acceleration, end_acceleration=end_acceleration)
 
 
 def _run(given: RunInput, axis: _Axis, at: Path_) -> Run:

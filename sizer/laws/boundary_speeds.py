@@ -17,6 +17,16 @@ fixed, the shape is linear in (s0, s1) on fixed breakpoints:
 - polynomials of degree 2m + 1 = 3, 5, 7 (sec. 2.1.4-2.1.6) with the boundary speeds and
   null boundary derivatives of orders 2..m.
 
+Polynomials of degree 5 and 7 also meet given boundary accelerations a0, a1 (sec. 2.1.5:
+the quintic with q, q', q'' given at both ends, eq. 2.5; sec. 2.1.6 with null boundary
+jerks), normalized r0 = a0*T^2/h, r1 = a1*T^2/h, with two more basis functions:
+
+    q_N(u) = B_h(u) + s0*B_0(u) + s1*B_1(u) + r0*B_a0(u) + r1*B_a1(u)
+
+(``BoundaryBasis.meets_accelerations``). The other families cannot: the trapezoid's end
+accelerations are those of its ramps, the double S starts and ends at a = 0, the cubic has
+no freedom left.
+
 Each basis function is a piecewise polynomial on the same breaks, kept as coefficients of
 ascending powers of (u - breaks[p]); a candidate's shape is one linear combination of
 them (``BoundaryBasis.combine``), so law work is done once per canonical spec.
@@ -49,6 +59,13 @@ BOUNDARY_DEGREES = (3, 5, 7)
 BASIS_NAMES = ("h", "s0", "s1")
 """The basis functions in order: displacement, start speed, end speed."""
 
+ACCELERATION_DEGREES = (5, 7)
+"""Polynomial degrees that also meet boundary accelerations (sec. 2.1.5-2.1.6)."""
+
+ACCELERATION_BASIS_NAMES = ("r0", "r1")
+"""The basis functions of ``BoundaryBasis.acceleration_coefficients``: start and end
+acceleration."""
+
 
 @dataclass(frozen=True, eq=False)
 class BoundaryBasis:
@@ -60,12 +77,20 @@ class BoundaryBasis:
     vanish at the joins (dwells, runs, other such moves): position and velocity always
     match; k >= 2 when the acceleration is continuous inside and null at both ends for
     every (s0, s1) -- the rest-to-rest law's class.
+
+    ``acceleration_coefficients[b, p, k]``: the same for B_a0, B_a1 (q_N''(0) = 1,
+    resp. q_N''(1) = 1, every other boundary condition null) on the same breaks, for the
+    families that meet boundary accelerations (polynomials of degree 5 and 7); None for
+    the others. ``continuity`` and ``jerk_bounded`` are those of r0 = r1 = 0: with non-zero
+    boundary accelerations the move's acceleration is continuous inside, and it steps at a
+    join where the neighbour's differs (a jerk impulse there).
     """
 
     spec: str
     breaks: np.ndarray
     coefficients: np.ndarray
     continuity: int
+    acceleration_coefficients: np.ndarray | None = None
 
     @property
     def pieces(self) -> int:
@@ -86,39 +111,82 @@ class BoundaryBasis:
         """q_N''(0) = q_N''(1) = 0 for every (s0, s1) (double S, degrees 5 and 7)."""
         return self.continuity >= 2
 
+    @property
+    def meets_accelerations(self) -> bool:
+        """True when non-zero boundary accelerations r0, r1 can be given to
+        :meth:`combine` (polynomials of degree 5 and 7, sec. 2.1.5-2.1.6)."""
+        return self.acceleration_coefficients is not None
+
     def derivative_basis(self, order: int) -> np.ndarray:
         """(3, P, d + 1 - order) coefficients of the order-th derivative of each basis
         function, in powers of (u - breaks[p]) (order 0: ``coefficients``)."""
         return _derivative_coefficients(self.coefficients, order)
 
+    def acceleration_basis(self, order: int) -> np.ndarray:
+        """(2, P, d + 1 - order) coefficients of the order-th derivative of B_a0, B_a1;
+        ValueError for a form that does not meet boundary accelerations."""
+        if self.acceleration_coefficients is None:
+            raise ValueError(f"{self.spec}: {_CANNOT}")
+        return _derivative_coefficients(self.acceleration_coefficients, order)
+
     def combine(self, s0: np.ndarray | float, s1: np.ndarray | float,
-                order: int = 0) -> np.ndarray:
+                order: int = 0, *, r0: np.ndarray | float | None = None,
+                r1: np.ndarray | float | None = None) -> np.ndarray:
         """(n, P, d + 1 - order) piece coefficients of the order-th derivative of the
-        shapes of n moves of normalized boundary speeds s0, s1 (arrays of shape (n,))."""
+        shapes of n moves of normalized boundary speeds s0, s1 (arrays of shape (n,)).
+
+        ``r0``, ``r1``: normalized boundary accelerations a0*T^2/h, a1*T^2/h (arrays (n,);
+        None: 0), only where ``meets_accelerations``: a form that does not meet them takes
+        None or zeros only (ValueError otherwise)."""
         s0, s1 = np.broadcast_arrays(np.atleast_1d(np.asarray(s0, dtype=float)),
                                      np.atleast_1d(np.asarray(s1, dtype=float)))
         basis = self.derivative_basis(order)
-        return basis[0] + s0[:, None, None] * basis[1] + s1[:, None, None] * basis[2]
+        out = basis[0] + s0[:, None, None] * basis[1] + s1[:, None, None] * basis[2]
+        if r0 is None and r1 is None:
+            return out
+        r0, r1, _ = np.broadcast_arrays(
+            np.atleast_1d(np.asarray(0.0 if r0 is None else r0, dtype=float)),
+            np.atleast_1d(np.asarray(0.0 if r1 is None else r1, dtype=float)), s0)
+        if self.acceleration_coefficients is None:
+            if np.any(r0) or np.any(r1):
+                raise ValueError(f"{self.spec}: {_CANNOT}")
+            return out
+        extra = self.acceleration_basis(order)
+        return out + r0[:, None, None] * extra[0] + r1[:, None, None] * extra[1]
 
     def derivative(self, u: np.ndarray | float, order: int = 0,
-                   s0: np.ndarray | float = 0.0, s1: np.ndarray | float = 0.0) -> np.ndarray:
+                   s0: np.ndarray | float = 0.0, s1: np.ndarray | float = 0.0, *,
+                   r0: np.ndarray | float | None = None,
+                   r1: np.ndarray | float | None = None) -> np.ndarray:
         """The order-th derivative of q_N at u for each of n moves: shape (n, len(u)).
 
         u is clamped to [0, 1]; at an interior break the piece on the right is used and
-        u = 1 belongs to the last piece (as sizer.laws.MotionLaw.derivative)."""
+        u = 1 belongs to the last piece (as sizer.laws.MotionLaw.derivative). ``r0``,
+        ``r1`` as in :meth:`combine`."""
         u = np.clip(np.atleast_1d(np.asarray(u, dtype=float)), 0.0, 1.0)
         index = np.clip(np.searchsorted(self.breaks, u, side="right") - 1, 0, self.pieces - 1)
         x = u - self.breaks[index]
-        coefficients = self.combine(s0, s1, order)[:, index, :]  # (n, m, k)
+        coefficients = self.combine(s0, s1, order, r0=r0, r1=r1)[:, index, :]  # (n, m, k)
         out = np.zeros(coefficients.shape[:2])
         for k in range(coefficients.shape[2] - 1, -1, -1):  # Horner over the powers
             out = out * x + coefficients[:, :, k]
         return out
 
 
+_CANNOT = ("this law cannot start or end at a non-zero acceleration; polynomials of "
+           "degree 5 and 7 can")
+
+
 def has_boundary_form(spec: str | MotionLaw) -> bool:
     """True when the law of the spec has a boundary-speed form (:func:`boundary_form`)."""
     return boundary_form(spec) is not None
+
+
+def meets_accelerations(spec: str | MotionLaw) -> bool:
+    """True when the law of the spec has a form that also meets non-zero boundary
+    accelerations (polynomials of degree 5 and 7; :attr:`BoundaryBasis.meets_accelerations`)."""
+    form = boundary_form(spec)
+    return form is not None and form.meets_accelerations
 
 
 def boundary_form(spec: str | MotionLaw) -> BoundaryBasis | None:
@@ -271,20 +339,34 @@ def _double_s(spec: str, alpha: float, beta: float, alpha_d: float,
 
 def _polynomial(spec: str, degree: int) -> BoundaryBasis:
     """Degree 2m + 1 with q(0) = 0, q(1) = 1, q'(0) = s0, q'(1) = s1 and null derivatives
-    of orders 2..m at both ends (eqs. 2.2, 2.5 and sec. 2.1.6 with a0 = a1 = j0 = j1 = 0),
-    solved exactly in rationals: c_0..c_m follow from u = 0, the others from u = 1."""
+    of orders 2..m at both ends (eqs. 2.2, 2.5 and sec. 2.1.6 with a0 = a1 = j0 = j1 = 0);
+    for degrees 5 and 7 also B_a0, B_a1 with q''(0) = 1, resp. q''(1) = 1 and every
+    other condition null (eq. 2.5 and sec. 2.1.6 with a0, a1 given, j0 = j1 = 0).
+    Solved exactly in rationals: c_0..c_m follow from u = 0, the others from u = 1."""
     m = (degree - 1) // 2
+    rows = [  # (q(0), q'(0), q(1), q'(1)) of B_h, B_0, B_1
+        _hermite(degree, m, [q0, v0] + [0] * (m - 1), [q1, v1] + [0] * (m - 1))
+        for q0, v0, q1, v1 in ((0, 0, 1, 0), (0, 1, 0, 0), (0, 0, 0, 1))]
+    coefficients = np.array(rows)[:, None, :]  # (3, 1, degree + 1)
+    extra = None
+    if degree in ACCELERATION_DEGREES:
+        zeros = [0] * (m + 1)
+        start, end = list(zeros), list(zeros)
+        start[2] = end[2] = 1
+        extra = np.array([_hermite(degree, m, start, zeros),
+                          _hermite(degree, m, zeros, end)])[:, None, :]  # (2, 1, degree + 1)
+    return _frozen(spec, np.array([0.0, 1.0]), coefficients, m, extra)
+
+
+def _hermite(degree: int, m: int, start: list[int], end: list[int]) -> list[float]:
+    """Coefficients c_0..c_degree of the polynomial with q^(k)(0) = start[k] and
+    q^(k)(1) = end[k], k = 0..m (degree = 2m + 1), exact in rationals."""
+    low = [Fraction(start[k], math.factorial(k)) for k in range(m + 1)]  # c_k = q^(k)(0)/k!
     rows = [[Fraction(math.perm(j, k)) for j in range(m + 1, degree + 1)] for k in range(m + 1)]
-    basis = []
-    # (q'(0), q'(1), q(1)) of B_h, B_0, B_1
-    for start_speed, end_speed, end_position in ((0, 0, 1), (1, 0, 0), (0, 1, 0)):
-        # u = 1: sum_j c_j j!/(j - k)! = target_k, less the low part c_1 u
-        targets = [Fraction(end_position), Fraction(end_speed)] + [Fraction(0)] * (m - 1)
-        low = [Fraction(start_speed), Fraction(start_speed)] + [Fraction(0)] * (m - 1)
-        high = _solve_exact(rows, [t - lo for t, lo in zip(targets, low, strict=True)])
-        basis.append([0.0, float(start_speed)] + [0.0] * (m - 1) + [float(c) for c in high])
-    coefficients = np.array(basis)[:, None, :]  # (3, 1, degree + 1)
-    return _frozen(spec, np.array([0.0, 1.0]), coefficients, m)
+    # u = 1: sum_j c_j j!/(j - k)! = end[k], less the low part's derivatives there
+    rhs = [Fraction(end[k]) - sum(low[j] * math.perm(j, k) for j in range(k, m + 1))
+           for k in range(m + 1)]
+    return [float(c) for c in low + _solve_exact(rows, rhs)]
 
 
 def _solve_exact(matrix: list[list[Fraction]], rhs: list[Fraction]) -> list[Fraction]:
@@ -304,12 +386,17 @@ def _solve_exact(matrix: list[list[Fraction]], rhs: list[Fraction]) -> list[Frac
 # ------------------------------------------------------------------------ helpers
 
 def _frozen(spec: str, breaks: np.ndarray, coefficients: np.ndarray,
-            continuity: int) -> BoundaryBasis:
+            continuity: int, acceleration_coefficients: np.ndarray | None = None
+            ) -> BoundaryBasis:
     breaks = np.asarray(breaks, dtype=float)
     coefficients = np.ascontiguousarray(coefficients, dtype=float)
     breaks.setflags(write=False)
     coefficients.setflags(write=False)
-    return BoundaryBasis(spec, breaks, coefficients, continuity)
+    if acceleration_coefficients is not None:
+        acceleration_coefficients = np.ascontiguousarray(acceleration_coefficients,
+                                                         dtype=float)
+        acceleration_coefficients.setflags(write=False)
+    return BoundaryBasis(spec, breaks, coefficients, continuity, acceleration_coefficients)
 
 
 def _derivative_coefficients(coefficients: np.ndarray, order: int) -> np.ndarray:

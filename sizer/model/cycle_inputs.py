@@ -2,9 +2,9 @@
 
 A segment is a one-key mapping: ``move``, ``run`` or ``dwell``. Quantities whose kind is
 fixed (durations, weights, the rate) are converted to SI here; those whose kind depends on
-the axis (displacements, speeds, added inertia or mass, torque or force) stay as given and
-are converted by :mod:`sizer.io.cycle`, which also runs the checks that span several
-segments (speed continuity, a closed cycle, the time budget) and builds the
+the axis (displacements, speeds, accelerations, added inertia or mass, torque or force)
+stay as given and are converted by :mod:`sizer.io.cycle`, which also runs the checks that
+span several segments (speed continuity, a closed cycle, the time budget) and builds the
 :class:`sizer.model.cycle.Cycle`.
 """
 
@@ -98,6 +98,11 @@ def _speed() -> Any:
                        linear="segment_linear_speed")
 
 
+def _acceleration() -> Any:
+    return RawQuantity("'500 deg/s^2' or '2 m/s^2'", rotary="segment_angular_acceleration",
+                       linear="segment_linear_acceleration")
+
+
 def _law(value: Any) -> str:
     from sizer.model.inputs import check_law_spec  # inputs imports this module
 
@@ -128,7 +133,8 @@ _FORCE = ("linear axis: external force added (pressing, a payload's weight), pos
 
 
 class MoveInput(Strict):
-    """A move of ``displacement`` by a motion law, from ``start_speed`` to ``end_speed``."""
+    """A move of ``displacement`` by a motion law, from ``start_speed`` to ``end_speed``
+    (and from ``start_acceleration`` to ``end_acceleration``)."""
 
     displacement: _displacement() = Field(  # type: ignore[valid-type]
         description="h of this move, signed: an angle (rotary axis) or a length (linear); "
@@ -142,6 +148,12 @@ class MoveInput(Strict):
         None, description="signed speed at the start (at the load); 0 = from rest")
     end_speed: _speed() | None = Field(  # type: ignore[valid-type]
         None, description="signed speed at the end (at the load); 0 = to rest")
+    start_acceleration: _acceleration() | None = Field(  # type: ignore[valid-type]
+        None, description="signed acceleration at the start (at the load); 0 when omitted; "
+                          "not 0 only with a law that meets it (poly5, poly7)")
+    end_acceleration: _acceleration() | None = Field(  # type: ignore[valid-type]
+        None, description="signed acceleration at the end (at the load); 0 when omitted; "
+                          "not 0 only with a law that meets it (poly5, poly7)")
     weight: Ranged("segment_weight",  # type: ignore[valid-type]
                    note="its share of the free time with `share: weights`") | None = None
     inertia: AddedInertia | None = Field(None, description=_INERTIA)  # type: ignore[valid-type]

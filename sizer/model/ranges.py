@@ -106,6 +106,13 @@ RANGES: dict[str, Range] = {
     "segment_linear_speed": _r("linear_speed", 1e-6, 1e4, "as limits.max_speed on a linear "
                                "axis; the sign is the direction, 0 = at rest", zero=True,
                                signed=True),
+    "segment_angular_acceleration": _r("angular_acceleration", 1e-6, 1e9, "a boundary "
+                                       "acceleration at the load, as limits.max_acceleration; "
+                                       "the sign is the direction, 0 = none", zero=True,
+                                       signed=True),
+    "segment_linear_acceleration": _r("linear_acceleration", 1e-6, 1e8, "as "
+                                      "limits.max_acceleration on a linear axis; the sign is "
+                                      "the direction, 0 = none", zero=True, signed=True),
     "segment_weight": _r("ratio", 1e-6, 1e6, "relative shares of the free time"),
     "added_inertia": _r("inertia", 1e-12, 1e8, "as the load's inertia; 0 = none", zero=True),
     "added_mass": _r("mass", 1e-6, 1e7, "as the load's mass; 0 = none", zero=True),
