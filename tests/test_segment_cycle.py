@@ -279,3 +279,34 @@ def test_the_flying_saw_meets_the_line_speed_and_its_t_min():
     below = worst_slack(evaluate_checks(calc.evaluate(s * (1 - 1e-7)), calc.motors,
                                         calc.drive, design.limits, True))
     assert at[0] >= -1e-9 and below[0] < 0.0
+
+
+def test_moves_meet_their_boundary_accelerations_and_joins_without_a_step():
+    """Two poly5 moves joined at 60 deg/s and 200 deg/s^2: the curve reaches both at the
+    join (to 1e-12 of the scale) and the breakdown marks no step there; the move back
+    (cycloidal, from rest to rest) marks none either."""
+    from sizer.sizing.profile import task_curve
+    from sizer.sizing.segment_breakdown import segment_breakdown
+
+    deg = math.pi / 180
+    cycle = Cycle((Move(90 * deg, 0.3, law="poly5", end_speed=60 * deg,
+                        end_acceleration=200 * deg, name="a"),
+                   Move(30 * deg, 0.2, law="poly5", start_speed=60 * deg,
+                        start_acceleration=200 * deg, name="b"),
+                   Move(-120 * deg, 0.4, law="cycloidal", name="back"), Dwell(0.2)))
+    motor = curved_motors(1)[0]
+    design = Design(Task(1.0, None), Load(0.05, friction=0.3),
+                    Transmission((Stage("gearbox", 10.0, 0.9, 0.0),)), laws=("cycloidal",),
+                    motors=(motor,), cycle=cycle)
+    curve = task_curve(design, motor, "cycloidal", 1.1)
+    join = np.flatnonzero(np.isclose(curve.time, 0.3, rtol=0, atol=1e-15))
+    assert len(join) == 2  # the end of a, the start of b
+    assert np.allclose(curve.load_speed[join], 60 * deg, rtol=1e-12)
+    assert np.allclose(curve.load_acceleration[join], 200 * deg, rtol=1e-12)
+    rows = segment_breakdown(design, motor, "cycloidal", 1.1).rows
+    assert [r.acceleration_step for r in rows] == [0.0, 0.0, 0.0, 0.0]
+    steps = Cycle((replace(cycle.segments[0], end_acceleration=0.0),
+                   replace(cycle.segments[1], start_acceleration=200 * deg),
+                   *cycle.segments[2:]))
+    rows = segment_breakdown(replace(design, cycle=steps), motor, "cycloidal", 1.1).rows
+    assert rows[1].acceleration_step == pytest.approx(200 * deg, rel=1e-12)
