@@ -211,8 +211,8 @@ def test_the_breakdown_of_a_cycle_per_segment():
                                  Dwell(0.3, load=SegmentLoad(torque=2.0)))))
     b = segment_breakdown(design, motor, "cycloidal", 1.45)
     assert [r.name for r in b.rows] == ["out", "dwell", "back", "dwell"]
-    assert [(r.start, r.end) for r in b.rows] == pytest.approx(
-        [(0, 0.5), (0.5, 0.75), (0.75, 1.15), (1.15, 1.45)], abs=1e-15)
+    assert [t for r in b.rows for t in (r.start, r.end)] == pytest.approx(
+        [0, 0.5, 0.5, 0.75, 0.75, 1.15, 1.15, 1.45], abs=1e-15)
     assert b.rows[0].energy == pytest.approx(0.5 * 1.0, rel=1e-12)
     assert b.rows[2].energy == pytest.approx(0.5 * 1.0, rel=1e-12)
     assert b.rows[1].energy == 0.0
