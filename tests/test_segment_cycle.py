@@ -310,3 +310,21 @@ def test_moves_meet_their_boundary_accelerations_and_joins_without_a_step():
                    *cycle.segments[2:]))
     rows = segment_breakdown(replace(design, cycle=steps), motor, "cycloidal", 1.1).rows
     assert rows[1].acceleration_step == pytest.approx(200 * deg, rel=1e-12)
+
+
+def test_a_step_of_the_acceleration_at_a_join_makes_the_jerk_unbounded():
+    """poly5 moves are jerk-bounded (C_j = 60): joined at the same acceleration the cycle's
+    jerk is finite, 60 h/T^3 at most; with a step at the join it is an impulse (inf)."""
+    deg = math.pi / 180
+    first = Move(90 * deg, 0.3, law="poly5", end_speed=60 * deg, end_acceleration=200 * deg)
+    second = Move(30 * deg, 0.2, law="poly5", start_speed=60 * deg,
+                  start_acceleration=200 * deg)
+    back = Move(-120 * deg, 0.4, law="poly5")
+    motors = MotorArrays.of(curved_motors(1), "linear")
+    drive = Drive(Load(0.05), Transmission((Stage("gearbox", 10.0, 1.0, 0.0),)))
+    smooth = SegmentCycle(Cycle((first, second, back, Dwell(0.2))), None, drive, motors)
+    jerk = smooth.evaluate(np.array([1.0])).load_jerk[0]
+    assert np.isfinite(jerk) and jerk >= 60 * 120 * deg / 0.4**3 * (1 - 1e-12)
+    stepped = SegmentCycle(Cycle((first, replace(second, start_acceleration=0.0), back,
+                                  Dwell(0.2))), None, drive, motors)
+    assert stepped.evaluate(np.array([1.0])).load_jerk[0] == np.inf

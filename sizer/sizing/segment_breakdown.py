@@ -20,11 +20,7 @@ from sizer.model.cycle import Cycle, Dwell, Move, Run, from_task
 from sizer.model.domain import Design, Motor, Transmission
 from sizer.sizing.cycle_shape import plain_design
 from sizer.sizing.motors import MotorArrays
-from sizer.sizing.segment_cycle import SegmentCycle, normalized_move
-
-JOIN_TOLERANCE = 1e-9
-"""A step of the acceleration at a join is reported when it exceeds this share of the
-cycle's acceleration scale (the largest |h|/T^2 of its moves)."""
+from sizer.sizing.segment_cycle import JOIN_TOLERANCE, SegmentCycle, normalized_move
 
 
 @dataclass(frozen=True)

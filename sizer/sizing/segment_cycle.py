@@ -48,6 +48,14 @@ class SegmentFigures(MoveFigures):
 
     duration: np.ndarray
     rms_model: RmsModel | None = None
+    end_accelerations: tuple[np.ndarray, np.ndarray] | None = None
+    """A move's load acceleration at its start and at its end (signed; None: 0, a run or a
+    dwell): where a join's two sides differ, the jerk there is an impulse."""
+
+
+JOIN_TOLERANCE = 1e-9
+"""A step of the acceleration at a join counts when it exceeds this share of the cycle's
+acceleration scale (the largest |h|/T^2 of its moves)."""
 
 
 @dataclass(frozen=True)
@@ -266,7 +274,8 @@ class SegmentCycle:
             duration=T, max_speed=most("max_speed"), peak_torque=most("peak_torque"),
             peak_ratio=most("peak_ratio"), rms_torque=_finite_or_inf(rms),
             thermal_speed=_finite_or_inf(thermal), load_speed=most("load_speed"),
-            load_acceleration=most("load_acceleration"), load_jerk=most("load_jerk"),
+            load_acceleration=most("load_acceleration"),
+            load_jerk=np.where(self._join_steps(parts), np.inf, most("load_jerk")),
             load_torque=most("load_torque"),
             stage_peak=[np.max(np.stack([p.stage_peak[i] for p in parts]), axis=0)
                         for i in range(n_stages)],
@@ -275,6 +284,22 @@ class SegmentCycle:
                          for i in range(n_stages)],
             rms_model=self._rms_model(parts) if model else None,
         )
+
+    def _join_steps(self, parts: list[SegmentFigures]) -> np.ndarray:
+        """Per candidate: does the acceleration step at a join (the cycle repeats, so the
+        last segment joins the first)? A jerk impulse: no jerk limit is met there."""
+        n = len(self.motors)
+        zero = np.zeros(n)
+        ends = [p.end_accelerations or (zero, zero) for p in parts]
+        reference = np.zeros(n)
+        for segment, p in zip(self.cycle.segments, parts, strict=True):
+            if isinstance(segment, Move):
+                with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+                    reference = np.fmax(reference, abs(segment.displacement) / p.duration ** 2)
+        steps = np.zeros(n, dtype=bool)
+        for before, after in zip(ends[-1:] + ends[:-1], ends, strict=True):
+            steps |= np.abs(after[0] - before[1]) > JOIN_TOLERANCE * reference
+        return steps
 
     def _rms_model(self, parts: list[SegmentFigures]):
         moves, n = [], len(self.motors)
@@ -318,7 +343,10 @@ class SegmentCycle:
                 torque_square=np.square(m.rms_torque) * T,
                 stage_square=[np.square(x) * T for x in m.stage_rms],
                 speed_square=np.square(rms_speed) * T, speed_abs=K * h, energy=energy,
-                rms_model=m.rms_model)
+                rms_model=m.rms_model, end_accelerations=(
+                    move.displacement * law.piece_derivative(0, 0.0, 2) / T / T,
+                    move.displacement * law.piece_derivative(len(law.pieces) - 1, 1.0, 2)
+                    / T / T))
 
     def _rest_energy(self, calc: CycleCalculator, T: np.ndarray) -> np.ndarray:
         """Work at the motor shaft over the move, the integral of tau*omega (signed along
@@ -350,7 +378,14 @@ class SegmentCycle:
         f = polynomial_move(breaks, coefficients, drive, self.motors,
                             1.0 if h >= 0 else -1.0)
         jerk = f.load_jerk if basis.jerk_bounded else np.full_like(T, np.inf)
-        return SegmentFigures(**{**vars(f), "load_jerk": jerk}, duration=T)
+        width = basis.breaks[-1] - basis.breaks[-2]
+        k = powers[2:]
+        with np.errstate(over="ignore", invalid="ignore"):
+            first = 2.0 * normalized[:, 0, 2] * h / T / T
+            last = np.sum(normalized[:, -1, 2:] * k * (k - 1) * width ** (k - 2), axis=1) \
+                * h / T / T
+        return SegmentFigures(**{**vars(f), "load_jerk": jerk}, duration=T,
+                              end_accelerations=(first, last))
 
     def _run(self, run: Run, drive: Drive, T: np.ndarray) -> SegmentFigures:
         """A constant-speed run: a = 0, the torque constant over T."""
