@@ -139,8 +139,8 @@ class CircularBlends(MotionLaw):
     Example 3.1: T = 6, h = 3, ratio 2). With rho = ratio and h = T = 1 normalized:
     cos(alpha) = (2 + rho sqrt(rho^2 - 3))/(1 + rho^2), blend time tau_a = sin(alpha)/rho,
     q_N = 1 - sqrt(1 - (rho tau)^2) on the first blend, slope rho tan(alpha) in between.
-    The velocity is continuous, the acceleration bounded but not: it steps from rest to
-    rho^2 at tau = 0 (the arc's curvature) and from rho^2/cos^3(alpha) to 0 at the blend
+    The velocity is continuous, the acceleration bounded but not continuous: it steps to
+    rho^2 from rest at tau = 0 (the arc's curvature) and from rho^2/cos^3(alpha) to 0 at the blend
     end (C^1; jerk impulses at 0, tau_a, 1 - tau_a and 1).
     """
 
