@@ -8,12 +8,14 @@ from functools import lru_cache
 
 from sizer.errors import UserError
 from sizer.laws.base import MotionLaw
+from sizer.laws.blended_linear import CircularBlends, PolynomialBlends
 from sizer.laws.exponential import Exponential
 from sizer.laws.fourier import Freudenstein13, Freudenstein135, Gutman13
 from sizer.laws.modified import ModifiedSinusoidal, ModifiedTrapezoidal
 from sizer.laws.modified_cycloidal import ModifiedCycloidal
 from sizer.laws.piecewise_polynomial import ConstantAcceleration, DoubleS, Trapezoidal
 from sizer.laws.polynomial import Polynomial
+from sizer.laws.polynomial_434 import Polynomial434
 from sizer.laws.spec import AUTO, LawSpec, parse_law_spec
 from sizer.laws.trigonometric import Cycloidal, Elliptic, Harmonic
 
@@ -23,6 +25,7 @@ LAW_FAMILIES: Mapping[str, type[MotionLaw]] = {
         ConstantAcceleration, Trapezoidal, DoubleS, Harmonic, Cycloidal, Elliptic, Polynomial,
         ModifiedTrapezoidal, ModifiedSinusoidal, ModifiedCycloidal,
         Gutman13, Freudenstein13, Freudenstein135, Exponential,
+        PolynomialBlends, Polynomial434, CircularBlends,
     )
 }
 
