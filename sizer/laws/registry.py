@@ -8,7 +8,10 @@ from functools import lru_cache
 
 from sizer.errors import UserError
 from sizer.laws.base import MotionLaw
+from sizer.laws.blended_constant import CycloidalBlendAcceleration, CycloidalBlends
+from sizer.laws.cubic_blends import CubicBlendAcceleration
 from sizer.laws.exponential import Exponential
+from sizer.laws.fifteen_segments import FifteenSegments
 from sizer.laws.fourier import Freudenstein13, Freudenstein135, Gutman13
 from sizer.laws.modified import ModifiedSinusoidal, ModifiedTrapezoidal
 from sizer.laws.modified_cycloidal import ModifiedCycloidal
@@ -23,6 +26,9 @@ LAW_FAMILIES: Mapping[str, type[MotionLaw]] = {
         ConstantAcceleration, Trapezoidal, DoubleS, Harmonic, Cycloidal, Elliptic, Polynomial,
         ModifiedTrapezoidal, ModifiedSinusoidal, ModifiedCycloidal,
         Gutman13, Freudenstein13, Freudenstein135, Exponential,
+        FifteenSegments,
+        CycloidalBlends, CycloidalBlendAcceleration,
+        CubicBlendAcceleration,
     )
 }
 
