@@ -9,32 +9,42 @@ Validity (3.44)-(3.47) is the ranges beta, gamma <= 1/2 and alpha <= 1/2.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from dataclasses import replace
-
-from sizer.laws.base import MotionLaw, Parameter, Piece, mirrored
+from sizer.laws.base import MotionLaw, Parameter, mirrored
 from sizer.laws.pieces import trig_poly_piece
 from sizer.laws.piecewise_polynomial import MIN_FRACTION
 
+MIN_SHARE = 1e-3
+"""Smallest beta and gamma: the jerk varies linearly over T_s = alpha beta gamma, and a
+piece end is placed to an ulp of its position (~alpha 1e-16), so the jerk at the piece
+ends is exact to about 1e-16/(beta gamma): 1e-10 at beta = gamma = 1e-3."""
 
-def constant_snap_pieces(segments: Sequence[tuple[float, float]], end: float) -> list[Piece]:
-    """Quartic pieces from (duration, snap) segments, integrated exactly from rest at 0.
 
-    Zero-length segments are skipped; the last piece ends exactly at ``end``.
+def ramp_states(alpha: float, beta: float, gamma: float
+                ) -> list[tuple[float, tuple[float, float, float, float], float]]:
+    """(start, (q, v, a, j) at the start, snap) of each segment of the acceleration phase.
+
+    The states are the book's closed forms (3.48a)-(3.48d) at the segment ends, and for the
+    second half of the phase the symmetry of the velocity ramp: v(T_a - u) = v_max - v(u),
+    q(T_a - u) = v_max (T_a/2 - u) + q(u), a and -j equal. Each piece starts from exact
+    values, so narrow segments with a large snap do not accumulate integration drift.
     """
-    pieces = []
-    t = q = v = a = j = 0.0
-    for d, s in segments:
-        if d <= 0.0:
-            continue
-        pieces.append(trig_poly_piece(t, t + d, (q, v, a / 2.0, j / 6.0, s / 24.0), origin=t))
-        q, v, a, j = (q + v * d + a * d**2 / 2.0 + j * d**3 / 6.0 + s * d**4 / 24.0,
-                      v + a * d + j * d**2 / 2.0 + s * d**3 / 6.0,
-                      a + j * d + s * d**2 / 2.0,
-                      j + s * d)
-        t += d
-    pieces[-1] = replace(pieces[-1], end=end)
-    return pieces
+    v_max, a_max, j_max, s = peaks(alpha, beta, gamma)
+    t_a, t_j = alpha, alpha * beta
+    t_s = gamma * t_j
+    t2 = t_j - t_s
+    first = [
+        (0.0, (0.0, 0.0, 0.0, 0.0), s),
+        (t_s, (j_max * t_s**3 / 24.0, j_max * t_s**2 / 6.0, j_max * t_s / 2.0, j_max), 0.0),
+        (t2, (j_max / 24.0 * (2.0 * t2 - t_s) * (2.0 * t2 * (t2 - t_s) + t_s**2),
+              j_max * t_s**2 / 6.0 + j_max / 2.0 * t2 * (t2 - t_s),
+              j_max * (t2 - t_s / 2.0), j_max), -s),
+        (t_j, (a_max / 12.0 * (2.0 * t_j**2 - t_j * t_s + t_s**2), a_max * t_j / 2.0, a_max,
+               0.0), 0.0),
+    ]
+    snaps_after = {t_j: -s, t2: 0.0, t_s: s}  # the snap after the reflected boundary
+    second = [(t_a - u, (v_max * (t_a / 2.0 - u) + q, v_max - v, a, -j), snaps_after[u])
+              for u, (q, v, a, j), _ in reversed(first[1:])]
+    return [*first, *second, (t_a, (v_max * t_a / 2.0, v_max, 0.0, 0.0), 0.0)]
 
 
 def peaks(alpha: float, beta: float, gamma: float) -> tuple[float, float, float, float]:
@@ -56,25 +66,20 @@ class FifteenSegments(MotionLaw):
     parameters = (
         Parameter("alpha", 1 / 3, MIN_FRACTION, 0.5,
                   description="acceleration time over duration, T_a/T; at least 1e-6"),
-        Parameter("beta", 1 / 4, MIN_FRACTION, 0.5,
-                  description="jerk time over acceleration time, T_j/T_a; at least 1e-6"),
-        Parameter("gamma", 1 / 4, MIN_FRACTION, 0.5,
-                  description="snap time over jerk time, T_s/T_j; at least 1e-6 (toward "
+        Parameter("beta", 1 / 4, MIN_SHARE, 0.5,
+                  description="jerk time over acceleration time, T_j/T_a; at least 1e-3"),
+        Parameter("gamma", 1 / 4, MIN_SHARE, 0.5,
+                  description="snap time over jerk time, T_s/T_j; at least 1e-3 (toward "
                               "0 the double S)"),
     )
 
     def _build(self):
-        alpha, beta, gamma = (self.params[k] for k in ("alpha", "beta", "gamma"))
-        t_a, t_j = alpha, alpha * beta
-        t_s = gamma * t_j
-        s = peaks(alpha, beta, gamma)[3]
-        half = [
-            (t_s, s), (t_j - 2.0 * t_s, 0.0), (t_s, -s),     # jerk up and down: a to a_max
-            (t_a - 2.0 * t_j, 0.0),                         # constant acceleration
-            (t_s, -s), (t_j - 2.0 * t_s, 0.0), (t_s, s),     # a back to 0
-            (0.5 - t_a, 0.0),                               # half the constant velocity
-        ]
-        return mirrored(constant_snap_pieces(half, end=0.5)), 3
+        states = ramp_states(*(self.params[k] for k in ("alpha", "beta", "gamma")))
+        ends = [start for start, _, _ in states[1:]] + [0.5]
+        half = [trig_poly_piece(start, end, (q, v, a / 2.0, j / 6.0, s / 24.0), origin=start)
+                for (start, (q, v, a, j), s), end in zip(states, ends, strict=True)
+                if end > start]
+        return mirrored(half), 3
 
     def closed_form_coefficients(self) -> dict[str, float]:
         """Peaks from eq. (3.43); the RMS values by integrating the segments (sympy):
