@@ -337,6 +337,7 @@ def test_cycloidal_blend_acceleration_sec_3_10_2(shares):
     assert_pointwise(law, rows)
     book = book_a2_a6(*(float(sp.Rational(x)) for x in shares))
     assert (a1, a2) == pytest.approx(book, rel=1e-12)
+    assert law.levels == pytest.approx(book, rel=1e-12)
     assert law.coefficients.C_a == pytest.approx(max(book), rel=1e-12)
     assert law.numerical_coefficients.as_dict() == pytest.approx(
         law.coefficients.as_dict(), rel=1e-9)

@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import replace
+from functools import cached_property
 
 from sizer.errors import UserError
 from sizer.laws.base import MotionLaw, Parameter, Piece, format_parameter
@@ -113,27 +114,36 @@ class SevenSegmentLaw(MotionLaw):
                             f"deceleration phase)")
         return values
 
-    def segments(self) -> list[tuple[str, bool, float, float]]:
-        """(kind, rising, share, level) of the seven segments, a1 and a2 solved."""
+    def _shape(self) -> list[tuple[str, bool, float, int]]:
+        """(kind, rising, share, sign of the level: +a1, 0 or -a2) of the seven segments."""
         k1, k3, k5, k7 = self.blend_kinds()
         p = self.params
         t4 = max(0.0, 1.0 - sum(p[k] for k in SHARE_NAMES))
-        shape = [(k1, True, p["seg1"], 1), (CONSTANT, False, p["seg2"], 1),
-                 (k3, False, p["seg3"], 1), (CONSTANT, False, t4, 0), (k5, True, p["seg5"], -1),
-                 (CONSTANT, False, p["seg6"], -1), (k7, False, p["seg7"], -1)]
+        return [(k1, True, p["seg1"], 1), (CONSTANT, False, p["seg2"], 1),
+                (k3, False, p["seg3"], 1), (CONSTANT, False, t4, 0), (k5, True, p["seg5"], -1),
+                (CONSTANT, False, p["seg6"], -1), (k7, False, p["seg7"], -1)]
+
+    @cached_property
+    def levels(self) -> tuple[float, float]:
+        """(a1, a2): the peak acceleration and deceleration (a_2, a_6 of sec. 3.10.2),
+        from v(1) = 0 and q(1) = 1, both linear in them."""
         ends = []
         for side in (1, -1):  # the final (q, v) with a1 = 1, a2 = 0 and then a1 = 0, a2 = 1
             q = v = 0.0
-            for kind, rising, share, sign in shape:
-                level = -1.0 if sign == side == -1 else 1.0 if sign == side == 1 else 0.0
-                q, v = segment_end(kind, rising, share, level, q, v)
+            for kind, rising, share, sign in self._shape():
+                q, v = segment_end(kind, rising, share, float(sign) if sign == side else 0.0,
+                                   q, v)
             ends.append((q, v))
         (qa, va), (qb, vb) = ends
         det = qa * vb - qb * va
-        a1, a2 = vb / det, -va / det  # a1 va + a2 vb = 0 and a1 qa + a2 qb = 1
-        self.a1, self.a2 = a1, a2
-        levels = {1: a1, 0: 0.0, -1: -self.a2}
-        return [(kind, rising, share, levels[sign]) for kind, rising, share, sign in shape]
+        return vb / det, -va / det  # a1 va + a2 vb = 0 and a1 qa + a2 qb = 1
+
+    def segments(self) -> list[tuple[str, bool, float, float]]:
+        """(kind, rising, share, acceleration level) of the seven segments."""
+        a1, a2 = self.levels
+        values = {1: a1, 0: 0.0, -1: -a2}
+        return [(kind, rising, share, values[sign]) for kind, rising, share, sign
+                in self._shape()]
 
     def _build(self):
         pieces, t, q, v = [], 0.0, 0.0, 0.0
@@ -149,7 +159,7 @@ class SevenSegmentLaw(MotionLaw):
             edges += [start, end]
         edges.append(0.0)
         pieces[-1] = replace(pieces[-1], end=1.0)
-        steps = any(abs(edges[i] - edges[i + 1]) > 1e-12 * max(self.a1, self.a2)
+        steps = any(abs(edges[i] - edges[i + 1]) > 1e-12 * max(self.levels)
                     for i in range(0, len(edges), 2))
         return pieces, 1 if steps else 2
 
@@ -170,7 +180,7 @@ class SevenSegmentLaw(MotionLaw):
                 jerk = max(jerk, abs(level) * PI / (2.0 * share))
             elif kind == LINEAR:
                 jerk = max(jerk, abs(level) / share)
-        return {"C_v": c_v, "C_a": max(self.a1, self.a2), "C_j": jerk,
+        return {"C_v": c_v, "C_a": max(self.levels), "C_j": jerk,
                 "C_v_rms": math.sqrt(v2), "C_a_rms": math.sqrt(a2sum)}
 
 
