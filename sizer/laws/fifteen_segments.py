@@ -3,7 +3,8 @@
 Rest to rest with T = 1, h = 1 and symmetric phases (v0 = v1 = 0, T_d = T_a), the
 durations of eq. (3.43) are given as shares: T_a = alpha, T_j = beta*T_a and
 T_s = gamma*T_j. The snap q^(4) is piecewise constant (+-s_max, 0) over the fifteen
-segments of Fig. 3.30; the first half is integrated exactly from rest and mirrored.
+segments of Fig. 3.30; each piece of the first half starts from the closed-form state
+of eq. (3.48) at its start (:func:`ramp_states`), and the half is mirrored.
 Validity (3.44)-(3.47) is the ranges beta, gamma <= 1/2 and alpha <= 1/2.
 """
 
