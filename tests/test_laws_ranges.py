@@ -21,6 +21,7 @@ from scipy import optimize
 from sizer.errors import UserError
 from sizer.laws import LAW_FAMILIES, make_law
 from sizer.laws.coefficients import COEFFICIENT_NAMES, jumps
+from sizer.laws.seven_segments import MIN_SHARE, SHARE_NAMES, SevenSegmentLaw
 from sizer.laws.trigonometric import Elliptic
 from sizer.model.inputs import check_law_spec
 
@@ -171,12 +172,28 @@ def _log_toward(draw, low: float, high: float) -> float:
     return min(max(low + offset if where == "low" else high - offset, low), high)
 
 
+def _seven_segment_shares(draw) -> dict[str, float]:
+    """Shares of sec. 3.10.2/3.11 laws: seven weights (some zero) normalized to a sum of
+    1, shares below MIN_SHARE dropped, both phases present; segment 4 takes the rest."""
+    weights = [draw(st.sampled_from([0.0, 1.0])) * _log_toward(draw, 1e-3, 1.0)
+               for _ in range(7)]
+    weights[1] = weights[1] or 0.5  # an acceleration and a deceleration phase
+    weights[5] = weights[5] or 0.5
+    total = sum(weights)
+    shares = [w / total if w / total >= 2 * MIN_SHARE else 0.0 for w in weights]
+    return dict(zip(SHARE_NAMES, shares[:3] + shares[4:], strict=True))
+
+
 @st.composite
 def any_law(draw):
     family = draw(st.sampled_from(sorted(LAW_FAMILIES)))
     cls = LAW_FAMILIES[family]
     args = {}
+    if issubclass(cls, SevenSegmentLaw):  # joint shares: a point of the simplex
+        args = _seven_segment_shares(draw)
     for p in cls.parameters:
+        if p.name in args:
+            continue
         if p.integer:
             values = [v for v in range(int(p.low), int(p.high) + 1) if not p.odd or v % 2]
             args[p.name] = float(draw(st.sampled_from(values)))

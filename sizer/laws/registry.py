@@ -8,8 +8,11 @@ from functools import lru_cache
 
 from sizer.errors import UserError
 from sizer.laws.base import MotionLaw
+from sizer.laws.blended_constant import CycloidalBlendAcceleration, CycloidalBlends
 from sizer.laws.blended_linear import CircularBlends, PolynomialBlends
+from sizer.laws.cubic_blends import CubicBlendAcceleration
 from sizer.laws.exponential import Exponential
+from sizer.laws.fifteen_segments import FifteenSegments
 from sizer.laws.fourier import Freudenstein13, Freudenstein135, Gutman13
 from sizer.laws.modified import ModifiedSinusoidal, ModifiedTrapezoidal
 from sizer.laws.modified_cycloidal import ModifiedCycloidal
@@ -26,6 +29,9 @@ LAW_FAMILIES: Mapping[str, type[MotionLaw]] = {
         ModifiedTrapezoidal, ModifiedSinusoidal, ModifiedCycloidal,
         Gutman13, Freudenstein13, Freudenstein135, Exponential,
         PolynomialBlends, Polynomial434, CircularBlends,
+        FifteenSegments,
+        CycloidalBlends, CycloidalBlendAcceleration,
+        CubicBlendAcceleration,
     )
 }
 
