@@ -20,8 +20,8 @@ from sizer.model.domain import Curve, Design, Motor, Transmission
 from sizer.sizing.cycle import CycleCalculator, MoveScales
 from sizer.sizing.cycle_shape import plain_design
 from sizer.sizing.motors import MotorArrays
-from sizer.sizing.segment_breakdown import design_cycle, scale_of
-from sizer.sizing.segment_cycle import SegmentCycle, normalized_move
+from sizer.sizing.segment_breakdown import design_cycle, result_cycle, scale_of
+from sizer.sizing.segment_cycle import normalized_move
 
 
 @dataclass(frozen=True)
@@ -132,13 +132,10 @@ def _cycle_curve(design: Design, motor: Motor, law: MotionLaw, duration: float,
                  transmission: Transmission | None, samples: int) -> TaskCurve:
     """The task curve of a cycle of segments: each segment sampled in its own time (a
     move by its law, its boundary speeds met), each with its own load."""
-    cycle = design_cycle(design)
-    motors = MotorArrays.of([motor], design.limits.envelope)
-    base = Drive(design.load, transmission or design.transmission)
-    calc = SegmentCycle(cycle, law, base, motors, design.limits.thermal_speed)
-    s = np.array([scale_of(design, duration)])
+    calc, s = result_cycle(design, motor, law, duration, transmission)
+    cycle, motors = calc.cycle, calc.motors
     metrics = calc.evaluate(s)
-    K = float(base.ratio[0])
+    K = float(calc.drives[0].ratio[0])
     times, positions, speeds, accelerations, torques = [], [], [], [], []
     t0, q0 = 0.0, 0.0
     for segment, own, drive, T in zip(cycle.segments, calc.laws, calc.drives,

@@ -68,17 +68,24 @@ def scale_of(design: Design, duration: float) -> float:
     return 1.0 if weights == 0.0 else (duration - cycle.fixed_time) / weights
 
 
+def result_cycle(design: Design, motor: Motor, law: MotionLaw, duration: float,
+                 transmission: Transmission | None = None) -> tuple[SegmentCycle, np.ndarray]:
+    """The segment calculator of a sizing result's motor, law and transmission, and the
+    scale s of its ``duration``."""
+    motors = MotorArrays.of([motor], design.limits.envelope)
+    drive = Drive(design.load, transmission or design.transmission)
+    calc = SegmentCycle(design_cycle(design), law, drive, motors, design.limits.thermal_speed)
+    return calc, np.array([scale_of(design, duration)])
+
+
 def segment_breakdown(design: Design, motor: Motor, law: MotionLaw | str, duration: float,
                       transmission: Transmission | None = None) -> SegmentBreakdown:
     """The segments of ``design``'s cycle for ``motor`` with ``law`` (the ranked law of
     the moves that name none) at a result's ``duration``."""
     if isinstance(law, str):
         law = make_law(law)
-    cycle = design_cycle(design)
-    motors = MotorArrays.of([motor], design.limits.envelope)
-    drive = Drive(design.load, transmission or design.transmission)
-    calc = SegmentCycle(cycle, law, drive, motors, design.limits.thermal_speed)
-    s = np.array([scale_of(design, duration)])
+    calc, s = result_cycle(design, motor, law, duration, transmission)
+    cycle = calc.cycle
     parts = calc.figures(s)
     metrics = calc.evaluate(s)
     total = math.fsum(float(p.torque_square[0]) for p in parts)
