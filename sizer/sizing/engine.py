@@ -31,7 +31,6 @@ from sizer.sizing.minimum_duration import is_purely_inertial, minimum_duration
 from sizer.sizing.motors import MotorArrays
 from sizer.sizing.ranking import rank_order
 from sizer.sizing.results import CandidateResult, SizingResult
-from sizer.sizing.segment_cycle import SegmentCycle
 from sizer.sizing.table import FIGURES, CandidateTable, Mode, Rows, concatenate
 
 Progress = Callable[[int, int], None]
@@ -162,6 +161,8 @@ def _evaluate_cycle_chunk(design: Design, law: MotionLaw,
     """A cycle of segments (sizer.sizing.segment_cycle): minimize is the smallest scale
     of the free durations (time scaling, book sec. 5.2), searched per candidate; the
     duration reported is the cycle time."""
+    from sizer.sizing.segment_cycle import SegmentCycle  # only designs with a cycle need it
+
     cycle = design.cycle
     assert cycle is not None
     motors = candidates.motors
