@@ -127,6 +127,10 @@ class MoveScales:
 class CycleCalculator:
     """Evaluates the cycle of one law for candidate motors at candidate durations."""
 
+    segmented = False
+    """A cycle of segments (sizer.sizing.segment_cycle.SegmentCycle) says True: the T_min
+    search then varies the scale of its free durations, without the closed forms."""
+
     def __init__(self, grid: LawGrid | None, task: Task, drive: Drive, motors: MotorArrays,
                  thermal_speed: ThermalSpeedRule = "max", law=None) -> None:
         self._grid = grid

@@ -77,7 +77,7 @@ def minimum_duration(calculator: CycleCalculator, limits: Limits) -> DurationSol
     The closed form is checked like any duration; where it misses (a check it does not
     model, or rounding beyond the tolerance) the search starts from it.
     """
-    if getattr(calculator, "segmented", False):  # a cycle of segments: time scaling
+    if calculator.segmented:  # a cycle of segments: time scaling
         bound = calculator.peak_bound(limits)
         if bound is not None:
             return _from_bound(calculator, limits, bound)
@@ -342,7 +342,7 @@ def rms_duration(scale: np.ndarray, dwell: float) -> np.ndarray:
 
 def _initial_guess(calculator: CycleCalculator) -> np.ndarray:
     """A duration scale from the speed and inertial bounds (never zero)."""
-    if getattr(calculator, "segmented", False):
+    if calculator.segmented:
         return calculator.initial_guess()
     c = calculator.law.coefficients
     drive, motors = calculator.drive, calculator.motors
