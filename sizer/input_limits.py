@@ -27,6 +27,9 @@ MAX_INT_DIGITS = 400
 
 MAX_LAW_SPEC_CHARS = 500
 """Characters of a law spec like ``double_s(alpha=1/3, beta=1/4)``."""
+MAX_DATA_LAW_CHARS = 200_000
+"""Characters of a law defined by data (a spline's points and conditions) in its canonical
+one-line text; longer tables belong in a cam_table file."""
 MAX_NUMBER_CHARS = 100
 """Characters of one number in a law spec or a quantity (``1e-3``, ``1/3``)."""
 MAX_EXPONENT = 400

@@ -25,6 +25,7 @@ from sizer.errors import UserError
 from sizer.input_limits import MAX_DESIGN_BYTES, MAX_DESIGN_NODES
 from sizer.io.catalog_table import read_table
 from sizer.io.cycle import build_cycle, displacement_of, summary_task
+from sizer.io.data_laws import canonical_data_laws
 from sizer.io.motor_rules import (
     MotorProblem,
     impossibilities,
@@ -286,6 +287,7 @@ def load_design_data(data: Mapping[str, Any], extra_catalogs: Iterable[PathLike]
 def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
                extra_catalogs: Iterable[PathLike], default_motors: bool) -> Design:
     """The Design of a parsed design document (``folder``: where relative paths start)."""
+    canonical_data_laws(source, folder)
     model = validate(DesignFile, source)
     warnings = bare_number_warnings(source)
     cycle = build_cycle(model.cycle, source) if model.cycle is not None else None

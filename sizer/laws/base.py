@@ -251,6 +251,10 @@ class MotionLaw:
     def __hash__(self) -> int:
         return hash(self.spec)
 
+    def outside(self, order: int) -> tuple[float, float]:
+        """q_N^(order) just before tau = 0 and just after tau = 1: at rest, at 0 and 1."""
+        return 0.0, 1.0 if order == 0 else 0.0
+
     # ------------------------------------------------------------- evaluation
     def derivative(self, tau: np.ndarray | float, order: int = 0) -> np.ndarray:
         """The order-th derivative of q_N at tau (vectorized); rest outside [0, 1].

@@ -154,18 +154,19 @@ def rms(law: MotionLaw, order: int) -> float:
 def one_sided_limits(law: MotionLaw, order: int) -> list[tuple[float, float, float]]:
     """(tau, left, right) limits of q_N^(order) at every breakpoint, ends included.
 
-    Outside [0, 1] the law is at rest: 0 on the left of tau = 0, 1 or 0 right of tau = 1.
+    Outside [0, 1] the law is at rest (0 on the left of tau = 0, 1 or 0 right of tau = 1)
+    or, for a law whose ends move, as ``law.outside`` says (the period's wrap).
     """
     pieces = law.pieces
 
     def value(index: int, tau: float) -> float:
         return float(law.piece_derivative(index, np.array([tau]), order)[0])
 
-    rest_after = 1.0 if order == 0 else 0.0
-    rows = [(pieces[0].start, 0.0, value(0, pieces[0].start))]
+    before, after = law.outside(order)
+    rows = [(pieces[0].start, before, value(0, pieces[0].start))]
     for i in range(1, len(pieces)):
         rows.append((pieces[i].start, value(i - 1, pieces[i].start), value(i, pieces[i].start)))
-    rows.append((pieces[-1].end, value(len(pieces) - 1, pieces[-1].end), rest_after))
+    rows.append((pieces[-1].end, value(len(pieces) - 1, pieces[-1].end), after))
     return rows
 
 

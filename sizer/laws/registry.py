@@ -11,6 +11,7 @@ from sizer.laws.base import MotionLaw
 from sizer.laws.blended_constant import CycloidalBlendAcceleration, CycloidalBlends
 from sizer.laws.blended_linear import CircularBlends, PolynomialBlends
 from sizer.laws.cubic_blends import CubicBlendAcceleration
+from sizer.laws.data_spec import is_data_spec
 from sizer.laws.exponential import Exponential
 from sizer.laws.fifteen_segments import FifteenSegments
 from sizer.laws.fourier import Freudenstein13, Freudenstein135, Gutman13
@@ -76,6 +77,11 @@ def resolve(spec: LawSpec | str) -> tuple[type[MotionLaw], dict[str, Fraction | 
 
     Parsed once per spec text (cached); the dictionary returned is the caller's copy.
     """
+    if is_data_spec(spec):
+        from sizer.laws.data_law import data_family
+        from sizer.laws.data_spec import read_data_spec
+
+        return data_family(read_data_spec(canonical_spec(spec))["kind"]), {}
     family, values = _resolved(spec)
     return family, dict(values)
 
@@ -92,7 +98,9 @@ def _resolved(spec: LawSpec | str) -> tuple[type[MotionLaw], Arguments]:
         name, fixed = ALIASES[name][0], dict(ALIASES[name][1])
     family = LAW_FAMILIES.get(name)
     if family is None:
-        raise UserError(f"unknown law {spec.name!r}; known laws: {', '.join(known_law_ids())}")
+        raise UserError(f"unknown law {spec.name!r}; known laws: {', '.join(known_law_ids())}; "
+                        f"or a law defined by data, a mapping like {{kind: cubic_spline, "
+                        f"points: [[0, 0], [0.5, 0.4], [1, 1]]}}")
     free = [p.name for p in family.parameters if p.name not in fixed]
     values: dict[str, Fraction | str] = dict(fixed)
     for position, (key, value) in enumerate(spec.args):
@@ -116,7 +124,32 @@ def make_law(spec: LawSpec | str | MotionLaw) -> MotionLaw:
     """
     if isinstance(spec, MotionLaw):
         return spec
+    if is_data_spec(spec):
+        return _data_law(canonical_spec(spec))
     return _law_of_text(spec)
+
+
+def canonical_spec(spec: LawSpec | str) -> str:
+    """The canonical text of a law defined by data (``{kind: ...}``); a named spec's text
+    as given (its canonical form is its law's ``spec``)."""
+    if is_data_spec(spec):
+        return _canonical_data(spec)  # type: ignore[arg-type]
+    return spec if isinstance(spec, str) else spec.name
+
+
+@lru_cache(maxsize=LAW_CACHE_SIZE)
+def _canonical_data(text: str) -> str:
+    from sizer.laws.data_spec import canonical_data_spec
+
+    return canonical_data_spec(text)
+
+
+@lru_cache(maxsize=LAW_CACHE_SIZE)
+def _data_law(text: str) -> MotionLaw:
+    """The law of a canonical data spec, built once per process."""
+    from sizer.laws.data_law import build_data_law
+
+    return build_data_law(text)
 
 
 @lru_cache(maxsize=LAW_CACHE_SIZE)

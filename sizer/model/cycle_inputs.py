@@ -29,6 +29,7 @@ from sizer.model.inputs_base import (
     range_schema,
     show_value,
 )
+from sizer.model.law_schema import LAW_SPEC_SCHEMA
 from sizer.model.ranges import RANGES, check_range
 
 SEGMENT_KINDS = ("move", "run", "dwell")
@@ -112,9 +113,7 @@ def _law(value: Any) -> str:
 LawSpec = Annotated[
     str,
     BeforeValidator(_law),
-    WithJsonSchema({"type": "string",
-                    "description": "a motion law spec like 'cycloidal', 'poly5' or "
-                                   "'trapezoidal(alpha=1/3)'"}),
+    WithJsonSchema(LAW_SPEC_SCHEMA),
 ]
 """A law spec, checked as ``laws:`` entries are (sizer.model.inputs.check_law_spec)."""
 

@@ -44,6 +44,7 @@ from sizer.model.inputs_base import (
     not_null,
     show_value,
 )
+from sizer.model.law_schema import LAW_SPEC_SCHEMA
 from sizer.model.ranges import RANGES
 from sizer.model.transmission_inputs import (
     TransmissionStageInput,
@@ -61,7 +62,13 @@ def check_law_spec(text: Any) -> str:
     of a parameter's range, and builds the law when no parameter is ``auto``.
     """
     from sizer.laws import AUTO, make_law, resolve
+    from sizer.laws.data_spec import data_spec_text
 
+    if isinstance(text, dict):  # a law defined by data (the loader has built it already)
+        try:
+            text = data_spec_text(text)
+        except UserError as error:
+            raise ValueError(error.message) from None
     if not isinstance(text, str):
         raise ValueError(f"expected a law spec like 'cycloidal' or 'trapezoidal(alpha=1/3)', "
                          f"got {_show(text)}")
@@ -89,9 +96,7 @@ def check_law_spec(text: Any) -> str:
 LawSpecText = Annotated[
     str,
     BeforeValidator(check_law_spec),
-    WithJsonSchema({"type": "string",
-                    "description": "a motion law spec like 'cycloidal', 'poly5', "
-                                   "'trapezoidal(alpha=1/3)' or 'double_s(alpha=auto, beta=1/4)'"}),
+    WithJsonSchema(LAW_SPEC_SCHEMA),
 ]
 
 # ---------------------------------------------------------------- catalog

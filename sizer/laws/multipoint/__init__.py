@@ -10,6 +10,8 @@ the curve q(t) over [t_0, t_n]; :mod:`sizer.laws.data_law` normalizes it into a
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 from typing import Protocol
 
 import numpy as np
@@ -25,3 +27,14 @@ class Curve(Protocol):
     def __call__(self, t: np.ndarray, nu: int = 0) -> np.ndarray:
         """The nu-th derivative at t (t inside [x[0], x[-1]])."""
         ...
+
+
+@dataclass(frozen=True)
+class FittedCurve:
+    """What a builder may return instead of a bare curve: the curve, what it says about
+    the fit (a cam table's fit error and derivative noise, by name), and the units its
+    data carry (time or master-angle unit, position unit; None where not given)."""
+
+    curve: Curve
+    report: Mapping[str, float] = field(default_factory=dict)
+    units: tuple[str | None, str | None] = (None, None)

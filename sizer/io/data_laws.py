@@ -1,0 +1,84 @@
+"""Laws written as mappings in a design file: located, checked, made canonical text.
+
+A design's ``laws:`` entries, ``check.law`` and a cycle move's ``law`` may be a mapping
+(``{kind: cubic_spline, points: ...}``, book ch. 4). Before the design is validated each
+mapping is built once: a mistake is reported at the line of the field inside the mapping
+(``points[3]``, ``start.velocity``), a cam table's relative ``file`` is taken from the
+design's folder (and written absolute), and the mapping is replaced by its canonical
+text, the spec every later layer reads.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+from sizer.errors import UserError
+from sizer.io.yaml_source import YamlSource
+
+_PART = re.compile(r"([^.\[\]]+)|\[(\d+)\]")
+
+
+def law_paths(data: Any) -> Iterator[tuple[Any, ...]]:
+    """The paths of every law entry of a design's data that is a mapping."""
+    if not isinstance(data, dict):
+        return
+    laws = data.get("laws")
+    if isinstance(laws, dict):
+        yield ("laws",)
+    elif isinstance(laws, list):
+        yield from (("laws", i) for i, v in enumerate(laws) if isinstance(v, dict))
+    check = data.get("check")
+    if isinstance(check, dict) and isinstance(check.get("law"), dict):
+        yield ("check", "law")
+    cycle = data.get("cycle")
+    segments = cycle.get("segments") if isinstance(cycle, dict) else None
+    for i, segment in enumerate(segments if isinstance(segments, list) else ()):
+        if not isinstance(segment, dict):
+            continue
+        for key, body in segment.items():
+            if isinstance(body, dict) and isinstance(body.get("law"), dict):
+                yield ("cycle", "segments", i, key, "law")
+
+
+def canonical_data_laws(source: YamlSource, folder: Path) -> None:
+    """Replace every law mapping of ``source.data`` by its canonical spec text, in place,
+    after building its law (UserError at the line of the bad field)."""
+    from sizer.laws import make_law
+    from sizer.laws.data_spec import data_spec_text
+
+    for path in list(law_paths(source.data)):
+        parent = _at(source.data, path[:-1])
+        fields = dict(parent[path[-1]])
+        if fields.get("kind") == "cam_table" and isinstance(fields.get("file"), str):
+            fields["file"] = str((folder / fields["file"]).absolute())
+        try:
+            text = data_spec_text(fields)
+            make_law(text)
+        except UserError as error:
+            raise _located(source, path, error) from None
+        if path == ("laws",):
+            source.data["laws"] = [text]
+            source.lines[("laws", 0)] = source.line_of(("laws",)) or 1
+        else:
+            parent[path[-1]] = text
+
+
+def _at(data: Any, path: tuple[Any, ...]) -> Any:
+    for part in path:
+        data = data[part]
+    return data
+
+
+def _located(source: YamlSource, path: tuple[Any, ...], error: UserError) -> UserError:
+    """The error at the line of its field inside the law mapping at ``path``."""
+    inner: tuple[Any, ...] = ()
+    if error.field:
+        inner = tuple(name if name else int(index)
+                      for name, index in _PART.findall(error.field))
+    if error.field and inner and not error.field.startswith(("units", "kind")) and \
+            inner[0] not in _at(source.data, path):
+        inner = ()  # a field the builder names but the user did not write (a default)
+    return source.relocate(UserError(error.message, field=error.field), (*path, *inner))

@@ -1,0 +1,252 @@
+"""A motion law defined by data: a curve q(t) normalized into q_N(tau) (book ch. 4).
+
+The curve of a data-defined law (a spline through via-points, a B-spline, a NURBS, a cam
+table) runs over [t_0, t_n]; the law is q_N(tau) = (q(t_0 + tau D) - q_0) / S with
+D = t_n - t_0 and S its displacement q_n - q_0, or, for a curve that returns to its start
+(a cam that goes out and back), its largest excursion from the start. Its k-th
+derivative is D^k q^(k) / S (sec. 6.2 scaling). On a piecewise polynomial curve
+(``scipy.interpolate.PPoly``) every piece is evaluated from its own coefficients, so the
+one-sided values at the breakpoints are exact and the coefficients are exact (peaks at
+the roots of the next derivative, Gauss-Legendre integrals exact for polynomials).
+
+Unlike the rest-to-rest laws, a data-defined law may start and end moving (a periodic
+electronic cam, sec. 4.4.2): ``rest_to_rest`` says which; its continuity class counts
+its joins, its ends against rest or, when the ends move, against each other (the
+period's wrap).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+from typing import Any, ClassVar
+
+import numpy as np
+
+from sizer.errors import UserError
+from sizer.laws.base import MotionLaw, Piece
+from sizer.laws.multipoint import Curve
+
+REST_TOLERANCE = 1e-9
+"""|v_N| at an end below which the law starts or ends at rest; also the relative size of
+a jump that counts as a discontinuity in the continuity class."""
+
+RETURN_TOLERANCE = 1e-12
+"""|q_n - q_0| over the curve's excursion below which the curve returns to its start."""
+
+
+@dataclass(frozen=True)
+class LawScale:
+    """The absolute size of a law whose data carry units: its displacement (or stroke
+    for a curve that returns), in m or rad, and the span of its abscissa: a duration in
+    s or, for a cam on a master axis, a master angle in rad."""
+
+    displacement: float
+    linear: bool
+    span: float
+    master: bool
+
+
+class DataLaw(MotionLaw):
+    """A law built from a curve; ``spec`` is the canonical text of its mapping."""
+
+    law_id: ClassVar[str] = "data"
+    title: ClassVar[str] = "Law defined by data"
+
+    def __init__(self, spec: str, curve: Curve, scale: LawScale | None = None,
+                 report: Any = None) -> None:
+        self._spec_text = spec
+        self.curve = curve
+        self.scale = scale
+        self.report = report
+        """What the builder says about the fit (a cam table's fit error and noise)."""
+        x = np.asarray(curve.x, dtype=float)
+        self._t0, self._span = float(x[0]), float(x[-1] - x[0])
+        self._q0 = float(np.asarray(curve(np.array([x[0]]), 0))[0])
+        self._size = 1.0
+        super().__init__()
+        self._size = self._normalizer()
+        self.breakpoints = np.append(self._starts, 1.0)
+        self.continuity = self._measured_continuity()
+
+    @cached_property
+    def spec(self) -> str:
+        return self._spec_text
+
+    # ------------------------------------------------------------ the curve
+    def _build(self) -> tuple[list[Piece], float]:
+        x = np.asarray(self.curve.x, dtype=float)
+        taus = (x - self._t0) / self._span
+        taus[0], taus[-1] = 0.0, 1.0
+        coefficients = getattr(self.curve, "c", None)
+        pieces = []
+        for i in range(len(x) - 1):
+            if coefficients is not None:
+                pieces.append(self._polynomial_piece(taus[i], taus[i + 1], i))
+            else:
+                pieces.append(self._curve_piece(taus[i], taus[i + 1], x[i], x[i + 1]))
+        return pieces, 0.0  # continuity measured once the normalizer is known
+
+    def _polynomial_piece(self, start: float, end: float, index: int) -> Piece:
+        """Piece ``index`` of a PPoly from its own coefficients, in tau: its one-sided
+        values at both ends are exact."""
+        c = np.asarray(self.curve.c, dtype=float)[:, index]  # type: ignore[attr-defined]
+        nonzero = np.flatnonzero(c != 0.0)
+        c = c[nonzero[0]:] if nonzero.size else c[-1:]
+        # in u = tau - start: q(t) = sum c_j (D u)^(m - j)
+        powers = self._span ** np.arange(len(c) - 1, -1, -1, dtype=float)
+        local = np.polynomial.Polynomial((c * powers)[::-1])
+        derivatives = [local.deriv(k) for k in range(self.max_order + 1)]
+        offset = self._q0
+
+        def evaluate(tau: np.ndarray, order: int) -> np.ndarray:
+            value = derivatives[order](tau - start)
+            return ((value - offset) if order == 0 else value) / self._size
+
+        return Piece(float(start), float(end), evaluate, len(c) - 1)
+
+    def _curve_piece(self, start: float, end: float, left: float, right: float) -> Piece:
+        """A piece of a general curve (a NURBS): evaluated inside [left, right], a point
+        on the right end read one ulp inside so that it takes this piece's side."""
+        inside = np.nextafter(right, left)
+
+        def evaluate(tau: np.ndarray, order: int) -> np.ndarray:
+            t = np.clip(self._t0 + tau * self._span, left, inside)
+            value = np.asarray(self.curve(t, order), dtype=float) * self._span ** order
+            return ((value - self._q0) if order == 0 else value) / self._size
+
+        return Piece(float(start), float(end), evaluate, None)
+
+    def _normalizer(self) -> float:
+        """S: the displacement, or the largest excursion of a curve that returns."""
+        from sizer.laws.coefficients import peak
+
+        end = float(self.piece_derivative(len(self.pieces) - 1, 1.0, 0))
+        excursion = peak(self, 0)[0]
+        if excursion <= 0.0:
+            raise UserError("the curve does not move: every point has the same position",
+                            field="points")
+        if abs(end) > RETURN_TOLERANCE * excursion:
+            return end
+        return excursion
+
+    # ----------------------------------------------------------- the shape
+    @cached_property
+    def end_position(self) -> float:
+        """q_N(1): 1, or 0 for a curve that returns to its start."""
+        value = float(self.piece_derivative(len(self.pieces) - 1, 1.0, 0))
+        return 1.0 if abs(value - 1.0) < 1e-9 else 0.0 if abs(value) < 1e-9 else value
+
+    @cached_property
+    def end_speeds(self) -> tuple[float, float]:
+        """v_N(0) and v_N(1) (normalized), zero for a rest-to-rest law."""
+        first = float(self.piece_derivative(0, 0.0, 1))
+        last = float(self.piece_derivative(len(self.pieces) - 1, 1.0, 1))
+        return tuple(0.0 if abs(v) < REST_TOLERANCE else v  # type: ignore[return-value]
+                     for v in (first, last))
+
+    @property
+    def rest_to_rest(self) -> bool:
+        return self.end_speeds == (0.0, 0.0)
+
+    def wraps(self, order: int) -> bool:
+        """True when q_N^(order) takes the same value at both ends (a periodic join)."""
+        first = float(self.piece_derivative(0, 0.0, order))
+        last = float(self.piece_derivative(len(self.pieces) - 1, 1.0, order))
+        return abs(first - last) <= REST_TOLERANCE * max(1.0, abs(first), abs(last))
+
+    @property
+    def periodic(self) -> bool:
+        """Ends that move and join as one period of a repeated motion: speed and
+        acceleration equal at tau = 0 and 1 (sec. 4.4.2)."""
+        return not self.rest_to_rest and self.wraps(1) and self.wraps(2)
+
+    def outside(self, order: int) -> tuple[float, float]:
+        """q_N^(order) just before tau = 0 and just after tau = 1: at rest (the start,
+        the end position) for a law that rests at its ends; the wrap of the period
+        otherwise (the end's value before, the start's after)."""
+        if order == 0:
+            return 0.0, self.end_position
+        if self.rest_to_rest:
+            return 0.0, 0.0
+        return (float(self.piece_derivative(len(self.pieces) - 1, 1.0, order)),
+                float(self.piece_derivative(0, 0.0, order)))
+
+    def _measured_continuity(self) -> float:
+        """The largest k with q_N C^k at every join and at the ends (sec. 6.2)."""
+        from sizer.laws.coefficients import measured_continuity
+
+        return float(measured_continuity(self))
+
+    def derivative(self, tau: np.ndarray | float, order: int = 0) -> np.ndarray:
+        out = super().derivative(tau, order)
+        if order == 0 and self.end_position != 1.0:
+            out = np.where(np.asarray(tau, dtype=float) > 1.0, self.end_position, out)
+        return out
+
+
+# ------------------------------------------------------------------ building
+def data_family(kind: str) -> type[DataLaw]:
+    """The law class of a data kind (``law_id`` is the kind), one per kind."""
+    from sizer.laws.data_spec import DATA_LAW_KINDS
+
+    if kind not in _FAMILIES:
+        entry = DATA_LAW_KINDS[kind]
+        _FAMILIES[kind] = type(f"DataLaw_{kind}", (DataLaw,),
+                               {"law_id": kind, "title": entry.title,
+                                "__doc__": f"{entry.title}: a law defined by data."})
+    return _FAMILIES[kind]
+
+
+_FAMILIES: dict[str, type[DataLaw]] = {}
+
+
+def build_data_law(text: str) -> DataLaw:
+    """The law of a canonical data-spec text: its kind's builder reads the fields, the
+    curve is normalized, and the units (field ``units``, or those the data carry) give
+    its absolute size. UserError (with the field) for bad data."""
+    from sizer.laws.data_spec import DATA_LAW_KINDS, read_data_spec
+    from sizer.laws.multipoint import FittedCurve
+
+    fields = read_data_spec(text)
+    kind = DATA_LAW_KINDS[fields["kind"]]
+    units = _unit_texts(fields.pop("units", None))
+    built = kind.build()(fields)
+    report: dict[str, float] = {}
+    if isinstance(built, FittedCurve):
+        report = dict(built.report)
+        units = (units[0] or built.units[0], units[1] or built.units[1])
+        built = built.curve
+    law = data_family(kind.name)(text, built, None, report)
+    law.scale = _scale(law, units)
+    return law
+
+
+def _unit_texts(raw: Any) -> tuple[str | None, str | None]:
+    if raw is None:
+        return None, None
+    if not isinstance(raw, dict) or set(raw) - {"time", "position"}:
+        raise UserError("must be a mapping like {time: ms, position: mm} (time may be a "
+                        "master angle unit like deg)", field="units")
+    return tuple(None if raw.get(k) is None else str(raw[k])  # type: ignore[return-value]
+                 for k in ("time", "position"))
+
+
+def _scale(law: DataLaw, units: tuple[str | None, str | None]) -> LawScale | None:
+    """The law's absolute size from its units; None when they are not both known."""
+    from sizer.units import parse_displacement, to_si
+
+    time_unit, position_unit = units
+    if time_unit is None or position_unit is None:
+        return None
+    size, linear = parse_displacement(f"1 {position_unit}", field="units.position")
+    try:
+        span, master = to_si(f"1 {time_unit}", "time", field="units.time"), False
+    except UserError:
+        try:
+            span, master = to_si(f"1 {time_unit}", "angle", field="units.time"), True
+        except UserError:
+            raise UserError(f"expected a time unit like 's' or 'ms', or a master angle unit "
+                            f"like 'deg', got {time_unit!r}", field="units.time") from None
+    return LawScale(displacement=law._size * size, linear=linear,
+                    span=law._span * span, master=master)

@@ -1,0 +1,142 @@
+"""The spec of a law defined by data: a YAML mapping, and its canonical one-line text.
+
+A data-defined law (book ch. 4, seed 002) is written in a design file as a mapping,
+``{kind: cubic_spline, points: [[0, 0], [0.4, 0.3], [1, 1]]}``, and travels through sizer
+as its canonical text: a YAML flow mapping with ``kind`` first and the other keys sorted,
+numbers written to round-trip. The text parses back (by :func:`read_data_spec`) to the
+same mapping, so laws compare, hash and cache by it like every other spec, and an export
+that prints it can be read again. ``kind`` names a builder in :data:`DATA_LAW_KINDS`.
+"""
+
+from __future__ import annotations
+
+import importlib
+import math
+import re
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from sizer.errors import UserError
+from sizer.input_limits import MAX_DATA_LAW_CHARS
+
+
+@dataclass(frozen=True)
+class DataKind:
+    """A kind of data-defined law: its builder (``module:function``, imported on first use
+    so that scipy loads only when such a law is built) and its title."""
+
+    name: str
+    builder: str
+    title: str
+
+    def build(self) -> Callable[..., Any]:
+        module, function = self.builder.split(":")
+        return getattr(importlib.import_module(module), function)  # type: ignore[no-any-return]
+
+
+DATA_LAW_KINDS: Mapping[str, DataKind] = {k.name: k for k in (
+    DataKind("cubic_spline", "sizer.laws.multipoint.cubic_splines:build_cubic_spline",
+             "Cubic spline through via-points (sec. 4.4)"),
+    DataKind("smoothing_spline",
+             "sizer.laws.multipoint.smoothing_splines:build_smoothing_spline",
+             "Smoothing cubic spline (sec. 4.4.5)"),
+    DataKind("poly_spline", "sizer.laws.multipoint.poly_splines:build_poly_spline",
+             "Polynomial spline of order k (slides)"),
+    DataKind("bspline", "sizer.laws.multipoint.bsplines:build_bspline",
+             "B-spline (sec. 4.5, slides)"),
+    DataKind("nurbs", "sizer.laws.multipoint.nurbs:build_nurbs", "NURBS (slides)"),
+    DataKind("cam_table", "sizer.io.cam_table_law:build_cam_table_law",
+             "Cam table: samples fitted by a spline"),
+)}
+"""Data-defined law kinds by name."""
+
+COMMON_FIELDS = ("kind", "units")
+"""Fields every kind reads (the law layer): the kind and the units of the numbers."""
+
+_BARE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
+_YAML_WORDS = frozenset({"y", "n", "yes", "no", "on", "off", "true", "false", "null", "~"})
+
+
+def is_data_spec(text: object) -> bool:
+    """True for a spec text written as a mapping (``{kind: ...}``)."""
+    return isinstance(text, str) and text.lstrip().startswith("{")
+
+
+def data_spec_text(fields: Mapping[str, Any]) -> str:
+    """The canonical text of a data-law mapping; UserError for a mapping sizer cannot read.
+
+    ``kind`` comes first, the other keys sorted; floats written by repr (which reads back
+    to the same float), integral values as integers.
+    """
+    kind = fields.get("kind")
+    if kind is None:
+        raise UserError(f"a law written as a mapping needs a kind; kinds: "
+                        f"{', '.join(DATA_LAW_KINDS)}", field="kind")
+    if not isinstance(kind, str) or kind not in DATA_LAW_KINDS:
+        raise UserError(f"unknown kind {kind!r}; kinds of laws defined by data: "
+                        f"{', '.join(DATA_LAW_KINDS)}", field="kind")
+    rest = {str(k): v for k, v in fields.items() if k != "kind"}
+    text = _flow({"kind": kind, **dict(sorted(rest.items()))})
+    if len(text) > MAX_DATA_LAW_CHARS:
+        raise UserError(f"a law of {len(text):,} characters: the limit is "
+                        f"{MAX_DATA_LAW_CHARS:,}; put long tables in a cam_table file",
+                        field="kind")
+    return text
+
+
+def read_data_spec(text: str) -> dict[str, Any]:
+    """The mapping of a data-law spec text (the inverse of :func:`data_spec_text`)."""
+    import yaml
+
+    if len(text) > MAX_DATA_LAW_CHARS:
+        raise UserError(f"a law spec of {len(text):,} characters: the limit is "
+                        f"{MAX_DATA_LAW_CHARS:,}")
+    loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+    try:
+        fields = yaml.load(text, Loader=loader)
+    except yaml.YAMLError as error:
+        mark = getattr(error, "problem_mark", None)
+        where = f" at character {mark.index + 1}" if mark is not None else ""
+        raise UserError(f"cannot read the law {text[:60]!r}{where}: write a mapping like "
+                        f"{{kind: cubic_spline, points: [[0, 0], [1, 1]]}}") from None
+    if not isinstance(fields, dict):
+        raise UserError(f"cannot read the law {text[:60]!r}: expected a mapping like "
+                        f"{{kind: cubic_spline, points: [[0, 0], [1, 1]]}}")
+    return fields
+
+
+def canonical_data_spec(text: str) -> str:
+    """The canonical text of a data-law spec text as the user wrote it."""
+    return data_spec_text(read_data_spec(text))
+
+
+def _flow(value: Any) -> str:
+    """A YAML flow text of plain data that reads back to the same data."""
+    if isinstance(value, Mapping):
+        return "{" + ", ".join(f"{_key(k)}: {_flow(v)}" for k, v in value.items()) + "}"
+    if isinstance(value, list | tuple):
+        return "[" + ", ".join(_flow(v) for v in value) + "]"
+    if isinstance(value, bool) or value is None:
+        return {True: "true", False: "false", None: "null"}[value]
+    if isinstance(value, int | float):
+        number = float(value)
+        if not math.isfinite(number):
+            raise UserError(f"{value!r} is not a finite number")
+        if number == int(number) and abs(number) < 1e15:
+            return str(int(number))
+        text = repr(number)
+        mantissa, e, exponent = text.partition("e")
+        # PyYAML reads 1e-05 as a string: a float needs a dot in its mantissa
+        return f"{mantissa}.0e{exponent}" if e and "." not in mantissa else text
+    text = str(value)
+    if _BARE.match(text) and text.lower() not in _YAML_WORDS:
+        return text
+    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
+def _key(key: Any) -> str:
+    text = str(key)
+    if not _BARE.match(text) or text.lower() in _YAML_WORDS:
+        raise UserError(f"a field name must be a plain word, got {key!r}", field=text)
+    return text
