@@ -17,13 +17,15 @@ def law(
     spec: Annotated[str, typer.Argument(
         help="The law, e.g. cycloidal, poly5 or 'trapezoidal(alpha=1/3)'.",
         show_default=False)],
-    displacement: Annotated[str, typer.Option(
+    displacement: Annotated[str | None, typer.Option(
         "--displacement", metavar="H",
-        help="Displacement h: an angle ('90 deg', rad if bare) or a length ('200 mm').",
-        show_default=False)],
-    duration: Annotated[str, typer.Option(
-        "--duration", metavar="T", help="Duration T of the move, e.g. '0.2 s' (s if bare).",
-        show_default=False)],
+        help="Displacement h: an angle ('90 deg', rad if bare) or a length ('200 mm'); "
+             "a law defined by data with units gives its own.",
+        show_default=False)] = None,
+    duration: Annotated[str | None, typer.Option(
+        "--duration", metavar="T", help="Duration T of the move, e.g. '0.2 s' (s if bare); "
+             "a law defined by data with time units gives its own.",
+        show_default=False)] = None,
     start_time: Annotated[str, typer.Option(
         "--start-time", metavar="T0", help="Time t0 when the move starts.")] = "0",
     start_position: Annotated[str, typer.Option(
@@ -50,16 +52,31 @@ def law(
     from sizer.units import parse_displacement, to_si
 
     check_output(output)
-    h, linear = parse_displacement(displacement, field="--displacement")
-    T = to_si(duration, "time", field="--duration")
-    if T <= 0.0:
-        raise UserError(f"must be positive, got {duration!r}", field="--duration")
-    t0 = to_si(start_time, "time", field="--start-time")
-    q0 = to_si(start_position, "length" if linear else "angle", field="--start-position")
     if not 2 <= samples <= MAX_SAMPLES:
         raise UserError(f"must be between 2 and {MAX_SAMPLES}, got {samples}", field="--samples")
     with blame_option("SPEC"):
         law_object = make_law(spec)
+    scale = getattr(law_object, "scale", None)
+    if displacement is not None:
+        h, linear = parse_displacement(displacement, field="--displacement")
+    elif scale is not None:
+        h, linear = scale.displacement, scale.linear
+    else:
+        raise UserError("missing option (the law has no units of its own to give it)",
+                        field="--displacement")
+    if duration is not None:
+        T = to_si(duration, "time", field="--duration")
+    elif scale is not None and not scale.master:
+        T = scale.span
+    else:
+        raise UserError("missing option (" + ("the law's abscissa is a master angle: give "
+                        "the duration of one period" if scale is not None else
+                        "the law has no units of its own to give it") + ")",
+                        field="--duration")
+    if T <= 0.0:
+        raise UserError(f"must be positive, got {duration!r}", field="--duration")
+    t0 = to_si(start_time, "time", field="--start-time")
+    q0 = to_si(start_position, "length" if linear else "angle", field="--start-position")
     motion = ScaledMotion(law_object, h, T, start_time=t0, start_position=q0)
     publish(SeriesDocument(motion, motion.sample(samples), linear=linear), fmt, output)
 

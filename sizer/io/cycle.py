@@ -21,6 +21,7 @@ from typing import Any
 from pydantic import BaseModel
 
 from sizer.errors import UserError
+from sizer.io.data_law_rules import moving_ends
 from sizer.io.yaml_source import YamlSource, format_path
 from sizer.model.cycle import Cycle, Dwell, Move, Run, Segment, SegmentLoad, ShareRule
 from sizer.model.cycle_inputs import CycleInput, DwellInput, MoveInput, RunInput
@@ -219,6 +220,11 @@ def _move(given: MoveInput, axis: _Axis, at: Path_, share: ShareRule) -> Move:
         raise source.error(f"law {given.law!r}: `auto` shape parameters are chosen for the "
                            "task shorthand only, not yet for a move of a cycle; give the "
                            "shape", (*at, "law"))
+    if given.law is not None and (reason := moving_ends(given.law)) is not None:
+        raise source.error(f"this move's law {reason}: in a cycle of segments a move's law "
+                           f"must start and end at rest (the move's speeds are its "
+                           f"start_speed and end_speed); size a periodic cam as a task with "
+                           f"dwell 0", (*at, "law"))
     if given.law is not None and (start != 0.0 or end != 0.0) \
             and not has_boundary_form(given.law):
         laws = ", ".join(BOUNDARY_SPEED_FAMILIES).replace(

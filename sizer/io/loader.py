@@ -25,6 +25,7 @@ from sizer.errors import UserError
 from sizer.input_limits import MAX_DESIGN_BYTES, MAX_DESIGN_NODES
 from sizer.io.catalog_table import read_table
 from sizer.io.cycle import build_cycle, displacement_of, summary_task
+from sizer.io.data_law_rules import check_cycle_laws, check_task_laws, master_duration
 from sizer.io.data_laws import canonical_data_laws
 from sizer.io.motor_rules import (
     MotorProblem,
@@ -291,7 +292,10 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
     model = validate(DesignFile, source)
     warnings = bare_number_warnings(source)
     cycle = build_cycle(model.cycle, source) if model.cycle is not None else None
-    task = summary_task(cycle) if cycle is not None else _task(model, source)
+    laws = _located_laws(model)
+    if cycle is not None:
+        check_cycle_laws(laws, source)
+    task = summary_task(cycle) if cycle is not None else _task(model, source, laws)
     linear = task.linear
     if cycle is not None:
         warnings += cycle_bare_number_warnings(source, linear)
@@ -349,12 +353,30 @@ def _quantity(source: YamlSource, at: tuple[Any, ...], value: Any, name: str) ->
         raise source.error(str(error), at) from None
 
 
-def _task(model: DesignFile, source: YamlSource) -> Task:
-    assert model.task is not None
-    h, linear = displacement_of(model.task.displacement, source, ("task", "displacement"),
+def _located_laws(model: DesignFile) -> list[tuple[str, tuple[Any, ...]]]:
+    """The design's laws with where each is written (``laws`` when defaulted)."""
+    if model.laws is None:
+        laws = [(spec, ("laws",)) for spec in default_laws()]
+    else:
+        laws = [(spec, ("laws", i)) for i, spec in enumerate(model.laws)]
+    if model.check is not None and model.check.law is not None:
+        laws.append((model.check.law, ("check", "law")))
+    return laws
+
+
+def _task(model: DesignFile, source: YamlSource,
+          laws: list[tuple[str, tuple[Any, ...]]]) -> Task:
+    given = model.task
+    assert given is not None
+    h, linear = displacement_of(given.displacement, source, ("task", "displacement"),
                                 zero_note="a negative displacement moves back first")
-    return Task(displacement=h, duration=model.task.duration, dwell=model.task.dwell,
-                return_move=model.task.return_move, linear=linear)
+    duration = given.duration
+    if given.master_speed is not None:
+        duration = master_duration(laws, given.master_speed, source, ("task", "master_speed"))
+    task = Task(displacement=h, duration=duration, dwell=given.dwell,
+                return_move=given.return_move, linear=linear)
+    check_task_laws(laws, task, source)
+    return task
 
 
 def _load(model: DesignFile, source: YamlSource, linear: bool) -> Load:

@@ -165,8 +165,18 @@ def _duration(value: Any) -> float | None:
     return convert_in(value, "duration")
 
 
+def _duration_or_master(schema: dict[str, Any]) -> None:
+    """The task's schema: a duration or a master speed, one of the two."""
+    required = schema.get("required", [])
+    if "duration" in required:
+        required.remove("duration")
+    schema["oneOf"] = [{"required": ["duration"]}, {"required": ["master_speed"]}]
+
+
 class TaskInput(_Strict):
     """The motion task: a move of h in T, then a dwell (and a move back)."""
+
+    model_config = ConfigDict(json_schema_extra=lambda schema, _: _duration_or_master(schema))
 
     displacement: RawQuantity("'90 deg' or '200 mm'",  # type: ignore[valid-type]
                               rotary="angle_displacement",
@@ -187,6 +197,21 @@ class TaskInput(_Strict):
     dwell: Ranged("dwell") = 0.0  # type: ignore[valid-type]
     return_move: StrictBool = Field(False, alias="return",
                                     description="cycle = move, dwell, move back, dwell")
+    master_speed: Ranged("master_speed",  # type: ignore[valid-type]
+                         note="instead of the duration: the move lasts the master angle of "
+                              "its laws (a cam law on a master axis, units: {time: deg}) at "
+                              "this speed") | None = None
+
+    @model_validator(mode="before")
+    @classmethod
+    def _duration_or_master(cls, data: Any) -> Any:
+        """The duration, or the master speed of a cam on a master axis: one of the two
+        (the loader computes the duration of the second)."""
+        if isinstance(data, dict) and data.get("master_speed") is not None:
+            if "duration" in data:
+                raise ValueError("give the duration or the master_speed, not both")
+            data = {**data, "duration": "minimize"}
+        return data
 
 
 class LoadInput(_Strict):

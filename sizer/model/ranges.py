@@ -97,6 +97,8 @@ RANGES: dict[str, Range] = {
                              "sign is the direction", signed=True),
     "length_displacement": _r("length", 1e-7, 1e4, "0.1 um to 10 km; the sign is the "
                               "direction", signed=True),
+    "master_speed": _r("angular_speed", 1e-6, 1e6, "the speed of the master axis of an "
+                       "electronic cam, e.g. '120 rpm'"),
     # cycle (segments of a machine cycle)
     "cycle_rate": _r("rate", 1e-6, 1e6, "cycles per second: the inverse of the durations' "
                      "range (one cycle in 11.6 days to one in 1 us)"),

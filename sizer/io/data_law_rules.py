@@ -1,0 +1,100 @@
+"""Where a law defined by data may go: moving ends, periodic cams, master speeds.
+
+A spline or cam table may start and end moving (book sec. 4.4.2: a periodic motion,
+the electronic cam of a machine that never stops). Such a law is one period of a repeated
+motion: in the task shorthand it needs no dwell and no return and must be periodic
+(speed and acceleration equal at both ends); in a cycle of segments it cannot be one
+move among others (its end speeds are fixed by its shape, not by the move). A cam on a
+master axis (``units: {time: deg}``) lasts its master angle at the task's
+``master_speed``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+from sizer.errors import UserError
+from sizer.io.yaml_source import YamlSource
+from sizer.laws.data_spec import is_data_spec
+
+
+def _data_law(spec: str) -> Any:
+    from sizer.laws import make_law
+    from sizer.laws.data_law import DataLaw
+
+    law = make_law(spec)
+    return law if isinstance(law, DataLaw) else None
+
+
+def moving_ends(spec: str) -> str | None:
+    """Why law ``spec`` is not rest-to-rest ("starts moving (v_N(0) = 1.2)"), or None."""
+    if not is_data_spec(spec):
+        return None
+    law = _data_law(spec)
+    if law is None or law.rest_to_rest:
+        return None
+    start, end = law.end_speeds
+    parts = [f"starts moving (v_N(0) = {start:.6g})" if start else "",
+             f"ends moving (v_N(1) = {end:.6g})" if end else ""]
+    return " and ".join(p for p in parts if p)
+
+
+def check_task_laws(laws: Sequence[tuple[str, tuple[Any, ...]]], task: Any,
+                    source: YamlSource) -> None:
+    """A law whose ends move, in the task shorthand: one period, no dwell, no return."""
+    for spec, at in laws:
+        reason = moving_ends(spec)
+        if reason is None:
+            continue
+        law = _data_law(spec)
+        name = law.law_id
+        if task.dwell != 0.0 or task.return_move:
+            raise source.error(f"the {name} {reason}: it is one period of a repeated motion "
+                               f"(an electronic cam), so the task needs dwell 0 and no "
+                               f"return; or make the law start and end at rest", at)
+        if not law.periodic:
+            raise source.error(f"the {name} {reason} and its ends do not join (speed "
+                               f"{law.end_speeds[0]:.6g} and {law.end_speeds[1]:.6g}, "
+                               f"normalized): a repeated motion must be periodic, e.g. a "
+                               f"cubic_spline with periodic: true", at)
+
+
+def check_cycle_laws(laws: Sequence[tuple[str, tuple[Any, ...]]],
+                     source: YamlSource) -> None:
+    """A law whose ends move cannot be one move of a cycle of segments."""
+    for spec, at in laws:
+        reason = moving_ends(spec)
+        if reason is not None:
+            raise source.error(f"the {_data_law(spec).law_id} {reason}: in a cycle of "
+                               f"segments a move's law must start and end at rest (its end "
+                               f"speeds are the move's); size a periodic cam as a task with "
+                               f"dwell 0", at)
+
+
+def master_duration(laws: Sequence[tuple[str, tuple[Any, ...]]], master_speed: float,
+                    source: YamlSource, at: tuple[Any, ...]) -> float:
+    """The duration of a move whose laws are cams on a master axis, at ``master_speed``:
+    their master angle over the speed (every law must have the same master angle)."""
+    spans: list[tuple[float, tuple[Any, ...]]] = []
+    for spec, where in laws:
+        law = _data_law(spec) if is_data_spec(spec) else None
+        scale = getattr(law, "scale", None)
+        if scale is None or not scale.master:
+            raise source.error("master_speed needs laws on a master axis (a law defined by "
+                               "data with units: {time: deg, ...}, or a cam table whose first "
+                               f"column is an angle); law {_short(spec)} is not one", where)
+        spans.append((scale.span, where))
+    first = spans[0][0]
+    for span, where in spans[1:]:
+        if abs(span - first) > 1e-9 * first:
+            raise source.error(f"the laws span different master angles ({first:.6g} rad and "
+                               f"{span:.6g} rad): with a master_speed every law must span "
+                               f"the same angle", where)
+    if master_speed <= 0.0:
+        raise UserError("must be positive", field="task.master_speed")
+    return first / master_speed
+
+
+def _short(spec: str) -> str:
+    return repr(spec if len(spec) <= 40 else spec[:37] + "...")
