@@ -191,6 +191,11 @@ def test_example_4_9_extra_points_and_pieces():
     # the printed 6x6 A, c and omega = [-4.50, 3.03, -1.58, 1.12, -0.28, -1.95] belong to
     # no spline of this example (erratum): the pieces printed above need these seven
     assert_printed(omega[1:-1], "-2.42 0.12 6.98 -3.09 -0.22 -0.32 -2.17")
+    A, c = cs.velocity_acceleration_system(t_bar, Q_BOOK, 2.0, -3.0, 0.0, 0.0)
+    # by hand from the printed formulas: A_00 = 2 T_1 + T_0 (3 + T_0/T_1) = 5 + 2.5 * 4,
+    # c_0 = 6 ((q_2 - q_0)/T_1 - v_0 (1 + T_0/T_1)) = 6 (-2 - 4), ...
+    np.testing.assert_allclose(A[0, :2], [15.0, 2.5], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(c, [-36, 15, 39, -12, -10.8, -5.2, -20], rtol=0, atol=1e-12)
 
 
 def test_system_4_28_rows_are_the_printed_formulas():

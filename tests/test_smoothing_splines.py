@@ -137,6 +137,8 @@ BAD = [
     ({**POINTS, "mu": 0.5, "inverse_weights": [0, 1]}, "inverse_weights", "must have 3"),
     ({**POINTS, "mu": 0.5, "lambda": 2}, "lambda", "has no field 'lambda'"),
     ({**POINTS, "mu": 0.5, "periodic": True}, "periodic", "last position equal"),
+    ({"times": [0, 1, 2], "positions": [0, 1, 0], "mu": 0.5, "periodic": True,
+      "point_weights": [1, 1, 1]}, "periodic", "inverse_weights 0"),
     ({"times": [0, 2, 1], "positions": [0, 1, 3], "mu": 0.5}, "times", "increasing"),
     ({"times": [0], "positions": [0], "mu": 0.5}, "positions", "at least 2"),
 ]

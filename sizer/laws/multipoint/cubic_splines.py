@@ -173,14 +173,19 @@ def natural_spline(t: np.ndarray, q: np.ndarray):
 
 def periodic_spline(t: np.ndarray, q: np.ndarray):
     """The periodic spline (sec. 4.4.2), q_0 = q_n: CubicSpline, bc "periodic"."""
-    if not np.isclose(q[0], q[-1], rtol=0.0, atol=1e-12 * max(1.0, float(np.ptp(q)))):
-        raise UserError(f"a periodic spline needs the last position equal to the first, "
-                        f"got q_0 = {q[0]:g} and q_n = {q[-1]:g}", field="periodic")
+    check_periodic(q)
     q = np.array(q, dtype=float)
     q[-1] = q[0]
     if len(t) == 2:
         return spline_from_coefficients(t, [[q[0], 0.0, 0.0, 0.0]])
     return _scipy_spline(t, q, "periodic")
+
+
+def check_periodic(q: np.ndarray) -> None:
+    """UserError unless q_n = q_0 (to 1e-12 of the positions' range)."""
+    if not np.isclose(q[0], q[-1], rtol=0.0, atol=1e-12 * max(1.0, float(np.ptp(q)))):
+        raise UserError(f"a periodic spline needs the last position equal to the first, "
+                        f"got q_0 = {q[0]:g} and q_n = {q[-1]:g}", field="periodic")
 
 
 def extra_point_times(t: np.ndarray) -> tuple[float, float]:

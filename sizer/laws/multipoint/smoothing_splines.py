@@ -127,9 +127,12 @@ def build_smoothing_spline(fields: Mapping[str, Any]):
                             field="mu")
     if not any(key in fields for key in ("start", "end", "periodic", "extra_times")):
         return smoothing_spline(t, q, mu, w_inv)
-    if fields.get("periodic") is True and not np.isclose(q[0], q[-1]):
-        raise UserError(f"a periodic spline needs the last position equal to the first, "
-                        f"got q_0 = {q[0]:g} and q_n = {q[-1]:g}", field="periodic")
+    if fields.get("periodic") is True:
+        cs.check_periodic(q)
+        if w_inv[0] != 0.0 or w_inv[-1] != 0.0:
+            raise UserError("a periodic smoothing spline must pass through the first and "
+                            "the last point: give them inverse_weights 0 (the default)",
+                            field="periodic")
     s, _ = smoothed_points(t, q, mu, w_inv)
     return cs.cubic_spline(t, s, **cs.end_conditions(fields))
 
