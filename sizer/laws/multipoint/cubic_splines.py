@@ -148,7 +148,7 @@ def spline_from_coefficients(t: np.ndarray, coefficients: np.ndarray):
     from scipy.interpolate import PPoly
 
     return PPoly(np.asarray(coefficients, dtype=float)[:, ::-1].T.copy(),
-                 np.asarray(t, dtype=float), extrapolate=False)
+                 np.asarray(t, dtype=float))
 
 
 # ---------------------------------------------------------------- the splines
@@ -158,7 +158,7 @@ def _scipy_spline(t: np.ndarray, q: np.ndarray, bc_type: Any):
 
     spline = CubicSpline(np.asarray(t, dtype=float), np.asarray(q, dtype=float),
                          bc_type=bc_type)
-    return PPoly(spline.c.copy(), spline.x.copy(), extrapolate=False)
+    return PPoly(spline.c.copy(), spline.x.copy())
 
 
 def clamped_spline(t: np.ndarray, q: np.ndarray, v0: float = 0.0, vn: float = 0.0):
