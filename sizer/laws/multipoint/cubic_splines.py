@@ -1,0 +1,351 @@
+"""Interpolating cubic splines through via-points (book sec. 4.4.1 to 4.4.4).
+
+The spline s(t) = {q_k(t), t in [t_k, t_{k+1}]}, q_k(t) = a_k0 + a_k1 (t - t_k) +
+a_k2 (t - t_k)^2 + a_k3 (t - t_k)^3, is C2 and passes through every (t_k, q_k). Its two
+free parameters are fixed by one of:
+
+- assigned end velocities v_0, v_n (sec. 4.4.1, 4.4.3; "clamped"; default 0 and 0);
+- zero end accelerations ("natural", sec. 4.4 property 5);
+- periodic ends, q_0 = q_n with equal end velocities and accelerations (sec. 4.4.2);
+- assigned end velocities and accelerations through two free extra points (sec. 4.4.4).
+
+The first three are exactly scipy's ``CubicSpline`` with ``bc_type`` ``((1, v0), (1, vn))``,
+``"natural"`` and ``"periodic"``; the book's own systems (4.10), (4.13) and (4.22) are
+here too (``clamped_system``, ``periodic_system``, ``acceleration_system``) so that the
+tests can check the book's matrices and both constructions against each other. The
+extra-point spline of sec. 4.4.4 has no scipy equivalent (scipy's cubic splines take one
+end condition per side) and is built by hand from the book's system (4.28).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from sizer.errors import UserError
+from sizer.laws.multipoint import fields as F
+
+KIND = "cubic_spline"
+FIELDS = ("points", "times", "positions", "start", "end", "periodic", "natural",
+          "extra_times", "duration", "minimize", "limits")
+"""The fields of ``kind: cubic_spline`` (see :func:`build_cubic_spline`)."""
+
+_CONDITION_LIMIT = 1e12
+"""Largest condition number of a spline system accepted before refusing it as singular."""
+
+
+# ---------------------------------------------------------------- the book's systems
+
+def intervals(t: np.ndarray) -> np.ndarray:
+    """T_k = t_{k+1} - t_k, k = 0 .. n-1."""
+    return np.diff(np.asarray(t, dtype=float))
+
+
+def clamped_system(t: np.ndarray, q: np.ndarray, v0: float, vn: float
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """The book's (4.10): A(T) v = c for the interior velocities v_1 .. v_{n-1} (n >= 2)."""
+    T = intervals(t)
+    q = np.asarray(q, dtype=float)
+    n = len(T)
+    A = np.zeros((n - 1, n - 1))
+    c = np.empty(n - 1)
+    for k in range(n - 1):  # row k is eq. (4.9) for v_k, v_{k+1}, v_{k+2}
+        A[k, k] = 2.0 * (T[k] + T[k + 1])
+        if k > 0:
+            A[k, k - 1] = T[k + 1]
+        if k < n - 2:
+            A[k, k + 1] = T[k]
+        c[k] = 3.0 / (T[k] * T[k + 1]) * (T[k] ** 2 * (q[k + 2] - q[k + 1])
+                                          + T[k + 1] ** 2 * (q[k + 1] - q[k]))
+    c[0] -= T[1] * v0
+    c[-1] -= T[n - 2] * vn
+    return A, c
+
+
+def clamped_velocities(t: np.ndarray, q: np.ndarray, v0: float = 0.0, vn: float = 0.0
+                       ) -> np.ndarray:
+    """All velocities v_0 .. v_n of the clamped spline from the book's (4.10)."""
+    n = len(t) - 1
+    if n == 1:
+        return np.array([v0, vn], dtype=float)
+    A, c = clamped_system(t, q, v0, vn)
+    return np.concatenate([[v0], _solve(A, c, "the end velocities"), [vn]])
+
+
+def periodic_system(t: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The book's cyclic system of sec. 4.4.2 for v_0 .. v_{n-1} (v_n = v_0; n >= 2)."""
+    T = intervals(t)
+    q = np.asarray(q, dtype=float)
+    n = len(T)
+    A = np.zeros((n, n))
+    c = np.empty(n)
+    # row 0: eq. (4.13), the acceleration at t_0 equal to the one at t_n
+    A[0, 0] += 2.0 * (T[n - 1] + T[0])
+    A[0, 1 % n] += T[n - 1]
+    A[0, n - 1] += T[0]
+    c[0] = 3.0 / (T[n - 1] * T[0]) * (T[n - 1] ** 2 * (q[1] - q[0])
+                                      + T[0] ** 2 * (q[n] - q[n - 1]))
+    for k in range(n - 1):  # rows 1 .. n-1: eq. (4.9), v_n replaced by v_0
+        row = k + 1
+        A[row, k] += T[k + 1]
+        A[row, k + 1] += 2.0 * (T[k] + T[k + 1])
+        A[row, (k + 2) % n] += T[k]
+        c[row] = 3.0 / (T[k] * T[k + 1]) * (T[k] ** 2 * (q[k + 2] - q[k + 1])
+                                            + T[k + 1] ** 2 * (q[k + 1] - q[k]))
+    return A, c
+
+
+def periodic_velocities(t: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """All velocities v_0 .. v_n (v_n = v_0) of the periodic spline (sec. 4.4.2)."""
+    if len(t) == 2:
+        return np.zeros(2)
+    A, c = periodic_system(t, q)
+    v = _solve(A, c, "the periodic conditions")
+    return np.append(v, v[0])
+
+
+def coefficients_from_velocities(t: np.ndarray, q: np.ndarray, v: np.ndarray
+                                 ) -> np.ndarray:
+    """The book's (4.8): rows [a_k0, a_k1, a_k2, a_k3] from the positions and velocities."""
+    T = intervals(t)
+    q = np.asarray(q, dtype=float)
+    v = np.asarray(v, dtype=float)
+    dq = np.diff(q)
+    return np.column_stack([q[:-1], v[:-1],
+                            (3.0 * dq / T - 2.0 * v[:-1] - v[1:]) / T,
+                            (-2.0 * dq / T + v[:-1] + v[1:]) / T ** 2])
+
+
+def acceleration_system(t: np.ndarray, q: np.ndarray, v0: float, vn: float
+                        ) -> tuple[np.ndarray, np.ndarray]:
+    """The book's (4.22)-(4.24): A omega = c for the accelerations omega_0 .. omega_n."""
+    T = intervals(t)
+    q = np.asarray(q, dtype=float)
+    n = len(T)
+    A = np.zeros((n + 1, n + 1))
+    A[np.arange(n), np.arange(1, n + 1)] = T
+    A[np.arange(1, n + 1), np.arange(n)] = T
+    A[np.arange(n + 1), np.arange(n + 1)] = 2.0 * (np.append(T, 0.0) + np.append(0.0, T))
+    slopes = np.diff(q) / T
+    c = 6.0 * np.concatenate([[slopes[0] - v0], np.diff(slopes), [vn - slopes[-1]]])
+    return A, c
+
+
+def coefficients_from_accelerations(t: np.ndarray, q: np.ndarray, omega: np.ndarray
+                                    ) -> np.ndarray:
+    """The book's (4.25): rows [a_k0, a_k1, a_k2, a_k3] from positions and accelerations."""
+    T = intervals(t)
+    q = np.asarray(q, dtype=float)
+    w = np.asarray(omega, dtype=float)
+    return np.column_stack([q[:-1], np.diff(q) / T - T / 6.0 * (w[1:] + 2.0 * w[:-1]),
+                            w[:-1] / 2.0, np.diff(w) / (6.0 * T)])
+
+
+def spline_from_coefficients(t: np.ndarray, coefficients: np.ndarray):
+    """The PPoly of the rows [a_k0, a_k1, a_k2, a_k3] (powers of t - t_k)."""
+    from scipy.interpolate import PPoly
+
+    return PPoly(np.asarray(coefficients, dtype=float)[:, ::-1].T.copy(),
+                 np.asarray(t, dtype=float))
+
+
+# ---------------------------------------------------------------- the splines
+
+def _scipy_spline(t: np.ndarray, q: np.ndarray, bc_type: Any):
+    from scipy.interpolate import CubicSpline, PPoly
+
+    spline = CubicSpline(np.asarray(t, dtype=float), np.asarray(q, dtype=float),
+                         bc_type=bc_type)
+    return PPoly(spline.c.copy(), spline.x.copy())
+
+
+def clamped_spline(t: np.ndarray, q: np.ndarray, v0: float = 0.0, vn: float = 0.0):
+    """The spline with end velocities v_0, v_n (sec. 4.4.1): CubicSpline, bc ((1,v0),(1,vn))."""
+    return _scipy_spline(t, q, ((1, float(v0)), (1, float(vn))))
+
+
+def natural_spline(t: np.ndarray, q: np.ndarray):
+    """The natural spline, zero end accelerations (sec. 4.4): CubicSpline, bc "natural"."""
+    return _scipy_spline(t, q, "natural")
+
+
+def periodic_spline(t: np.ndarray, q: np.ndarray):
+    """The periodic spline (sec. 4.4.2), q_0 = q_n: CubicSpline, bc "periodic"."""
+    check_periodic(q)
+    q = np.array(q, dtype=float)
+    q[-1] = q[0]
+    if len(t) == 2:
+        return spline_from_coefficients(t, [[q[0], 0.0, 0.0, 0.0]])
+    return _scipy_spline(t, q, "periodic")
+
+
+def check_periodic(q: np.ndarray) -> None:
+    """UserError unless q_n = q_0 (to 1e-12 of the positions' range)."""
+    if not np.isclose(q[0], q[-1], rtol=0.0, atol=1e-12 * max(1.0, float(np.ptp(q)))):
+        raise UserError(f"a periodic spline needs the last position equal to the first, "
+                        f"got q_0 = {q[0]:g} and q_n = {q[-1]:g}", field="periodic")
+
+
+def extra_point_times(t: np.ndarray) -> tuple[float, float]:
+    """The book's choice of the two free points' times (sec. 4.4.4): the midpoints of
+    (t_0, t_2) and (t_{n-2}, t_n) of the extended sequence, that is of the first and last
+    given intervals; with only two given points, the thirds of the interval."""
+    t = np.asarray(t, dtype=float)
+    if len(t) == 2:
+        return float(t[0] + (t[1] - t[0]) / 3.0), float(t[0] + 2.0 * (t[1] - t[0]) / 3.0)
+    return float((t[0] + t[1]) / 2.0), float((t[-2] + t[-1]) / 2.0)
+
+
+def velocity_acceleration_system(t_bar: np.ndarray, q: np.ndarray, v0: float, vn: float,
+                                 a0: float, an: float) -> tuple[np.ndarray, np.ndarray]:
+    """The book's (4.28): A omega = c for omega_1 .. omega_{n-1} on the extended times
+    t_bar = [t_0, t1_bar, t_2, ..., t_{n-2}, t_{n-1}_bar, t_n]; q are the given positions
+    [q_0, q_2, ..., q_{n-2}, q_n] (n - 1 of them).
+
+    Assembled from (4.19) for k = 1 .. n-1 with q_1, q_{n-1} replaced by (4.26), (4.27)
+    and omega_0 = a_0, omega_n = a_n; for n >= 5 the rows are those printed in sec. 4.4.4,
+    and the assembly also covers two or three given points, where the two substitutions
+    meet in the same rows.
+    """
+    T = intervals(t_bar)
+    n = len(T)
+    qg = np.asarray(q, dtype=float)
+    # q_bar = base + slope * omega: only q_1 and q_{n-1} depend on omega (on omega_1, omega_{n-1})
+    base = np.concatenate([[qg[0], np.nan], qg[1:-1], [np.nan, qg[-1]]])
+    slope = np.zeros((n + 1, n + 1))
+    base[1] = qg[0] + T[0] * v0 + T[0] ** 2 / 3.0 * a0                       # (4.26)
+    slope[1, 1] = T[0] ** 2 / 6.0
+    base[n - 1] = qg[-1] - T[n - 1] * vn + T[n - 1] ** 2 / 3.0 * an          # (4.27)
+    slope[n - 1, n - 1] = T[n - 1] ** 2 / 6.0
+    # (4.19) times T_k: T_{k-1} w_{k-1} + 2 (T_{k-1} + T_k) w_k + T_k w_{k+1} = D q_bar
+    M = np.zeros((n - 1, n + 1))
+    D = np.zeros((n - 1, n + 1))
+    for row, k in enumerate(range(1, n)):
+        M[row, k - 1:k + 2] = [T[k - 1], 2.0 * (T[k - 1] + T[k]), T[k]]
+        D[row, k - 1:k + 2] = [6.0 / T[k - 1], -6.0 / T[k - 1] - 6.0 / T[k], 6.0 / T[k]]
+    full = M - D @ slope
+    rhs = D @ base
+    rhs -= full[:, 0] * a0 + full[:, n] * an
+    return full[:, 1:n], rhs
+
+
+def velocity_acceleration_spline(t: np.ndarray, q: np.ndarray, v0: float, vn: float,
+                                 a0: float, an: float,
+                                 extra_times: tuple[float, float] | None = None):
+    """The spline with end velocities and accelerations (sec. 4.4.4): two free points at
+    ``extra_times`` (default :func:`extra_point_times`), omega from (4.28), the free
+    points from (4.26), (4.27), the pieces from (4.14) (as (4.25))."""
+    t = np.asarray(t, dtype=float)
+    t1, tn1 = extra_point_times(t) if extra_times is None else extra_times
+    if not (t[0] < t1 < tn1 < t[-1] and t1 < t[1] and (len(t) == 2 or tn1 > t[-2])):
+        raise UserError(f"the extra points' times must lie inside the first and the last "
+                        f"intervals, in order, got {t1:g} and {tn1:g}", field="extra_times")
+    t_bar = np.concatenate([[t[0], t1], t[1:-1], [tn1, t[-1]]])
+    A, c = velocity_acceleration_system(t_bar, q, v0, vn, a0, an)
+    omega = np.concatenate([[a0], _solve(A, c, "the end velocities and accelerations"),
+                            [an]])
+    return spline_from_coefficients(t_bar, coefficients_from_accelerations(
+        t_bar, extra_positions(t_bar, q, omega, v0, vn, a0, an), omega))
+
+
+def extra_positions(t_bar: np.ndarray, q: np.ndarray, omega: np.ndarray, v0: float,
+                    vn: float, a0: float, an: float) -> np.ndarray:
+    """q_bar = [q_0, q1_bar, q_2, ..., q_{n-2}, q_{n-1}_bar, q_n]: the given positions with
+    the two free points of (4.26), (4.27)."""
+    T = intervals(t_bar)
+    q = np.asarray(q, dtype=float)
+    q1 = q[0] + T[0] * v0 + T[0] ** 2 / 3.0 * a0 + T[0] ** 2 / 6.0 * omega[1]
+    qn1 = q[-1] - T[-1] * vn + T[-1] ** 2 / 3.0 * an + T[-1] ** 2 / 6.0 * omega[-2]
+    return np.concatenate([[q[0], q1], q[1:-1], [qn1, q[-1]]])
+
+
+def cubic_spline(t: np.ndarray, q: np.ndarray, *, v0: float = 0.0, vn: float = 0.0,
+                 a0: float | None = None, an: float | None = None, periodic: bool = False,
+                 natural: bool = False, extra_times: tuple[float, float] | None = None):
+    """The cubic spline through (t, q) with the given end conditions (see the module)."""
+    if periodic:
+        return periodic_spline(t, q)
+    if natural:
+        return natural_spline(t, q)
+    if a0 is not None or an is not None:
+        return velocity_acceleration_spline(t, q, v0, vn, a0 or 0.0, an or 0.0, extra_times)
+    return clamped_spline(t, q, v0, vn)
+
+
+def _solve(A: np.ndarray, c: np.ndarray, what: str) -> np.ndarray:
+    """np.linalg.solve, refusing a singular or ill-conditioned system as a UserError."""
+    condition = np.linalg.cond(A)
+    if not np.isfinite(condition) or condition > _CONDITION_LIMIT:
+        raise UserError(f"the conditions make the spline's system singular "
+                        f"(condition number {condition:.3g}): {what}", field="points")
+    return np.linalg.solve(A, c)
+
+
+# ---------------------------------------------------------------- the YAML builder
+
+def end_conditions(fields: Mapping[str, Any]) -> dict[str, Any]:
+    """The keyword end conditions of :func:`cubic_spline` read from ``start``, ``end``,
+    ``periodic``, ``natural`` and ``extra_times``."""
+    periodic = _flag(fields, "periodic")
+    natural = _flag(fields, "natural")
+    start = F.conditions(fields, "start", highest=2)
+    end = F.conditions(fields, "end", highest=2)
+    for key, given in (("start", start), ("end", end)):
+        if 0 in given:
+            raise UserError("the position comes from the via-points; give velocity and, "
+                            "optionally, acceleration", field=f"{key}.position")
+    if periodic or natural:
+        word = "periodic" if periodic else "natural"
+        for key in ("start", "end", "extra_times"):
+            if key in fields:
+                raise UserError(f"a {word} spline fixes both ends itself: remove {key}",
+                                field=key)
+        if periodic and natural:
+            raise UserError("give periodic or natural, not both", field="natural")
+        return {"periodic": periodic, "natural": natural}
+    if (2 in start) != (2 in end):
+        missing = "end" if 2 in start else "start"
+        raise UserError("an acceleration at one end needs one at the other end too "
+                        "(sec. 4.4.4); a cubic spline has two free parameters",
+                        field=f"{missing}.acceleration")
+    out: dict[str, Any] = {"v0": start.get(1, 0.0), "vn": end.get(1, 0.0)}
+    if 2 in start:
+        out.update(a0=start[2], an=end[2])
+        if "extra_times" in fields:
+            extra = F.numbers(fields, "extra_times", length=2)
+            out["extra_times"] = (float(extra[0]), float(extra[1]))
+    elif "extra_times" in fields:
+        raise UserError("extra points are only used with end accelerations (sec. 4.4.4)",
+                        field="extra_times")
+    return out
+
+
+def _flag(fields: Mapping[str, Any], key: str) -> bool:
+    value = fields.get(key, False)
+    if not isinstance(value, bool):
+        raise UserError(f"must be true or false, got {value!r}", field=key)
+    return value
+
+
+def build_cubic_spline(fields: Mapping[str, Any]):
+    """``kind: cubic_spline``: the interpolating cubic spline of sec. 4.4 as a PPoly.
+
+    Fields: ``points: [[t, q], ...]`` or ``times: [...]`` with ``positions: [...]``
+    (at least 2 points); ``times`` may instead be a word (``equal``, ``chord``,
+    ``centripetal``, ``auto``; see :mod:`sizer.laws.multipoint.knot_times`) with
+    ``duration`` (default 1) and, for ``auto``, ``minimize`` (``peak_acceleration``,
+    default, or ``rms_acceleration``); ``minimize: duration`` with
+    ``limits: {velocity, acceleration, jerk}`` scales the intervals as in sec. 4.4.6.
+    Ends: ``start: {velocity: v0}``, ``end: {velocity: vn}`` (default 0, 0); with
+    ``acceleration`` at both ends, the two free points of sec. 4.4.4 at ``extra_times``
+    (default: midpoints of the first and last intervals); or ``periodic: true``
+    (q_0 = q_n) or ``natural: true`` (zero end accelerations).
+    """
+    from sizer.laws.multipoint import knot_times
+
+    F.refuse_unknown(fields, FIELDS, KIND)
+    conditions = end_conditions(fields)
+    t, q = knot_times.via_points(fields, conditions)
+    return cubic_spline(t, q, **conditions)
