@@ -126,7 +126,7 @@ def solve_conditions(A: np.ndarray, b: np.ndarray, labels: Sequence[Label],
         named = [labels[i] for i in involved if labels[i][0] is not None]
         user = [lab for lab in named if lab[0] in USER_FIELDS]
         field = user[0][0] if user else fallback
-        texts = [lab[1] for lab in (user or named)]
+        texts = [lab[1] for lab in user + [lab for lab in named if lab not in user]]
         listed = ", ".join(texts[:8]) + (", ..." if len(texts) > 8 else "")
         raise UserError(f"the conditions make the system singular (dependent or "
                         f"contradictory): {listed}; change or drop one of them",
