@@ -292,3 +292,13 @@ def test_knots_that_cannot_interpolate_are_a_singular_system() -> None:
                     "start": {"velocity": 0}})
     assert error.field == "start"
     assert "singular" in error.message and "points[" in error.message
+
+
+def test_many_points_in_milliseconds_classic_and_bspline_agree() -> None:
+    """81 uneven via-points over 2000 ms: both systems stay well conditioned (the classic
+    one is solved per piece in ((t - t_j)/h_j)^m) and give the same C4 quintic spline."""
+    t = np.linspace(0.0, 1.0, 81) ** 1.2 * 2000.0
+    fields = {"times": list(t), "positions": list(np.sin(t / 150.0)), "order": 6,
+              **SLIDES_CONDITIONS}
+    assert_same(build_bspline(fields), build_poly_spline(fields),
+                np.linspace(0.0, 2000.0, 4001))

@@ -34,9 +34,13 @@ Condition = tuple[float, int, float, str]
 Label = tuple[str | None, str]
 """(field the row comes from or None for a structural row, text naming the row)."""
 
-SINGULAR_RCOND = 1e-10
-"""A system whose smallest singular value (rows scaled to unit max norm) is below this
-fraction of the largest is refused as singular."""
+SINGULAR_RCOND = 1e-11
+"""A system whose reciprocal condition number (rows scaled to unit max norm, LAPACK's
+1-norm estimate) is below this is refused as singular."""
+
+MAX_NAMING_SVD = 1500
+"""Above this many unknowns a refused system names all the user's conditions instead of
+finding the dependent ones by an SVD (seconds)."""
 
 USER_FIELDS = ("start", "end", "conditions", "periodic")
 
@@ -108,30 +112,49 @@ def classic_system(t: np.ndarray, q: np.ndarray, k: int,
 
 
 def solve_conditions(A: np.ndarray, b: np.ndarray, labels: Sequence[Label],
-                     fallback: str) -> np.ndarray:
+                     fallback: str, column_scale: np.ndarray | None = None) -> np.ndarray:
     """Solve the square system A x = b, or UserError naming the conditions that make it
     singular (the rows in the left null space: dependent or contradictory).
 
-    Rows are scaled to unit max norm, then one SVD gives both the rank test and the
-    solution (numpy's solve would not say which rows are at fault).
+    The unknowns are x = column_scale * y (e.g. the coefficients of (t - t_j)^m as those
+    of ((t - t_j)/h_j)^m, which are all of the same size), the rows are scaled to unit
+    max norm; LAPACK's LU with its condition estimate (getrf, gecon) is the rank test,
+    and only a refused system pays for an SVD to find the rows at fault (numpy's solve
+    would not say which they are).
     """
-    scale = np.max(np.abs(A), axis=1)
+    from scipy.linalg import lapack
+
+    column = np.ones(A.shape[1]) if column_scale is None else np.asarray(column_scale)
+    As = A * column
+    scale = np.max(np.abs(As), axis=1)
     scale[scale == 0.0] = 1.0
-    As = A / scale[:, None]
-    U, s, Vt = np.linalg.svd(As)
-    weak = s <= SINGULAR_RCOND * s[0] if s[0] > 0.0 else np.ones_like(s, dtype=bool)
-    if weak.any():
+    As = As / scale[:, None]
+    lu, piv, info = lapack.dgetrf(As)
+    rcond = 0.0
+    if info == 0:
+        rcond, _ = lapack.dgecon(lu, float(np.max(np.sum(np.abs(As), axis=0))))
+    if info != 0 or not rcond > SINGULAR_RCOND:
+        raise _singular(As, labels, fallback)
+    y, _ = lapack.dgetrs(lu, piv, b / scale)
+    return y * column
+
+
+def _singular(As: np.ndarray, labels: Sequence[Label], fallback: str) -> UserError:
+    """The UserError of a singular system, naming the rows of its left null space (the
+    user's conditions first, then the via-points)."""
+    named = [lab for lab in labels if lab[0] is not None]
+    if len(As) <= MAX_NAMING_SVD:
+        U, s, _ = np.linalg.svd(As)
+        weak = s <= max(SINGULAR_RCOND * s[0], s[-1])
         weight = np.max(np.abs(U[:, weak]), axis=1)
         involved = np.flatnonzero(weight > 1e-6 * weight.max())
         named = [labels[i] for i in involved if labels[i][0] is not None]
-        user = [lab for lab in named if lab[0] in USER_FIELDS]
-        field = user[0][0] if user else fallback
-        texts = [lab[1] for lab in user + [lab for lab in named if lab not in user]]
-        listed = ", ".join(texts[:8]) + (", ..." if len(texts) > 8 else "")
-        raise UserError(f"the conditions make the system singular (dependent or "
-                        f"contradictory): {listed}; change or drop one of them",
-                        field=field)
-    return Vt.T @ ((U.T @ (b / scale)) / s)
+    user = [lab for lab in named if lab[0] in USER_FIELDS]
+    field = user[0][0] if user else fallback
+    texts = [lab[1] for lab in user + [lab for lab in named if lab not in user]]
+    listed = ", ".join(texts[:8]) + (", ..." if len(texts) > 8 else "")
+    return UserError(f"the conditions make the system singular (dependent or "
+                     f"contradictory): {listed}; change or drop one of them", field=field)
 
 
 def check_count(needed: int, given: Sequence[Label], what: str) -> None:
@@ -170,7 +193,9 @@ def poly_spline(t: np.ndarray, q: np.ndarray, order: int,
     {order: value}, interior ``conditions`` (t, order, value, label), cyclic orders).
 
     Solved in the normalized time u = (t - t_0)/T (a condition of order r scales by
-    T^r) so that the system's conditioning does not depend on the time unit.
+    T^r) so that the system's conditioning does not depend on the time unit, and for
+    the coefficients of each piece's own ((u - u_j)/h_j)^m, so that it does not grow
+    with the number of pieces.
     """
     from scipy.interpolate import PPoly
 
@@ -191,7 +216,8 @@ def poly_spline(t: np.ndarray, q: np.ndarray, order: int,
     u = (t - t[0]) / T
     scaled = [((w - t[0]) / T, r, v * T ** r, lab) for w, r, v, lab in every]
     A, b, labels = classic_system(u, q, k, scaled, periodic)
-    a = solve_conditions(A, b, labels, "points").reshape(len(t) - 1, k)
+    local = (np.diff(u)[:, None] ** -np.arange(k, dtype=float)).ravel()
+    a = solve_conditions(A, b, labels, "points", local).reshape(len(t) - 1, k)
     c = (a / T ** np.arange(k)).T[::-1]
     return PPoly(np.ascontiguousarray(c), t)
 
