@@ -277,6 +277,11 @@ SLIDES_B = {"times": [0.0, 0.3, 0.55, 1.0], "positions": [0, 0.15, 0.8, 1], "ord
     ({**SLIDES_B, "start": {"velocity": 0}, "conditions": [{"t": 0.0, "velocity": 0}]},
      "start", "start.velocity, conditions[0].velocity"),
     ({**SLIDES_B, "weights": [1] * 8}, "weights", "no field"),
+    ({**SLIDES_B, "order": 5, "knots": [0] * 5 + [0.3, 0.55] + [1] * 5,
+      "start": {"velocity": 0}, "end": {"velocity": 0},
+      "conditions": [{"t": 0.3, "snap": 0}]},
+     "conditions[0].snap", "only C^3 at the knot t = 0.3 (repeated 1 times): its "
+     "derivative 4 jumps"),
 ])
 def test_bad_input_names_the_field(fields: dict, field: str, text: str) -> None:
     error = _error(fields)

@@ -126,6 +126,12 @@ def solve_control_points(t: np.ndarray, q: np.ndarray, degree: int, knots: np.nd
                         f"{knots[-degree - 1]:g}] must be the via-points' interval "
                         f"[{t0:g}, {tn:g}]", field=knots_field)
     check_conditions(t0, tn, conditions, degree)
+    for when, r, _, label in conditions:
+        multiplicity = int(np.sum(np.abs(knots - when) <= tol)) if t0 < when < tn else 0
+        if r > degree - multiplicity:
+            raise UserError(f"the spline is only C^{degree - multiplicity} at the knot "
+                            f"t = {when:g} (repeated {multiplicity} times): its derivative "
+                            f"{r} jumps there", field=label)
     n_ctrl = len(knots) - degree - 1
     given = [(label.split(".")[0].split("[")[0], label) for *_, label in conditions]
     given += [("periodic", f"periodic.{_name(r)}") for r in periodic]
