@@ -157,3 +157,66 @@ def conditions(fields: Mapping[str, Any], key: str, *, highest: int = 4
                             field=f"{key}.{name}")
         out[order] = as_number(value, f"{key}.{name}")
     return out
+
+
+# --- poly_spline, bspline, nurbs (helper B): order, interior and periodic conditions ---
+
+def order_of(fields: Mapping[str, Any], *, low: int = 2, high: int = 12) -> int:
+    """The spline's order k (degree k - 1, the slides' word): ``order: 6``, or the book's
+    ``degree: 5``; one of the two is required."""
+    if "order" in fields and "degree" in fields:
+        raise UserError("give either order (k, the slides) or degree (p = k - 1, the "
+                        "book), not both", field="order")
+    if "degree" in fields:
+        return integer(fields, "degree", low=low - 1, high=high - 1) + 1
+    if "order" not in fields:
+        raise UserError("is required (the spline's order k: degree k - 1, continuity "
+                        "up to derivative k - 2; or give degree)", field="order")
+    return integer(fields, "order", low=low, high=high)
+
+
+def timed_conditions(fields: Mapping[str, Any], key: str = "conditions", *,
+                     highest: int = 4) -> list[tuple[float, int, float, str]]:
+    """Conditions inside the interval, ``conditions: [{t: 0.4, velocity: 0}, ...]``, as
+    (t, derivative order, value, field label); [] when absent."""
+    if key not in fields or fields[key] is None:
+        return []
+    raw = fields[key]
+    if not isinstance(raw, list | tuple):
+        raise UserError(f"must be a list like [{{t: 0.5, velocity: 0}}], got {raw!r}",
+                        field=key)
+    out: list[tuple[float, int, float, str]] = []
+    for i, item in enumerate(raw):
+        where = f"{key}[{i}]"
+        if not isinstance(item, Mapping) or "t" not in item or len(item) < 2:
+            raise UserError(f"must be a mapping with t and at least one condition, e.g. "
+                            f"{{t: 0.5, velocity: 0}}, got {item!r}", field=where)
+        t = as_number(item["t"], f"{where}.t")
+        rest = {name: value for name, value in item.items() if name != "t"}
+        for order, value in conditions({where: rest}, where, highest=highest).items():
+            name = next(n for n, k in ORDER_NAMES.items() if k == order)
+            out.append((t, order, value, f"{where}.{name}"))
+    return out
+
+
+def periodic(fields: Mapping[str, Any], key: str = "periodic", *, highest: int = 4
+             ) -> list[int]:
+    """Cyclic conditions s^(i)(t_0) = s^(i)(t_n) (book eq. 4.45), ``periodic: [velocity,
+    acceleration]``, as derivative orders; [] when absent."""
+    if key not in fields or fields[key] is None:
+        return []
+    raw = fields[key]
+    if not isinstance(raw, list | tuple):
+        raise UserError(f"must be a list of derivative names like [velocity, "
+                        f"acceleration], got {raw!r}", field=key)
+    out: list[int] = []
+    for i, name in enumerate(raw):
+        order = ORDER_NAMES.get(str(name))
+        if order is None or not 1 <= order <= highest:
+            allowed = [n for n, k in ORDER_NAMES.items() if 1 <= k <= highest]
+            raise UserError(f"unknown derivative {name!r}; periodic takes: "
+                            f"{', '.join(allowed)}", field=f"{key}[{i}]")
+        if order in out:
+            raise UserError(f"{name} is listed twice", field=f"{key}[{i}]")
+        out.append(order)
+    return out
