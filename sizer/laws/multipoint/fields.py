@@ -157,3 +157,15 @@ def conditions(fields: Mapping[str, Any], key: str, *, highest: int = 4
                             field=f"{key}.{name}")
         out[order] = as_number(value, f"{key}.{name}")
     return out
+
+
+# --- cam_table (helper C): the fitting fields ------------------------------------------
+
+def boolean(fields: Mapping[str, Any], key: str, default: bool) -> bool:
+    """A YAML boolean (true/false); ``default`` when absent."""
+    if key not in fields or fields[key] is None:
+        return default
+    value = fields[key]
+    if not isinstance(value, bool):
+        raise UserError(f"must be true or false, got {value!r}", field=key)
+    return value
