@@ -22,7 +22,7 @@ def _rms(values: np.ndarray) -> float:
     return math.sqrt(np.trapezoid(values ** 2, DENSE))
 
 
-@pytest.mark.parametrize("order", [5, 6, 7, 8])
+@pytest.mark.parametrize("order", [5, 6, 7, 8, 9, 10])
 def test_cycloidal_table_gives_back_the_cycloidal_coefficients(order: int) -> None:
     curve = fit_samples(TAU, CYCLOIDAL, order=order).curve
     v, a = curve(DENSE, 1), curve(DENSE, 2)
@@ -53,14 +53,15 @@ def test_default_is_a_quintic_c4_curve_over_the_samples() -> None:
     assert np.all(curve(TAU, 6) == 0.0)  # beyond the degree
 
 
-@pytest.mark.parametrize("order", [2, 3, 4, 5, 6, 7, 8])
+@pytest.mark.parametrize("order", [2, 3, 4, 5, 6, 7, 8, 9, 10])
 def test_interpolation_has_zero_residual(order: int) -> None:
     rng = np.random.default_rng(3)
     x = np.cumsum(rng.uniform(0.5, 1.5, 40))
     q = rng.standard_normal(40)
     fit = fit_samples(x, q, order=order)
-    assert fit.max_residual < 1e-12 and fit.rms_residual < 1e-12
-    assert np.max(np.abs(fit.curve(x) - q)) < 1e-12
+    # random data make a wildly oscillating interpolant of high degree: rounding grows
+    assert fit.max_residual < 1e-10 and fit.rms_residual < 1e-10
+    assert np.max(np.abs(fit.curve(x) - q)) < 1e-10
 
 
 def test_clean_samples_have_negligible_derivative_noise() -> None:
@@ -128,7 +129,7 @@ def test_periodic_fit_repeats_its_derivatives(order: int) -> None:
     ends = np.array([0.0, 1.0])
     for nu in range(order - 1):  # C^(k-1) across the period
         values = fit.curve(ends, nu)
-        assert values[0] == pytest.approx(values[1], rel=1e-9, abs=1e-9)
+        assert values[0] == pytest.approx(values[1], rel=1e-7, abs=1e-9)
 
 
 def test_periodic_refuses_a_table_that_does_not_close() -> None:
@@ -172,8 +173,8 @@ def test_fields_choose_the_fit() -> None:
 
 
 @pytest.mark.parametrize(("fields", "field", "message"), [
-    ({"order": 1}, "order", "between 2 and 8"),
-    ({"order": 9}, "order", "between 2 and 8"),
+    ({"order": 1}, "order", "between 2 and 10"),
+    ({"order": 11}, "order", "between 2 and 10"),
     ({"order": 4.5}, "order", "must be an integer"),
     ({"smoothing": -1e-3}, "smoothing", "must be in"),
     ({"smoothing": "a lot"}, "smoothing", "must be a number"),

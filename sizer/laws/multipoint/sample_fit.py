@@ -47,6 +47,7 @@ smooth law give nearly zero; the numbers grow in proportion to the noise.
 
 from __future__ import annotations
 
+import math
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -66,7 +67,7 @@ FIT_FIELDS = ("order", "smoothing", "periodic")
 DEFAULT_ORDER = 6
 """Degree 5: a C4 curve, jerk continuous."""
 
-MIN_ORDER, MAX_ORDER = 2, 8
+MIN_ORDER, MAX_ORDER = 2, 10
 _DIFFERENCE_ORDER = 6
 """d of the pseudo-residuals (module docstring)."""
 _NOISE_MIN_SAMPLES = _DIFFERENCE_ORDER + 3
@@ -74,9 +75,9 @@ _NOISE_MIN_SAMPLES = _DIFFERENCE_ORDER + 3
 _NOISE_DRAWS = 64
 _CHI2_MEDIAN = 0.454936423119572
 """Median of the chi-square distribution with one degree of freedom."""
-_GAUSS_NODES = 8
-"""Gauss-Legendre nodes per piece for the RMS integrals (exact up to degree 15 = 2*(k - 1)
-+ 1 for k <= 8; for k = 9 the squared 1st derivative is degree 16: error ~1e-12)."""
+_GAUSS_NODES = 9
+"""Gauss-Legendre nodes per piece for the RMS integrals: exact up to degree 17, so for
+the squared derivatives (degree <= 2 (k - 1) = 16) of every allowed degree k <= 9."""
 _PEAK_POINTS = 24
 """Points per piece (ends included) for the peaks of the derivative noise."""
 
@@ -137,7 +138,7 @@ def build_cam_table_samples(fields: Mapping[str, Any], x: np.ndarray, q: np.ndar
                             ) -> SampleFit:
     """fit_samples with the fitting fields of a cam table's YAML mapping.
 
-    ``order`` (integer 2..8, default 6), ``smoothing`` (RMS residual allowed, position
+    ``order`` (integer 2..10, default 6), ``smoothing`` (RMS residual allowed, position
     units, >= 0; absent or 0: interpolation), ``periodic`` (bool, default false). Other
     keys are not read here (the caller refuses the unknown ones).
     """
@@ -207,18 +208,25 @@ def _fit(x: np.ndarray, q: np.ndarray, order: int, smoothing: float | None,
 
 
 def _trimmed(spline: BSpline, a: float, b: float) -> PPoly:
-    """The pieces of ``spline`` inside [a, b] as a PPoly, without empty ones (from_spline
-    keeps the repeated end knots, and a periodic spline's knots reach beyond the ends)."""
+    """``spline`` as a PPoly over [a, b], one piece per knot span inside it.
+
+    Written out rather than PPoly.from_spline, which keeps the repeated end knots, reaches
+    beyond the ends for a periodic spline and crashes the interpreter for degree >= 8 in
+    scipy 1.17 (it goes through FITPACK's splev). The Taylor coefficients of each piece
+    are the spline's own derivatives at its left end (BSpline evaluates the piece to the
+    right of a knot).
+    """
     from scipy.interpolate import PPoly
 
-    curve = PPoly.from_spline(spline)
-    left, right = curve.x[:-1], curve.x[1:]
+    k = spline.k
+    knots = np.unique(spline.t)
     span = b - a
-    keep = np.flatnonzero((right > left) & (left >= a - 1e-12 * span)
-                          & (right <= b + 1e-12 * span))
-    breaks = np.append(curve.x[keep], curve.x[keep[-1] + 1])
-    breaks[0], breaks[-1] = a, b
-    return PPoly(curve.c[:, keep], breaks, extrapolate=False)
+    inside = knots[(knots > a + 1e-12 * span) & (knots < b - 1e-12 * span)]
+    breaks = np.concatenate(([a], inside, [b]))
+    left = breaks[:-1]
+    coefficients = np.array([spline(left, nu=k - m) / math.factorial(k - m)
+                             for m in range(k + 1)])
+    return PPoly(coefficients, breaks, extrapolate=False)
 
 
 def _noise_sigma(x: np.ndarray, q: np.ndarray) -> float:
