@@ -8,12 +8,14 @@ noise that the samples carry.
 
 Fitting (all scipy.interpolate):
 
-- ``smoothing`` None or 0: the interpolating spline of degree ``order - 1`` with the
-  samples as breakpoints (make_interp_spline). The ``order - 2`` extra conditions are
-  *not-a-knot* at both ends for every degree, odd or even: the first two and the last two
-  pieces are one polynomial each. It assumes nothing about the end derivatives (a
-  "natural" end, zero high derivatives, would bend a cam that starts with a jerk or an
-  acceleration) and reproduces any polynomial of the spline's degree exactly.
+- ``smoothing`` None or 0: the interpolating spline of degree k = ``order - 1``
+  (make_interp_spline). Its k - 1 = ``order - 2`` extra conditions are scipy's
+  *not-a-knot* ones at both ends, for every degree, odd or even: the breakpoints are the
+  samples without the (k - 1) / 2 next to each end for an odd degree, the midpoints
+  between samples without the k / 2 next to each end for an even one, so that the pieces
+  near the ends extend one polynomial over several samples. It assumes nothing about
+  the end derivatives (a "natural" end, zero high derivatives, would bend a cam that
+  starts with a jerk or an acceleration) and reproduces any polynomial of degree k.
 - ``smoothing`` > 0: a smoothing spline of the same degree (make_splrep, FITPACK's
   algorithm) whose RMS residual at the samples is at most ``smoothing`` (position units):
   ``sum (g(x_i) - q_i)^2 <= m * smoothing^2``. It takes fewer knots where the data
