@@ -220,3 +220,15 @@ def periodic(fields: Mapping[str, Any], key: str = "periodic", *, highest: int =
             raise UserError(f"{name} is listed twice", field=f"{key}[{i}]")
         out.append(order)
     return out
+
+
+# --- cam_table (helper C): the fitting fields ------------------------------------------
+
+def boolean(fields: Mapping[str, Any], key: str, default: bool) -> bool:
+    """A YAML boolean (true/false); ``default`` when absent."""
+    if key not in fields or fields[key] is None:
+        return default
+    value = fields[key]
+    if not isinstance(value, bool):
+        raise UserError(f"must be true or false, got {value!r}", field=key)
+    return value
