@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from typing import Annotated
 
 import typer
@@ -48,7 +49,8 @@ def law(
     from sizer.cli.output_guard import check_output
     from sizer.laws import ScaledMotion, make_law  # lazy: keeps --help fast
     from sizer.report.document import publish
-    from sizer.report.series_table import SeriesDocument
+    from sizer.report.printable import printable
+    from sizer.report.series_table import SeriesDocument, fit_text
     from sizer.units import parse_displacement, to_si
 
     check_output(output)
@@ -79,6 +81,9 @@ def law(
     q0 = to_si(start_position, "length" if linear else "angle", field="--start-position")
     motion = ScaledMotion(law_object, h, T, start_time=t0, start_position=q0)
     publish(SeriesDocument(motion, motion.sample(samples), linear=linear), fmt, output)
+    fit = fit_text(law_object)
+    if fit:
+        sys.stderr.write(printable(f"note: {law_object.law_id}: {fit}") + "\n")
 
 
 def register(app: typer.Typer) -> None:

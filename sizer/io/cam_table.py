@@ -94,6 +94,12 @@ def build_cam_table(fields: Mapping[str, Any], base_dir: Path) -> SampleFit:
     """A cam table's YAML mapping: ``file`` (CSV, relative to ``base_dir``), ``columns``
     ([x, q] by header name or 0-based index, default the first two) and the fitting
     fields ``order``, ``smoothing``, ``periodic`` (sample_fit.build_cam_table_samples)."""
+    return load_cam_table(fields, base_dir)[1]
+
+
+def load_cam_table(fields: Mapping[str, Any], base_dir: Path
+                   ) -> tuple[CamTableData, SampleFit]:
+    """The table a cam table's mapping names and its fit (see :func:`build_cam_table`)."""
     from sizer.laws.multipoint.fields import refuse_unknown
     from sizer.laws.multipoint.sample_fit import FIT_FIELDS, build_cam_table_samples
 
@@ -114,7 +120,7 @@ def build_cam_table(fields: Mapping[str, Any], base_dir: Path) -> SampleFit:
     table = read_cam_table(path, columns=columns)
     _increasing(table)
     try:
-        return build_cam_table_samples(fields, table.x, table.q)
+        return table, build_cam_table_samples(fields, table.x, table.q)
     except UserError as exc:
         raise exc.located(file=str(path)) from None
 

@@ -46,6 +46,8 @@ DATA_LAW_KINDS: Mapping[str, DataKind] = {k.name: k for k in (
     DataKind("bspline", "sizer.laws.multipoint.bsplines:build_bspline",
              "B-spline (sec. 4.5, slides)"),
     DataKind("nurbs", "sizer.laws.multipoint.nurbs:build_nurbs", "NURBS (slides)"),
+    DataKind("via_trapezoid", "sizer.laws.multipoint.via_trapezoid:build_via_trapezoid",
+             "Trapezoidal velocity through a sequence of points (sec. 3.2.4)"),
     DataKind("cam_table", "sizer.io.cam_table_law:build_cam_table_law",
              "Cam table: samples fitted by a spline"),
 )}

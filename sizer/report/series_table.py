@@ -49,6 +49,9 @@ class SeriesDocument:
         rows = list(zip(*columns, strict=True))
         title = (f"{self.motion.law.spec}: h = {short(self.motion.displacement)} "
                  f"{self.units['q']}, T = {short(self.motion.duration)} s")
+        fit = fit_text(self.motion.law)
+        if fit:
+            title += f"\n{fit}"
         return make_table([Column(h) for h in self.headers], rows, title=title)
 
     def csv(self) -> str:
@@ -67,5 +70,24 @@ class SeriesDocument:
             "samples": len(self.series["t"]),
             "units": self.units,
         }
+        fit = getattr(motion.law, "report", None)
+        if fit:
+            document["fit"] = dict(fit)
         document.update({name: self.series[name].tolist() for name in SERIES})
         return render_json_flat_arrays(document)
+
+
+def fit_text(law: object) -> str:
+    """One line on a fitted law's fit (a cam table): the residuals at the samples, in the
+    table's position units, and the noise the fit puts in v, a and j (% of their RMS)."""
+    report = getattr(law, "report", None)
+    if not report or "max_residual" not in report:
+        return ""
+    text = (f"fit of {int(report.get('samples', 0))} samples: residual max "
+            f"{short(report['max_residual'])}, RMS {short(report['rms_residual'])}")
+    noise = [(name, report.get(f"noise_rms_{name}")) for name in ("velocity", "acceleration",
+                                                                  "jerk")]
+    if all(value is not None for _, value in noise):
+        text += "; noise the fit puts in " + ", ".join(
+            f"{name[0]} {100 * value:.3g} %" for name, value in noise) + " of their RMS"
+    return text
