@@ -15,6 +15,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from sizer.errors import UserError
+from sizer.io.plausibility import warning_text
 from sizer.io.yaml_source import YamlSource
 from sizer.laws.data_spec import is_data_spec
 
@@ -98,3 +99,51 @@ def master_duration(laws: Sequence[tuple[str, tuple[Any, ...]]], master_speed: f
 
 def _short(spec: str) -> str:
     return repr(spec if len(spec) <= 40 else spec[:37] + "...")
+
+
+def _scaled(laws: Sequence[tuple[str, tuple[Any, ...]]]) -> list[tuple[Any, tuple[Any, ...]]]:
+    """(scale, where) of every law defined by data with units of its own."""
+    out = []
+    for spec, where in laws:
+        law = _data_law(spec) if is_data_spec(spec) else None
+        if law is not None and law.scale is not None:
+            out.append((law.scale, where))
+    return out
+
+
+def law_displacement(laws: Sequence[tuple[str, tuple[Any, ...]]], source: YamlSource,
+                     at: tuple[Any, ...]) -> tuple[float, bool]:
+    """The task's displacement when it is not written: that of its laws defined by data
+    with units (all of them, and all the same), in SI, and whether it is a length."""
+    scaled = _scaled(laws)
+    if not scaled or len(scaled) != len(laws):
+        raise source.error("is required: an angle like '90 deg' or a length like '200 mm' "
+                           "(it may be left out only when every law is defined by data "
+                           "with units: {time: ..., position: ...})", at)
+    first = scaled[0][0]
+    for scale, where in scaled[1:]:
+        if scale.linear != first.linear or \
+                abs(scale.displacement - first.displacement) > 1e-9 * abs(first.displacement):
+            raise source.error(f"the laws move by different displacements "
+                               f"({first.displacement:.6g} and {scale.displacement:.6g}, "
+                               f"SI): write the task's displacement", where)
+    return first.displacement, first.linear
+
+
+def scale_warnings(laws: Sequence[tuple[str, tuple[Any, ...]]], h: float, linear: bool,
+                   source: YamlSource) -> list[str]:
+    """A warning for each law with units whose own displacement is not the task's: the
+    task's displacement scales the law's shape."""
+    out = []
+    for scale, where in _scaled(laws):
+        if scale.linear != linear:
+            raise source.error(f"this law's positions are {'lengths' if scale.linear else 'angles'}"
+                               f" but the task's displacement is "
+                               f"{'a length' if linear else 'an angle'}", where)
+        if abs(scale.displacement - h) > 1e-6 * abs(h):
+            unit = "m" if linear else "rad"
+            out.append(warning_text(source, where,
+                                    f"its data move {scale.displacement:.6g} {unit}, the "
+                                    f"task's displacement is {h:.6g} {unit}: the task "
+                                    f"scales the law's shape"))
+    return out

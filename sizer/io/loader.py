@@ -25,7 +25,13 @@ from sizer.errors import UserError
 from sizer.input_limits import MAX_DESIGN_BYTES, MAX_DESIGN_NODES
 from sizer.io.catalog_table import read_table
 from sizer.io.cycle import build_cycle, displacement_of, summary_task
-from sizer.io.data_law_rules import check_cycle_laws, check_task_laws, master_duration
+from sizer.io.data_law_rules import (
+    check_cycle_laws,
+    check_task_laws,
+    law_displacement,
+    master_duration,
+    scale_warnings,
+)
 from sizer.io.data_laws import canonical_data_laws
 from sizer.io.motor_rules import (
     MotorProblem,
@@ -295,7 +301,7 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
     laws = _located_laws(model)
     if cycle is not None:
         check_cycle_laws(laws, source)
-    task = summary_task(cycle) if cycle is not None else _task(model, source, laws)
+    task = summary_task(cycle) if cycle is not None else _task(model, source, laws, warnings)
     linear = task.linear
     if cycle is not None:
         warnings += cycle_bare_number_warnings(source, linear)
@@ -364,12 +370,16 @@ def _located_laws(model: DesignFile) -> list[tuple[str, tuple[Any, ...]]]:
     return laws
 
 
-def _task(model: DesignFile, source: YamlSource,
-          laws: list[tuple[str, tuple[Any, ...]]]) -> Task:
+def _task(model: DesignFile, source: YamlSource, laws: list[tuple[str, tuple[Any, ...]]],
+          warnings: list[str]) -> Task:
     given = model.task
     assert given is not None
-    h, linear = displacement_of(given.displacement, source, ("task", "displacement"),
-                                zero_note="a negative displacement moves back first")
+    if given.displacement is None:
+        h, linear = law_displacement(laws, source, ("task", "displacement"))
+    else:
+        h, linear = displacement_of(given.displacement, source, ("task", "displacement"),
+                                    zero_note="a negative displacement moves back first")
+        warnings += scale_warnings(laws, h, linear, source)
     duration = given.duration
     if given.master_speed is not None:
         duration = master_duration(laws, given.master_speed, source, ("task", "master_speed"))

@@ -211,6 +211,9 @@ def build_data_law(text: str) -> DataLaw:
     fields = read_data_spec(text)
     kind = DATA_LAW_KINDS[fields["kind"]]
     units = _unit_texts(fields.pop("units", None))
+    name = fields.pop("name", None)
+    if name is not None and not isinstance(name, str):
+        raise UserError(f"must be a text, got {name!r}", field="name")
     built = kind.build()(fields)
     report: dict[str, float] = {}
     if isinstance(built, FittedCurve):

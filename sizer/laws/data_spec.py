@@ -53,8 +53,9 @@ DATA_LAW_KINDS: Mapping[str, DataKind] = {k.name: k for k in (
 )}
 """Data-defined law kinds by name."""
 
-COMMON_FIELDS = ("kind", "units")
-"""Fields every kind reads (the law layer): the kind and the units of the numbers."""
+COMMON_FIELDS = ("kind", "units", "name")
+"""Fields every kind reads (the law layer): the kind, the units of the numbers and a
+name that tables show instead of the whole mapping."""
 
 _BARE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 _YAML_WORDS = frozenset({"y", "n", "yes", "no", "on", "off", "true", "false", "null", "~"})
@@ -142,3 +143,21 @@ def _key(key: Any) -> str:
     if not _BARE.match(text) or text.lower() in _YAML_WORDS:
         raise UserError(f"a field name must be a plain word, got {key!r}", field=text)
     return text
+
+
+def data_law_label(text: str) -> str:
+    """A short name of a data law for tables: its ``name``, else the kind with its file
+    (a cam table) or its number of points; the spec text itself stays in CSV and JSON."""
+    try:
+        fields = read_data_spec(text)
+    except UserError:
+        return text
+    if isinstance(fields.get("name"), str):
+        return str(fields["name"])
+    kind = str(fields.get("kind"))
+    if isinstance(fields.get("file"), str):
+        return f"{kind}({fields['file'].replace(chr(92), '/').rsplit('/', 1)[-1]})"
+    for key in ("points", "positions", "control_points"):
+        if isinstance(fields.get(key), list):
+            return f"{kind}({len(fields[key])} {key.replace('_', ' ')})"
+    return kind

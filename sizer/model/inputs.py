@@ -180,10 +180,12 @@ class TaskInput(_Strict):
 
     displacement: RawQuantity("'90 deg' or '200 mm'",  # type: ignore[valid-type]
                               rotary="angle_displacement",
-                              linear="length_displacement") = Field(  # type: ignore[valid-type]
+                              linear="length_displacement") | None = Field(  # type: ignore[valid-type]
+        None,
         description="h at the load: an angle ('90 deg', rotary axis) or a length "
                     "('200 mm', linear axis); a bare number is rad; negative moves back "
-                    "first (not zero)")
+                    "first (not zero); omitted, the displacement of laws defined by data "
+                    "with units of their own")
     duration: Annotated[
         float | None,
         BeforeValidator(_duration),

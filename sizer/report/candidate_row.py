@@ -13,6 +13,7 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from sizer.laws.base import format_parameter
+from sizer.laws.data_spec import data_law_label, is_data_spec
 from sizer.report.design_summary import finite_or_none
 from sizer.report.numbers import full, short
 from sizer.sizing.checks import TOLERANCE
@@ -146,6 +147,8 @@ def ratio_text(result: CandidateResult) -> str:
 def display_spec(result: CandidateResult) -> str:
     """The law spec for a table: a parameter chosen by the solver (full precision in JSON
     and CSV) shown to 4 significant digits."""
+    if is_data_spec(result.spec):
+        return data_law_label(result.spec)
     texts = {k: format_parameter(v) for k, v in result.params.items()}
     if all(len(t) <= 8 for t in texts.values()):
         return result.spec

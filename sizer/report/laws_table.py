@@ -6,6 +6,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from sizer.laws.data_spec import data_law_label, is_data_spec
 from sizer.report.csv_text import render_csv
 from sizer.report.json_text import render_json
 from sizer.report.numbers import (
@@ -98,7 +99,8 @@ class LawRow:
     def table_cells(self, *, unicode: bool = False) -> tuple[str, ...]:
         """Display cells: short numbers, jump positions as fractions where they are."""
         return (
-            self.spec, continuity_text(self.continuity, unicode=unicode),
+            data_law_label(self.spec) if is_data_spec(self.spec) else self.spec,
+            continuity_text(self.continuity, unicode=unicode),
             short(self.C_v), short(self.C_a), short(self.C_j),
             short(self.C_v_rms), short(self.C_a_rms), self.jerk_text(),
         )

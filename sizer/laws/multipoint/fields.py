@@ -27,7 +27,8 @@ def refuse_unknown(fields: Mapping[str, Any], known: Iterable[str], kind: str) -
     for key in fields:
         if key not in known and key != "kind":
             raise UserError(f"{kind} has no field {key!r}; its fields: "
-                            f"{', '.join(known)}", field=str(key))
+                            f"{', '.join(known)} (and kind, units, name, as every law "
+                            f"defined by data)", field=str(key))
 
 
 def number(fields: Mapping[str, Any], key: str, default: float | None = None, *,

@@ -20,8 +20,11 @@ Fitting (all scipy.interpolate):
   algorithm) whose RMS residual at the samples is at most ``smoothing`` (position units):
   ``sum (g(x_i) - q_i)^2 <= m * smoothing^2``. It takes fewer knots where the data
   allow. (make_smoothing_spline would fix the degree at 3, so jerk would jump.)
-- ``periodic``: the spline and its first ``order - 2`` derivatives take the same values
-  at both ends (bc_type "periodic"); the samples must then start and end at the same q.
+- ``periodic``: the spline's first ``order - 2`` derivatives take the same values at
+  both ends (bc_type "periodic"). The position may rise by a whole stroke per period (a
+  rotary knife turns once per cycle): the fit is periodic on q minus the line from the
+  first sample to the last, added back after, so an out-and-back table and a rotary
+  one are both periodic.
 
 The default order 6 (quintic, C4) keeps the jerk continuous and its derivative too, so
 that a sized drive sees no jerk steps that the table does not contain.
@@ -120,8 +123,12 @@ def fit_samples(x: np.ndarray, q: np.ndarray, *, order: int = DEFAULT_ORDER,
     UserError (field ``x``, ``q``, ``order``, ``smoothing``, ``periodic``) on bad input.
     """
     x, q = _checked_samples(x, q, order, smoothing, periodic)
-    spline = _fit(x, q, order, smoothing, periodic)
-    curve = _trimmed(spline, x[0], x[-1])
+    slope = (q[-1] - q[0]) / (x[-1] - x[0]) if periodic else 0.0
+    wrapped = q - slope * (x - x[0])
+    if periodic:
+        wrapped[-1] = wrapped[0]  # equal but for rounding
+    spline = _fit(x, wrapped, order, smoothing, periodic)
+    curve = _with_line(_trimmed(spline, x[0], x[-1]), slope, x[0])
     residual = curve(x) - q
     rms = _derivative_rms(curve)
     sigma = noise_rms = noise_peak = None
@@ -179,13 +186,6 @@ def _checked_samples(x: np.ndarray, q: np.ndarray, order: int, smoothing: float 
         i = int(bad[0]) + 1
         raise UserError(f"x must increase strictly: sample {i} has x = {x[i]:g} after "
                         f"x = {x[i - 1]:g}", field="x")
-    if periodic:
-        # Equal up to the rounding of a written table (1e-9 of the range of q).
-        if abs(q[-1] - q[0]) > 1e-9 * max(float(np.ptp(q)), float(np.max(np.abs(q)))):
-            raise UserError(f"a periodic table must end where it starts: q = {q[0]:g} at "
-                            f"the first sample, {q[-1]:g} at the last", field="periodic")
-        q = q.copy()
-        q[-1] = q[0]
     return x, q
 
 
@@ -229,6 +229,18 @@ def _trimmed(spline: BSpline, a: float, b: float) -> PPoly:
     coefficients = np.array([spline(left, nu=k - m) / math.factorial(k - m)
                              for m in range(k + 1)])
     return PPoly(coefficients, breaks, extrapolate=False)
+
+
+def _with_line(curve: PPoly, slope: float, start: float) -> PPoly:
+    """``curve`` plus slope * (x - start): a periodic fit's rise per period put back."""
+    if slope == 0.0:
+        return curve
+    from scipy.interpolate import PPoly
+
+    c = curve.c.copy()
+    c[-2] += slope
+    c[-1] += slope * (curve.x[:-1] - start)
+    return PPoly(c, curve.x, extrapolate=False)
 
 
 def _noise_sigma(x: np.ndarray, q: np.ndarray) -> float:
