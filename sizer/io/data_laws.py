@@ -73,7 +73,10 @@ def _at(data: Any, path: tuple[Any, ...]) -> Any:
 
 
 def _located(source: YamlSource, path: tuple[Any, ...], error: UserError) -> UserError:
-    """The error at the line of its field inside the law mapping at ``path``."""
+    """The error at the line of its field inside the law mapping at ``path`` (an error
+    located in another file, the CSV of a cam table, keeps its own place)."""
+    if error.file is not None:
+        return error
     inner: tuple[Any, ...] = ()
     if error.field:
         inner = tuple(name if name else int(index)

@@ -64,9 +64,11 @@ def check_law_spec(text: Any) -> str:
     from sizer.laws import AUTO, make_law, resolve
     from sizer.laws.data_spec import data_spec_text
 
-    if isinstance(text, dict):  # a law defined by data (the loader has built it already)
+    if isinstance(text, dict):
+        # a law defined by data: the design loader has built it (its files are relative
+        # to the design's folder) and passes its text; a mapping here is only made text
         try:
-            text = data_spec_text(text)
+            return data_spec_text(text)
         except UserError as error:
             raise ValueError(error.message) from None
     if not isinstance(text, str):
