@@ -161,3 +161,8 @@ def data_law_label(text: str) -> str:
         if isinstance(fields.get(key), list):
             return f"{kind}({len(fields[key])} {key.replace('_', ' ')})"
     return kind
+
+
+def law_label(spec: str) -> str:
+    """How texts and tables name a law: its spec, or a data law's short label."""
+    return data_law_label(spec) if is_data_spec(spec) else spec

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
+from sizer.laws.data_spec import law_label
 from sizer.report.candidate_row import RPM_PER_RAD_S, check_line, check_passed, result_json
 from sizer.report.cycle_summary import duration_name
 from sizer.report.design_summary import design_summary
@@ -60,7 +61,7 @@ class CheckDocument:
     def text(self) -> str:
         r = self.result
         name = self.design.name or "design"
-        lines = [f"check {name}: motor {r.motor}, law {r.spec}",
+        lines = [f"check {name}: motor {r.motor}, law {law_label(r.spec)}",
                  f"  {self._requirements()}"]
         if r.duration is not None:  # else the checks are at no real duration: see FAIL
             lines += [f"  {check_line(r, c)}" for c in r.checks]
@@ -68,13 +69,13 @@ class CheckDocument:
         if self.segments is not None:
             lines += indented_text(SegmentDocument(self.segments, self.design)).splitlines()
         if self.passed:
-            lines.append(f"PASS: {r.motor} with {r.spec} meets every limit with the required "
-                         f"margins (limiting: {r.limiting})")
+            lines.append(f"PASS: {r.motor} with {law_label(r.spec)} meets every limit with "
+                         f"the required margins (limiting: {r.limiting})")
         else:
             failing = [check_line(r, c) for c in r.checks if not check_passed(r, c)]
             if self.design.task.minimize or not failing:
                 failing = [r.reason]  # 'no duration is feasible: ...'
-            lines.append(f"FAIL: {r.motor} with {r.spec}: " + "; ".join(failing))
+            lines.append(f"FAIL: {r.motor} with {law_label(r.spec)}: " + "; ".join(failing))
         return "\n".join(lines) + "\n"
 
     def data(self) -> dict[str, Any]:

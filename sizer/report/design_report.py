@@ -21,6 +21,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from sizer import __version__
+from sizer.laws.data_spec import law_label
 from sizer.report.candidate_row import RPM_PER_RAD_S, check_line, percent
 from sizer.report.cycle_summary import duration_name
 from sizer.report.laws_table import LawsDocument
@@ -171,7 +172,8 @@ class DesignReport:
         if feasible:
             best = self.sizing.feasible[0]
             label = duration_name(self.design)
-            summary += (f". Best, ranked by {self.rank_key}: {best.motor} with {best.spec} "
+            summary += (f". Best, ranked by {self.rank_key}: {best.motor} with "
+                        f"{law_label(best.spec)} "
                         f"({label} = {short(best.duration * 1000.0)} ms, limiting: "
                         f"{best.limiting}).")
         else:
@@ -351,7 +353,7 @@ class DesignReport:
         if not feasible:
             notes.append("No feasible motor/law pair: the table shows the first pairs "
                          "and why they fail.")
-            notes += [f"#{rank} {r.motor}, {r.spec}: {r.reason}"
+            notes += [f"#{rank} {r.motor}, {law_label(r.spec)}: {r.reason}"
                       for rank, r in document.rows]
         else:
             infeasible = total - feasible
@@ -391,19 +393,19 @@ class DesignReport:
                                      "duration.\n")
         r = first.result
         document = SegmentDocument(breakdown_for(self.design, r), self.design)
-        text = md(f"#{first.rank} {r.motor} with {r.spec}: each segment's start and end, "
-                  f"peak and RMS torque, share of the cycle's RMS^2, peak motor speed and "
+        text = md(f"#{first.rank} {r.motor} with {law_label(r.spec)}: each segment's start "
+                  f"and end, peak and RMS torque, share of the cycle's RMS^2, peak motor speed and "
                   f"work at the motor shaft; a jerk impulse where the acceleration steps at "
                   f"a join.") + "\n\n"
         text += md(document.markdown(title=False))
         if self.time_figure:
-            alt = f"Motor torque and speed over the cycle of {r.motor} with {r.spec}"
+            alt = f"Motor torque and speed over the cycle of {r.motor} with {law_label(r.spec)}"
             text += f"\n![{md(alt)}]({self.time_figure})\n"
         return _section(heading, text)
 
     def _candidate(self, candidate: Candidate) -> str:
         r = candidate.result
-        lines = [f"### {candidate.rank}. {md(r.motor)} with {md(r.spec)}", ""]
+        lines = [f"### {candidate.rank}. {md(r.motor)} with {md(law_label(r.spec))}", ""]
         motor = r.motor_object or next((m for m in self.design.motors if m.id == r.motor),
                                        None)
         if motor is not None:
@@ -415,7 +417,7 @@ class DesignReport:
                    else f"not feasible: {r.reason}")
         lines += [f"- Verdict: {md(verdict)}", ""]
         if candidate.figure:
-            alt = f"Speed-torque diagram of {r.motor} with {r.spec}"
+            alt = f"Speed-torque diagram of {r.motor} with {law_label(r.spec)}"
             lines += [f"![{md(alt)}]({candidate.figure})", ""]
             lines += [md("The motor's intermittent and continuous regions, the task curve "
                          "(speed(t), torque(t)) over the machine cycle and its RMS point "

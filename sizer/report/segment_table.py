@@ -24,6 +24,7 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from sizer.laws.data_spec import law_label
 from sizer.report.candidate_row import RPM_PER_RAD_S
 from sizer.report.csv_text import render_csv
 from sizer.report.design_summary import design_summary, finite_or_none
@@ -127,7 +128,7 @@ def breakdown_for(design: Design, result: CandidateResult) -> SegmentBreakdown:
     from sizer.sizing.segment_breakdown import segment_breakdown
 
     if result.duration is None:
-        raise UserError(f"{result.motor} with {result.spec} has no feasible duration "
+        raise UserError(f"{result.motor} with {law_label(result.spec)} has no feasible duration "
                         f"({result.reason}): no segments to show")
     law = result.law_object if result.law_object is not None else result.spec
     return segment_breakdown(design, motor_of(design, result), law, result.duration,
@@ -149,7 +150,7 @@ class SegmentDocument(Rendered):
     def title(self) -> str:
         b = self.breakdown
         name = self.design.name or "design"
-        return f"{name}: the cycle by segment, motor {b.motor}, law {b.law}"
+        return f"{name}: the cycle by segment, motor {b.motor}, law {law_label(b.law)}"
 
     def table(self) -> Table:
         columns = (Column("segment", "left"), Column("kind", "left"), Column("law", "left"),
@@ -157,7 +158,7 @@ class SegmentDocument(Rendered):
                    Column("rms torque [N*m]"), Column(SHARE_HEADER),
                    Column("peak speed [rpm]"), Column("energy [J]"),
                    Column("join", "left"))
-        rows = [(row.name, row.kind, row.law or "", _short(row.start, 1000.0),
+        rows = [(row.name, row.kind, law_label(row.law or ""), _short(row.start, 1000.0),
                  _short(row.end, 1000.0), _short(row.peak_torque), _short(row.rms_torque),
                  _share(row.rms_share), _short(row.peak_speed, RPM_PER_RAD_S),
                  _short(row.energy), self._join_text(row))
@@ -186,8 +187,8 @@ class SegmentDocument(Rendered):
         b = self.breakdown
         lines = self.summary()
         if self.feasible is False:
-            lines.append(f"note: {b.motor} with {b.law} does not meet every limit (sizer "
-                         f"check or sizer size --all say which)")
+            lines.append(f"note: {b.motor} with {law_label(b.law)} does not meet every "
+                         f"limit (sizer check or sizer size --all say which)")
         lines += [f"note: {note}" for note in self.notes]
         return lines
 

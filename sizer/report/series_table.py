@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from sizer.laws.data_spec import law_label
 from sizer.report.csv_text import render_csv
 from sizer.report.json_text import render_json_flat_arrays
 from sizer.report.numbers import full, short, short_column
@@ -47,7 +48,7 @@ class SeriesDocument:
     def table(self) -> Table:
         columns = [short_column(values) for values in self._columns()]
         rows = list(zip(*columns, strict=True))
-        title = (f"{self.motion.law.spec}: h = {short(self.motion.displacement)} "
+        title = (f"{law_label(self.motion.law.spec)}: h = {short(self.motion.displacement)} "
                  f"{self.units['q']}, T = {short(self.motion.duration)} s")
         fit = fit_text(self.motion.law)
         if fit:

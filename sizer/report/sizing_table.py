@@ -18,6 +18,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from sizer.laws.data_spec import law_label
 from sizer.report.candidate_row import (
     CSV_HEADERS,
     result_csv_cells,
@@ -123,7 +124,8 @@ class SizingDocument(Rendered):
             lines.append(NO_DURATION_NOTE)
         if failing:
             lines.append("why these pairs fail:")
-            lines += [f"  #{rank} {r.motor}, {r.spec}: {r.reason}" for rank, r in failing]
+            lines += [f"  #{rank} {r.motor}, {law_label(r.spec)}: {r.reason}"
+                      for rank, r in failing]
         if self.hidden_infeasible:
             lines.append(f"{self.hidden_infeasible} infeasible pairs not shown (--all shows "
                          f"them)")

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from sizer.laws.data_spec import law_label
 from sizer.report.numbers import short
 from sizer.report.plots.figure_files import new_figure
 from sizer.report.plots.speed_torque import CURVE_COLORS
@@ -111,7 +112,7 @@ def law_profiles_figure(laws: Sequence[MotionLaw], *, displacement: float | None
             tau, value = law_samples(law, order, samples)
             y = move.scale(order) * value
             ax.plot(move.T * tau, y, color=color, lw=1.4, gid=GID_PROFILE,
-                    label=law.spec if order == 0 else None)
+                    label=law_label(law.spec) if order == 0 else None)
             if order == 3:
                 jerk_extent = max(jerk_extent, float(np.max(np.abs(y))))
     impulses = [(index, law, jump) for index, law in enumerate(laws)

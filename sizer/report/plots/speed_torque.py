@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from sizer.laws.data_spec import law_label
 from sizer.report.candidate_row import RPM_PER_RAD_S, percent
 from sizer.report.numbers import short
 from sizer.report.plots.figure_files import new_figure
@@ -191,5 +192,5 @@ def _title_lines(motor: str, curves: Sequence[TaskCurve],
                             if result.margin(name) is not None)
         ratio = f", K = {short(curve.ratio)}" if curve.ratio != 1.0 else ""
         verdict = "" if result.feasible else f" - FAILS ({result.limiting})"
-        lines.append(f"{result.spec}{ratio}: margins {margins}{verdict}")
+        lines.append(f"{law_label(result.spec)}{ratio}: margins {margins}{verdict}")
     return lines

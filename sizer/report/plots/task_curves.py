@@ -6,6 +6,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from sizer.errors import UserError
+from sizer.laws.data_spec import law_label
 
 if TYPE_CHECKING:
     from sizer.model.domain import Design, Motor, Transmission
@@ -36,7 +37,7 @@ def curve_for(design: Design, result: CandidateResult, samples: int = 401) -> Ta
     from sizer.sizing.profile import task_curve
 
     if result.duration is None:
-        raise UserError(f"{result.motor} with {result.spec} has no feasible duration "
+        raise UserError(f"{result.motor} with {law_label(result.spec)} has no feasible duration "
                         f"({result.reason}): no task curve to draw")
     law = result.law_object if result.law_object is not None else result.spec
     return task_curve(design, motor_of(design, result), law, result.duration,
