@@ -17,7 +17,6 @@ import typer
 from sizer.cli.catalog_option import CatalogOption, DesignArgument, load_design_file
 from sizer.cli.options import as_option, blame_option, check_law_specs
 from sizer.errors import UserError
-from sizer.laws.data_spec import law_label
 from sizer.report.printable import printable
 
 if TYPE_CHECKING:
@@ -146,7 +145,7 @@ def plot(
     drawn, curves = [], []
     for result in results:
         if result.duration is None:
-            sys.stderr.write(printable(f"note: {result.motor} with {law_label(result.spec)} has no "
+            sys.stderr.write(printable(f"note: {result.motor} with {_label(result.spec)} has no "
                                        f"feasible duration, not drawn ({result.reason})")
                              + "\n")
             continue
@@ -168,7 +167,7 @@ def plot(
         what = "speed-torque diagram"
     save_figure(figure, output, dpi=dpi)
     typer.echo(printable(f"{output}: {what} of {drawn[0].motor} with "
-                         f"{', '.join(law_label(r.spec) for r in drawn)}"))
+                         f"{', '.join(_label(r.spec) for r in drawn)}"))
 
 
 def plot_pairs(design: Design, motor: str | None = None, laws: Sequence[str] = (),
@@ -271,9 +270,15 @@ def plot_law(
                                  samples=samples, size=figure_size, dpi=dpi)
     save_figure(figure, output, dpi=dpi)
     typer.echo(printable(f"{output}: position, velocity, acceleration and jerk of "
-                         f"{', '.join(law_label(law.spec) for law in laws)}"))
+                         f"{', '.join(_label(law.spec) for law in laws)}"))
 
 
 def register(app: typer.Typer) -> None:
     app.command("plot")(plot)
     app.command("plot-law")(plot_law)
+
+
+def _label(spec: str) -> str:
+    from sizer.laws.data_spec import law_label  # lazy: keeps --help fast
+
+    return law_label(spec)
