@@ -33,6 +33,7 @@ from sizer.io.data_law_rules import (
     scale_warnings,
 )
 from sizer.io.data_laws import canonical_data_laws
+from sizer.io.linkage import linkage_task
 from sizer.io.motor_rules import (
     MotorProblem,
     impossibilities,
@@ -305,12 +306,14 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
     linear = task.linear
     if cycle is not None:
         warnings += cycle_bare_number_warnings(source, linear)
+    transmission, ratio_choice = build_transmission(model.transmission, source, folder,
+                                                    linear)
+    if transmission.linkage is not None:
+        task, linear = linkage_task(task, transmission.linkage, cycle, model, source)
     load = _load(model, source, linear)
     extra = list(extra_catalogs)
     if default_motors and model.motors is None and not extra:
         extra = list(default_catalogs().values())
-    transmission, ratio_choice = build_transmission(model.transmission, source, folder,
-                                                    linear)
     transmission = replace(transmission, efficiency_applies_to=model.efficiency_applies_to)
     files = [*files, *_gearbox_catalog_files(model.transmission, folder)]
     motors = _design_motors(model, source, folder, extra, warnings, files)

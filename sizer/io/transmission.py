@@ -14,6 +14,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from sizer.io.linkage import linkage_stage
 from sizer.io.validation import validate
 from sizer.io.yaml_source import YamlSource, read_yaml
 from sizer.mechanics import ball_screw, belt, gearbox, rack_pinion
@@ -24,9 +25,11 @@ from sizer.model.transmission_inputs import (
     BallScrewInput,
     BeltInput,
     DirectInput,
+    FourBarInput,
     GearboxCatalogFile,
     GearboxInput,
     RackPinionInput,
+    SliderCrankInput,
 )
 
 
@@ -48,8 +51,15 @@ def build_transmission(items: Sequence[Any] | None, source: YamlSource, folder: 
     stages: list[Stage] = []
     choice: RatioChoice | None = None
     choice_at: tuple[Any, ...] = ()
+    linkage = None
     for index, item in enumerate(items):
         if isinstance(item, DirectInput):
+            continue
+        if isinstance(item, SliderCrankInput | FourBarInput):
+            if index != moving[-1]:
+                raise source.error(f"a {item.type} must be the last stage of the "
+                                   f"transmission: its output is the load", at(index, "type"))
+            linkage = linkage_stage(item, source, at(index))
             continue
         last = index == moving[-1]
         if item.type in ("ball_screw", "rack_pinion") and not linear:
@@ -63,8 +73,8 @@ def build_transmission(items: Sequence[Any] | None, source: YamlSource, folder: 
             choice = dataclasses.replace(free, stage=len(stages))
             choice_at = at(index)
         stages.append(stage)
-    _check_total_ratio(stages, choice, source, linear)
-    return Transmission(tuple(stages)), choice
+    _check_total_ratio(stages, choice, source, linear and linkage is None)
+    return Transmission(tuple(stages), linkage=linkage), choice
 
 
 def _check_total_ratio(stages: Sequence[Stage], choice: RatioChoice | None,

@@ -100,14 +100,43 @@ class Stage:
 
 
 @dataclass(frozen=True)
+class LinkageStage:
+    """A linkage at the load end of the transmission (seed 003): its kind and lengths (m),
+    where the law is given (``law_on``: the crank angle, or the output), the crank's angle
+    at the start (rad) and turning direction (+1/-1), and its masses: the crank's inertia
+    (kg*m^2) and the connecting link as point masses at its crank end and output end (kg).
+    ``lengths``: (r, l, e) for a slider_crank, (crank, coupler, rocker, ground) for a
+    four_bar, whose ``branch`` is the assembly. The output's own mass or inertia and its
+    loads are the design's ``load``."""
+
+    kind: str
+    lengths: tuple[float, ...]
+    law_on: Literal["crank", "output"] = "crank"
+    start_angle: float = 0.0
+    direction: int = 1
+    branch: int = 1
+    crank_inertia: float = 0.0
+    link_mass_at_crank: float = 0.0
+    link_mass_at_output: float = 0.0
+    name: str = ""
+
+    @property
+    def output_linear(self) -> bool:
+        return self.kind == "slider_crank"
+
+
+@dataclass(frozen=True)
 class Transmission:
     """Stages from the motor to the load, in that order; empty = direct drive.
 
     ``efficiency_applies_to`` says how the stage efficiencies act (``EfficiencyRule``).
+    ``linkage``: a linkage after the stages, at the load (its ratio varies with its
+    angle, so it is not a Stage); the stages then end at its crank.
     """
 
     stages: tuple[Stage, ...] = ()
     efficiency_applies_to: EfficiencyRule = "power_flow"
+    linkage: LinkageStage | None = None
 
     @property
     def ratio(self) -> float:

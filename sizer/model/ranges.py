@@ -156,6 +156,14 @@ RANGES: dict[str, Range] = {
     "density": _r("density", 100.0, 1e5, "foams (100 kg/m^3) to beyond osmium "
                   "(22,590 kg/m^3)"),
     "preload_torque": _r("torque", 1e-9, 1e4, "as the torques; 0 = none", zero=True),
+    "link_length": _r("length", 1e-4, 100.0, "0.1 mm to 100 m: a crank, a rod or a link of a "
+                      "linkage"),
+    "link_offset": _r("length", 1e-9, 100.0, "the slider line's distance from the crank "
+                      "axis; 0 = in line", zero=True, signed=True),
+    "link_mass": _r("mass", 1e-6, 1e4, "a link's mass as point masses at its joints; "
+                    "0 = negligible", zero=True),
+    "crank_angle": _r("angle", 1e-9, 1e3, "the crank's angle at the start of the move, "
+                      "from the slider line or the ground link", zero=True, signed=True),
     "pitch_radius": _r("length", 1e-4, 10.0, "0.1 mm to 10 m: ratio 1/r in [0.1, 10,000] "
                        "rad/m (r = 1 mm is 1000 rad/m)"),
     "pitch_diameter": _r("length", 2e-4, 20.0, "twice the pitch radius"),

@@ -149,6 +149,50 @@ class RackPinionInput(Strict):
     name: Text | None = None
 
 
+Length = Ranged("link_length")
+LinkMass = Ranged("link_mass", note="a point mass at the joint")
+LawOn = Literal["crank", "output"]
+
+
+class _LinkageInput(Strict):
+    """What every linkage stage has (seed 003): where the motion law is given, the crank's
+    start and turning direction, the crank's inertia and the connecting link as two point
+    masses. The load (``load:``) is the linkage's output."""
+
+    law_on: LawOn = Field("crank", description="crank: the law moves the crank by the task's "
+                          "displacement (an angle); output: the law moves the output (the "
+                          "slider or the rocker) and the crank follows by inverse kinematics")
+    start_angle: Ranged("crank_angle") = 0.0  # type: ignore[valid-type]
+    direction: Literal["positive", "negative"] = Field(
+        "positive", description="the crank's turning direction during the move")
+    crank_inertia: Inertia = 0.0  # type: ignore[valid-type]
+    name: Text | None = None
+
+
+class SliderCrankInput(_LinkageInput):
+    """A slider-crank: the motor turns the crank, the slider is the linear output."""
+
+    type: Literal["slider_crank"]
+    crank_radius: Length  # type: ignore[valid-type]
+    rod_length: Length  # type: ignore[valid-type]
+    offset: Ranged("link_offset") = 0.0  # type: ignore[valid-type]
+    rod_mass_at_crank: LinkMass = 0.0  # type: ignore[valid-type]
+    rod_mass_at_slider: LinkMass = 0.0  # type: ignore[valid-type]
+
+
+class FourBarInput(_LinkageInput):
+    """A four-bar: the motor turns the crank, the rocker's angle is the output."""
+
+    type: Literal["four_bar"]
+    crank: Length  # type: ignore[valid-type]
+    coupler: Length  # type: ignore[valid-type]
+    rocker: Length  # type: ignore[valid-type]
+    ground: Length  # type: ignore[valid-type]
+    branch: Literal[1, -1] = Field(1, description="the assembly: 1 open, -1 crossed")
+    coupler_mass_at_crank: LinkMass = 0.0  # type: ignore[valid-type]
+    coupler_mass_at_rocker: LinkMass = 0.0  # type: ignore[valid-type]
+
+
 class DirectInput(Strict):
     """Direct drive: the motor turns (or, a linear motor, moves) the load (no stage)."""
 
@@ -157,13 +201,16 @@ class DirectInput(Strict):
 
 
 TransmissionStageInput = Annotated[
-    GearboxInput | BeltInput | BallScrewInput | RackPinionInput | DirectInput,
+    GearboxInput | BeltInput | BallScrewInput | RackPinionInput | DirectInput
+    | SliderCrankInput | FourBarInput,
     Field(discriminator="type"),
 ]
 """One transmission stage, told apart by ``type``."""
 
-TRANSMISSION_TYPES: tuple[str, ...] = ("gearbox", "belt", "ball_screw", "rack_pinion", "direct")
-LINEAR_OUTPUT_TYPES: tuple[str, ...] = ("ball_screw", "rack_pinion", "belt")
+TRANSMISSION_TYPES: tuple[str, ...] = ("gearbox", "belt", "ball_screw", "rack_pinion", "direct",
+                                       "slider_crank", "four_bar")
+LINEAR_OUTPUT_TYPES: tuple[str, ...] = ("ball_screw", "rack_pinion", "belt", "slider_crank")
+LINKAGE_TYPES: tuple[str, ...] = ("slider_crank", "four_bar")
 
 # ------------------------------------------------------------ gearbox catalog
 

@@ -46,6 +46,9 @@ class CheckArrays:
     unit: str
     required: float
     applies: np.ndarray | None = None
+    notes: np.ndarray | None = None
+    """Per candidate, why the check fails when a number does not say it (a law that
+    breaks a linkage's dead-point rule: which rule, and when); None: no notes."""
 
     @cached_property
     def margin(self) -> np.ndarray:
@@ -64,7 +67,8 @@ class CheckArrays:
         """The check of the candidates at ``index``."""
         return CheckArrays(self.name, _pick(self.value, index), _pick(self.limit, index),
                            self.unit, self.required,
-                           None if self.applies is None else _pick(self.applies, index))
+                           None if self.applies is None else _pick(self.applies, index),
+                           None if self.notes is None else _pick(self.notes, index))
 
     @property
     def passed(self) -> np.ndarray:

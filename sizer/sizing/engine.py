@@ -83,6 +83,10 @@ def evaluate_law(design: Design, spec: str, candidates: Candidates) -> Candidate
     """One law spec (fixed or with auto parameters) for all candidates, in their order."""
     family, values = resolve(spec)
     if any(v == AUTO for v in values.values()):
+        if design.transmission.linkage is not None:
+            from sizer.sizing.linkage_sizing import refuse_auto
+
+            raise refuse_auto(spec)
         if design.cycle is not None:
             raise UserError(f"{spec}: `auto` shape parameters are chosen for the task "
                             "shorthand only, not yet for a cycle of segments; give the "
@@ -122,7 +126,9 @@ def chunk_size(law: MotionLaw, moves: int = 1) -> int:
 def evaluate_fixed_law(design: Design, law: MotionLaw, candidates: Candidates) -> CandidateTable:
     """The requirements, checks and verdicts of one law for every candidate, in chunks
     of :func:`chunk_size` candidates."""
-    if design.cycle is not None:
+    if design.transmission.linkage is not None:
+        size = max(MIN_CHUNK, CHUNK_SAMPLES // LINKAGE_SAMPLES)
+    elif design.cycle is not None:
         size = chunk_size(law, len(design.cycle.moves))
     else:
         calculator = CycleCalculator(None, design.task, candidates.drive, candidates.motors,
@@ -138,6 +144,8 @@ def evaluate_fixed_law(design: Design, law: MotionLaw, candidates: Candidates) -
 
 
 def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates) -> CandidateTable:
+    if design.transmission.linkage is not None:
+        return _evaluate_linkage_chunk(design, law, candidates)
     if design.cycle is not None:
         return _evaluate_cycle_chunk(design, law, candidates)
     motors, drive = candidates.motors, candidates.drive
@@ -177,6 +185,21 @@ def _evaluate_cycle_chunk(design: Design, law: MotionLaw,
         feasible = all_pass(checks)
     duration = np.where(feasible, metrics.duration, np.nan) if cycle.minimize \
         else metrics.duration
+    return _table(design, law, candidates, duration, metrics, checks, feasible)
+
+
+LINKAGE_SAMPLES = 8192
+"""Samples of a move through a linkage per candidate (sizer.sizing.linkage_sizing)."""
+
+
+def _evaluate_linkage_chunk(design: Design, law: MotionLaw,
+                            candidates: Candidates) -> CandidateTable:
+    """Through a linkage at the load (sizer.sizing.linkage_sizing): the profile of the
+    law computed once, the candidates at its samples; minimize by time scaling."""
+    from sizer.sizing.linkage_sizing import evaluate_linkage  # only linkage designs
+
+    duration, metrics, checks, feasible = evaluate_linkage(design, law, candidates.motors,
+                                                           candidates.drive)
     return _table(design, law, candidates, duration, metrics, checks, feasible)
 
 

@@ -63,6 +63,8 @@ class Check:
     unit: str
     margin: float
     required: float = 0.0
+    note: str = ""
+    """Why it fails when the numbers do not say it (sizer.sizing.checks.CheckArrays)."""
 
     @property
     def slack(self) -> float:
@@ -89,6 +91,8 @@ class Check:
     def describe(self) -> str:
         """One line: which limit, the values, and by how much it passes or fails."""
         unit = f" {self.unit}" if self.unit else ""
+        if self.note and not self.passed:
+            return f"{self.name}: {self.note} (FAILS)"
         undefined = self.undefined_reason
         if undefined is not None:
             verdict = "ok" if self.passed else "FAILS"

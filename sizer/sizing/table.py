@@ -96,7 +96,8 @@ class CandidateTable:
             if c.applies is not None and not c.applies[i]:
                 continue
             check = Check(c.name, float(_at(c.value, i)), float(_at(c.limit, i)), c.unit,
-                          float(_at(c.margin, i)), c.required)
+                          float(_at(c.margin, i)), c.required,
+                          "" if c.notes is None else str(_at(c.notes, i)))
             rows.append(check)
             if k == binding:
                 binding_name = check
@@ -160,8 +161,13 @@ def concatenate(tables: Sequence[CandidateTable]) -> CandidateTable:
         if any(p.applies is not None for p in parts):
             applies = np.concatenate([np.ones(m, bool) if p.applies is None else p.applies
                                       for p, m in zip(parts, n, strict=True)])
+        notes = None
+        if any(p.notes is not None for p in parts):
+            notes = np.concatenate([np.full(m, "", dtype=object) if p.notes is None
+                                    else np.broadcast_to(p.notes, (m,))
+                                    for p, m in zip(parts, n, strict=True)])
         checks.append(CheckArrays(c.name, joined("value"), joined("limit"), c.unit,
-                                  c.required, applies))
+                                  c.required, applies, notes))
     ratios = None
     if any(t.stage_ratio is not None for t in tables):
         ratios = np.concatenate([np.full(len(t), np.nan) if t.stage_ratio is None

@@ -1,0 +1,281 @@
+"""Sizing through a linkage at the load (issue 14, seed 003): a position-dependent ratio.
+
+The motion of the move has a fixed shape over normalized time u = t/T (book sec. 5.2):
+with the law on the crank, theta(u) = theta_0 + h q_N(u); with the law on the output,
+s(u) = s_0 + h q_N(u) and the crank follows by inverse kinematics, through the dead
+points by the paper's limits (sizer.mechanics.linkages.inverse_motion). The torque the
+crank needs is tau_c(u; T) = A(u)/T^2 + D(u)/T + B(u) by Lagrange, with the d(J_eq)/dq
+term (sizer.mechanics.linkages.dynamics). Computed once per law (:func:`linkage_profile`)
+on a fixed grid: composite Gauss-Legendre nodes for the integrals (RMS), a uniform grid
+of PEAK_POINTS points plus the law's breakpoints for the peaks.
+
+Per candidate (:class:`LinkageCalculator`), the gear stages between motor and crank
+(ratio N, efficiency eta in the direction of power flow, their inertia) give the motor's
+speed N theta'(u)/T and torque (J_m + J_stages) N theta''(u)/T^2 + tau_c/(N eta^{+-1}):
+peaks and the speed-torque envelope over the samples, the RMS over the cycle with the
+dwell holding the output's static load. A law that breaks the paper's dead-point rule is
+infeasible for every candidate, with its reason (check ``dead_point``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from functools import lru_cache
+
+import numpy as np
+
+from sizer.errors import UserError
+from sizer.laws import MotionLaw
+from sizer.mechanics.drive import Drive
+from sizer.model.domain import Design, Limits, LinkageStage, Load, Task
+from sizer.sizing.checks import CheckArrays, evaluate_checks
+from sizer.sizing.cycle import CycleMetrics
+from sizer.sizing.motors import MotorArrays
+
+PEAK_POINTS = 4001
+"""Uniform samples of u in [0, 1] where the peaks are read (with the law's breakpoints):
+a smooth peak is read to about (1/4000)^2 of its curvature, 1e-7 relative."""
+GAUSS_PIECES = 128
+"""Composite Gauss-Legendre: sub-intervals of [0, 1] (split at the law's breakpoints)."""
+GAUSS_NODES = 8
+"""Nodes per sub-interval: exact for polynomials of degree 15 in each."""
+
+
+@dataclass(frozen=True)
+class LinkageProfile:
+    """A move through a linkage over normalized time u (T = 1), the same for every
+    candidate: the samples, the crank's motion, the output's, the crank torque's parts and
+    the static crank torque holding the output at the end; ``issues`` are the reasons the
+    law breaks the dead-point rule (empty: none)."""
+
+    weights: np.ndarray
+    theta1: np.ndarray
+    theta2: np.ndarray
+    s1: np.ndarray
+    s2: np.ndarray
+    s3: np.ndarray
+    inertial: np.ndarray
+    damping: np.ndarray
+    steady: np.ndarray
+    hold: float
+    turn: float
+    output_mass: float
+    load: Load
+    max_inertia: float
+    issues: tuple[str, ...]
+
+
+def _grid(law: MotionLaw) -> tuple[np.ndarray, np.ndarray]:
+    """Sample points of [0, 1] and their quadrature weights (0 for the peak-only ones)."""
+    cuts = np.unique(np.concatenate((law.breakpoints, np.linspace(0.0, 1.0, GAUSS_PIECES + 1))))
+    x, w = np.polynomial.legendre.leggauss(GAUSS_NODES)
+    left, width = cuts[:-1, None], np.diff(cuts)[:, None]
+    nodes = (left + 0.5 * width * (x + 1.0)).ravel()
+    weights = (0.5 * width * w).ravel()
+    peaks = np.unique(np.concatenate((np.linspace(0.0, 1.0, PEAK_POINTS), law.breakpoints)))
+    return (np.concatenate((nodes, peaks)),
+            np.concatenate((weights, np.zeros(len(peaks)))))
+
+
+def linkage_profile(design: Design, law: MotionLaw) -> LinkageProfile:
+    """The profile of ``law`` through the design's linkage (cached per law and design)."""
+    stage = design.transmission.linkage
+    assert stage is not None
+    return _profile(stage, design.load, design.task.displacement, law)
+
+
+@lru_cache(maxsize=256)
+def _profile(stage: LinkageStage, load: Load, h: float, law: MotionLaw) -> LinkageProfile:
+    from sizer.io.linkage import linkage_of
+    from sizer.mechanics.linkages.dynamics import LinkageDynamics, LinkageMasses
+    from sizer.mechanics.linkages.inverse_motion import (
+        dead_point_crossings,
+        input_motion,
+        output_motion,
+    )
+
+    linkage = linkage_of(stage)
+    u, weights = _grid(law)
+    q = [law.derivative(u, k) for k in range(4)]
+    theta0 = stage.start_angle
+    issues: tuple[str, ...] = ()
+    if stage.law_on == "crank":
+        theta = [theta0 + h * q[0], h * q[1], h * q[2], h * q[3]]
+        s = output_motion(linkage, *theta)
+    else:
+        s0 = float(linkage.output(np.array([theta0]))[0])
+        s = [s0 + h * q[0], h * q[1], h * q[2], h * q[3]]
+        found = dead_point_crossings(linkage, u, *s, **_one_sided(law, h))
+        issues = tuple(issue.message for issue in found)
+        with np.errstate(all="ignore"):
+            theta = list(input_motion(linkage, *s, start_theta=theta0))
+    masses = LinkageMasses(crank_inertia=stage.crank_inertia, output_inertia=load.inertia,
+                           link_mass_at_crank=stage.link_mass_at_crank,
+                           link_mass_at_output=stage.link_mass_at_output,
+                           load=load.torque, friction=load.friction, damping=load.damping)
+    dynamics = LinkageDynamics(linkage, masses)
+    with np.errstate(all="ignore"):
+        parts = dynamics.time_scaling_parts(theta[0], theta[1], theta[2])
+    end = np.array([theta[0][np.argmax(u)]])
+    hold = float(linkage.output(end, 1)[0] * load.torque)
+    turn = float(theta[0][np.argmax(u)] - theta[0][np.argmin(u)])
+    grid = np.linspace(-np.pi, np.pi, 721)
+    max_inertia = float(np.max(dynamics.inertia(grid)))
+    return LinkageProfile(weights, _finite(theta[1]), _finite(theta[2]), s[1], s[2], s[3],
+                          _finite(parts.inertial), _finite(parts.damping),
+                          _finite(parts.steady), hold, turn,
+                          dynamics.output_side_inertia, load, max_inertia, issues)
+
+
+def _one_sided(law: MotionLaw, h: float) -> dict[str, np.ndarray]:
+    """The output's acceleration and jerk just before and after each sample where the
+    law's pieces join (at rest outside [0, 1]), for the dead-point rule."""
+    from sizer.laws.coefficients import one_sided_limits
+
+    left = {k: {tau: lo for tau, lo, _ in one_sided_limits(law, k)} for k in (2, 3)}
+    right = {k: {tau: hi for tau, _, hi in one_sided_limits(law, k)} for k in (2, 3)}
+    taus = np.array(sorted(left[2]))
+    return {"breaks": taus,
+            "left": np.array([[h * left[k][t] for k in (2, 3)] for t in taus]),
+            "right": np.array([[h * right[k][t] for k in (2, 3)] for t in taus])}
+
+
+def _finite(x: np.ndarray) -> np.ndarray:
+    """The samples where the motion is singular (a law that breaks the dead-point rule)
+    read 0: the verdict is the dead-point check's, no inf or NaN reaches a result."""
+    x = np.asarray(x, dtype=float)
+    return np.where(np.isfinite(x), x, 0.0)
+
+
+class LinkageCalculator:
+    """The requirements of one law through a linkage for each candidate at durations T
+    (the interface of sizer.sizing.cycle.CycleCalculator that minimum_duration uses)."""
+
+    segmented = True
+
+    def __init__(self, profile: LinkageProfile, task: Task, drive: Drive,
+                 motors: MotorArrays, thermal_rule: str, law: MotionLaw) -> None:
+        self.profile, self.task, self.drive, self.motors = profile, task, drive, motors
+        self.thermal_rule, self.law = thermal_rule, law
+
+    def take(self, index: np.ndarray) -> LinkageCalculator:
+        return LinkageCalculator(self.profile, self.task, self.drive.take(index),
+                                 self.motors.subset(index), self.thermal_rule, self.law)
+
+    def peak_bound(self, limits: Limits) -> None:
+        return None
+
+    def initial_guess(self) -> np.ndarray:
+        """A duration from the speed bound and the inertial bound at the peak torque."""
+        p, motors, N = self.profile, self.motors, self.drive.ratio
+        speed = np.max(np.abs(p.theta1)) * N / np.maximum(motors.speed_limit, 1e-300)
+        tau_p = np.maximum(motors.intermittent.torques.max(axis=1), 1e-300)
+        inertial = np.max(np.abs(p.inertial)) / N + (motors.inertia + self.drive.
+                                                     transmission_inertia) * N * \
+            np.max(np.abs(p.theta2))
+        guess = np.maximum(speed, np.sqrt(inertial / tau_p))
+        return np.where(np.isfinite(guess) & (guess > 0.0), guess, 1.0)
+
+    def evaluate(self, duration: np.ndarray, peaks: bool = True) -> CycleMetrics:
+        p, motors, drive = self.profile, self.motors, self.drive
+        T = np.broadcast_to(np.asarray(duration, dtype=float), (len(motors),))[:, None]
+        N, eta = drive.ratio[:, None], drive.efficiency[:, None]
+        rotor = (motors.inertia + drive.transmission_inertia)[:, None]
+        crank = p.inertial / T**2 + p.damping / T + p.steady
+        driving = crank * p.theta1 >= 0.0
+        torque = rotor * N * p.theta2 / T**2 + np.where(driving, crank / (N * eta),
+                                                         crank * eta / N)
+        speed = N * p.theta1 / T
+        dwell = self.task.dwell
+        hold = abs(p.hold) / (N[:, 0] * eta[:, 0])
+        cycle = T[:, 0] + dwell
+        square = T[:, 0] * (torque**2 @ p.weights) + dwell * hold**2
+        with np.errstate(divide="ignore", invalid="ignore"):
+            limit = motors.intermittent.limit_clipped(speed)
+            ratio = np.where(limit > 0.0, np.abs(torque) / limit,
+                             np.where(torque == 0.0, 0.0, np.inf))
+        load = p.load
+        force = (p.output_mass * p.s2 / T**2 + load.damping * p.s1 / T + load.torque
+                 + load.friction * np.sign(p.s1))
+        stage_torque, stage_speed = self._stages(crank, T)
+        return CycleMetrics(
+            duration=T[:, 0], max_speed=np.max(np.abs(speed), axis=1),
+            peak_torque=np.max(np.abs(torque), axis=1), peak_ratio=np.max(ratio, axis=1),
+            rms_torque=np.sqrt(square / cycle), thermal_speed=self.thermal_speed(T[:, 0]),
+            load_speed=np.max(np.abs(p.s1)) / T[:, 0],
+            load_acceleration=np.max(np.abs(p.s2)) / T[:, 0] ** 2,
+            load_jerk=np.max(np.abs(p.s3)) / T[:, 0] ** 3,
+            load_torque=np.max(np.abs(force), axis=1),
+            stage_peak=[np.max(np.abs(x), axis=1) for x in stage_torque],
+            stage_rms=[np.sqrt(T[:, 0] * (x**2 @ p.weights) / cycle) for x in stage_torque],
+            stage_speed=stage_speed)
+
+    def thermal_speed(self, T: np.ndarray) -> np.ndarray:
+        """The speed the continuous region is read at: the peak (book), RMS or mean."""
+        p, N = self.profile, self.drive.ratio
+        cycle = T + self.task.dwell
+        if self.thermal_rule == "max":
+            return N * np.max(np.abs(p.theta1)) / T
+        if self.thermal_rule == "rms":
+            return N * np.sqrt(float(p.theta1**2 @ p.weights) * T / cycle) / T
+        return N * abs(p.turn) / cycle
+
+    def _stages(self, crank: np.ndarray, T: np.ndarray):
+        """Each gear stage's output torque (the crank torque reflected through the
+        stages after it; their own inertia and losses left out) and peak input speed."""
+        ratios = self.drive.input_ratios
+        torques, speeds = [], []
+        peak = np.max(np.abs(self.profile.theta1))
+        for stage, into in zip(self.drive.stages, ratios, strict=True):
+            after = into / stage.ratio
+            torques.append(crank / after[:, None])
+            speeds.append(into * peak / T[:, 0])
+        return torques, speeds
+
+
+def dead_point_check(profile: LinkageProfile, n: int) -> CheckArrays:
+    """``dead_point``: passes when the law meets the paper's rule at every dead point
+    the output reaches; else fails for every candidate with the reason as its note."""
+    bad = bool(profile.issues)
+    notes = np.full(n, "; ".join(profile.issues), dtype=object) if bad else None
+    return CheckArrays("dead_point", np.full(n, np.inf if bad else 0.0), np.ones(n), "",
+                       0.0, None, notes)
+
+
+def crank_drive(design: Design, drive: Drive, profile: LinkageProfile) -> Drive:
+    """The drive of the gear stages with the linkage's largest equivalent inertia at
+    the crank as their load (for the inertia ratio: the worst over a turn)."""
+    load = replace(design.load, inertia=profile.max_inertia, damping=0.0, friction=0.0,
+                   torque=0.0)
+    return Drive(load, drive.transmissions, drive.option)
+
+
+def evaluate_linkage(design: Design, law: MotionLaw, motors: MotorArrays, drive: Drive):
+    """(duration, metrics, checks, feasible) of one law through the design's linkage."""
+    from sizer.sizing.checks import feasible as all_pass
+    from sizer.sizing.minimum_duration import minimum_duration
+
+    profile = linkage_profile(design, law)
+    drive = crank_drive(design, drive, profile)
+    calculator = LinkageCalculator(profile, design.task, drive, motors,
+                                   design.limits.thermal_speed, law)
+    n = len(motors)
+    point = dead_point_check(profile, n)
+    if design.task.minimize and not profile.issues:
+        solution = minimum_duration(calculator, design.limits)
+        checks = [*solution.checks, point]
+        return solution.duration, solution.metrics, checks, solution.feasible
+    T = np.full(n, design.task.duration if design.task.duration is not None else np.nan)
+    if design.task.minimize:  # the law is infeasible at any duration: show one
+        T = calculator.initial_guess()
+    metrics = calculator.evaluate(T)
+    checks = [*evaluate_checks(metrics, motors, drive, design.limits, design.task.linear),
+              point]
+    feasible = all_pass(checks)
+    duration = np.where(feasible, T, np.nan) if design.task.minimize else T
+    return duration, metrics, checks, feasible
+
+
+def refuse_auto(spec: str) -> UserError:
+    return UserError(f"{spec}: `auto` shape parameters are not chosen through a linkage yet; "
+                     f"give the shape", field="laws")
