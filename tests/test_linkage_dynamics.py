@@ -103,6 +103,10 @@ def test_motor_work_is_kinetic_energy_plus_losses(geometry: str, law_name: str) 
     damping_work = sum(quad(lambda t: m.damping * s_dot(t) ** 2, a, b, epsabs=0.0,
                             epsrel=1e-12, limit=200)[0] for a, b in pieces)
     change = kinetic(T) - kinetic(0.0)
+    for t in (0.0, 0.3 * T, T):
+        theta, speed, _ = law(t, T)
+        assert float(dynamics.kinetic_energy(theta, speed)) == pytest.approx(kinetic(t),
+                                                                            rel=1e-13)
     expected = change + load_work + friction_work + damping_work
     scale = abs(change) + abs(load_work) + friction_work + damping_work
     assert friction_work > 0.0 and damping_work > 0.0
