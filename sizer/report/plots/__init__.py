@@ -16,6 +16,7 @@ from sizer.report.plots.figure_files import (
     save_figure,
 )
 from sizer.report.plots.law_profiles import law_profiles_figure
+from sizer.report.plots.linkage_curves import linkage_figure
 from sizer.report.plots.speed_torque import speed_torque_figure
 from sizer.report.plots.task_curves import curve_for, transmission_for
 from sizer.report.plots.time_curves import time_figure
@@ -25,6 +26,7 @@ __all__ = [
     "curve_for",
     "figure_format",
     "law_profiles_figure",
+    "linkage_figure",
     "new_figure",
     "save_figure",
     "speed_torque_figure",
