@@ -78,4 +78,24 @@ def linkage_task(task: Any, stage: LinkageStage, cycle: Any, model: Any,
                            "angle like '180 deg'", at)
     if stage.law_on == "output" and task.linear != stage.output_linear:
         raise source.error(f"with law_on: output the displacement is {output}", at)
+    if stage.law_on == "output":
+        _check_stroke(stage, task.displacement, source, at)
     return replace(task, linear=stage.output_linear), stage.output_linear
+
+
+def _check_stroke(stage: LinkageStage, h: float, source: YamlSource,
+                  at: tuple[Any, ...]) -> None:
+    """The output's move from where the crank starts stays within the linkage's range."""
+    import numpy as np
+
+    linkage = linkage_of(stage)
+    start = float(linkage.output(np.array([stage.start_angle]))[0])
+    low, high = linkage.output_range()
+    end = start + h
+    tolerance = 1e-9 * (high - low)
+    if not low - tolerance <= end <= high + tolerance:
+        unit = "m" if stage.output_linear else "rad"
+        raise source.error(f"the output would move from {start:.6g} {unit} (the crank at "
+                           f"start_angle) to {end:.6g} {unit}, beyond its range "
+                           f"[{low:.6g}, {high:.6g}] {unit} (the stroke between the dead "
+                           f"points)", at)

@@ -99,6 +99,11 @@ class SizingDocument(Rendered):
         task = self.design.task
         unit = "m" if task.linear else "rad"
         move = f"h = {short(task.displacement)} {unit}"
+        linkage = self.design.transmission.linkage
+        if linkage is not None and linkage.law_on == "crank":
+            move = f"the crank turns {short(task.displacement)} rad"
+        elif linkage is not None:
+            move = f"the {'slider' if linkage.output_linear else 'rocker'} moves {move}"
         move += (", shortest duration" if task.minimize
                  else f" in T = {short(task.duration * 1000.0)} ms")
         if self.design.cycle is not None and sized_as_cycle(self.design):

@@ -48,7 +48,12 @@ class LinkageProfile:
     the static crank torque holding the output at the end; ``issues`` are the reasons the
     law breaks the dead-point rule (empty: none)."""
 
+    u: np.ndarray
     weights: np.ndarray
+    theta: np.ndarray
+    ratio: np.ndarray
+    """ds/dtheta at the samples: the linkage's transmission ratio (m/rad or rad/rad)."""
+    s: np.ndarray
     theta1: np.ndarray
     theta2: np.ndarray
     s1: np.ndarray
@@ -121,7 +126,9 @@ def _profile(stage: LinkageStage, load: Load, h: float, law: MotionLaw) -> Linka
     turn = float(theta[0][np.argmax(u)] - theta[0][np.argmin(u)])
     grid = np.linspace(-np.pi, np.pi, 721)
     max_inertia = float(np.max(dynamics.inertia(grid)))
-    return LinkageProfile(weights, _finite(theta[1]), _finite(theta[2]), s[1], s[2], s[3],
+    ratio = linkage.output(_finite(theta[0]), 1)
+    return LinkageProfile(u, weights, _finite(theta[0]), ratio, s[0],
+                          _finite(theta[1]), _finite(theta[2]), s[1], s[2], s[3],
                           _finite(parts.inertial), _finite(parts.damping),
                           _finite(parts.steady), hold, turn,
                           dynamics.output_side_inertia, load, max_inertia, issues)
@@ -176,7 +183,10 @@ class LinkageCalculator:
         guess = np.maximum(speed, np.sqrt(inertial / tau_p))
         return np.where(np.isfinite(guess) & (guess > 0.0), guess, 1.0)
 
-    def evaluate(self, duration: np.ndarray, peaks: bool = True) -> CycleMetrics:
+    def motor_samples(self, duration: np.ndarray
+                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(motor speed, motor torque, crank torque) at the profile's samples for each
+        candidate's duration: arrays (candidates, samples)."""
         p, motors, drive = self.profile, self.motors, self.drive
         T = np.broadcast_to(np.asarray(duration, dtype=float), (len(motors),))[:, None]
         N, eta = drive.ratio[:, None], drive.efficiency[:, None]
@@ -185,7 +195,13 @@ class LinkageCalculator:
         driving = crank * p.theta1 >= 0.0
         torque = rotor * N * p.theta2 / T**2 + np.where(driving, crank / (N * eta),
                                                          crank * eta / N)
-        speed = N * p.theta1 / T
+        return N * p.theta1 / T, torque, crank
+
+    def evaluate(self, duration: np.ndarray, peaks: bool = True) -> CycleMetrics:
+        p, motors, drive = self.profile, self.motors, self.drive
+        T = np.broadcast_to(np.asarray(duration, dtype=float), (len(motors),))[:, None]
+        N, eta = drive.ratio[:, None], drive.efficiency[:, None]
+        speed, torque, crank = self.motor_samples(T[:, 0])
         dwell = self.task.dwell
         hold = abs(p.hold) / (N[:, 0] * eta[:, 0])
         cycle = T[:, 0] + dwell
@@ -274,6 +290,52 @@ def evaluate_linkage(design: Design, law: MotionLaw, motors: MotorArrays, drive:
     feasible = all_pass(checks)
     duration = np.where(feasible, T, np.nan) if design.task.minimize else T
     return duration, metrics, checks, feasible
+
+
+def linkage_curve(design: Design, motor, law: MotionLaw, duration: float,
+                  transmission=None, samples: int = 401):
+    """The TaskCurve of one candidate through the linkage (for plots and reports): the
+    move at ``samples`` instants and the dwell holding the output."""
+    from sizer.sizing.profile import TaskCurve, continuous_region, intermittent_region
+
+    motors = MotorArrays.of([motor], design.limits.envelope)
+    profile = linkage_profile(design, law)
+    drive = crank_drive(design, Drive(design.load, transmission or design.transmission),
+                        profile)
+    calculator = LinkageCalculator(profile, design.task, drive, motors,
+                                   design.limits.thermal_speed, law)
+    T = np.array([duration])
+    metrics = calculator.evaluate(T)
+    speed, torque, _ = calculator.motor_samples(T)
+    pick = np.flatnonzero(profile.weights == 0.0)  # the uniform grid, in order
+    pick = pick[np.linspace(0, len(pick) - 1, samples).round().astype(int)]
+    u = profile.u[pick]
+    times, position = [duration * u], [profile.s[pick]]
+    load_speed, load_acceleration = [profile.s1[pick] / duration], \
+        [profile.s2[pick] / duration**2]
+    motor_speed, torques = [speed[0, pick]], [torque[0, pick]]
+    motor_acceleration = [float(drive.ratio[0]) * profile.theta2[pick] / duration**2]
+    if design.task.dwell > 0.0:
+        hold = profile.hold / float(drive.ratio[0] * drive.efficiency[0])
+        times.append(np.array([duration, duration + design.task.dwell]))
+        position.append(np.full(2, profile.s[pick][-1]))
+        for series in (load_speed, load_acceleration, motor_speed, motor_acceleration):
+            series.append(np.zeros(2))
+        torques.append(np.full(2, hold))
+    total = motor.inertia + float(drive.driven_inertia[0])
+    return TaskCurve(
+        motor=motor.id, law=law.spec, duration=duration, ratio=float(drive.ratio[0]),
+        time=np.concatenate(times), position=np.concatenate(position),
+        load_speed=np.concatenate(load_speed),
+        load_acceleration=np.concatenate(load_acceleration),
+        motor_speed=np.concatenate(motor_speed),
+        motor_acceleration=np.concatenate(motor_acceleration),
+        motor_torque=np.concatenate(torques), rms_torque=float(metrics.rms_torque[0]),
+        thermal_speed=float(metrics.thermal_speed[0]),
+        peak_torque=float(metrics.peak_torque[0]), max_speed=float(metrics.max_speed[0]),
+        continuous_region=continuous_region(motor, design.limits.envelope),
+        intermittent_region=intermittent_region(motor, design.limits.envelope),
+        total_inertia=total)
 
 
 def refuse_auto(spec: str) -> UserError:

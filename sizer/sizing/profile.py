@@ -68,6 +68,10 @@ def task_curve(design: Design, motor: Motor, law: MotionLaw | str, duration: flo
     """
     if isinstance(law, str):
         law = make_law(law)
+    if design.transmission.linkage is not None:
+        from sizer.sizing.linkage_sizing import linkage_curve
+
+        return linkage_curve(design, motor, law, duration, transmission, samples)
     if plain_design(design).cycle is not None:
         return _cycle_curve(design, motor, law, duration, transmission, samples)
     drive = Drive(design.load, transmission or design.transmission)
