@@ -303,9 +303,11 @@ BAD_CASES = [
      "must be 0 or in [1e-9, 1e8] N*m"),
     ("torque: 0 N*m", "torque: 5 N", "torque: 5 N", "load.torque", "expected a torque"),
     ("type: gearbox", "type: chain", "type: chain", "transmission.type",
-     "unknown type 'chain'; expected one of: gearbox, belt, ball_screw, rack_pinion, direct"),
+     "unknown type 'chain'; expected one of: gearbox, belt, ball_screw, rack_pinion, direct, "
+     "slider_crank, four_bar"),
     ("  type: gearbox\n", "", "transmission:", "transmission.type",
-     "required field is missing (one of: gearbox, belt, ball_screw, rack_pinion, direct)"),
+     "required field is missing (one of: gearbox, belt, ball_screw, rack_pinion, direct, "
+     "slider_crank, four_bar)"),
     ("  ratio: 10\n", "", "transmission:", "transmission.ratio", "required field is missing"),
     ("  ratio: 10\n", "  ratio: 0\n", "ratio: 0", "transmission.ratio", "must be in [0.001, 1e5]"),
     ("  ratio: 10\n", "  ratio: -10\n", "ratio: -10", "transmission.ratio",

@@ -83,6 +83,11 @@ def plot(
         "--time", "-t",
         help="Draw motor torque and motor speed over time instead, over the whole "
              "machine cycle with its segments marked.")] = False,
+    over_crank: Annotated[bool, typer.Option(
+        "--linkage",
+        help="A design with a linkage (slider_crank, four_bar): draw its transmission "
+             "ratio and the motor torque over the crank angle instead, dead points "
+             "marked.")] = False,
     speed_unit: Annotated[str, typer.Option(
         "--speed-unit", metavar="rpm|rad/s", help="Unit of the speed axis.")] = "rpm",
     samples: Annotated[int, typer.Option(
@@ -125,6 +130,9 @@ def plot(
     from sizer.report.plots.speed_torque import SPEED_UNITS
 
     figure_format(output)
+    if over_crank and (over_time or acceleration):
+        raise UserError("--linkage draws the ratio and torque over the crank angle; it "
+                        "does not combine with --time or --acceleration", field="--linkage")
     if over_time and acceleration:
         raise UserError("the speed-acceleration panel belongs to the speed-torque diagram; "
                         "--time draws torque and speed over time instead", field="--time")
@@ -155,7 +163,10 @@ def plot(
         raise UserError(f"{results[0].motor}: no law with a feasible duration, nothing to "
                         f"draw", file=str(design))
     duration_name = cycle_duration_name(loaded)
-    if over_time:
+    if over_crank:
+        figure = _linkage_figure(loaded, drawn, figure_size, dpi)
+        what = "transmission ratio and motor torque over the crank angle"
+    elif over_time:
         figure = time_figure(curves, speed_unit=speed_unit, size=figure_size, dpi=dpi,
                              title=loaded.name, duration_name=duration_name)
         what = "torque and speed over time"
@@ -282,3 +293,33 @@ def _label(spec: str) -> str:
     from sizer.laws.data_spec import law_label  # lazy: keeps --help fast
 
     return law_label(spec)
+
+
+def _linkage_figure(design: Design, drawn: list[CandidateResult],
+                    size: tuple[float, float] | None, dpi: float):
+    """The ratio-and-torque figure of the drawn results (sizer plot --linkage)."""
+    import numpy as np
+
+    from sizer.report.plots import linkage_figure
+    from sizer.report.plots.task_curves import motor_of, transmission_for
+    from sizer.sizing.linkage_sizing import linkage_curve_of
+
+    if design.transmission.linkage is None:
+        raise UserError("the design's transmission has no linkage (slider_crank or "
+                        "four_bar)", field="--linkage")
+    curves = {f"{r.motor}, {_label(r.spec)}": linkage_curve_of(
+        design, motor_of(design, r), r.law_object or _law(r.spec), r.duration,
+        transmission_for(design, r)) for r in drawn}
+    first = next(iter(curves.values()))
+    torques = {}
+    for key, curve in curves.items():  # each law's samples read at the first one's angles
+        order = np.argsort(curve.theta)
+        torques[key] = np.interp(first.theta, curve.theta[order], curve.motor_torque[order])
+    return linkage_figure(first.theta, first.ratio, torques, first.dead_points,
+                          linear=first.linear, size=size, dpi=dpi, title=design.name)
+
+
+def _law(spec: str):
+    from sizer.laws import make_law  # lazy: keeps --help fast
+
+    return make_law(spec)

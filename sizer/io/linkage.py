@@ -99,3 +99,16 @@ def _check_stroke(stage: LinkageStage, h: float, source: YamlSource,
                            f"start_angle) to {end:.6g} {unit}, beyond its range "
                            f"[{low:.6g}, {high:.6g}] {unit} (the stroke between the dead "
                            f"points)", at)
+
+
+def output_linear(items: Any, linear: bool) -> bool:
+    """Whether the load is linear: the displacement's kind, or, when the transmission
+    ends in a linkage, its output's (a slider is linear, a rocker is not)."""
+    items = items if isinstance(items, list) else [items] if items is not None else []
+    for item in reversed(items):
+        kind = getattr(item, "type", None)
+        if kind in ("slider_crank", "four_bar"):
+            return kind == "slider_crank"
+        if kind not in (None, "direct"):
+            break
+    return linear

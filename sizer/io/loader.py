@@ -33,7 +33,7 @@ from sizer.io.data_law_rules import (
     scale_warnings,
 )
 from sizer.io.data_laws import canonical_data_laws
-from sizer.io.linkage import linkage_task
+from sizer.io.linkage import linkage_task, output_linear
 from sizer.io.motor_rules import (
     MotorProblem,
     impossibilities,
@@ -306,11 +306,11 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
     linear = task.linear
     if cycle is not None:
         warnings += cycle_bare_number_warnings(source, linear)
+    load = _load(model, source, output_linear(model.transmission, linear))
     transmission, ratio_choice = build_transmission(model.transmission, source, folder,
                                                     linear)
     if transmission.linkage is not None:
         task, linear = linkage_task(task, transmission.linkage, cycle, model, source)
-    load = _load(model, source, linear)
     extra = list(extra_catalogs)
     if default_motors and model.motors is None and not extra:
         extra = list(default_catalogs().values())

@@ -118,7 +118,10 @@ def _profile(stage: LinkageStage, load: Load, h: float, law: MotionLaw) -> Linka
                            link_mass_at_crank=stage.link_mass_at_crank,
                            link_mass_at_output=stage.link_mass_at_output,
                            load=load.torque, friction=load.friction, damping=load.damping)
-    dynamics = LinkageDynamics(linkage, masses)
+    crank_radius = stage.lengths[0]
+    rocker_length = None if stage.output_linear else stage.lengths[2]
+    dynamics = LinkageDynamics(linkage, masses, crank_radius=crank_radius,
+                               rocker_length=rocker_length)
     with np.errstate(all="ignore"):
         parts = dynamics.time_scaling_parts(theta[0], theta[1], theta[2])
     end = np.array([theta[0][np.argmax(u)]])
@@ -341,3 +344,39 @@ def linkage_curve(design: Design, motor, law: MotionLaw, duration: float,
 def refuse_auto(spec: str) -> UserError:
     return UserError(f"{spec}: `auto` shape parameters are not chosen through a linkage yet; "
                      f"give the shape", field="laws")
+
+
+@dataclass(frozen=True)
+class LinkageCurve:
+    """One candidate through the linkage over the crank angle: the crank angle (rad,
+    increasing or decreasing as the crank turns), the ratio ds/dtheta and the motor
+    torque at the result's duration, and the linkage's dead points (name: angle)."""
+
+    theta: np.ndarray
+    ratio: np.ndarray
+    motor_torque: np.ndarray
+    dead_points: dict[str, float]
+    linear: bool
+
+
+def linkage_curve_of(design: Design, motor, law: MotionLaw, duration: float,
+                     transmission=None) -> LinkageCurve:
+    """The data of the ratio-and-torque plot of one result (sizer plot --linkage)."""
+    from sizer.io.linkage import linkage_of
+
+    stage = design.transmission.linkage
+    assert stage is not None
+    profile = linkage_profile(design, law)
+    drive = crank_drive(design, Drive(design.load, transmission or design.transmission),
+                        profile)
+    calculator = LinkageCalculator(profile, design.task, drive,
+                                   MotorArrays.of([motor], design.limits.envelope),
+                                   design.limits.thermal_speed, law)
+    _, torque, _ = calculator.motor_samples(np.array([duration]))
+    pick = np.flatnonzero(profile.weights == 0.0)
+    linkage = linkage_of(stage)
+    names = ("top dead centre", "bottom dead centre") if stage.output_linear else \
+        ("largest rocker angle", "least rocker angle")
+    dead = dict(zip(names, (float(x) for x in linkage.dead_points()), strict=True))
+    return LinkageCurve(profile.theta[pick], profile.ratio[pick], torque[0, pick], dead,
+                        stage.output_linear)

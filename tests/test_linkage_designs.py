@@ -1,0 +1,120 @@
+"""Designs whose transmission ends in a linkage (issue 14), end to end.
+
+The expected numbers are computed here from the slider-crank's own geometry (finite
+differences of s(theta) = r cos theta + sqrt(l^2 - r^2 sin^2 theta), dense sums), not by
+sizer's code; the verdicts at the dead points are the paper's rules."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+import yaml
+from cli_run import assert_user_error, run_cli
+from scipy.optimize import brentq
+
+from sizer.api import size
+
+ROOT = Path(__file__).resolve().parent.parent
+R, L, M = 0.05, 0.2, 5.0
+MOTOR = {"id": "m1", "inertia": "1 kg*cm^2", "continuous_torque": "50 N*m",
+         "peak_torque": "150 N*m", "rated_speed": "3000 rpm"}
+
+
+def _design(task: dict, crank: dict, **changes: object) -> dict:
+    design = {"task": task, "load": {"mass": f"{M} kg"},
+              "transmission": [{"type": "slider_crank", "crank_radius": f"{R} m",
+                                "rod_length": f"{L} m", **crank}],
+              "laws": ["cycloidal"], "motors": [MOTOR]}
+    design.update(changes)
+    return design
+
+
+def _s(theta: np.ndarray) -> np.ndarray:
+    return R * np.cos(theta) + np.sqrt(L**2 - (R * np.sin(theta)) ** 2)
+
+
+def _crank_torque(u: np.ndarray, turn: float, T: float, start: float = 0.0) -> np.ndarray:
+    """The crank torque of a cycloidal crank move by this test's own formulas: the motor's
+    rotor (1e-4 kg*m^2) plus M s' (s'' w^2 + s' alpha), s', s'' by central differences."""
+    theta = start + turn * (u - np.sin(2 * np.pi * u) / (2 * np.pi))
+    w = turn * (1 - np.cos(2 * np.pi * u)) / T
+    alpha = turn * 2 * np.pi * np.sin(2 * np.pi * u) / T**2
+    d = 1e-4
+    s1 = (_s(theta + d) - _s(theta - d)) / (2 * d)
+    s2 = (_s(theta + d) - 2 * _s(theta) + _s(theta - d)) / d**2
+    return 1e-4 * alpha + M * s1 * (s2 * w**2 + s1 * alpha)
+
+
+def test_crank_law_torque_through_both_dead_points() -> None:
+    # the crank turns one revolution from the top dead centre in 0.5 s, then rests 0.2 s
+    task = {"displacement": "360 deg", "duration": "0.5 s", "dwell": "0.2 s"}
+    (result,) = size(_design(task, {"law_on": "crank"})).results
+    u = np.linspace(0.0, 1.0, 400_001)
+    torque = _crank_torque(u, 2 * np.pi, 0.5)
+    assert result.peak_torque == pytest.approx(np.max(np.abs(torque)), rel=1e-6)
+    mean_square = np.trapezoid(torque**2, u) * 0.5 / 0.7
+    assert result.rms_torque == pytest.approx(math.sqrt(mean_square), rel=1e-6)
+    assert result.max_speed == pytest.approx(2 * 2 * np.pi / 0.5, rel=1e-9)  # C_v h / T
+    assert result.feasible
+
+
+def test_shortest_duration_through_a_linkage_by_time_scaling() -> None:
+    # a pure inertia: the torque scales as 1/T^2, so T_min meets the first limit it
+    # reaches: the peak (150 N*m), the RMS with the dwell (50 N*m), or the speed
+    task = {"displacement": "360 deg", "duration": "minimize", "dwell": "0.2 s"}
+    (result,) = size(_design(task, {"law_on": "crank"})).results
+    u = np.linspace(0.0, 1.0, 400_001)
+    at_one = _crank_torque(u, 2 * np.pi, 1.0)
+    t_peak = math.sqrt(np.max(np.abs(at_one)) / 150.0)
+    square = np.trapezoid(at_one**2, u)
+    t_rms = brentq(lambda T: square / T**3 / (T + 0.2) - 50.0**2, 1e-3, 10.0)
+    t_speed = 2 * 2 * np.pi / (3000 * 2 * np.pi / 60)
+    assert result.duration == pytest.approx(max(t_peak, t_rms, t_speed), rel=1e-6)
+
+
+def test_press_example_dead_point_verdicts() -> None:
+    results = size(ROOT / "examples" / "press-slider-crank.yaml").results
+    by_law: dict[str, list] = {}
+    for r in results:
+        by_law.setdefault(r.spec, []).append(r)
+    assert any(r.feasible for r in by_law["poly7"])
+    for spec in ("poly5", "cycloidal", "trapezoidal(alpha=1/3)"):
+        for r in by_law[spec]:
+            assert not r.feasible
+            assert "dead_point" in r.reason and "dead point" in r.reason, r.reason
+    # poly7 meets the rule: the crank's speed and torque stay finite
+    assert all(math.isfinite(r.peak_torque) for r in by_law["poly7"])
+
+
+def test_press_example_runs_from_the_cli(tmp_path: Path) -> None:
+    result = run_cli("size", str(ROOT / "examples" / "press-slider-crank.yaml"), "--all")
+    assert result.returncode == 0, result.stderr
+    assert "dead point" in result.stdout
+    out = tmp_path / "linkage.png"
+    plotted = run_cli("plot", str(ROOT / "examples" / "press-slider-crank.yaml"),
+                      "--linkage", "-o", str(out))
+    assert plotted.returncode == 0, plotted.stderr
+    assert out.stat().st_size > 1000
+
+
+@pytest.mark.parametrize(("stage", "task", "fragments"), [
+    ({"type": "slider_crank", "crank_radius": "100 mm", "rod_length": "80 mm"},
+     {"displacement": "90 deg", "duration": "0.3 s"}, ("rod_length", "longer than")),
+    ({"type": "four_bar", "crank": "0.1 m", "coupler": "0.2 m", "rocker": "0.15 m",
+      "ground": "0.9 m"}, {"displacement": "90 deg", "duration": "0.3 s"}, ("cannot close",)),
+    ({"type": "slider_crank", "crank_radius": "50 mm", "rod_length": "200 mm",
+      "law_on": "output", "start_angle": "180 deg"},
+     {"displacement": "150 mm", "duration": "0.3 s"}, ("task.displacement", "beyond its range")),
+    ({"type": "slider_crank", "crank_radius": "50 mm", "rod_length": "200 mm",
+      "law_on": "crank"}, {"displacement": "50 mm", "duration": "0.3 s"}, ("an angle",)),
+])
+def test_bad_linkages_exit_2(tmp_path: Path, stage: dict, task: dict,
+                             fragments: tuple[str, ...]) -> None:
+    design = {"task": task, "load": {"mass": "2 kg"} if stage["type"] == "slider_crank"
+              else {"inertia": "0.01 kg*m^2"}, "transmission": [stage], "motors": [MOTOR]}
+    path = tmp_path / "bad.yaml"
+    path.write_text(yaml.safe_dump(design))
+    assert_user_error(run_cli("size", str(path)), "bad.yaml", *fragments)
