@@ -180,3 +180,51 @@ def test_at_rest_against_numeric() -> None:
         acc = float(mp.diff(q1, side * mp.mpf("1e-9"), 2))
         mp.mp.dps = 15
         assert acc == pytest.approx(side * closed, rel=1e-6)
+
+
+def test_four_bar_against_numeric_inverse_kinematics() -> None:
+    """A four-bar with the paper's link lengths (l1 crank 0.075, l2 coupler 0.175, l3
+    rocker 0.1, l4 ground 0.175 m): l1 e^{i q1} + l2 e^{i q2} = l4 + l3 e^{i q3}, the
+    rocker q3 at a dead point when crank and coupler are in line (q1 = q2). Eqs. 27 and
+    49 (R from eq. 48 non-zero here) against the solved loop equations at t = +-1e-12."""
+    l1, l2, l3, l4 = 0.075, 0.175, 0.1, 0.175
+    q3 = math.acos(((l1 + l2) ** 2 - l4 ** 2 - l3 ** 2) / (2 * l4 * l3))
+    alpha = math.atan2(l3 * math.sin(q3), l4 + l3 * math.cos(q3))
+    c1 = math.cos(alpha)
+    s1 = math.sin(alpha)
+    arrays = dict(
+        phi_d=np.array([[-l1 * s1, -l2 * s1], [l1 * c1, l2 * c1]]),
+        phi_i=np.array([l3 * math.sin(q3), -l3 * math.cos(q3)]),
+        dphi_d=np.array([[[-l1 * c1, 0.0], [-l1 * s1, 0.0]],
+                         [[0.0, -l2 * c1], [0.0, -l2 * s1]]]),
+        d2phi_d=np.zeros((2, 2, 2, 2)), dphi_i_d=np.zeros((2, 2)), dphi_d_i=np.zeros((2, 2)))
+    arrays["d2phi_d"][0, 0] = [[l1 * s1, 0.0], [-l1 * c1, 0.0]]
+    arrays["d2phi_d"][1, 1] = [[0.0, l2 * s1], [0.0, -l2 * c1]]
+    m, k, s, rr = general(arrays)
+    assert np.max(np.abs(rr)) > 1e-6
+    acc = -math.copysign(0.8, float(np.dot(k, m)))  # the sign the geometry needs
+    jerk = 1.7
+    v = dp.velocities(m, k, acc)
+    a = dp.accelerations(s, rr, m, k, acc, jerk)
+    mp.mp.dps = 60
+    q3_dead = mp.acos(((mp.mpf(l1) + l2) ** 2 - mp.mpf(l4) ** 2 - mp.mpf(l3) ** 2)
+                      / (2 * mp.mpf(l4) * l3))
+    alpha_mp = mp.atan2(l3 * mp.sin(q3_dead), l4 + l3 * mp.cos(q3_dead))
+
+    def solved(t, j):
+        law = q3_dead + acc * t ** 2 / 2 + jerk * t ** 3 / 6
+
+        def eqs(x1, x2):
+            return [l1 * mp.cos(x1) + l2 * mp.cos(x2) - l4 - l3 * mp.cos(law),
+                    l1 * mp.sin(x1) + l2 * mp.sin(x2) - l3 * mp.sin(law)]
+        guess = [alpha_mp + v[0] * t, alpha_mp + v[1] * t]  # the branch passing +
+        return mp.findroot(eqs, guess)[j]
+
+    for side in (-1, 1):
+        t0 = side * mp.mpf("1e-12")
+        for j in range(2):
+            speed = float(mp.diff(lambda t, j=j: solved(t, j), t0, 1))
+            accel = float(mp.diff(lambda t, j=j: solved(t, j), t0, 2))
+            assert speed == pytest.approx(v[j], rel=1e-8)
+            assert accel == pytest.approx(a[j], rel=1e-7)
+    mp.mp.dps = 15
