@@ -220,3 +220,22 @@ def test_bad_input() -> None:
     with pytest.raises(UserError) as err:
         input_motion(PAPER, np.array([1.9, 1.8]), z, z, z, 0.0)
     assert err.value.field == "start_theta"
+
+
+def test_dead_point_between_samples() -> None:
+    """Table 1 on a grid that misses t0 (shifted by 0.37 ms): the same verdicts, the
+    issue's time within a sample interval of t0; the c2, c3 crank speed still eq. 33."""
+    t = np.arange(-500, 501) * DT + 0.37e-3
+    for c2, c3, c4, kind in [(0, 0.5, 0, "jerk"), (0, 0, 0.5, None), (0.5, 0.5, 0, None)]:
+        s, s1, s2, s3, _, _ = eq63(c2, c3, c4, t=t)
+        issues = dead_point_crossings(PAPER, t, s, s1, s2, s3)
+        assert [i.kind for i in issues] == ([kind] if kind else [])
+        if kind:
+            assert abs(issues[0].time) < DT
+    s, s1, s2, s3, _, _ = eq63(0.5, 0.5, 0.0, t=t)
+    _, w1, _, _ = input_motion(PAPER, s, s1, s2, s3, start_angle(s[0]))
+    i = int(np.argmin(np.abs(t)))
+    assert min(w1[i - 1:i + 2]) == pytest.approx(math.sqrt(L / (R * (R + L))), rel=1e-3)
+    a = np.where(t < 0, 1.0, 2.0)
+    issues = dead_point_crossings(PAPER, t, 2 - a * t ** 2 / 2, -a * t, -a, 0 * t)
+    assert [i.kind for i in issues] == ["discontinuous"] and abs(issues[0].time) < DT

@@ -359,9 +359,7 @@ def dead_point_crossings(linkage: Linkage, t: np.ndarray, s: np.ndarray, s1: np.
                 acc, jerk = _one_sided(t, s2, s3, visit, time, (s2[k], s3[k]))
                 tol = SAMPLED_TOL
         else:
-            nearest = min(sides, key=lambda i: abs(s1[i]))
-            time = float(t[nearest] - s1[nearest] / s2[nearest]) if s2[nearest] else \
-                float(t[nearest])
+            time = _crossing_time(t, s1, s2, visit)
             acc, jerk = _one_sided(t, s2, s3, visit, time, None)
             tol = SAMPLED_TOL
         when = f"at the dead point at t = {time:.6g} s"
@@ -389,6 +387,24 @@ def dead_point_crossings(linkage: Linkage, t: np.ndarray, s: np.ndarray, s1: np.
                 f"acceleration 0 with jerk {worst:.4g} {units}/s^3 {when}: the crank's "
                 "acceleration is infinite; the jerk must be 0 too (C3)")))
     return issues
+
+
+def _crossing_time(t: np.ndarray, s1: np.ndarray, s2: np.ndarray, visit: _Visit) -> float:
+    """The time of the dead point between two samples: the root of s_dot's cubic Hermite
+    interpolant (values s_dot, slopes s_ddot) on that interval."""
+    from scipy.interpolate import CubicHermiteSpline
+
+    a, b = visit.before, visit.after
+    if a is None or b is None:
+        return float(t[a if b is None else b])
+    if t[b] <= t[a]:
+        return float(t[a])
+    roots = CubicHermiteSpline([t[a], t[b]], [s1[a], s1[b]], [s2[a], s2[b]]).roots(
+        extrapolate=False)
+    roots = roots[np.isfinite(roots)]
+    if roots.size:
+        return float(roots[0])
+    return float(t[a] - s1[a] * (t[b] - t[a]) / (s1[b] - s1[a]))
 
 
 def _one_sided(t: np.ndarray, s2: np.ndarray, s3: np.ndarray, visit: _Visit,
