@@ -239,3 +239,16 @@ def test_dead_point_between_samples() -> None:
     a = np.where(t < 0, 1.0, 2.0)
     issues = dead_point_crossings(PAPER, t, 2 - a * t ** 2 / 2, -a * t, -a, 0 * t)
     assert [i.kind for i in issues] == ["discontinuous"] and abs(issues[0].time) < DT
+
+
+@pytest.mark.parametrize("noise", [-1e-17, 1e-17])
+def test_round_off_speed_at_the_dead_point(noise: float) -> None:
+    """A law whose s_dot at the dead point is round-off of either sign (a spline's knot):
+    the crank still passes turning +, theta_dot = eq. 33 there."""
+    s, s1, s2, s3, _, _ = eq63(0.5, 0.5, 0.0)
+    s1 = s1.copy()
+    s1[I0] = noise
+    _, w1, _, _ = input_motion(PAPER, s, s1, s2, s3, start_angle(s[0]))
+    assert np.all(w1 > 0)
+    assert w1[I0] == pytest.approx(math.sqrt(L / (R * (R + L))), rel=1e-12)
+    assert dead_point_crossings(PAPER, T, s, s1, s2, s3) == []

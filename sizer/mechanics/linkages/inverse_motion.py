@@ -196,8 +196,9 @@ def input_motion(linkage: Linkage, s: np.ndarray, s1: np.ndarray, s2: np.ndarray
 
     f1, f2, f3 = (linkage.output(theta, k) for k in (1, 2, 3))
     # the crank's turning direction: s_dot / f' while moving, held through rests
+    still = np.abs(s1) <= 1e-12 * _scale(s1)  # as in _visits: round-off is rest
     turning = np.sign(s1) * half
-    turning[s1 == 0.0] = 0
+    turning[still] = 0
     held = np.where(turning != 0, np.arange(n), -1)
     held = np.maximum.accumulate(held)
     turning = np.where(held >= 0, turning[np.maximum(held, 0)], int(direction))
@@ -211,7 +212,7 @@ def input_motion(linkage: Linkage, s: np.ndarray, s1: np.ndarray, s2: np.ndarray
     if np.any(near):
         w1[near], w2[near] = _near_dead_point(
             s1[near], s2[near], s3[near], f2[near], f3[near], turning[near],
-            _snap(s2, s3, s4, near, _scale(s2)), _scale(s2), _scale(s3), s1[near] == 0.0,
+            _snap(s2, s3, s4, near, _scale(s2)), _scale(s2), _scale(s3), still[near],
             np.arange(n)[near] == n - 1)
     _bridge(theta, w3, distance < THIRD_ZONE)
     return theta, w1, w2, w3
