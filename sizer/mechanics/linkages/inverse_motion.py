@@ -32,7 +32,6 @@ s_dddot = 0 too (C3): :func:`dead_point_crossings`.
 
 from __future__ import annotations
 
-import itertools
 from dataclasses import dataclass
 
 import numpy as np
@@ -110,10 +109,9 @@ def _visits(linkage: Linkage, s: np.ndarray, s1: np.ndarray,
             visits.append(_Visit(None, first, True))
         elif moving[first] > 0 and at_bottom(s[0]):
             visits.append(_Visit(None, first, False))
-    for a, b in itertools.pairwise(nz):
+    turns = np.flatnonzero(moving[nz[1:]] != moving[nz[:-1]])  # s_dot reverses
+    for a, b in zip(nz[turns], nz[turns + 1], strict=True):
         a, b = int(a), int(b)
-        if moving[a] == moving[b]:
-            continue
         peak = [*s[a:b + 1]]
         for i in (a, b):  # the extreme between samples, from the Taylor expansion
             if s2[i] != 0.0 and np.sign(s2[i]) != moving[a]:
