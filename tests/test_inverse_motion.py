@@ -199,7 +199,9 @@ def test_start_at_the_dead_point_with_direction() -> None:
     t = np.linspace(0, 2, 2001)
     s, s1, s2, s3 = 2 - 0.3 * (1 - np.cos(t)), -0.3 * np.sin(t), -0.3 * np.cos(t), \
         0.3 * np.sin(t)
-    assert dead_point_crossings(PAPER, t, s, s1, s2, s3) == []
+    # from rest the acceleration jumps to -0.3 at the dead point: the paper's rule fails
+    issues = dead_point_crossings(PAPER, t, s, s1, s2, s3)
+    assert [(i.kind, i.time) for i in issues] == [("discontinuous", 0.0)]
     for direction in (1, -1):
         theta, w1, _, _ = input_motion(PAPER, s, s1, s2, s3, 0.0, direction=direction)
         assert np.all(np.sign(w1) == direction)
@@ -252,3 +254,56 @@ def test_round_off_speed_at_the_dead_point(noise: float) -> None:
     assert np.all(w1 > 0)
     assert w1[I0] == pytest.approx(math.sqrt(L / (R * (R + L))), rel=1e-12)
     assert dead_point_crossings(PAPER, T, s, s1, s2, s3) == []
+
+
+def strokes(kind: str, n: int = 2001):
+    """Rest-to-rest strokes from the bottom to the top dead centre in 1 s."""
+    low, high = PAPER.output_range()
+    h = high - low
+    tau = np.linspace(0.0, 1.0, n)
+    if kind == "poly7":  # s_ddot = s_dddot = 0 at both ends
+        c = np.array([0, 0, 0, 0, 35, -84, 70, -20], dtype=float)
+    else:  # poly5: s_ddot = 0, s_dddot = 60 h at the ends
+        c = np.array([0, 0, 0, 10, -15, 6], dtype=float)
+    p = np.polynomial.Polynomial(c)
+    return tau, low + h * p(tau), h * p.deriv(1)(tau), h * p.deriv(2)(tau), \
+        h * p.deriv(3)(tau)
+
+
+def test_rest_to_rest_strokes_between_dead_points() -> None:
+    """From the bottom dead centre to the top one: the 7th-degree polynomial (C3, s_ddot
+    = s_dddot = 0 at the ends) is feasible; the 5th-degree one has s_ddot = 0 and a
+    jerk 60 h at both ends (infeasible, C3 rule); the crank from rest to rest."""
+    t, s, s1, s2, s3 = strokes("poly7")
+    assert dead_point_crossings(PAPER, t, s, s1, s2, s3) == []
+    theta, w1, w2, _ = input_motion(PAPER, s, s1, s2, s3, float(PAPER.dead_points()[1]))
+    assert w1[0] == 0.0 and w1[-1] == pytest.approx(0.0, abs=1e-9)
+    assert abs(theta[-1] - theta[0]) == pytest.approx(math.pi)
+    assert np.all(np.isfinite(w2))
+    t, s, s1, s2, s3 = strokes("poly5")
+    issues = dead_point_crossings(PAPER, t, s, s1, s2, s3)
+    h = np.ptp(s)
+    assert [(i.kind, i.time) for i in issues] == [("jerk", 0.0), ("jerk", 1.0)]
+    assert abs(float(issues[0].message.split("jerk ")[1].split(" ")[0])) == \
+        pytest.approx(60 * h, rel=1e-3)
+
+
+def test_periodic_harmonic_and_rest_at_a_dead_point() -> None:
+    """The harmonic back-and-forth over the whole stroke (s_ddot = -+A w^2 at the ends,
+    continuous from period to period) is feasible when periodic; arriving at a dead point
+    with s_ddot != 0 and resting there breaks the C2 rule at the arrival."""
+    low, high = PAPER.output_range()
+    mid, amp, w = (low + high) / 2, (high - low) / 2, 2 * np.pi
+    t = np.linspace(0.0, 1.0, 1001)
+    s, s1 = mid + amp * np.cos(w * t), -amp * w * np.sin(w * t)
+    s2, s3 = -amp * w * w * np.cos(w * t), amp * w ** 3 * np.sin(w * t)
+    assert dead_point_crossings(PAPER, t, s, s1, s2, s3, periodic=True) == []
+    assert [i.kind for i in dead_point_crossings(PAPER, t, s, s1, s2, s3)] == \
+        ["discontinuous", "discontinuous"]  # from rest and back to rest at the top
+    # a stroke to the top (s_ddot = -1 on arrival at t = 0), then rest there
+    t = np.round(np.arange(-500, 1) * DT, 12)
+    t = np.concatenate([t, [0.1, 0.2]])
+    s = np.where(t < 0, 2 - 0.5 * t ** 2, 2.0)
+    s1, s2, s3 = np.where(t < 0, -t, 0.0), np.where(t < 0, -1.0, 0.0), 0 * t
+    issues = dead_point_crossings(PAPER, t, s, s1, s2, s3)
+    assert [(i.kind, i.time) for i in issues] == [("discontinuous", 0.0)]

@@ -318,7 +318,7 @@ def dead_point_crossings(linkage: Linkage, t: np.ndarray, s: np.ndarray, s1: np.
                          s2: np.ndarray, s3: np.ndarray,
                          left: tuple[np.ndarray, np.ndarray] | None = None,
                          right: tuple[np.ndarray, np.ndarray] | None = None,
-                         units: str = "m") -> list[DeadPointIssue]:
+                         units: str = "m", periodic: bool = False) -> list[DeadPointIssue]:
     """The places where the sampled output motion reaches a dead point (an end of the
     output's range with s_dot = 0) and breaks the paper's rules: s_ddot continuous there
     (the law C2), non-zero and of the sign of f'' at the dead point (below 0 at the top
@@ -327,10 +327,21 @@ def dead_point_crossings(linkage: Linkage, t: np.ndarray, s: np.ndarray, s1: np.
     ``left`` and ``right`` are the one-sided (s_ddot, s_dddot) at every sample, for a
     piecewise law whose pieces meet at a sample (e.g. a knot at the dead point); without
     them the one-sided values at the dead point are extrapolated from the samples on
-    each side. ``units`` names the output's length unit ("m", or "rad" for a rocker).
+    each side. Outside the samples the output is at rest (s_ddot = s_dddot = 0), so a
+    motion that starts or ends at a dead point is judged against rest, and a rest at a
+    dead point inside the motion splits into an arrival and a departure; with
+    ``periodic`` the samples are one period and the first follows the last.
+    ``units`` names the output's unit ("m", or "rad" for a rocker).
     UserError (field "output") if a sample is outside the output's range."""
     t, s, s1, s2, s3 = (np.atleast_1d(np.asarray(x, dtype=float)) for x in (t, s, s1, s2, s3))
     _check_range(linkage, s)
+    n = s.size
+    given = left is not None and right is not None
+    lo_acc, lo_jerk = (np.asarray(left[0], float), np.asarray(left[1], float)) if given \
+        else (s2, s3)
+    hi_acc, hi_jerk = (np.asarray(right[0], float), np.asarray(right[1], float)) if given \
+        else (s2, s3)
+    tol = ACC_TOL if given else SAMPLED_TOL
     scale_a = max(_scale(s2), 1e-300)
     scale_j = max(_scale(s3), 1e-300)
     dead = linkage.dead_points()
@@ -338,54 +349,72 @@ def dead_point_crossings(linkage: Linkage, t: np.ndarray, s: np.ndarray, s1: np.
     low, high = linkage.output_range()
     top_curvature = float(f2_dead[np.argmax(linkage.output(dead))])
     bottom_curvature = float(f2_dead[np.argmin(linkage.output(dead))])
+    scale_v = max(_scale(s1), 1e-300)
     issues: list[DeadPointIssue] = []
     for visit in _visits(linkage, s, s1, s2):
-        curvature = top_curvature if visit.top else bottom_curvature
         extreme = high if visit.top else low
-        sides = [i for i in (visit.before, visit.after) if i is not None]
-        # the sample at the dead point, if any, else the time from the nearest moving one
-        between = range(sides[0], sides[-1] + 1)
-        at = [i for i in between if abs(s[i] - extreme) <= 1e-12 * (high - low)
-              and abs(s1[i]) <= 1e-9 * max(_scale(s1), 1e-300)]
-        if at:
-            k = at[0]
-            time = float(t[k])
-            if left is not None and right is not None:
-                acc = (float(left[0][k]), float(right[0][at[-1]]))
-                jerk = (float(left[1][k]), float(right[1][at[-1]]))
-                tol = ACC_TOL
-            else:
-                acc, jerk = _one_sided(t, s2, s3, visit, time, (s2[k], s3[k]))
-                tol = SAMPLED_TOL
+        first = 0 if visit.before is None else visit.before + 1
+        last = n - 1 if visit.after is None else visit.after - 1
+        resting = [i for i in range(first, last + 1)
+                   if abs(s[i] - extreme) <= 1e-12 * (high - low) and abs(s1[i]) <= 1e-9 * scale_v]
+        # (s_ddot, s_dddot) arriving and leaving
+        if visit.before is None:
+            arrive = (float(lo_acc[-1]), float(lo_jerk[-1])) if periodic else (0.0, 0.0)
+            if given and not periodic:
+                arrive = (float(lo_acc[0]), float(lo_jerk[0]))
+        elif resting and given:
+            arrive = (float(lo_acc[resting[0]]), float(lo_jerk[resting[0]]))
         else:
-            time = _crossing_time(t, s1, s2, visit)
-            acc, jerk = _one_sided(t, s2, s3, visit, time, None)
-            tol = SAMPLED_TOL
-        when = f"at the dead point at t = {time:.6g} s"
-        present = [a for a, i in zip(acc, (visit.before, visit.after), strict=True)
-                   if i is not None] or list(acc)
-        if len(present) == 2 and abs(present[0] - present[1]) > tol * scale_a:
-            issues.append(DeadPointIssue(time, "discontinuous", (
-                f"acceleration discontinuous {when} ({present[0]:+.4g} {units}/s^2 before, "
-                f"{present[1]:+.4g} {units}/s^2 after): the crank's speed would jump; "
-                "the law must be C2 there")))
-            continue
-        a = float(np.mean(present))
-        if abs(a) > tol * scale_a:
-            if np.sign(a) != np.sign(curvature):
-                need = "below 0" if curvature < 0 else "above 0"
-                issues.append(DeadPointIssue(time, "sign", (
-                    f"acceleration {a:+.4g} {units}/s^2 {when}: the geometry needs it "
-                    f"{need}")))
-            continue
-        jerks = [j for j, i in zip(jerk, (visit.before, visit.after), strict=True)
-                 if i is not None] or list(jerk)
-        worst = max(jerks, key=abs)
-        if abs(worst) > tol * scale_j:
-            issues.append(DeadPointIssue(time, "jerk", (
-                f"acceleration 0 with jerk {worst:.4g} {units}/s^3 {when}: the crank's "
-                "acceleration is infinite; the jerk must be 0 too (C3)")))
+            arrive = _one_sided(t, s2, s3, visit.before, -1, _crossing_time(
+                t, s1, s2, visit) if not resting else float(t[resting[0]]))
+        if visit.after is None:
+            leave = (float(hi_acc[0]), float(hi_jerk[0])) if periodic else (0.0, 0.0)
+            if given and not periodic:
+                leave = (float(hi_acc[-1]), float(hi_jerk[-1]))
+        elif resting and given:
+            leave = (float(hi_acc[resting[-1]]), float(hi_jerk[resting[-1]]))
+        else:
+            leave = _one_sided(t, s2, s3, visit.after, 1, _crossing_time(
+                t, s1, s2, visit) if not resting else float(t[resting[-1]]))
+        if resting and t[resting[-1]] > t[resting[0]]:  # a rest at the dead point
+            still = (float(s2[resting[0]]), float(s3[resting[0]]))
+            events = [(float(t[resting[0]]), arrive, still),
+                      (float(t[resting[-1]]), still, leave)]
+        else:
+            time = float(t[resting[0]]) if resting else _crossing_time(t, s1, s2, visit)
+            events = [(time, arrive, leave)]
+        curvature = top_curvature if visit.top else bottom_curvature
+        for time, before, after in events:
+            issue = _judge(time, before, after, curvature, tol * scale_a, tol * scale_j,
+                           units)
+            if issue is not None:
+                issues.append(issue)
     return issues
+
+
+def _judge(time: float, before: tuple[float, float], after: tuple[float, float],
+           curvature: float, tol_a: float, tol_j: float,
+           units: str) -> DeadPointIssue | None:
+    """The paper's rule at one dead point from the one-sided (s_ddot, s_dddot)."""
+    when = f"at the dead point at t = {time:.6g} s"
+    if abs(before[0] - after[0]) > tol_a:
+        return DeadPointIssue(time, "discontinuous", (
+            f"acceleration discontinuous {when} ({before[0]:+.4g} {units}/s^2 before, "
+            f"{after[0]:+.4g} {units}/s^2 after): the crank's speed would jump; the law "
+            "must be C2 there"))
+    a = 0.5 * (before[0] + after[0])
+    if abs(a) > tol_a:
+        if np.sign(a) != np.sign(curvature):
+            need = "below 0" if curvature < 0 else "above 0"
+            return DeadPointIssue(time, "sign", (
+                f"acceleration {a:+.4g} {units}/s^2 {when}: the geometry needs it {need}"))
+        return None
+    worst = max(before[1], after[1], key=abs)
+    if abs(worst) > tol_j:
+        return DeadPointIssue(time, "jerk", (
+            f"acceleration 0 with jerk {worst:.4g} {units}/s^3 {when}: the crank's "
+            "acceleration is infinite; the jerk must be 0 too (C3)"))
+    return None
 
 
 def _crossing_time(t: np.ndarray, s1: np.ndarray, s2: np.ndarray, visit: _Visit) -> float:
@@ -406,24 +435,13 @@ def _crossing_time(t: np.ndarray, s1: np.ndarray, s2: np.ndarray, visit: _Visit)
     return float(t[a] - s1[a] * (t[b] - t[a]) / (s1[b] - s1[a]))
 
 
-def _one_sided(t: np.ndarray, s2: np.ndarray, s3: np.ndarray, visit: _Visit,
-               time: float, at: tuple[float, float] | None
-               ) -> tuple[tuple[float, float], tuple[float, float]]:
-    """(s_ddot before, after), (s_dddot before, after) at ``time`` from the samples on
-    each side: a Taylor step from the nearest sample, the jerk's slope from its
-    neighbour (the sample at the dead point itself is one piece's value, so it is not
-    used)."""
-    acc, jerk = [], []
-    for i, step in ((visit.before, -1), (visit.after, 1)):
-        if i is None:
-            acc.append(float(at[0]) if at else float("nan"))
-            jerk.append(float(at[1]) if at else float("nan"))
-            continue
-        j = i + step
-        slope = 0.0
-        if 0 <= j < t.size and t[j] != t[i]:
-            slope = (s3[i] - s3[j]) / (t[i] - t[j])
-        tau = time - t[i]
-        acc.append(float(s2[i] + s3[i] * tau + 0.5 * slope * tau * tau))
-        jerk.append(float(s3[i] + slope * tau))
-    return (acc[0], acc[1]), (jerk[0], jerk[1])
+def _one_sided(t: np.ndarray, s2: np.ndarray, s3: np.ndarray, i: int, step: int,
+               time: float) -> tuple[float, float]:
+    """(s_ddot, s_dddot) at ``time`` from sample i on one side (``step`` -1: before, +1:
+    after): a Taylor step, the jerk's slope from the next sample outward."""
+    j = i + step
+    slope = 0.0
+    if 0 <= j < t.size and t[j] != t[i]:
+        slope = (s3[i] - s3[j]) / (t[i] - t[j])
+    tau = time - t[i]
+    return float(s2[i] + s3[i] * tau + 0.5 * slope * tau * tau), float(s3[i] + slope * tau)
