@@ -290,7 +290,86 @@ REST = [
     case("name-a-mapping", ROTARY, {"name": {"a": 1}}, ("name", "expected text"), ("name",)),
 ]
 
-CASES = [*TASK, *LOAD, *GEARBOXES, *BELTS, *SCREWS, *RACKS, *REST]
+PRESS = "press-slider-crank.yaml"
+SC = "transmission[1]"
+FOUR_BAR = {"type": "four_bar", "crank": "75 mm", "coupler": "175 mm", "rocker": "100 mm",
+            "ground": "175 mm"}
+
+
+def four_bar(**fields: object) -> dict:
+    """The press with the paper's four-bar in place of its slider-crank (a rotary load)."""
+    return {"transmission[1]": {**FOUR_BAR, **fields}, "load": {"inertia": "0.01 kg*m^2"},
+            "task.displacement": "360 deg", "laws": ["poly5"]}
+
+
+def crank(**fields: object) -> dict:
+    return {f"{SC}.{k}": v for k, v in fields.items()}
+
+
+LINKAGES = [
+    case("slider-crank-radius-tiny", PRESS, crank(crank_radius="0.01 mm"),
+         (f"{SC}.crank_radius", "[1e-4, 100] m"), ("transmission[slider_crank].crank_radius",)),
+    case("slider-crank-rod-shorter-than-crank", PRESS, crank(rod_length="40 mm"),
+         (f"{SC}.rod_length", "longer than the crank radius"),
+         ("transmission[slider_crank].rod_length",)),
+    case("slider-crank-offset-too-large", PRESS, crank(offset="200 mm"),
+         (f"{SC}.rod_length", "plus the offset"), ("transmission[slider_crank].offset",)),
+    case("slider-crank-rod-mass-negative", PRESS, crank(rod_mass_at_crank="-1 kg"),
+         (f"{SC}.rod_mass_at_crank", "[1e-6, 1e4] kg"),
+         ("transmission[slider_crank].rod_mass_at_crank",)),
+    case("slider-crank-rod-mass-slider-huge", PRESS, crank(rod_mass_at_slider="1e5 kg"),
+         (f"{SC}.rod_mass_at_slider", "[1e-6, 1e4] kg"),
+         ("transmission[slider_crank].rod_mass_at_slider",)),
+    case("slider-crank-crank-inertia-huge", PRESS, crank(crank_inertia="1e4 kg*m^2"),
+         (f"{SC}.crank_inertia", "[1e-12, 1000] kg*m^2"),
+         ("transmission[slider_crank].crank_inertia",)),
+    case("slider-crank-law-on-motor", PRESS, crank(law_on="motor"),
+         (f"{SC}.law_on", "crank", "output"), ("transmission[slider_crank].law_on",)),
+    case("slider-crank-direction-cw", PRESS, crank(direction="cw"),
+         (f"{SC}.direction", "positive", "negative"), ("transmission[slider_crank].direction",)),
+    case("slider-crank-start-angle-a-length", PRESS, crank(start_angle="10 mm"),
+         (f"{SC}.start_angle", "expected an angle"),
+         ("transmission[slider_crank].start_angle",)),
+    case("slider-crank-name-a-list", PRESS, crank(name=[1]),
+         (f"{SC}.name", "expected text"), ("transmission[slider_crank].name",)),
+    case("slider-crank-not-last", PRESS, {"task.displacement": "360 deg",
+                                          "load": {"inertia": "0.01 kg*m^2"}, "transmission": [
+        {"type": "slider_crank", "crank_radius": "50 mm", "rod_length": "200 mm"},
+        {"type": "gearbox", "ratio": 10}]},
+         ("transmission[0].type", "must be the last stage"),
+         ("transmission[slider_crank].type",)),
+    case("four-bar-cannot-close", PRESS, four_bar(ground="900 mm"),
+         ("transmission[1]", "cannot close"), ("transmission[four_bar].ground",)),
+    case("four-bar-crank-not-shortest", PRESS, four_bar(crank="180 mm"),
+         ("transmission[1].crank", "crank"), ("transmission[four_bar].crank",)),
+    case("four-bar-coupler-zero", PRESS, four_bar(coupler="0 mm"),
+         ("transmission[1].coupler", "[1e-4, 100] m"), ("transmission[four_bar].coupler",)),
+    case("four-bar-rocker-huge", PRESS, four_bar(rocker="1 km"),
+         ("transmission[1].rocker", "[1e-4, 100] m"), ("transmission[four_bar].rocker",)),
+    case("four-bar-branch-two", PRESS, four_bar(branch=2),
+         ("transmission[1].branch",), ("transmission[four_bar].branch",)),
+    case("four-bar-coupler-mass-negative", PRESS, four_bar(coupler_mass_at_crank="-2 kg"),
+         ("transmission[1].coupler_mass_at_crank", "[1e-6, 1e4] kg"),
+         ("transmission[four_bar].coupler_mass_at_crank",)),
+    case("four-bar-coupler-mass-rocker-huge", PRESS, four_bar(coupler_mass_at_rocker="1e5 kg"),
+         ("transmission[1].coupler_mass_at_rocker",),
+         ("transmission[four_bar].coupler_mass_at_rocker",)),
+    case("four-bar-crank-inertia-negative", PRESS, four_bar(crank_inertia="-1 kg*m^2"),
+         ("transmission[1].crank_inertia",), ("transmission[four_bar].crank_inertia",)),
+    case("four-bar-law-on-rocker", PRESS, four_bar(law_on="rocker"),
+         ("transmission[1].law_on", "crank", "output"), ("transmission[four_bar].law_on",)),
+    case("four-bar-direction-number", PRESS, four_bar(direction=1),
+         ("transmission[1].direction",), ("transmission[four_bar].direction",)),
+    case("four-bar-start-angle-huge", PRESS, four_bar(start_angle="1e6 rad"),
+         ("transmission[1].start_angle",), ("transmission[four_bar].start_angle",)),
+    case("four-bar-name-a-list", PRESS, four_bar(name=[5]),
+         ("transmission[1].name", "expected text"), ("transmission[four_bar].name",)),
+    case("four-bar-on-a-linear-axis", PRESS, {**four_bar(), "task.displacement": "100 mm",
+                                              "transmission[1].law_on": "output"},
+         ("transmission", "linear"), ("transmission[four_bar].type",)),
+]
+
+CASES = [*TASK, *LOAD, *GEARBOXES, *BELTS, *SCREWS, *RACKS, *REST, *LINKAGES]
 
 
 @pytest.mark.parametrize("case", CASES, ids=str)

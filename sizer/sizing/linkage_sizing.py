@@ -78,26 +78,24 @@ def _grid(law: MotionLaw) -> tuple[np.ndarray, np.ndarray]:
     nodes = (left + 0.5 * width * (x + 1.0)).ravel()
     weights = (0.5 * width * w).ravel()
     peaks = np.unique(np.concatenate((np.linspace(0.0, 1.0, PEAK_POINTS), law.breakpoints)))
-    return (np.concatenate((nodes, peaks)),
-            np.concatenate((weights, np.zeros(len(peaks)))))
+    u = np.concatenate((nodes, peaks))
+    order = np.argsort(u, kind="stable")  # in time order, as the inverse kinematics needs
+    return u[order], np.concatenate((weights, np.zeros(len(peaks))))[order]
 
 
 def linkage_profile(design: Design, law: MotionLaw) -> LinkageProfile:
     """The profile of ``law`` through the design's linkage (cached per law and design)."""
     stage = design.transmission.linkage
     assert stage is not None
-    return _profile(stage, design.load, design.task.displacement, law)
+    return _profile(stage, design.load, design.task.displacement, design.task.duration, law)
 
 
 @lru_cache(maxsize=256)
-def _profile(stage: LinkageStage, load: Load, h: float, law: MotionLaw) -> LinkageProfile:
+def _profile(stage: LinkageStage, load: Load, h: float, duration: float | None,
+             law: MotionLaw) -> LinkageProfile:
     from sizer.io.linkage import linkage_of
     from sizer.mechanics.linkages.dynamics import LinkageDynamics, LinkageMasses
-    from sizer.mechanics.linkages.inverse_motion import (
-        dead_point_crossings,
-        input_motion,
-        output_motion,
-    )
+    from sizer.mechanics.linkages.inverse_motion import input_motion, output_motion
 
     linkage = linkage_of(stage)
     u, weights = _grid(law)
@@ -110,10 +108,10 @@ def _profile(stage: LinkageStage, load: Load, h: float, law: MotionLaw) -> Linka
     else:
         s0 = float(linkage.output(np.array([theta0]))[0])
         s = [s0 + h * q[0], h * q[1], h * q[2], h * q[3]]
-        found = dead_point_crossings(linkage, u, *s, **_one_sided(law, h))
-        issues = tuple(issue.message for issue in found)
+        issues = _issues(linkage, stage, law, u, s, h, duration)
         with np.errstate(all="ignore"):
-            theta = list(input_motion(linkage, *s, start_theta=theta0))
+            theta = list(input_motion(linkage, *s, start_theta=theta0,
+                                      direction=stage.direction))
     masses = LinkageMasses(crank_inertia=stage.crank_inertia, output_inertia=load.inertia,
                            link_mass_at_crank=stage.link_mass_at_crank,
                            link_mass_at_output=stage.link_mass_at_output,
@@ -137,17 +135,43 @@ def _profile(stage: LinkageStage, load: Load, h: float, law: MotionLaw) -> Linka
                           dynamics.output_side_inertia, load, max_inertia, issues)
 
 
-def _one_sided(law: MotionLaw, h: float) -> dict[str, np.ndarray]:
-    """The output's acceleration and jerk just before and after each sample where the
-    law's pieces join (at rest outside [0, 1]), for the dead-point rule."""
-    from sizer.laws.coefficients import one_sided_limits
+def _one_sided(law: MotionLaw, u: np.ndarray, h: float, T: float
+               ) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    """The output's (acceleration, jerk) just before and just after every sample: where
+    the law's pieces join they differ; outside [0, 1] the law is at rest."""
+    starts = np.array([piece.start for piece in law.pieces])
+    last = len(law.pieces) - 1
+    after = np.clip(np.searchsorted(starts, u, side="right") - 1, 0, last)
+    before = np.clip(np.searchsorted(starts, u, side="left") - 1, 0, last)
 
-    left = {k: {tau: lo for tau, lo, _ in one_sided_limits(law, k)} for k in (2, 3)}
-    right = {k: {tau: hi for tau, _, hi in one_sided_limits(law, k)} for k in (2, 3)}
-    taus = np.array(sorted(left[2]))
-    return {"breaks": taus,
-            "left": np.array([[h * left[k][t] for k in (2, 3)] for t in taus]),
-            "right": np.array([[h * right[k][t] for k in (2, 3)] for t in taus])}
+    def values(index: np.ndarray, order: int) -> np.ndarray:
+        out = np.empty(len(u))
+        for i in np.unique(index):
+            mask = index == i
+            out[mask] = law.piece_derivative(int(i), u[mask], order)
+        return h * out / T**order
+
+    left = [values(before, k) for k in (2, 3)]
+    right = [values(after, k) for k in (2, 3)]
+    for k, (outside_before, outside_after) in enumerate(law.outside(order) for order in (2, 3)):
+        left[k][0] = h * outside_before / T ** (k + 2)
+        right[k][-1] = h * outside_after / T ** (k + 2)
+    return {"left": (left[0], left[1]), "right": (right[0], right[1])}
+
+
+def _issues(linkage, stage: LinkageStage, law: MotionLaw, u: np.ndarray, s: list,
+            h: float, duration: float | None) -> tuple[str, ...]:
+    """The paper's rule at every dead point the output reaches, in the move's own time
+    and units (for a shortest-duration task, at T = 1 s: the verdict does not depend on
+    T, the values scale with it)."""
+    from sizer.mechanics.linkages.inverse_motion import dead_point_crossings
+
+    T = duration or 1.0
+    scaled = [s[0], *(x / T**k for k, x in enumerate(s[1:], start=1))]
+    found = dead_point_crossings(linkage, u * T, *scaled, **_one_sided(law, u, h, T),
+                                 units="m" if stage.output_linear else "rad")
+    suffix = "" if duration else " (for a move of 1 s; the values scale with its duration)"
+    return tuple(issue.message + suffix for issue in found)
 
 
 def _finite(x: np.ndarray) -> np.ndarray:
@@ -218,8 +242,8 @@ class LinkageCalculator:
                  + load.friction * np.sign(p.s1))
         stage_torque, stage_speed = self._stages(crank, T)
         return CycleMetrics(
-            duration=T[:, 0], max_speed=np.max(np.abs(speed), axis=1),
-            peak_torque=np.max(np.abs(torque), axis=1), peak_ratio=np.max(ratio, axis=1),
+            duration=T[:, 0], max_speed=refined_max(np.abs(speed), p.u),
+            peak_torque=refined_max(np.abs(torque), p.u), peak_ratio=np.max(ratio, axis=1),
             rms_torque=np.sqrt(square / cycle), thermal_speed=self.thermal_speed(T[:, 0]),
             load_speed=np.max(np.abs(p.s1)) / T[:, 0],
             load_acceleration=np.max(np.abs(p.s2)) / T[:, 0] ** 2,
@@ -252,6 +276,37 @@ class LinkageCalculator:
         return torques, speeds
 
 
+UNBOUNDED_NOTE = ("unbounded: the crank's acceleration is infinite at the dead point (see "
+                  "dead_point)")
+
+
+def _unbounded(check: CheckArrays) -> CheckArrays:
+    """A torque check of a law that breaks the dead-point rule: unbounded, saying why."""
+    n = len(check.value)
+    return replace(check, value=np.full(n, np.inf),
+                   notes=np.full(n, UNBOUNDED_NOTE, dtype=object))
+
+
+def refined_max(values: np.ndarray, u: np.ndarray) -> np.ndarray:
+    """The largest value of each row of samples at the increasing points u, refined by
+    the parabola through the largest sample and its two neighbours (a smooth peak between
+    samples is then read to the third order of their spacing, not the second)."""
+    m = values.shape[1]
+    i = np.clip(np.argmax(values, axis=1), 1, m - 2)
+    rows = np.arange(values.shape[0])
+    x0, x1, x2 = u[i - 1], u[i], u[i + 1]
+    f0, f1, f2 = values[rows, i - 1], values[rows, i], values[rows, i + 1]
+    d01 = (f1 - f0) / (x1 - x0)
+    curvature = ((f2 - f1) / (x2 - x1) - d01) / (x2 - x0)
+    best = np.max(values, axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        # p(x) = f0 + d01 (x - x0) + c (x - x0)(x - x1): p'(x*) = 0
+        vertex = 0.5 * (x0 + x1) - d01 / (2.0 * curvature)
+        top = f0 + d01 * (vertex - x0) + curvature * (vertex - x0) * (vertex - x1)
+    inside = (curvature < 0.0) & (vertex > x0) & (vertex < x2) & np.isfinite(top)
+    return np.where(inside, np.maximum(best, top), best)
+
+
 def dead_point_check(profile: LinkageProfile, n: int) -> CheckArrays:
     """``dead_point``: passes when the law meets the paper's rule at every dead point
     the output reaches; else fails for every candidate with the reason as its note."""
@@ -282,14 +337,19 @@ def evaluate_linkage(design: Design, law: MotionLaw, motors: MotorArrays, drive:
     point = dead_point_check(profile, n)
     if design.task.minimize and not profile.issues:
         solution = minimum_duration(calculator, design.limits)
-        checks = [*solution.checks, point]
+        checks = [point, *solution.checks]
         return solution.duration, solution.metrics, checks, solution.feasible
     T = np.full(n, design.task.duration if design.task.duration is not None else np.nan)
     if design.task.minimize:  # the law is infeasible at any duration: show one
         T = calculator.initial_guess()
     metrics = calculator.evaluate(T)
-    checks = [*evaluate_checks(metrics, motors, drive, design.limits, design.task.linear),
-              point]
+    if profile.issues:  # the crank's motion is singular: no finite torque to report
+        metrics = replace(metrics, peak_torque=np.full(n, np.inf),
+                          peak_ratio=np.full(n, np.inf), rms_torque=np.full(n, np.inf))
+    checks = [point, *evaluate_checks(metrics, motors, drive, design.limits,
+                                      design.task.linear)]
+    if profile.issues:
+        checks = [_unbounded(c) if c.name in ("peak", "rms") else c for c in checks]
     feasible = all_pass(checks)
     duration = np.where(feasible, T, np.nan) if design.task.minimize else T
     return duration, metrics, checks, feasible
