@@ -148,3 +148,23 @@ def test_a_linkage_in_a_cycle_is_refused(tmp_path: Path) -> None:
     path = tmp_path / "cycle.yaml"
     path.write_text(yaml.safe_dump(design))
     assert_user_error(run_cli("size", str(path)), "cycle", "not yet in a cycle")
+
+
+def test_energy_balance_of_a_move_through_the_linkage() -> None:
+    # the crank turns half a revolution, top to bottom dead centre, against 20 N of
+    # friction on the slider and a 30 N load, directly driven: the motor's work over the
+    # move is the change of kinetic energy (0: at rest at both ends) plus the losses,
+    # 20 N x 2r, plus the work against the load, 30 N x (-2r)
+    from sizer.io.loader import load_design_data
+    from sizer.sizing.segment_breakdown import segment_breakdown
+
+    task = {"displacement": "180 deg", "duration": "0.25 s", "dwell": "0.1 s"}
+    data = _design(task, {"law_on": "crank"}, load={"mass": f"{M} kg", "friction": "20 N",
+                                                    "force": "30 N"})
+    design = load_design_data(data)
+    (result,) = size(design).results
+    breakdown = segment_breakdown(design, design.motors[0], result.spec, result.duration)
+    move = breakdown.rows[0]
+    assert move.energy == pytest.approx(20.0 * 2 * R - 30.0 * 2 * R, rel=1e-6)
+    # holding the slider at the bottom dead centre takes no torque (s' = 0 there)
+    assert breakdown.rows[1].peak_torque == pytest.approx(0.0, abs=1e-9)

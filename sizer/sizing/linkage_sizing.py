@@ -19,6 +19,7 @@ infeasible for every candidate, with its reason (check ``dead_point``).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 from functools import lru_cache
 
@@ -440,3 +441,42 @@ def linkage_curve_of(design: Design, motor, law: MotionLaw, duration: float,
     dead = dict(zip(names, (float(x) for x in linkage.dead_points()), strict=True))
     return LinkageCurve(profile.theta[pick], profile.ratio[pick], torque[0, pick], dead,
                         stage.output_linear)
+
+
+def linkage_breakdown(design: Design, motor, law: MotionLaw, duration: float,
+                      transmission=None):
+    """The move and the dwell of a task through a linkage, for one result, as the
+    segment table shows them (sizer.sizing.segment_breakdown's rows)."""
+    from sizer.sizing.segment_breakdown import SegmentBreakdown, SegmentRow
+
+    motors = MotorArrays.of([motor], design.limits.envelope)
+    profile = linkage_profile(design, law)
+    drive = crank_drive(design, Drive(design.load, transmission or design.transmission),
+                        profile)
+    calculator = LinkageCalculator(profile, design.task, drive, motors,
+                                   design.limits.thermal_speed, law)
+    T = np.array([duration])
+    metrics = calculator.evaluate(T)
+    speed, torque, _ = calculator.motor_samples(T)
+    move_square = duration * float(torque[0] ** 2 @ profile.weights)
+    dwell = design.task.dwell
+    hold = abs(profile.hold) / float(drive.ratio[0] * drive.efficiency[0])
+    total = move_square + dwell * hold**2
+    first = float(profile.s2[np.argmin(profile.u)]) / duration**2
+    last = float(profile.s2[np.argmax(profile.u)]) / duration**2
+    rows = [SegmentRow(
+        name="move", kind="move", law=law.spec, start=0.0, end=duration,
+        peak_torque=float(metrics.peak_torque[0]),
+        rms_torque=math.sqrt(move_square / duration),
+        rms_share=move_square / total if total > 0 else 0.0,
+        peak_speed=float(metrics.max_speed[0]),
+        energy=duration * float((torque[0] * speed[0]) @ profile.weights),
+        acceleration_step=first)]
+    if dwell > 0.0:
+        rows.append(SegmentRow(
+            name="dwell", kind="dwell", law=None, start=duration, end=duration + dwell,
+            peak_torque=hold, rms_torque=hold,
+            rms_share=dwell * hold**2 / total if total > 0 else 0.0, peak_speed=0.0,
+            energy=0.0, acceleration_step=-last))
+    return SegmentBreakdown(motor.id, law.spec, duration + dwell,
+                            float(metrics.rms_torque[0]), tuple(rows))

@@ -84,6 +84,10 @@ def segment_breakdown(design: Design, motor: Motor, law: MotionLaw | str, durati
     the moves that name none) at a result's ``duration``."""
     if isinstance(law, str):
         law = make_law(law)
+    if design.transmission.linkage is not None:
+        from sizer.sizing.linkage_sizing import linkage_breakdown
+
+        return linkage_breakdown(design, motor, law, duration, transmission)
     calc, s = result_cycle(design, motor, law, duration, transmission)
     cycle = calc.cycle
     parts = calc.figures(s)
