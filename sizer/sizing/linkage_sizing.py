@@ -356,18 +356,26 @@ def evaluate_linkage(design: Design, law: MotionLaw, motors: MotorArrays, drive:
     return duration, metrics, checks, feasible
 
 
+def result_calculator(design: Design, motor, law: MotionLaw, transmission=None
+                      ) -> tuple[LinkageProfile, Drive, LinkageCalculator]:
+    """The profile, drive and calculator of one result (a motor, a law, the result's
+    transmission) through the design's linkage."""
+    profile = linkage_profile(design, law)
+    drive = crank_drive(design, Drive(design.load, transmission or design.transmission),
+                        profile)
+    calculator = LinkageCalculator(profile, design.task, drive,
+                                   MotorArrays.of([motor], design.limits.envelope),
+                                   design.limits.thermal_speed, law)
+    return profile, drive, calculator
+
+
 def linkage_curve(design: Design, motor, law: MotionLaw, duration: float,
                   transmission=None, samples: int = 401):
     """The TaskCurve of one candidate through the linkage (for plots and reports): the
     move at ``samples`` instants and the dwell holding the output."""
     from sizer.sizing.profile import TaskCurve, continuous_region, intermittent_region
 
-    motors = MotorArrays.of([motor], design.limits.envelope)
-    profile = linkage_profile(design, law)
-    drive = crank_drive(design, Drive(design.load, transmission or design.transmission),
-                        profile)
-    calculator = LinkageCalculator(profile, design.task, drive, motors,
-                                   design.limits.thermal_speed, law)
+    profile, drive, calculator = result_calculator(design, motor, law, transmission)
     T = np.array([duration])
     metrics = calculator.evaluate(T)
     speed, torque, _ = calculator.motor_samples(T)
@@ -427,12 +435,7 @@ def linkage_curve_of(design: Design, motor, law: MotionLaw, duration: float,
 
     stage = design.transmission.linkage
     assert stage is not None
-    profile = linkage_profile(design, law)
-    drive = crank_drive(design, Drive(design.load, transmission or design.transmission),
-                        profile)
-    calculator = LinkageCalculator(profile, design.task, drive,
-                                   MotorArrays.of([motor], design.limits.envelope),
-                                   design.limits.thermal_speed, law)
+    profile, _, calculator = result_calculator(design, motor, law, transmission)
     _, torque, _ = calculator.motor_samples(np.array([duration]))
     pick = np.flatnonzero(profile.weights == 0.0)
     linkage = linkage_of(stage)
@@ -449,12 +452,7 @@ def linkage_breakdown(design: Design, motor, law: MotionLaw, duration: float,
     segment table shows them (sizer.sizing.segment_breakdown's rows)."""
     from sizer.sizing.segment_breakdown import SegmentBreakdown, SegmentRow
 
-    motors = MotorArrays.of([motor], design.limits.envelope)
-    profile = linkage_profile(design, law)
-    drive = crank_drive(design, Drive(design.load, transmission or design.transmission),
-                        profile)
-    calculator = LinkageCalculator(profile, design.task, drive, motors,
-                                   design.limits.thermal_speed, law)
+    profile, drive, calculator = result_calculator(design, motor, law, transmission)
     T = np.array([duration])
     metrics = calculator.evaluate(T)
     speed, torque, _ = calculator.motor_samples(T)
