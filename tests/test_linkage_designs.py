@@ -139,15 +139,59 @@ def test_a_four_bar_rocker_from_its_crank_law() -> None:
         assert 0.0 < r.load_speed < 20 * (high - low) / 0.4
 
 
-def test_a_linkage_in_a_cycle_is_refused(tmp_path: Path) -> None:
-    design = {"cycle": {"segments": [{"move": {"displacement": "180 deg",
-                                               "duration": "0.3 s"}}]},
-              "load": {"mass": "2 kg"},
-              "transmission": [{"type": "slider_crank", "crank_radius": "50 mm",
-                                "rod_length": "200 mm"}], "motors": [MOTOR]}
+def _cycle_design(segments: list, laws: list | None = None) -> dict:
+    design = _design({}, {"law_on": "crank"})
+    del design["task"]
+    design["cycle"] = {"segments": segments}
+    if laws:
+        design["laws"] = laws
+    return design
+
+
+def test_a_cycle_of_two_half_turns_through_the_linkage() -> None:
+    # down from the top dead centre in 0.2 s, 0.1 s at the bottom, up in 0.3 s, 0.1 s at
+    # the top: each half-turn is a cycloidal crank move from where the last one stopped
+    segments = [{"move": {"displacement": "180 deg", "duration": "0.2 s", "name": "down"}},
+                {"dwell": {"duration": "0.1 s", "name": "bottom"}},
+                {"move": {"displacement": "180 deg", "duration": "0.3 s", "name": "up"}},
+                {"dwell": {"duration": "0.1 s", "name": "top"}}]
+    (result,) = size(_cycle_design(segments)).results
+    u = np.linspace(0.0, 1.0, 400_001)
+    down = _crank_torque(u, np.pi, 0.2)
+    up = _crank_torque(u, np.pi, 0.3, start=np.pi)
+    assert result.duration == pytest.approx(0.7)
+    assert result.peak_torque == pytest.approx(max(np.abs(down).max(), np.abs(up).max()),
+                                               rel=1e-6)
+    square = 0.2 * np.trapezoid(down**2, u) + 0.3 * np.trapezoid(up**2, u)
+    assert result.rms_torque == pytest.approx(math.sqrt(square / 0.7), rel=1e-6)
+
+
+def test_a_cycle_through_the_linkage_minimized_by_time_scaling() -> None:
+    # both half-turns free, sharing the time equally, the dwells fixed: the scale s is
+    # the smallest that meets the limits; each half-turn then takes s
+    segments = [{"move": {"displacement": "180 deg"}}, {"dwell": {"duration": "0.1 s"}},
+                {"move": {"displacement": "180 deg"}}, {"dwell": {"duration": "0.1 s"}}]
+    (result,) = size(_cycle_design(segments)).results
+    u = np.linspace(0.0, 1.0, 400_001)
+    at_one = [_crank_torque(u, np.pi, 1.0), _crank_torque(u, np.pi, 1.0, start=np.pi)]
+    peak = max(np.abs(x).max() for x in at_one)
+    square = sum(np.trapezoid(x**2, u) for x in at_one)
+    t_peak = math.sqrt(peak / 150.0)
+    t_rms = brentq(lambda T: square / T**3 / (2 * T + 0.2) - 50.0**2, 1e-3, 10.0)
+    t_speed = 2 * np.pi / (3000 * 2 * np.pi / 60)  # C_v h / v_max, h = pi
+    T = max(t_peak, t_rms, t_speed)
+    assert result.duration == pytest.approx(2 * T + 0.2, rel=1e-6)
+
+
+def test_a_run_through_a_linkage_is_refused(tmp_path: Path) -> None:
+    segments = [{"move": {"displacement": "180 deg", "duration": "0.2 s",
+                          "end_speed": "60 rpm"}},
+                {"run": {"speed": "60 rpm", "duration": "0.2 s"}},
+                {"move": {"displacement": "180 deg", "duration": "0.2 s",
+                          "start_speed": "60 rpm", "law": "poly5"}}]
     path = tmp_path / "cycle.yaml"
-    path.write_text(yaml.safe_dump(design))
-    assert_user_error(run_cli("size", str(path)), "cycle", "not yet in a cycle")
+    path.write_text(yaml.safe_dump(_cycle_design(segments, ["poly5"])))
+    assert_user_error(run_cli("size", str(path)), "cycle.segments", "not sized yet")
 
 
 def test_energy_balance_of_a_move_through_the_linkage() -> None:

@@ -52,53 +52,79 @@ def linkage_of(stage: LinkageStage) -> Any:
                    branch=stage.branch)
 
 
-def linkage_task(task: Any, stage: LinkageStage, cycle: Any, model: Any,
-                 source: YamlSource) -> tuple[Any, bool]:
-    """The task of a design whose transmission ends in a linkage, and its axis (the
-    linkage's output: a slider is linear, a rocker rotary).
+def linkage_task(task: Any, stage: LinkageStage, cycle: Any,
+                 source: YamlSource) -> tuple[Any, Any, bool]:
+    """The task (and cycle) of a design whose transmission ends in a linkage, and its
+    axis: the linkage's output (a slider is linear, a rocker rotary).
 
-    With ``law_on: crank`` the task's displacement is the crank's turn, an angle; with
-    ``law_on: output`` it is the output's travel, of the output's kind. The shorthand
-    task only: a cycle of segments, a return move through a linkage are not sized yet.
+    With ``law_on: crank`` the displacements are the crank's turns, angles; with
+    ``law_on: output`` the output's travels, of the output's kind. A cycle's moves are
+    rest to rest and it has no runs (the crank's speed at a join is not given); a return
+    move through a linkage is not sized yet (write the way back as a cycle's move).
     """
     from dataclasses import replace
 
-    at = ("task", "displacement")
-    if cycle is not None:
-        raise source.error("a linkage (slider_crank, four_bar) is sized with the task "
-                           "shorthand only, not yet in a cycle of segments", ("cycle",))
+    from sizer.model.cycle import Move, Run
+
     if task.return_move:
-        raise source.error("a linkage turns its crank on; a return move through it is not "
-                           "sized yet: write the way back as the crank's turn", ("task",
-                                                                                 "return"))
+        raise source.error("a return move through a linkage is not sized yet: write the "
+                           "way back as a move of a cycle (cycle:)", ("task", "return"))
+    if cycle is None:
+        moves = [(task.displacement, ("task", "displacement"))]
+        linear = task.linear
+    else:
+        moves = []
+        for i, segment in enumerate(cycle.segments):
+            if isinstance(segment, Run):
+                raise source.error("a run through a linkage is not sized yet (the crank's "
+                                   "speed through a position-dependent ratio): use moves "
+                                   "and dwells", ("cycle", "segments", i))
+        for i, segment in enumerate(cycle.segments):
+            at = ("cycle", "segments", i)
+            if isinstance(segment, Move):
+                if not segment.rest_to_rest:
+                    raise source.error("a move through a linkage starts and ends at rest "
+                                       "(no start or end speed or acceleration)", at)
+                moves.append((segment.displacement, (*at, "move", "displacement")))
+        linear = cycle.linear
     output = "a length (the slider's travel)" if stage.output_linear else \
         "an angle (the rocker's swing)"
-    if stage.law_on == "crank" and task.linear:
-        raise source.error("with law_on: crank the displacement is the crank's turn, an "
-                           "angle like '180 deg'", at)
-    if stage.law_on == "output" and task.linear != stage.output_linear:
-        raise source.error(f"with law_on: output the displacement is {output}", at)
+    where = moves[0][1]
+    if stage.law_on == "crank" and linear:
+        raise source.error("with law_on: crank a displacement is the crank's turn, an "
+                           "angle like '180 deg'", where)
+    if stage.law_on == "output" and linear != stage.output_linear:
+        raise source.error(f"with law_on: output a displacement is {output}", where)
     if stage.law_on == "output":
-        _check_stroke(stage, task.displacement, source, at)
-    return replace(task, linear=stage.output_linear), stage.output_linear
+        _check_strokes(stage, moves, source)
+    task = replace(task, linear=stage.output_linear)
+    if cycle is not None:
+        cycle = replace(cycle, linear=stage.output_linear)
+    return task, cycle, stage.output_linear
 
 
-def _check_stroke(stage: LinkageStage, h: float, source: YamlSource,
-                  at: tuple[Any, ...]) -> None:
-    """The output's move from where the crank starts stays within the linkage's range."""
+def _check_strokes(stage: LinkageStage, moves: list[tuple[float, tuple[Any, ...]]],
+                   source: YamlSource) -> None:
+    """Each output move, from where the last one ended, stays within the range."""
     import numpy as np
 
-    linkage = linkage_of(stage)
-    start = float(linkage.output(np.array([stage.start_angle]))[0])
-    low, high = linkage.output_range()
+    position = float(linkage_of(stage).output(np.array([stage.start_angle]))[0])
+    for h, at in moves:
+        _check_stroke(stage, position, h, source, at)
+        position += h
+
+
+def _check_stroke(stage: LinkageStage, start: float, h: float, source: YamlSource,
+                  at: tuple[Any, ...]) -> None:
+    """The output's move from ``start`` by ``h`` stays within the linkage's range."""
+    low, high = linkage_of(stage).output_range()
     end = start + h
     tolerance = 1e-9 * (high - low)
     if not low - tolerance <= end <= high + tolerance:
         unit = "m" if stage.output_linear else "rad"
-        raise source.error(f"the output would move from {start:.6g} {unit} (the crank at "
-                           f"start_angle) to {end:.6g} {unit}, beyond its range "
-                           f"[{low:.6g}, {high:.6g}] {unit} (the stroke between the dead "
-                           f"points)", at)
+        raise source.error(f"the output would move from {start:.6g} {unit} to {end:.6g} "
+                           f"{unit}, beyond its range [{low:.6g}, {high:.6g}] {unit} (the "
+                           f"stroke between the dead points)", at)
 
 
 def output_linear(items: Any, linear: bool) -> bool:

@@ -310,7 +310,7 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
     transmission, ratio_choice = build_transmission(model.transmission, source, folder,
                                                     linear)
     if transmission.linkage is not None:
-        task, linear = linkage_task(task, transmission.linkage, cycle, model, source)
+        task, cycle, linear = linkage_task(task, transmission.linkage, cycle, source)
     extra = list(extra_catalogs)
     if default_motors and model.motors is None and not extra:
         extra = list(default_catalogs().values())

@@ -198,8 +198,14 @@ def _evaluate_linkage_chunk(design: Design, law: MotionLaw,
     law computed once, the candidates at its samples; minimize by time scaling."""
     from sizer.sizing.linkage_sizing import evaluate_linkage  # only linkage designs
 
-    duration, metrics, checks, feasible = evaluate_linkage(design, law, candidates.motors,
-                                                           candidates.drive)
+    if design.cycle is not None:
+        from sizer.sizing.linkage_cycle import evaluate_linkage_cycle
+
+        evaluate = evaluate_linkage_cycle
+    else:
+        evaluate = evaluate_linkage
+    duration, metrics, checks, feasible = evaluate(design, law, candidates.motors,
+                                                   candidates.drive)
     return _table(design, law, candidates, duration, metrics, checks, feasible)
 
 

@@ -91,6 +91,12 @@ def linkage_profile(design: Design, law: MotionLaw) -> LinkageProfile:
     return _profile(stage, design.load, design.task.displacement, design.task.duration, law)
 
 
+def profile_of(stage: LinkageStage, load: Load, h: float, duration: float | None,
+               law: MotionLaw) -> LinkageProfile:
+    """The profile of a move of ``h`` by ``law`` from the stage's start angle (cached)."""
+    return _profile(stage, load, h, duration, law)
+
+
 @lru_cache(maxsize=256)
 def _profile(stage: LinkageStage, load: Load, h: float, duration: float | None,
              law: MotionLaw) -> LinkageProfile:
@@ -281,7 +287,7 @@ UNBOUNDED_NOTE = ("unbounded: the crank's acceleration is infinite at the dead p
                   "dead_point)")
 
 
-def _unbounded(check: CheckArrays) -> CheckArrays:
+def unbounded(check: CheckArrays) -> CheckArrays:
     """A torque check of a law that breaks the dead-point rule: unbounded, saying why."""
     n = len(check.value)
     return replace(check, value=np.full(n, np.inf),
@@ -350,7 +356,7 @@ def evaluate_linkage(design: Design, law: MotionLaw, motors: MotorArrays, drive:
     checks = [point, *evaluate_checks(metrics, motors, drive, design.limits,
                                       design.task.linear)]
     if profile.issues:
-        checks = [_unbounded(c) if c.name in ("peak", "rms") else c for c in checks]
+        checks = [unbounded(c) if c.name in ("peak", "rms") else c for c in checks]
     feasible = all_pass(checks)
     duration = np.where(feasible, T, np.nan) if design.task.minimize else T
     return duration, metrics, checks, feasible
@@ -375,6 +381,8 @@ def linkage_curve(design: Design, motor, law: MotionLaw, duration: float,
     move at ``samples`` instants and the dwell holding the output."""
     from sizer.sizing.profile import TaskCurve, continuous_region, intermittent_region
 
+    if design.cycle is not None:
+        return _cycle_curve(design, motor, law, duration, transmission, samples)
     profile, drive, calculator = result_calculator(design, motor, law, transmission)
     T = np.array([duration])
     metrics = calculator.evaluate(T)
@@ -431,19 +439,63 @@ class LinkageCurve:
 def linkage_curve_of(design: Design, motor, law: MotionLaw, duration: float,
                      transmission=None) -> LinkageCurve:
     """The data of the ratio-and-torque plot of one result (sizer plot --linkage)."""
-    from sizer.io.linkage import linkage_of
 
     stage = design.transmission.linkage
     assert stage is not None
+    if design.cycle is not None:
+        from sizer.sizing.linkage_cycle import cycle_samples
+
+        parts = [p for p in cycle_samples(design, motor, law, duration, transmission)[0]
+                 if np.all(np.isfinite(p["ratio"]))]  # the moves
+        theta, ratio, torque = (np.concatenate([p[k] for p in parts])
+                                for k in ("theta", "ratio", "motor_torque"))
+        return LinkageCurve(theta, ratio, torque, _dead_points(stage), stage.output_linear)
     profile, _, calculator = result_calculator(design, motor, law, transmission)
     _, torque, _ = calculator.motor_samples(np.array([duration]))
     pick = np.flatnonzero(profile.weights == 0.0)
-    linkage = linkage_of(stage)
+    return LinkageCurve(profile.theta[pick], profile.ratio[pick], torque[0, pick],
+                        _dead_points(stage), stage.output_linear)
+
+
+def _dead_points(stage: LinkageStage) -> dict[str, float]:
+    """The linkage's dead points by name: crank angles (rad)."""
+    from sizer.io.linkage import linkage_of
+
     names = ("top dead centre", "bottom dead centre") if stage.output_linear else \
         ("largest rocker angle", "least rocker angle")
-    dead = dict(zip(names, (float(x) for x in linkage.dead_points()), strict=True))
-    return LinkageCurve(profile.theta[pick], profile.ratio[pick], torque[0, pick], dead,
-                        stage.output_linear)
+    return dict(zip(names, (float(x) for x in linkage_of(stage).dead_points()),
+                    strict=True))
+
+
+def _cycle_curve(design: Design, motor, law: MotionLaw, duration: float, transmission,
+                 samples: int):
+    """The TaskCurve of a cycle through the linkage (the moves and the dwells)."""
+    from sizer.sizing.linkage_cycle import cycle_samples
+    from sizer.sizing.profile import TaskCurve, continuous_region, intermittent_region
+    parts, metrics, calculator = cycle_samples(design, motor, law, duration, transmission,
+                                               samples)
+
+    def joined(key: str) -> np.ndarray:
+        return np.concatenate([p[key] for p in parts])
+
+    segments, start = [], 0.0
+    for segment, p in zip(design.cycle.segments, parts, strict=True):
+        end = float(p["time"][-1])
+        segments.append((segment.name or ("move" if p["ratio"].size > 2 or np.all(
+            np.isfinite(p["ratio"])) else "dwell"), start, end))
+        start = end
+    return TaskCurve(
+        motor=motor.id, law=law.spec, duration=duration,
+        ratio=float(calculator.drive.ratio[0]), time=joined("time"),
+        position=joined("position"), load_speed=joined("load_speed"),
+        load_acceleration=joined("load_acceleration"), motor_speed=joined("motor_speed"),
+        motor_acceleration=joined("motor_acceleration"), motor_torque=joined("motor_torque"),
+        rms_torque=float(metrics.rms_torque[0]), thermal_speed=float(metrics.thermal_speed[0]),
+        peak_torque=float(metrics.peak_torque[0]), max_speed=float(metrics.max_speed[0]),
+        continuous_region=continuous_region(motor, design.limits.envelope),
+        intermittent_region=intermittent_region(motor, design.limits.envelope),
+        total_inertia=motor.inertia + float(calculator.drive.driven_inertia[0]),
+        segments=tuple(segments))
 
 
 def linkage_breakdown(design: Design, motor, law: MotionLaw, duration: float,
@@ -452,6 +504,10 @@ def linkage_breakdown(design: Design, motor, law: MotionLaw, duration: float,
     segment table shows them (sizer.sizing.segment_breakdown's rows)."""
     from sizer.sizing.segment_breakdown import SegmentBreakdown, SegmentRow
 
+    if design.cycle is not None:
+        from sizer.sizing.linkage_cycle import cycle_breakdown
+
+        return cycle_breakdown(design, motor, law, duration, transmission)
     profile, drive, calculator = result_calculator(design, motor, law, transmission)
     T = np.array([duration])
     metrics = calculator.evaluate(T)
