@@ -485,6 +485,11 @@ def to_si_with_pint(value: Any, kind: str, *, field: str | None = None) -> float
     return to_si(value, kind, field=field)
 
 
+def is_angle_unit(unit: str) -> bool:
+    """Whether a unit text names an angle (``deg``, ``rad``, ``rev``...)."""
+    return bool(_ANGLE_UNITS.match(unit.strip()))
+
+
 def parse_displacement(value: Any, *, field: str | None = None) -> tuple[float, bool]:
     """A displacement h in SI and whether it is linear (a length) rather than an angle."""
     if isinstance(value, str):

@@ -237,19 +237,17 @@ def _unit_texts(raw: Any) -> tuple[str | None, str | None]:
 
 def _scale(law: DataLaw, units: tuple[str | None, str | None]) -> LawScale | None:
     """The law's absolute size from its units; None when they are not both known."""
-    from sizer.units import parse_displacement, to_si
+    from sizer.units import is_angle_unit, parse_displacement, to_si
 
     time_unit, position_unit = units
     if time_unit is None or position_unit is None:
         return None
     size, linear = parse_displacement(f"1 {position_unit}", field="units.position")
+    master = is_angle_unit(time_unit)
     try:
-        span, master = to_si(f"1 {time_unit}", "time", field="units.time"), False
+        span = to_si(f"1 {time_unit}", "angle" if master else "time", field="units.time")
     except UserError:
-        try:
-            span, master = to_si(f"1 {time_unit}", "angle", field="units.time"), True
-        except UserError:
-            raise UserError(f"expected a time unit like 's' or 'ms', or a master angle unit "
-                            f"like 'deg', got {time_unit!r}", field="units.time") from None
+        raise UserError(f"expected a time unit like 's' or 'ms', or a master angle unit "
+                        f"like 'deg', got {time_unit!r}", field="units.time") from None
     return LawScale(displacement=law._size * size, linear=linear,
                     span=law._span * span, master=master)
