@@ -13,6 +13,7 @@ from typing import Any
 
 from sizer.errors import UserError
 from sizer.io.yaml_source import YamlSource
+from sizer.mechanics.linkages.of_stage import linkage_of
 from sizer.model.domain import LinkageStage
 from sizer.model.transmission_inputs import FourBarInput, SliderCrankInput
 
@@ -36,20 +37,6 @@ def linkage_stage(item: SliderCrankInput | FourBarInput, source: YamlSource,
     except UserError as error:
         raise source.relocate(error, (*at, error.field) if error.field else at) from None
     return stage
-
-
-def linkage_of(stage: LinkageStage) -> Any:
-    """The mechanism of a LinkageStage (a sizer.mechanics.linkages.Linkage)."""
-    if stage.kind == "slider_crank":
-        from sizer.mechanics.linkages.slider_crank import SliderCrank
-
-        r, rod, e = stage.lengths
-        return SliderCrank(r, rod, e)
-    from sizer.mechanics.linkages.four_bar import FourBar
-
-    crank, coupler, rocker, ground = stage.lengths
-    return FourBar(crank=crank, coupler=coupler, rocker=rocker, ground=ground,
-                   branch=stage.branch)
 
 
 def linkage_task(task: Any, stage: LinkageStage, cycle: Any,

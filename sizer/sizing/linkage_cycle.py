@@ -20,7 +20,6 @@ from sizer.laws import MotionLaw
 from sizer.mechanics.drive import Drive
 from sizer.model.cycle import Cycle, Move
 from sizer.model.domain import Design, Limits, Load, Task
-from sizer.sizing.checks import CheckArrays
 from sizer.sizing.cycle import CycleMetrics
 from sizer.sizing.linkage_sizing import (
     LinkageCalculator,
@@ -191,7 +190,7 @@ class LinkageCycle:
 
 def _hold(stage, load: Load, theta: float) -> float:
     """The static crank torque holding the output's constant load at crank angle theta."""
-    from sizer.io.linkage import linkage_of
+    from sizer.mechanics.linkages.of_stage import linkage_of
 
     return float(linkage_of(stage).output(np.array([theta]), 1)[0] * load.torque)
 
@@ -202,7 +201,7 @@ def evaluate_linkage_cycle(design: Design, law: MotionLaw, motors: MotorArrays,
     from sizer.sizing.checks import evaluate_checks
     from sizer.sizing.checks import feasible as all_pass
     from sizer.sizing.cycle_shape import given_scale
-    from sizer.sizing.linkage_sizing import unbounded
+    from sizer.sizing.linkage_sizing import dead_point_check, unbounded
     from sizer.sizing.minimum_duration import minimum_duration
 
     cycle: Cycle | None = design.cycle
@@ -210,9 +209,7 @@ def evaluate_linkage_cycle(design: Design, law: MotionLaw, motors: MotorArrays,
     calculator = LinkageCycle(design, law, drive, motors, design.limits.thermal_speed)
     n = len(motors)
     issues = calculator.issues()
-    point = CheckArrays("dead_point", np.full(n, np.inf if issues else 0.0), np.ones(n), "",
-                        0.0, None,
-                        np.full(n, "; ".join(issues), dtype=object) if issues else None)
+    point = dead_point_check(issues, n)
     if cycle.minimize and not issues:
         solution = minimum_duration(calculator, design.limits)
         duration = np.where(solution.feasible, solution.metrics.duration, np.nan)

@@ -100,9 +100,9 @@ def profile_of(stage: LinkageStage, load: Load, h: float, duration: float | None
 @lru_cache(maxsize=256)
 def _profile(stage: LinkageStage, load: Load, h: float, duration: float | None,
              law: MotionLaw) -> LinkageProfile:
-    from sizer.io.linkage import linkage_of
     from sizer.mechanics.linkages.dynamics import LinkageDynamics, LinkageMasses
     from sizer.mechanics.linkages.inverse_motion import input_motion, output_motion
+    from sizer.mechanics.linkages.of_stage import linkage_of
 
     linkage = linkage_of(stage)
     u, weights = _grid(law)
@@ -314,12 +314,11 @@ def refined_max(values: np.ndarray, u: np.ndarray) -> np.ndarray:
     return np.where(inside, np.maximum(best, top), best)
 
 
-def dead_point_check(profile: LinkageProfile, n: int) -> CheckArrays:
+def dead_point_check(issues: tuple[str, ...], n: int) -> CheckArrays:
     """``dead_point``: passes when the law meets the paper's rule at every dead point
-    the output reaches; else fails for every candidate with the reason as its note."""
-    bad = bool(profile.issues)
-    notes = np.full(n, "; ".join(profile.issues), dtype=object) if bad else None
-    return CheckArrays("dead_point", np.full(n, np.inf if bad else 0.0), np.ones(n), "",
+    the output reaches; else fails for every candidate with the reasons as its note."""
+    notes = np.full(n, "; ".join(issues), dtype=object) if issues else None
+    return CheckArrays("dead_point", np.full(n, np.inf if issues else 0.0), np.ones(n), "",
                        0.0, None, notes)
 
 
@@ -341,7 +340,7 @@ def evaluate_linkage(design: Design, law: MotionLaw, motors: MotorArrays, drive:
     calculator = LinkageCalculator(profile, design.task, drive, motors,
                                    design.limits.thermal_speed, law)
     n = len(motors)
-    point = dead_point_check(profile, n)
+    point = dead_point_check(profile.issues, n)
     if design.task.minimize and not profile.issues:
         solution = minimum_duration(calculator, design.limits)
         checks = [point, *solution.checks]
@@ -459,7 +458,7 @@ def linkage_curve_of(design: Design, motor, law: MotionLaw, duration: float,
 
 def _dead_points(stage: LinkageStage) -> dict[str, float]:
     """The linkage's dead points by name: crank angles (rad)."""
-    from sizer.io.linkage import linkage_of
+    from sizer.mechanics.linkages.of_stage import linkage_of
 
     names = ("top dead centre", "bottom dead centre") if stage.output_linear else \
         ("largest rocker angle", "least rocker angle")
