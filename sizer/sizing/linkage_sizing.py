@@ -129,9 +129,8 @@ def _profile(stage: LinkageStage, load: Load, h: float, duration: float | None,
                                rocker_length=rocker_length)
     with np.errstate(all="ignore"):
         parts = dynamics.time_scaling_parts(theta[0], theta[1], theta[2])
-    end = np.array([theta[0][np.argmax(u)]])
-    hold = float(linkage.output(end, 1)[0] * load.torque)
-    turn = float(theta[0][np.argmax(u)] - theta[0][np.argmin(u)])
+    hold = float(linkage.output(theta[0][-1:], 1)[0] * load.torque)  # u is in time order
+    turn = float(theta[0][-1] - theta[0][0])
     grid = np.linspace(-np.pi, np.pi, 721)
     max_inertia = float(np.max(dynamics.inertia(grid)))
     ratio = linkage.output(_finite(theta[0]), 1)
