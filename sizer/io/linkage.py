@@ -46,18 +46,17 @@ def linkage_task(task: Any, stage: LinkageStage, cycle: Any,
 
     With ``law_on: crank`` the displacements are the crank's turns, angles; with
     ``law_on: output`` the output's travels, of the output's kind. A cycle's moves are
-    rest to rest and it has no runs (the crank's speed at a join is not given); a return
-    move through a linkage is not sized yet (write the way back as a cycle's move).
+    rest to rest and it has no runs (the crank's speed at a join is not given); a task's
+    return move goes back from where the way out stopped.
     """
     from dataclasses import replace
 
     from sizer.model.cycle import Move, Run
 
-    if task.return_move:
-        raise source.error("a return move through a linkage is not sized yet: write the "
-                           "way back as a move of a cycle (cycle:)", ("task", "return"))
     if cycle is None:
         moves = [(task.displacement, ("task", "displacement"))]
+        if task.return_move:
+            moves.append((-task.displacement, ("task", "return")))
         linear = task.linear
     else:
         moves = []

@@ -329,10 +329,30 @@ def crank_drive(design: Design, drive: Drive, profile: LinkageProfile) -> Drive:
     return Drive(load, drive.transmissions, drive.option)
 
 
+def shorthand_cycle(design: Design) -> Design:
+    """A task with a return move as the cycle it means (move, dwell, move back, dwell):
+    through a linkage the way back starts where the way out stopped."""
+    from sizer.model.cycle import from_task
+
+    return replace(design, cycle=from_task(design.task))
+
+
 def evaluate_linkage(design: Design, law: MotionLaw, motors: MotorArrays, drive: Drive):
     """(duration, metrics, checks, feasible) of one law through the design's linkage."""
     from sizer.sizing.checks import feasible as all_pass
     from sizer.sizing.minimum_duration import minimum_duration
+
+    if design.task.return_move:  # the cycle it means; the task reports its moves' T
+        from sizer.sizing.linkage_cycle import evaluate_linkage_cycle
+
+        cyc = shorthand_cycle(design)
+        assert cyc.cycle is not None
+        cycle_time, metrics, checks, feasible = evaluate_linkage_cycle(cyc, law, motors, drive)
+        if design.task.minimize:  # both moves free, one scale: T = s
+            T = (cycle_time - cyc.cycle.fixed_time) / len(cyc.cycle.moves)
+        else:
+            T = np.full(len(motors), design.task.duration)
+        return T, metrics, checks, feasible
 
     profile = linkage_profile(design, law)
     drive = crank_drive(design, drive, profile)
@@ -379,8 +399,9 @@ def linkage_curve(design: Design, motor, law: MotionLaw, duration: float,
     move at ``samples`` instants and the dwell holding the output."""
     from sizer.sizing.profile import TaskCurve, continuous_region, intermittent_region
 
-    if design.cycle is not None:
-        return _cycle_curve(design, motor, law, duration, transmission, samples)
+    if design.cycle is not None or design.task.return_move:
+        cyc = design if design.cycle is not None else shorthand_cycle(design)
+        return _cycle_curve(cyc, motor, law, duration, transmission, samples)
     profile, drive, calculator = result_calculator(design, motor, law, transmission)
     T = np.array([duration])
     metrics = calculator.evaluate(T)
@@ -440,10 +461,11 @@ def linkage_curve_of(design: Design, motor, law: MotionLaw, duration: float,
 
     stage = design.transmission.linkage
     assert stage is not None
-    if design.cycle is not None:
+    if design.cycle is not None or design.task.return_move:
         from sizer.sizing.linkage_cycle import cycle_samples
 
-        parts = [p for p in cycle_samples(design, motor, law, duration, transmission)[0]
+        cyc = design if design.cycle is not None else shorthand_cycle(design)
+        parts = [p for p in cycle_samples(cyc, motor, law, duration, transmission)[0]
                  if np.all(np.isfinite(p["ratio"]))]  # the moves
         theta, ratio, torque = (np.concatenate([p[k] for p in parts])
                                 for k in ("theta", "ratio", "motor_torque"))
@@ -502,10 +524,11 @@ def linkage_breakdown(design: Design, motor, law: MotionLaw, duration: float,
     segment table shows them (sizer.sizing.segment_breakdown's rows)."""
     from sizer.sizing.segment_breakdown import SegmentBreakdown, SegmentRow
 
-    if design.cycle is not None:
+    if design.cycle is not None or design.task.return_move:
         from sizer.sizing.linkage_cycle import cycle_breakdown
 
-        return cycle_breakdown(design, motor, law, duration, transmission)
+        cyc = design if design.cycle is not None else shorthand_cycle(design)
+        return cycle_breakdown(cyc, motor, law, duration, transmission)
     profile, drive, calculator = result_calculator(design, motor, law, transmission)
     T = np.array([duration])
     metrics = calculator.evaluate(T)
