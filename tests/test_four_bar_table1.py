@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from test_inverse_motion import eq63
 
 from sizer.mechanics.linkages.four_bar import paper_four_bar
 from sizer.mechanics.linkages.inverse_motion import dead_point_crossings, input_motion
@@ -17,24 +18,13 @@ TOP = FOUR_BAR.output_range()[1]
 T = np.round(np.arange(-400, 401) * 5e-4, 12)
 
 
-def eq63(c2: float, c3: float, c4: float):
-    sg = np.where(T < 0, 1.0, -1.0)
-    s = -c4 * T**4 + sg * c3 * T**3 - c2 * T**2 + TOP
-    s1 = -4 * c4 * T**3 + 3 * sg * c3 * T**2 - 2 * c2 * T
-    s2 = -12 * c4 * T**2 + 6 * sg * c3 * T - 2 * c2
-    s3 = -24 * c4 * T + 6 * sg * c3
-    left = (-12 * c4 * T**2 + 6 * c3 * T - 2 * c2, -24 * c4 * T + 6 * c3)
-    right = (-12 * c4 * T**2 - 6 * c3 * T - 2 * c2, -24 * c4 * T - 6 * c3)
-    return s, s1, s2, s3, left, right
-
-
 @pytest.mark.parametrize(("c2", "c3", "c4", "feasible"), [
     (0.0, 0.563, 0.0, False),  # sec. 5.1, Fig. 5: s_ddot = 0 with a jerk
     (0.0, 0.0, 0.563, True),   # Fig. 6: s_ddot = s_dddot = 0 (C3)
     (0.5, 0.563, 0.0, True),   # sec. 5.2, Fig. 7: s_ddot = -1, of the needed sign
 ])
 def test_table1_four_bar(c2: float, c3: float, c4: float, feasible: bool) -> None:
-    s, s1, s2, s3, left, right = eq63(c2, c3, c4)
+    s, s1, s2, s3, left, right = eq63(c2, c3, c4, t=T, c0=TOP)
     issues = dead_point_crossings(FOUR_BAR, T, s, s1, s2, s3, left=left, right=right,
                                   units="rad")
     assert (issues == []) == feasible
