@@ -6,11 +6,14 @@ moves it along f T); at a complex s it is the convolution integral of the exact 
 of a linear mode to the law (sec. 7.2). One numerical scheme for both: composite
 Gauss-Legendre on the law's own quadrature intervals (sizer.laws.quadrature), each cut so
 that the phase |s| dtau of a part stays below PHASE_STEP, with NODES nodes a part: on a
-smooth piece times an exponential whose phase turns by at most 2 rad, 20 nodes are exact
+smooth piece times an exponential whose phase turns by at most 6 rad, 20 nodes are exact
 to rounding.
 """
 
 from __future__ import annotations
+
+import math
+from functools import lru_cache
 
 import numpy as np
 
@@ -20,7 +23,7 @@ from sizer.laws.quadrature import gauss, law_intervals
 NODES = 20
 """Gauss-Legendre nodes on each part."""
 
-PHASE_STEP = 2.0
+PHASE_STEP = 6.0
 """Largest |s| * width of a part [rad]."""
 
 CHUNK = 1 << 22
@@ -29,10 +32,21 @@ CHUNK = 1 << 22
 
 def transform_nodes(law: MotionLaw, order: int, s_max: float
                     ) -> tuple[np.ndarray, np.ndarray]:
-    """Nodes tau and weights times q_N^(order)(tau), fine enough for |s| <= s_max."""
+    """Nodes tau and weights times q_N^(order)(tau), fine enough for |s| <= s_max: built
+    for the next power of two of s_max and cached per law (a law's quadrature intervals
+    cost more than many transforms)."""
+    return _nodes(law, order, 2.0 ** max(0, math.ceil(math.log2(max(s_max, 1.0)))))
+
+
+@lru_cache(maxsize=256)
+def _intervals(law: MotionLaw) -> tuple[tuple[int, np.ndarray], ...]:
+    return tuple((part.index, part.edges) for part in law_intervals(law))
+
+
+@lru_cache(maxsize=256)
+def _nodes(law: MotionLaw, order: int, s_max: float) -> tuple[np.ndarray, np.ndarray]:
     taus, terms = [], []
-    for part in law_intervals(law):
-        edges = part.edges
+    for index, edges in _intervals(law):
         width = np.diff(edges)
         cuts = np.maximum(1, np.ceil(s_max * width / PHASE_STEP)).astype(int)
         first = np.repeat(np.cumsum(cuts) - cuts, cuts)
@@ -42,8 +56,11 @@ def transform_nodes(law: MotionLaw, order: int, s_max: float
         tau, weight = gauss(fine, NODES)
         tau, weight = tau.ravel(), weight.ravel()
         taus.append(tau)
-        terms.append(weight * law.piece_derivative(part.index, tau, order))
-    return np.concatenate(taus), np.concatenate(terms)
+        terms.append(weight * law.piece_derivative(index, tau, order))
+    tau, term = np.concatenate(taus), np.concatenate(terms)
+    tau.flags.writeable = False
+    term.flags.writeable = False
+    return tau, term
 
 
 def law_transform(law: MotionLaw, s: np.ndarray | complex, order: int = 2) -> np.ndarray:
