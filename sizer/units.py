@@ -243,7 +243,7 @@ class _Recipe:
 _SI_FACTORS: dict[str, dict[str, float]] = {
     "time": {"s": 1.0, "ms": 0.001, "min": 60.0},
     "angle": {"rad": 1.0, "deg": 0.017453292519943295, "rev": 6.283185307179586,
-              "arcmin": 0.00029088820866572163},
+              "arcmin": 0.00029088820866572163, "arcsec": 4.84813681109536e-06},
     "length": {"m": 1.0, "mm": 0.001, "cm": 0.01, "um": 1e-06},
     "angular_speed": {"rad/s": 1.0, "rpm": 0.10471975511965977,
                       "rev/min": 0.10471975511965977, "rev/s": 6.283185307179586,
@@ -260,6 +260,7 @@ _SI_FACTORS: dict[str, dict[str, float]] = {
     "density": {"kg/m**3": 1.0},
     "rotary_damping": {"N*m*s/rad": 1.0},
     "linear_damping": {"N*s/m": 1.0},
+    "rate": {"Hz": 1.0, "kHz": 1000.0, "1/s": 1.0},
 }
 """SI factors of the units written most often, per kind, so that those never need pint:
 each equals pint's factor for that unit bit for bit (tests/test_units_fast_path.py)."""

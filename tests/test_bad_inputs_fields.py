@@ -369,7 +369,32 @@ LINKAGES = [
          ("transmission", "linear"), ("transmission[four_bar].type",)),
 ]
 
-CASES = [*TASK, *LOAD, *GEARBOXES, *BELTS, *SCREWS, *RACKS, *REST, *LINKAGES]
+VIBRATION = [
+    case("natural-frequency-negative", GEARBOX, {"load.natural_frequency": "-25 Hz"},
+         ("load.natural_frequency", "[0.001, 1e6]", "got -25"), ("load.natural_frequency",)),
+    case("natural-frequency-zero", GEARBOX, {"load.natural_frequency": 0},
+         ("load.natural_frequency", "[0.001, 1e6]"), ("load.natural_frequency",)),
+    case("natural-frequency-a-length", GEARBOX, {"load.natural_frequency": "25 mm"},
+         ("load.natural_frequency",), ()),
+    case("damping-ratio-one", GEARBOX, {"load.natural_frequency": "25 Hz",
+                                        "load.damping_ratio": 1},
+         ("load.damping_ratio", "0.999999", "got 1"), ("load.damping_ratio",)),
+    case("damping-ratio-negative", GEARBOX, {"load.natural_frequency": "25 Hz",
+                                             "load.damping_ratio": -0.1},
+         ("load.damping_ratio", "got -0.1"), ()),
+    case("damping-ratio-without-mode", GEARBOX, {"load.damping_ratio": 0.02},
+         ("load.damping_ratio", "natural_frequency"), ()),
+    case("residual-limit-without-mode", GEARBOX, {"limits.residual_vibration": "10 arcsec"},
+         ("limits.residual_vibration", "natural_frequency"), ("limits.residual_vibration",)),
+    case("residual-limit-a-length-on-a-rotary-axis", GEARBOX,
+         {"load.natural_frequency": "25 Hz", "limits.residual_vibration": "0.1 mm"},
+         ("limits.residual_vibration",), ()),
+    case("residual-limit-negative", GEARBOX,
+         {"load.natural_frequency": "25 Hz", "limits.residual_vibration": "-1 arcsec"},
+         ("limits.residual_vibration",), ()),
+]
+
+CASES = [*TASK, *LOAD, *GEARBOXES, *BELTS, *SCREWS, *RACKS, *REST, *LINKAGES, *VIBRATION]
 
 
 @pytest.mark.parametrize("case", CASES, ids=str)

@@ -57,6 +57,7 @@ from sizer.io.yaml_source import (
 )
 from sizer.mechanics import linear_load
 from sizer.model.domain import Design, Limits, Load, Motor, Task
+from sizer.vibration.elastic_load import ElasticLoad
 from sizer.model.inputs import (
     CatalogFile,
     DesignFile,
@@ -417,20 +418,37 @@ def _load(model: DesignFile, source: YamlSource, linear: bool) -> Load:
             if getattr(given, key) is not None:
                 raise source.error(f"{axis} has no '{key}' (it is for linear axes)",
                                    ("load", key))
-        return Load(
+        load = Load(
             inertia=quantity(mass_key),
             damping=quantity("damping"),
             friction=quantity("friction"),
             torque=quantity(torque_key),
         )
-    return linear_load(
-        quantity(mass_key),
-        incline=given.incline or 0.0,
-        friction_coefficient=given.friction_coefficient or 0.0,
-        friction_force=quantity("friction"),
-        force=quantity(torque_key),
-        damping=quantity("damping"),
-    )
+    else:
+        load = linear_load(
+            quantity(mass_key),
+            incline=given.incline or 0.0,
+            friction_coefficient=given.friction_coefficient or 0.0,
+            friction_force=quantity("friction"),
+            force=quantity(torque_key),
+            damping=quantity("damping"),
+        )
+    return replace(load, elastic=_elastic(model, source))
+
+
+def _elastic(model: DesignFile, source: YamlSource) -> ElasticLoad | None:
+    """The load's mode of vibration (sec. 7.1.1), or None; its limit needs it."""
+    given = model.load
+    if given.natural_frequency is None:
+        if given.damping_ratio is not None:
+            raise source.error("a damping_ratio needs the natural_frequency of its mode",
+                               ("load", "damping_ratio"))
+        if model.limits.residual_vibration is not None:
+            raise source.error("a residual_vibration limit needs the load's mode: give "
+                               "load.natural_frequency (and damping_ratio)",
+                               ("limits", "residual_vibration"))
+        return None
+    return ElasticLoad(given.natural_frequency, given.damping_ratio or 0.0)
 
 
 def _limits(model: DesignFile, source: YamlSource, linear: bool) -> Limits:
@@ -452,6 +470,7 @@ def _limits(model: DesignFile, source: YamlSource, linear: bool) -> Limits:
         inertia_ratio_of=given.inertia_ratio_of,
         envelope=given.envelope,
         max_speed=quantity("max_speed"),
+        residual_vibration=quantity("residual_vibration"),
     )
 
 

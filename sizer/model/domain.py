@@ -11,6 +11,8 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Literal
 
+from sizer.vibration.elastic_load import ElasticLoad
+
 if TYPE_CHECKING:
     from sizer.model.cycle import Cycle
 
@@ -70,6 +72,9 @@ class Load:
     damping: float = 0.0
     friction: float = 0.0
     torque: float = 0.0
+    elastic: ElasticLoad | None = None
+    """The load's mode of vibration (sec. 7.1.1) where the design gives one: each move's
+    residual vibration is then computed (sizer.sizing.vibration_check)."""
 
 
 @dataclass(frozen=True)
@@ -219,6 +224,8 @@ class Limits:
     inertia_ratio_of: InertiaRatioRule = "driven"
     envelope: EnvelopeRule = "linear"  # regions without curves (sizer.envelope.completion)
     max_speed: float | None = None
+    residual_vibration: float | None = None
+    """The largest amplitude of vibration a move may leave at the load (m or rad)."""
 
 
 @dataclass(frozen=True)

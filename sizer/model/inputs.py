@@ -242,6 +242,11 @@ class LoadInput(_Strict):
     friction_coefficient: Ranged("friction_coefficient",  # type: ignore[valid-type]
                                  note="linear axis: Coulomb mu, friction = mu m g "
                                         "cos(incline), added to friction") | None = None
+    natural_frequency: Ranged("natural_frequency",  # type: ignore[valid-type]
+                              note="the load's mode (sec. 7.1.1), e.g. '25 Hz': sizer then "
+                                   "gives each move's residual vibration") | None = None
+    damping_ratio: Ranged("damping_ratio",  # type: ignore[valid-type]
+                          note="of that mode, delta in [0, 1); default 0") | None = None
 
 
 def _motor_ref_tag(value: Any) -> str:
@@ -284,6 +289,12 @@ class LimitsInput(_Strict):
         "'1e5 rad/s^3' or '1000 m/s^3'", rotary="load_max_angular_jerk",
         linear="load_max_linear_jerk") | None = Field(
         None, description="at the load: rad/s^3 (rotary) or m/s^3 (linear)")
+    residual_vibration: RawQuantity(  # type: ignore[valid-type]
+        "'0.05 mm' or '0.01 deg'", rotary="residual_angle",
+        linear="residual_length") | None = Field(
+        None, description="at the load: the largest amplitude of the vibration a move may "
+                          "leave (needs load.natural_frequency); m or mm (linear), rad or deg "
+                          "(rotary)")
     thermal_speed: Literal["max", "rms", "mean"] = Field(
         "max", description="speed at which the RMS torque is checked against the "
                            "continuous region")

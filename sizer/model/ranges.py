@@ -134,6 +134,11 @@ RANGES: dict[str, Range] = {
                   zero=True, signed=True),
     "friction_coefficient": _r("ratio", 1e-6, 10.0, "PTFE (0.04) to rubber on a rough "
                                "surface (about 1), widened", zero=True),
+    "natural_frequency": _r("rate", 1e-3, 1e6, "a mode of the load (sec. 7.1.1), in Hz (a bare "
+                            "number is Hz): a crane's sway (0.01 Hz) to 1 MHz"),
+    "damping_ratio": _r("ratio", 1e-9, 0.999999, "under-damped, below 1 (the residual "
+                        "vibration of sec. 7.2 needs an oscillating mode); 0 = undamped",
+                        zero=True),
     # transmission
     "gear_ratio": _r("ratio", 1e-3, 1e5, "a 1000:1 speed-up to a 100,000:1 gear train "
                      "(harmonic and worm stages reach 1:160 each)"),
@@ -193,6 +198,10 @@ RANGES: dict[str, Range] = {
     "load_max_linear_acceleration": _r("linear_acceleration", 1e-6, 1e8, "at the load"),
     "load_max_angular_jerk": _r("angular_jerk", 1e-6, 1e13, "at the load"),
     "load_max_linear_jerk": _r("linear_jerk", 1e-6, 1e12, "at the load"),
+    "residual_angle": _r("angle", 1e-12, 10.0, "the amplitude of the vibration a move leaves "
+                         "at the load (sec. 7.2)"),
+    "residual_length": _r("length", 1e-12, 10.0, "the amplitude of the vibration a move "
+                          "leaves at the load (sec. 7.2)"),
 }
 """Every range of the input files, by name (the fields name them)."""
 
