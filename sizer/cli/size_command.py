@@ -21,7 +21,8 @@ if TYPE_CHECKING:
 RANK_HELP = ("Rank the feasible pairs by size (alias power: the smallest motor first, by "
              "rated power tau_c*v_n), duration (shortest first), margin (most room left at "
              "the tightest limit first), rms or peak (smallest motor torque first), price "
-             "or mass (cheapest or lightest motor first); ties go to the next criteria "
+             "or mass (cheapest or lightest motor first), vibration (smallest residual "
+             "vibration first, with the load's natural_frequency); ties go to the next criteria "
              "(size, margin, rotor inertia, finally motor id, law spec, ratio). Default: "
              "duration with 'duration: minimize', size otherwise.")
 

@@ -31,7 +31,7 @@ from sizer.sizing.minimum_duration import is_purely_inertial, minimum_duration
 from sizer.sizing.motors import MotorArrays
 from sizer.sizing.ranking import rank_order
 from sizer.sizing.results import CandidateResult, SizingResult
-from sizer.sizing.table import FIGURES, CandidateTable, Mode, Rows, concatenate
+from sizer.sizing.table import FIGURES, RESIDUAL, CandidateTable, Mode, Rows, concatenate
 
 Progress = Callable[[int, int], None]
 """Called as ``progress(done, total)``: laws sized so far, of all the laws."""
@@ -161,7 +161,48 @@ def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates) -> C
         checks = evaluate_checks(metrics, motors, drive, design.limits, design.task.linear)
         feasible = all_pass(checks)
         duration = T
+    vibration = _vibration(design, law, calculator, duration, metrics, checks, feasible,
+                           design.task.minimize, design.task.linear)
+    if vibration is not None:
+        duration, metrics, checks, feasible, residual = vibration
+        return _table(design, law, candidates, duration, metrics, checks, feasible, residual)
     return _table(design, law, candidates, duration, metrics, checks, feasible)
+
+
+def _vibration(design: Design, law: MotionLaw, calculator, scale: np.ndarray, metrics,
+               checks, feasible, minimize: bool, linear: bool):
+    """The residual vibration of the moves (sizer.sizing.vibration_check), or None when
+    the design gives no mode of the load: with a limit, in minimize mode each scale moved
+    up to the first one that meets it (the other checks then evaluated there), and the
+    check added; the scale, metrics, checks, verdicts and the residual per candidate."""
+    from sizer.sizing.vibration_check import admissible_scale, cycle_vibration, residual_check
+
+    vibration = cycle_vibration(design, law)
+    if vibration is None:
+        return None
+    limit = design.limits.residual_vibration
+    known = np.isfinite(scale) & (np.asarray(feasible, dtype=bool) | (not minimize))
+    if minimize and limit is not None and known.any():
+        moved = np.where(known, admissible_scale(vibration, np.where(known, scale, np.nan),
+                                                 limit), scale)
+        late = known & (moved > scale)
+        if late.any():
+            metrics = calculator.evaluate(np.where(np.isfinite(moved), moved, scale))
+            checks = evaluate_checks(metrics, calculator.motors, calculator.drive,
+                                     design.limits, linear)
+            feasible = np.asarray(feasible, dtype=bool) & np.isfinite(moved) & all_pass(checks)
+            scale = np.where(np.isfinite(moved), moved, scale)
+            known = known & np.isfinite(moved)
+    residual = np.where(known, vibration.worst(np.where(known, scale, 1.0)), np.nan)
+    if limit is not None:
+        check = residual_check(vibration, np.where(known, scale, 1.0), limit, linear)
+        check = type(check)(check.name, np.where(known, check.value, 0.0), check.limit,
+                            check.unit, check.required)
+        checks = [*checks, check]
+        feasible = np.asarray(feasible, dtype=bool) & check.passed
+    if minimize:
+        scale = np.where(feasible, scale, np.nan)
+    return scale, metrics, checks, feasible, residual
 
 
 def _evaluate_cycle_chunk(design: Design, law: MotionLaw,
@@ -183,9 +224,15 @@ def _evaluate_cycle_chunk(design: Design, law: MotionLaw,
         metrics = calculator.evaluate(np.full(len(motors), given_scale(cycle)))
         checks = evaluate_checks(metrics, motors, calculator.drive, design.limits, cycle.linear)
         feasible = all_pass(checks)
+    scale = solution.duration if cycle.minimize else np.full(len(motors), given_scale(cycle))
+    vibration = _vibration(design, law, calculator, scale, metrics, checks, feasible,
+                           cycle.minimize, cycle.linear)
+    residual = None
+    if vibration is not None:
+        _, metrics, checks, feasible, residual = vibration
     duration = np.where(feasible, metrics.duration, np.nan) if cycle.minimize \
         else metrics.duration
-    return _table(design, law, candidates, duration, metrics, checks, feasible)
+    return _table(design, law, candidates, duration, metrics, checks, feasible, residual)
 
 
 LINKAGE_SAMPLES = 8192
@@ -210,13 +257,15 @@ def _evaluate_linkage_chunk(design: Design, law: MotionLaw,
 
 
 def _table(design: Design, law: MotionLaw, candidates: Candidates, duration: np.ndarray,
-           metrics, checks, feasible) -> CandidateTable:
+           metrics, checks, feasible, residual: np.ndarray | None = None) -> CandidateTable:
     motors, drive = candidates.motors, candidates.drive
     n = len(motors)
     figures = {"duration": duration, "peak_torque": metrics.peak_torque,
                "rms_torque": metrics.rms_torque, "max_speed": metrics.max_speed,
                "load_speed": metrics.load_speed, "load_torque": metrics.load_torque}
     assert set(figures) == set(FIGURES)
+    if residual is not None:
+        figures[RESIDUAL] = residual
     return CandidateTable(
         mode_of(design), (law,), np.zeros(n, dtype=np.intp), motors.catalog, motors.index,
         drive.transmissions, candidates.gearbox_names, candidates.option,

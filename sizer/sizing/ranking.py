@@ -44,6 +44,7 @@ class RankKey(StrEnum):
     PEAK = "peak"
     PRICE = "price"
     MASS = "mass"
+    VIBRATION = "vibration"
 
 
 RANK_ALIASES: dict[str, RankKey] = {"power": RankKey.SIZE}
@@ -162,6 +163,8 @@ RULES: dict[RankKey, RankRule] = {rule.key: rule for rule in (
              "cheapest motor first (unknown prices last)" + _THEN_TEXT),
     RankRule(RankKey.MASS, (_motor("mass", "mass"), *_THEN),
              "lightest motor first (unknown masses last)" + _THEN_TEXT),
+    RankRule(RankKey.VIBRATION, (_figure("residual_vibration"), *_THEN),
+             "smallest residual vibration first" + _THEN_TEXT),
 )}
 
 
@@ -200,6 +203,9 @@ def rank(results: Iterable[CandidateResult], rank_by: str | None,
 def rank_order(table: CandidateTable, rank_by: str | None) -> np.ndarray:
     """The order of :func:`rank` for a whole table, by one lexsort over its arrays."""
     rule = rank_rule(rank_by, table.mode)
+    if rule.key is RankKey.VIBRATION and "residual_vibration" not in table.figures:
+        raise UserError("ranking by vibration needs the load's mode: give "
+                        "load.natural_frequency (and damping_ratio)", field="load")
     keys: list[np.ndarray] = [~table.feasible]
     for criterion in (*rule.criteria, *TIES):
         keys.extend(criterion.columns(table))

@@ -135,6 +135,9 @@ class CandidateResult:
     gearbox: str | None = None
     load_speed: float | None = None
     load_torque: float | None = None
+    residual_vibration: float | None = None
+    """The largest residual vibration of the moves at the load (m or rad), where the
+    design gives the load's mode (sizer.sizing.vibration_check); None otherwise."""
     transmission: Transmission | None = None
     rated_power: float | None = None
     continuous_torque: float | None = None

@@ -33,6 +33,10 @@ class Mode(StrEnum):
 FIGURES = ("duration", "peak_torque", "rms_torque", "max_speed", "load_speed", "load_torque")
 """The per-candidate figures of a table (NaN where unknown: no feasible duration)."""
 
+RESIDUAL = "residual_vibration"
+"""The optional figure of designs with a mode of the load: the largest residual vibration
+of the moves at the load (m or rad; sizer.sizing.vibration_check)."""
+
 
 @dataclass(frozen=True, eq=False)
 class CandidateTable:
@@ -126,6 +130,7 @@ class CandidateTable:
             price=motor.price, mass=motor.mass, ratio=transmission.ratio,
             gearbox=self.gearboxes[option], transmission=transmission,
             load_speed=figure("load_speed"), load_torque=figure("load_torque"),
+            residual_vibration=figure(RESIDUAL) if RESIDUAL in self.figures else None,
             rated_power=motor.continuous_torque * motor.rated_speed,
             continuous_torque=motor.continuous_torque, rotor_inertia=motor.inertia,
             extra=extra, motor_object=motor, law_object=law)
@@ -176,7 +181,7 @@ def concatenate(tables: Sequence[CandidateTable]) -> CandidateTable:
         first.mode, tuple(laws), np.concatenate(law_index), first.motors,
         np.concatenate([t.motor for t in tables]), tuple(transmissions), tuple(gearboxes),
         np.concatenate(option_index), np.concatenate([t.feasible for t in tables]),
-        {k: np.concatenate([t.figures[k] for t in tables]) for k in FIGURES},
+        {k: np.concatenate([t.figures[k] for t in tables]) for k in first.figures},
         tuple(checks), ratios)
 
 

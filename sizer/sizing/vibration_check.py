@@ -1,0 +1,211 @@
+"""The residual vibration of a design's moves (book sec. 7.2), as a check.
+
+A design with ``load.natural_frequency`` has each move's residual vibration computed: the
+amplitude of the load's free vibration (sec. 7.1.1, eq. 7.2) at the end of the move, in
+the machine's steady state, where the cycle repeats and what one move leaves is carried
+through the dwells into the next (sizer.vibration.modal_state; exact). An undamped mode
+has no steady state: its cycle is then run once from rest. The check's value is the
+largest over the moves; ``limits.residual_vibration`` bounds it.
+
+The residual depends on the law and the durations only, not on the motor, so in minimize
+mode the shortest admissible duration is found per law once (:class:`Admissible`) and each
+candidate's T_min is moved up to the first duration where the limit holds.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from functools import cached_property
+
+import numpy as np
+
+from sizer.errors import UserError
+from sizer.laws.base import MotionLaw
+from sizer.model.cycle import Cycle, Dwell, Move, from_task
+from sizer.model.domain import Design
+from sizer.sizing.checks import CheckArrays
+from sizer.vibration.elastic_load import ElasticLoad
+from sizer.vibration.modal_state import amplitude, free_turn, move_increment
+
+GRID_PER_PERIOD = 16
+"""Samples per damped period of the search for the admissible durations."""
+
+WINDOW_PERIODS = 8
+"""Periods of the mode past the largest T_min that the first search window covers; each
+next window is four times the last."""
+
+SEARCH_PERIODS = 2000
+"""How far past the largest T_min (in periods) the search looks before it gives up."""
+
+
+def refusal(design: Design) -> str | None:
+    """Why the design's residual vibration is not computed, or None."""
+    if design.transmission.linkage is not None:
+        return "a linkage's output does not follow the law (the ratio varies)"
+    cycle = design.machine_cycle
+    if any(not isinstance(s, Move | Dwell) or (isinstance(s, Move) and not s.rest_to_rest)
+           for s in cycle.segments):
+        return "a cycle with runs or moves between non-zero speeds"
+    return None
+
+
+@dataclass(frozen=True)
+class CycleVibration:
+    """The residual vibration of one law's cycle as a function of the scale s of its free
+    durations (the move duration T for the task shorthand)."""
+
+    load: ElasticLoad
+    cycle: Cycle
+    laws: tuple[MotionLaw | None, ...]
+
+    @cached_property
+    def _fixed(self) -> list[float]:
+        free = self.cycle.free
+        return [math.nan if s.duration is None or i in free else float(s.duration)
+                for i, s in enumerate(self.cycle.segments)]
+
+    def durations(self, s: np.ndarray) -> list[np.ndarray]:
+        weights = self.cycle.weights()
+        return [np.full_like(s, fixed) if math.isfinite(fixed) else w * s
+                for fixed, w in zip(self._fixed, weights, strict=True)]
+
+    def residuals(self, s: np.ndarray) -> np.ndarray:
+        """(moves, candidates): each move's residual amplitude at the load (m or rad)."""
+        s = np.asarray(s, dtype=float)
+        durations = self.durations(s)
+        state = np.zeros(s.shape, dtype=complex)
+        ends: list[np.ndarray] = []
+        for segment, law, T in zip(self.cycle.segments, self.laws, durations, strict=True):
+            state = state * free_turn(T, self.load)
+            if isinstance(segment, Move):
+                assert law is not None
+                state = state + segment.displacement * move_increment(law, T, self.load)
+                ends.append(state)
+        if self.load.damping_ratio > 0.0:  # the steady state of the repeated cycle
+            turn = free_turn(sum(durations, np.zeros_like(s)), self.load)
+            start = state / (1.0 - turn)
+            k = 0
+            elapsed = np.zeros_like(s)
+            for segment, T in zip(self.cycle.segments, durations, strict=True):
+                elapsed = elapsed + T
+                if isinstance(segment, Move):
+                    ends[k] = ends[k] + start * free_turn(elapsed, self.load)
+                    k += 1
+        if not ends:
+            return np.zeros((0, s.size))
+        return amplitude(np.stack(ends), self.load)
+
+    def worst(self, s: np.ndarray) -> np.ndarray:
+        """The largest residual over the moves, per scale."""
+        residuals = self.residuals(s)
+        return residuals.max(axis=0) if len(residuals) else np.zeros(np.shape(s))
+
+
+def cycle_vibration(design: Design, law: MotionLaw, sweep: bool = False
+                    ) -> CycleVibration | None:
+    """The residual vibration of the design's cycle with this law, or None without a mode.
+
+    With ``sweep`` the task shorthand's moves take the scale as their duration even where
+    the design fixes it (``sizer vibration`` varies it). UserError where the design asks
+    for it and it is not computed (:func:`refusal`)."""
+    elastic = design.load.elastic
+    if elastic is None:
+        return None
+    why = refusal(design)
+    if why is not None:
+        raise UserError(f"the residual vibration is not computed for {why}; remove "
+                        "load.natural_frequency", field="load.natural_frequency")
+    from sizer.sizing.segment_cycle import cycle_laws
+
+    cycle = design.machine_cycle
+    if sweep and design.cycle is None:
+        cycle = from_task(replace(design.task, duration=None))
+    elif sweep and not cycle.free:
+        raise UserError("no segment of the cycle has a free duration to sweep",
+                        field="cycle")
+    return CycleVibration(elastic, cycle, cycle_laws(cycle, law))
+
+
+def residual_check(vibration: CycleVibration, s: np.ndarray, limit: float,
+                   linear: bool) -> CheckArrays:
+    """The check of the worst residual vibration against the design's limit."""
+    return CheckArrays("residual_vibration", vibration.worst(s), np.full(np.shape(s), limit),
+                       "m" if linear else "rad", 0.0)
+
+
+def admissible_scale(vibration: CycleVibration, s: np.ndarray, limit: float) -> np.ndarray:
+    """Per candidate, the smallest scale >= s at which every move's residual is within the
+    limit (to the checks' tolerance); inf where none is found within SEARCH_PERIODS
+    periods. Found on one grid for all candidates (the residual does not depend on the
+    motor), each crossing refined by bisection."""
+    s = np.asarray(s, dtype=float)
+    out = np.full(s.shape, np.inf)
+    finite = np.isfinite(s)
+    if not finite.any():
+        return out
+    ok_now = vibration.worst(np.where(finite, s, 1.0)) <= limit * (1.0 + 1e-9)
+    out[finite & ok_now] = s[finite & ok_now]
+    todo = finite & ~ok_now
+    if not todo.any():
+        return out
+    # the scale's period: the moves' durations grow with s at the rate of their weights
+    rate = max(max(vibration.cycle.weights()), 1e-300)
+    period = vibration.load.damped_period / rate
+    step = period / GRID_PER_PERIOD
+    index = np.flatnonzero(todo)
+    begin, reach = float(s[index].min()), float(s[index].max()) + WINDOW_PERIODS * period
+    while index.size and reach <= float(s[todo].max()) + SEARCH_PERIODS * period:
+        grid = np.arange(begin, reach + step, step)
+        good = np.flatnonzero(vibration.worst(grid) <= limit * (1.0 - 1e-12))
+        # the first good grid point at or after each candidate's s, the crossing before it
+        pick = np.searchsorted(good, np.searchsorted(grid, s[index], side="left"))
+        found = pick < good.size
+        if found.any():
+            j = good[pick[found]]
+            left = np.maximum(grid[np.maximum(j - 1, 0)], s[index[found]])
+            out[index[found]] = _crossing(vibration, left, grid[j], limit)
+        index = index[~found]
+        begin, reach = reach, reach + 4.0 * (reach - begin)
+    return out
+
+
+def _crossing(vibration: CycleVibration, left: np.ndarray, right: np.ndarray,
+              limit: float) -> np.ndarray:
+    """The first scale in (left, right] where the worst residual meets the limit, right
+    meeting it: bisection to rounding (the residual is smooth within a grid step)."""
+    for _ in range(60):
+        mid = 0.5 * (left + right)
+        mid_ok = vibration.worst(mid) <= limit
+        right = np.where(mid_ok, mid, right)
+        left = np.where(mid_ok, left, mid)
+        if np.all(right - left <= 4e-16 * right):
+            break
+    return right
+
+
+@dataclass(frozen=True)
+class VibrationSweep:
+    """Each law's worst residual vibration over a range of scales (``sizer vibration``):
+    the move duration T for the task shorthand, the scale of the free durations for a
+    cycle. ``residual[k]`` is law k's, in m or rad at the load."""
+
+    scales: np.ndarray
+    laws: tuple[MotionLaw, ...]
+    residual: tuple[np.ndarray, ...]
+    limit: float | None
+
+
+def vibration_sweep(design: Design, laws: tuple[MotionLaw, ...],
+                    scales: np.ndarray) -> VibrationSweep:
+    """The residual vibration of each law at every scale (UserError without a mode)."""
+    out = []
+    for law in laws:
+        vibration = cycle_vibration(design, law, sweep=True)
+        if vibration is None:
+            raise UserError("the design gives no mode of the load: add "
+                            "load.natural_frequency (and damping_ratio)",
+                            field="load.natural_frequency")
+        out.append(vibration.worst(scales))
+    return VibrationSweep(np.asarray(scales, dtype=float), laws, tuple(out),
+                          design.limits.residual_vibration)
