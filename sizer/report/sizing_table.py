@@ -13,6 +13,7 @@ change with the options.
 
 from __future__ import annotations
 
+import math
 import sys
 from collections.abc import Sequence
 from pathlib import Path
@@ -31,7 +32,7 @@ from sizer.report.design_summary import design_summary
 from sizer.report.formats import Format, Rendered
 from sizer.report.json_text import render_json
 from sizer.report.markdown_table import render_markdown_table
-from sizer.report.numbers import short
+from sizer.report.numbers import full, short
 from sizer.report.output import emit, stdout_is_terminal
 from sizer.report.printable import printable
 from sizer.report.rich_table import print_rich_table
@@ -148,6 +149,16 @@ class SizingDocument(Rendered):
         return (len({r.ratio for r in results}) > 1
                 or any(r.gearbox for r in results))
 
+    @property
+    def with_vibration(self) -> bool:
+        """True when the design gives the load's mode: rows show the residual vibration."""
+        return self.design.load.elastic is not None
+
+    @property
+    def residual_unit(self) -> tuple[str, float]:
+        """The display unit of the residual vibration and its factor from SI."""
+        return ("um", 1e6) if self.design.task.linear else ("arcsec", 180.0 / math.pi * 3600.0)
+
     def table(self, compact: bool = False) -> Table:
         """The display table; ``compact`` headers for a terminal (they wrap in rich)."""
         duration = "T_min [ms]" if self.sizing.mode == "minimize" else "T [ms]"
@@ -162,6 +173,11 @@ class SizingDocument(Rendered):
             Column("rms margin [%]"), Column("speed margin [%]"), Column("limiting", "left"),
         )
         rows = [result_display_cells(rank, r, with_ratio=with_ratio) for rank, r in self.rows]
+        if self.with_vibration:
+            unit, factor = self.residual_unit
+            columns = (*columns[:-1], Column(f"residual [{unit}]"), columns[-1])
+            rows = [(*row[:-1], _residual_cell(r, factor), row[-1])
+                    for row, (_, r) in zip(rows, self.rows, strict=True)]
         return make_table(columns, rows, title=self.title)
 
     def droppable(self, compact: bool = True) -> list[str]:
@@ -177,8 +193,14 @@ class SizingDocument(Rendered):
 
     def csv(self) -> str:
         envelope = self.design.limits.envelope
-        return render_csv(CSV_HEADERS,
-                          (result_csv_cells(rank, r, envelope) for rank, r in self.rows))
+        if not self.with_vibration:
+            return render_csv(CSV_HEADERS,
+                              (result_csv_cells(rank, r, envelope) for rank, r in self.rows))
+        unit = "m" if self.design.task.linear else "rad"
+        return render_csv((*CSV_HEADERS, f"residual_vibration [{unit}]"),
+                          ((*result_csv_cells(rank, r, envelope),
+                            "" if r.residual_vibration is None else full(r.residual_vibration))
+                           for rank, r in self.rows))
 
     def json(self) -> str:
         return render_json({
@@ -186,8 +208,10 @@ class SizingDocument(Rendered):
             "design": design_summary(self.design, self.sizing.notes),
             "ranked_by": self.rank_key,
             "ranking": self.rank_rule.text,
-            "units": RESULT_UNITS,
-            "results": [result_json(r) for _, r in self.rows],
+            "units": {**RESULT_UNITS, **({"residual_vibration": RESIDUAL_UNIT}
+                                         if self.with_vibration else {})},
+            "results": [_with_residual(result_json(r), r, self.with_vibration)
+                        for _, r in self.rows],
         })
 
     def markdown(self) -> str:
@@ -203,6 +227,22 @@ class SizingDocument(Rendered):
         if footer:
             text += "\n" + "\n".join(footer) + "\n"
         return text
+
+
+RESIDUAL_UNIT = "rad (m on a linear axis): amplitude at the load (book sec. 7.2)"
+
+
+def _with_residual(fields: dict[str, Any], result: CandidateResult,
+                   shown: bool) -> dict[str, Any]:
+    """The JSON of a result with its residual vibration (designs with a mode only)."""
+    if shown:
+        fields["residual_vibration"] = result.residual_vibration
+    return fields
+
+
+def _residual_cell(result: CandidateResult, factor: float) -> str:
+    value = result.residual_vibration
+    return "n/a" if value is None else short(value * factor)
 
 
 def _markdown_item(line: str) -> str:
