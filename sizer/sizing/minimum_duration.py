@@ -20,6 +20,7 @@ duration reaches slack 0 but some are within the tolerance, it is the shortest o
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -144,6 +145,7 @@ def _from_bound(calculator: CycleCalculator, limits: Limits,
                                           peaks=False),
              lambda left: bisect_duration(calculator, limits, guess=T, active=left))
     passed = ok.copy()
+    at = probe.copy()  # where each candidate's row of ``metrics`` was evaluated
     for number, step in enumerate(steps):
         left = rest & ~passed
         if number == 2:  # no duration passes the other checks: none passes them all
@@ -154,11 +156,40 @@ def _from_bound(calculator: CycleCalculator, limits: Limits,
         T[left] = np.where(np.isnan(found[left]), T[left], found[left])
         index = np.flatnonzero(left & np.isfinite(T))  # verified where they changed
         if len(index):
-            passed[index] = feasible(evaluate(calculator.take(index), limits, T[index])[1])
+            part, part_checks = evaluate(calculator.take(index), limits, T[index])
+            passed[index] = feasible(part_checks)
+            metrics = merge_metrics(metrics, index, part)
+            at[index] = T[index]
     probe = np.where(np.isfinite(T), T, _largest_tried(calculator))
-    metrics, checks = evaluate(calculator, limits, probe)
+    again = np.flatnonzero(probe != at)  # rows not yet evaluated where they end
+    if len(again):
+        metrics = merge_metrics(metrics, again,
+                                evaluate(calculator.take(again), limits, probe[again])[0])
+    checks = evaluate_checks(metrics, calculator.motors, calculator.drive, limits,
+                             calculator.task.linear)
     passed &= feasible(checks)
     return DurationSolution(np.where(passed, probe, np.nan), passed, metrics, checks, method)
+
+
+def merge_metrics(metrics: CycleMetrics, index: np.ndarray, part: CycleMetrics) -> CycleMetrics:
+    """``metrics`` with the rows at ``index`` replaced by those of ``part`` (an evaluation
+    of the candidates at ``index``); the RMS model is dropped. Every evaluation is
+    elementwise over candidates, so the merge equals one evaluation of all of them."""
+    n = len(metrics.duration)
+
+    def put(whole, rows):
+        out = np.array(np.broadcast_to(whole, (n,)), dtype=np.result_type(whole, rows))
+        out[index] = np.broadcast_to(rows, (len(index),))
+        return out
+
+    fields = {}
+    for field in dataclasses.fields(CycleMetrics):
+        if field.name == "rms_model":
+            continue
+        whole, rows = getattr(metrics, field.name), getattr(part, field.name)
+        fields[field.name] = [put(w, r) for w, r in zip(whole, rows, strict=True)] \
+            if isinstance(whole, list) else put(whole, rows)
+    return CycleMetrics(**fields)
 
 
 RMS_ROUNDS = 8
