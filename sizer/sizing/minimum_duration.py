@@ -129,6 +129,8 @@ def _from_bound(calculator: CycleCalculator, limits: Limits,
     if not rest.any():
         return DurationSolution(np.where(ok, probe, np.nan), ok, metrics, checks, method)
     method += " and searches"
+    if not calculator.segmented:  # no duration meets the RMS check: nothing to search
+        rest &= ~rms_unreachable(calculator, limits)
     start = np.where(usable, bound, _initial_guess(calculator))
     T = np.where(ok, bound, np.inf)
 
@@ -190,6 +192,48 @@ def merge_metrics(metrics: CycleMetrics, index: np.ndarray, part: CycleMetrics) 
         fields[field.name] = [put(w, r) for w, r in zip(whole, rows, strict=True)] \
             if isinstance(whole, list) else put(whole, rows)
     return CycleMetrics(**fields)
+
+
+def rms_lower_bound(calculator: CycleCalculator) -> np.ndarray | None:
+    """Per candidate a torque the motor's RMS over the cycle exceeds at every duration
+    (book sec. 6.1.1); None where a damping term is negative (the bound needs them >= 0).
+
+    Over a rest-to-rest move int a dt = 0 and int v dt = h, and the motor torque is at
+    least each of its linear functions P a + Q v + C (Drive.linear_pieces, the rotor
+    added), so int tau dt >= (damping terms) h + C_k T >= C_k T. By Cauchy-Schwarz
+    int tau^2 dt >= (int tau dt)^2 / T >= (C+)^2 T, C+ the largest C_k if positive. With
+    n moves, dwells t_d and the holding torque: RMS^2 >= (S T + n t_d hold^2) /
+    (n (T + t_d)), S the sum of (C+)^2 over the moves: a weighted mean of S/n and hold^2,
+    so RMS >= sqrt(min(S/n, hold^2)) at every T (sqrt(S/n) without a dwell).
+    """
+    drive, motors = calculator.drive, calculator.motors
+    n = len(motors)
+    total = np.zeros(n)
+    for direction in calculator.directions:
+        shaft, _ = drive.linear_pieces(direction)
+        for _, B, _ in shaft:
+            if bool(np.any(np.broadcast_to(B, (n,)) + motors.damping * drive.ratio < 0.0)):
+                return None
+        top = np.max([np.broadcast_to(np.asarray(C, dtype=float), (n,)) for _, _, C in shaft],
+                     axis=0)
+        total += np.square(np.maximum(top, 0.0))
+    least = total / len(calculator.directions)
+    if calculator.task.dwell > 0.0:
+        hold = np.broadcast_to(calculator.drive.holding_torques()[0], (n,))
+        least = np.minimum(least, np.square(hold))
+    return np.sqrt(least)
+
+
+def rms_unreachable(calculator: CycleCalculator, limits: Limits) -> np.ndarray:
+    """Per candidate: does the RMS check fail at every duration? True only where
+    :func:`rms_lower_bound` exceeds the largest torque of the continuous region (the
+    limit at any speed) with the margin, by more than rounding: no search can find a
+    duration there."""
+    bound = rms_lower_bound(calculator)
+    if bound is None:
+        return np.zeros(len(calculator.motors), dtype=bool)
+    top = calculator.motors.continuous.torques.max(axis=1)
+    return bound > (1.0 - limits.torque_margin + TOLERANCE) * top * (1.0 + 1e-9)
 
 
 RMS_ROUNDS = 8
