@@ -391,7 +391,7 @@ class CycleCalculator:
             a, b = edges[:, part], edges[:, part + 1]
             half = 0.5 * (b - a)
             tau = (0.5 * (a + b))[:, None] + half[:, None] * x
-            a_n, v_n = on_pieces(tau, 2), on_pieces(tau, 1)
+            a_n, v_n = on_pieces.orders(tau, (2, 1))
             weight = half[:, None] * w
             moments = np.column_stack([(weight * a_n * a_n).sum(axis=1),
                                        (weight * v_n * v_n).sum(axis=1), weight.sum(axis=1),
@@ -683,7 +683,7 @@ class CycleCalculator:
         width = shape[1]
 
         def objective(x):
-            a, v = at(x, 2), at(x, 1)
+            a, v = at.orders(x, (2, 1))
             return np.concatenate([f(a[:, k * width:(k + 1) * width],
                                      v[:, k * width:(k + 1) * width])
                                    for k, (_, f) in enumerate(searches)], axis=1)
