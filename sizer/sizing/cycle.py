@@ -267,11 +267,11 @@ class CycleCalculator:
                 model.append(self._ideal_motor_terms(scales))
             return self._ideal_mean_squares(scales)
         g = self.grid
-        _, end_outputs = self.channels(g.end_acceleration[None], g.end_velocity[None], scales)
-        crossing = np.zeros((len(self.motors), g.size), dtype=bool)
-        for x in end_outputs:
-            crossing |= x[..., 0] * x[..., 1] < 0.0
         terms = self._channel_terms(scales)
+        crossing = np.zeros((len(self.motors), g.size), dtype=bool)
+        for pieces in terms[1:]:  # each stage's output at the ends of every interval
+            x = _linear_maximum(pieces, g.end_acceleration, g.end_velocity)
+            crossing |= x[..., 0] * x[..., 1] < 0.0
         moments = interval_moments(self.law)
         sums = [_moment_sums(channel, moments, ~crossing) for channel in terms]
         if crossing.any():
@@ -391,7 +391,7 @@ class CycleCalculator:
             a, b = edges[:, part], edges[:, part + 1]
             half = 0.5 * (b - a)
             tau = (0.5 * (a + b))[:, None] + half[:, None] * x
-            a_n, v_n = on_pieces(tau, 2), on_pieces(tau, 1)
+            a_n, v_n = on_pieces.orders(tau, (2, 1))
             weight = half[:, None] * w
             moments = np.column_stack([(weight * a_n * a_n).sum(axis=1),
                                        (weight * v_n * v_n).sum(axis=1), weight.sum(axis=1),
@@ -400,7 +400,10 @@ class CycleCalculator:
             for mine, channel in zip(sums, chosen, strict=True):
                 best = _largest_integral(channel, moments)
                 for k, m in enumerate(mine):
-                    np.add.at(m, cand[best == k], moments[best == k])
+                    rows = best == k
+                    for j in range(6):
+                        m[:, j] += np.bincount(cand[rows], weights=moments[rows, j],
+                                               minlength=len(m))
         return sums
 
     # ------------------------------------------------------------------ peaks
@@ -680,7 +683,7 @@ class CycleCalculator:
         width = shape[1]
 
         def objective(x):
-            a, v = at(x, 2), at(x, 1)
+            a, v = at.orders(x, (2, 1))
             return np.concatenate([f(a[:, k * width:(k + 1) * width],
                                      v[:, k * width:(k + 1) * width])
                                    for k, (_, f) in enumerate(searches)], axis=1)
@@ -724,6 +727,17 @@ class CycleCalculator:
         return lo, hi, g.piece[interval], valid, best_value
 
 
+def _linear_maximum(pieces, a_n: np.ndarray, v_n: np.ndarray) -> np.ndarray:
+    """max_k P_k a_N + Q_k v_N + C_k for (P, Q, C) arrays over candidates and a_N, v_N
+    arrays shared by all of them: shape (candidates, *a_n.shape)."""
+    shape = (-1,) + (1,) * np.ndim(a_n)
+    out = None
+    for P, Q, C in pieces:
+        value = np.reshape(P, shape) * a_n + np.reshape(Q, shape) * v_n + np.reshape(C, shape)
+        out = value if out is None else np.maximum(out, value)
+    return out
+
+
 def _form(P, Q, C, m: np.ndarray) -> np.ndarray:
     """int (P a + Q v + C)^2 from the moments m (rows, 6: a^2, v^2, 1, a v, a, v)."""
     return (P * P * m[:, 0] + Q * Q * m[:, 1] + C * C * m[:, 2]
@@ -746,8 +760,19 @@ def _largest_integral(pieces, moments: np.ndarray) -> np.ndarray:
 def _moment_sums(pieces, moments: np.ndarray, use: np.ndarray) -> list[np.ndarray]:
     """Per function of ``pieces`` the law's moments summed over the intervals marked in
     ``use`` (candidates, intervals) where it is the torque: (candidates, 6) each."""
-    best = _largest_integral(pieces, np.broadcast_to(moments, (*use.shape, 6)))
-    return [((best == k) & use).astype(float) @ moments for k in range(len(pieces))]
+    columns = np.ascontiguousarray(moments.T)
+    if len(pieces) == 1:
+        masks = [use]
+    else:
+        best = _largest_integral(pieces, np.broadcast_to(moments, (*use.shape, 6)))
+        masks = [(best == k) & use for k in range(len(pieces))]
+    # a matrix-vector product per moment: a (candidates x intervals x 6) matrix product
+    # is threaded by BLAS and costs several times the CPU time on a shared machine
+    out = []
+    for mask in masks:
+        weights = mask.astype(float)
+        out.append(np.column_stack([weights @ column for column in columns]))
+    return out
 
 
 @lru_cache(maxsize=256)

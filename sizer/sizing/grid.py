@@ -102,12 +102,26 @@ class PieceEvaluator:
         self.groups = [(int(i), np.nonzero(flat == i)[0]) for i in sorted_unique(flat)]
 
     def __call__(self, tau: np.ndarray, order: int) -> np.ndarray:
+        return self.orders(tau, (order,))[0]
+
+    def orders(self, tau: np.ndarray, orders: tuple[int, ...]) -> tuple[np.ndarray, ...]:
+        """The derivatives of the given orders at tau, each point clamped into its piece
+        once for all of them (MotionLaw.piece_derivative of each)."""
         flat = tau.ravel()
-        out = np.empty(flat.shape)
+        if len(self.groups) == 1:  # every point on one piece: no gathering
+            piece = self.law.pieces[self.groups[0][0]]
+            at = piece.clamp(flat)
+            out = [np.empty(flat.shape) for _ in orders]
+            for values, k in zip(out, orders, strict=True):
+                values[:] = piece.evaluate(at, k)
+            return tuple(values.reshape(self.shape) for values in out)
+        out = [np.empty(flat.shape) for _ in orders]
         for index, where in self.groups:
             piece = self.law.pieces[index]
-            out[where] = self.law.piece_derivative(index, piece.clamp(flat[where]), order)
-        return out.reshape(self.shape)
+            at = piece.clamp(flat[where])
+            for values, k in zip(out, orders, strict=True):
+                values[where] = piece.evaluate(at, k)
+        return tuple(values.reshape(self.shape) for values in out)
 
 
 def piecewise(law: MotionLaw, tau: np.ndarray, piece: np.ndarray, order: int) -> np.ndarray:

@@ -20,6 +20,7 @@ duration reaches slack 0 but some are within the tolerance, it is the shortest o
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -128,6 +129,8 @@ def _from_bound(calculator: CycleCalculator, limits: Limits,
     if not rest.any():
         return DurationSolution(np.where(ok, probe, np.nan), ok, metrics, checks, method)
     method += " and searches"
+    if not calculator.segmented:  # no duration meets the RMS check: nothing to search
+        rest &= ~rms_unreachable(calculator, limits)
     start = np.where(usable, bound, _initial_guess(calculator))
     T = np.where(ok, bound, np.inf)
 
@@ -144,6 +147,7 @@ def _from_bound(calculator: CycleCalculator, limits: Limits,
                                           peaks=False),
              lambda left: bisect_duration(calculator, limits, guess=T, active=left))
     passed = ok.copy()
+    at = probe.copy()  # where each candidate's row of ``metrics`` was evaluated
     for number, step in enumerate(steps):
         left = rest & ~passed
         if number == 2:  # no duration passes the other checks: none passes them all
@@ -154,11 +158,82 @@ def _from_bound(calculator: CycleCalculator, limits: Limits,
         T[left] = np.where(np.isnan(found[left]), T[left], found[left])
         index = np.flatnonzero(left & np.isfinite(T))  # verified where they changed
         if len(index):
-            passed[index] = feasible(evaluate(calculator.take(index), limits, T[index])[1])
+            part, part_checks = evaluate(calculator.take(index), limits, T[index])
+            passed[index] = feasible(part_checks)
+            metrics = merge_metrics(metrics, index, part)
+            at[index] = T[index]
     probe = np.where(np.isfinite(T), T, _largest_tried(calculator))
-    metrics, checks = evaluate(calculator, limits, probe)
+    again = np.flatnonzero(probe != at)  # rows not yet evaluated where they end
+    if len(again):
+        metrics = merge_metrics(metrics, again,
+                                evaluate(calculator.take(again), limits, probe[again])[0])
+    checks = evaluate_checks(metrics, calculator.motors, calculator.drive, limits,
+                             calculator.task.linear)
     passed &= feasible(checks)
     return DurationSolution(np.where(passed, probe, np.nan), passed, metrics, checks, method)
+
+
+def merge_metrics(metrics: CycleMetrics, index: np.ndarray, part: CycleMetrics) -> CycleMetrics:
+    """``metrics`` with the rows at ``index`` replaced by those of ``part`` (an evaluation
+    of the candidates at ``index``); the RMS model is dropped. Every evaluation is
+    elementwise over candidates, so the merge equals one evaluation of all of them."""
+    n = len(metrics.duration)
+
+    def put(whole, rows):
+        out = np.array(np.broadcast_to(whole, (n,)), dtype=np.result_type(whole, rows))
+        out[index] = np.broadcast_to(rows, (len(index),))
+        return out
+
+    fields = {}
+    for field in dataclasses.fields(CycleMetrics):
+        if field.name == "rms_model":
+            continue
+        whole, rows = getattr(metrics, field.name), getattr(part, field.name)
+        fields[field.name] = [put(w, r) for w, r in zip(whole, rows, strict=True)] \
+            if isinstance(whole, list) else put(whole, rows)
+    return CycleMetrics(**fields)
+
+
+def rms_lower_bound(calculator: CycleCalculator) -> np.ndarray | None:
+    """Per candidate a torque the motor's RMS over the cycle exceeds at every duration
+    (book sec. 6.1.1); None where a damping term is negative (the bound needs them >= 0).
+
+    Over a rest-to-rest move int a dt = 0 and int v dt = h, and the motor torque is at
+    least each of its linear functions P a + Q v + C (Drive.linear_pieces, the rotor
+    added), so int tau dt >= (damping terms) h + C_k T >= C_k T. By Cauchy-Schwarz
+    int tau^2 dt >= (int tau dt)^2 / T >= (C+)^2 T, C+ the largest C_k if positive. With
+    n moves, dwells t_d and the holding torque: RMS^2 >= (S T + n t_d hold^2) /
+    (n (T + t_d)), S the sum of (C+)^2 over the moves: a weighted mean of S/n and hold^2,
+    so RMS >= sqrt(min(S/n, hold^2)) at every T (sqrt(S/n) without a dwell).
+    """
+    drive, motors = calculator.drive, calculator.motors
+    n = len(motors)
+    total = np.zeros(n)
+    for direction in calculator.directions:
+        shaft, _ = drive.linear_pieces(direction)
+        for _, B, _ in shaft:
+            if bool(np.any(np.broadcast_to(B, (n,)) + motors.damping * drive.ratio < 0.0)):
+                return None
+        top = np.max([np.broadcast_to(np.asarray(C, dtype=float), (n,)) for _, _, C in shaft],
+                     axis=0)
+        total += np.square(np.maximum(top, 0.0))
+    least = total / len(calculator.directions)
+    if calculator.task.dwell > 0.0:
+        hold = np.broadcast_to(calculator.drive.holding_torques()[0], (n,))
+        least = np.minimum(least, np.square(hold))
+    return np.sqrt(least)
+
+
+def rms_unreachable(calculator: CycleCalculator, limits: Limits) -> np.ndarray:
+    """Per candidate: does the RMS check fail at every duration? True only where
+    :func:`rms_lower_bound` exceeds the largest torque of the continuous region (the
+    limit at any speed) with the margin, by more than rounding: no search can find a
+    duration there."""
+    bound = rms_lower_bound(calculator)
+    if bound is None:
+        return np.zeros(len(calculator.motors), dtype=bool)
+    top = calculator.motors.continuous.torques.max(axis=1)
+    return bound > (1.0 - limits.torque_margin + TOLERANCE) * top * (1.0 + 1e-9)
 
 
 RMS_ROUNDS = 8
