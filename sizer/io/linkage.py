@@ -13,7 +13,7 @@ from typing import Any
 
 from sizer.errors import UserError
 from sizer.io.yaml_source import YamlSource
-from sizer.mechanics.linkages.of_stage import linkage_of
+from sizer.mechanics.linkages.of_stage import linkage_of, linkages_of
 from sizer.model.domain import LinkageStage
 from sizer.model.transmission_inputs import FourBarInput, SliderCrankInput
 
@@ -23,7 +23,8 @@ def linkage_stage(item: SliderCrankInput | FourBarInput, source: YamlSource,
     """The LinkageStage of a ``slider_crank`` or ``four_bar`` item, its geometry built."""
     common = {"law_on": item.law_on, "start_angle": item.start_angle,
               "direction": 1 if item.direction == "positive" else -1,
-              "crank_inertia": item.crank_inertia, "name": item.name or ""}
+              "crank_inertia": item.crank_inertia, "name": item.name or "",
+              "output": item.output or ""}
     if isinstance(item, SliderCrankInput):
         stage = LinkageStage("slider_crank", (item.crank_radius, item.rod_length, item.offset),
                              link_mass_at_crank=item.rod_mass_at_crank,
@@ -31,7 +32,8 @@ def linkage_stage(item: SliderCrankInput | FourBarInput, source: YamlSource,
     else:
         stage = LinkageStage("four_bar", (item.crank, item.coupler, item.rocker, item.ground),
                              branch=item.branch, link_mass_at_crank=item.coupler_mass_at_crank,
-                             link_mass_at_output=item.coupler_mass_at_rocker, **common)
+                             link_mass_at_output=item.coupler_mass_at_rocker,
+                             driven_link=item.driven_link, **common)
     try:
         linkage_of(stage)
     except UserError as error:
@@ -74,15 +76,15 @@ def linkage_task(task: Any, stage: LinkageStage, cycle: Any,
                 moves.append((segment.displacement, (*at, "move", "displacement")))
         linear = cycle.linear
     output = "a length (the slider's travel)" if stage.output_linear else \
-        "an angle (the rocker's swing)"
+        "an angle (the output's swing)"
     where = moves[0][1]
     if stage.law_on == "crank" and linear:
-        raise source.error("with law_on: crank a displacement is the crank's turn, an "
-                           "angle like '180 deg'", where)
+        turn = "turn" if stage.driven_link == "crank" else "swing"
+        raise source.error(f"with law_on: crank a displacement is the {stage.driven_link}'s "
+                           f"{turn}, an angle like '180 deg'", where)
     if stage.law_on == "output" and linear != stage.output_linear:
         raise source.error(f"with law_on: output a displacement is {output}", where)
-    if stage.law_on == "output":
-        _check_strokes(stage, moves, source)
+    _check_strokes(stage, moves, source)
     task = replace(task, linear=stage.output_linear)
     if cycle is not None:
         cycle = replace(cycle, linear=stage.output_linear)
@@ -91,24 +93,30 @@ def linkage_task(task: Any, stage: LinkageStage, cycle: Any,
 
 def _check_strokes(stage: LinkageStage, moves: list[tuple[float, tuple[Any, ...]]],
                    source: YamlSource) -> None:
-    """Each output move, from where the last one ended, stays within the range."""
+    """Each move of the law's coordinate (the output's, or a driven rocker's), from where
+    the last one ended, stays within its range (a crank's turn has none)."""
     import numpy as np
 
-    position = float(linkage_of(stage).output(np.array([stage.start_angle]))[0])
+    views = linkages_of(stage)
+    given = views.output if stage.law_on == "output" else views.motor
+    if not given.dead_points().size:
+        return
+    position = float(given.output(np.array([stage.start_angle]))[0])
     for h, at in moves:
-        _check_stroke(stage, position, h, source, at)
+        _check_stroke(given, position, h, source, at)
         position += h
 
 
-def _check_stroke(stage: LinkageStage, start: float, h: float, source: YamlSource,
+def _check_stroke(given: Any, start: float, h: float, source: YamlSource,
                   at: tuple[Any, ...]) -> None:
-    """The output's move from ``start`` by ``h`` stays within the linkage's range."""
-    low, high = linkage_of(stage).output_range()
+    """The move from ``start`` by ``h`` stays within the coordinate's range."""
+    low, high = given.output_range()
     end = start + h
     tolerance = 1e-9 * (high - low)
     if not low - tolerance <= end <= high + tolerance:
-        unit = "m" if stage.output_linear else "rad"
-        raise source.error(f"the output would move from {start:.6g} {unit} to {end:.6g} "
+        unit = "m" if given.output_linear else "rad"
+        name = "output" if getattr(given, "coordinate", "") != "rocker_angle" else "rocker"
+        raise source.error(f"the {name} would move from {start:.6g} {unit} to {end:.6g} "
                            f"{unit}, beyond its range [{low:.6g}, {high:.6g}] {unit} (the "
                            f"stroke between the dead points)", at)
 
@@ -120,7 +128,8 @@ def output_linear(items: Any, linear: bool) -> bool:
     for item in reversed(items):
         kind = getattr(item, "type", None)
         if kind in ("slider_crank", "four_bar"):
-            return kind == "slider_crank"
+            return kind == "slider_crank" and getattr(item, "output", None) in (
+                None, "slider_position")
         if kind not in (None, "direct"):
             break
     return linear

@@ -84,6 +84,9 @@ class LinkageCycle:
             if isinstance(part, LinkageProfile):
                 name = segment.name or "move"
                 out += [f"{name}: {issue}" for issue in part.issues]
+            elif not np.isfinite(part.hold):
+                out.append(f"{segment.name or 'dwell'}: the motor on the rocker cannot hold "
+                           f"the output's load at a dead point (crank and coupler in line)")
         return tuple(out)
 
     def durations(self, s: np.ndarray) -> list[np.ndarray]:
@@ -189,10 +192,11 @@ class LinkageCycle:
 
 
 def _hold(stage, load: Load, theta: float) -> float:
-    """The static crank torque holding the output's constant load at crank angle theta."""
-    from sizer.mechanics.linkages.of_stage import linkage_of
+    """The static torque at the driven link holding the output's constant load at crank
+    angle theta (inf: a driven rocker at a dead point cannot hold a load)."""
+    from sizer.sizing.linkage_sizing import static_torque
 
-    return float(linkage_of(stage).output(np.array([theta]), 1)[0] * load.torque)
+    return static_torque(stage, load.torque, theta)
 
 
 def evaluate_linkage_cycle(design: Design, law: MotionLaw, motors: MotorArrays,
