@@ -47,9 +47,10 @@ def linkage_task(task: Any, stage: LinkageStage, cycle: Any,
     axis: the linkage's output (a slider is linear, a rocker rotary).
 
     With ``law_on: crank`` the displacements are the crank's turns, angles; with
-    ``law_on: output`` the output's travels, of the output's kind. A cycle's moves are
-    rest to rest and it has no runs (the crank's speed at a join is not given); a task's
-    return move goes back from where the way out stopped.
+    ``law_on: output`` the output's travels, of the output's kind. A run, or a move with
+    boundary speeds, needs the law on a crank turned by the motor and a fixed duration
+    (:func:`_check_moving`); a task's return move goes back from where the way out
+    stopped.
     """
     from dataclasses import replace
 
@@ -62,18 +63,16 @@ def linkage_task(task: Any, stage: LinkageStage, cycle: Any,
         linear = task.linear
     else:
         moves = []
-        for i, segment in enumerate(cycle.segments):
-            if isinstance(segment, Run):
-                raise source.error("a run through a linkage is not sized yet (the crank's "
-                                   "speed through a position-dependent ratio): use moves "
-                                   "and dwells", ("cycle", "segments", i))
+        free = cycle.free
         for i, segment in enumerate(cycle.segments):
             at = ("cycle", "segments", i)
-            if isinstance(segment, Move):
-                if not segment.rest_to_rest:
-                    raise source.error("a move through a linkage starts and ends at rest "
-                                       "(no start or end speed or acceleration)", at)
-                moves.append((segment.displacement, (*at, "move", "displacement")))
+            if isinstance(segment, Run | Move):
+                moving = not (isinstance(segment, Move) and segment.rest_to_rest)
+                if moving:
+                    _check_moving(stage, segment, i in free, source, at)
+                where = (*at, "run") if isinstance(segment, Run) else \
+                    (*at, "move", "displacement")
+                moves.append((segment.displacement, where))
         linear = cycle.linear
     output = "a length (the slider's travel)" if stage.output_linear else \
         "an angle (the output's swing)"
@@ -89,6 +88,26 @@ def linkage_task(task: Any, stage: LinkageStage, cycle: Any,
     if cycle is not None:
         cycle = replace(cycle, linear=stage.output_linear)
     return task, cycle, stage.output_linear
+
+
+def _check_moving(stage: LinkageStage, segment: Any, free: bool, source: YamlSource,
+                  at: tuple[Any, ...]) -> None:
+    """A run or a move with boundary speeds through a linkage: the crank keeps turning, so
+    the law must be on the crank, turned by the motor (an output or a driven rocker
+    cannot keep moving at a speed through its dead points, where the crank's speed is
+    the paper's limit, not the one given), and a move's duration fixed (its shape, the
+    law's boundary form, depends on it; the time scaling of free durations does not hold
+    for it)."""
+    kind = "a run" if segment.__class__.__name__ == "Run" else \
+        "a move with boundary speeds or accelerations"
+    if stage.law_on != "crank" or stage.driven_link != "crank":
+        raise source.error(f"{kind} through a linkage needs the law on the crank, turned "
+                           f"by the motor (law_on: crank, driven_link: crank): the output "
+                           f"(or a driven rocker) cannot keep moving through its dead "
+                           f"points", at)
+    if free or segment.duration is None:
+        raise source.error(f"{kind} through a linkage needs its own duration (its shape "
+                           f"through the position-dependent ratio depends on it)", at)
 
 
 def _check_strokes(stage: LinkageStage, moves: list[tuple[float, tuple[Any, ...]]],

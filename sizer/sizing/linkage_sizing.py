@@ -71,7 +71,7 @@ class LinkageProfile:
     issues: tuple[str, ...]
 
 
-def _grid(law: MotionLaw) -> tuple[np.ndarray, np.ndarray]:
+def _grid(law: MotionLaw | FixedShape) -> tuple[np.ndarray, np.ndarray]:
     """Sample points of [0, 1] and their quadrature weights (0 for the peak-only ones)."""
     cuts = np.unique(np.concatenate((law.breakpoints, np.linspace(0.0, 1.0, GAUSS_PIECES + 1))))
     x, w = np.polynomial.legendre.leggauss(GAUSS_NODES)
@@ -84,6 +84,40 @@ def _grid(law: MotionLaw) -> tuple[np.ndarray, np.ndarray]:
     return u[order], np.concatenate((weights, np.zeros(len(peaks))))[order]
 
 
+@dataclass(frozen=True)
+class FixedShape:
+    """The normalized shape q_N(u) of a segment whose shape depends on its (fixed)
+    duration, for :func:`profile_of`: a run (``spec`` None: q_N = u, the crank at constant
+    speed) or a move with boundary speeds, the law ``spec``'s boundary form
+    (sizer.laws.boundary_speeds) with normalized boundary speeds s0 = v0 T / h,
+    s1 = v1 T / h and accelerations r0 = a0 T^2 / h, r1 = a1 T^2 / h."""
+
+    spec: str | None = None
+    s0: float = 0.0
+    s1: float = 0.0
+    r0: float = 0.0
+    r1: float = 0.0
+
+    @property
+    def breakpoints(self) -> np.ndarray:
+        return np.array([0.0, 1.0]) if self.spec is None else self._basis().breaks
+
+    def derivative(self, u: np.ndarray, order: int = 0) -> np.ndarray:
+        u = np.asarray(u, dtype=float)
+        if self.spec is None:
+            return u.copy() if order == 0 else np.full(u.shape, float(order == 1))
+        r = (self.r0, self.r1) if (self.r0 or self.r1) else (None, None)
+        return self._basis().derivative(u, order, self.s0, self.s1, r0=r[0], r1=r[1])[0]
+
+    def _basis(self):
+        from sizer.laws.boundary_speeds import boundary_form
+
+        basis = boundary_form(self.spec)
+        if basis is None:
+            raise UserError(f"{self.spec} has no form with boundary speeds", field="laws")
+        return basis
+
+
 def linkage_profile(design: Design, law: MotionLaw) -> LinkageProfile:
     """The profile of ``law`` through the design's linkage (cached per law and design)."""
     stage = design.transmission.linkage
@@ -92,14 +126,14 @@ def linkage_profile(design: Design, law: MotionLaw) -> LinkageProfile:
 
 
 def profile_of(stage: LinkageStage, load: Load, h: float, duration: float | None,
-               law: MotionLaw) -> LinkageProfile:
+               law: MotionLaw | FixedShape) -> LinkageProfile:
     """The profile of a move of ``h`` by ``law`` from the stage's start angle (cached)."""
     return _profile(stage, load, h, duration, law)
 
 
 @lru_cache(maxsize=256)
 def _profile(stage: LinkageStage, load: Load, h: float, duration: float | None,
-             law: MotionLaw) -> LinkageProfile:
+             law: MotionLaw | FixedShape) -> LinkageProfile:
     from sizer.mechanics.linkages.dynamics import LinkageDynamics, LinkageMasses
     from sizer.mechanics.linkages.inverse_motion import input_motion, output_motion
     from sizer.mechanics.linkages.of_stage import linkages_of
