@@ -172,3 +172,18 @@ def test_coupler_example_dead_point_verdicts() -> None:
             assert not r.feasible and r.limiting == "dead_point"
             assert "(C3)" in r.reason
     assert any(r.feasible for r in results)
+
+
+def test_the_documented_linkage_block_loads() -> None:
+    import re
+
+    import yaml
+
+    doc = (ROOT / "docs" / "input-files.md").read_text()
+    block = re.search(r"```yaml\n(transmission:.*?four_bar.*?)```", doc, re.S)
+    assert block is not None
+    data = {**yaml.safe_load(block.group(1)), "load": {"inertia": "0.02 kg*m^2"},
+            "task": {"displacement": "-40 deg", "duration": "0.25 s"}, "motors": [MOTOR]}
+    stage = load_design_data(data).transmission.linkage
+    assert stage is not None and stage.driven_link == "rocker"
+    assert stage.output == "crank_angle" and stage.start_angle == 2.0
