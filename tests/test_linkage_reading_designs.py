@@ -72,14 +72,18 @@ def test_a_rocker_driving_a_coasting_crank_through_its_dead_points() -> None:
 
 def test_a_rocker_cannot_push_a_heavy_crank_through_a_dead_point() -> None:
     extended, folded = _rocker_dead_points()
-    design = {"task": {"displacement": f"{folded - extended!r} rad", "duration": "0.5 s"},
-              "load": {"inertia": "0.01 kg*m^2"},
+    # (and with a load on the crank, cannot hold it at the dead point where it stops)
+    design = {"task": {"displacement": f"{folded - extended!r} rad", "duration": "0.5 s",
+                       "dwell": "0.1 s"},
+              "load": {"inertia": "0.01 kg*m^2", "torque": "1 N*m"},
               "transmission": [_four_bar(driven_link="rocker", law_on="output",
                                          start_angle=f"{extended!r} rad")],
               "laws": ["cycloidal"], "motors": [MOTOR]}
     (result,) = size(design).results
     assert not result.feasible and result.limiting == "dead_point"
     assert "cannot drive the crank through its dead point" in result.reason
+    assert "at t = 0 s" in result.reason
+    assert "cannot hold the output's load at the dead point" in result.reason
 
 
 @pytest.mark.parametrize("law_on", ["crank", "output"])
