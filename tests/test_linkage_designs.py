@@ -300,3 +300,16 @@ def test_a_crank_turning_on_through_a_run_between_moves() -> None:
     assert result.peak_torque == pytest.approx(peak, rel=1e-6)
     assert result.rms_torque == pytest.approx(math.sqrt(squares / 1.0), rel=1e-6)
     assert result.max_speed == pytest.approx(fastest, rel=1e-6)
+
+
+def test_an_auto_shape_through_the_linkage_is_the_best_of_its_family() -> None:
+    # a trapezoid with alpha = auto turning the crank once in 0.4 s: its smallest margin
+    # is at least that of every fixed alpha of a grid, each sized through the linkage
+    task = {"displacement": "360 deg", "duration": "0.4 s", "dwell": "0.1 s"}
+    motor = {**MOTOR, "continuous_torque": "1 N*m", "peak_torque": "3 N*m"}
+    (chosen,) = size(_design(task, {"law_on": "crank"}, laws=["trapezoidal(alpha=auto)"],
+                             motors=[motor])).results
+    grid = [f"trapezoidal(alpha={a:.2f})" for a in np.linspace(0.05, 0.5, 10)]
+    fixed = size(_design(task, {"law_on": "crank"}, laws=grid, motors=[motor])).results
+    assert chosen.spec.startswith("trapezoidal(alpha=") and "auto" not in chosen.spec
+    assert chosen.worst_slack >= max(r.worst_slack for r in fixed) - 1e-6

@@ -562,11 +562,6 @@ def linkage_curve(design: Design, motor, law: MotionLaw, duration: float,
         total_inertia=total)
 
 
-def refuse_auto(spec: str) -> UserError:
-    return UserError(f"{spec}: `auto` shape parameters are not chosen through a linkage yet; "
-                     f"give the shape", field="laws")
-
-
 @dataclass(frozen=True)
 class LinkageCurve:
     """One candidate through the linkage over the crank angle: the crank angle (rad,
