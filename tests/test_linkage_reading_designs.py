@@ -159,6 +159,7 @@ def test_rocker_drive_plot_from_the_cli(tmp_path: Path) -> None:
     path = ROOT / "examples" / "four-bar-rocker-driven.yaml"
     result = run_cli("size", str(path), "--all")
     assert result.returncode == 0, result.stderr
+    assert "the rocker turns -0.69813 rad in T = 250 ms" in result.stdout  # -40 deg
     out = tmp_path / "linkage.png"
     plotted = run_cli("plot", str(path), "--linkage", "-o", str(out))
     assert plotted.returncode == 0, plotted.stderr
