@@ -192,3 +192,31 @@ def test_the_documented_linkage_block_loads() -> None:
     stage = load_design_data(data).transmission.linkage
     assert stage is not None and stage.driven_link == "rocker"
     assert stage.output == "crank_angle" and stage.start_angle == 2.0
+
+
+def test_the_paper_s_rules_on_a_driven_rocker_s_law() -> None:
+    # the law on the rocker (the motor's link) over its whole swing, from one dead point
+    # to the other, the crank massless (it coasts) and the rocker 0.01 kg*m^2: the rules
+    # are the paper's with input and output swapped, so the cycloidal law (a jerk at the
+    # dead points, C3 broken) fails and poly7 passes; poly7's motor torque is then
+    # (J_m + J_r) h q''(u) / T^2, the rocker's own law
+    extended, folded = _rocker_dead_points()
+    low = float(angles(PAPER, 1, np.array([folded]))[1][0])
+    high = float(angles(PAPER, 1, np.array([extended]))[1][0])
+    design = {"task": {"displacement": f"{low - high!r} rad", "duration": "0.5 s"},
+              "load": {"inertia": "1e-12 kg*m^2"},
+              "transmission": [_four_bar(driven_link="rocker", law_on="crank",
+                                         start_angle=f"{extended!r} rad",
+                                         coupler_mass_at_rocker="1 kg")],
+              "laws": ["cycloidal", "poly7"], "motors": [MOTOR]}
+    by_law = {r.spec: r for r in size(design).results}
+    cycloidal = by_law["cycloidal"]
+    assert not cycloidal.feasible and cycloidal.limiting == "dead_point"
+    assert "(C3)" in cycloidal.reason
+    poly7 = by_law["polynomial(degree=7)"]
+    assert poly7.check("dead_point").passed
+    u = np.linspace(0.0, 1.0, 100_001)
+    q2 = np.polynomial.Polynomial([0, 0, 0, 0, 35, -84, 70, -20]).deriv(2)(u)
+    torque = (1e-4 + 0.01) * (low - high) * q2 / 0.5**2
+    assert poly7.peak_torque == pytest.approx(np.max(np.abs(torque)), rel=1e-4)
+    assert poly7.rms_torque == pytest.approx(math.sqrt(np.trapezoid(torque**2, u)), rel=1e-4)

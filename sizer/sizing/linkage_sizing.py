@@ -218,10 +218,11 @@ largest over the move (each of its parts A, D, B)."""
 
 def _over(x: np.ndarray, g1: np.ndarray) -> np.ndarray:
     """x / g1 with the samples where g1 = 0 (a dead point of the driven rocker, where x
-    must be 0 too: :func:`_rocker_issues`) interpolated from their neighbours."""
+    must be 0 too: :func:`_rocker_issues`; within its round-off) interpolated from their
+    neighbours."""
     with np.errstate(all="ignore"):
         out = np.asarray(x, dtype=float) / g1
-    bad = ~np.isfinite(out)
+    bad = ~np.isfinite(out) | (np.abs(g1) <= 1e-9 * max(float(np.max(np.abs(g1))), 1e-300))
     if np.any(bad) and not np.all(bad):
         index = np.arange(out.size)
         out[bad] = np.interp(index[bad], index[~bad], out[~bad])
