@@ -142,3 +142,44 @@ def assert_clean_answer(result: subprocess.CompletedProcess[str], exit_code: int
         assert result.stdout == "", shown
     else:
         assert not NON_FINITE.search(result.stdout), shown
+
+
+# ---------------------------------------------------------------- linkage readings (issue 14)
+# A four-bar driven from its rocker and the outputs other than the slider and the rocker
+# (transmission[1] of examples/four-bar-rocker-driven.yaml, of the press for the
+# slider-crank); run with the field cases (tests/test_bad_inputs_fields.py).
+
+_ROCKER = "four-bar-rocker-driven.yaml"
+_STAGE = "transmission[1]"
+
+
+def _linkage_case(id: str, example: str, set: dict[str, Any], words: tuple[str, ...],
+                  fields: tuple[str, ...]) -> Case:
+    return Case(id, design=edited(example, set=set), words=("design.yaml:", *words),
+                fields=fields)
+
+
+LINKAGE_READINGS = [
+    _linkage_case("four-bar-driven-link-coupler", _ROCKER, {f"{_STAGE}.driven_link": "coupler"},
+                  (f"{_STAGE}.driven_link", "crank", "rocker"),
+                  ("transmission[four_bar].driven_link",)),
+    _linkage_case("four-bar-output-slider", _ROCKER, {f"{_STAGE}.output": "slider_position"},
+                  (f"{_STAGE}.output", "rocker_angle", "coupler_angle", "crank_angle"),
+                  ("transmission[four_bar].output",)),
+    _linkage_case("four-bar-rocker-driven-output-rocker", _ROCKER,
+                  {f"{_STAGE}.output": "rocker_angle"},
+                  (f"{_STAGE}.output", "with the motor on the rocker", "crank_angle"),
+                  ("transmission[four_bar].output",)),
+    _linkage_case("four-bar-rocker-swing-beyond-its-range", _ROCKER,
+                  {"task.displacement": "-90 deg"},
+                  ("task.displacement", "the rocker would move", "beyond its range"),
+                  ("transmission[four_bar].driven_link",)),
+    _linkage_case("slider-crank-output-rocker", "press-slider-crank.yaml",
+                  {f"{_STAGE}.output": "rocker_angle"},
+                  (f"{_STAGE}.output", "slider_position", "rod_angle"),
+                  ("transmission[slider_crank].output",)),
+    _linkage_case("slider-crank-rod-angle-with-a-mass", "press-slider-crank.yaml",
+                  {f"{_STAGE}.output": "rod_angle"},
+                  ("load.mass", "rotary", "takes 'inertia'"),
+                  ("transmission[slider_crank].output",)),
+]

@@ -9,7 +9,7 @@ has no case here or in tests/test_bad_inputs_catalogs.py.
 from __future__ import annotations
 
 import pytest
-from bad_input_cases import Case, edited
+from bad_input_cases import LINKAGE_READINGS, Case, edited
 from bad_input_cases import run_case as run
 
 from sizer.model.fields import input_fields
@@ -394,7 +394,8 @@ VIBRATION = [
          ("limits.residual_vibration",), ()),
 ]
 
-CASES = [*TASK, *LOAD, *GEARBOXES, *BELTS, *SCREWS, *RACKS, *REST, *LINKAGES, *VIBRATION]
+CASES = [*TASK, *LOAD, *GEARBOXES, *BELTS, *SCREWS, *RACKS, *REST, *LINKAGES,
+         *LINKAGE_READINGS, *VIBRATION]
 
 
 @pytest.mark.parametrize("case", CASES, ids=str)

@@ -272,9 +272,9 @@ def test_bad_branch(branch):
 
 def test_bad_coordinate():
     with pytest.raises(UserError) as caught:
-        FourBar(*PAPER, coordinate="coupler_angle")
+        FourBar(*PAPER, coordinate="slider_position")
     assert caught.value.field == "coordinate"
-    assert "rocker_angle" in caught.value.message
+    assert "rocker_angle, coupler_angle, crank_angle" in caught.value.message
 
 
 def test_branch_accepts_float_one():

@@ -183,15 +183,33 @@ def test_a_cycle_through_the_linkage_minimized_by_time_scaling() -> None:
     assert result.duration == pytest.approx(2 * T + 0.2, rel=1e-6)
 
 
-def test_a_run_through_a_linkage_is_refused(tmp_path: Path) -> None:
-    segments = [{"move": {"displacement": "180 deg", "duration": "0.2 s",
-                          "end_speed": "60 rpm"}},
+@pytest.mark.parametrize("crank, words", [
+    ({"law_on": "output"}, ("cycle.segments", "needs the law on the crank")),
+    ({"law_on": "crank", "duration": None}, ("cycle.segments", "needs its own duration"))])
+def test_a_run_through_a_linkage_needs_the_law_on_the_crank_and_durations(
+        tmp_path: Path, crank: dict, words: tuple) -> None:
+    # the output cannot keep moving through its dead points; a move with boundary speeds
+    # has a shape that depends on its duration, so it must be given
+    first = {"displacement": "180 deg", "duration": "0.2 s", "end_speed": "60 rpm"}
+    if crank.get("duration", "") is None:
+        del first["duration"]
+    segments = [{"move": first},
                 {"run": {"speed": "60 rpm", "duration": "0.2 s"}},
                 {"move": {"displacement": "180 deg", "duration": "0.2 s",
                           "start_speed": "60 rpm", "law": "poly5"}}]
+    design = _cycle_design(segments, ["poly5"])
+    design["transmission"][0]["law_on"] = crank["law_on"]
+    if crank["law_on"] == "output":
+        for segment in segments:
+            key = "move" if "move" in segment else "run"
+            if key == "move":
+                segment[key]["displacement"] = "20 mm"
+            for name in ("speed", "start_speed", "end_speed"):
+                if name in segment[key]:
+                    segment[key][name] = "0.1 m/s"
     path = tmp_path / "cycle.yaml"
-    path.write_text(yaml.safe_dump(_cycle_design(segments, ["poly5"])))
-    assert_user_error(run_cli("size", str(path)), "cycle.segments", "not sized yet")
+    path.write_text(yaml.safe_dump(design))
+    assert_user_error(run_cli("size", str(path)), "cycle.yaml", *words)
 
 
 def test_energy_balance_of_a_move_through_the_linkage() -> None:
@@ -232,3 +250,66 @@ def test_a_return_move_through_the_linkage_is_the_cycle_it_means() -> None:
     out, back = _crank_torque(u, np.pi, 0.2), _crank_torque(u, -np.pi, 0.2, start=np.pi)
     square = 0.2 * (np.trapezoid(out**2, u) + np.trapezoid(back**2, u))
     assert as_task.rms_torque == pytest.approx(math.sqrt(square / 0.6), rel=1e-6)
+
+
+def _quintic(s0: float, s1: float) -> np.ndarray:
+    """The quintic q(u) with q(0) = 0, q(1) = 1, q'(0) = s0, q'(1) = s1 and q'' = 0 at
+    both ends (ascending coefficients), by solving its six conditions."""
+    rows = [[1, 0, 0, 0, 0, 0], [1, 1, 1, 1, 1, 1], [0, 1, 0, 0, 0, 0],
+            [0, 1, 2, 3, 4, 5], [0, 0, 2, 0, 0, 0], [0, 0, 2, 6, 12, 20]]
+    return np.linalg.solve(np.array(rows, dtype=float), [0, 1, s0, s1, 0, 0])
+
+
+def test_a_crank_turning_on_through_a_run_between_moves() -> None:
+    # the crank speeds up to 60 rpm over 90 deg in 0.2 s, runs at 60 rpm for 0.5 s (half a
+    # turn), slows down to rest over 90 deg in 0.2 s and rests 0.1 s: each part's crank
+    # motion is known (the run's theta = theta_0 + w t, the moves' quintics with those
+    # boundary speeds), and so the torque (this test's formulas)
+    w = 2 * np.pi
+    segments = [{"move": {"displacement": "90 deg", "duration": "0.2 s",
+                          "end_speed": "60 rpm"}},
+                {"run": {"speed": "60 rpm", "duration": "0.5 s"}},
+                {"move": {"displacement": "90 deg", "duration": "0.2 s",
+                          "start_speed": "60 rpm"}},
+                {"dwell": {"duration": "0.1 s"}}]
+    (result,) = size(_cycle_design(segments, ["poly5"])).results
+    u = np.linspace(0.0, 1.0, 200_001)
+    h = np.pi / 2
+    torques, squares, fastest = [], 0.0, w
+    for start, (s0, s1), T in ((0.0, (0.0, w * 0.2 / h), 0.2),
+                               (np.pi / 2 + np.pi, (w * 0.2 / h, 0.0), 0.2)):
+        c = _quintic(s0, s1)
+        poly = np.polynomial.Polynomial(c)
+        theta = start + h * poly(u)
+        speed, alpha = h * poly.deriv(1)(u) / T, h * poly.deriv(2)(u) / T**2
+        d = 1e-4
+        s1_ = (_s(theta + d) - _s(theta - d)) / (2 * d)
+        s2_ = (_s(theta + d) - 2 * _s(theta) + _s(theta - d)) / d**2
+        tau = 1e-4 * alpha + M * s1_ * (s2_ * speed**2 + s1_ * alpha)
+        torques.append(tau)
+        fastest = max(fastest, float(np.max(np.abs(speed))))
+        squares += T * np.trapezoid(tau**2, u)
+    theta = np.pi / 2 + np.pi * u  # the run
+    d = 1e-4
+    s1_ = (_s(theta + d) - _s(theta - d)) / (2 * d)
+    s2_ = (_s(theta + d) - 2 * _s(theta) + _s(theta - d)) / d**2
+    run = M * s1_ * s2_ * w**2
+    squares += 0.5 * np.trapezoid(run**2, u)
+    assert result.duration == pytest.approx(1.0)
+    peak = max(np.abs(x).max() for x in [*torques, run])
+    assert result.peak_torque == pytest.approx(peak, rel=1e-6)
+    assert result.rms_torque == pytest.approx(math.sqrt(squares / 1.0), rel=1e-6)
+    assert result.max_speed == pytest.approx(fastest, rel=1e-6)
+
+
+def test_an_auto_shape_through_the_linkage_is_the_best_of_its_family() -> None:
+    # a trapezoid with alpha = auto turning the crank once in 0.4 s: its smallest margin
+    # is at least that of every fixed alpha of a grid, each sized through the linkage
+    task = {"displacement": "360 deg", "duration": "0.4 s", "dwell": "0.1 s"}
+    motor = {**MOTOR, "continuous_torque": "1 N*m", "peak_torque": "3 N*m"}
+    (chosen,) = size(_design(task, {"law_on": "crank"}, laws=["trapezoidal(alpha=auto)"],
+                             motors=[motor])).results
+    grid = [f"trapezoidal(alpha={a:.2f})" for a in np.linspace(0.05, 0.5, 10)]
+    fixed = size(_design(task, {"law_on": "crank"}, laws=grid, motors=[motor])).results
+    assert chosen.spec.startswith("trapezoidal(alpha=") and "auto" not in chosen.spec
+    assert chosen.worst_slack >= max(r.worst_slack for r in fixed) - 1e-6

@@ -13,7 +13,7 @@ from typing import Any
 
 from sizer.errors import UserError
 from sizer.io.yaml_source import YamlSource
-from sizer.mechanics.linkages.of_stage import linkage_of
+from sizer.mechanics.linkages.of_stage import linkage_of, linkages_of
 from sizer.model.domain import LinkageStage
 from sizer.model.transmission_inputs import FourBarInput, SliderCrankInput
 
@@ -23,7 +23,8 @@ def linkage_stage(item: SliderCrankInput | FourBarInput, source: YamlSource,
     """The LinkageStage of a ``slider_crank`` or ``four_bar`` item, its geometry built."""
     common = {"law_on": item.law_on, "start_angle": item.start_angle,
               "direction": 1 if item.direction == "positive" else -1,
-              "crank_inertia": item.crank_inertia, "name": item.name or ""}
+              "crank_inertia": item.crank_inertia, "name": item.name or "",
+              "output": item.output or ""}
     if isinstance(item, SliderCrankInput):
         stage = LinkageStage("slider_crank", (item.crank_radius, item.rod_length, item.offset),
                              link_mass_at_crank=item.rod_mass_at_crank,
@@ -31,7 +32,8 @@ def linkage_stage(item: SliderCrankInput | FourBarInput, source: YamlSource,
     else:
         stage = LinkageStage("four_bar", (item.crank, item.coupler, item.rocker, item.ground),
                              branch=item.branch, link_mass_at_crank=item.coupler_mass_at_crank,
-                             link_mass_at_output=item.coupler_mass_at_rocker, **common)
+                             link_mass_at_output=item.coupler_mass_at_rocker,
+                             driven_link=item.driven_link, **common)
     try:
         linkage_of(stage)
     except UserError as error:
@@ -45,9 +47,10 @@ def linkage_task(task: Any, stage: LinkageStage, cycle: Any,
     axis: the linkage's output (a slider is linear, a rocker rotary).
 
     With ``law_on: crank`` the displacements are the crank's turns, angles; with
-    ``law_on: output`` the output's travels, of the output's kind. A cycle's moves are
-    rest to rest and it has no runs (the crank's speed at a join is not given); a task's
-    return move goes back from where the way out stopped.
+    ``law_on: output`` the output's travels, of the output's kind. A run, or a move with
+    boundary speeds, needs the law on a crank turned by the motor and a fixed duration
+    (:func:`_check_moving`); a task's return move goes back from where the way out
+    stopped.
     """
     from dataclasses import replace
 
@@ -60,55 +63,79 @@ def linkage_task(task: Any, stage: LinkageStage, cycle: Any,
         linear = task.linear
     else:
         moves = []
-        for i, segment in enumerate(cycle.segments):
-            if isinstance(segment, Run):
-                raise source.error("a run through a linkage is not sized yet (the crank's "
-                                   "speed through a position-dependent ratio): use moves "
-                                   "and dwells", ("cycle", "segments", i))
+        free = cycle.free
         for i, segment in enumerate(cycle.segments):
             at = ("cycle", "segments", i)
-            if isinstance(segment, Move):
-                if not segment.rest_to_rest:
-                    raise source.error("a move through a linkage starts and ends at rest "
-                                       "(no start or end speed or acceleration)", at)
-                moves.append((segment.displacement, (*at, "move", "displacement")))
+            if isinstance(segment, Run | Move):
+                moving = not (isinstance(segment, Move) and segment.rest_to_rest)
+                if moving:
+                    _check_moving(stage, segment, i in free, source, at)
+                where = (*at, "run") if isinstance(segment, Run) else \
+                    (*at, "move", "displacement")
+                moves.append((segment.displacement, where))
         linear = cycle.linear
     output = "a length (the slider's travel)" if stage.output_linear else \
-        "an angle (the rocker's swing)"
+        "an angle (the output's swing)"
     where = moves[0][1]
     if stage.law_on == "crank" and linear:
-        raise source.error("with law_on: crank a displacement is the crank's turn, an "
-                           "angle like '180 deg'", where)
+        turn = "turn" if stage.driven_link == "crank" else "swing"
+        raise source.error(f"with law_on: crank a displacement is the {stage.driven_link}'s "
+                           f"{turn}, an angle like '180 deg'", where)
     if stage.law_on == "output" and linear != stage.output_linear:
         raise source.error(f"with law_on: output a displacement is {output}", where)
-    if stage.law_on == "output":
-        _check_strokes(stage, moves, source)
+    _check_strokes(stage, moves, source)
     task = replace(task, linear=stage.output_linear)
     if cycle is not None:
         cycle = replace(cycle, linear=stage.output_linear)
     return task, cycle, stage.output_linear
 
 
+def _check_moving(stage: LinkageStage, segment: Any, free: bool, source: YamlSource,
+                  at: tuple[Any, ...]) -> None:
+    """A run or a move with boundary speeds through a linkage: the crank keeps turning, so
+    the law must be on the crank, turned by the motor (an output or a driven rocker
+    cannot keep moving at a speed through its dead points, where the crank's speed is
+    the paper's limit, not the one given), and a move's duration fixed (its shape, the
+    law's boundary form, depends on it; the time scaling of free durations does not hold
+    for it)."""
+    kind = "a run" if segment.__class__.__name__ == "Run" else \
+        "a move with boundary speeds or accelerations"
+    if stage.law_on != "crank" or stage.driven_link != "crank":
+        raise source.error(f"{kind} through a linkage needs the law on the crank, turned "
+                           f"by the motor (law_on: crank, driven_link: crank): the output "
+                           f"(or a driven rocker) cannot keep moving through its dead "
+                           f"points", at)
+    if free or segment.duration is None:
+        raise source.error(f"{kind} through a linkage needs its own duration (its shape "
+                           f"through the position-dependent ratio depends on it)", at)
+
+
 def _check_strokes(stage: LinkageStage, moves: list[tuple[float, tuple[Any, ...]]],
                    source: YamlSource) -> None:
-    """Each output move, from where the last one ended, stays within the range."""
+    """Each move of the law's coordinate (the output's, or a driven rocker's), from where
+    the last one ended, stays within its range (a crank's turn has none)."""
     import numpy as np
 
-    position = float(linkage_of(stage).output(np.array([stage.start_angle]))[0])
+    views = linkages_of(stage)
+    given = views.output if stage.law_on == "output" else views.motor
+    if not given.dead_points().size:
+        return
+    position = float(given.output(np.array([stage.start_angle]))[0])
     for h, at in moves:
-        _check_stroke(stage, position, h, source, at)
+        _check_stroke(given, position, h, source, at)
         position += h
 
 
-def _check_stroke(stage: LinkageStage, start: float, h: float, source: YamlSource,
+def _check_stroke(given: Any, start: float, h: float, source: YamlSource,
                   at: tuple[Any, ...]) -> None:
-    """The output's move from ``start`` by ``h`` stays within the linkage's range."""
-    low, high = linkage_of(stage).output_range()
+    """The move from ``start`` by ``h`` stays within the coordinate's range."""
+    low, high = given.output_range()
     end = start + h
     tolerance = 1e-9 * (high - low)
     if not low - tolerance <= end <= high + tolerance:
-        unit = "m" if stage.output_linear else "rad"
-        raise source.error(f"the output would move from {start:.6g} {unit} to {end:.6g} "
+        unit = "m" if given.output_linear else "rad"
+        name = "output" if getattr(given, "coordinate", "") != "rocker_angle" else "rocker"
+        raise source.error(f"the {name} would move from {start:.6g} {unit} to {end:.6g} "
                            f"{unit}, beyond its range [{low:.6g}, {high:.6g}] {unit} (the "
                            f"stroke between the dead points)", at)
 
@@ -120,7 +147,8 @@ def output_linear(items: Any, linear: bool) -> bool:
     for item in reversed(items):
         kind = getattr(item, "type", None)
         if kind in ("slider_crank", "four_bar"):
-            return kind == "slider_crank"
+            return kind == "slider_crank" and getattr(item, "output", None) in (
+                None, "slider_position")
         if kind not in (None, "direct"):
             break
     return linear

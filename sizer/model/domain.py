@@ -112,7 +112,11 @@ class LinkageStage:
     (kg*m^2) and the connecting link as point masses at its crank end and output end (kg).
     ``lengths``: (r, l, e) for a slider_crank, (crank, coupler, rocker, ground) for a
     four_bar, whose ``branch`` is the assembly. The output's own mass or inertia and its
-    loads are the design's ``load``."""
+    loads are the design's ``load``. ``driven_link``: the link the motor turns ("crank",
+    or a four-bar's "rocker"); ``output``: the load's coordinate ("" the default: the
+    slider's position, the rocker's angle, or with a driven rocker the crank's angle;
+    a four-bar's "rocker_angle", "coupler_angle", "crank_angle"; a slider-crank's
+    "slider_position", "rod_angle")."""
 
     kind: str
     lengths: tuple[float, ...]
@@ -124,10 +128,12 @@ class LinkageStage:
     link_mass_at_crank: float = 0.0
     link_mass_at_output: float = 0.0
     name: str = ""
+    driven_link: str = "crank"
+    output: str = ""
 
     @property
     def output_linear(self) -> bool:
-        return self.kind == "slider_crank"
+        return self.kind == "slider_crank" and self.output in ("", "slider_position")
 
 
 @dataclass(frozen=True)

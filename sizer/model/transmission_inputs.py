@@ -170,9 +170,14 @@ class _LinkageInput(Strict):
 
 
 class SliderCrankInput(_LinkageInput):
-    """A slider-crank: the motor turns the crank, the slider is the linear output."""
+    """A slider-crank: the motor turns the crank; the output is the slider (linear) or
+    the rod's angle."""
 
     type: Literal["slider_crank"]
+    output: Literal["slider_position", "rod_angle"] | None = Field(
+        None, description="the load's coordinate: slider_position (default; the load is "
+                          "linear) or rod_angle (the rod's angle to the slider's line, "
+                          "rotary)")
     crank_radius: Length  # type: ignore[valid-type]
     rod_length: Length  # type: ignore[valid-type]
     offset: Ranged("link_offset") = 0.0  # type: ignore[valid-type]
@@ -181,9 +186,18 @@ class SliderCrankInput(_LinkageInput):
 
 
 class FourBarInput(_LinkageInput):
-    """A four-bar: the motor turns the crank, the rocker's angle is the output."""
+    """A four-bar crank-rocker: the motor turns the crank (or the rocker); the output is
+    the rocker's, the coupler's or (rocker driven) the crank's angle."""
 
     type: Literal["four_bar"]
+    driven_link: Literal["crank", "rocker"] = Field(
+        "crank", description="the link the motor (the stages before) turns: crank, or "
+                             "rocker (the linkage read the other way; its dead points are "
+                             "where crank and coupler are in line)")
+    output: Literal["rocker_angle", "coupler_angle", "crank_angle"] | None = Field(
+        None, description="the load's coordinate: rocker_angle (default with the crank "
+                          "driven) or coupler_angle; with the rocker driven crank_angle "
+                          "(default) or coupler_angle")
     crank: Length  # type: ignore[valid-type]
     coupler: Length  # type: ignore[valid-type]
     rocker: Length  # type: ignore[valid-type]

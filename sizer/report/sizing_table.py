@@ -102,9 +102,11 @@ class SizingDocument(Rendered):
         move = f"h = {short(task.displacement)} {unit}"
         linkage = self.design.transmission.linkage
         if linkage is not None and linkage.law_on == "crank":
-            move = f"the crank turns {short(task.displacement)} rad"
+            move = f"the {linkage.driven_link} turns {short(task.displacement)} rad"
         elif linkage is not None:
-            move = f"the {'slider' if linkage.output_linear else 'rocker'} moves {move}"
+            from sizer.mechanics.linkages.of_stage import output_name
+
+            move = f"the {output_name(linkage).split('_')[0]} moves {move}"
         move += (", shortest duration" if task.minimize
                  else f" in T = {short(task.duration * 1000.0)} ms")
         if self.design.cycle is not None and sized_as_cycle(self.design):

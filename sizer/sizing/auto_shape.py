@@ -83,7 +83,8 @@ def exact_time_optimal(family: type[MotionLaw], fixed: dict[str, float],
     the flat part the exact optimum sees, where the optimum reaches the end of it
     (sizer.sizing.minimum_duration.beyond_flat_part).
     """
-    if not design.task.minimize or family not in (Trapezoidal, DoubleS):
+    if not design.task.minimize or family not in (Trapezoidal, DoubleS) \
+            or design.transmission.linkage is not None:  # the book's case has no linkage
         return None
     if "alpha_d" in fixed or "beta_d" in fixed:  # the closed form is the symmetric law's
         return None

@@ -190,6 +190,13 @@ def score_law(law: MotionLaw, design: Design, candidates: Candidates,
               guess: np.ndarray | None = None) -> Scores:
     """(-T_min,) in minimize mode (-inf if infeasible), else the sorted slacks."""
     motors, drive = candidates.motors, candidates.drive
+    if design.transmission.linkage is not None:  # through the linkage (issue 14)
+        from sizer.sizing.linkage_sizing import evaluate_linkage
+
+        duration, _, checks, feasible = evaluate_linkage(design, law, motors, drive)
+        if design.task.minimize:
+            return -np.where(feasible, duration, np.inf)[:, None]
+        return np.sort(np.stack([c.slack for c in checks], axis=1), axis=1)
     calculator = CycleCalculator(None, design.task, drive, motors,
                                  design.limits.thermal_speed, law=law)
     if design.task.minimize:

@@ -83,10 +83,6 @@ def evaluate_law(design: Design, spec: str, candidates: Candidates) -> Candidate
     """One law spec (fixed or with auto parameters) for all candidates, in their order."""
     family, values = resolve(spec)
     if any(v == AUTO for v in values.values()):
-        if design.transmission.linkage is not None:
-            from sizer.sizing.linkage_sizing import refuse_auto
-
-            raise refuse_auto(spec)
         if design.cycle is not None:
             raise UserError(f"{spec}: `auto` shape parameters are chosen for the task "
                             "shorthand only, not yet for a cycle of segments; give the "

@@ -3,8 +3,11 @@
 The segments follow each other on the linkage: each move starts where the crank stopped,
 so its motion through the position-dependent ratio has its own profile
 (sizer.sizing.linkage_sizing, computed once per move, law and start); a dwell holds the
-output's static load at the crank angle reached. Moves are rest to rest (a linkage's
-speeds at its joins are the crank's, not given); runs are not sized through a linkage.
+output's static load at the crank angle reached. With the law on the crank (turned by
+the motor), a run turns the crank at its constant speed and a move may start and end at
+the crank speeds of its neighbours (its shape, the law's boundary form, then depends on
+its duration, which must be fixed: sizer.io.linkage says so); its profile is computed
+once at that duration (linkage_sizing.FixedShape).
 The free durations scale with one factor s (book sec. 5.2), as in
 sizer.sizing.segment_cycle: peaks are the largest over the segments, the RMS torque sums
 the segments' exact squares over the cycle time.
@@ -18,10 +21,11 @@ import numpy as np
 
 from sizer.laws import MotionLaw
 from sizer.mechanics.drive import Drive
-from sizer.model.cycle import Cycle, Move
+from sizer.model.cycle import Cycle, Move, Run
 from sizer.model.domain import Design, Limits, Load, Task
 from sizer.sizing.cycle import CycleMetrics
 from sizer.sizing.linkage_sizing import (
+    FixedShape,
     LinkageCalculator,
     LinkageProfile,
     crank_drive,
@@ -63,11 +67,11 @@ class LinkageCycle:
         theta = stage.start_angle
         for i, (segment, own) in enumerate(zip(cycle.segments, self.laws, strict=True)):
             load = segment_load(design.load, segment)
-            if isinstance(segment, Move):
-                assert own is not None
+            if isinstance(segment, Move | Run):
                 duration = None if np.isnan(self.fixed[i]) else float(self.fixed[i])
+                shape = _shape(segment, own, duration)
                 profile = profile_of(replace(stage, start_angle=theta), load,
-                                     segment.displacement, duration, own)
+                                     segment.displacement, duration, shape)
                 self.parts.append(profile)
                 theta = float(profile.theta[-1])
             else:
@@ -84,6 +88,9 @@ class LinkageCycle:
             if isinstance(part, LinkageProfile):
                 name = segment.name or "move"
                 out += [f"{name}: {issue}" for issue in part.issues]
+            elif not np.isfinite(part.hold):
+                out.append(f"{segment.name or 'dwell'}: the motor on the rocker cannot hold "
+                           f"the output's load at a dead point (crank and coupler in line)")
         return tuple(out)
 
     def durations(self, s: np.ndarray) -> list[np.ndarray]:
@@ -188,11 +195,28 @@ class LinkageCycle:
                                  for p in parts], axis=0) for k in range(stages)])
 
 
-def _hold(stage, load: Load, theta: float) -> float:
-    """The static crank torque holding the output's constant load at crank angle theta."""
-    from sizer.mechanics.linkages.of_stage import linkage_of
+def _shape(segment: Move | Run, law: MotionLaw | None,
+           duration: float | None) -> MotionLaw | FixedShape:
+    """The shape of a move or run over u = t/T: the law itself for a move from rest to
+    rest; for a run or a move with boundary speeds, at its fixed duration T."""
+    if isinstance(segment, Run):
+        return FixedShape()
+    assert law is not None
+    if segment.rest_to_rest:
+        return law
+    assert duration is not None  # sizer.io.linkage asks for it
+    h, T = segment.displacement, duration
+    return FixedShape(law.spec, segment.start_speed * T / h, segment.end_speed * T / h,
+                      segment.start_acceleration * T * T / h,
+                      segment.end_acceleration * T * T / h)
 
-    return float(linkage_of(stage).output(np.array([theta]), 1)[0] * load.torque)
+
+def _hold(stage, load: Load, theta: float) -> float:
+    """The static torque at the driven link holding the output's constant load at crank
+    angle theta (inf: a driven rocker at a dead point cannot hold a load)."""
+    from sizer.sizing.linkage_sizing import static_torque
+
+    return static_torque(stage, load.torque, theta)
 
 
 def evaluate_linkage_cycle(design: Design, law: MotionLaw, motors: MotorArrays,
@@ -259,7 +283,8 @@ def cycle_breakdown(design: Design, motor, law: MotionLaw, duration: float,
     for segment, own, p in zip(design.cycle.segments, calculator.laws, parts, strict=True):
         T = float(p["duration"][0])
         step = float(p["start_acceleration"][0]) - before
-        kind = "move" if isinstance(segment, Move) else "dwell"
+        kind = "move" if isinstance(segment, Move) else "run" if isinstance(segment, Run) \
+            else "dwell"
         rows.append(SegmentRow(
             name=segment.name or kind, kind=kind, law=own.spec if own is not None else None,
             start=start, end=start + T, peak_torque=float(p["peak_torque"][0]),

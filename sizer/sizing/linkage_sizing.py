@@ -71,7 +71,7 @@ class LinkageProfile:
     issues: tuple[str, ...]
 
 
-def _grid(law: MotionLaw) -> tuple[np.ndarray, np.ndarray]:
+def _grid(law: MotionLaw | FixedShape) -> tuple[np.ndarray, np.ndarray]:
     """Sample points of [0, 1] and their quadrature weights (0 for the peak-only ones)."""
     cuts = np.unique(np.concatenate((law.breakpoints, np.linspace(0.0, 1.0, GAUSS_PIECES + 1))))
     x, w = np.polynomial.legendre.leggauss(GAUSS_NODES)
@@ -84,6 +84,40 @@ def _grid(law: MotionLaw) -> tuple[np.ndarray, np.ndarray]:
     return u[order], np.concatenate((weights, np.zeros(len(peaks))))[order]
 
 
+@dataclass(frozen=True)
+class FixedShape:
+    """The normalized shape q_N(u) of a segment whose shape depends on its (fixed)
+    duration, for :func:`profile_of`: a run (``spec`` None: q_N = u, the crank at constant
+    speed) or a move with boundary speeds, the law ``spec``'s boundary form
+    (sizer.laws.boundary_speeds) with normalized boundary speeds s0 = v0 T / h,
+    s1 = v1 T / h and accelerations r0 = a0 T^2 / h, r1 = a1 T^2 / h."""
+
+    spec: str | None = None
+    s0: float = 0.0
+    s1: float = 0.0
+    r0: float = 0.0
+    r1: float = 0.0
+
+    @property
+    def breakpoints(self) -> np.ndarray:
+        return np.array([0.0, 1.0]) if self.spec is None else self._basis().breaks
+
+    def derivative(self, u: np.ndarray, order: int = 0) -> np.ndarray:
+        u = np.asarray(u, dtype=float)
+        if self.spec is None:
+            return u.copy() if order == 0 else np.full(u.shape, float(order == 1))
+        r = (self.r0, self.r1) if (self.r0 or self.r1) else (None, None)
+        return self._basis().derivative(u, order, self.s0, self.s1, r0=r[0], r1=r[1])[0]
+
+    def _basis(self):
+        from sizer.laws.boundary_speeds import boundary_form
+
+        basis = boundary_form(self.spec)
+        if basis is None:
+            raise UserError(f"{self.spec} has no form with boundary speeds", field="laws")
+        return basis
+
+
 def linkage_profile(design: Design, law: MotionLaw) -> LinkageProfile:
     """The profile of ``law`` through the design's linkage (cached per law and design)."""
     stage = design.transmission.linkage
@@ -92,53 +126,145 @@ def linkage_profile(design: Design, law: MotionLaw) -> LinkageProfile:
 
 
 def profile_of(stage: LinkageStage, load: Load, h: float, duration: float | None,
-               law: MotionLaw) -> LinkageProfile:
+               law: MotionLaw | FixedShape) -> LinkageProfile:
     """The profile of a move of ``h`` by ``law`` from the stage's start angle (cached)."""
     return _profile(stage, load, h, duration, law)
 
 
 @lru_cache(maxsize=256)
 def _profile(stage: LinkageStage, load: Load, h: float, duration: float | None,
-             law: MotionLaw) -> LinkageProfile:
+             law: MotionLaw | FixedShape) -> LinkageProfile:
     from sizer.mechanics.linkages.dynamics import LinkageDynamics, LinkageMasses
     from sizer.mechanics.linkages.inverse_motion import input_motion, output_motion
-    from sizer.mechanics.linkages.of_stage import linkage_of
+    from sizer.mechanics.linkages.of_stage import linkages_of
 
-    linkage = linkage_of(stage)
+    views = linkages_of(stage)
     u, weights = _grid(law)
     q = [law.derivative(u, k) for k in range(4)]
     theta0 = stage.start_angle
     issues: tuple[str, ...] = ()
-    if stage.law_on == "crank":
-        theta = [theta0 + h * q[0], h * q[1], h * q[2], h * q[3]]
-        s = output_motion(linkage, *theta)
+    # the coordinate the law is on: the driven link's (law_on: crank) or the load's
+    given = views.motor if stage.law_on == "crank" else views.output
+    x0 = float(given.output(np.array([theta0]))[0])
+    x = [x0 + h * q[0], h * q[1], h * q[2], h * q[3]]
+    if not given.dead_points().size:  # the law is on the crank angle itself
+        theta = x
     else:
-        s0 = float(linkage.output(np.array([theta0]))[0])
-        s = [s0 + h * q[0], h * q[1], h * q[2], h * q[3]]
-        issues = _issues(linkage, stage, law, u, s, h, duration)
+        issues = _issues(given, law, u, x, h, duration)
         with np.errstate(all="ignore"):
-            theta = list(input_motion(linkage, *s, start_theta=theta0,
+            theta = list(input_motion(given, *x, start_theta=theta0,
                                       direction=stage.direction))
+    with np.errstate(all="ignore"):
+        s = x if given is views.output else list(output_motion(views.output, *theta))
+        motor = theta if views.crank_driven else list(output_motion(views.motor, *theta))
     masses = LinkageMasses(crank_inertia=stage.crank_inertia, output_inertia=load.inertia,
                            link_mass_at_crank=stage.link_mass_at_crank,
                            link_mass_at_output=stage.link_mass_at_output,
                            load=load.torque, friction=load.friction, damping=load.damping)
     crank_radius = stage.lengths[0]
-    rocker_length = None if stage.output_linear else stage.lengths[2]
-    dynamics = LinkageDynamics(linkage, masses, crank_radius=crank_radius,
-                               rocker_length=rocker_length)
+    rocker_length = None if stage.kind == "slider_crank" else stage.lengths[2]
+    joint = None if views.joint == views.output else views.joint
+    dynamics = LinkageDynamics(views.output, masses, crank_radius=crank_radius,
+                               rocker_length=rocker_length, joint=joint)
     with np.errstate(all="ignore"):
         parts = dynamics.time_scaling_parts(theta[0], theta[1], theta[2])
-    hold = float(linkage.output(theta[0][-1:], 1)[0] * load.torque)  # u is in time order
-    turn = float(theta[0][-1] - theta[0][0])
+    inertial, damping, steady = parts.inertial, parts.damping, parts.steady
+    end = theta[0][-1:]  # u is in time order
+    hold = float(views.output.output(end, 1)[0] * load.torque)
     grid = np.linspace(-np.pi, np.pi, 721)
     max_inertia = float(np.max(dynamics.inertia(grid)))
-    ratio = linkage.output(_finite(theta[0]), 1)
-    return LinkageProfile(u, weights, _finite(theta[0]), ratio, s[0],
-                          _finite(theta[1]), _finite(theta[2]), s[1], s[2], s[3],
-                          _finite(parts.inertial), _finite(parts.damping),
-                          _finite(parts.steady), hold, turn,
+    if views.crank_driven:
+        turn = float(theta[0][-1] - theta[0][0])
+        ratio = views.output.output(_finite(theta[0]), 1)
+    else:  # the torque at the rocker: the crank's over dq3/dq1 (virtual work)
+        g1 = views.motor.output(_finite(theta[0]), 1)
+        issues += _rocker_issues(u, g1, (inertial, damping, steady), hold,
+                                 float(views.motor.output(end, 1)[0]), duration)
+        inertial, damping, steady = (_over(x, g1) for x in (inertial, damping, steady))
+        hold = static_torque(stage, load.torque, float(end[0]))
+        hold = hold if math.isfinite(hold) else 0.0  # unbounded: the issue says so
+        turn = float(np.sum(np.abs(np.diff(motor[0]))))
+        ratio = _over(views.output.output(_finite(theta[0]), 1), g1)
+        with np.errstate(all="ignore"):
+            reflected = dynamics.inertia(theta[0]) / g1**2
+        max_inertia = float(np.max(reflected[np.isfinite(reflected)], initial=0.0))
+    return LinkageProfile(u, weights, _finite(theta[0]), _finite(ratio), s[0],
+                          _finite(motor[1]), _finite(motor[2]), s[1], s[2], s[3],
+                          _finite(inertial), _finite(damping), _finite(steady), hold, turn,
                           dynamics.output_side_inertia, load, max_inertia, issues)
+
+
+def static_torque(stage: LinkageStage, torque: float, theta: float) -> float:
+    """The torque at the driven link holding the output's constant load ``torque`` at
+    crank angle theta: s'(theta) F, over dq3/dq1 for a driven rocker (inf where that is 0
+    and the load is not)."""
+    from sizer.mechanics.linkages.of_stage import linkages_of
+
+    views = linkages_of(stage)
+    at = np.array([theta])
+    crank = float(views.output.output(at, 1)[0] * torque)
+    if views.crank_driven:
+        return crank
+    g1 = float(views.motor.output(at, 1)[0])
+    if crank == 0.0:
+        return 0.0
+    return crank / g1 if g1 != 0.0 else math.inf
+
+
+ROCKER_TOL = 1e-6
+"""The crank's torque at a dead point of a driven rocker is 0 within this fraction of its
+largest over the move (each of its parts A, D, B)."""
+
+
+def _over(x: np.ndarray, g1: np.ndarray) -> np.ndarray:
+    """x / g1 with the samples where g1 = 0 (a dead point of the driven rocker, where x
+    must be 0 too: :func:`_rocker_issues`; within its round-off) interpolated from their
+    neighbours."""
+    with np.errstate(all="ignore"):
+        out = np.asarray(x, dtype=float) / g1
+    bad = ~np.isfinite(out) | (np.abs(g1) <= 1e-9 * max(float(np.max(np.abs(g1))), 1e-300))
+    if np.any(bad) and not np.all(bad):
+        index = np.arange(out.size)
+        out[bad] = np.interp(index[bad], index[~bad], out[~bad])
+    return out
+
+
+def _rocker_issues(u: np.ndarray, g1: np.ndarray, parts: tuple, hold: float,
+                   g1_end: float, duration: float | None) -> tuple[str, ...]:
+    """Where the driven rocker reaches a dead point (dq3/dq1 = 0: crank and coupler in
+    line) the motor's torque, the crank's over dq3/dq1, is unbounded unless the crank's
+    torque is 0 there (each part for every duration): the rocker cannot push the crank
+    through, only let it coast. Also the output's load held at the end on a dead point."""
+    T = duration or 1.0
+    scale = [max(float(np.max(np.abs(x))), 1e-300) for x in parts]
+    worst = max(float(np.max(np.abs(g1))), 1e-300)
+    zero = np.abs(g1) <= 1e-9 * worst
+    cross = np.flatnonzero((np.sign(g1[:-1]) * np.sign(g1[1:]) < 0) & ~zero[:-1] & ~zero[1:])
+    found = []
+    for i in np.flatnonzero(zero):
+        found.append((float(u[i]), [float(x[i]) for x in parts]))
+    for i in cross:
+        f = g1[i] / (g1[i] - g1[i + 1])
+        found.append((float(u[i] + f * (u[i + 1] - u[i])),
+                      [float(x[i] + f * (x[i + 1] - x[i])) for x in parts]))
+    issues: list[str] = []
+    for at, values in sorted(found):
+        if all(abs(v) <= ROCKER_TOL * s for v, s in zip(values, scale, strict=True)):
+            continue
+        a, d, b = values
+        tau = a / T**2 + d / T + b
+        issues.append(f"the motor on the rocker cannot drive the crank through its dead "
+                      f"point (crank and coupler in line) at t = {at * T:.6g} s: the crank "
+                      f"needs {tau:+.4g} N*m there and the rocker's ratio dq3/dq1 is 0, so "
+                      f"the motor's torque is unbounded; only a crank coasting through it "
+                      f"(no acceleration, no load) passes"
+                      + ("" if duration else " (for a move of 1 s)"))
+        break
+    if abs(g1_end) <= 1e-9 * worst and abs(hold) > 0.0:
+        issues.append(f"the motor on the rocker cannot hold the output's load at the dead "
+                      f"point where the move ends (the crank needs {hold:+.4g} N*m, the "
+                      f"rocker's ratio is 0)")
+    return tuple(issues)
 
 
 def _one_sided(law: MotionLaw, u: np.ndarray, h: float, T: float
@@ -165,7 +291,7 @@ def _one_sided(law: MotionLaw, u: np.ndarray, h: float, T: float
     return {"left": (left[0], left[1]), "right": (right[0], right[1])}
 
 
-def _issues(linkage, stage: LinkageStage, law: MotionLaw, u: np.ndarray, s: list,
+def _issues(linkage, law: MotionLaw, u: np.ndarray, s: list,
             h: float, duration: float | None) -> tuple[str, ...]:
     """The paper's rule at every dead point the output reaches, in the move's own time
     and units (for a shortest-duration task, at T = 1 s: the verdict does not depend on
@@ -175,7 +301,7 @@ def _issues(linkage, stage: LinkageStage, law: MotionLaw, u: np.ndarray, s: list
     T = duration or 1.0
     scaled = [s[0], *(x / T**k for k, x in enumerate(s[1:], start=1))]
     found = dead_point_crossings(linkage, u * T, *scaled, **_one_sided(law, u, h, T),
-                                 units="m" if stage.output_linear else "rad")
+                                 units="m" if linkage.output_linear else "rad")
     suffix = "" if duration else " (for a move of 1 s; the values scale with its duration)"
     return tuple(issue.message + suffix for issue in found)
 
@@ -437,11 +563,6 @@ def linkage_curve(design: Design, motor, law: MotionLaw, duration: float,
         total_inertia=total)
 
 
-def refuse_auto(spec: str) -> UserError:
-    return UserError(f"{spec}: `auto` shape parameters are not chosen through a linkage yet; "
-                     f"give the shape", field="laws")
-
-
 @dataclass(frozen=True)
 class LinkageCurve:
     """One candidate through the linkage over the crank angle: the crank angle (rad,
@@ -478,13 +599,25 @@ def linkage_curve_of(design: Design, motor, law: MotionLaw, duration: float,
 
 
 def _dead_points(stage: LinkageStage) -> dict[str, float]:
-    """The linkage's dead points by name: crank angles (rad)."""
-    from sizer.mechanics.linkages.of_stage import linkage_of
+    """The linkage's dead points by name: crank angles (rad), the output's, and a driven
+    rocker's (crank and coupler in line)."""
+    from sizer.mechanics.linkages.of_stage import linkages_of, output_name
 
-    names = ("top dead centre", "bottom dead centre") if stage.output_linear else \
-        ("largest rocker angle", "least rocker angle")
-    return dict(zip(names, (float(x) for x in linkage_of(stage).dead_points()),
-                    strict=True))
+    views = linkages_of(stage)
+    out: dict[str, float] = {}
+    if not views.crank_driven:
+        out.update(zip(("largest rocker angle", "least rocker angle"),
+                       (float(x) for x in views.motor.dead_points()), strict=True))
+    name = output_name(stage)
+    if name == "slider_position":
+        names: tuple[str, ...] = ("top dead centre", "bottom dead centre")
+    else:
+        word = name.split("_")[0]
+        names = (f"largest {word} angle", f"least {word} angle")
+    points = views.output.dead_points()
+    if points.size:
+        out.update(zip(names, (float(x) for x in points), strict=True))
+    return out
 
 
 def _cycle_curve(design: Design, motor, law: MotionLaw, duration: float, transmission,

@@ -15,7 +15,12 @@ loads, Q = -s' (F + f sign(s_dot) + c s_dot), gives the torque the crank needs:
           + s'(theta) (F + f sign(s_dot) + c s_dot),   s_dot = s' theta_dot.
 
 The second term is the d(J_eq)/dq term: at constant crank speed it is the whole inertial
-torque (M s' s'' omega^2). No gravity acts on the links (a vertical slider's weight goes
+torque (M s' s'' omega^2). When the load is on another coordinate than the one the
+connecting link's output end moves with (a rocker's angle, a slider's position), e.g.
+the coupler's or the rod's angle, that end is the ``joint`` g(theta) and
+J(theta) = J_0 + M s'^2 + M_j g'^2, dJ/dtheta = 2 (M s' s'' + M_j g' g''), with M the
+load's inertia and M_j the link's mass at its output end (times the rocker's length
+squared for a rocker). No gravity acts on the links (a vertical slider's weight goes
 into the load F). Gears between the motor and the crank are the caller's: the motor
 functions here take an ideal ratio (no loss) at most; efficiencies and the limits of a
 gearbox stay with the transmission chain (sizer.mechanics.drive).
@@ -120,6 +125,9 @@ class LinkageDynamics:
     masses: LinkageMasses
     crank_radius: float | None = None
     rocker_length: float | None = None
+    joint: Linkage | None = None
+    """The coordinate ``link_mass_at_output`` moves with, when not the output (module
+    docstring); None: the output's."""
 
     def __post_init__(self) -> None:
         r = self.crank_radius
@@ -132,7 +140,7 @@ class LinkageDynamics:
         r = self.crank_radius
         if not _finite(r) or r < 0.0:
             raise UserError(f"must be a finite length >= 0, got {r!r} m", field="crank_radius")
-        if not self.linkage.output_linear:
+        if not self._joint.output_linear:
             length = self.rocker_length
             if length is None:
                 length = getattr(self.linkage, "rocker_length", None)
@@ -146,6 +154,19 @@ class LinkageDynamics:
             object.__setattr__(self, "rocker_length", float(length))
 
     @property
+    def _joint(self) -> Linkage:
+        return self.linkage if self.joint is None else self.joint
+
+    @property
+    def joint_inertia(self) -> float:
+        """M_j: the link's mass at its output end as an inertia on the joint's coordinate
+        (kg, or kg*m^2 on a rocker); 0 when the joint is the output (it is then in M)."""
+        if self.joint is None:
+            return 0.0
+        m = self.masses.link_mass_at_output
+        return m if self.joint.output_linear else m * (self.rocker_length or 0.0) ** 2
+
+    @property
     def crank_side_inertia(self) -> float:
         """J_0 = J_crank + m_pin r^2: what turns with the crank (kg*m^2)."""
         m = self.masses
@@ -156,20 +177,30 @@ class LinkageDynamics:
         """M: the slider's mass plus the link's mass at the slider (kg), or the rocker's
         inertia plus m l_rocker^2 (kg*m^2)."""
         m = self.masses
+        if self.joint is not None:
+            return m.output_inertia
         if self.linkage.output_linear:
             return m.output_inertia + m.link_mass_at_output
         return m.output_inertia + m.link_mass_at_output * (self.rocker_length or 0.0) ** 2
 
     def inertia(self, theta: np.ndarray) -> np.ndarray:
-        """J(theta) = J_0 + M s'(theta)^2 (kg*m^2)."""
-        s1 = self.linkage.output(np.asarray(theta, dtype=float), 1)
-        return self.crank_side_inertia + self.output_side_inertia * s1**2
+        """J(theta) = J_0 + M s'(theta)^2 (+ M_j g'^2) (kg*m^2)."""
+        theta = np.asarray(theta, dtype=float)
+        s1 = self.linkage.output(theta, 1)
+        out = self.crank_side_inertia + self.output_side_inertia * s1**2
+        if self.joint is not None:
+            out = out + self.joint_inertia * self.joint.output(theta, 1) ** 2
+        return out
 
     def inertia_derivative(self, theta: np.ndarray) -> np.ndarray:
-        """dJ/dtheta = 2 M s' s'' (kg*m^2/rad)."""
+        """dJ/dtheta = 2 M s' s'' (+ 2 M_j g' g'') (kg*m^2/rad)."""
         theta = np.asarray(theta, dtype=float)
         s1, s2 = self.linkage.output(theta, 1), self.linkage.output(theta, 2)
-        return 2.0 * self.output_side_inertia * s1 * s2
+        out = 2.0 * self.output_side_inertia * s1 * s2
+        if self.joint is not None:
+            out = out + 2.0 * self.joint_inertia * self.joint.output(theta, 1) \
+                * self.joint.output(theta, 2)
+        return out
 
     def kinetic_energy(self, theta: np.ndarray, theta_dot: np.ndarray) -> np.ndarray:
         """(1/2) J(theta) theta_dot^2 (J)."""
@@ -205,7 +236,12 @@ class LinkageDynamics:
         s1, s2 = self.linkage.output(theta, 1), self.linkage.output(theta, 2)
         M = self.output_side_inertia
         J = self.crank_side_inertia + M * s1**2
-        inertial = J * acceleration + M * s1 * s2 * speed**2
+        half_dj = M * s1 * s2
+        if self.joint is not None:
+            g1, g2 = self.joint.output(theta, 1), self.joint.output(theta, 2)
+            J = J + self.joint_inertia * g1**2
+            half_dj = half_dj + self.joint_inertia * g1 * g2
+        inertial = J * acceleration + half_dj * speed**2
         out_speed = s1 * speed
         m = self.masses
         damping = m.damping * s1 * out_speed

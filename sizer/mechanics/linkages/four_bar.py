@@ -31,20 +31,30 @@ with the same 2x2 matrix at every order, solved per sample by Cramer's rule:
 q3^(k) = Re(r_k e^{-i q2}) / (l3 sin(q2 + q3)), q2^(k) = Re(r_k e^{i q3}) / (l2 sin(q2 + q3)),
 with r_k the known terms. sin(q2 + q3) = 0 (coupler and rocker in line) never occurs in a
 Grashof crank-rocker.
+
+The output coordinate (``coordinate``) may be the rocker's angle q3 (the default), the
+coupler's angle q2, or the crank's own angle q1 (for a four-bar driven from its rocker,
+whose load turns with the crank: sizer.mechanics.linkages.of_stage reads the linkage in
+the other direction, the motor's coordinate and the load's both as functions of q1).
+q2 has its extremes where dq2/dq1 = -l1 sin(q1 + q3) / (l2 sin(q2 + q3)) = 0: the crank
+parallel to the rocker, e^{i q1} = +-e^{-i q3}. Then B = l4 - c e^{i q1} with
+c = l1 + l3 or l1 - l3 and |B - A| = l2 gives cos q1 = (l4^2 + c^2 - l2^2) / (2 l4 c)
+(:meth:`FourBar.dead_points`). The coupler does not turn fully in a crank-rocker, so its
+angle is read on the branch cut opposite the middle of its swing (continuous).
 """
 
 from __future__ import annotations
 
 import math
 import numbers
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from sizer.errors import UserError
 from sizer.mechanics.linkages import MAX_ORDER
 
-COORDINATES = ("rocker_angle",)
+COORDINATES = ("rocker_angle", "coupler_angle", "crank_angle")
 """The output coordinates a four-bar gives (its ``coordinate`` field)."""
 
 _LINKS = ("crank", "coupler", "rocker", "ground")
@@ -54,7 +64,8 @@ _LINKS = ("crank", "coupler", "rocker", "ground")
 class FourBar:
     """A four-bar crank-rocker: link lengths (m), assembly ``branch`` (+1 open, -1 crossed).
 
-    ``coordinate`` names the output (only "rocker_angle": s = q3, rad; module docstring).
+    ``coordinate`` names the output: "rocker_angle" (s = q3, rad), "coupler_angle"
+    (s = q2) or "crank_angle" (s = q1, the identity; module docstring).
     """
 
     crank: float
@@ -98,42 +109,65 @@ class FourBar:
                             field="crank")
 
     def output(self, theta: np.ndarray, order: int = 0) -> np.ndarray:
-        """d^order q3 / d theta^order at the crank angles theta (module docstring)."""
+        """d^order s / d theta^order at the crank angles theta, s the ``coordinate``."""
         if not 0 <= order <= MAX_ORDER:
             raise ValueError(f"order {order} not in 0..{MAX_ORDER}")
         theta = np.asarray(theta, dtype=float)
+        if self.coordinate == "crank_angle":
+            return theta.copy() if order == 0 else np.full(theta.shape, float(order == 1))
+        if self.coordinate == "coupler_angle":
+            return self.coupler_angle(theta, order)
         phi, s = self._angles(theta)
         if order == 0:
             return s
         return self._derivatives(theta, phi, s, order)[1][order]
 
+    def rocker_angle(self, theta: np.ndarray, order: int = 0) -> np.ndarray:
+        """d^order q3 / d theta^order, whatever the output coordinate."""
+        return replace(self, coordinate="rocker_angle").output(theta, order)
+
     def coupler_angle(self, theta: np.ndarray, order: int = 0) -> np.ndarray:
-        """d^order q2 / d theta^order (the coupler, for its inertia in the dynamics)."""
+        """d^order q2 / d theta^order (q2 continuous over the coupler's swing)."""
         if not 0 <= order <= MAX_ORDER:
             raise ValueError(f"order {order} not in 0..{MAX_ORDER}")
         theta = np.asarray(theta, dtype=float)
         phi, s = self._angles(theta)
         if order == 0:
-            return phi
+            centre = self._coupler_centre()
+            return centre + _wrapped(phi - centre)
         return self._derivatives(theta, phi, s, order)[0][order]
 
     def input_of(self, s: np.ndarray, half: int) -> np.ndarray:
         """theta in [-pi, pi) on the half-turn where ds/dtheta has the sign of ``half``.
 
-        The rocker angle fixes B; the crank pin A is where the circles |A| = l1 and
+        For the rocker angle: s fixes B; the crank pin A is where the circles |A| = l1 and
         |B - A| = l2 meet: theta = delta - branch * half * acos((b^2 + l1^2 - l2^2) /
-        (2 l1 b)), delta and b the direction and length of O2->B.
+        (2 l1 b)), delta and b the direction and length of O2->B. For the coupler angle:
+        w = l2 e^{i q2} - l4 and |l1 e^{i theta} + w| = l3 give theta = arg(w) +-
+        acos((l3^2 - l1^2 - |w|^2) / (2 l1 |w|)), the root where dq2/dtheta has the sign
+        of ``half`` (both roots are on the assembly's branch: a Grashof crank-rocker's
+        coupler takes each angle of its swing twice per turn on each branch).
         """
         s = np.asarray(s, dtype=float)
+        if self.coordinate == "crank_angle":
+            return s.copy()
         low, high = self.output_range()
         span = high - low
         bad = ~((s >= low - 1e-12 * span) & (s <= high + 1e-12 * span))
         if np.any(bad):
             value = float(s[bad].flat[0])
-            raise UserError(f"the rocker angle {value:g} rad is outside its swing "
+            name = self.coordinate.replace("_", " ")
+            raise UserError(f"the {name} {value:g} rad is outside its swing "
                             f"[{low:g}, {high:g}] rad", field="output")
         s = np.clip(s, low, high)
         l1, l2, l3, l4 = self.crank, self.coupler, self.rocker, self.ground
+        if self.coordinate == "coupler_angle":
+            w = l2 * np.exp(1j * s) - l4
+            b = np.abs(w)
+            c = np.clip((l3 * l3 - l1 * l1 - b * b) / (2.0 * l1 * b), -1.0, 1.0)
+            roots = [_wrapped(np.angle(w) + sign * np.arccos(c)) for sign in (1.0, -1.0)]
+            slopes = [self.coupler_angle(r, 1) for r in roots]
+            return np.where(half * slopes[0] >= half * slopes[1], roots[0], roots[1])
         bx = l4 - l3 * np.cos(s)
         by = l3 * np.sin(s)
         b = np.hypot(bx, by)
@@ -141,9 +175,15 @@ class FourBar:
         return _wrapped(np.arctan2(by, bx) - self.branch * half * np.arccos(c))
 
     def dead_points(self) -> np.ndarray:
-        """[theta at the largest rocker angle, theta at the least]: crank and coupler in
-        line, extended (|O2 B| = l2 + l1) and folded (|O2 B| = l2 - l1), B at the law of
-        cosines' angle from the ground line."""
+        """The crank angles where ds/dtheta = 0, [at the largest s, at the least].
+
+        Rocker angle: crank and coupler in line, extended (|O2 B| = l2 + l1) and folded
+        (|O2 B| = l2 - l1), B at the law of cosines' angle from the ground line. Coupler
+        angle: crank parallel to rocker (module docstring). Crank angle: none."""
+        if self.coordinate == "crank_angle":
+            return np.empty(0)
+        if self.coordinate == "coupler_angle":
+            return self._coupler_dead_points()
         l1, l2, l3, l4 = self.crank, self.coupler, self.rocker, self.ground
         extended = _cosine_angle(l1 + l2, l4, l3)
         folded = _cosine_angle(l2 - l1, l4, l3) - math.pi
@@ -152,13 +192,53 @@ class FourBar:
         return _wrapped(np.array([-folded, -extended]))
 
     def output_range(self) -> tuple[float, float]:
-        """The rocker's swing: its inner angle at O4 folded and extended (branch +1)."""
+        """The output's swing over a turn of the crank (the values at the dead points;
+        unbounded for the crank angle)."""
+        if self.coordinate == "crank_angle":
+            return -math.inf, math.inf
+        if self.coordinate == "coupler_angle":
+            values = self.coupler_angle(self._coupler_dead_points())
+            return float(values[1]), float(values[0])
         l1, l2, l3, l4 = self.crank, self.coupler, self.rocker, self.ground
         extended = _cosine_angle(l4, l3, l1 + l2)
         folded = _cosine_angle(l4, l3, l2 - l1)
         if self.branch == 1:
             return folded, extended
         return -extended, -folded
+
+    def _coupler_dead_points(self) -> np.ndarray:
+        """[theta at the largest coupler angle, at the least] (module docstring): of the
+        closed form's candidates, those where the assembly's crank and rocker are
+        parallel."""
+        l1, l2, l3, l4 = self.crank, self.coupler, self.rocker, self.ground
+        found = []
+        for c in (l1 + l3, l1 - l3):
+            cosine = (l4 * l4 + c * c - l2 * l2) / (2.0 * l4 * c)
+            if abs(cosine) > 1.0 + 1e-12:
+                continue
+            angle = math.acos(min(1.0, max(-1.0, cosine)))
+            for theta in (angle, -angle):
+                s = float(self.rocker_angle(np.array([theta]))[0])
+                if abs(math.sin(theta + s)) < 1e-9:
+                    found.append(theta)
+        phi, _ = self._angles(np.asarray(found, dtype=float))
+        if len(found) != 2:  # unreachable for a Grashof crank-rocker
+            raise ValueError(f"found {len(found)} coupler dead points")
+        first, second = (float(x) for x in found)
+        # the largest coupler angle: where q2'' < 0
+        curvature = self._derivatives(np.array([first]), phi[:1],
+                                      self.rocker_angle(np.array([first])), 2)[0][2]
+        if float(curvature[0]) > 0.0:
+            first, second = second, first
+        return _wrapped(np.array([first, second]))
+
+    def _coupler_centre(self) -> float:
+        """The middle of the coupler's swing (its branch cut is opposite): the coupler
+        does not turn fully, so its angle unwrapped over a turn of the crank spans less
+        than a turn."""
+        phi, _ = self._angles(np.linspace(-math.pi, math.pi, 65))
+        phi = np.unwrap(phi)
+        return float(_wrapped(np.array([0.5 * (phi.max() + phi.min())]))[0])
 
     def _angles(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The coupler and rocker angles (q2, q3) from the circles about A and O4."""
