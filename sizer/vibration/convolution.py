@@ -148,10 +148,11 @@ def edge_values(grid: Grid, s: np.ndarray) -> np.ndarray:
     return out
 
 
-def values_at(grid: Grid, s: np.ndarray, at_edges: np.ndarray, tau: np.ndarray
-              ) -> np.ndarray:
-    """w(tau) for each row's s and tau in [0, 1] (1-D arrays), from w at the edge at or
-    below tau (``at_edges`` from :func:`edge_values`) and the nodes of [edge, tau]."""
+def values_at(grid: Grid, s: np.ndarray, at_edges: np.ndarray, tau: np.ndarray,
+              row: np.ndarray | None = None) -> np.ndarray:
+    """w(tau) for each s and tau in [0, 1] (1-D arrays), from w at the edge at or below
+    tau (row ``row[i]`` of ``at_edges``, from :func:`edge_values`; row i by default) and
+    the nodes of [edge, tau]."""
     tau = np.clip(tau, 0.0, 1.0)
     k = np.clip(np.searchsorted(grid.edges, tau, side="right") - 1, 0, grid.edges.size - 2)
     left = grid.edges[k]
@@ -159,7 +160,9 @@ def values_at(grid: Grid, s: np.ndarray, at_edges: np.ndarray, tau: np.ndarray
     nodes = left[:, None] + d[:, None] * grid.xi
     term = d[:, None] * grid.weight * grid.law.derivative(nodes, 2)
     rest = np.sum(term * np.exp(s[:, None] * (tau[:, None] - nodes)), axis=1)
-    return np.exp(s * d) * at_edges[np.arange(tau.size), k] + rest
+    if row is None:
+        row = np.arange(tau.size)
+    return np.exp(s * d) * at_edges[row, k] + rest
 
 
 def grouped(s: np.ndarray, width: int) -> list[tuple[np.ndarray, float]]:

@@ -39,6 +39,9 @@ RESIDUAL_STEP = 6.0
 """Phase of one part of the residual's grid [rad]: 20 Gauss nodes integrate e^{i theta}
 over 6 rad to far below rounding ((3)^40 / 40! ~ 1e-29)."""
 
+CANDIDATES = 8
+"""Highest sampled local maxima of |z| refined to the exact ones."""
+
 NEWTON_STEPS = 6
 """Newton iterations refining the peak of |z| from the grid's best sample."""
 
@@ -110,7 +113,8 @@ def peak_output(law: MotionLaw, s: np.ndarray, c: np.ndarray, w0: np.ndarray,
     """max over tau in [0, 1] of |Re sum_j c_j m_j(tau)|, m_j = e^{s_j tau} w0_j + scale_j
     w(tau; s_j), for rows of modes (arrays (rows, modes)); the output is C^1 in tau
     (its c . B term is zero). Exact on a grid (16 samples a period, at least ``samples``
-    over the move), then refined by Newton on the output's derivative."""
+    over the move), its CANDIDATES highest local maxima refined by Newton on the
+    output's derivative."""
     rows, modes = s.shape
     flat = s.ravel()
     cap = float(cv.s_cap_of(np.array([np.max(np.abs(flat), initial=0.0)]))[0])
@@ -118,34 +122,45 @@ def peak_output(law: MotionLaw, s: np.ndarray, c: np.ndarray, w0: np.ndarray,
     at_edges = cv.edge_values(grid, flat)  # (rows * modes, K + 1)
     total = (np.exp(np.multiply.outer(flat, grid.edges)) * w0.ravel()[:, None]
              + scale.ravel()[:, None] * at_edges).reshape(rows, modes, -1)
-    out = np.einsum("rm,rmk->rk", c, total).real
-    k = np.argmax(np.abs(out), axis=1)
-    best = np.abs(out[np.arange(rows), k])
+    out = np.abs(np.einsum("rm,rmk->rk", c, total).real)  # (rows, K + 1)
+    # the CANDIDATES highest local maxima of the samples are refined: two humps of
+    # nearly equal height may swap places between the samples and the exact values
+    padded = np.pad(out, ((0, 0), (1, 1)), constant_values=-1.0)
+    humps = np.where((out >= padded[:, :-2]) & (out >= padded[:, 2:]), out, -1.0)
+    count = min(CANDIDATES, out.shape[1])
+    k = np.argpartition(-humps, count - 1, axis=1)[:, :count].ravel()
+    row = np.repeat(np.arange(rows), count)
+    best = out[row, k]
     low = grid.edges[np.maximum(k - 1, 0)]
     high = grid.edges[np.minimum(k + 1, grid.edges.size - 1)]
     tau = grid.edges[k].copy()
-    inside = np.ones(rows, dtype=bool)
-    rep = np.repeat
+    inside = np.ones(tau.size, dtype=bool)
+    pick = (row[:, None] * modes + np.arange(modes)).ravel()  # flattened (row, mode)
+    s_c, c_c, w0_c, scale_c = (a[row] for a in (s, c, w0, scale))
+    flat_c, w0_f, scale_f = s_c.ravel(), w0_c.ravel(), scale_c.ravel()
+
+    def modes_at(tau: np.ndarray) -> np.ndarray:
+        return _modes_at(grid, flat_c, at_edges, np.repeat(tau, modes), w0_f, scale_f,
+                         pick).reshape(tau.size, modes)
+
     for _ in range(NEWTON_STEPS):
-        m = _modes_at(grid, flat, at_edges, rep(tau, modes), w0.ravel(), scale.ravel())
-        m = m.reshape(rows, modes)
+        m = modes_at(tau)
         acc = grid.law.derivative(tau, 2)[:, None]
-        d1 = _combination(s * m + scale * acc, c)
-        d2 = _combination(s * s * m + s * scale * acc, c)
+        d1 = _combination(s_c * m + scale_c * acc, c_c)
+        d2 = _combination(s_c * s_c * m + s_c * scale_c * acc, c_c)
         with np.errstate(divide="ignore", invalid="ignore"):
             step = np.where(d2 != 0.0, d1 / d2, 0.0)
         tau = tau - np.where(inside, step, 0.0)
         inside &= (tau >= low) & (tau <= high)
         tau = np.clip(tau, low, high)
-    m = _modes_at(grid, flat, at_edges, rep(tau, modes), w0.ravel(), scale.ravel())
-    refined = np.abs(_combination(m.reshape(rows, modes), c))
-    return np.maximum(best, refined)
+    refined = np.abs(_combination(modes_at(tau), c_c))
+    return np.maximum(best, refined).reshape(rows, count).max(axis=1)
 
 
 def _modes_at(grid: cv.Grid, s: np.ndarray, at_edges: np.ndarray, tau: np.ndarray,
-              w0: np.ndarray, scale: np.ndarray) -> np.ndarray:
-    """e^{s tau} w0 + scale w(tau; s), per flattened row."""
-    return np.exp(s * tau) * w0 + scale * cv.values_at(grid, s, at_edges, tau)
+              w0: np.ndarray, scale: np.ndarray, row: np.ndarray) -> np.ndarray:
+    """e^{s tau} w0 + scale w(tau; s), per flattened (candidate, mode)."""
+    return np.exp(s * tau) * w0 + scale * cv.values_at(grid, s, at_edges, tau, row)
 
 
 def tracking_error(law: MotionLaw | str, fT: np.ndarray | float, damping_ratio: float = 0.0,
@@ -169,7 +184,7 @@ def tracking_error(law: MotionLaw | str, fT: np.ndarray | float, damping_ratio: 
     for cap in np.unique(caps):
         rows = np.flatnonzero(caps == cap)
         grid = cv.law_grid(the_law, float(cap), TRACK_STEP, int(samples))
-        size = max(1, cv.CHUNK // (grid.edges.size + 2 * grid.xi.size))
+        size = max(1, cv.CHUNK // (grid.edges.size + CANDIDATES * grid.xi.size) // 2)
         for i in range(0, rows.size, size):
             part = rows[i:i + size]
             n = part.size
