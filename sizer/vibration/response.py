@@ -35,9 +35,10 @@ TRACK_STEP = 2.0 * math.pi / 16.0
 TRACK_SAMPLES = 64
 """Fewest parts of the move in the tracking grid (slow modes)."""
 
-RESIDUAL_STEP = 6.0
-"""Phase of one part of the residual's grid [rad]: 20 Gauss nodes integrate e^{i theta}
-over 6 rad to far below rounding ((3)^40 / 40! ~ 1e-29)."""
+RESIDUAL_STEP = 4.0
+"""Largest |s| times a part's width in the residual's grid: 20 Gauss nodes integrate the
+kernel over it to far below rounding (2^40 / 40! ~ 1e-36), and its series about the
+part's middle converges in sizer.vibration.convolution.TAYLOR terms."""
 
 CANDIDATES = 8
 """Highest sampled local maxima of |z| refined to the exact ones."""
