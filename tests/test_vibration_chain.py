@@ -151,3 +151,69 @@ def test_critically_damped_chain_is_a_user_error() -> None:
     chain = ChainLoad((1.0,), (20.0,), (100.0,))  # d = 2 sqrt(k m): delta = 1
     with pytest.raises(UserError, match="critically damped"):
         chain_vibration("cycloidal", 1.0, 1.0, chain)
+
+
+def test_periodic_cycle_of_the_book_chain_matches_solve_ivp() -> None:
+    """Two moves (out and back) repeated every 1.2 s on the 5-DOF chain: the periodic
+    state returned comes back after one period of the chain's equations in x_i, and each
+    move's end state and peak |x_5 - y| agree with them."""
+    from sizer.vibration.response import Segment, cycle_response
+
+    segments = [Segment("cycloidal", 0.0, 0.4, 0.3),
+                Segment("trapezoidal(alpha=1/4)", 0.6, 0.3, -0.3)]
+    period = 1.2
+    result = cycle_response(segments, BOOK, period=period)
+    m, d, k = (np.array(v) for v in (BOOK.masses, BOOK.dampings, BOOK.stiffnesses))
+    laws = [make_law(seg.law) for seg in segments]
+
+    def inputs(t: float) -> tuple[float, float]:
+        y, yd = 0.0, 0.0
+        for law, seg in zip(laws, segments, strict=True):
+            tau = np.array([min(max((t - seg.start) / seg.duration, 0.0), 1.0)])
+            y += seg.displacement * float(law.position(tau)[0])
+            if seg.start <= t <= seg.start + seg.duration:
+                yd += seg.displacement / seg.duration * float(law.velocity(tau)[0])
+        return y, yd
+
+    def rhs(t: float, state: np.ndarray) -> np.ndarray:
+        x, v = state[:5], state[5:]
+        y, yd = inputs(t)
+        force = -d * (v - np.concatenate([[yd], v[:-1]])) - k * (x - np.concatenate([[y], x[:-1]]))
+        force[:-1] += d[1:] * (v[1:] - v[:-1]) + k[1:] * (x[1:] - x[:-1])
+        return np.concatenate([v, force / m])
+
+    def to_z(state: np.ndarray, t: float) -> np.ndarray:
+        y, yd = inputs(t)
+        return np.concatenate([np.diff(np.concatenate([[y], state[:5]])),
+                               np.diff(np.concatenate([[yd], state[5:]]))])
+
+    z0 = np.array(result.moves[0].start_state)
+    assert np.abs(z0[:5]).max() > 1e-6  # the previous cycle's vibration is carried in
+    state = np.concatenate([np.cumsum(z0[:5]), np.cumsum(z0[5:])])  # y = y' = 0 at t = 0
+    cuts = sorted({0.0, period, *(seg.start + seg.duration * float(b) for law, seg in
+                                  zip(laws, segments, strict=True) for b in law.breakpoints)})
+    ends = {seg.start + seg.duration: i for i, seg in enumerate(segments)}
+    peaks = [0.0, 0.0]
+    checked = 0
+    for a, b in itertools.pairwise(cuts):
+        sol = solve_ivp(rhs, (a, b), state, method="DOP853", rtol=1e-12, atol=1e-15,
+                        dense_output=True)
+        state = sol.y[:, -1]
+        for i, seg in enumerate(segments):
+            if seg.start <= a and b <= seg.start + seg.duration + 1e-12:
+                grid = np.linspace(a, b, 1500)
+                error = np.abs([sol.sol(t)[4] - inputs(t)[0] for t in grid])
+                j = int(np.argmax(error))
+                best = minimize_scalar(
+                    lambda t, s=sol: -abs(s.sol(t)[4] - inputs(t)[0]), method="bounded",
+                    bounds=(grid[max(j - 1, 0)], grid[min(j + 1, 1499)]),
+                    options={"xatol": 1e-14})
+                peaks[i] = max(peaks[i], float(error[j]), -float(best.fun))
+        if b in ends:
+            np.testing.assert_allclose(result.moves[ends[b]].end_state, to_z(state, b),
+                                       rtol=1e-7, atol=1e-11)
+            checked += 1
+    assert checked == 2
+    np.testing.assert_allclose(to_z(state, period), z0, rtol=1e-7, atol=1e-11)
+    for move, peak in zip(result.moves, peaks, strict=True):
+        assert move.peak_error == pytest.approx(peak, rel=1e-8)

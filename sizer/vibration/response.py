@@ -20,6 +20,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -28,6 +29,9 @@ from sizer.laws.base import MotionLaw
 from sizer.laws.registry import make_law
 from sizer.vibration import convolution as cv
 from sizer.vibration.elastic_load import ElasticLoad
+
+if TYPE_CHECKING:
+    from sizer.vibration.chain_load import ChainLoad
 
 TRACK_STEP = 2.0 * math.pi / 16.0
 """Phase of one part of the tracking grid [rad]: 16 samples a period of the mode."""
@@ -260,13 +264,14 @@ class MoveVibration:
     """The load during and after one move of a cycle (units of the displacement).
 
     ``residual``: amplitude A of the free vibration at the move's end (A = |W| / omega_d,
-    the envelope of z after it); ``peak_error``: max |z| during the move; ``start_state``
-    and ``end_state``: (z, z') at its start and end."""
+    the envelope of z after it; for a chain the sum of its modes' envelopes);
+    ``peak_error``: max |z| during the move; ``start_state`` and ``end_state``: (z, z')
+    at its start and end ([z_1 .. z_n, z_1' .. z_n'] for a chain)."""
 
     residual: float
     peak_error: float
-    start_state: tuple[float, float]
-    end_state: tuple[float, float]
+    start_state: tuple[float, ...]
+    end_state: tuple[float, ...]
 
 
 @dataclass(frozen=True)
@@ -300,53 +305,93 @@ def _check_segments(segments: Sequence[Segment], period: float | None) -> None:
                             field="period")
 
 
-def cycle_response(segments: Sequence[Segment], load: ElasticLoad,
-                   period: float | None = None,
-                   initial: tuple[float, float] = (0.0, 0.0)) -> CycleResponse:
-    """The load through a cycle of moves with dwells between them, the state carried
-    exactly from one to the next (the state-transition e^{lambda t} of the mode).
+@dataclass(frozen=True)
+class ModalModel:
+    """A linear load by its modes: coordinates W_j' = lam_j W_j + beta_j y''; output
+    (the error of the load's last mass) Re sum_j c_j W_j; state = Re(vectors @ W)."""
 
-    Without ``period`` the load starts from ``initial`` (rest) at the first move. With
+    lam: np.ndarray
+    beta: np.ndarray
+    c: np.ndarray
+    vectors: np.ndarray
+
+    @classmethod
+    def of(cls, load: ElasticLoad | ChainLoad) -> ModalModel:
+        """The 1-DOF load (z = -Im W / omega_d, z' = -Im(lambda W) / omega_d) or a chain."""
+        if isinstance(load, ElasticLoad):
+            lam = load.omega_n * complex(-load.damping_ratio,
+                                         math.sqrt(1.0 - load.damping_ratio**2))
+            vectors = np.array([[1j], [1j * lam]]) / load.omega_d
+            return cls(np.array([lam]), np.ones(1, dtype=complex),
+                       np.array([1j / load.omega_d]), vectors)
+        modes = load.modes
+        return cls(modes.lam, modes.beta, modes.c, modes.vectors)
+
+    def coordinates(self, state: Sequence[float]) -> np.ndarray:
+        """W of a real state (for the 1-DOF load, (z, z'))."""
+        x = np.asarray(state, dtype=float)
+        if x.shape != (self.vectors.shape[0],) or not np.all(np.isfinite(x)):
+            raise UserError(f"initial state must be {self.vectors.shape[0]} finite numbers",
+                            field="initial")
+        if self.lam.size == 1:
+            return np.array([_coordinate(x[0], x[1], complex(self.lam[0]),
+                                         float(self.lam[0].imag))])
+        return np.linalg.solve(self.vectors, x.astype(complex))
+
+    def state(self, W: np.ndarray) -> tuple[float, ...]:
+        return tuple(float(v) for v in (self.vectors @ W).real)
+
+
+def cycle_response(segments: Sequence[Segment], load: ElasticLoad | ChainLoad,
+                   period: float | None = None,
+                   initial: Sequence[float] | None = None) -> CycleResponse:
+    """The load through a cycle of moves with dwells between them, the state carried
+    exactly from one to the next (the state-transition e^{lambda t} of each mode).
+
+    ``load``: the 1-DOF ElasticLoad (states (z, z')) or a ChainLoad of sec. 7.1.2 (states
+    [z_1 .. z_n, z_1' .. z_n'], residual and peak of the last mass's error x_n - y; its
+    residual is the sum of the modes' envelopes, sizer.vibration.chain_load). Without
+    ``period`` the load starts from ``initial`` (rest by default) at the first move. With
     it the cycle repeats every ``period`` seconds and the steady periodic state is
     returned: W = e^{lambda P} W + r solved for the state at the first start (a
-    UserError for an undamped load with f_n P an integer: no periodic state exists).
+    UserError for an undamped mode with f_n P an integer: no periodic state exists).
     """
     _check_segments(segments, period)
-    lam = load.omega_n * complex(-load.damping_ratio, math.sqrt(1.0 - load.damping_ratio**2))
-    omega_d = load.omega_d
+    model = ModalModel.of(load)
+    lam, c = model.lam, model.c
     prepared = [(_law(seg.law), seg) for seg in segments]
 
-    def run(W: complex, keep: bool) -> tuple[complex, list[MoveVibration]]:
+    def run(W: np.ndarray, keep: bool) -> tuple[np.ndarray, list[MoveVibration]]:
         t = segments[0].start
         out: list[MoveVibration] = []
         for law, seg in prepared:
             W = W * np.exp(lam * (seg.start - t))
             T, h = seg.duration, seg.displacement
-            s = np.array([lam * T])
-            end = complex(np.exp(s[0]) * W + (h / T) * forced_end(law, s)[0])
+            s = lam * T
+            scale = model.beta * (h / T)
+            end = np.exp(s) * W + scale * forced_end(law, s)
             if keep:
-                peak = float(peak_output(law, s[:, None], np.full((1, 1), 1j),
-                                         np.full((1, 1), W), np.full((1, 1), h / T))[0])
-                start_state = tuple(float(v) for v in _state(W, lam, omega_d))
-                end_state = tuple(float(v) for v in _state(end, lam, omega_d))
-                out.append(MoveVibration(abs(end) / omega_d, peak / omega_d,
-                                         start_state, end_state))  # type: ignore[arg-type]
+                peak = float(peak_output(law, s[None, :], c[None, :], W[None, :],
+                                         scale[None, :])[0])
+                out.append(MoveVibration(float(np.sum(np.abs(c * end))), peak,
+                                         model.state(W), model.state(end)))
             W = end
             t = seg.start + T
         return W, out
 
-    W0 = _coordinate(*initial, lam, omega_d)
+    size = model.vectors.shape[0]
+    W0 = model.coordinates(np.zeros(size) if initial is None else initial)
     if period is not None:
         span_end = segments[0].start + period
         last = segments[-1].start + segments[-1].duration
-        r, _ = run(0j, keep=False)
-        r = complex(r * np.exp(lam * (span_end - last)))
-        phi = complex(np.exp(lam * period))
-        if abs(1.0 - phi) < 1e-9:
-            raise UserError(f"an undamped load with f_n x period = "
-                            f"{load.natural_frequency * period:g} (an integer) has no "
-                            f"steady periodic state: it resonates with the cycle",
-                            field="period")
+        r, _ = run(np.zeros(lam.size, dtype=complex), keep=False)
+        r = r * np.exp(lam * (span_end - last))
+        phi = np.exp(lam * period)
+        if np.any(np.abs(1.0 - phi) < 1e-9):
+            f = float(np.abs(lam[np.argmin(np.abs(1.0 - phi))])) / (2.0 * math.pi)
+            raise UserError(f"an undamped mode with f_n x period = {f * period:g} (an "
+                            f"integer) has no steady periodic state: it resonates with the "
+                            f"cycle", field="period")
         W0 = r / (1.0 - phi)
     _, moves = run(W0, keep=True)
     return CycleResponse(tuple(moves), period is not None)
