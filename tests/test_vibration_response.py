@@ -112,7 +112,7 @@ def test_cycloidal_undamped_residual_vanishes_at_integer_fT_from_two() -> None:
 @pytest.mark.parametrize("alpha", [1 / 3, 1 / 4, 0.4])
 def test_trapezoid_residual_follows_its_closed_form_and_zeros(alpha: float) -> None:
     a = 1.0 / (alpha * (1.0 - alpha))
-    fT = np.linspace(0.3, 25.0, 997)
+    fT = np.concatenate([np.linspace(0.3, 25.0, 997), [123.45, 311.7, 1000.3]])
     closed = 4 * a * np.abs(np.sin(math.pi * fT * alpha) * np.sin(math.pi * fT * (1 - alpha))
                             ) / (2 * math.pi * fT) ** 2
     spec = f"trapezoidal(alpha={alpha!r})"
@@ -334,6 +334,21 @@ def test_negative_natural_frequency_is_a_user_error() -> None:
     with pytest.raises(UserError, match="positive") as info:
         ElasticLoad(-3.0, 0.1)
     assert info.value.field == "load.natural_frequency"
+
+
+def test_bad_samples_and_moves_are_user_errors() -> None:
+    with pytest.raises(UserError, match="samples") as info:
+        tracking_error("cycloidal", 2.0, 0.0, samples=1)
+    assert info.value.field == "samples"
+    load = ElasticLoad(2.0, 0.1)
+    with pytest.raises(UserError, match="duration must be positive") as info:
+        move_response("cycloidal", 0.0, 1.0, load, np.array([0.1]))
+    assert info.value.field == "duration"
+    with pytest.raises(UserError, match="displacement must be finite"):
+        move_response("cycloidal", 1.0, math.inf, load, np.array([0.1]))
+    with pytest.raises(UserError, match="initial state") as info:
+        cycle_response([Segment("cycloidal", 0.0, 1.0, 1.0)], load, initial=(0.0,))
+    assert info.value.field == "initial"
 
 
 def test_bad_cycles_are_user_errors() -> None:

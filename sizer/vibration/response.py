@@ -174,8 +174,10 @@ def tracking_error(law: MotionLaw | str, fT: np.ndarray | float, damping_ratio: 
 
     z is exact on a grid of 16 samples a damped period (at least ``samples`` over the
     move), and the best sample is refined to the exact local maximum (Newton on z' = 0);
-    the value returned is |z| at a point of the move, never below the grid's best. For
-    large f_n T it tends to the quasi-static C_a / (2 pi f_n T)^2 (z ~ -y'' / omega_n^2).
+    the value returned is |z| at a point of the move, never below the grid's best. It
+    scales as 1 / (f_n T)^2 for large f_n T: the quasi-static C_a / (2 pi f_n T)^2
+    (z ~ -y'' / omega_n^2) for a continuous acceleration, plus the free vibration each
+    jump of q_N'' starts (the trapezoid's first step doubles it).
     Values sharing a grid (f_n T within a factor 2) are computed together.
     """
     delta = _check_damping(damping_ratio)
