@@ -9,9 +9,11 @@ e^{s (tau - u)} (Re s <= 0) never overflows, however large delta omega_n T.
 One grid per law and size of s: the law's own quadrature intervals (sizer.laws.quadrature),
 each cut into equal parts whose phase |s| dtau stays below a step, with the transform's
 NODES Gauss-Legendre nodes a part (exact to rounding, as the transform). On equal parts of
-width d, the kernel from a node to its part's end, e^{s d (1 - xi_m)}, is the same for every
-part, and w obeys w_{k+1} = e^{s d} w_k + b_k: NODES exponentials per value and block
-instead of one per node, and a scaled cumulative sum gives w at every edge.
+width d, a part's integral b_k is e^{s d / 2} times the series of e^{(s d / 2) eta} (eta the
+node's offset from the part's middle, |s d / 2| <= 2) against the part's precomputed
+moments, and w obeys w_{k+1} = e^{s d} w_k + b_k: a few exponentials per value and block
+instead of one per node; the weighted sum of the b_k gives w(1), a scaled cumulative sum
+w at every edge.
 """
 
 from __future__ import annotations
