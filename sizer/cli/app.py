@@ -33,6 +33,7 @@ from sizer.cli import (
     schema_command,
     segments_command,
     size_command,
+    spectrum_command,
 )
 from sizer.cli.exit_codes import ExitCode
 from sizer.errors import UserError
@@ -45,7 +46,8 @@ EXIT_CODES_HELP = ("Exit codes: 0 ok; 1 a check failed (sizer check: a limit not
                    "130 interrupted.")
 
 COMMAND_MODULES = (laws_command, law_command, size_command, check_command, schema_command,
-                   catalog_command, plot_command, report_command, segments_command)
+                   catalog_command, plot_command, report_command, segments_command,
+                   spectrum_command)
 
 app = typer.Typer(
     name="sizer",
