@@ -14,8 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
-from tests.cli_run import assert_user_error, run_cli
+from cli_run import assert_user_error, run_cli
 
 PI = math.pi
 
@@ -68,6 +67,24 @@ def test_book_scale_and_physical_units() -> None:
     linear = run_cli("spectrum", "cycloidal", "--points", "3", "--displacement", "200 mm",
                      "--duration", "1 s", "-f", "csv")
     assert read_csv(linear.stdout)[0] == ["f [Hz]", "|A| cycloidal [m/s]"]
+
+
+def test_velocity_and_jerk_orders() -> None:
+    """--order 3 of the trapezoid: four jerk impulses of a = 1/(alpha (1 - alpha)) at 0,
+    alpha, 1 - alpha, 1; --order 1 scaled: |V(0)| = h (the area under the velocity)."""
+    result = run_cli("spectrum", "trapezoidal(alpha=1/3)", "--order", "3", "--max-ft", "4",
+                     "--points", "9", "-f", "csv")
+    headers, data = read_csv(result.stdout)
+    assert headers == ["fT", "|J_N| trapezoidal(alpha=1/3)"]
+    s = 2j * PI * data[:, 0]
+    alpha, a = 1 / 3, 4.5
+    impulses = a * np.abs(1 - np.exp(-s * alpha) - np.exp(-s * (1 - alpha)) + np.exp(-s))
+    np.testing.assert_allclose(data[:, 1], impulses, rtol=1e-10, atol=1e-12)
+    velocity = run_cli("spectrum", "cycloidal", "--order", "1", "--points", "2",
+                       "--displacement", "2 rad", "--duration", "0.5 s", "-f", "csv")
+    headers, data = read_csv(velocity.stdout)
+    assert headers == ["f [Hz]", "|V| cycloidal [rad]"]
+    assert data[0, 1] == pytest.approx(2.0, rel=1e-14)
 
 
 def test_json_and_table_and_md() -> None:
