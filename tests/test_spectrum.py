@@ -312,3 +312,13 @@ def test_bad_inputs() -> None:
     with pytest.raises(UserError) as caught:
         frequency_spectrum(law, 1.0, 1.0, 0.0)
     assert caught.value.field == "duration"
+    with pytest.raises(UserError) as caught:  # no closed form: the transform's range
+        acceleration_spectrum("modified_sinusoidal", 2e5)
+    assert caught.value.field == "fT"
+    with pytest.raises(UserError, match="unknown law"):
+        acceleration_spectrum("nosuch", 1.0)
+
+
+def test_spec_text_is_a_law() -> None:
+    assert acceleration_spectrum("cycloidal", 1.0) == pytest.approx(PI, rel=1e-15)
+    assert harmonic_content("cycloidal", 1).amplitude[0] == pytest.approx(2 * PI)

@@ -23,6 +23,7 @@ import numpy as np
 
 from sizer.errors import UserError
 from sizer.laws.base import MotionLaw
+from sizer.laws.registry import make_law
 from sizer.vibration.spectrum import acceleration_transform
 
 MAX_HARMONICS = 1_000_000
@@ -86,9 +87,10 @@ def harmonic_numbers(max_ft: float, period_ratio: float) -> np.ndarray:
     return np.arange(1, max(count, 0) + 1)
 
 
-def harmonic_content(law: MotionLaw, k: np.ndarray | int, period_ratio: float = 1.0,
+def harmonic_content(law: MotionLaw | str, k: np.ndarray | int, period_ratio: float = 1.0,
                      with_return: bool = False) -> HarmonicContent:
     """The coefficients c_k of the move repeated every T_c = period_ratio * T (sec. 7.3.3)."""
+    law = make_law(law)
     ratio = check_period_ratio(period_ratio, with_return)
     numbers = np.atleast_1d(np.asarray(k))
     if numbers.dtype.kind not in "iu" or np.any(numbers < 0):

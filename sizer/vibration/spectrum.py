@@ -22,6 +22,7 @@ import numpy as np
 
 from sizer.errors import UserError
 from sizer.laws.base import MotionLaw
+from sizer.laws.registry import make_law
 from sizer.vibration.spectrum_closed_forms import closed_form_spectrum
 from sizer.vibration.transform import law_transform
 
@@ -29,6 +30,12 @@ TWO_PI = 2.0 * math.pi
 
 ORDERS = (1, 2, 3)
 """Derivatives with a spectrum: velocity, acceleration, jerk."""
+
+MAX_NUMERICAL_FT = 1e5
+"""Largest |f T| of the numerical transform (its nodes grow with f T: 6e6 at 1e5)."""
+
+LawLike = MotionLaw | str
+"""A law or its spec text (sizer.laws.make_law)."""
 
 
 def normalized_frequencies(fT: np.ndarray | float, field: str = "fT") -> np.ndarray:
@@ -42,7 +49,15 @@ def normalized_frequencies(fT: np.ndarray | float, field: str = "fT") -> np.ndar
     return values
 
 
-def acceleration_transform(law: MotionLaw, fT: np.ndarray | float) -> np.ndarray:
+def _numerical_frequencies(fT: np.ndarray | float) -> np.ndarray:
+    values = normalized_frequencies(fT)
+    if np.any(np.abs(values) > MAX_NUMERICAL_FT):
+        raise UserError(f"the numerical transform goes up to |f T| = {MAX_NUMERICAL_FT:g}",
+                        field="fT")
+    return values
+
+
+def acceleration_transform(law: LawLike, fT: np.ndarray | float) -> np.ndarray:
     """The complex A_N(fT) = int q_N''(tau) exp(-i 2 pi fT tau) dtau over the move.
 
     The acceleration is the law's distributional one, zero outside the move (the law at
@@ -51,7 +66,8 @@ def acceleration_transform(law: MotionLaw, fT: np.ndarray | float) -> np.ndarray
     q_N'' would miss; it is s F_1(s) + q_N'(1) e^(-s) - q_N'(0) then (F_1 the velocity's
     transform, integration by parts).
     """
-    fT = normalized_frequencies(fT)
+    law = make_law(law)
+    fT = _numerical_frequencies(fT)
     s = 1j * TWO_PI * fT
     if law.continuity >= 1:
         return law_transform(law, s, order=2)
@@ -60,28 +76,29 @@ def acceleration_transform(law: MotionLaw, fT: np.ndarray | float) -> np.ndarray
     return s * law_transform(law, s, order=1) + end * np.exp(-s) - start
 
 
-def numerical_spectrum(law: MotionLaw, fT: np.ndarray | float) -> np.ndarray:
+def numerical_spectrum(law: LawLike, fT: np.ndarray | float) -> np.ndarray:
     """|A_N(fT)| from the numerical transform only (ignores closed forms): a cross-check."""
     return np.abs(acceleration_transform(law, fT))
 
 
-def acceleration_spectrum(law: MotionLaw, fT: np.ndarray | float) -> np.ndarray:
+def acceleration_spectrum(law: LawLike, fT: np.ndarray | float) -> np.ndarray:
     """|A_N(fT)|, the acceleration's Fourier amplitude normalized by h/T, at f T (sec. 7.3.1).
 
     The family's closed form where it has one, the exact numerical transform otherwise;
     |A_N(0)| = |q_N'(1) - q_N'(0)| (0 for a rest-to-rest law). Even in f T.
     """
+    law = make_law(law)
     fT = normalized_frequencies(fT)
     closed = closed_form_spectrum(law, fT)
     return numerical_spectrum(law, fT) if closed is None else closed
 
 
-def book_spectrum(law: MotionLaw, omega: np.ndarray | float) -> np.ndarray:
+def book_spectrum(law: LawLike, omega: np.ndarray | float) -> np.ndarray:
     """V'_N(Omega) = |A_N(2 pi Omega)| / pi, the book's normalized spectrum (eq. 7.8)."""
     return acceleration_spectrum(law, omega) / math.pi
 
 
-def spectrum(law: MotionLaw, fT: np.ndarray | float, order: int = 2) -> np.ndarray:
+def spectrum(law: LawLike, fT: np.ndarray | float, order: int = 2) -> np.ndarray:
     """|F_order(fT)|: the amplitude spectrum of q_N^(order) normalized by h/T^(order-1).
 
     order 1 (velocity): the transform of q_N' over the move (the law at rest outside it;
@@ -94,12 +111,13 @@ def spectrum(law: MotionLaw, fT: np.ndarray | float, order: int = 2) -> np.ndarr
                         f"acceleration, jerk), got {order!r}", field="order")
     fT = normalized_frequencies(fT)
     if order == 1:
-        return np.abs(law_transform(law, 1j * TWO_PI * fT, order=1))
+        fT = _numerical_frequencies(fT)
+        return np.abs(law_transform(make_law(law), 1j * TWO_PI * fT, order=1))
     amplitude = acceleration_spectrum(law, fT)
     return amplitude if order == 2 else TWO_PI * np.abs(fT) * amplitude
 
 
-def frequency_spectrum(law: MotionLaw, frequency: np.ndarray | float, displacement: float,
+def frequency_spectrum(law: LawLike, frequency: np.ndarray | float, displacement: float,
                        duration: float, order: int = 2) -> np.ndarray:
     """|A(f)| of the move of ``displacement`` h in ``duration`` T at f [Hz] (sec. 7.3.4).
 
