@@ -273,7 +273,8 @@ def test_harmonic_numbers_and_scaling() -> None:
 
 
 @pytest.mark.parametrize(("ratio", "with_return"), [(0.9, False), (1.5, True),
-                                                    (math.inf, False), (math.nan, False)])
+                                                    (math.inf, False), (math.nan, False),
+                                                    ("x", False)])
 def test_bad_period(ratio: float, with_return: bool) -> None:
     with pytest.raises(UserError) as caught:
         harmonic_content(make_law("cycloidal"), np.arange(1, 3), ratio, with_return)
@@ -312,6 +313,12 @@ def test_bad_inputs() -> None:
     with pytest.raises(UserError) as caught:
         frequency_spectrum(law, 1.0, 1.0, 0.0)
     assert caught.value.field == "duration"
+    with pytest.raises(UserError) as caught:
+        frequency_spectrum(law, 1.0, "x", 1.0)
+    assert caught.value.field == "displacement"
+    with pytest.raises(UserError) as caught:
+        harmonic_numbers(math.nan, 1.0)
+    assert caught.value.field == "max_ft"
     with pytest.raises(UserError) as caught:  # no closed form: the transform's range
         acceleration_spectrum("modified_sinusoidal", 2e5)
     assert caught.value.field == "fT"

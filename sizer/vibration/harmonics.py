@@ -68,7 +68,10 @@ class HarmonicContent:
 def check_period_ratio(period_ratio: float, with_return: bool = False,
                        field: str = "period") -> float:
     """T_c/T as a float: finite, >= 1 (>= 2 with a return), else a UserError."""
-    ratio = float(period_ratio)
+    try:
+        ratio = float(period_ratio)
+    except (TypeError, ValueError):
+        ratio = math.nan
     least = 2.0 if with_return else 1.0
     if not (math.isfinite(ratio) and ratio >= least * (1.0 - 1e-12)):
         need = "twice the duration (rise and return each take T)" if with_return \
@@ -80,7 +83,10 @@ def check_period_ratio(period_ratio: float, with_return: bool = False,
 
 def harmonic_numbers(max_ft: float, period_ratio: float) -> np.ndarray:
     """k = 1, 2, ... up to the last harmonic with k T/T_c <= max_ft."""
-    count = math.floor(float(max_ft) * float(period_ratio) * (1.0 + 1e-12))
+    span = float(max_ft) * float(period_ratio)
+    if not (math.isfinite(span) and span >= 0.0):
+        raise UserError(f"must be a finite number >= 0, got {max_ft!r}", field="max_ft")
+    count = math.floor(span * (1.0 + 1e-12))
     if count > MAX_HARMONICS:
         raise UserError(f"{count} harmonics is more than {MAX_HARMONICS}: lower the "
                         f"frequency range", field="max_ft")

@@ -125,12 +125,19 @@ def frequency_spectrum(law: LawLike, frequency: np.ndarray | float, displacement
     orders), in the units of h per second. A time scaling T' = T/lambda gives
     lambda |A(f/lambda)|: slower moves have lower and narrower spectra.
     """
-    T = float(duration)
-    if not (math.isfinite(T) and T > 0.0):
+    T, h = _number(duration, "duration"), _number(displacement, "displacement")
+    if not T > 0.0:
         raise UserError(f"must be a positive time, got {duration!r}", field="duration")
-    h = float(displacement)
-    if not math.isfinite(h):
-        raise UserError(f"must be a finite number, got {displacement!r}",
-                        field="displacement")
     f = normalized_frequencies(frequency, field="frequency")
     return abs(h) / T ** (order - 1) * spectrum(law, f * T, order)
+
+
+def _number(value: float, field: str) -> float:
+    """A finite float, else a UserError naming ``field``."""
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        number = math.nan
+    if not math.isfinite(number):
+        raise UserError(f"must be a finite number, got {value!r}", field=field)
+    return number
