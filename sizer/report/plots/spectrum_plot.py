@@ -24,6 +24,7 @@ if TYPE_CHECKING:
 
 DEFAULT_SIZE = (8.0, 5.0)
 TITLE_WIDTH = 90
+MARKERS = ("o", "s", "^", "D", "v", "P", "X", "*")
 
 GID_SPECTRUM = "spectrum"
 GID_HARMONIC = "harmonic"
@@ -33,8 +34,8 @@ GID_ENVELOPE = "envelope"
 def spectrum_figure(document: SpectrumDocument, *,
                     envelopes: Sequence[tuple[np.ndarray, np.ndarray]] = (),
                     size: tuple[float, float] | None = None, dpi: float = 100.0) -> Figure:
-    """The document's spectra as curves, or its harmonics as stems (one marker set per
-    law, side by side); ``envelopes`` (x, y), one per law, drawn as thin lines."""
+    """The document's spectra as curves, or its harmonics as stems (one marker per law);
+    ``envelopes`` (x, y), one per law, drawn as thin lines."""
     figure = new_figure(size or DEFAULT_SIZE, dpi)
     ax = figure.subplots()
     unit = f" [{document.value_unit}]" if document.value_unit else ""
@@ -47,11 +48,13 @@ def spectrum_figure(document: SpectrumDocument, *,
             ax.plot(x, series.values, color=color, lw=1.3, label=series.label,
                     gid=GID_SPECTRUM)
             continue
-        shift = (index - (count - 1) / 2.0) * 0.6 * step / max(count, 1)
-        stems = ax.vlines(x + shift, 0.0, series.values, color=color, lw=1.6,
+        # at the harmonics' own frequencies (on their envelopes): later laws drawn
+        # thinner, each with its own marker, so coinciding stems stay visible
+        width = 1.0 + 1.6 * (count - 1 - index) / max(count - 1, 1)
+        stems = ax.vlines(x, 0.0, series.values, color=color, lw=width,
                           label=series.label)
         stems.set_gid(GID_HARMONIC)
-        ax.plot(x + shift, series.values, "o", color=color, ms=3.5)
+        ax.plot(x, series.values, MARKERS[index % len(MARKERS)], color=color, ms=4.0)
         if index < len(envelopes):
             ex, ey = envelopes[index]
             ax.plot(ex, ey, color=color, lw=0.7, alpha=0.45, gid=GID_ENVELOPE)
