@@ -33,6 +33,7 @@ from sizer.cli import (
     schema_command,
     segments_command,
     size_command,
+    spectrum_command,
     vibration_command,
 )
 from sizer.cli.exit_codes import ExitCode
@@ -47,7 +48,7 @@ EXIT_CODES_HELP = ("Exit codes: 0 ok; 1 a check failed (sizer check: a limit not
 
 COMMAND_MODULES = (laws_command, law_command, size_command, check_command, schema_command,
                    catalog_command, plot_command, report_command, segments_command,
-                   vibration_command)
+                   spectrum_command, vibration_command)
 
 app = typer.Typer(
     name="sizer",
