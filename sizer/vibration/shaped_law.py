@@ -31,6 +31,7 @@ The data kind ``shaped`` (sizer.laws.data_spec) builds the same law from its map
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Mapping, Sequence
 from functools import cached_property
@@ -134,7 +135,7 @@ class ShapedLaw(MotionLaw):
         edges = edges[(edges > MERGE) & (edges < 1.0 - MERGE)]
         edges = np.concatenate(([0.0], edges, [1.0]))
         pieces = []
-        for start, end in zip(edges[:-1], edges[1:], strict=True):
+        for start, end in itertools.pairwise(edges):
             middle = 0.5 * (start + end)
             offset = 0.0
             terms: list[tuple[float, float, int]] = []
