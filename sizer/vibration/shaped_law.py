@@ -170,10 +170,10 @@ class ShapedLaw(MotionLaw):
 def _finite(value: Any, field: str) -> float:
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise UserError(f"must be a number, got {value!r}", field=field)
-    value = float(value)
-    if not math.isfinite(value):
+    number = float(value)
+    if not math.isfinite(number):
         raise UserError(f"must be a finite number, got {value!r}", field=field)
-    return value
+    return number
 
 
 def _check_base(base: MotionLaw) -> None:

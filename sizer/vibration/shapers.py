@@ -69,10 +69,6 @@ class Shaper:
         """t_n, the delay the shaper adds to a move [s]."""
         return float(self.times[-1])
 
-    def scaled(self, factor: float) -> Shaper:
-        """The same shaper with every time multiplied by ``factor`` (a change of unit)."""
-        return Shaper(tuple(t * factor for t in self.times), self.amplitudes)
-
 
 def residual_vibration(shaper: Shaper, omega_n: np.ndarray | float,
                        damping_ratio: float) -> np.ndarray:
@@ -84,7 +80,9 @@ def residual_vibration(shaper: Shaper, omega_n: np.ndarray | float,
     decay = damping_ratio * w
     phase = w * math.sqrt(1.0 - damping_ratio**2) * t
     grow = a * np.exp(decay * (t - t[-1]))  # e^(-delta w t_n) inside, no overflow
-    return np.hypot((grow * np.cos(phase)).sum(axis=-1), (grow * np.sin(phase)).sum(axis=-1))
+    out: np.ndarray = np.hypot((grow * np.cos(phase)).sum(axis=-1),
+                               (grow * np.sin(phase)).sum(axis=-1))
+    return out
 
 
 def _kappa(damping_ratio: float) -> float:
