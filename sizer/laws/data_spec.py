@@ -50,6 +50,8 @@ DATA_LAW_KINDS: Mapping[str, DataKind] = {k.name: k for k in (
              "Trapezoidal velocity through a sequence of points (sec. 3.2.4)"),
     DataKind("cam_table", "sizer.io.cam_table_law:build_cam_table_law",
              "Cam table: samples fitted by a spline"),
+    DataKind("shaped", "sizer.vibration.shaped_law:build_shaped",
+             "A law convolved with an input shaper (sec. 7.4.2)"),
 )}
 """Data-defined law kinds by name."""
 
