@@ -328,3 +328,35 @@ def test_a_step_of_the_acceleration_at_a_join_makes_the_jerk_unbounded():
     stepped = SegmentCycle(Cycle((first, replace(second, start_acceleration=0.0), back,
                                   Dwell(0.2))), None, drive, motors)
     assert stepped.evaluate(np.array([1.0])).load_jerk[0] == np.inf
+
+
+def test_the_bound_of_moves_with_boundary_speeds_is_the_closed_form_of_the_cubic():
+    """Two cubic moves meet a run at speed v (inertial load, ideal gearbox, rectangular
+    region). On a cubic from rest to s1 = v T / h, q'' is 6 - 2 s1 at its start and
+    -6 + 4 s1 at its end, so J_t K |a| <= A' (A' the torque limit) holds for 1/T up to
+    (2 v + sqrt(4 v^2 + 24 h A)) / (12 h), A = A' / (J_t K), where A >= 2 v^2 / (3 h);
+    the move leaving the run is its mirror. The segment engine's bound on the scale (the
+    moves' duration) is that threshold (the rest-to-rest return, twice as long, binds
+    less), and T_min is the bound."""
+    from sizer.sizing.minimum_duration import minimum_duration
+
+    h, v, K, J_m, J_l, tau_p = 0.2, 0.5, 10.0, 1e-3, 0.2, 15.0
+    cycle = Cycle((Move(h, None, law="poly3", end_speed=v), Run(v, 0.2),
+                   Move(h, None, law="poly3", start_speed=v),
+                   Move(-(2 * h + 0.1), None, law="poly5", weight=2.0), Dwell(0.1)),
+                  share=ShareRule.WEIGHTS, closed=True)
+    motor = Motor("m", J_m, 5.0, tau_p, 3000.0)
+    drive = Drive(Load(J_l), Transmission((Stage("gearbox", K, 1.0, 0.0),)))
+    limits = Limits(torque_margin=0.1)
+    calc = SegmentCycle(cycle, None, drive, MotorArrays.of([motor], "book"))
+    A = 0.9 * tau_p / ((J_m + J_l / K**2) * K)
+    assert A >= 2 * v * v / (3 * h)
+    T = 12 * h / (2 * v + math.sqrt(4 * v * v + 24 * h * A))
+    c = make_law("poly5").coefficients
+    assert c.C_a * (2 * h + 0.1) / (2 * T) ** 2 < A  # the return (weight 2) does not bind
+    bound = calc.peak_bound(limits)
+    assert bound[0] == pytest.approx(T, rel=1e-12)
+    solution = minimum_duration(calc, limits)
+    assert solution.feasible[0] and solution.duration[0] == pytest.approx(T, rel=1e-12)
+    peak = calc.evaluate(np.array([T])).peak_torque[0]
+    assert peak == pytest.approx(0.9 * tau_p, rel=1e-12)

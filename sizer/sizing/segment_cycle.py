@@ -27,6 +27,8 @@ from sizer.laws import MotionLaw, make_law
 from sizer.mechanics import Drive
 from sizer.model.cycle import Cycle, Move, Run, Segment
 from sizer.model.domain import Limits, Load, Task, ThermalSpeedRule
+from sizer.numerics.roots import illinois
+from sizer.sizing.checks import TOLERANCE, evaluate_checks, worst_slack
 from sizer.sizing.cycle import (
     CycleCalculator,
     CycleMetrics,
@@ -52,6 +54,10 @@ class SegmentFigures(MoveFigures):
     """A move's load acceleration at its start and at its end (signed; None: 0, a run or a
     dwell): where a join's two sides differ, the jerk there is an impulse."""
 
+
+BOUND_SPAN = 16
+"""The grid of scales a move with boundary speeds is first read at: 2 BOUND_SPAN + 1
+points, factors of sqrt 2 apart, centred on the search's start."""
 
 JOIN_TOLERANCE = 1e-9
 """A step of the acceleration at a join counts when it exceeds this share of the cycle's
@@ -185,9 +191,13 @@ class SegmentCycle:
         from sizer.sizing.peak_duration import peak_duration
 
         bound = np.zeros(len(self.motors))
-        for segment, law, drive, w in zip(self.cycle.segments, self.laws, self.drives,
-                                          self.weights, strict=True):
-            if not isinstance(segment, Move) or w == 0.0 or not segment.rest_to_rest:
+        boundary = []
+        for i, (segment, law, drive, w) in enumerate(zip(
+                self.cycle.segments, self.laws, self.drives, self.weights, strict=True)):
+            if not isinstance(segment, Move) or w == 0.0:
+                continue
+            if not segment.rest_to_rest:
+                boundary.append(i)
                 continue
             task = Task(segment.displacement, None, linear=self.cycle.linear)
             found = peak_duration(CycleCalculator(None, task, drive, self.motors, "max",
@@ -195,7 +205,74 @@ class SegmentCycle:
             if found is None:
                 return None
             bound = np.maximum(bound, found / w)
+        if boundary:
+            start = np.where(bound > 0.0, bound, self.initial_guess())
+            for i in boundary:
+                bound = np.maximum(bound, self._boundary_bound(i, limits, start))
         return bound
+
+    def _boundary_slack(self, i: int, limits: Limits, s: np.ndarray,
+                        rows: np.ndarray) -> np.ndarray:
+        """The worst slack of the peak checks of one free move with boundary speeds alone
+        (speed, peak ratio, load limits, stage speeds and peaks; the thermal speed where it
+        is the peak speed) at scales s for the candidates ``rows`` (repeats allowed): those
+        checks of the cycle that read only this move's peaks."""
+        sub = self.take(rows)
+        w = float(self.weights[i])
+        move = self.cycle.segments[i]
+        assert isinstance(move, Move)
+        f = sub._boundary_move(move, self.laws[i], sub.drives[i], w * s)
+        zero = np.zeros(len(rows))
+        metrics = CycleMetrics(
+            duration=w * s, max_speed=f.max_speed, peak_torque=f.peak_torque,
+            peak_ratio=f.peak_ratio, rms_torque=zero,
+            thermal_speed=f.max_speed if self.thermal_rule == "max" else zero,
+            load_speed=f.load_speed, load_acceleration=f.load_acceleration,
+            load_jerk=f.load_jerk, load_torque=f.load_torque, stage_peak=f.stage_peak,
+            stage_rms=[zero for _ in f.stage_peak], stage_speed=f.stage_speed)
+        checks = [c for c in evaluate_checks(metrics, sub.motors, sub.drive, limits,
+                                             self.cycle.linear)
+                  if c.name != "inertia_ratio"]
+        return worst_slack(checks)
+
+    def _boundary_bound(self, i: int, limits: Limits, start: np.ndarray) -> np.ndarray:
+        """A lower bound on the minimized scale from the free move with boundary speeds at
+        segment ``i``:
+        the smallest scale at which its peak checks pass (the cycle's peaks are maxima over
+        its segments, so no smaller scale is feasible).
+
+        The move's shape changes with its duration, so no closed form bounds it; its
+        figures are exact (sizer.sizing.polynomial_move) and cost about as much for a few
+        rows as for many, so every candidate's slack is read at once on a log grid of
+        scales around ``start`` (factors of sqrt 2 over 2^-8 to 2^8), and the crossing
+        below its first feasible point is refined by the project's root finder to the
+        engine's width (1e-13 in log s, the feasible end kept). 0 (no bound) where the
+        grid's lowest point already passes or none does: the search of the whole cycle
+        then decides, as without the bound."""
+        n = len(self.motors)
+        steps = np.arange(-BOUND_SPAN, BOUND_SPAN + 1) * (0.5 * np.log(2.0))
+        x = np.log(start)[:, None] + steps[None, :]  # (n, G)
+        rows = np.repeat(np.arange(n), len(steps))
+        f = self._boundary_slack(i, limits, np.exp(x.ravel()), rows).reshape(x.shape)
+        good = f >= -TOLERANCE
+        first = np.argmax(good, axis=1)
+        found = good.any(axis=1) & (first > 0)
+        out = np.zeros(n)
+        index = np.flatnonzero(found)
+        if not len(index):
+            return out
+        k = first[index]
+        x_lo, x_hi = x[index, k - 1], x[index, k]
+        f_lo, f_hi = f[index, k - 1], f[index, k]
+        offset = np.where(f_hi >= 0.0, 0.0, TOLERANCE)
+
+        def slack(z: np.ndarray, where: np.ndarray, shift: np.ndarray) -> np.ndarray:
+            return self._boundary_slack(i, limits, np.exp(z), index[where]) + shift
+
+        _, hi = illinois(slack, x_lo, x_hi, f_lo + offset, f_hi + offset, xtol=1e-13,
+                         args=(np.arange(len(index)), offset), bracket=True)
+        out[index] = np.exp(hi)
+        return out
 
     def figures(self, s: np.ndarray, peaks: bool = True,
                 model: bool = False) -> list[SegmentFigures]:
