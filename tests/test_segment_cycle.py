@@ -349,11 +349,11 @@ def test_the_bound_of_moves_with_boundary_speeds_is_the_closed_form_of_the_cubic
     drive = Drive(Load(J_l), Transmission((Stage("gearbox", K, 1.0, 0.0),)))
     limits = Limits(torque_margin=0.1)
     calc = SegmentCycle(cycle, None, drive, MotorArrays.of([motor], "book"))
-    A = 0.9 * tau_p / ((J_m + J_l / K**2) * K)
-    assert A >= 2 * v * v / (3 * h)
-    T = 12 * h / (2 * v + math.sqrt(4 * v * v + 24 * h * A))
+    a_max = 0.9 * tau_p / ((J_m + J_l / K**2) * K)
+    assert a_max >= 2 * v * v / (3 * h)
+    T = 12 * h / (2 * v + math.sqrt(4 * v * v + 24 * h * a_max))
     c = make_law("poly5").coefficients
-    assert c.C_a * (2 * h + 0.1) / (2 * T) ** 2 < A  # the return (weight 2) does not bind
+    assert c.C_a * (2 * h + 0.1) / (2 * T) ** 2 < a_max  # the return (weight 2) does not bind
     bound = calc.peak_bound(limits)
     assert bound[0] == pytest.approx(T, rel=1e-12)
     solution = minimum_duration(calc, limits)
