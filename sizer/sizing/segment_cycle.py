@@ -147,6 +147,8 @@ class SegmentCycle:
         self.task = Task(cycle.moves[0].displacement if cycle.moves else 0.0, None,
                          linear=cycle.linear)
         self._base = drive
+        self._fixed: dict[tuple[int, bool], SegmentFigures] = {}
+        self._parent: tuple[SegmentCycle, np.ndarray] | None = None
 
     # ------------------------------------------------------------------ public
     def durations(self, s: np.ndarray) -> list[np.ndarray]:
@@ -164,6 +166,8 @@ class SegmentCycle:
         out.drives = tuple(d.take(index) for d in self.drives)
         out.drive = self.drive.take(index)
         out._base = self._base.take(index)
+        out._fixed = {}
+        out._parent = (self, np.asarray(index))
         return out
 
     def initial_guess(self) -> np.ndarray:
@@ -280,15 +284,45 @@ class SegmentCycle:
         moves' RMS models)."""
         s = np.broadcast_to(np.asarray(s, dtype=float), (len(self.motors),)).copy()
         out = []
-        for segment, law, drive, T in zip(self.cycle.segments, self.laws, self.drives,
-                                          self.durations(s), strict=True):
-            if isinstance(segment, Move):
+        for i, (segment, law, drive, T) in enumerate(zip(
+                self.cycle.segments, self.laws, self.drives, self.durations(s), strict=True)):
+            if np.isfinite(self.fixed[i]):
+                out.append(self._fixed_figures(i, segment, law, drive, T, peaks))
+            elif isinstance(segment, Move):
                 out.append(self._move(segment, law, drive, T, peaks, model))
             elif isinstance(segment, Run):
                 out.append(self._run(segment, drive, T))
             else:
                 out.append(self._dwell(drive, T))
         return out
+
+    def _fixed_figures(self, i: int, segment: Segment, law: MotionLaw | None, drive: Drive,
+                       T: np.ndarray, peaks: bool) -> SegmentFigures:
+        """A segment of fixed duration: its figures do not depend on the scale, so they
+        are evaluated once per set of candidates (and ``peaks``) and kept; a subset made
+        by :meth:`take` reads its parent's. Without an RMS model (a fixed segment enters
+        the cycle's model as a constant)."""
+        key = (i, peaks)
+        found = self._fixed_lookup(key)
+        if found is None:
+            if isinstance(segment, Move):
+                found = self._move(segment, law, drive, T, peaks, False)
+            elif isinstance(segment, Run):
+                found = self._run(segment, drive, T)
+            else:
+                found = self._dwell(drive, T)
+        self._fixed[key] = found
+        return found
+
+    def _fixed_lookup(self, key: tuple[int, bool]) -> SegmentFigures | None:
+        """The kept figures of a fixed segment, here or (subset) in a parent's."""
+        found = self._fixed.get(key)
+        if found is None and self._parent is not None:
+            parent, index = self._parent
+            kept = parent._fixed_lookup(key)
+            if kept is not None:
+                found = self._fixed[key] = _take_figures(kept, index)
+        return found
 
     def thermal_speed(self, s: np.ndarray) -> np.ndarray:
         """The speed the continuous region is read at (the thermal rule) at scales s, in
@@ -502,6 +536,18 @@ class SegmentCycle:
             stage_speed=[zero for _ in drive.stages], torque_square=hold * hold * T,
             stage_square=[x * x * T for x in stage_hold], speed_square=zero, speed_abs=zero,
             energy=zero)
+
+
+def _take_figures(f: SegmentFigures, index: np.ndarray) -> SegmentFigures:
+    """The figures of the candidates at ``index`` (without an RMS model)."""
+    def pick(x):
+        if x is None:
+            return None
+        if isinstance(x, list | tuple):
+            return type(x)(pick(y) for y in x)
+        return np.asarray(x)[index]
+
+    return SegmentFigures(**{k: pick(v) for k, v in vars(f).items() if k != "rms_model"})
 
 
 def _finite_or_inf(x: np.ndarray) -> np.ndarray:
