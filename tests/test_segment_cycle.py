@@ -360,3 +360,41 @@ def test_the_bound_of_moves_with_boundary_speeds_is_the_closed_form_of_the_cubic
     assert solution.feasible[0] and solution.duration[0] == pytest.approx(T, rel=1e-12)
     peak = calc.evaluate(np.array([T])).peak_torque[0]
     assert peak == pytest.approx(0.9 * tau_p, rel=1e-12)
+
+
+def test_first_crossing_brackets_the_first_sign_change_to_its_width():
+    """Rows of cubics: the returned end is where f >= 0, within 1e-13 of the root
+    (closed forms), and of three sign changes in the bracket the first is kept."""
+    from sizer.sizing.segment_cycle import first_crossing
+
+    c = np.array([2.0, 3.0, 10.0])
+
+    def f(x, rows):
+        return np.where(rows == 2, (x - 1.5) * (x - 2.5) * (x - 3.2), x**3 - c[rows])
+
+    lo, hi = np.array([0.5, 1.0, 1.0]), np.array([2.0, 2.0, 4.0])
+    rows = np.arange(3)
+    x = first_crossing(f, lo, hi, f(lo, rows), f(hi, rows), xtol=1e-13)
+    roots = np.array([2.0 ** (1 / 3), 3.0 ** (1 / 3), 1.5])
+    assert np.all(f(x, rows) >= 0.0)
+    assert np.allclose(x, roots, rtol=0, atol=2e-13)
+
+
+def test_a_fixed_segment_kept_from_a_parent_equals_its_own_evaluation():
+    """The figures of a fixed-duration move are kept per set of candidates; a subset made
+    by take() reads its parent's, and they equal those of a fresh calculator on the
+    subset's motors (friction, an efficiency, curved regions)."""
+    cycle = Cycle((Move(0.5, 0.3, law="cycloidal"), Dwell(0.1),
+                   Move(-0.5, None, law="poly5"), Dwell(0.2)), share=ShareRule.EQUAL)
+    drive = Drive(Load(0.2, friction=0.3, torque=0.5),
+                  Transmission((Stage("gearbox", 8.0, 0.9, 1e-4),)))
+    motors = MotorArrays.of(curved_motors(5), "linear")
+    calc = SegmentCycle(cycle, make_law("cycloidal"), drive, motors)
+    s = np.linspace(0.2, 0.6, 5)
+    calc.evaluate(s)  # keeps the fixed move's figures
+    index = np.array([4, 1, 3])
+    kept = calc.take(index).figures(s[index])[0]
+    fresh = SegmentCycle(cycle, make_law("cycloidal"), drive,
+                         motors.subset(index)).figures(s[index])[0]
+    for name in ("peak_torque", "peak_ratio", "torque_square", "max_speed", "energy"):
+        assert np.allclose(getattr(kept, name), getattr(fresh, name), rtol=1e-14, atol=0)
