@@ -398,3 +398,28 @@ def test_a_fixed_segment_kept_from_a_parent_equals_its_own_evaluation():
                          motors.subset(index)).figures(s[index])[0]
     for name in ("peak_torque", "peak_ratio", "torque_square", "max_speed", "energy"):
         assert np.allclose(getattr(kept, name), getattr(fresh, name), rtol=1e-14, atol=0)
+
+
+def test_a_cycle_no_scale_passes_is_infeasible_with_boundary_speeds_and_no_warning():
+    """Friction above the motor's peak torque: the rest-to-rest move's bound is
+    inf (no duration passes), the boundary moves' bound is not sought there (no
+    evaluation at an infinite scale), and no scale is feasible."""
+    import warnings
+
+    from sizer.sizing.minimum_duration import minimum_duration
+
+    cycle = Cycle((Move(0.2, None, law="poly3", end_speed=0.5), Run(0.5, 0.2),
+                   Move(0.2, None, law="poly3", start_speed=0.5),
+                   Move(-0.5, None, law="poly5"), Dwell(0.1)), share=ShareRule.EQUAL,
+                  closed=True)
+    drive = Drive(Load(0.2, friction=1000.0),
+                  Transmission((Stage("gearbox", 10.0, 1.0, 0.0),)))
+    calc = SegmentCycle(cycle, None, drive, MotorArrays.of([Motor("m", 1e-3, 5.0, 15.0,
+                                                                  3000.0)], "book"))
+    limits = Limits(torque_margin=0.1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        bound = calc.peak_bound(limits)
+        solution = minimum_duration(calc, limits)
+    assert np.isinf(bound[0])
+    assert not solution.feasible[0]

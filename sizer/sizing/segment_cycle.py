@@ -252,21 +252,23 @@ class SegmentCycle:
         engine's width (1e-13 in log s, the feasible end kept). 0 (no bound) where the
         grid's lowest point already passes or none does: the search of the whole cycle
         then decides, as without the bound."""
-        n = len(self.motors)
+        out = np.zeros(len(self.motors))
+        where = np.flatnonzero(np.isfinite(start) & (start > 0.0))  # inf: already no scale
+        if not len(where):
+            return out
         steps = np.arange(-BOUND_SPAN, BOUND_SPAN + 1) * (0.5 * np.log(2.0))
-        x = np.log(start)[:, None] + steps[None, :]  # (n, G)
-        rows = np.repeat(np.arange(n), len(steps))
+        x = np.log(start[where])[:, None] + steps[None, :]  # (candidates, G)
+        rows = np.repeat(where, len(steps))
         f = self._boundary_slack(i, limits, np.exp(x.ravel()), rows).reshape(x.shape)
         good = f >= -TOLERANCE
         first = np.argmax(good, axis=1)
-        found = good.any(axis=1) & (first > 0)
-        out = np.zeros(n)
-        index = np.flatnonzero(found)
-        if not len(index):
+        found = np.flatnonzero(good.any(axis=1) & (first > 0))
+        if not len(found):
             return out
-        k = first[index]
-        x_lo, x_hi = x[index, k - 1], x[index, k]
-        f_lo, f_hi = f[index, k - 1], f[index, k]
+        index = where[found]
+        k = first[found]
+        x_lo, x_hi = x[found, k - 1], x[found, k]
+        f_lo, f_hi = f[found, k - 1], f[found, k]
         offset = np.where(f_hi >= 0.0, 0.0, TOLERANCE)
 
         def slack(z: np.ndarray, where: np.ndarray) -> np.ndarray:
