@@ -328,3 +328,98 @@ def test_a_step_of_the_acceleration_at_a_join_makes_the_jerk_unbounded():
     stepped = SegmentCycle(Cycle((first, replace(second, start_acceleration=0.0), back,
                                   Dwell(0.2))), None, drive, motors)
     assert stepped.evaluate(np.array([1.0])).load_jerk[0] == np.inf
+
+
+def test_the_bound_of_moves_with_boundary_speeds_is_the_closed_form_of_the_cubic():
+    """Two cubic moves meet a run at speed v (inertial load, ideal gearbox, rectangular
+    region). On a cubic from rest to s1 = v T / h, q'' is 6 - 2 s1 at its start and
+    -6 + 4 s1 at its end, so J_t K |a| <= A' (A' the torque limit) holds for 1/T up to
+    (2 v + sqrt(4 v^2 + 24 h A)) / (12 h), A = A' / (J_t K), where A >= 2 v^2 / (3 h);
+    the move leaving the run is its mirror. The segment engine's bound on the scale (the
+    moves' duration) is that threshold (the rest-to-rest return, twice as long, binds
+    less), and T_min is the bound."""
+    from sizer.sizing.minimum_duration import minimum_duration
+
+    h, v, K, J_m, J_l, tau_p = 0.2, 0.5, 10.0, 1e-3, 0.2, 15.0
+    cycle = Cycle((Move(h, None, law="poly3", end_speed=v), Run(v, 0.2),
+                   Move(h, None, law="poly3", start_speed=v),
+                   Move(-(2 * h + 0.1), None, law="poly5", weight=2.0), Dwell(0.1)),
+                  share=ShareRule.WEIGHTS, closed=True)
+    motor = Motor("m", J_m, 5.0, tau_p, 3000.0)
+    drive = Drive(Load(J_l), Transmission((Stage("gearbox", K, 1.0, 0.0),)))
+    limits = Limits(torque_margin=0.1)
+    calc = SegmentCycle(cycle, None, drive, MotorArrays.of([motor], "book"))
+    a_max = 0.9 * tau_p / ((J_m + J_l / K**2) * K)
+    assert a_max >= 2 * v * v / (3 * h)
+    T = 12 * h / (2 * v + math.sqrt(4 * v * v + 24 * h * a_max))
+    c = make_law("poly5").coefficients
+    assert c.C_a * (2 * h + 0.1) / (2 * T) ** 2 < a_max  # the return (weight 2) does not bind
+    bound = calc.peak_bound(limits)
+    assert bound[0] == pytest.approx(T, rel=1e-12)
+    solution = minimum_duration(calc, limits)
+    assert solution.feasible[0] and solution.duration[0] == pytest.approx(T, rel=1e-12)
+    peak = calc.evaluate(np.array([T])).peak_torque[0]
+    assert peak == pytest.approx(0.9 * tau_p, rel=1e-12)
+
+
+def test_first_crossing_brackets_the_first_sign_change_to_its_width():
+    """Rows of cubics: the returned end is where f >= 0, within 1e-13 of the root
+    (closed forms), and of three sign changes in the bracket the first is kept."""
+    from sizer.sizing.segment_cycle import first_crossing
+
+    c = np.array([2.0, 3.0, 10.0])
+
+    def f(x, rows):
+        return np.where(rows == 2, (x - 1.5) * (x - 2.5) * (x - 3.2), x**3 - c[rows])
+
+    lo, hi = np.array([0.5, 1.0, 1.0]), np.array([2.0, 2.0, 4.0])
+    rows = np.arange(3)
+    x = first_crossing(f, lo, hi, f(lo, rows), f(hi, rows), xtol=1e-13)
+    roots = np.array([2.0 ** (1 / 3), 3.0 ** (1 / 3), 1.5])
+    assert np.all(f(x, rows) >= 0.0)
+    assert np.allclose(x, roots, rtol=0, atol=2e-13)
+
+
+def test_a_fixed_segment_kept_from_a_parent_equals_its_own_evaluation():
+    """The figures of a fixed-duration move are kept per set of candidates; a subset made
+    by take() reads its parent's, and they equal those of a fresh calculator on the
+    subset's motors (friction, an efficiency, curved regions)."""
+    cycle = Cycle((Move(0.5, 0.3, law="cycloidal"), Dwell(0.1),
+                   Move(-0.5, None, law="poly5"), Dwell(0.2)), share=ShareRule.EQUAL)
+    drive = Drive(Load(0.2, friction=0.3, torque=0.5),
+                  Transmission((Stage("gearbox", 8.0, 0.9, 1e-4),)))
+    motors = MotorArrays.of(curved_motors(5), "linear")
+    calc = SegmentCycle(cycle, make_law("cycloidal"), drive, motors)
+    s = np.linspace(0.2, 0.6, 5)
+    calc.evaluate(s)  # keeps the fixed move's figures
+    index = np.array([4, 1, 3])
+    kept = calc.take(index).figures(s[index])[0]
+    fresh = SegmentCycle(cycle, make_law("cycloidal"), drive,
+                         motors.subset(index)).figures(s[index])[0]
+    for name in ("peak_torque", "peak_ratio", "torque_square", "max_speed", "energy"):
+        assert np.allclose(getattr(kept, name), getattr(fresh, name), rtol=1e-14, atol=0)
+
+
+def test_a_cycle_no_scale_passes_is_infeasible_with_boundary_speeds_and_no_warning():
+    """Friction above the motor's peak torque: the rest-to-rest move's bound is
+    inf (no duration passes), the boundary moves' bound is not sought there (no
+    evaluation at an infinite scale), and no scale is feasible."""
+    import warnings
+
+    from sizer.sizing.minimum_duration import minimum_duration
+
+    cycle = Cycle((Move(0.2, None, law="poly3", end_speed=0.5), Run(0.5, 0.2),
+                   Move(0.2, None, law="poly3", start_speed=0.5),
+                   Move(-0.5, None, law="poly5"), Dwell(0.1)), share=ShareRule.EQUAL,
+                  closed=True)
+    drive = Drive(Load(0.2, friction=1000.0),
+                  Transmission((Stage("gearbox", 10.0, 1.0, 0.0),)))
+    calc = SegmentCycle(cycle, None, drive, MotorArrays.of([Motor("m", 1e-3, 5.0, 15.0,
+                                                                  3000.0)], "book"))
+    limits = Limits(torque_margin=0.1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        bound = calc.peak_bound(limits)
+        solution = minimum_duration(calc, limits)
+    assert np.isinf(bound[0])
+    assert not solution.feasible[0]

@@ -27,6 +27,7 @@ from sizer.laws import MotionLaw, make_law
 from sizer.mechanics import Drive
 from sizer.model.cycle import Cycle, Move, Run, Segment
 from sizer.model.domain import Limits, Load, Task, ThermalSpeedRule
+from sizer.sizing.checks import TOLERANCE, evaluate_checks, worst_slack
 from sizer.sizing.cycle import (
     CycleCalculator,
     CycleMetrics,
@@ -52,6 +53,10 @@ class SegmentFigures(MoveFigures):
     """A move's load acceleration at its start and at its end (signed; None: 0, a run or a
     dwell): where a join's two sides differ, the jerk there is an impulse."""
 
+
+BOUND_SPAN = 16
+"""The grid of scales a move with boundary speeds is first read at: 2 BOUND_SPAN + 1
+points, factors of sqrt 2 apart, centred on the search's start."""
 
 JOIN_TOLERANCE = 1e-9
 """A step of the acceleration at a join counts when it exceeds this share of the cycle's
@@ -141,6 +146,8 @@ class SegmentCycle:
         self.task = Task(cycle.moves[0].displacement if cycle.moves else 0.0, None,
                          linear=cycle.linear)
         self._base = drive
+        self._fixed: dict[tuple[int, bool], SegmentFigures] = {}
+        self._parent: tuple[SegmentCycle, np.ndarray] | None = None
 
     # ------------------------------------------------------------------ public
     def durations(self, s: np.ndarray) -> list[np.ndarray]:
@@ -158,6 +165,8 @@ class SegmentCycle:
         out.drives = tuple(d.take(index) for d in self.drives)
         out.drive = self.drive.take(index)
         out._base = self._base.take(index)
+        out._fixed = {}
+        out._parent = (self, np.asarray(index))
         return out
 
     def initial_guess(self) -> np.ndarray:
@@ -185,9 +194,13 @@ class SegmentCycle:
         from sizer.sizing.peak_duration import peak_duration
 
         bound = np.zeros(len(self.motors))
-        for segment, law, drive, w in zip(self.cycle.segments, self.laws, self.drives,
-                                          self.weights, strict=True):
-            if not isinstance(segment, Move) or w == 0.0 or not segment.rest_to_rest:
+        boundary = []
+        for i, (segment, law, drive, w) in enumerate(zip(
+                self.cycle.segments, self.laws, self.drives, self.weights, strict=True)):
+            if not isinstance(segment, Move) or w == 0.0:
+                continue
+            if not segment.rest_to_rest:
+                boundary.append(i)
                 continue
             task = Task(segment.displacement, None, linear=self.cycle.linear)
             found = peak_duration(CycleCalculator(None, task, drive, self.motors, "max",
@@ -195,7 +208,76 @@ class SegmentCycle:
             if found is None:
                 return None
             bound = np.maximum(bound, found / w)
+        if boundary:
+            start = np.where(bound > 0.0, bound, self.initial_guess())
+            for i in boundary:
+                bound = np.maximum(bound, self._boundary_bound(i, limits, start))
         return bound
+
+    def _boundary_slack(self, i: int, limits: Limits, s: np.ndarray,
+                        rows: np.ndarray) -> np.ndarray:
+        """The worst slack of the peak checks of one free move with boundary speeds alone
+        (speed, peak ratio, load limits, stage speeds and peaks; the thermal speed where it
+        is the peak speed) at scales s for the candidates ``rows`` (repeats allowed): those
+        checks of the cycle that read only this move's peaks."""
+        sub = self.take(rows)
+        w = float(self.weights[i])
+        move = self.cycle.segments[i]
+        assert isinstance(move, Move)
+        f = sub._boundary_move(move, self.laws[i], sub.drives[i], w * s)
+        zero = np.zeros(len(rows))
+        metrics = CycleMetrics(
+            duration=w * s, max_speed=f.max_speed, peak_torque=f.peak_torque,
+            peak_ratio=f.peak_ratio, rms_torque=zero,
+            thermal_speed=f.max_speed if self.thermal_rule == "max" else zero,
+            load_speed=f.load_speed, load_acceleration=f.load_acceleration,
+            load_jerk=f.load_jerk, load_torque=f.load_torque, stage_peak=f.stage_peak,
+            stage_rms=[zero for _ in f.stage_peak], stage_speed=f.stage_speed)
+        checks = [c for c in evaluate_checks(metrics, sub.motors, sub.drive, limits,
+                                             self.cycle.linear)
+                  if c.name != "inertia_ratio"]
+        return worst_slack(checks)
+
+    def _boundary_bound(self, i: int, limits: Limits, start: np.ndarray) -> np.ndarray:
+        """A lower bound on the minimized scale from the free move with boundary speeds at
+        segment ``i``:
+        the smallest scale at which its peak checks pass (the cycle's peaks are maxima over
+        its segments, so no smaller scale is feasible).
+
+        The move's shape changes with its duration, so no closed form bounds it; its
+        figures are exact (sizer.sizing.polynomial_move) and cost about as much for a few
+        rows as for many, so every candidate's slack is read at once on a log grid of
+        scales around ``start`` (factors of sqrt 2 over 2^-8 to 2^8), and the crossing
+        below its first feasible point is refined by the project's root finder to the
+        engine's width (1e-13 in log s, the feasible end kept). 0 (no bound) where the
+        grid's lowest point already passes or none does: the search of the whole cycle
+        then decides, as without the bound."""
+        out = np.zeros(len(self.motors))
+        where = np.flatnonzero(np.isfinite(start) & (start > 0.0))  # inf: already no scale
+        if not len(where):
+            return out
+        steps = np.arange(-BOUND_SPAN, BOUND_SPAN + 1) * (0.5 * np.log(2.0))
+        x = np.log(start[where])[:, None] + steps[None, :]  # (candidates, G)
+        rows = np.repeat(where, len(steps))
+        f = self._boundary_slack(i, limits, np.exp(x.ravel()), rows).reshape(x.shape)
+        good = f >= -TOLERANCE
+        first = np.argmax(good, axis=1)
+        found = np.flatnonzero(good.any(axis=1) & (first > 0))
+        if not len(found):
+            return out
+        index = where[found]
+        k = first[found]
+        x_lo, x_hi = x[found, k - 1], x[found, k]
+        f_lo, f_hi = f[found, k - 1], f[found, k]
+        offset = np.where(f_hi >= 0.0, 0.0, TOLERANCE)
+
+        def slack(z: np.ndarray, where: np.ndarray) -> np.ndarray:
+            return self._boundary_slack(i, limits, np.exp(z), index[where]) \
+                + offset[where]
+
+        hi = first_crossing(slack, x_lo, x_hi, f_lo + offset, f_hi + offset, xtol=1e-13)
+        out[index] = np.exp(hi)
+        return out
 
     def figures(self, s: np.ndarray, peaks: bool = True,
                 model: bool = False) -> list[SegmentFigures]:
@@ -203,15 +285,45 @@ class SegmentCycle:
         moves' RMS models)."""
         s = np.broadcast_to(np.asarray(s, dtype=float), (len(self.motors),)).copy()
         out = []
-        for segment, law, drive, T in zip(self.cycle.segments, self.laws, self.drives,
-                                          self.durations(s), strict=True):
-            if isinstance(segment, Move):
+        for i, (segment, law, drive, T) in enumerate(zip(
+                self.cycle.segments, self.laws, self.drives, self.durations(s), strict=True)):
+            if np.isfinite(self.fixed[i]):
+                out.append(self._fixed_figures(i, segment, law, drive, T, peaks))
+            elif isinstance(segment, Move):
                 out.append(self._move(segment, law, drive, T, peaks, model))
             elif isinstance(segment, Run):
                 out.append(self._run(segment, drive, T))
             else:
                 out.append(self._dwell(drive, T))
         return out
+
+    def _fixed_figures(self, i: int, segment: Segment, law: MotionLaw | None, drive: Drive,
+                       T: np.ndarray, peaks: bool) -> SegmentFigures:
+        """A segment of fixed duration: its figures do not depend on the scale, so they
+        are evaluated once per set of candidates (and ``peaks``) and kept; a subset made
+        by :meth:`take` reads its parent's. Without an RMS model (a fixed segment enters
+        the cycle's model as a constant)."""
+        key = (i, peaks)
+        found = self._fixed_lookup(key)
+        if found is None:
+            if isinstance(segment, Move):
+                found = self._move(segment, law, drive, T, peaks, False)
+            elif isinstance(segment, Run):
+                found = self._run(segment, drive, T)
+            else:
+                found = self._dwell(drive, T)
+        self._fixed[key] = found
+        return found
+
+    def _fixed_lookup(self, key: tuple[int, bool]) -> SegmentFigures | None:
+        """The kept figures of a fixed segment, here or (subset) in a parent's."""
+        found = self._fixed.get(key)
+        if found is None and self._parent is not None:
+            parent, index = self._parent
+            kept = parent._fixed_lookup(key)
+            if kept is not None:
+                found = self._fixed[key] = _take_figures(kept, index)
+        return found
 
     def thermal_speed(self, s: np.ndarray) -> np.ndarray:
         """The speed the continuous region is read at (the thermal rule) at scales s, in
@@ -425,6 +537,68 @@ class SegmentCycle:
             stage_speed=[zero for _ in drive.stages], torque_square=hold * hold * T,
             stage_square=[x * x * T for x in stage_hold], speed_square=zero, speed_abs=zero,
             energy=zero)
+
+
+SECANT_OFFSETS = (1e-2, 1e-4, 1e-6, 1e-8)
+"""Where :func:`first_crossing` reads its points beside each round's secant point (shares
+of the bracket's width, on both sides)."""
+CROSSING_ROUNDS = 40
+
+
+def first_crossing(f, lo: np.ndarray, hi: np.ndarray, f_lo: np.ndarray, f_hi: np.ndarray,
+                   xtol: float = 1e-13, points: int = 7) -> np.ndarray:
+    """Per row the upper end of a bracket of width <= xtol (relative to max(1, |lo|)) of
+    the first sign change of f in [lo, hi], from f_lo < 0 <= f_hi: the end where f >= 0.
+
+    For functions whose evaluation costs about as much for a few rows as for many (an
+    exact polynomial move, sizer.sizing.polynomial_move) several points per row are read
+    in one call ``f(x, rows)``: ``points`` evenly spaced across the bracket, the secant
+    point (regula falsi) and points beside it at SECANT_OFFSETS of the width. The new
+    bracket is the first adjacent pair whose signs differ, so the bracket always holds
+    the first sign change it held; where f is smooth the secant point is accurate to the
+    square of the width, which the offsets then bracket (about three rounds from a width
+    of 0.3 to 1e-13, where the project's root finder, sizer.numerics.roots.illinois, takes
+    one call per step and about ten).
+    """
+    lo, hi, f_lo, f_hi = (np.array(x, dtype=float) for x in (lo, hi, f_lo, f_hi))
+    share = np.arange(1, points + 1) / (points + 1.0)
+    beside = np.concatenate((-np.array(SECANT_OFFSETS), [0.0], SECANT_OFFSETS))
+    for _ in range(CROSSING_ROUNDS):
+        width = hi - lo
+        open_ = width > np.maximum(xtol * np.maximum(1.0, np.abs(lo)),
+                                   2.0 * np.spacing(np.abs(hi)))
+        rows = np.flatnonzero(open_)
+        if not len(rows):
+            break
+        a, b, fa, fb, w = lo[rows], hi[rows], f_lo[rows], f_hi[rows], width[rows]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            secant = (a * fb - b * fa) / (fb - fa)
+        secant = np.where(np.isfinite(secant) & (secant > a) & (secant < b), secant,
+                          0.5 * (a + b))
+        x = np.concatenate((a[:, None] + w[:, None] * share[None, :],
+                            secant[:, None] + w[:, None] * beside[None, :]), axis=1)
+        x = np.sort(np.clip(x, a[:, None], b[:, None]), axis=1)
+        m = x.shape[1]
+        fx = f(x.ravel(), np.repeat(rows, m)).reshape(x.shape)
+        xs = np.concatenate((a[:, None], x, b[:, None]), axis=1)
+        fs = np.concatenate((fa[:, None], fx, fb[:, None]), axis=1)
+        k = np.argmax(fs >= 0.0, axis=1)  # the first point on f_hi's side (>= 1)
+        j = np.arange(len(rows))
+        lo[rows], f_lo[rows] = xs[j, k - 1], fs[j, k - 1]
+        hi[rows], f_hi[rows] = xs[j, k], fs[j, k]
+    return hi
+
+
+def _take_figures(f: SegmentFigures, index: np.ndarray) -> SegmentFigures:
+    """The figures of the candidates at ``index`` (without an RMS model)."""
+    def pick(x):
+        if x is None:
+            return None
+        if isinstance(x, list | tuple):
+            return type(x)(pick(y) for y in x)
+        return np.asarray(x)[index]
+
+    return SegmentFigures(**{k: pick(v) for k, v in vars(f).items() if k != "rms_model"})
 
 
 def _finite_or_inf(x: np.ndarray) -> np.ndarray:

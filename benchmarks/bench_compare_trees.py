@@ -1,0 +1,63 @@
+"""Every bundled example sized from the command line in two source trees, alternately.
+
+Run from the repository root, with a checkout (or `git archive`) of another commit:
+
+    git archive BASE | tar -x -C /tmp/base
+    python benchmarks/bench_compare_trees.py /tmp/base [--only WORD ...]
+
+Each example is run as `python -m sizer size EXAMPLE` from the other tree (``before``) and
+then from this one (``after``), one run each, so that both see the same load; the table
+gives the wall and the CPU seconds (user + system) of each run. On a loaded host the CPU
+time is the steadier figure.
+"""
+
+from __future__ import annotations
+
+import argparse
+import resource
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _children_cpu() -> float:
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def timed(tree: Path, args: list[str]) -> tuple[float, float]:
+    """(wall seconds, CPU seconds) of one run of python ``args`` in ``tree``."""
+    start, used = time.perf_counter(), _children_cpu()
+    subprocess.run([sys.executable, *args], cwd=tree, check=True, stdout=subprocess.DEVNULL,
+                   stderr=subprocess.DEVNULL)
+    return time.perf_counter() - start, _children_cpu() - used
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("before", type=Path, help="the other tree (its root)")
+    parser.add_argument("--only", nargs="*", default=None,
+                        help="only the examples whose file name contains one of these")
+    options = parser.parse_args()
+    examples = sorted((ROOT / "examples").glob("*.yaml")) + \
+        sorted((ROOT / "examples" / "book").glob("*.yaml"))
+    if options.only:
+        examples = [p for p in examples if any(word in p.name for word in options.only)]
+    print(f"{'example':45s} {'before wall':>11s} {'cpu':>6s} {'after wall':>11s} {'cpu':>6s}")
+    wall, cpu = timed(ROOT, ["-c", "import numpy"])
+    reference = 'python -c "import numpy"'
+    print(f"{reference:45s} {'':>11s} {'':>6s} {wall:11.3f} {cpu:6.3f}", flush=True)
+    for path in examples:
+        name = str(path.relative_to(ROOT))
+        before = timed(options.before, ["-m", "sizer", "size", name])
+        after = timed(ROOT, ["-m", "sizer", "size", name])
+        print(f"{name:45s} {before[0]:11.3f} {before[1]:6.3f} {after[0]:11.3f} "
+              f"{after[1]:6.3f}", flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
