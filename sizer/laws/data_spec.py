@@ -162,6 +162,10 @@ def data_law_label(text: str) -> str:
     for key in ("points", "positions", "control_points"):
         if isinstance(fields.get(key), list):
             return f"{kind}({len(fields[key])} {key.replace('_', ' ')})"
+    if kind == "shaped" and isinstance(fields.get("shaper"), str):
+        base = fields.get("law")
+        inner = data_law_label(data_spec_text(base)) if isinstance(base, dict) else base
+        return f"{fields['shaper']}({inner})"
     return kind
 
 
