@@ -65,6 +65,8 @@ def vibration(
     """
     from sizer.cli.output_guard import check_output, check_outputs
     from sizer.laws import AUTO, make_law, resolve
+    from sizer.laws.data_spec import law_label
+    from sizer.laws.open_shaped import is_open_shaped
     from sizer.report.output import emit
     from sizer.report.vibration_table import VibrationDocument
 
@@ -87,6 +89,10 @@ def vibration(
         if any(v == AUTO for v in resolve(spec)[1].values()):
             raise UserError(f"{spec}: give the shape (auto parameters depend on the motor)",
                             field="--law" if law else "laws")
+        if is_open_shaped(spec):
+            raise UserError(f"{law_label(spec)}: shaped for the mode at every duration, its "
+                            "residual is zero by construction; give f_T to sweep one "
+                            "shaping", field="--law" if law else "laws")
     laws = tuple(make_law(spec) for spec in specs)
     try:
         low, high = _range(loaded, start, stop)

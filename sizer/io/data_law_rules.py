@@ -23,7 +23,10 @@ from sizer.laws.data_spec import is_data_spec
 def _data_law(spec: str) -> Any:
     from sizer.laws import make_law
     from sizer.laws.data_law import DataLaw
+    from sizer.laws.open_shaped import is_open_shaped
 
+    if is_open_shaped(spec):
+        return None  # shaped at each move's duration: rest to rest, no units of its own
     law = make_law(spec)
     return law if isinstance(law, DataLaw) else None
 

@@ -17,6 +17,7 @@ from typing import Any
 
 from sizer.errors import UserError
 from sizer.io.yaml_source import YamlSource
+from sizer.laws.open_shaped import is_open_shaped
 
 _PART = re.compile(r"([^.\[\]]+)|\[(\d+)\]")
 
@@ -56,7 +57,10 @@ def canonical_data_laws(source: YamlSource, folder: Path) -> None:
             fields["file"] = str((folder / fields["file"]).absolute())
         try:
             text = data_spec_text(fields)
-            make_law(text)
+            if is_open_shaped(fields):
+                _check_open_shaped(source, fields)
+            else:
+                make_law(text)
         except UserError as error:
             raise _located(source, path, error) from None
         if path == ("laws",):
@@ -64,6 +68,19 @@ def canonical_data_laws(source: YamlSource, folder: Path) -> None:
             source.lines[("laws", 0)] = source.line_of(("laws",)) or 1
         else:
             parent[path[-1]] = text
+
+
+def _check_open_shaped(source: YamlSource, fields: dict[str, Any]) -> None:
+    """A shaped law whose f_T the design's mode and durations give (sizer.sizing.
+    shaped_sizing): the design must give the mode; the base law and shaper are built."""
+    from sizer.laws import make_law
+    from sizer.laws.data_spec import data_spec_text
+
+    load = source.data.get("load") if isinstance(source.data, dict) else None
+    if not isinstance(load, dict) or load.get("natural_frequency") is None:
+        raise UserError("a shaped law without f_T is shaped for the load's mode: give "
+                        "load.natural_frequency (or f_T)", field="f_T")
+    make_law(data_spec_text({**fields, "f_T": 1e6}))  # the base law and the shaper
 
 
 def _at(data: Any, path: tuple[Any, ...]) -> Any:

@@ -57,7 +57,6 @@ from sizer.io.yaml_source import (
 )
 from sizer.mechanics import linear_load
 from sizer.model.domain import Design, Limits, Load, Motor, Task
-from sizer.vibration.elastic_load import ElasticLoad
 from sizer.model.inputs import (
     CatalogFile,
     DesignFile,
@@ -66,6 +65,7 @@ from sizer.model.inputs import (
     MotorInput,
 )
 from sizer.model.inputs_base import axis_range, convert_in
+from sizer.vibration.elastic_load import ElasticLoad
 
 PathLike = str | Path
 

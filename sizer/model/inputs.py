@@ -63,6 +63,7 @@ def check_law_spec(text: Any) -> str:
     """
     from sizer.laws import AUTO, make_law, resolve
     from sizer.laws.data_spec import data_spec_text
+    from sizer.laws.open_shaped import is_open_shaped
 
     if isinstance(text, dict):
         # a law defined by data: the design loader has built it (its files are relative
@@ -86,8 +87,8 @@ def check_law_spec(text: Any) -> str:
                 names[key].validate(family.law_id, value)  # type: ignore[arg-type]
             elif (refusal := names[key].auto_refusal(family.law_id)) is not None:
                 raise UserError(refusal)
-        if AUTO not in values.values():
-            make_law(text)
+        if AUTO not in values.values() and not is_open_shaped(text):
+            make_law(text)  # an open shaped law is built by its design (sizer.io.data_laws)
     except UserError as error:
         raise ValueError(error.message) from None
     except (ArithmeticError, ValueError, TypeError) as error:  # huge numbers and the like

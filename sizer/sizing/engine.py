@@ -18,6 +18,7 @@ import numpy as np
 from sizer.envelope import envelope_note
 from sizer.errors import UserError
 from sizer.laws import AUTO, MotionLaw, make_law, resolve
+from sizer.laws.open_shaped import is_open_shaped
 from sizer.model.cycle import Dwell
 from sizer.model.domain import Design, Motor
 from sizer.sizing.auto_shape import choose_shape
@@ -81,6 +82,10 @@ def evaluate_spec(design: Design, spec: str, motors: MotorArrays) -> CandidateTa
 
 def evaluate_law(design: Design, spec: str, candidates: Candidates) -> CandidateTable:
     """One law spec (fixed or with auto parameters) for all candidates, in their order."""
+    if is_open_shaped(spec):  # shaped for the load's mode at each candidate's duration
+        from sizer.sizing.shaped_sizing import evaluate_shaped
+
+        return evaluate_shaped(design, spec, candidates)
     family, values = resolve(spec)
     if any(v == AUTO for v in values.values()):
         if design.cycle is not None:
