@@ -91,3 +91,13 @@ def test_open_shaped_laws_need_the_mode_and_one_duration(tmp_path):
     path = tmp_path / "mode.yaml"
     path.write_text(text)
     assert_user_error(run_cli("vibration", str(path)), "f_T")
+
+
+def test_a_residual_limit_does_not_move_a_law_shaped_for_its_duration(tmp_path):
+    loaded = design(tmp_path, "{kind: shaped, law: cycloidal, shaper: zv}")
+    free = {r.motor: r.duration for r in size_design(loaded).results}
+    bound = size_design(replace(loaded, limits=replace(loaded.limits,
+                                                       residual_vibration=1e-6)))
+    for r in bound.results:
+        assert r.feasible and r.duration == pytest.approx(free[r.motor], rel=1e-12)
+        assert r.check("residual_vibration").passed

@@ -168,18 +168,32 @@ def test_frequency_units_as_datasheets_write_them(tmp_path):
     assert load_design(path).load.elastic.natural_frequency == 25.0
 
 
+def _peak_error(spec: str, h: float, T: float, load: ElasticLoad) -> float:
+    """max |z| over the move from rest: the ODE's dense solution on 20,001 points."""
+    law = make_law(spec)
+    w, d = load.omega_n, load.damping_ratio
+
+    def f(t, y):
+        return [y[1], -w * w * y[0] - 2 * d * w * y[1]
+                - h * law.derivative(np.array([t / T]), 2)[0] / T**2]
+    sol = solve_ivp(f, (0.0, T), [0.0, 0.0], method="DOP853", rtol=1e-12, atol=1e-18,
+                    dense_output=True)
+    return float(np.max(np.abs(sol.sol(np.linspace(0.0, T, 20001))[0])))
+
+
 def test_vibration_command_sweeps_the_durations(tmp_path):
     csv = run_cli("vibration", str(EXAMPLE), "--from", "0.2 s", "--to", "0.6", "-n", "5",
                   "-l", "cycloidal", "-f", "csv")
     assert csv.returncode == 0, csv.stderr
     lines = csv.stdout.splitlines()
-    assert lines[0] == "T [s],cycloidal [rad]"
+    assert lines[0] == "T [s],cycloidal [rad],tracking error cycloidal [rad]"
     assert [float(line.split(",")[0]) for line in lines[1:]] == pytest.approx(
         [0.2, 0.3, 0.4, 0.5, 0.6])
     load = ElasticLoad(25.0, 0.02)
-    T, value = (float(x) for x in lines[2].split(","))
+    T, value, tracking = (float(x) for x in lines[2].split(","))
     assert value == pytest.approx(max(simulated_residuals("cycloidal", math.pi / 2, T, 0.35,
                                                           load, False, 30)), rel=1e-7)
+    assert tracking == pytest.approx(_peak_error("cycloidal", math.pi / 2, T, load), rel=1e-6)
     plot = tmp_path / "r.png"
     first = run_cli("vibration", str(EXAMPLE), "-n", "7", "-f", "json", "--plot", str(plot),
                     "--from", "0.3", "--to", "0.9")

@@ -6,8 +6,11 @@ durations), one column per law, the amplitude of the vibration the moves leave a
 load (book sec. 7.2), and whether it is within the design's limit.
 
 - JSON: ``{"format", "design", "natural_frequency", "damping_ratio", "limit", "unit",
-  "durations", "laws": [{"spec", "label", "residual": [...]}]}``, SI.
-- CSV: one line per duration, SI units in the headers, full precision.
+  "durations", "laws": [{"spec", "label", "residual": [...], "tracking_error": [...]}]}``,
+  SI (the tracking error: the peak |x - y| during the task's move from rest; null for a
+  cycle).
+- CSV: one line per duration, SI units in the headers, full precision; the residuals,
+  then the tracking errors.
 - Markdown and the terminal table: T in ms, amplitudes in um or arcsec, a ``*`` beside
   an amplitude above the limit.
 """
@@ -88,6 +91,9 @@ class VibrationDocument(Rendered):
     def footer(self) -> list[str]:
         lines = ["amplitude of the load's free vibration after each move (book sec. 7.2, "
                  "exact linear response of the mode of sec. 7.1.1)"]
+        if self.sweep.tracking is not None:
+            lines.append("CSV and JSON also give the peak tracking error |x - y| during the "
+                         "move, started at rest")
         if self.design.load.elastic is not None and self.design.load.elastic.damping_ratio > 0:
             lines.append("in the steady state of the repeated cycle (what a move leaves is "
                          "carried through the dwells into the next)")
@@ -101,7 +107,12 @@ class VibrationDocument(Rendered):
         unit = "m" if self.linear else "rad"
         head = "scale [1]" if self.cycle else "T [s]"
         headers = (head, *(f"{law.spec} [{unit}]" for law in self.sweep.laws))
-        rows = ((full(float(s)), *(full(float(v[i])) for v in self.sweep.residual))
+        columns = list(self.sweep.residual)
+        if self.sweep.tracking is not None:
+            headers = (*headers, *(f"tracking error {law.spec} [{unit}]"
+                                   for law in self.sweep.laws))
+            columns += list(self.sweep.tracking)
+        rows = ((full(float(s)), *(full(float(v[i])) for v in columns))
                 for i, s in enumerate(self.sweep.scales))
         return render_csv(headers, rows)
 
@@ -118,9 +129,11 @@ class VibrationDocument(Rendered):
             "durations": "scale" if self.cycle else "T [s]",
             "scales": [float(s) for s in self.sweep.scales],
             "laws": [{"spec": law.spec, "label": law_label(law.spec),
-                      "residual": [float(v) for v in values]}
-                     for law, values in zip(self.sweep.laws, self.sweep.residual,
-                                            strict=True)],
+                      "residual": [float(v) for v in values],
+                      "tracking_error": (None if self.sweep.tracking is None else
+                                         [float(v) for v in self.sweep.tracking[k]])}
+                     for k, (law, values) in enumerate(zip(self.sweep.laws,
+                                                           self.sweep.residual, strict=True))],
         }
         return render_json(document)
 

@@ -18,6 +18,7 @@ whole duration T, its base law taking T - t_n.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -67,13 +68,18 @@ def evaluate_shaped(design: Design, spec: str, candidates: Candidates) -> Candid
         assert design.task.duration is not None
         return evaluate_fixed_law(design, _shaped(fields, mode, design.task.duration),
                                   candidates)
+    # the rounds size the torques alone: the law shaped for T leaves no residual at T, a
+    # residual limit is checked once T is found (moving T inside the rounds would break the
+    # shaping's timing)
+    limit = design.limits.residual_vibration
+    plain = replace(design, limits=replace(design.limits, residual_vibration=None))
     base = fields["law"] if isinstance(fields["law"], str) else data_spec_text(fields["law"])
-    start = evaluate_fixed_law(design, make_law(base), candidates).figures["duration"]
+    start = evaluate_fixed_law(plain, make_law(base), candidates).figures["duration"]
     t_n = shaper_length(fields["shaper"], mode, fields.get("vibration_limit"))
     known = np.isfinite(start)
     fallback = float(np.nanmax(start)) if known.any() else 4.0 * t_n
     T = np.where(known, start, fallback) + t_n
-    table, h = _round(design, fields, mode, T, candidates)
+    table, h = _round(plain, fields, mode, T, candidates)
     previous_T, previous_h = T, h
     for _ in range(ROUNDS):
         moving = np.isfinite(h) & (np.abs(h) > RTOL * T)
@@ -89,8 +95,10 @@ def evaluate_shaped(design: Design, spec: str, candidates: Candidates) -> Candid
         nxt = np.where(moving, np.maximum(T + step, t_n * (1.0 + 1e-6)), T)
         previous_T, previous_h = T, h
         T = nxt
-        table, h = _round(design, fields, mode, T, candidates)
-    return table
+        table, h = _round(plain, fields, mode, T, candidates)
+    if limit is None:
+        return table
+    return _round(design, fields, mode, T, candidates)[0]
 
 
 def _round(design: Design, fields: dict[str, Any], mode: ElasticLoad, T: np.ndarray,

@@ -194,12 +194,18 @@ class VibrationSweep:
     laws: tuple[MotionLaw, ...]
     residual: tuple[np.ndarray, ...]
     limit: float | None
+    tracking: tuple[np.ndarray, ...] | None = None
+    """The task's peak tracking error |x - y| during its move, started at rest (sec. 7.2),
+    per law (m or rad); None for a cycle."""
 
 
 def vibration_sweep(design: Design, laws: tuple[MotionLaw, ...],
                     scales: np.ndarray) -> VibrationSweep:
     """The residual vibration of each law at every scale (UserError without a mode)."""
-    out = []
+    from sizer.vibration.response import tracking_error
+
+    scales = np.asarray(scales, dtype=float)
+    out, tracking = [], []
     for law in laws:
         vibration = cycle_vibration(design, law, sweep=True)
         if vibration is None:
@@ -207,5 +213,9 @@ def vibration_sweep(design: Design, laws: tuple[MotionLaw, ...],
                             "load.natural_frequency (and damping_ratio)",
                             field="load.natural_frequency")
         out.append(vibration.worst(scales))
-    return VibrationSweep(np.asarray(scales, dtype=float), laws, tuple(out),
-                          design.limits.residual_vibration)
+        if design.cycle is None:
+            mode = vibration.load
+            tracking.append(abs(design.task.displacement) * tracking_error(
+                law, mode.natural_frequency * scales, mode.damping_ratio))
+    return VibrationSweep(scales, laws, tuple(out), design.limits.residual_vibration,
+                          tuple(tracking) if design.cycle is None else None)
