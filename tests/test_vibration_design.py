@@ -205,3 +205,49 @@ def test_vibration_command_sweeps_the_durations(tmp_path):
                       "--to")
     assert_user_error(run_cli("vibration", str(ROOT / "examples" / "book" / "ex6_4.yaml")),
                       "natural_frequency")
+
+
+def test_a_cycle_with_runs_and_boundary_speeds_against_the_integrated_ode(tmp_path):
+    """The flying saw: accelerate to the line speed, run, stop, return, dwell; each move's
+    residual in the repeated cycle's steady state, the ODE driven by the moves' own
+    accelerations (their polynomial shapes between boundary speeds)."""
+    from sizer.laws.boundary_speeds import boundary_form
+
+    text = (ROOT / "examples" / "flying-saw.yaml").read_text()
+    text = text.replace("  closed: true\n", "  closed: true\n  cycle_time: 2 s\n")
+    text = text.replace("  friction: 30 N\n",
+                        "  friction: 30 N\n  natural_frequency: 8 Hz\n  damping_ratio: 0.05\n")
+    path = tmp_path / "saw.yaml"
+    path.write_text(text)
+    design = load_design(path)
+    design = replace(design, laws=("poly5",), motors=design.motors[-1:])
+    result = size_design(design).results[0]
+    load = ElasticLoad(8.0, 0.05)
+    w, d, wd = load.omega_n, load.damping_ratio, load.omega_d
+    # the free durations share 2 s - 0.4 s - 0.1 s by displacement (150, 100, 450 mm)
+    s = (2.0 - 0.5) / 0.7
+    basis = boundary_form(make_law("poly5"))
+    segments = [("move", 0.15, 0.0, 0.5), ("run", 0.4), ("move", 0.10, 0.5, 0.0),
+                ("move", -0.45, 0.0, 0.0), ("dwell", 0.1)]
+
+    def move(x, h, v0, v1, T):
+        s0, s1 = v0 * T / h, v1 * T / h
+        f = lambda t, y: [y[1], -w * w * y[0] - 2 * d * w * y[1]  # noqa: E731
+                          - h * basis.derivative(np.array([t / T]), 2, s0, s1)[0, 0] / T**2]
+        return solve_ivp(f, (0.0, T), x, method="DOP853", rtol=1e-12, atol=1e-18).y[:, -1]
+
+    def rest(x, T):
+        f = lambda t, y: [y[1], -w * w * y[0] - 2 * d * w * y[1]]  # noqa: E731
+        return solve_ivp(f, (0.0, T), x, method="DOP853", rtol=1e-12, atol=1e-18).y[:, -1]
+
+    x = np.zeros(2)
+    for _ in range(7):
+        ends = []
+        for seg in segments:
+            if seg[0] == "move":
+                _, h, v0, v1 = seg
+                x = move(x, h, v0, v1, abs(h) * s)
+                ends.append(math.hypot(x[0], (x[1] + d * w * x[0]) / wd))
+            else:
+                x = rest(x, seg[1])
+    assert result.residual_vibration == pytest.approx(max(ends), rel=1e-7)

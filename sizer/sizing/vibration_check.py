@@ -22,11 +22,16 @@ import numpy as np
 
 from sizer.errors import UserError
 from sizer.laws.base import MotionLaw
-from sizer.model.cycle import Cycle, Dwell, Move, from_task
+from sizer.model.cycle import Cycle, Move, from_task
 from sizer.model.domain import Design
 from sizer.sizing.checks import CheckArrays
 from sizer.vibration.elastic_load import ElasticLoad
-from sizer.vibration.modal_state import amplitude, free_turn, move_increment
+from sizer.vibration.modal_state import (
+    amplitude,
+    free_turn,
+    move_increment,
+    polynomial_increment,
+)
 
 GRID_PER_PERIOD = 16
 """Samples per damped period of the search for the admissible durations."""
@@ -43,10 +48,6 @@ def refusal(design: Design) -> str | None:
     """Why the design's residual vibration is not computed, or None."""
     if design.transmission.linkage is not None:
         return "a linkage's output does not follow the law (the ratio varies)"
-    cycle = design.machine_cycle
-    if any(not isinstance(s, Move | Dwell) or (isinstance(s, Move) and not s.rest_to_rest)
-           for s in cycle.segments):
-        return "a cycle with runs or moves between non-zero speeds"
     return None
 
 
@@ -77,10 +78,10 @@ class CycleVibration:
         state = np.zeros(s.shape, dtype=complex)
         ends: list[np.ndarray] = []
         for segment, law, T in zip(self.cycle.segments, self.laws, durations, strict=True):
-            state = state * free_turn(T, self.load)
+            state = state * free_turn(T, self.load)  # a dwell or a run: no acceleration
             if isinstance(segment, Move):
                 assert law is not None
-                state = state + segment.displacement * move_increment(law, T, self.load)
+                state = state + segment.displacement * self._increment(segment, law, T)
                 ends.append(state)
         if self.load.damping_ratio > 0.0:  # the steady state of the repeated cycle
             turn = free_turn(sum(durations, np.zeros_like(s)), self.load)
@@ -95,6 +96,30 @@ class CycleVibration:
         if not ends:
             return np.zeros((0, s.size))
         return amplitude(np.stack(ends), self.load)
+
+    def _increment(self, move: Move, law: MotionLaw, T: np.ndarray) -> np.ndarray:
+        """The H a move of unit displacement adds: the law's own shape, or for a move
+        between boundary speeds its polynomial shape at each duration."""
+        if move.rest_to_rest:
+            return move_increment(law, T, self.load)
+        from sizer.laws.boundary_speeds import boundary_form
+
+        basis = boundary_form(law)
+        assert basis is not None  # a cycle's laws meet its moves' boundary speeds
+        T = np.asarray(T, dtype=float)
+        flat = T.ravel()
+        h = move.displacement
+        r = (None if move.start_acceleration == 0.0 and move.end_acceleration == 0.0 else
+             (move.start_acceleration * flat**2 / h, move.end_acceleration * flat**2 / h))
+
+        def acceleration(u: np.ndarray) -> np.ndarray:
+            s0, s1 = move.start_speed * flat / h, move.end_speed * flat / h
+            if r is None:
+                return basis.derivative(u, 2, s0, s1)
+            return basis.derivative(u, 2, s0, s1, r0=r[0], r1=r[1])
+
+        return polynomial_increment(acceleration, basis.breaks, flat, self.load).reshape(
+            T.shape)
 
     def worst(self, s: np.ndarray) -> np.ndarray:
         """The largest residual over the moves, per scale."""

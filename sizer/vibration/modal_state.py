@@ -15,6 +15,8 @@ Every figure is exact to the rounding of the transform; vectorized over duration
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 
 from sizer.laws.base import MotionLaw
@@ -44,3 +46,37 @@ def free_turn(duration: np.ndarray, load: ElasticLoad) -> np.ndarray:
 def amplitude(state: np.ndarray, load: ElasticLoad) -> np.ndarray:
     """The amplitude |H| / omega_d of the free vibration of a state."""
     return np.abs(state) / load.omega_d
+
+
+NODES = 20
+"""Gauss-Legendre nodes on each part of a polynomial move's integral."""
+
+PHASE_STEP = 6.0
+"""Largest |lambda T| * width of a part [rad] (as sizer.vibration.transform)."""
+
+
+def polynomial_increment(acceleration, breaks: np.ndarray, duration: np.ndarray,
+                         load: ElasticLoad) -> np.ndarray:
+    """The H a move of unit displacement leaves from rest, for moves whose normalized
+    acceleration differs per candidate (a move between boundary speeds: its shape depends
+    on v T / h): (1 / T) int_0^1 a_N(u) exp(lambda T (1 - u)) du. ``acceleration(u)`` gives
+    a_N at the nodes u for every candidate, (n, len(u)); ``breaks`` are its pieces' ends.
+    Composite Gauss-Legendre on the pieces, cut so that a part's phase stays below
+    PHASE_STEP (exact to rounding for polynomial pieces times the exponential)."""
+    from numpy.polynomial.legendre import leggauss
+
+    T = np.asarray(duration, dtype=float)
+    s = eigenvalue(load) * T
+    s_max = float(np.max(np.abs(s), initial=0.0))
+    edges = [np.asarray(breaks, dtype=float)[:1]]
+    for start, end in itertools.pairwise(breaks):
+        cuts = max(1, int(np.ceil(s_max * (end - start) / PHASE_STEP)))
+        edges.append(np.linspace(start, end, cuts + 1)[1:])
+    fine = np.concatenate(edges)
+    x, w = leggauss(NODES)
+    half = 0.5 * np.diff(fine)
+    u = ((0.5 * (fine[:-1] + fine[1:]))[:, None] + half[:, None] * x).ravel()
+    weight = (half[:, None] * w).ravel()
+    values = acceleration(u)  # (n, nodes)
+    kernel = np.exp(s.reshape(-1, 1) * (1.0 - u))  # decays: Re(lambda) <= 0
+    return ((values * kernel) @ weight).reshape(s.shape) / T
