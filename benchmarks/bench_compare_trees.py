@@ -14,18 +14,15 @@ time is the steadier figure.
 from __future__ import annotations
 
 import argparse
-import resource
 import subprocess
 import sys
 import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "benchmarks"))
 
-
-def _children_cpu() -> float:
-    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return usage.ru_utime + usage.ru_stime
+from bench_examples import _children_cpu, example_files  # noqa: E402
 
 
 def timed(tree: Path, args: list[str]) -> tuple[float, float]:
@@ -42,10 +39,7 @@ def main() -> int:
     parser.add_argument("--only", nargs="*", default=None,
                         help="only the examples whose file name contains one of these")
     options = parser.parse_args()
-    examples = sorted((ROOT / "examples").glob("*.yaml")) + \
-        sorted((ROOT / "examples" / "book").glob("*.yaml"))
-    if options.only:
-        examples = [p for p in examples if any(word in p.name for word in options.only)]
+    examples = example_files(options.only)
     print(f"{'example':45s} {'before wall':>11s} {'cpu':>6s} {'after wall':>11s} {'cpu':>6s}")
     wall, cpu = timed(ROOT, ["-c", "import numpy"])
     reference = 'python -c "import numpy"'

@@ -43,6 +43,15 @@ def best_time(args: list[str], repeat: int) -> tuple[float, float]:
     return best, cpu
 
 
+def example_files(only: list[str] | None) -> list[Path]:
+    """The bundled examples (the book's last), those whose name holds a word of ``only``."""
+    examples = sorted((ROOT / "examples").glob("*.yaml")) + \
+        sorted((ROOT / "examples" / "book").glob("*.yaml"))
+    if only:
+        examples = [p for p in examples if any(word in p.name for word in only)]
+    return examples
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=3)
@@ -50,10 +59,7 @@ def main() -> int:
     parser.add_argument("--only", nargs="*", default=None,
                         help="time only the examples whose file name contains one of these")
     options = parser.parse_args()
-    examples = sorted((ROOT / "examples").glob("*.yaml")) + \
-        sorted((ROOT / "examples" / "book").glob("*.yaml"))
-    if options.only:
-        examples = [p for p in examples if any(word in p.name for word in options.only)]
+    examples = example_files(options.only)
     numpy, numpy_cpu = best_time([sys.executable, "-c", "import numpy"], options.repeat)
     print(f"{'example':45s} {'seconds':>8s} {'x numpy':>8s} {'cpu [s]':>8s}")
     reference = 'python -c "import numpy"'

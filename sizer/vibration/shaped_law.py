@@ -32,7 +32,6 @@ The data kind ``shaped`` (sizer.laws.data_spec) builds the same law from its map
 from __future__ import annotations
 
 import itertools
-import math
 from collections.abc import Mapping, Sequence
 from functools import cached_property
 from typing import Any, ClassVar, Literal
@@ -168,12 +167,9 @@ class ShapedLaw(MotionLaw):
 
 
 def _finite(value: Any, field: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, int | float):
-        raise UserError(f"must be a number, got {value!r}", field=field)
-    number = float(value)
-    if not math.isfinite(number):
-        raise UserError(f"must be a finite number, got {value!r}", field=field)
-    return number
+    from sizer.laws.multipoint.fields import as_number
+
+    return as_number(value, field)
 
 
 def _check_base(base: MotionLaw) -> None:
