@@ -1,0 +1,226 @@
+"""Winding temperature rise of a motor as a sum of first-order modes (issue 16).
+
+First-order model (book sec. 6.1.1, footnote: the thermal time constant is the time to
+reach 63.2 % of the final rise): C dT/dt = P(t) - T/R_th, tau_th = R_th C, T the rise
+above ambient. Two-node model (winding and housing, as maxon's datasheets give it:
+R_th1 winding-housing, R_th2 housing-ambient, tau_w winding, tau_s stator/motor time
+constants, C_w = tau_w/R_th1, C_h = tau_s/R_th2):
+
+    C_w dT_w/dt = P - (T_w - T_h)/R_th1,   C_h dT_h/dt = (T_w - T_h)/R_th1 - T_h/R_th2.
+
+Both are, seen from the winding, a sum of modes z_i' = (g_i P - z_i)/tau_i with
+T = sum z_i (partial fractions of the transfer function; the two-node gains are positive
+and add to R_th1 + R_th2). The loss P(t) is piecewise linear in time between samples (a
+repeated time is a step: piecewise-constant losses are exact). On an interval of length
+h from P0 to P1 each mode moves exactly to
+
+    z1 = a z0 + g ((b - a) P0 + (1 - b) P1),   a = exp(-h/tau),  b = (tau/h)(1 - a),
+
+and the intervals compose by an associative scan (no time stepping). The periodic steady
+state of a repeated cycle solves z(0) = z(period): z0 = c/(1 - A) per mode. Peaks are
+exact: the samples and the interior maxima (T' = 0, found by bisection on each interval
+split where T'' changes sign). Means are exact integrals.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from sizer.energy.inputs import finite, nonnegative, positive, samples, times
+from sizer.errors import UserError
+
+BISECTION_STEPS = 60
+
+
+def _decay(h: np.ndarray, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """a = exp(-h/tau) and b = (tau/h)(1 - a) (1 where h = 0), computed stably."""
+    x = h / tau
+    a = np.exp(-x)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        b = np.where(x > 0.0, -np.expm1(-x) / x, 1.0)
+    return a, b
+
+
+def _scan(a: np.ndarray, c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Prefix compositions of z -> a z + c along the last axis: (A_k, C_k) with
+    z_{k+1} = A_k z_0 + C_k (a doubling scan: log2(n) vector steps)."""
+    A, C = a.copy(), c.copy()
+    shift = 1
+    n = a.shape[-1]
+    while shift < n:
+        C[..., shift:] = A[..., shift:] * C[..., :-shift] + C[..., shift:]
+        A[..., shift:] = A[..., shift:] * A[..., :-shift]
+        shift *= 2
+    return A, C
+
+
+@dataclass(frozen=True)
+class Response:
+    """The winding's temperature rise (K) at the sample times, per candidate and mode.
+
+    ``modes`` (candidates, modes, samples); ``rise`` their sum; ``peak`` and ``mean`` over
+    the samples' span, exact for the piecewise-linear loss.
+    """
+
+    time: np.ndarray
+    loss: np.ndarray
+    time_constants: np.ndarray
+    gains: np.ndarray
+    modes: np.ndarray
+
+    @property
+    def rise(self) -> np.ndarray:
+        return self.modes.sum(axis=1)
+
+    @property
+    def final(self) -> np.ndarray:
+        """The mode states at the last sample (candidates, modes): the start of what follows."""
+        return self.modes[:, :, -1]
+
+    def _pieces(self):
+        h = np.diff(self.time)[None, None, :]
+        tau, g = self.time_constants[:, :, None], self.gains[:, :, None]
+        P0, P1 = self.loss[:, None, :-1], self.loss[:, None, 1:]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            slope = np.where(h > 0.0, (P1 - P0) / h, 0.0)
+        z0 = self.modes[:, :, :-1]
+        D = z0 - g * P0 + g * tau * slope
+        return h, tau, g, P0, slope, D
+
+    @property
+    def mean(self) -> np.ndarray:
+        """The mean rise over the span: the exact integral over the span's length."""
+        h, tau, g, P0, slope, D = self._pieces()
+        _a, b = _decay(h, tau)
+        integral = g * (P0 * h + 0.5 * slope * h * h - tau * slope * h) + D * b * h
+        span = float(self.time[-1] - self.time[0])
+        return integral.sum(axis=(1, 2)) / span
+
+    @property
+    def peak(self) -> np.ndarray:
+        """The largest rise over the span (samples and interior maxima)."""
+        best = self.rise.max(axis=1)
+        h, tau, g, P0, slope, D = self._pieces()
+
+        def value(s):
+            return np.sum(g * (P0 + slope * s - tau * slope) + D * np.exp(-s / tau), axis=1)
+
+        def derivative(s):
+            return np.sum(g * slope - D / tau * np.exp(-s / tau), axis=1)
+
+        hh = np.broadcast_to(h[:, 0, :], (*best.shape, h.shape[-1]))
+        split = hh.copy()
+        if tau.shape[1] == 2:  # T'' = sum D_i/tau_i^2 exp(-s/tau_i) = 0 at most once
+            k = D / tau / tau
+            with np.errstate(divide="ignore", invalid="ignore"):
+                ratio = -k[:, 0] / k[:, 1]
+                s0 = np.log(ratio) / (1.0 / tau[:, 0] - 1.0 / tau[:, 1])
+            inside = np.isfinite(s0) & (ratio > 0.0) & (s0 > 0.0) & (s0 < hh)
+            split = np.where(inside, s0, hh)
+        for lo, hi in ((np.zeros_like(hh), split), (split, hh)):
+            d_lo, d_hi = derivative(lo), derivative(hi)
+            found = (d_lo > 0.0) & (d_hi < 0.0) & (hi > lo)
+            if not found.any():
+                continue
+            lo, hi = np.where(found, lo, 0.0), np.where(found, hi, 0.0)
+            for _ in range(BISECTION_STEPS):
+                mid = 0.5 * (lo + hi)
+                up = derivative(mid) > 0.0
+                lo, hi = np.where(up, mid, lo), np.where(up, hi, mid)
+            top = np.where(found, value(0.5 * (lo + hi)), -np.inf)
+            best = np.maximum(best, top.max(axis=1))
+        return best
+
+
+@dataclass(frozen=True)
+class ThermalModel:
+    """A winding seen as modes: time constants and gains (candidates, modes), s and K/W."""
+
+    time_constants: np.ndarray
+    gains: np.ndarray
+
+    @property
+    def thermal_resistance(self) -> np.ndarray:
+        """The steady rise per watt (K/W), per candidate."""
+        return self.gains.sum(axis=1)
+
+    @property
+    def time_constant(self) -> np.ndarray:
+        """The slowest mode's time constant, per candidate."""
+        return self.time_constants.max(axis=1)
+
+    def _steps(self, time, loss):
+        t = times(time)
+        P = samples(loss, t, "loss")
+        nonnegative(P, "loss")
+        n = max(P.shape[0], self.gains.shape[0])
+        P = np.broadcast_to(P, (n, t.size))
+        tau = np.broadcast_to(self.time_constants, (n, self.gains.shape[1]))[:, :, None]
+        g = np.broadcast_to(self.gains, (n, self.gains.shape[1]))[:, :, None]
+        a, b = _decay(np.diff(t)[None, None, :], tau)
+        c = g * ((b - a) * P[:, None, :-1] + (1.0 - b) * P[:, None, 1:])
+        return t, P, tau, g, a, c
+
+    def _response(self, t, P, tau, g, z0, A, C) -> Response:
+        modes = np.concatenate([z0[:, :, None], A * z0[:, :, None] + C], axis=2)
+        return Response(t, P, tau[:, :, 0], g[:, :, 0], modes)
+
+    def response(self, time, loss, initial=None) -> Response:
+        """A one-off sequence from ``initial`` mode states (candidates, modes) or, by
+        default, from ambient (zero rise): loss (W) sampled at ``time``."""
+        t, P, tau, g, a, c = self._steps(time, loss)
+        A, C = _scan(a, c)
+        z0 = np.zeros(A.shape[:2]) if initial is None else np.broadcast_to(
+            finite(initial, "initial"), A.shape[:2])
+        return self._response(t, P, tau, g, z0, A, C)
+
+    def periodic(self, time, loss) -> Response:
+        """The periodic steady state of the cycle ``loss`` sampled at ``time`` repeated
+        forever: the rise at the cycle's start equals the rise at its end."""
+        t, P, tau, g, a, c = self._steps(time, loss)
+        A, C = _scan(a, c)
+        period = float(t[-1] - t[0])
+        z0 = C[:, :, -1] / -np.expm1(-period / tau[:, :, 0])
+        return self._response(t, P, tau, g, z0, A, C)
+
+
+def thermal_resistance(allowed_rise, continuous_loss) -> np.ndarray:
+    """R_th = dT_max / P_cu(tau_c) (K/W): the winding reaches its allowed rise at the
+    continuous torque's copper loss (sizer.energy.copper_loss of tau_c)."""
+    return positive(allowed_rise, "allowed_rise") / positive(continuous_loss, "continuous_loss")
+
+
+def first_order(thermal_resistance, time_constant) -> ThermalModel:
+    """The one-node winding model: R_th (K/W) and tau_th (s), scalars or per candidate."""
+    R = positive(thermal_resistance, "thermal_resistance")
+    tau = positive(time_constant, "thermal_time_constant", " (a time constant of zero "
+                   "would make the winding follow its loss without delay)")
+    R, tau = np.broadcast_arrays(np.atleast_1d(R), np.atleast_1d(tau))
+    return ThermalModel(tau.reshape(-1, 1).astype(float), R.reshape(-1, 1).astype(float))
+
+
+def two_node(winding_housing_resistance, housing_ambient_resistance,
+             winding_time_constant, housing_time_constant) -> ThermalModel:
+    """The winding-housing model from R_th1, R_th2 (K/W) and the winding's and the
+    housing's time constants tau_w = R_th1 C_w, tau_s = R_th2 C_h (s)."""
+    R1 = positive(winding_housing_resistance, "winding_housing_resistance")
+    R2 = positive(housing_ambient_resistance, "housing_ambient_resistance")
+    tw = positive(winding_time_constant, "winding_time_constant")
+    th = positive(housing_time_constant, "housing_time_constant")
+    R1, R2, tw, th = (np.atleast_1d(x).astype(float) for x in np.broadcast_arrays(R1, R2, tw, th))
+    Cw, Ch = tw / R1, th / R2
+    m11, m12 = -1.0 / (R1 * Cw), 1.0 / (R1 * Cw)
+    m21, m22 = 1.0 / (R1 * Ch), -(1.0 / (R1 * Ch) + 1.0 / (R2 * Ch))
+    trace, det = m11 + m22, m11 * m22 - m12 * m21
+    root = np.sqrt(np.maximum(0.25 * (m11 - m22) ** 2 + m12 * m21, 0.0))
+    fast, slow = 0.5 * trace - root, 0.5 * trace + root  # real, distinct, negative
+    if bool(np.any(~(root > 0.0) | ~(det > 0.0))):
+        raise UserError("these figures give no two-node model", field="winding_time_constant")
+    # residues of (s - m22) / (C_w (s - fast)(s - slow)); gain = residue * tau = -r/lambda
+    r_fast = (fast - m22) / (Cw * (fast - slow))
+    r_slow = (slow - m22) / (Cw * (slow - fast))
+    tau = np.stack([-1.0 / fast, -1.0 / slow], axis=1)
+    gains = np.stack([-r_fast / fast, -r_slow / slow], axis=1)
+    return ThermalModel(tau, gains)
