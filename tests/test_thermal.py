@@ -18,6 +18,7 @@ from sizer.thermal import (
     thermal_resistance,
     thermal_verdict,
     two_node,
+    winding_check,
 )
 
 K_T, R_W = 0.6, 2.0  # N*m/A_rms, ohm line to line
@@ -201,6 +202,15 @@ def test_candidates_are_rows() -> None:
     assert both.rise.shape == (2, time.size)
     assert np.allclose(both.rise[0], single.rise[0], rtol=1e-14)
     assert np.allclose(both.rise[1], single.rise[0], rtol=1e-14)  # 2R * P/2
+    assert np.allclose(both.peak, single.peak[0], rtol=1e-12)
+    # two-node models per candidate, each as on its own
+    params = [(0.5, 1.2, 0.4, 6.0), (0.3, 2.0, 1.5, 40.0), (1.0, 0.2, 0.05, 3.0)]
+    together = two_node(*np.array(params).T).response(time, loss)
+    for row, p in enumerate(params):
+        alone = two_node(*p).response(time, loss)
+        assert np.allclose(together.rise[row], alone.rise[0], rtol=1e-13)
+        assert together.peak[row] == pytest.approx(alone.peak[0], rel=1e-12)
+        assert together.mean[row] == pytest.approx(alone.mean[0], rel=1e-12)
 
 
 def test_continuing_from_a_final_state() -> None:
@@ -235,3 +245,26 @@ def test_bad_inputs_name_their_field(call, field) -> None:
     with pytest.raises(UserError) as error:
         call()
     assert error.value.field == field
+
+
+def test_winding_check_of_sampled_torques() -> None:
+    torques = [5.0, 0.4, -3.0, 0.1]
+    durations = [0.1, 0.25, 0.08, 0.37]
+    time, torque = steps(torques, durations)
+    cycle = sum(durations)
+    rms = math.sqrt(sum(t * t * d for t, d in zip(torques, durations, strict=True)) / cycle)
+    check = winding_check(time, torque, TAU_C, RISE, [100.0, 2.0])
+    assert np.allclose(check.rms_torque, rms, rtol=1e-13)
+    assert np.allclose(check.response.mean, RISE * (rms / TAU_C) ** 2, rtol=1e-11)
+    assert list(check.verdict.applied) == ["rms", "thermal"]
+    # the same as the model with R_th from the continuous torque's copper loss
+    model = first_order(R_TH, 2.0).periodic(time, _loss(torque))
+    assert check.verdict.peak_rise[1] == pytest.approx(model.peak[0], rel=1e-12)
+    assert check.verdict.margin[0] == pytest.approx(1.0 - (rms / TAU_C) ** 2, rel=1e-12)
+    # a one-off sequence from a warm start
+    once = winding_check(time, torque, TAU_C, RISE, 2.0, periodic=False, initial_rise=20.0)
+    warm = first_order(R_TH, 2.0).response(time, _loss(torque), initial=[[20.0]])
+    assert once.response.rise[0] == pytest.approx(warm.rise[0], rel=1e-12)
+    with pytest.raises(UserError) as error:
+        winding_check(time, torque, TAU_C, RISE, 0.0)
+    assert error.value.field == "thermal_time_constant"

@@ -2,6 +2,7 @@
 for piecewise-linear losses, over one-off sequences or the periodic steady state, and the
 verdict saying whether the RMS check or the thermal model applies."""
 
+from sizer.thermal.check import WindingCheck, winding_check
 from sizer.thermal.network import (
     Response,
     ThermalModel,
@@ -11,5 +12,6 @@ from sizer.thermal.network import (
 )
 from sizer.thermal.verdict import RMS_SHARE, ThermalVerdict, applied_check, thermal_verdict
 
-__all__ = ["RMS_SHARE", "Response", "ThermalModel", "ThermalVerdict", "applied_check",
-           "first_order", "thermal_resistance", "thermal_verdict", "two_node"]
+__all__ = ["RMS_SHARE", "Response", "ThermalModel", "ThermalVerdict", "WindingCheck",
+           "applied_check", "first_order", "thermal_resistance", "thermal_verdict", "two_node",
+           "winding_check"]

@@ -104,10 +104,12 @@ class Response:
         best = self.rise.max(axis=1)
         h, tau, g, P0, slope, D = self._pieces()
 
-        def value(s):
+        def value(s):  # s (candidates, intervals)
+            s = s[:, None, :]
             return np.sum(g * (P0 + slope * s - tau * slope) + D * np.exp(-s / tau), axis=1)
 
         def derivative(s):
+            s = s[:, None, :]
             return np.sum(g * slope - D / tau * np.exp(-s / tau), axis=1)
 
         hh = np.broadcast_to(h[:, 0, :], (*best.shape, h.shape[-1]))
