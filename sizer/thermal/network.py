@@ -16,9 +16,10 @@ h from P0 to P1 each mode moves exactly to
 
     z1 = a z0 + g ((b - a) P0 + (1 - b) P1),   a = exp(-h/tau),  b = (tau/h)(1 - a),
 
-and the intervals compose by an associative scan (no time stepping). The periodic steady
+(weights by power series where h/tau is small, :func:`_weights`) and the intervals
+compose by an associative scan (no time stepping). The periodic steady
 state of a repeated cycle solves z(0) = z(period): z0 = c/(1 - A) per mode. Peaks are
-exact: the samples and the interior maxima (T' = 0, found by bisection on each interval
+exact: the samples and the interior maxima (T' = 0, found by Illinois regula falsi on each interval
 split where T'' changes sign). Means are exact integrals.
 """
 
@@ -30,17 +31,51 @@ import numpy as np
 
 from sizer.energy.inputs import finite, nonnegative, positive, samples, times
 from sizer.errors import UserError
+from sizer.numerics.roots import illinois
 
-BISECTION_STEPS = 60
+SERIES_BELOW = 0.1
+"""Below this h/tau the weights are summed from their power series (no cancellation)."""
+_TERMS = 14
+_FACT = np.cumprod(np.concatenate([[1.0], np.arange(1.0, _TERMS + 4.0)]))  # 0! .. (T+3)!
 
 
-def _decay(h: np.ndarray, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """a = exp(-h/tau) and b = (tau/h)(1 - a) (1 where h = 0), computed stably."""
-    x = h / tau
+_SERIES = {  # coefficients of (-x)^k, k = 0 .. _TERMS - 1
+    "b": 1.0 / _FACT[1:_TERMS + 1],
+    "c1": 1.0 / _FACT[2:_TERMS + 2],
+    "c2": np.arange(1.0, _TERMS + 1.0) / _FACT[2:_TERMS + 2],
+    "d1": 1.0 / _FACT[3:_TERMS + 3],
+    "d2": np.arange(2.0, _TERMS + 2.0) / _FACT[3:_TERMS + 3],
+}
+
+
+def _weights(x: np.ndarray) -> dict[str, np.ndarray]:
+    """Weights of the exact response over an interval with x = h/tau >= 0:
+    a = e^-x, b = (1 - a)/x, c1 = (x - 1 + a)/x^2, c2 = (1 - (1 + x) a)/x^2,
+    d1 = (1/2 - c1)/x, d2 = (1/2 - c2)/x (power series for small x, exact at 0)."""
+    x = np.minimum(x, 1e150)
     a = np.exp(-x)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        b = np.where(x > 0.0, -np.expm1(-x) / x, 1.0)
-    return a, b
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        b = -np.expm1(-x) / x
+        c1 = (x - 1.0 + a) / (x * x)
+        c2 = (1.0 - (1.0 + x) * a) / (x * x)
+        out = {"a": a, "b": b, "c1": c1, "c2": c2, "d1": (0.5 - c1) / x,
+               "d2": (0.5 - c2) / x}
+    small = x < SERIES_BELOW
+    if small.any():
+        y = -x[small]
+        for name, coefficients in _SERIES.items():
+            total = np.full_like(y, coefficients[-1])
+            for c in coefficients[-2::-1]:  # Horner
+                total = total * y + c
+            out[name][small] = total
+    return out
+
+
+def _state(z0, g, P0, P1, x):
+    """A mode's state after x = s/tau of an interval where the loss runs linearly from P0
+    to P1 (at s): z = a z0 + g x (c2 P0 + c1 P1)."""
+    w = _weights(x)
+    return w["a"] * z0 + g * x * (w["c2"] * P0 + w["c1"] * P1)
 
 
 def _scan(a: np.ndarray, c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -83,18 +118,16 @@ class Response:
         h = np.diff(self.time)[None, None, :]
         tau, g = self.time_constants[:, :, None], self.gains[:, :, None]
         P0, P1 = self.loss[:, None, :-1], self.loss[:, None, 1:]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            slope = np.where(h > 0.0, (P1 - P0) / h, 0.0)
-        z0 = self.modes[:, :, :-1]
-        D = z0 - g * P0 + g * tau * slope
-        return h, tau, g, P0, slope, D
+        return h, tau, g, P0, P1, self.modes[:, :, :-1]
 
     @property
     def mean(self) -> np.ndarray:
-        """The mean rise over the span: the exact integral over the span's length."""
-        h, tau, g, P0, slope, D = self._pieces()
-        _a, b = _decay(h, tau)
-        integral = g * (P0 * h + 0.5 * slope * h * h - tau * slope * h) + D * b * h
+        """The mean rise over the span: the exact integral over the span's length,
+        per interval h (z0 b + g x (d2 P0 + d1 P1))."""
+        h, tau, g, P0, P1, z0 = self._pieces()
+        x = h / tau
+        w = _weights(x)
+        integral = h * (z0 * w["b"] + g * x * (w["d2"] * P0 + w["d1"] * P1))
         span = float(self.time[-1] - self.time[0])
         return integral.sum(axis=(1, 2)) / span
 
@@ -102,37 +135,42 @@ class Response:
     def peak(self) -> np.ndarray:
         """The largest rise over the span (samples and interior maxima)."""
         best = self.rise.max(axis=1)
-        h, tau, g, P0, slope, D = self._pieces()
-
-        def value(s):  # s (candidates, intervals)
-            s = s[:, None, :]
-            return np.sum(g * (P0 + slope * s - tau * slope) + D * np.exp(-s / tau), axis=1)
-
-        def derivative(s):
-            s = s[:, None, :]
-            return np.sum(g * slope - D / tau * np.exp(-s / tau), axis=1)
-
-        hh = np.broadcast_to(h[:, 0, :], (*best.shape, h.shape[-1]))
-        split = hh.copy()
-        if tau.shape[1] == 2:  # T'' = sum D_i/tau_i^2 exp(-s/tau_i) = 0 at most once
-            k = D / tau / tau
-            with np.errstate(divide="ignore", invalid="ignore"):
-                ratio = -k[:, 0] / k[:, 1]
+        h, tau, g, P0, P1, z0 = self._pieces()
+        n, k, m = z0.shape
+        hh = np.broadcast_to(h[:, 0, :], (n, m))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            slope = np.where(h > 0.0, (P1 - P0) / h, 0.0)
+        split = hh
+        if k == 2:  # T'' = sum E_i/tau_i e^(-s/tau_i) = 0 at most once
+            E = (g * slope - (g * P0 - z0) / tau) / tau  # E_i = D_i/tau_i, D_i/tau_i^2
+            with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+                ratio = -E[:, 0] / E[:, 1]
                 s0 = np.log(ratio) / (1.0 / tau[:, 0] - 1.0 / tau[:, 1])
             inside = np.isfinite(s0) & (ratio > 0.0) & (s0 > 0.0) & (s0 < hh)
             split = np.where(inside, s0, hh)
-        for lo, hi in ((np.zeros_like(hh), split), (split, hh)):
-            d_lo, d_hi = derivative(lo), derivative(hi)
-            found = (d_lo > 0.0) & (d_hi < 0.0) & (hi > lo)
-            if not found.any():
+
+        def at(s, rows, cols):  # (T'(s) * scale, T(s)) of the intervals (rows, cols)
+            tk, gk, zk = tau[rows, :, 0], g[rows, :, 0], z0[rows, :, cols]
+            p0 = P0[rows, 0, cols][:, None]
+            p = p0 + slope[rows, 0, cols][:, None] * s[:, None]
+            z = _state(zk, gk, p0, p, s[:, None] / tk)
+            return np.sum((gk * p - z) / tk, axis=1), np.sum(z, axis=1)
+
+        # a mode stays within its start and the range of g P: an interval whose bound
+        # is below the samples' best cannot hold the peak
+        bound = np.sum(np.maximum(z0, g * np.maximum(P0, P1)), axis=1)
+        hopeful = bound > best[:, None]
+        for lo_all, hi_all in ((np.zeros_like(hh), split), (split, hh)):
+            rows, cols = np.nonzero(hopeful & (hi_all > lo_all))
+            lo, hi = lo_all[rows, cols], hi_all[rows, cols]
+            d_lo, d_hi = at(lo, rows, cols)[0], at(hi, rows, cols)[0]
+            keep = (d_lo > 0.0) & (d_hi < 0.0)
+            rows, cols = rows[keep], cols[keep]
+            if rows.size == 0:
                 continue
-            lo, hi = np.where(found, lo, 0.0), np.where(found, hi, 0.0)
-            for _ in range(BISECTION_STEPS):
-                mid = 0.5 * (lo + hi)
-                up = derivative(mid) > 0.0
-                lo, hi = np.where(up, mid, lo), np.where(up, hi, mid)
-            top = np.where(found, value(0.5 * (lo + hi)), -np.inf)
-            best = np.maximum(best, top.max(axis=1))
+            root = illinois(lambda s, r, c: at(s, r, c)[0], lo[keep], hi[keep], d_lo[keep],
+                            d_hi[keep], args=(rows, cols))
+            np.maximum.at(best, rows, at(root, rows, cols)[1])
         return best
 
 
@@ -161,9 +199,10 @@ class ThermalModel:
         P = np.broadcast_to(P, (n, t.size))
         tau = np.broadcast_to(self.time_constants, (n, self.gains.shape[1]))[:, :, None]
         g = np.broadcast_to(self.gains, (n, self.gains.shape[1]))[:, :, None]
-        a, b = _decay(np.diff(t)[None, None, :], tau)
-        c = g * ((b - a) * P[:, None, :-1] + (1.0 - b) * P[:, None, 1:])
-        return t, P, tau, g, a, c
+        x = np.diff(t)[None, None, :] / tau
+        w = _weights(x)
+        c = g * x * (w["c2"] * P[:, None, :-1] + w["c1"] * P[:, None, 1:])
+        return t, P, tau, g, w["a"], c
 
     def _response(self, t, P, tau, g, z0, A, C) -> Response:
         modes = np.concatenate([z0[:, :, None], A * z0[:, :, None] + C], axis=2)
