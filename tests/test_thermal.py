@@ -44,7 +44,7 @@ def test_thermal_resistance_from_the_continuous_torque() -> None:
         RISE / (1.5 * R_W * (TAU_C / K_T) ** 2), rel=1e-15)
 
 
-@pytest.mark.parametrize("tau_th", [0.05, 1.0, 30.0, 2000.0])
+@pytest.mark.parametrize("tau_th", [1e-6, 0.05, 1.0, 30.0, 2000.0, 1e9])
 def test_periodic_mean_is_the_rms_torque_loss(tau_th) -> None:
     torques = [5.0, 0.4, -3.0, 0.1]  # accelerate, run, brake, hold
     durations = [0.1, 0.25, 0.08, 0.37]

@@ -33,9 +33,9 @@ from sizer.energy.inputs import finite, nonnegative, positive, samples, times
 from sizer.errors import UserError
 from sizer.numerics.roots import illinois
 
-SERIES_BELOW = 0.1
+SERIES_BELOW = 0.5
 """Below this h/tau the weights are summed from their power series (no cancellation)."""
-_TERMS = 14
+_TERMS = 16
 _FACT = np.cumprod(np.concatenate([[1.0], np.arange(1.0, _TERMS + 4.0)]))  # 0! .. (T+3)!
 
 
@@ -48,33 +48,51 @@ _SERIES = {  # coefficients of (-x)^k, k = 0 .. _TERMS - 1
 }
 
 
-def _weights(x: np.ndarray) -> dict[str, np.ndarray]:
+X_MAX = 1e150
+"""h/tau beyond this is taken as this (the weights are then 0, 1/x, ... to rounding)."""
+
+
+def _ratio(h, tau) -> np.ndarray:
+    """x = h/tau, at most X_MAX (so that x^2 stays finite)."""
+    with np.errstate(over="ignore"):
+        return np.minimum(h / tau, X_MAX)
+
+
+def _weights(x: np.ndarray, names: tuple[str, ...] = ("b", "c1", "c2", "d1", "d2")
+             ) -> dict[str, np.ndarray]:
     """Weights of the exact response over an interval with x = h/tau >= 0:
     a = e^-x, b = (1 - a)/x, c1 = (x - 1 + a)/x^2, c2 = (1 - (1 + x) a)/x^2,
     d1 = (1/2 - c1)/x, d2 = (1/2 - c2)/x (power series for small x, exact at 0)."""
-    x = np.minimum(x, 1e150)
+    x = np.minimum(x, X_MAX)
     a = np.exp(-x)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        b = -np.expm1(-x) / x
-        c1 = (x - 1.0 + a) / (x * x)
-        c2 = (1.0 - (1.0 + x) * a) / (x * x)
-        out = {"a": a, "b": b, "c1": c1, "c2": c2, "d1": (0.5 - c1) / x,
-               "d2": (0.5 - c2) / x}
+    out = {"a": a}
     small = x < SERIES_BELOW
-    if small.any():
-        y = -x[small]
-        for name, coefficients in _SERIES.items():
-            total = np.full_like(y, coefficients[-1])
-            for c in coefficients[-2::-1]:  # Horner
-                total = total * y + c
-            out[name][small] = total
+    y = -x[small]
+    big, ab = x[~small], a[~small]
+    direct = {
+        "b": lambda: -np.expm1(-big) / big,
+        "c1": lambda: (big - 1.0 + ab) / (big * big),
+        "c2": lambda: (1.0 - (1.0 + big) * ab) / (big * big),
+        "d1": lambda: (0.5 - (big - 1.0 + ab) / (big * big)) / big,
+        "d2": lambda: (0.5 - (1.0 - (1.0 + big) * ab) / (big * big)) / big,
+    }
+    for name in names:
+        value = np.empty_like(x)
+        coefficients = _SERIES[name]
+        total = np.full_like(y, coefficients[-1])
+        for c in coefficients[-2::-1]:  # Horner
+            total = total * y + c
+        value[small] = total
+        with np.errstate(over="ignore", under="ignore"):
+            value[~small] = direct[name]()
+        out[name] = value
     return out
 
 
 def _state(z0, g, P0, P1, x):
     """A mode's state after x = s/tau of an interval where the loss runs linearly from P0
     to P1 (at s): z = a z0 + g x (c2 P0 + c1 P1)."""
-    w = _weights(x)
+    w = _weights(x, ("c1", "c2"))
     return w["a"] * z0 + g * x * (w["c2"] * P0 + w["c1"] * P1)
 
 
@@ -125,8 +143,8 @@ class Response:
         """The mean rise over the span: the exact integral over the span's length,
         per interval h (z0 b + g x (d2 P0 + d1 P1))."""
         h, tau, g, P0, P1, z0 = self._pieces()
-        x = h / tau
-        w = _weights(x)
+        x = _ratio(h, tau)
+        w = _weights(x, ("b", "d1", "d2"))
         integral = h * (z0 * w["b"] + g * x * (w["d2"] * P0 + w["d1"] * P1))
         span = float(self.time[-1] - self.time[0])
         return integral.sum(axis=(1, 2)) / span
@@ -153,7 +171,7 @@ class Response:
             tk, gk, zk = tau[rows, :, 0], g[rows, :, 0], z0[rows, :, cols]
             p0 = P0[rows, 0, cols][:, None]
             p = p0 + slope[rows, 0, cols][:, None] * s[:, None]
-            z = _state(zk, gk, p0, p, s[:, None] / tk)
+            z = _state(zk, gk, p0, p, _ratio(s[:, None], tk))
             return np.sum((gk * p - z) / tk, axis=1), np.sum(z, axis=1)
 
         # a mode stays within its start and the range of g P: an interval whose bound
@@ -199,8 +217,8 @@ class ThermalModel:
         P = np.broadcast_to(P, (n, t.size))
         tau = np.broadcast_to(self.time_constants, (n, self.gains.shape[1]))[:, :, None]
         g = np.broadcast_to(self.gains, (n, self.gains.shape[1]))[:, :, None]
-        x = np.diff(t)[None, None, :] / tau
-        w = _weights(x)
+        x = _ratio(np.diff(t)[None, None, :], tau)
+        w = _weights(x, ("c1", "c2"))
         c = g * x * (w["c2"] * P[:, None, :-1] + w["c1"] * P[:, None, 1:])
         return t, P, tau, g, w["a"], c
 
