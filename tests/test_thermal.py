@@ -238,6 +238,8 @@ def test_continuing_from_a_final_state() -> None:
     (lambda: first_order(1.0, 1.0).periodic([0.0, 1.0], [1.0]), "loss"),
     (lambda: first_order(1.0, 1.0).periodic([1.0, 0.0], [1.0, 1.0]), "time"),
     (lambda: applied_check(0.0, 1.0), "cycle_time"),
+    (lambda: first_order([1.0, 2.0], [1.0, 2.0, 3.0]), "thermal_resistance"),
+    (lambda: first_order([1.0, 2.0], 1.0).response([0.0, 1.0], np.ones((3, 2))), "loss"),
     (lambda: thermal_verdict(1.0, 1.0, 1.0, 0.0, 1.0, 100.0), "continuous_torque"),
     (lambda: thermal_verdict(1.0, 1.0, -1.0, 1.0, 1.0, 100.0), "rms_torque"),
 ])

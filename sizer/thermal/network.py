@@ -214,6 +214,9 @@ class ThermalModel:
         P = samples(loss, t, "loss")
         nonnegative(P, "loss")
         n = max(P.shape[0], self.gains.shape[0])
+        if P.shape[0] not in (1, n) or self.gains.shape[0] not in (1, n):
+            raise UserError(f"has {P.shape[0]} candidates (rows), the model "
+                            f"{self.gains.shape[0]}", field="loss")
         P = np.broadcast_to(P, (n, t.size))
         tau = np.broadcast_to(self.time_constants, (n, self.gains.shape[1]))[:, :, None]
         g = np.broadcast_to(self.gains, (n, self.gains.shape[1]))[:, :, None]
@@ -251,12 +254,23 @@ def thermal_resistance(allowed_rise, continuous_loss) -> np.ndarray:
     return positive(allowed_rise, "allowed_rise") / positive(continuous_loss, "continuous_loss")
 
 
+def _together(values: dict[str, np.ndarray]) -> list[np.ndarray]:
+    """Scalars or one value per candidate, all of one length: 1-D float arrays."""
+    arrays = [np.atleast_1d(v).astype(float) for v in values.values()]
+    sizes = {a.size for a in arrays} - {1}
+    if len(sizes) > 1 or any(a.ndim != 1 for a in arrays):
+        raise UserError("must be one number or one per candidate, as the other figures",
+                        field=next(iter(values)))
+    n = max(a.size for a in arrays)
+    return [np.broadcast_to(a, (n,)).copy() for a in arrays]
+
+
 def first_order(thermal_resistance, time_constant) -> ThermalModel:
     """The one-node winding model: R_th (K/W) and tau_th (s), scalars or per candidate."""
     R = positive(thermal_resistance, "thermal_resistance")
     tau = positive(time_constant, "thermal_time_constant", " (a time constant of zero "
                    "would make the winding follow its loss without delay)")
-    R, tau = np.broadcast_arrays(np.atleast_1d(R), np.atleast_1d(tau))
+    R, tau = _together({"thermal_resistance": R, "thermal_time_constant": tau})
     return ThermalModel(tau.reshape(-1, 1).astype(float), R.reshape(-1, 1).astype(float))
 
 
@@ -268,7 +282,9 @@ def two_node(winding_housing_resistance, housing_ambient_resistance,
     R2 = positive(housing_ambient_resistance, "housing_ambient_resistance")
     tw = positive(winding_time_constant, "winding_time_constant")
     th = positive(housing_time_constant, "housing_time_constant")
-    R1, R2, tw, th = (np.atleast_1d(x).astype(float) for x in np.broadcast_arrays(R1, R2, tw, th))
+    R1, R2, tw, th = _together({"winding_housing_resistance": R1,
+                                "housing_ambient_resistance": R2,
+                                "winding_time_constant": tw, "housing_time_constant": th})
     Cw, Ch = tw / R1, th / R2
     m11, m12 = -1.0 / (R1 * Cw), 1.0 / (R1 * Cw)
     m21, m22 = 1.0 / (R1 * Ch), -(1.0 / (R1 * Ch) + 1.0 / (R2 * Ch))
