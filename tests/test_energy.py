@@ -76,6 +76,9 @@ def test_copper_losses_are_taken_off_the_returned_energy() -> None:
     copper = 1.5 * R * ((tau_a / k_t) ** 2 * T_A + (tau_d / k_t) ** 2 * T_D)
     assert figures.copper_energy[0] == pytest.approx(copper, rel=1e-12)
     assert np.allclose(copper_loss(torque, k_t, R, "phase"), 2.0 * power.copper[0])
+    # one move, a resistance per candidate
+    rows = axis_power(time, torque, speed, torque_constant=k_t, winding_resistance=[0.0, R])
+    assert np.allclose(rows.figures().copper_energy, [0.0, copper], rtol=1e-12)
 
 
 def test_a_smooth_stop_against_quadrature() -> None:
@@ -234,6 +237,8 @@ def test_an_axis_braking_while_the_other_accelerates() -> None:
     (lambda: axis_power([1.0, 0.0], [1.0, 1.0], [1.0, 1.0]), "time"),
     (lambda: axis_power([0.0, 0.0], [1.0, 1.0], [1.0, 1.0]), "time"),
     (lambda: axis_power([0.0, 1.0], [1.0, 1.0, 1.0], [1.0, 1.0]), "torque"),
+    (lambda: axis_power([0.0, 1.0], np.ones((2, 2)), np.ones((3, 2))), "torque"),
+    (lambda: axis_power([0.0, 1.0], np.ones((3, 2)), np.ones((2, 2))), "speed"),
     (lambda: axis_power([0.0, 1.0], [1.0, np.nan], [1.0, 1.0]), "torque"),
     (lambda: axis_power([0.0, 1.0], [1.0, 1.0], [1.0, 1.0], drive_loss=1.5), "drive_loss"),
     (lambda: capacitor_energy(1e-3, 300.0, 325.0), "u_max"),

@@ -134,10 +134,12 @@ def axis_power(time, torque, speed, *, torque_constant=None, winding_resistance=
     t = times(time)
     tau = samples(torque, t, "torque")
     omega = samples(speed, t, "speed")
-    if tau.shape[0] != omega.shape[0] and 1 not in (tau.shape[0], omega.shape[0]):
-        raise UserError("torque and speed must have the same number of candidates",
-                        field="speed")
-    n = max(tau.shape[0], omega.shape[0])
+    sizes = [np.size(v) for v in (torque_constant, winding_resistance, drive_loss)
+             if v is not None]
+    n = max([tau.shape[0], omega.shape[0], *sizes])
+    for name, rows in (("torque", tau.shape[0]), ("speed", omega.shape[0])):
+        if rows not in (1, n):
+            raise UserError(f"has {rows} candidates (rows), the other inputs {n}", field=name)
     R = per_candidate(nonnegative(winding_resistance, "winding_resistance"), n,
                       "winding_resistance")
     if torque_constant is None:
