@@ -203,7 +203,7 @@ def test_two_axes_on_one_bus_add_their_regeneration_only_in_phase() -> None:
     x = np.random.default_rng(1).uniform(0.0, period, 200)
     reference = (_periodic_interp(time, bus, 0.0, period, x)
                  + _periodic_interp(time, bus, 0.1, period, x))
-    assert np.allclose(np.interp(x, off_t, off[0]), reference, rtol=1e-12, atol=1e-9)
+    assert np.allclose(np.interp(x, off_t[0], off[0]), reference, rtol=1e-12, atol=1e-9)
 
 
 def test_an_axis_braking_while_the_other_accelerates() -> None:
@@ -254,3 +254,40 @@ def test_bad_inputs_name_their_field(call, field) -> None:
     with pytest.raises(UserError) as error:
         call()
     assert error.value.field == field
+
+
+def test_each_candidate_with_its_own_durations() -> None:
+    """Sample times per candidate (rows): each row as on its own."""
+    moves = [trapezoid(t_d=0.05, t_w=0.3), trapezoid(t_d=0.1, t_w=0.25),
+             trapezoid(w=200.0, t_a=0.2, t_c=0.1, t_d=0.05, t_w=0.3)]
+    time = np.vstack([m[0] for m in moves])
+    torque = np.vstack([m[1] for m in moves])
+    speed = np.vstack([m[2] for m in moves])
+    together = axis_power(time, torque, speed, torque_constant=0.5, winding_resistance=1.0)
+    stops = braking(time, together.bus, absorbable_energy=5.0)
+    figures = together.figures()
+    for row, (t, tq, w, _, _) in enumerate(moves):
+        alone = axis_power(t, tq, w, torque_constant=0.5, winding_resistance=1.0)
+        one = braking(t, alone.bus, absorbable_energy=5.0)
+        assert stops.worst_stop_energy[row] == pytest.approx(one.worst_stop_energy[0],
+                                                             rel=1e-14)
+        assert stops.resistor_continuous_power[row] == pytest.approx(
+            one.resistor_continuous_power[0], rel=1e-14)
+        assert figures.mean_bus_power[row] == pytest.approx(
+            alone.figures().mean_bus_power[0], rel=1e-14)
+    # on a shared bus: a second axis (the same moves) with a phase per candidate
+    phases = np.array([0.0, 0.1, 0.3])
+    grid, total = shared_bus([BusAxis(time, together.bus),
+                              BusAxis(time, together.bus, phase=phases)], 0.65)
+    assert grid.shape == total.shape and grid.shape[0] == 3
+    x = np.random.default_rng(2).uniform(0.0, 0.65, 100)
+    for row in range(3):
+        reference = (_periodic_interp(time[row], together.bus[row], 0.0, 0.65, x)
+                     + _periodic_interp(time[row], together.bus[row], phases[row], 0.65, x))
+        assert np.allclose(np.interp(x, grid[row], total[row]), reference, rtol=1e-12,
+                           atol=1e-9)
+        alone_t, alone_p = shared_bus([BusAxis(time[row], together.bus[row]),
+                                       BusAxis(time[row], together.bus[row],
+                                               phase=phases[row])], 0.65)
+        assert braking(grid[row], total[row]).worst_stop_energy[0] == pytest.approx(
+            braking(alone_t, alone_p).worst_stop_energy[0], rel=1e-12)

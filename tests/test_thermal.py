@@ -270,3 +270,23 @@ def test_winding_check_of_sampled_torques() -> None:
     with pytest.raises(UserError) as error:
         winding_check(time, torque, TAU_C, RISE, 0.0)
     assert error.value.field == "thermal_time_constant"
+
+
+def test_each_candidate_with_its_own_cycle() -> None:
+    cycles = [([5.0, 0.4, -3.0, 0.1], [0.1, 0.25, 0.08, 0.37]),
+              ([4.0, 0.0, -4.0, 0.0], [0.2, 0.5, 0.2, 1.1]),
+              ([2.5, 1.0, -1.0, 0.5], [0.05, 0.1, 0.05, 0.2])]
+    samples = [steps(levels, durations) for levels, durations in cycles]
+    time = np.vstack([s[0] for s in samples])
+    torque = np.vstack([s[1] for s in samples])
+    model = two_node(0.5, 1.2, 0.4, 6.0)
+    together = model.periodic(time, _loss(torque))
+    check = winding_check(time, torque, TAU_C, RISE, 3.0)
+    for row, (t, tq) in enumerate(samples):
+        alone = model.periodic(t, _loss(tq))
+        assert np.allclose(together.rise[row], alone.rise[0], rtol=1e-13)
+        assert together.peak[row] == pytest.approx(alone.peak[0], rel=1e-13)
+        assert together.mean[row] == pytest.approx(alone.mean[0], rel=1e-13)
+        one = winding_check(t, tq, TAU_C, RISE, 3.0)
+        assert check.verdict.rise[row] == pytest.approx(one.verdict.rise[0], rel=1e-13)
+        assert check.verdict.applied[row] == one.verdict.applied[0]

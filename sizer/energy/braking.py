@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from sizer.energy.inputs import finite, nonnegative, per_candidate, samples, times
+from sizer.energy.inputs import finite, nonnegative, per_candidate, samples, span, times
 from sizer.energy.power import interval_parts
 from sizer.errors import UserError
 
@@ -53,7 +53,7 @@ class Braking:
     elsewhere.
     """
 
-    cycle_time: float
+    cycle_time: np.ndarray
     stops: np.ndarray
     regenerated_energy: np.ndarray
     worst_stop_energy: np.ndarray
@@ -73,12 +73,13 @@ def braking(time, bus_power, absorbable_energy=0.0, periodic: bool = True) -> Br
     """
     t = times(time)
     power = samples(bus_power, t, "bus_power")
-    n, m = power.shape[0], t.size - 1
+    n, m = max(t.shape[0], power.shape[0]), t.shape[1] - 1
+    power = np.broadcast_to(power, (n, m + 1))
     E_cap = per_candidate(nonnegative(finite(absorbable_energy, "absorbable_energy"),
                                       "absorbable_energy"), n, "absorbable_energy")[:, 0]
     E_cap = np.broadcast_to(E_cap, (n,))
     _, down = interval_parts(t, power)
-    h = np.diff(t)
+    h = np.diff(t, axis=1)
     p0, p1 = power[:, :-1], power[:, 1:]
     braking_on = (down > 0.0) | ((h == 0.0) & (p0 < 0.0) & (p1 < 0.0))
     peak = np.where(braking_on, np.maximum(np.maximum(-p0, -p1), 0.0), 0.0)
@@ -119,11 +120,11 @@ def braking(time, bus_power, absorbable_energy=0.0, periodic: bool = True) -> Br
     np.maximum.at(resistor_peak, run_row, np.where(into_resistor > 0.0, run_peak, 0.0))
     stop_energy = np.zeros((n, m))
     stop_energy[run_row, run_start] = energy
-    span = float(t[-1] - t[0])
+    cycle = np.broadcast_to(span(t), (n,))
     resistor_cycle = np.bincount(run_row, weights=into_resistor, minlength=n)
     return Braking(
-        cycle_time=span, stops=np.bincount(run_row, minlength=n),
+        cycle_time=cycle, stops=np.bincount(run_row, minlength=n),
         regenerated_energy=down.sum(axis=1), worst_stop_energy=worst,
         capacitor_energy=worst_cap, resistor_energy=worst_res,
         resistor_cycle_energy=resistor_cycle, resistor_peak_power=resistor_peak,
-        resistor_continuous_power=resistor_cycle / span, stop_energy=stop_energy)
+        resistor_continuous_power=resistor_cycle / cycle, stop_energy=stop_energy)

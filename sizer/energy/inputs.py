@@ -45,26 +45,39 @@ def fraction(value, field: str) -> np.ndarray:
 
 
 def times(value, field: str = "time") -> np.ndarray:
-    """Sample times: a 1-D array of at least two finite, non-decreasing values spanning a
-    positive time (a repeated time is a jump of the sampled quantity there)."""
+    """Sample times: (samples,) shared by all candidates or (candidates, samples), at least
+    two finite, non-decreasing values per row spanning a positive time (a repeated time is
+    a jump of the sampled quantity there). Returned 2-D: (1 or candidates, samples)."""
     array = finite(value, field)
-    if array.ndim != 1 or array.size < 2:
-        raise UserError("must be a list of at least two sample times", field=field)
-    if bool(np.any(np.diff(array) < 0.0)):
+    if array.ndim == 1:
+        array = array[None, :]
+    if array.ndim != 2 or array.shape[1] < 2:
+        raise UserError("must be at least two sample times, as an array (samples,) or "
+                        "(candidates, samples)", field=field)
+    if bool(np.any(np.diff(array, axis=1) < 0.0)):
         raise UserError("sample times must not decrease", field=field)
-    if not array[-1] > array[0]:
+    if not bool(np.all(array[:, -1] > array[:, 0])):
         raise UserError("sample times must span a positive time", field=field)
     return array
 
 
+def span(time: np.ndarray) -> np.ndarray:
+    """The time each row of samples spans, (rows,)."""
+    return time[:, -1] - time[:, 0]
+
+
 def samples(value, time: np.ndarray, field: str) -> np.ndarray:
-    """Values sampled at ``time``: shape (samples,) or (candidates, samples), returned 2-D."""
+    """Values sampled at ``time`` (2-D, from :func:`times`): shape (samples,) or
+    (candidates, samples), returned 2-D."""
     array = finite(value, field)
     if array.ndim == 1:
         array = array[None, :]
-    if array.ndim != 2 or array.shape[1] != time.size:
-        raise UserError(f"must have one value per sample time ({time.size}), as an array "
-                        "(samples,) or (candidates, samples)", field=field)
+    if array.ndim != 2 or array.shape[1] != time.shape[1]:
+        raise UserError(f"must have one value per sample time ({time.shape[1]}), as an "
+                        "array (samples,) or (candidates, samples)", field=field)
+    if time.shape[0] not in (1, array.shape[0]) and array.shape[0] != 1:
+        raise UserError(f"has {array.shape[0]} candidates (rows), the sample times "
+                        f"{time.shape[0]}", field=field)
     return array
 
 

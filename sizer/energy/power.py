@@ -2,8 +2,9 @@
 
 Inputs are samples: the motor torque tau (the electromagnetic torque, rotor inertia and
 friction included, efficiencies applied by power flow as sizer.mechanics.drive does) and
-speed omega at the times ``time`` (1-D, non-decreasing, shared by all candidates), arrays
-(candidates, samples). A repeated time is a jump (a torque step). Between samples every
+speed omega at the times ``time`` (non-decreasing; (samples,) shared by all candidates or
+(candidates, samples), each candidate with its own durations), arrays (candidates,
+samples). A repeated time is a jump (a torque step). Between samples every
 power is taken as linear in time (the piecewise-linear interpolant of its samples), and
 every integral is exact for that interpolant, split exactly where a power changes sign.
 This is exact where tau or omega is constant on each interval (trapezoidal speed,
@@ -23,7 +24,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from sizer.energy.inputs import fraction, nonnegative, per_candidate, positive, samples, times
+from sizer.energy.inputs import (
+    fraction,
+    nonnegative,
+    per_candidate,
+    positive,
+    samples,
+    span,
+    times,
+)
 from sizer.errors import UserError
 
 WINDING_FACTORS = {"line-to-line": 1.5, "phase": 3.0, "dc": 1.0}
@@ -45,9 +54,10 @@ def copper_loss(torque, torque_constant, winding_resistance,
 
 def interval_parts(time: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Per interval the integrals of the positive and of the negative part (as >= 0) of
-    the piecewise-linear interpolant of ``values`` (candidates, samples): two arrays
-    (candidates, samples - 1), exact, split at the sign change."""
-    h = np.diff(time)
+    the piecewise-linear interpolant of ``values`` (candidates, samples) at ``time``
+    (1 or candidates, samples): two arrays (candidates, samples - 1), exact, split at the
+    sign change."""
+    h = np.diff(time, axis=1)
     p0, p1 = values[:, :-1], values[:, 1:]
     same = p0 * p1 >= 0.0
     mean = 0.5 * (p0 + p1) * h
@@ -62,7 +72,7 @@ def interval_parts(time: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np
 
 def integral(time: np.ndarray, values: np.ndarray) -> np.ndarray:
     """The exact integral of the piecewise-linear interpolant, per candidate."""
-    return np.sum(0.5 * (values[:, :-1] + values[:, 1:]) * np.diff(time), axis=1)
+    return np.sum(0.5 * (values[:, :-1] + values[:, 1:]) * np.diff(time, axis=1), axis=1)
 
 
 @dataclass(frozen=True)
@@ -77,7 +87,7 @@ class PowerFigures:
     keeps what is regenerated), copper_energy and mean_copper_loss.
     """
 
-    cycle_time: float
+    cycle_time: np.ndarray
     peak_motoring_power: np.ndarray
     mean_motoring_power: np.ndarray
     mean_shaft_power: np.ndarray
@@ -93,8 +103,8 @@ class PowerFigures:
 
 @dataclass(frozen=True)
 class AxisPower:
-    """Sampled powers of one axis: time (samples,), shaft, copper and bus power
-    (candidates, samples) in W."""
+    """Sampled powers of one axis: time (1 or candidates, samples), shaft, copper and bus
+    power (candidates, samples) in W."""
 
     time: np.ndarray
     shaft: np.ndarray
@@ -104,22 +114,22 @@ class AxisPower:
     def figures(self) -> PowerFigures:
         """The cycle's energy figures (the samples span one cycle or one sequence)."""
         t = self.time
-        span = float(t[-1] - t[0])
+        cycle = np.broadcast_to(span(t), self.bus.shape[:1])
         shaft_up, _ = interval_parts(t, self.shaft)
         bus_up, bus_down = interval_parts(t, self.bus)
         motoring, regenerated = bus_up.sum(axis=1), bus_down.sum(axis=1)
         copper = integral(t, self.copper)
         return PowerFigures(
-            cycle_time=span,
+            cycle_time=cycle,
             peak_motoring_power=np.maximum(self.shaft.max(axis=1), 0.0),
-            mean_motoring_power=shaft_up.sum(axis=1) / span,
-            mean_shaft_power=integral(t, self.shaft) / span,
+            mean_motoring_power=shaft_up.sum(axis=1) / cycle,
+            mean_shaft_power=integral(t, self.shaft) / cycle,
             peak_bus_power=np.maximum(self.bus.max(axis=1), 0.0),
             peak_regenerative_power=np.maximum(-self.bus.min(axis=1), 0.0),
-            mean_bus_power=integral(t, self.bus) / span,
+            mean_bus_power=integral(t, self.bus) / cycle,
             motoring_energy=motoring, regenerated_energy=regenerated,
             net_energy=motoring - regenerated, copper_energy=copper,
-            mean_copper_loss=copper / span)
+            mean_copper_loss=copper / cycle)
 
 
 def axis_power(time, torque, speed, *, torque_constant=None, winding_resistance=0.0,
@@ -136,8 +146,9 @@ def axis_power(time, torque, speed, *, torque_constant=None, winding_resistance=
     omega = samples(speed, t, "speed")
     sizes = [np.size(v) for v in (torque_constant, winding_resistance, drive_loss)
              if v is not None]
-    n = max([tau.shape[0], omega.shape[0], *sizes])
-    for name, rows in (("torque", tau.shape[0]), ("speed", omega.shape[0])):
+    n = max([t.shape[0], tau.shape[0], omega.shape[0], *sizes])
+    for name, rows in (("time", t.shape[0]), ("torque", tau.shape[0]),
+                       ("speed", omega.shape[0])):
         if rows not in (1, n):
             raise UserError(f"has {rows} candidates (rows), the other inputs {n}", field=name)
     R = per_candidate(nonnegative(winding_resistance, "winding_resistance"), n,
@@ -146,12 +157,12 @@ def axis_power(time, torque, speed, *, torque_constant=None, winding_resistance=
         if bool(np.any(R > 0.0)):
             raise UserError("a winding resistance needs the torque constant",
                             field="torque_constant")
-        copper = np.zeros((n, t.size))
+        copper = np.zeros((n, t.shape[1]))
     else:
         k_t = per_candidate(positive(torque_constant, "torque_constant"), n,
                             "torque_constant")
-        copper = np.broadcast_to(copper_loss(tau, k_t, R, winding), (n, t.size))
+        copper = np.broadcast_to(copper_loss(tau, k_t, R, winding), (n, t.shape[1]))
     d = per_candidate(fraction(drive_loss, "drive_loss"), n, "drive_loss")
-    shaft = np.broadcast_to(tau * omega, (n, t.size))
+    shaft = np.broadcast_to(tau * omega, (n, t.shape[1]))
     electrical = shaft + copper
     return AxisPower(t, shaft, np.asarray(copper), electrical + d * np.abs(electrical))

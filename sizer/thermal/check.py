@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from sizer.energy.inputs import finite, per_candidate, positive, samples, times
+from sizer.energy.inputs import finite, per_candidate, positive, samples, span, times
 from sizer.energy.power import integral
 from sizer.errors import UserError
 from sizer.thermal.network import Response, first_order
@@ -45,21 +45,21 @@ def winding_check(time, torque, continuous_torque, allowed_rise, time_constant,
     given = {"continuous_torque": positive(continuous_torque, "continuous_torque"),
              "allowed_rise": positive(allowed_rise, "allowed_rise"),
              "thermal_time_constant": positive(time_constant, "thermal_time_constant")}
-    n = max([tau.shape[0]] + [v.size for v in given.values()])
+    n = max([t.shape[0], tau.shape[0]] + [v.size for v in given.values()])
     if tau.shape[0] not in (1, n):
         raise UserError(f"has {tau.shape[0]} candidates (rows), the figures {n}",
                         field="torque")
     tau_c, allowed, tau_th = (per_candidate(v, n, k) for k, v in given.items())
     model = first_order(np.broadcast_to(allowed, (n, 1))[:, 0],
                         np.broadcast_to(tau_th, (n, 1))[:, 0])
-    loss = np.broadcast_to((tau / tau_c) ** 2, (n, t.size))
+    loss = np.broadcast_to((tau / tau_c) ** 2, (n, t.shape[1]))
     if periodic:
         response = model.periodic(t, loss)
     else:
         start = per_candidate(finite(initial_rise, "initial_rise"), n, "initial_rise")
         response = model.response(t, loss, initial=np.broadcast_to(start, (n, 1)))
-    span = float(t[-1] - t[0])
-    rms = np.sqrt(np.broadcast_to(integral(t, tau * tau) / span, (n,)))
-    verdict = thermal_verdict(span, tau_th[:, 0], rms, tau_c[:, 0], response.peak,
+    cycle = np.broadcast_to(span(t), (n,))
+    rms = np.sqrt(np.broadcast_to(integral(t, tau * tau), (n,)) / cycle)
+    verdict = thermal_verdict(cycle, tau_th[:, 0], rms, tau_c[:, 0], response.peak,
                               allowed[:, 0], share)
     return WindingCheck(response, rms, verdict)

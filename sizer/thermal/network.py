@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from sizer.energy.inputs import finite, nonnegative, positive, samples, times
+from sizer.energy.inputs import finite, nonnegative, positive, samples, span, times
 from sizer.errors import UserError
 from sizer.numerics.roots import illinois
 
@@ -133,7 +133,7 @@ class Response:
         return self.modes[:, :, -1]
 
     def _pieces(self):
-        h = np.diff(self.time)[None, None, :]
+        h = np.diff(self.time, axis=1)[:, None, :]
         tau, g = self.time_constants[:, :, None], self.gains[:, :, None]
         P0, P1 = self.loss[:, None, :-1], self.loss[:, None, 1:]
         return h, tau, g, P0, P1, self.modes[:, :, :-1]
@@ -146,8 +146,7 @@ class Response:
         x = _ratio(h, tau)
         w = _weights(x, ("b", "d1", "d2"))
         integral = h * (z0 * w["b"] + g * x * (w["d2"] * P0 + w["d1"] * P1))
-        span = float(self.time[-1] - self.time[0])
-        return integral.sum(axis=(1, 2)) / span
+        return integral.sum(axis=(1, 2)) / span(self.time)
 
     @property
     def peak(self) -> np.ndarray:
@@ -213,14 +212,15 @@ class ThermalModel:
         t = times(time)
         P = samples(loss, t, "loss")
         nonnegative(P, "loss")
-        n = max(P.shape[0], self.gains.shape[0])
-        if P.shape[0] not in (1, n) or self.gains.shape[0] not in (1, n):
-            raise UserError(f"has {P.shape[0]} candidates (rows), the model "
-                            f"{self.gains.shape[0]}", field="loss")
-        P = np.broadcast_to(P, (n, t.size))
+        n = max(t.shape[0], P.shape[0], self.gains.shape[0])
+        for name, rows in (("loss", P.shape[0]), ("time", t.shape[0])):
+            if rows not in (1, n) or self.gains.shape[0] not in (1, n):
+                raise UserError(f"has {rows} candidates (rows), the model "
+                                f"{self.gains.shape[0]}", field=name)
+        P = np.broadcast_to(P, (n, t.shape[1]))
         tau = np.broadcast_to(self.time_constants, (n, self.gains.shape[1]))[:, :, None]
         g = np.broadcast_to(self.gains, (n, self.gains.shape[1]))[:, :, None]
-        x = _ratio(np.diff(t)[None, None, :], tau)
+        x = _ratio(np.diff(t, axis=1)[:, None, :], tau)
         w = _weights(x, ("c1", "c2"))
         c = g * x * (w["c2"] * P[:, None, :-1] + w["c1"] * P[:, None, 1:])
         return t, P, tau, g, w["a"], c
@@ -243,7 +243,7 @@ class ThermalModel:
         forever: the rise at the cycle's start equals the rise at its end."""
         t, P, tau, g, a, c = self._steps(time, loss)
         A, C = _scan(a, c)
-        period = float(t[-1] - t[0])
+        period = span(t)[:, None]
         z0 = C[:, :, -1] / -np.expm1(-period / tau[:, :, 0])
         return self._response(t, P, tau, g, z0, A, C)
 
