@@ -290,3 +290,21 @@ def test_each_candidate_with_its_own_cycle() -> None:
         one = winding_check(t, tq, TAU_C, RISE, 3.0)
         assert check.verdict.rise[row] == pytest.approx(one.verdict.rise[0], rel=1e-13)
         assert check.verdict.applied[row] == one.verdict.applied[0]
+
+
+@pytest.mark.parametrize("share_of_limit,feasible", [(0.999, True), (1.001, False)])
+def test_a_short_cycle_agrees_with_the_rms_check(share_of_limit, feasible) -> None:
+    levels = np.array([5.0, 0.4, -3.0, 0.1])
+    durations = [0.1, 0.25, 0.08, 0.37]
+    cycle = sum(durations)
+    rms = math.sqrt(float(np.sum(levels**2 * durations)) / cycle)
+    levels = levels * share_of_limit * TAU_C / rms  # tau_rms = share * tau_c
+    time, torque = steps(levels, durations)
+    check = winding_check(time, torque, TAU_C, RISE, 1e4 * cycle)
+    assert check.verdict.applied[0] == "rms"
+    rms_rise = RISE * share_of_limit**2
+    assert check.verdict.rms_rise[0] == pytest.approx(rms_rise, rel=1e-12)
+    # the model's peak is the RMS rise to within the ripple, ~ cycle / tau_th
+    assert abs(check.verdict.peak_rise[0] / rms_rise - 1.0) < 1e-4
+    assert bool(check.verdict.peak_rise[0] <= RISE) == feasible
+    assert bool(check.verdict.feasible[0]) == feasible
