@@ -24,13 +24,15 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from sizer.energy.inputs import finite, nonnegative, per_candidate, samples, span, times
 from sizer.energy.power import interval_parts
 from sizer.errors import UserError
 
 
-def capacitor_energy(capacitance, u_max, u_nominal) -> np.ndarray:
+def capacitor_energy(capacitance: ArrayLike, u_max: ArrayLike,
+                     u_nominal: ArrayLike) -> np.ndarray:
     """E_C = C (U_max^2 - U_nom^2) / 2 (J): what the bus capacitors absorb going from the
     nominal bus voltage to the chopper's switch-on voltage."""
     C = nonnegative(capacitance, "capacitance")
@@ -65,7 +67,8 @@ class Braking:
     stop_energy: np.ndarray
 
 
-def braking(time, bus_power, absorbable_energy=0.0, periodic: bool = True) -> Braking:
+def braking(time: ArrayLike, bus_power: ArrayLike, absorbable_energy: ArrayLike = 0.0,
+            periodic: bool = True) -> Braking:
     """Stops, capacitor and resistor figures of sampled bus power (W; module docstring).
 
     ``absorbable_energy`` (J): what the bus capacitors take per stop

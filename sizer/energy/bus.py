@@ -18,6 +18,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from sizer.energy.inputs import finite, positive, samples, times
 from sizer.errors import UserError
@@ -87,7 +88,8 @@ def _evaluate(t: np.ndarray, p: np.ndarray, x: np.ndarray, side: str) -> np.ndar
     return p0 * (1.0 - w) + p1 * w
 
 
-def shared_bus(axes: Sequence[BusAxis], cycle_time) -> tuple[np.ndarray, np.ndarray]:
+def shared_bus(axes: Sequence[BusAxis],
+               cycle_time: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """The machine cycle's sample times (candidates, samples; from 0 to ``cycle_time``,
     a scalar or one per candidate) and the summed bus power (candidates, samples) of
     ``axes``, each shifted by its phase (periodic)."""

@@ -4,11 +4,12 @@ the field, never a NaN or a numpy exception further on."""
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from sizer.errors import UserError
 
 
-def finite(value, field: str) -> np.ndarray:
+def finite(value: ArrayLike, field: str) -> np.ndarray:
     """``value`` as a float array, every entry finite."""
     try:
         array = np.asarray(value, dtype=float)
@@ -19,7 +20,7 @@ def finite(value, field: str) -> np.ndarray:
     return array
 
 
-def positive(value, field: str, what: str = "") -> np.ndarray:
+def positive(value: ArrayLike, field: str, what: str = "") -> np.ndarray:
     """``value`` as a float array, every entry finite and > 0."""
     array = finite(value, field)
     if bool(np.any(array <= 0.0)):
@@ -28,7 +29,7 @@ def positive(value, field: str, what: str = "") -> np.ndarray:
     return array
 
 
-def nonnegative(value, field: str) -> np.ndarray:
+def nonnegative(value: ArrayLike, field: str) -> np.ndarray:
     """``value`` as a float array, every entry finite and >= 0."""
     array = finite(value, field)
     if bool(np.any(array < 0.0)):
@@ -36,7 +37,7 @@ def nonnegative(value, field: str) -> np.ndarray:
     return array
 
 
-def fraction(value, field: str) -> np.ndarray:
+def fraction(value: ArrayLike, field: str) -> np.ndarray:
     """A share in [0, 1)."""
     array = finite(value, field)
     if bool(np.any((array < 0.0) | (array >= 1.0))):
@@ -44,7 +45,7 @@ def fraction(value, field: str) -> np.ndarray:
     return array
 
 
-def times(value, field: str = "time") -> np.ndarray:
+def times(value: ArrayLike, field: str = "time") -> np.ndarray:
     """Sample times: (samples,) shared by all candidates or (candidates, samples), at least
     two finite, non-decreasing values per row spanning a positive time (a repeated time is
     a jump of the sampled quantity there). Returned 2-D: (1 or candidates, samples)."""
@@ -66,7 +67,7 @@ def span(time: np.ndarray) -> np.ndarray:
     return time[:, -1] - time[:, 0]
 
 
-def samples(value, time: np.ndarray, field: str) -> np.ndarray:
+def samples(value: ArrayLike, time: np.ndarray, field: str) -> np.ndarray:
     """Values sampled at ``time`` (2-D, from :func:`times`): shape (samples,) or
     (candidates, samples), returned 2-D."""
     array = finite(value, field)
@@ -81,7 +82,7 @@ def samples(value, time: np.ndarray, field: str) -> np.ndarray:
     return array
 
 
-def per_candidate(value, n: int, field: str) -> np.ndarray:
+def per_candidate(value: ArrayLike, n: int, field: str) -> np.ndarray:
     """A scalar or one value per candidate, returned as a column (n or 1, 1)."""
     array = np.asarray(value, dtype=float)
     if array.ndim == 0:

@@ -23,6 +23,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from sizer.energy.inputs import (
     fraction,
@@ -39,7 +40,7 @@ WINDING_FACTORS = {"line-to-line": 1.5, "phase": 3.0, "dc": 1.0}
 """f in P_cu = f R I^2 by what the resistance R is measured across."""
 
 
-def copper_loss(torque, torque_constant, winding_resistance,
+def copper_loss(torque: ArrayLike, torque_constant: ArrayLike, winding_resistance: ArrayLike,
                 winding: str = "line-to-line") -> np.ndarray:
     """P_cu = f R (tau/k_t)^2 (W), f by ``winding`` (:data:`WINDING_FACTORS`); k_t and R
     scalars or broadcasting against ``torque``."""
@@ -132,8 +133,10 @@ class AxisPower:
             mean_copper_loss=copper / cycle)
 
 
-def axis_power(time, torque, speed, *, torque_constant=None, winding_resistance=0.0,
-               winding: str = "line-to-line", drive_loss=0.0) -> AxisPower:
+def axis_power(time: ArrayLike, torque: ArrayLike, speed: ArrayLike, *,
+               torque_constant: ArrayLike | None = None,
+               winding_resistance: ArrayLike = 0.0, winding: str = "line-to-line",
+               drive_loss: ArrayLike = 0.0) -> AxisPower:
     """Shaft, copper and bus power of sampled moves (module docstring for conventions).
 
     ``torque`` (N*m) and ``speed`` (rad/s) are (samples,) or (candidates, samples);

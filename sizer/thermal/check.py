@@ -15,6 +15,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from sizer.energy.inputs import finite, per_candidate, positive, samples, span, times
 from sizer.energy.power import integral
@@ -32,9 +33,10 @@ class WindingCheck:
     verdict: ThermalVerdict
 
 
-def winding_check(time, torque, continuous_torque, allowed_rise, time_constant,
+def winding_check(time: ArrayLike, torque: ArrayLike, continuous_torque: ArrayLike,
+                  allowed_rise: ArrayLike, time_constant: ArrayLike,
                   periodic: bool = True, share: float = RMS_SHARE,
-                  initial_rise=0.0) -> WindingCheck:
+                  initial_rise: ArrayLike = 0.0) -> WindingCheck:
     """The heat check of motor torques (N*m) sampled at ``time`` (s), (samples,) or
     (candidates, samples): the periodic steady state of the repeated cycle, or with
     ``periodic`` False a one-off sequence from ``initial_rise`` (K above ambient).

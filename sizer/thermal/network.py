@@ -28,6 +28,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from sizer.energy.inputs import finite, nonnegative, positive, samples, span, times
 from sizer.errors import UserError
@@ -229,7 +230,8 @@ class ThermalModel:
         modes = np.concatenate([z0[:, :, None], A * z0[:, :, None] + C], axis=2)
         return Response(t, P, tau[:, :, 0], g[:, :, 0], modes)
 
-    def response(self, time, loss, initial=None) -> Response:
+    def response(self, time: ArrayLike, loss: ArrayLike,
+                 initial: ArrayLike | None = None) -> Response:
         """A one-off sequence from ``initial`` mode states (candidates, modes) or, by
         default, from ambient (zero rise): loss (W) sampled at ``time``."""
         t, P, tau, g, a, c = self._steps(time, loss)
@@ -238,7 +240,7 @@ class ThermalModel:
             finite(initial, "initial"), A.shape[:2])
         return self._response(t, P, tau, g, z0, A, C)
 
-    def periodic(self, time, loss) -> Response:
+    def periodic(self, time: ArrayLike, loss: ArrayLike) -> Response:
         """The periodic steady state of the cycle ``loss`` sampled at ``time`` repeated
         forever: the rise at the cycle's start equals the rise at its end."""
         t, P, tau, g, a, c = self._steps(time, loss)
@@ -248,7 +250,7 @@ class ThermalModel:
         return self._response(t, P, tau, g, z0, A, C)
 
 
-def thermal_resistance(allowed_rise, continuous_loss) -> np.ndarray:
+def thermal_resistance(allowed_rise: ArrayLike, continuous_loss: ArrayLike) -> np.ndarray:
     """R_th = dT_max / P_cu(tau_c) (K/W): the winding reaches its allowed rise at the
     continuous torque's copper loss (sizer.energy.copper_loss of tau_c)."""
     return positive(allowed_rise, "allowed_rise") / positive(continuous_loss, "continuous_loss")
@@ -265,7 +267,7 @@ def _together(values: dict[str, np.ndarray]) -> list[np.ndarray]:
     return [np.broadcast_to(a, (n,)).copy() for a in arrays]
 
 
-def first_order(thermal_resistance, time_constant) -> ThermalModel:
+def first_order(thermal_resistance: ArrayLike, time_constant: ArrayLike) -> ThermalModel:
     """The one-node winding model: R_th (K/W) and tau_th (s), scalars or per candidate."""
     R = positive(thermal_resistance, "thermal_resistance")
     tau = positive(time_constant, "thermal_time_constant", " (a time constant of zero "
@@ -274,8 +276,9 @@ def first_order(thermal_resistance, time_constant) -> ThermalModel:
     return ThermalModel(tau.reshape(-1, 1).astype(float), R.reshape(-1, 1).astype(float))
 
 
-def two_node(winding_housing_resistance, housing_ambient_resistance,
-             winding_time_constant, housing_time_constant) -> ThermalModel:
+def two_node(winding_housing_resistance: ArrayLike, housing_ambient_resistance: ArrayLike,
+             winding_time_constant: ArrayLike, housing_time_constant: ArrayLike
+             ) -> ThermalModel:
     """The winding-housing model from R_th1, R_th2 (K/W) and the winding's and the
     housing's time constants tau_w = R_th1 C_w, tau_s = R_th2 C_h (s)."""
     R1 = positive(winding_housing_resistance, "winding_housing_resistance")

@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from sizer.energy.inputs import nonnegative, positive
 
@@ -35,7 +36,8 @@ class ThermalVerdict:
     feasible: np.ndarray
 
 
-def applied_check(cycle_time, time_constant, share: float = RMS_SHARE) -> np.ndarray:
+def applied_check(cycle_time: ArrayLike, time_constant: ArrayLike,
+                  share: float = RMS_SHARE) -> np.ndarray:
     """"rms" where the cycle is shorter than ``share`` * tau_th, else "thermal"."""
     T = positive(cycle_time, "cycle_time")
     tau = positive(time_constant, "thermal_time_constant")
@@ -43,8 +45,9 @@ def applied_check(cycle_time, time_constant, share: float = RMS_SHARE) -> np.nda
     return np.where(share * tau > T, "rms", "thermal")
 
 
-def thermal_verdict(cycle_time, time_constant, rms_torque, continuous_torque, peak_rise,
-                    allowed_rise, share: float = RMS_SHARE) -> ThermalVerdict:
+def thermal_verdict(cycle_time: ArrayLike, time_constant: ArrayLike, rms_torque: ArrayLike,
+                    continuous_torque: ArrayLike, peak_rise: ArrayLike,
+                    allowed_rise: ArrayLike, share: float = RMS_SHARE) -> ThermalVerdict:
     """The verdict of the heat check for each candidate (module docstring)."""
     applied = applied_check(cycle_time, time_constant, share)
     tau_rms = nonnegative(rms_torque, "rms_torque")
