@@ -138,8 +138,8 @@ def test_capacitors_take_part_and_the_resistor_the_rest() -> None:
     time, torque, speed, _, tau_d = trapezoid()
     bus = axis_power(time, torque, speed).bus
     stop = 0.5 * (J_M + ETA * J_L / K**2) * W_M**2
-    E_c = capacitor_energy(470e-6, 390.0, 325.0)
-    assert float(E_c) == pytest.approx(0.5 * 470e-6 * (390.0**2 - 325.0**2), rel=1e-15)
+    E_c = float(capacitor_energy(470e-6, 390.0, 325.0))
+    assert E_c == pytest.approx(0.5 * 470e-6 * (390.0**2 - 325.0**2), rel=1e-15)
     assert E_c < stop
     result = braking(time, bus, absorbable_energy=E_c)
     cycle = T_A + T_C + T_D + T_W

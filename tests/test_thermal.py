@@ -69,7 +69,7 @@ def test_ripple_shrinks_with_the_cycle() -> None:
     tau, share, P = 10.0, 0.3, 50.0
     periods = np.array([40.0, 20.0, 10.0, 3.0, 1.0, 0.3, 0.1, 0.01])
     model = first_order(R_TH, tau)
-    ripples = []
+    found = []
     for T in periods:
         time, loss = steps([P, 0.0], [share * T, (1.0 - share) * T])
         response = model.periodic(time, loss)
@@ -78,8 +78,8 @@ def test_ripple_shrinks_with_the_cycle() -> None:
         bottom = top * math.exp(-(1.0 - share) * T / tau)
         assert response.peak[0] == pytest.approx(top, rel=1e-11)
         assert response.rise[0].min() == pytest.approx(bottom, rel=1e-11)
-        ripples.append(response.peak[0] - response.rise[0].min())
-    ripples = np.array(ripples)
+        found.append(response.peak[0] - response.rise[0].min())
+    ripples = np.array(found)
     assert np.all(np.diff(ripples) < 0.0)
     # for short cycles: ripple ~ R_th P share (1 - share) T / tau
     slope = R_TH * P * share * (1.0 - share) / tau
