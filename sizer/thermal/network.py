@@ -17,9 +17,9 @@ h from P0 to P1 each mode moves exactly to
     z1 = a z0 + g ((b - a) P0 + (1 - b) P1),   a = exp(-h/tau),  b = (tau/h)(1 - a),
 
 (weights by power series where h/tau is small, :func:`_weights`) and the intervals
-compose by an associative scan (no time stepping). The periodic steady
-state of a repeated cycle solves z(0) = z(period): z0 = c/(1 - A) per mode. Peaks are
-exact: the samples and the interior maxima (T' = 0, found by Illinois regula falsi on each interval
+compose by an associative scan (no time stepping). The periodic steady state of a
+repeated cycle solves z(0) = z(period): z0 = c/(1 - A) per mode. Peaks are exact: the
+samples and the interior maxima (T' = 0, found by Illinois regula falsi on each interval,
 split where T'' changes sign). Means are exact integrals.
 """
 
@@ -159,8 +159,8 @@ class Response:
         with np.errstate(divide="ignore", invalid="ignore"):
             slope = np.where(h > 0.0, (P1 - P0) / h, 0.0)
         split = hh
-        if k == 2:  # T'' = sum E_i/tau_i e^(-s/tau_i) = 0 at most once
-            E = (g * slope - (g * P0 - z0) / tau) / tau  # E_i = D_i/tau_i, D_i/tau_i^2
+        if k == 2:  # T''(s) = sum E_i e^(-s/tau_i) is zero at most once
+            E = (g * slope - (g * P0 - z0) / tau) / tau  # (g_i P' - z_i'(0)) / tau_i
             with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
                 ratio = -E[:, 0] / E[:, 1]
                 s0 = np.log(ratio) / (1.0 / tau[:, 0] - 1.0 / tau[:, 1])
