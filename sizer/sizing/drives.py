@@ -84,27 +84,43 @@ def _interpolate(x: np.ndarray, y: np.ndarray, q: np.ndarray) -> np.ndarray:
 
 def suits(drive: ServoDrive, motor: Motor) -> bool:
     """Whether ``drive`` is a drive for ``motor`` (its list, else the rule)."""
-    if drive.motors is not None:
-        return any(fnmatch.fnmatchcase(motor.id, pattern) for pattern in drive.motors)
-    if motor.torque_constant is None and motor.torque_current_curve is None:
-        return False
-    rated = CurrentCurves.of([motor]).current(np.array([motor.continuous_torque]))[0]
-    return drive.continuous_current >= rated * (1.0 - 1e-12)
+    return bool(compatibility([motor], [drive])[0, 0])
+
+
+def compatibility(motors: Sequence[Motor], drives: Sequence[ServoDrive]) -> np.ndarray:
+    """(motors, drives): whether each drive suits each motor. A listed drive suits the
+    motors its patterns match; a drive without a list those with a torque constant whose
+    continuous current (tau_c through the motor's curve) its continuous current covers."""
+    ids = [m.id for m in motors]
+    known = np.array([m.torque_constant is not None or m.torque_current_curve is not None
+                      for m in motors], dtype=bool)
+    rated = np.full(len(motors), np.inf)
+    if known.any():
+        which = np.flatnonzero(known)
+        chosen = [motors[int(i)] for i in which]
+        rated[which] = CurrentCurves.of(chosen).current(
+            np.array([m.continuous_torque for m in chosen]))
+    out = np.zeros((len(motors), len(drives)), dtype=bool)
+    for d, drive in enumerate(drives):  # a loop over the drives, the motors as arrays
+        if drive.motors is None:
+            out[:, d] = known & (drive.continuous_current >= rated * (1.0 - 1e-12))
+        else:
+            names = {i for pattern in drive.motors for i in fnmatch.filter(ids, pattern)}
+            out[:, d] = np.isin(np.array(ids, dtype=object), list(names))
+    return out
 
 
 def pairs(motors: Sequence[Motor], drives: Sequence[ServoDrive]) -> tuple[np.ndarray,
                                                                          np.ndarray]:
     """(motor index, drive index) of every compatible pair, motor by motor, drives in their
     order; a UserError if there is none."""
-    found = [(m, d) for m, motor in enumerate(motors) for d, drive in enumerate(drives)
-             if suits(drive, motor)]
-    if not found:
+    motor, drive = np.nonzero(compatibility(motors, drives))
+    if motor.size == 0:
         raise UserError("no motor has a compatible drive: a drive suits the motors its "
                         "`motors:` list names, or (without a list) those with a "
                         "torque_constant whose continuous current it covers",
                         field="drives")
-    index = np.array(found, dtype=np.intp)
-    return index[:, 0], index[:, 1]
+    return motor.astype(np.intp), drive.astype(np.intp)
 
 
 def clip_region(table: RegionTable, cap: np.ndarray) -> RegionTable:

@@ -66,7 +66,9 @@ class MotorArrays:
         catalog) as candidates, the regions clipped at T(I_peak) and T(I_cont)."""
         motor, drive = pairs(self.catalog, drives)
         paired = self.subset(motor)
-        currents = CurrentCurves.of([self.catalog[int(m)] for m in motor])
+        distinct = np.unique(motor)  # the curves once per paired motor, then per pair
+        currents = CurrentCurves.of([self.catalog[int(m)] for m in distinct]).take(
+            np.searchsorted(distinct, motor))
         peak = np.array([d.peak_current for d in drives])[drive]
         continuous = np.array([d.continuous_current for d in drives])[drive]
         return MotorArrays(self.catalog, paired.index, paired.inertia, paired.damping,
