@@ -213,3 +213,27 @@ def test_clipped_regions_are_the_minimum_of_region_and_cap():
     grid = np.broadcast_to(speeds, (3, speeds.size))
     expected = np.minimum(arrays.intermittent.limit(grid), caps[:, None])
     assert np.allclose(clipped.limit(grid), expected, rtol=1e-12, atol=1e-12)
+
+
+def test_drives_with_a_listed_ratio_pair_with_every_option(tmp_path):
+    # a free ratio (3 or 5) and two drives: each (motor, drive) gets its best ratio; the
+    # drive's checks read the torque at the motor through k_t = 2 N*m/A
+    drives = [{"id": "weak", "continuous_current": "0.5 A", "peak_current": "0.6 A",
+               "motors": ["M"]},
+              {"id": "strong", "continuous_current": "4 A", "peak_current": "10 A",
+               "motors": ["M"]}]
+    design = book_design(tmp_path, drives)
+    design["transmission"] = {"type": "gearbox", "ratio": [3, 5]}
+    design["task"] = {"displacement": "3 rad", "duration": "3 s"}
+    design["load"] = {"inertia": "4 kg*m^2", "damping": "0.3 N*m*s/rad"}
+    result = size_design(load_design_data(design, base=tmp_path))
+    rows = {r.drive: r for r in result.results}
+    assert set(rows) == {"weak", "strong"}
+    for row in rows.values():
+        assert row.ratio in (3.0, 5.0)
+        assert row.check("drive_peak_current").value == pytest.approx(row.peak_torque / 2.0,
+                                                                      rel=1e-12)
+        assert row.check("drive_rms_current").value == pytest.approx(row.rms_torque / 2.0,
+                                                                     rel=1e-12)
+    assert rows["strong"].feasible and not rows["weak"].feasible
+    assert rows["weak"].limiting == "drive_peak_current"
