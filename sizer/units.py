@@ -80,6 +80,13 @@ KINDS: dict[str, Kind] = {
         Kind("money", "", "450", "1"),
         Kind("rate", "1/[time]", "50 1/min", "1/s"),  # cycles per time (a machine cycle's)
         Kind("temperature_rise", "[temperature]", "100 K", "K"),
+        Kind("current", "[current]", "9 A", "A"),
+        Kind("torque_constant", "[mass]*[length]**2/[time]**2/[current]", "0.88 N*m/A",
+             "N*m/A"),
+        Kind("resistance", "[mass]*[length]**2/[time]**3/[current]**2", "1.2 ohm", "ohm"),
+        Kind("voltage", "[mass]*[length]**2/[time]**3/[current]", "600 V", "V"),
+        Kind("capacitance", "[current]**2*[time]**4/[mass]/[length]**2", "705 uF", "F"),
+        Kind("power", "[mass]*[length]**2/[time]**3", "1.5 kW", "W"),
     )
 }
 
@@ -186,7 +193,13 @@ def to_si(value: Any, kind: str, *, field: str | None = None) -> float:
 
 
 _ANGULAR_MOTION = frozenset({"angular_speed", "angular_acceleration", "angular_jerk"})
-_TORQUE_LIKE = frozenset({"torque", "rotary_damping"})
+_TEMPERATURE_DIFFERENCES = frozenset({"K", "kelvin", "delta_degC", "delta_degF"})
+"""Units of a temperature rise: a difference, no offset (a rise of 100 K = 100 delta_degC)."""
+_TORQUE_LIKE = frozenset({"torque", "rotary_damping", "torque_constant"})
+_ELECTRIC = frozenset({"current", "torque_constant"})
+_RMS_AMPERE = re.compile(r"^(A|mA)(?:_?rms|rms|eff|_eff)$|^(Arms|Aeff)$", re.IGNORECASE)
+"""Amperes as datasheets write RMS currents ('Arms', 'A_rms', 'Aeff'): plain amperes (a
+current of a drive or a motor is an RMS value throughout)."""
 
 _SUPERSCRIPT = re.compile(r"([⁺⁻]?)([⁰¹²³⁴⁵⁶⁷⁸⁹]+)")
 _SUPERSCRIPT_DIGITS = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻", "0123456789+-")
@@ -208,6 +221,8 @@ def _normalize(unit: str, kind: str) -> str:
         text = match.group(0)
         if kind in _ANGULAR_MOTION:
             return _ANGLE_WORDS.get(text, text)
+        if kind in _ELECTRIC and _RMS_AMPERE.match(text):
+            return "mA" if text[:2].lower() == "ma" else "A"
         if kind in _TORQUE_LIKE:
             return _NEWTON_METRE.sub(r"\1N*\2", text)
         if kind == "inertia":
@@ -261,6 +276,12 @@ _SI_FACTORS: dict[str, dict[str, float]] = {
     "rotary_damping": {"N*m*s/rad": 1.0},
     "linear_damping": {"N*s/m": 1.0},
     "rate": {"Hz": 1.0, "kHz": 1000.0, "1/s": 1.0},
+    "current": {"A": 1.0},
+    "temperature_rise": {"K": 1.0, "kelvin": 1.0},  # a difference of temperatures
+    "torque_constant": {"N*m/A": 1.0},
+    "resistance": {"ohm": 1.0},
+    "voltage": {"V": 1.0},
+    "power": {"W": 1.0, "kW": 1000.0},
 }
 """SI factors of the units written most often, per kind, so that those never need pint:
 each equals pint's factor for that unit bit for bit (tests/test_units_fast_path.py)."""
@@ -339,6 +360,8 @@ def _pint_quantity(number: float, pint_unit: str, unit: str, text: str, spec: Ki
         return quantity
     wrong = _expected(spec, text, field)
     if "[temperature]" in quantity.dimensionality:
+        if spec.name == "temperature_rise" and pint_unit in _TEMPERATURE_DIFFERENCES:
+            return quantity
         raise wrong  # degC, degF, K: no kind of ours holds a temperature (and offset units crash)
     expected = ureg.get_dimensionality(spec.dimensionality) if spec.dimensionality else {}
     if quantity.dimensionality != expected and spec.name in ("torque", "inertia"):

@@ -262,7 +262,135 @@ GEARBOX_CASES = [
               ("gearboxes:gearboxes.ratios.peak_output_torque",)),
 ]
 
-CASES = [*FIELDS, *IMPOSSIBLE, *GEARBOX_CASES]
+DRIVE: dict[str, Any] = {
+    "id": "D1", "continuous_current": "3 A", "peak_current": "9 A", "dc_bus_voltage": "300 V",
+    "bus_capacitance": "470 uF", "max_bus_voltage": "410 V", "braking_threshold": "380 V",
+    "braking_resistor_power": "40 W", "price": 300, "motors": ["M1"], "source": "a datasheet",
+    "part_number": "D1-A", "manufacturer": "Acme", "notes": "for the tests",
+}
+"""A plausible drive for MOTOR (issue 16)."""
+
+MOTOR_KT = {**MOTOR, "torque_constant": "0.5 N*m/Arms", "winding_resistance": "4.2 ohm",
+            "thermal_time_constant": "20 min", "max_winding_temperature_rise": "100 K"}
+"""MOTOR with the fields a drive needs and the thermal ones."""
+
+D = "drives[0]"
+CD = "catalog:drives"
+
+
+def with_drives(set: dict[str, Any] | None = None, delete: tuple[str, ...] = (),
+                motor: dict[str, Any] | None = None) -> str:
+    """A catalog of MOTOR_KT (or ``motor``) and DRIVE, with keys set and deleted."""
+    data = {"catalog": "test motors", "manufacturer": "Acme", "source": "a datasheet",
+            "notes": "n", "motors": [motor if motor is not None else MOTOR_KT],
+            "drives": [DRIVE]}
+    return _edit(data, set or {}, delete)
+
+
+def bad_drive(id: str, set: dict[str, Any], words: tuple[str, ...], fields: tuple[str, ...],
+              delete: tuple[str, ...] = (), motor: dict[str, Any] | None = None) -> Case:
+    """A catalog with a bad drive or a bad new motor field, sized by the book's design."""
+    return Case(id, design=DESIGN, catalog=with_drives(set, delete, motor),
+                words=("motors.yaml:", *words), fields=fields)
+
+
+def bad_design(id: str, set: dict[str, Any], words: tuple[str, ...],
+               fields: tuple[str, ...]) -> Case:
+    """The book's design with drives' fields edited, sized against MOTOR_KT and DRIVE."""
+    design = yaml.safe_load(DESIGN)
+    for key, value in set.items():
+        head, _, last = key.rpartition(".")
+        (design.setdefault(head, {}) if head else design)[last] = value
+    return Case(id, design=yaml.safe_dump(design, sort_keys=False), catalog=with_drives(),
+                words=("design.yaml:", *words), fields=fields)
+
+
+DRIVE_CASES = [
+    bad_drive("torque-constant-negative", {f"{M}.torque_constant": "-0.5 N*m/A"},
+              (f"{M}.torque_constant", "[1e-5, 1000] N*m/A"), (f"{C}.torque_constant",)),
+    bad_drive("torque-constant-a-torque", {f"{M}.torque_constant": "0.5 N*m"},
+              (f"{M}.torque_constant", "expected a torque constant"), ()),
+    bad_drive("winding-resistance-negative", {f"{M}.winding_resistance": "-4.2 ohm"},
+              (f"{M}.winding_resistance", "[1e-4, 1e4] ohm", "-4.2 ohm"),
+              (f"{C}.winding_resistance",)),
+    bad_drive("phase-resistance-zero", {f"{M}.phase_resistance": "0 ohm"},
+              (f"{M}.phase_resistance", "[1e-4, 1e4] ohm"), (f"{C}.phase_resistance",),
+              delete=(f"{M}.winding_resistance",)),
+    bad_drive("phase-and-winding-resistance", {f"{M}.phase_resistance": "2.1 ohm"},
+              (f"{M}.phase_resistance", "not both"), (f"{C}.phase_resistance",)),
+    bad_drive("thermal-time-constant-zero", {f"{M}.thermal_time_constant": "0 min"},
+              (f"{M}.thermal_time_constant", "[0.1, 1e6] s"), (f"{C}.thermal_time_constant",)),
+    bad_drive("winding-temperature-rise-negative",
+              {f"{M}.max_winding_temperature_rise": "-10 K"},
+              (f"{M}.max_winding_temperature_rise", "[1, 400] K"),
+              (f"{C}.max_winding_temperature_rise",)),
+    bad_drive("torque-current-curve-falling",
+              {f"{M}.torque_current_curve": [["0 A", "0 N*m"], ["4 A", "2 N*m"],
+                                             ["8 A", "1.9 N*m"]]},
+              (f"{M}.torque_current_curve", "increase strictly"),
+              (f"{C}.torque_current_curve",)),
+    bad_drive("torque-current-curve-one-point",
+              {f"{M}.torque_current_curve": [["4 A", "2 N*m"]]},
+              (f"{M}.torque_current_curve", "at least 2 points"), ()),
+    bad_drive("torque-current-current-negative",
+              {f"{M}.torque_current_curve": [["-1 A", "0 N*m"], ["4 A", "2 N*m"]]},
+              (f"{M}.torque_current_curve[0].current", "0 or in [1e-4, 1e5] A"),
+              (f"{C}.torque_current_curve.current",)),
+    bad_drive("torque-current-torque-a-speed",
+              {f"{M}.torque_current_curve": [["0 A", "0 rpm"], ["4 A", "2 N*m"]]},
+              (f"{M}.torque_current_curve[0].torque", "expected a torque"),
+              (f"{C}.torque_current_curve.torque",)),
+    bad_drive("drives-not-a-list", {"drives": "D1"}, ("drives",), (CD,)),
+    bad_drive("drive-id-empty", {f"{D}.id": " "}, (f"{D}.id", "must not be empty"),
+              (f"{CD}.id",)),
+    bad_drive("drive-id-twice", {"drives[1]": DRIVE}, ("drives[1].id", "duplicate drive id"),
+              (f"{CD}.id",)),
+    bad_drive("drive-no-current", {}, (f"{D}.continuous_current", "required field is missing"),
+              (f"{CD}.continuous_current",), delete=(f"{D}.continuous_current",)),
+    bad_drive("drive-continuous-current-zero", {f"{D}.continuous_current": "0 A"},
+              (f"{D}.continuous_current", "[1e-4, 1e5] A"), (f"{CD}.continuous_current",)),
+    bad_drive("drive-peak-current-a-torque", {f"{D}.peak_current": "9 N*m"},
+              (f"{D}.peak_current", "expected a current"), (f"{CD}.peak_current",)),
+    bad_drive("drive-peak-below-continuous", {f"{D}.peak_current": "2 A"},
+              (f"{D}.peak_current", "below the continuous current 3 A"),
+              (f"{CD}.peak_current",)),
+    bad_drive("drive-bus-voltage-negative", {f"{D}.dc_bus_voltage": "-300 V"},
+              (f"{D}.dc_bus_voltage", "[1, 1e4] V"), (f"{CD}.dc_bus_voltage",)),
+    bad_drive("drive-bus-capacitance-huge", {f"{D}.bus_capacitance": "100 F"},
+              (f"{D}.bus_capacitance", "[1e-9, 10] F"), (f"{CD}.bus_capacitance",)),
+    bad_drive("drive-max-bus-voltage-a-current", {f"{D}.max_bus_voltage": "410 A"},
+              (f"{D}.max_bus_voltage", "expected a voltage"), (f"{CD}.max_bus_voltage",)),
+    bad_drive("drive-braking-above-trip", {f"{D}.braking_threshold": "450 V"},
+              (f"{D}.braking_threshold", "above the maximum bus voltage 410 V"),
+              (f"{CD}.braking_threshold",)),
+    bad_drive("drive-braking-power-negative", {f"{D}.braking_resistor_power": "-40 W"},
+              (f"{D}.braking_resistor_power", "0 or in [0.001, 1e7] W"),
+              (f"{CD}.braking_resistor_power",)),
+    bad_drive("drive-price-negative", {f"{D}.price": -5}, (f"{D}.price", "0 or in [0.001, 1e9]"),
+              (f"{CD}.price",)),
+    bad_drive("drive-unknown-motor", {f"{D}.motors": ["M9"]},
+              (f"{D}.motors[0]", "no loaded motor is 'M9'", "loaded motors: M1"),
+              (f"{CD}.motors",)),
+    bad_drive("drive-motor-without-torque-constant", {}, (
+        f"{D}.motors[0]", "motor 'M1' gives no torque_constant"), (f"{CD}.motors",),
+        motor=MOTOR),
+    bad_drive("drive-source-list", {f"{D}.source": [1]}, (f"{D}.source", "expected text"),
+              (f"{CD}.source",)),
+    bad_drive("drive-part-number-list", {f"{D}.part_number": [1]},
+              (f"{D}.part_number", "expected text"), (f"{CD}.part_number",)),
+    bad_drive("drive-manufacturer-mapping", {f"{D}.manufacturer": {"a": 1}},
+              (f"{D}.manufacturer", "expected text"), (f"{CD}.manufacturer",)),
+    bad_drive("drive-notes-mapping", {f"{D}.notes": {"a": 1}}, (f"{D}.notes", "expected text"),
+              (f"{CD}.notes",)),
+    bad_design("design-drives-unknown", {"drives": ["no-such-drives"]},
+               ("drives[0]", "unknown drive catalog 'no-such-drives'", "siemens-s120"),
+               ("drives",)),
+    bad_design("drive-current-margin-one", {"limits.drive_current_margin": 1.0},
+               ("limits.drive_current_margin", "0 or in [1e-9, 0.95]"),
+               ("limits.drive_current_margin",)),
+]
+
+CASES = [*FIELDS, *IMPOSSIBLE, *GEARBOX_CASES, *DRIVE_CASES]
 
 
 @pytest.mark.parametrize("case", CASES, ids=str)
@@ -274,6 +402,15 @@ def test_the_base_files_are_good(tmp_path):
     (tmp_path / "motors.yaml").write_text(motors(), encoding="utf-8")
     result = run_cli("catalog", "validate", str(tmp_path / "motors.yaml"))
     assert result.returncode == 0, result.stdout + result.stderr
+
+
+def test_the_base_drive_catalog_is_good(tmp_path):
+    (tmp_path / "motors.yaml").write_text(with_drives(), encoding="utf-8")
+    (tmp_path / "design.yaml").write_text(DESIGN, encoding="utf-8")
+    result = run_cli("size", str(tmp_path / "design.yaml"), "--format", "csv", "--all")
+    assert result.returncode in (0, 1), result.stdout + result.stderr
+    assert result.stdout.splitlines()[0].startswith("rank,motor,drive,law")
+    assert ",M1,D1," in result.stdout
 
 
 def _error_field(stderr: str) -> str:

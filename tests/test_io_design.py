@@ -248,8 +248,8 @@ def test_yaml_anchors_and_merge_keys(tmp_path):
 def test_schema_names_the_sections():
     schema = design_schema()
     assert {"load"} <= set(schema["required"])  # and task or cycle: see test_cycle_input.py
-    assert {"name", "task", "cycle", "load", "transmission", "laws", "motors", "check",
-            "limits", "efficiency_applies_to"} == set(schema["properties"])
+    assert {"name", "task", "cycle", "load", "transmission", "laws", "motors", "drives",
+            "check", "limits", "efficiency_applies_to"} == set(schema["properties"])
     assert "return" in schema["$defs"]["TaskInput"]["properties"]
 
 

@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 from pydantic import BaseModel
 
-from sizer.io.motor_rules import CurveColumns, Figures, MotorColumns, is_idealized
+from sizer.io.motor_rules import CurveColumns, Figures, MotorColumns, is_idealized, line_to_line
 from sizer.model.domain import Motor
 from sizer.model.inputs import CatalogFile, CurvePointInput, MotorInput
 from sizer.model.inputs_base import RangeRef, field_markers
@@ -33,6 +33,8 @@ from sizer.model.ranges import RANGES
 from sizer.units import column_to_si
 
 CURVES = ("continuous_curve", "intermittent_curve")
+TORQUE_CURRENT = "torque_current_curve"
+_CURRENT_KEYS = frozenset({"current", "torque"})
 _POINT_KEYS = frozenset({"speed", "torque"})
 
 
@@ -68,7 +70,8 @@ def _fields() -> _Fields:
     motor = MotorInput.model_fields
     assert all(info.alias is None for info in motor.values())
     quantities = {name: found for name in motor if (found := _range_of(MotorInput, name))}
-    texts = tuple(name for name in motor if name not in quantities and name not in CURVES)
+    texts = tuple(name for name in motor if name not in quantities and name not in CURVES
+                  and name != TORQUE_CURRENT)
     speed, torque = _range_of(CurvePointInput, "speed"), _range_of(CurvePointInput, "torque")
     assert speed is not None and torque is not None and texts[0] == "id"
     catalog = CatalogFile.model_fields
@@ -79,7 +82,7 @@ def _fields() -> _Fields:
         allowed=frozenset(motor),
         defaults={n: info.default for n, info in motor.items() if not info.is_required()},
         point=(speed, torque),
-        catalog_texts=tuple(n for n in catalog if n != "motors"),
+        catalog_texts=tuple(n for n in catalog if n not in ("motors", "drives")),
         catalog_keys=frozenset(catalog))
 
 
@@ -101,7 +104,7 @@ def read_table(data: Any) -> CatalogTable | None:
     """The motors of a catalog's data (a mapping from YAML), or None if it is not in the
     common form (then :func:`sizer.io.validation.validate` words what is wrong)."""
     fields = _fields()
-    if type(data) is not dict or not data.keys() <= fields.catalog_keys:
+    if type(data) is not dict or not data.keys() <= fields.catalog_keys or "drives" in data:
         return None
     rows = data.get("motors")
     if type(rows) is not list or not rows:
@@ -109,6 +112,8 @@ def read_table(data: Any) -> CatalogTable | None:
     allowed, required = fields.allowed, fields.required
     for row in rows:
         if type(row) is not dict or not row.keys() <= allowed or not required <= row.keys():
+            return None
+        if "winding_resistance" in row and "phase_resistance" in row:
             return None
     try:
         catalog = {key: _texts([data.get(key)], nullable=True)[0] for key in fields.catalog_texts}
@@ -121,9 +126,14 @@ def read_table(data: Any) -> CatalogTable | None:
         for key, name in fields.quantities.items():
             columns[key] = _quantities(_column(rows, key, fields), name)
         curves = {key: _curve_column(rows, key, fields) for key in CURVES}
+        currents = _curve_column(rows, TORQUE_CURRENT, fields,
+                                 (_CURRENT_KEYS, ("current", "torque"),
+                                  ("curve_current", "curve_torque")))
+        if not _increasing(currents[0]):
+            return None
     except _NotCommonError:
         return None
-    return _table(rows, ids, columns, curves, catalog)
+    return _table(rows, ids, columns, curves, catalog, _curves_of(currents))
 
 
 def _column(rows: list[dict[str, Any]], key: str, fields: _Fields) -> list[Any]:
@@ -170,9 +180,27 @@ def _quantities(values: list[Any], name: str) -> np.ndarray:
     return out
 
 
-def _curve_column(rows: list[dict[str, Any]], key: str,
-                  fields: _Fields) -> tuple[CurveColumns, list[float], list[float]]:
-    """One curve of every motor, flat, in SI (and the same points as float lists)."""
+def _increasing(table: CurveColumns) -> bool:
+    """Every torque-current curve has >= 2 points, currents and torques strictly rising."""
+    for given, first, size in zip(table.given.tolist(), table.start.tolist(),
+                                  table.count.tolist(), strict=True):
+        if not given:
+            continue
+        x, y = table.speed[first:first + size], table.torque[first:first + size]
+        if size < 2 or not (np.all(np.diff(x) > 0) and np.all(np.diff(y) > 0)):
+            return False
+    return True
+
+
+def _curve_column(rows: list[dict[str, Any]], key: str, fields: _Fields,
+                  kind: tuple[frozenset[str], tuple[str, str], tuple[str, str]] | None = None
+                  ) -> tuple[CurveColumns, list[float], list[float]]:
+    """One curve of every motor, flat, in SI (and the same points as float lists).
+
+    ``kind``: the point's keys, their order and their ranges, if not (speed, torque) (the
+    torque-current curve: its currents in the ``speed`` column)."""
+    keys, (first_key, second_key), ranges = kind or (_POINT_KEYS, ("speed", "torque"),
+                                                     fields.point)
     speeds: list[Any] = []
     torques: list[Any] = []
     count = len(rows)
@@ -189,12 +217,12 @@ def _curve_column(rows: list[dict[str, Any]], key: str,
             if kind is list and len(point) == 2:
                 speeds.append(point[0])
                 torques.append(point[1])
-            elif kind is dict and point.keys() == _POINT_KEYS:
-                speeds.append(point["speed"])
-                torques.append(point["torque"])
+            elif kind is dict and point.keys() == keys:
+                speeds.append(point[first_key])
+                torques.append(point[second_key])
             else:
                 raise _NotCommonError
-    speed_range, torque_range = fields.point
+    speed_range, torque_range = ranges
     speed = _quantities(speeds, speed_range)
     torque = _quantities(torques, torque_range)
     if np.isnan(speed).any() or np.isnan(torque).any():
@@ -220,7 +248,8 @@ def _floats(column: np.ndarray) -> list[float | None]:
 
 def _table(rows: list[dict[str, Any]], ids: list[str], columns: dict[str, Any],
            curves: dict[str, tuple[CurveColumns, list[float], list[float]]],
-           catalog: dict[str, Any]) -> CatalogTable:
+           catalog: dict[str, Any],
+           currents: list[tuple[tuple[float, float], ...] | None]) -> CatalogTable:
     manufacturer, source = catalog.get("manufacturer"), catalog.get("source")
     makers = [m or manufacturer for m in columns["manufacturer"]]
     sources = [s or source for s in columns["source"]]
@@ -235,7 +264,13 @@ def _table(rows: list[dict[str, Any]], ids: list[str], columns: dict[str, Any],
               intermittent_curve=intermittent[i],
               damping=numbers["damping"][i],  # type: ignore[arg-type]
               source=sources[i], part_number=columns["part_number"][i],
-              manufacturer=makers[i], price=numbers["price"][i], mass=numbers["mass"][i])
+              manufacturer=makers[i], price=numbers["price"][i], mass=numbers["mass"][i],
+              torque_constant=numbers["torque_constant"][i],
+              winding_resistance=line_to_line(numbers["winding_resistance"][i],
+                                              numbers["phase_resistance"][i]),
+              thermal_time_constant=numbers["thermal_time_constant"][i],
+              max_winding_temperature_rise=numbers["max_winding_temperature_rise"][i],
+              torque_current_curve=currents[i])
         for i in range(len(rows))]
     idealized = {m: is_idealized(m) for m in set(makers)}
     figures = Figures(*(columns[key] for key in ("inertia", "continuous_torque", "peak_torque",

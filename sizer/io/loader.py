@@ -12,6 +12,7 @@ Every mistake in a file ends in a UserError naming the file, the line and the fi
 from __future__ import annotations
 
 import difflib
+import fnmatch
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from importlib import resources
@@ -56,10 +57,12 @@ from sizer.io.yaml_source import (
     read_yaml,
 )
 from sizer.mechanics import linear_load
-from sizer.model.domain import Design, Limits, Load, Motor, Task
+from sizer.model.domain import Design, Limits, Load, Motor, ServoDrive, Task
 from sizer.model.inputs import (
     CatalogFile,
     DesignFile,
+    DriveCatalogFile,
+    DriveInput,
     LimitsInput,
     LoadInput,
     MotorInput,
@@ -76,6 +79,14 @@ PathLike = str | Path
 def bundled_catalogs() -> dict[str, Path]:
     """The catalogs shipped with sizer, by name (the file stem)."""
     folder = Path(str(resources.files("sizer").joinpath("catalogs")))
+    if not folder.is_dir():
+        return {}
+    return {p.stem: p for p in sorted(folder.glob("*.yaml"))}
+
+
+def bundled_drive_catalogs() -> dict[str, Path]:
+    """The drive catalogs shipped with sizer (sizer/catalogs/drives), by name."""
+    folder = Path(str(resources.files("sizer").joinpath("catalogs", "drives")))
     if not folder.is_dir():
         return {}
     return {p.stem: p for p in sorted(folder.glob("*.yaml"))}
@@ -176,7 +187,8 @@ class _Located:
         return format_path((*self.at, "id"))
 
 
-def _read_catalog(path: Path, warnings: list[str]) -> list[_Located]:
+def _read_catalog(path: Path, warnings: list[str],
+                  drives: list[_LocatedDrive] | None = None) -> list[_Located]:
     """The motors of a catalog file; warnings about them are appended to ``warnings``.
 
     A catalog in the common form is read as columns (:mod:`sizer.io.catalog_table`), the
@@ -187,7 +199,7 @@ def _read_catalog(path: Path, warnings: list[str]) -> list[_Located]:
         source = read_yaml(path)
         table = read_table(source.data)
         if table is None:
-            return _validated_catalog(source, warnings)
+            return _validated_catalog(source, warnings, drives)
         rows = source.data["motors"]
         for index in np.flatnonzero(maybe_impossible(table.columns)).tolist():
             _refuse_impossible(table.motors[index], source, ("motors", index))
@@ -198,9 +210,14 @@ def _read_catalog(path: Path, warnings: list[str]) -> list[_Located]:
                 for index, motor in enumerate(table.motors)]
 
 
-def _validated_catalog(source: YamlSource, warnings: list[str]) -> list[_Located]:
-    """The motors of a catalog validated by its model, field by field."""
+def _validated_catalog(source: YamlSource, warnings: list[str],
+                       drives: list[_LocatedDrive] | None = None) -> list[_Located]:
+    """The motors of a catalog validated by its model, field by field (its drives, if
+    any, appended to ``drives``)."""
     catalog = validate(CatalogFile, source)
+    if drives is not None:
+        drives.extend(_drives_of(catalog.drives or (), source, catalog.manufacturer,
+                                 catalog.source))
     if not catalog.motors:
         raise source.error("the catalog has no motors", ("motors",))
     located = []
@@ -239,6 +256,104 @@ def _motor_warnings(motor: Motor, source: YamlSource, at: tuple[Any, ...]) -> li
     for part in at:
         given = given[part]
     return motor_warnings(source, at, given, motor)
+
+
+@dataclass(frozen=True)
+class _LocatedDrive:
+    """A drive and where it was defined."""
+
+    drive: ServoDrive
+    source: YamlSource
+    at: tuple[Any, ...]
+
+
+def _drives_of(items: Iterable[DriveInput], source: YamlSource, manufacturer: str | None,
+               source_text: str | None) -> list[_LocatedDrive]:
+    return [_LocatedDrive(ServoDrive(
+        id=item.id, continuous_current=item.continuous_current,
+        peak_current=item.peak_current, dc_bus_voltage=item.dc_bus_voltage,
+        bus_capacitance=item.bus_capacitance, max_bus_voltage=item.max_bus_voltage,
+        braking_threshold=item.braking_threshold,
+        braking_resistor_power=item.braking_resistor_power, price=item.price,
+        motors=None if item.motors is None else tuple(m.strip() for m in item.motors),
+        source=item.source or source_text, part_number=item.part_number,
+        manufacturer=item.manufacturer or manufacturer), source, ("drives", index))
+        for index, item in enumerate(items)]
+
+
+def read_drive_catalog(path: Path) -> list[_LocatedDrive]:
+    """The drives of a drive catalog file (or of a motor catalog's ``drives:``)."""
+    source = read_yaml(path)
+    if isinstance(source.data, dict) and "motors" in source.data:
+        catalog = validate(CatalogFile, source)
+        if not catalog.drives:
+            raise source.error("the catalog has no drives (a design's `drives:` names drive "
+                               "catalogs)", ("drives",))
+        return _drives_of(catalog.drives, source, catalog.manufacturer, catalog.source)
+    drive_catalog = validate(DriveCatalogFile, source)
+    if not drive_catalog.drives:
+        raise source.error("the catalog has no drives", ("drives",))
+    return _drives_of(drive_catalog.drives, source, drive_catalog.manufacturer,
+                      drive_catalog.source)
+
+
+def resolve_drive_catalog(reference: str, base: Path, source: YamlSource,
+                          at: Sequence[Any]) -> Path:
+    """The file of a drive catalog reference: a path (relative to ``base``) or a bundled
+    drive catalog's name."""
+    bundled = bundled_drive_catalogs()
+    try:
+        path = Path(reference).expanduser()
+        if not path.is_absolute():
+            path = base / path
+        if path.is_file():
+            return path
+    except (OSError, ValueError):
+        path = Path(reference)
+    if reference in bundled:
+        return bundled[reference]
+    names = ", ".join(bundled) or "none"
+    raise source.error(f"unknown drive catalog {reference!r}: no such file and no such "
+                       f"bundled drive catalog; bundled drive catalogs: {names}", at)
+
+
+def _design_drives(model: DesignFile, source: YamlSource, folder: Path,
+                   from_catalogs: list[_LocatedDrive], motors: Sequence[Motor],
+                   files: list[Path]) -> tuple[ServoDrive, ...]:
+    """The drives of a design (its ``drives:`` catalogs, then those of its motor catalogs),
+    each checked against the loaded motors: an id it names must be loaded, and a motor it
+    names must give its torque constant."""
+    located: list[_LocatedDrive] = []
+    read: set[Path] = set()
+    for index, reference in enumerate(model.drives or ()):
+        path = resolve_drive_catalog(reference.strip(), folder, source, ("drives", index))
+        if path.resolve() not in read:
+            read.add(path.resolve())
+            files.append(path)
+            located.extend(read_drive_catalog(path))
+    located.extend(from_catalogs)
+    first: dict[str, _LocatedDrive] = {}
+    ids = [m.id for m in motors]
+    by_id = {m.id: m for m in motors}
+    for item in located:
+        if item.drive.id in first:
+            raise item.source.error(f"duplicate drive id {item.drive.id!r}",
+                                    (*item.at, "id"))
+        first[item.drive.id] = item
+        for k, pattern in enumerate(item.drive.motors or ()):
+            matched = fnmatch.filter(ids, pattern)
+            at = (*item.at, "motors", k)
+            if not matched:
+                shown = ", ".join(ids[:12]) + (", ..." if len(ids) > 12 else "") or "none"
+                raise item.source.error(f"drive {item.drive.id!r}: no loaded motor is "
+                                        f"{pattern!r}; loaded motors: {shown}", at)
+            lacking = [i for i in matched if by_id[i].torque_constant is None]
+            if lacking:
+                raise item.source.error(
+                    f"drive {item.drive.id!r}: motor {lacking[0]!r} gives no "
+                    "torque_constant: the drive's currents become torques through it "
+                    "(give the motor's torque_constant, N*m/A)", at)
+    return tuple(item.drive for item in located)
 
 
 def _check_unique(motors: Iterable[_Located]) -> None:
@@ -317,7 +432,9 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
         extra = list(default_catalogs().values())
     transmission = replace(transmission, efficiency_applies_to=model.efficiency_applies_to)
     files = [*files, *_gearbox_catalog_files(model.transmission, folder)]
-    motors = _design_motors(model, source, folder, extra, warnings, files)
+    catalog_drives: list[_LocatedDrive] = []
+    motors = _design_motors(model, source, folder, extra, warnings, files, catalog_drives)
+    drives = _design_drives(model, source, folder, catalog_drives, motors, files)
     by_id = {m.id: m for m in motors}
     chosen_motor = chosen_law = None
     if model.check is not None:
@@ -338,6 +455,7 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
         warnings=tuple(warnings),
         files=tuple(files),
         cycle=cycle,
+        drives=drives,
     )
 
 
@@ -471,12 +589,14 @@ def _limits(model: DesignFile, source: YamlSource, linear: bool) -> Limits:
         envelope=given.envelope,
         max_speed=quantity("max_speed"),
         residual_vibration=quantity("residual_vibration"),
+        drive_current_margin=given.drive_current_margin,
     )
 
 
 def _design_motors(model: DesignFile, source: YamlSource, folder: Path,
                    extra_catalogs: Iterable[PathLike], warnings: list[str],
-                   files: list[Path] | None = None) -> tuple[Motor, ...]:
+                   files: list[Path] | None = None,
+                   drives: list[_LocatedDrive] | None = None) -> tuple[Motor, ...]:
     located: list[_Located] = []
     read: set[Path] = set()
 
@@ -486,7 +606,7 @@ def _design_motors(model: DesignFile, source: YamlSource, folder: Path,
             read.add(key)
             if files is not None:
                 files.append(path)
-            located.extend(_read_catalog(path, warnings))
+            located.extend(_read_catalog(path, warnings, drives))
 
     for index, item in enumerate(model.motors or ()):
         at = ("motors", index)

@@ -614,7 +614,21 @@ def motor_of(item: Any) -> Motor:
         continuous_curve=_pairs(item.continuous_curve),
         intermittent_curve=_pairs(item.intermittent_curve),
         damping=item.damping, source=item.source, part_number=item.part_number,
-        manufacturer=item.manufacturer, price=item.price, mass=item.mass)
+        manufacturer=item.manufacturer, price=item.price, mass=item.mass,
+        torque_constant=item.torque_constant,
+        winding_resistance=line_to_line(item.winding_resistance, item.phase_resistance),
+        thermal_time_constant=item.thermal_time_constant,
+        max_winding_temperature_rise=item.max_winding_temperature_rise,
+        torque_current_curve=None if item.torque_current_curve is None else tuple(
+            (p.current, p.torque) for p in item.torque_current_curve))
+
+
+def line_to_line(winding: float | None, phase: float | None) -> float | None:
+    """The phase-to-phase resistance from the one given: ``winding_resistance`` as it is,
+    a ``phase_resistance`` (per phase of a star) doubled."""
+    if winding is not None:
+        return winding
+    return None if phase is None else 2.0 * phase
 
 
 def _pairs(points: Sequence[Any] | None) -> Curve | None:

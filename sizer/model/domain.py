@@ -206,6 +206,46 @@ class Motor:
     manufacturer: str | None = None
     price: float | None = None
     mass: float | None = None
+    torque_constant: float | None = None
+    """k_t, N*m per ampere RMS: a drive's currents become torques through it."""
+    winding_resistance: float | None = None
+    """Ohm, phase to phase (line to line: between two terminals; twice the per-phase
+    resistance of a star winding)."""
+    thermal_time_constant: float | None = None
+    """s: the motor's (winding and frame) thermal time constant."""
+    max_winding_temperature_rise: float | None = None
+    """K: the winding's allowed temperature rise over the ambient (the rated figures')."""
+    torque_current_curve: tuple[tuple[float, float], ...] | None = None
+    """(current A rms, torque N*m) points, both strictly increasing: torque vs current with
+    saturation; None: torque = k_t * current."""
+
+
+@dataclass(frozen=True)
+class ServoDrive:
+    """A servo drive (amplifier) of a catalog: its current limits cap the torque of the
+    motors it drives (through each motor's k_t, or its torque-current curve).
+
+    Currents are RMS (A); ``dc_bus_voltage`` the nominal DC-link voltage, ``max_bus_voltage``
+    its overvoltage trip level and ``braking_threshold`` the level where the braking chopper
+    switches on (V); ``bus_capacitance`` (F); ``braking_resistor_power`` the continuous power
+    of the built-in braking resistor (W, 0 = none). ``motors``: the motor ids (or fnmatch
+    patterns such as ``SGM7J-*``) it suits; None: matched by rule (its continuous current
+    covers the motor's, continuous_torque / k_t).
+    """
+
+    id: str
+    continuous_current: float
+    peak_current: float
+    dc_bus_voltage: float | None = None
+    bus_capacitance: float | None = None
+    max_bus_voltage: float | None = None
+    braking_threshold: float | None = None
+    braking_resistor_power: float | None = None
+    price: float | None = None
+    motors: tuple[str, ...] | None = None
+    source: str | None = None
+    part_number: str | None = None
+    manufacturer: str | None = None
 
 
 @dataclass(frozen=True)
@@ -232,6 +272,9 @@ class Limits:
     max_speed: float | None = None
     residual_vibration: float | None = None
     """The largest amplitude of vibration a move may leave at the load (m or rad)."""
+    drive_current_margin: float = 0.0
+    """Fraction of a drive's currents left unused (checks drive_peak_current and
+    drive_rms_current)."""
 
 
 @dataclass(frozen=True)
@@ -276,6 +319,9 @@ class Design:
     files: tuple[Path, ...] = ()
     """The files the loader read: the design file, the motor catalogs (named by the design
     or added), the gearbox catalogs. A command never writes its output over one of them."""
+    drives: tuple[ServoDrive, ...] = ()
+    """The drives (amplifiers) to pair with the motors; empty: motors alone. With drives,
+    a candidate is a motor with one of its compatible drives (sizer.sizing.drives)."""
     cycle: Cycle | None = None
     """The machine cycle of several segments (``cycle:``); None: the ``task`` shorthand.
     With a cycle, ``task`` summarizes it (its first move, minimize or not, the axis)."""

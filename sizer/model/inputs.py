@@ -14,6 +14,7 @@ ValidationError into a UserError at the file, line and field.
 
 from __future__ import annotations
 
+from itertools import pairwise
 from typing import Annotated, Any, Literal
 
 from pydantic import (
@@ -119,6 +120,32 @@ CurvePoint = Annotated[CurvePointInput, OrArray(("speed", "torque"), "curve poin
 """A point as a mapping or as the pair [speed, torque], e.g. ['3000 rpm', '0.3 N*m']."""
 
 
+class TorqueCurrentPointInput(_Strict):
+    """A (current, torque) point of a motor's torque-current curve."""
+
+    current: Ranged("curve_current")  # type: ignore[valid-type]
+    torque: Ranged("curve_torque")  # type: ignore[valid-type]
+
+
+TorqueCurrentPoint = Annotated[TorqueCurrentPointInput,
+                               OrArray(("current", "torque"), "torque-current point")]
+"""A point as a mapping or as the pair [current, torque], e.g. ['18 A', '15 N*m']."""
+
+
+def _increasing_points(points: list[Any] | None) -> list[Any] | None:
+    """A torque-current curve: >= 2 points, currents and torques strictly increasing."""
+    if points is None:
+        return None
+    if len(points) < 2:
+        raise ValueError("a torque-current curve needs at least 2 points")
+    for a, b in pairwise(points):
+        if not (b.current > a.current and b.torque > a.torque):
+            raise ValueError(f"currents and torques must both increase strictly: "
+                             f"({a.current:g} A, {a.torque:g} N*m) then "
+                             f"({b.current:g} A, {b.torque:g} N*m)")
+    return points
+
+
 class MotorInput(_Strict):
     """One motor of a catalog (or inline in a design file)."""
 
@@ -146,7 +173,83 @@ class MotorInput(_Strict):
     manufacturer: Text | None = None
     price: Ranged("price") | None = None  # type: ignore[valid-type]
     mass: Ranged("motor_mass") | None = None  # type: ignore[valid-type]
+    torque_constant: Ranged("torque_constant",  # type: ignore[valid-type]
+                            note="k_t, N*m per ampere RMS ('N*m/A', 'N*m/Arms'); needed "
+                                 "to pair the motor with a drive") | None = None
+    winding_resistance: Ranged("winding_resistance",  # type: ignore[valid-type]
+                               note="phase to phase (line to line, between two "
+                                    "terminals), ohm") | None = None
+    phase_resistance: Ranged("winding_resistance",  # type: ignore[valid-type]
+                             note="per phase of a star winding, as some vendors give it "
+                                  "(Siemens R_ph): read as winding_resistance = 2 x this; "
+                                  "give one of the two") | None = None
+    thermal_time_constant: Ranged("thermal_time_constant",  # type: ignore[valid-type]
+                                  note="'35 min' or '251 s'") | None = None
+    max_winding_temperature_rise: Ranged("winding_temperature_rise",  # type: ignore[valid-type]
+                                         note="over the ambient, e.g. '100 K'") | None = None
+    torque_current_curve: list[TorqueCurrentPoint] | None = Field(
+        None, description="torque vs current (saturation), [current, torque] points, both "
+                          "strictly increasing; without it torque = k_t x current")
     notes: Text | None = Field(None, description="free text, ignored by the tool")
+
+    @model_validator(mode="after")
+    def _resistances(self) -> MotorInput:
+        """One resistance convention; the torque-current curve increasing."""
+        if self.winding_resistance is not None and self.phase_resistance is not None:
+            raise PydanticCustomError("two_resistances", "give winding_resistance (phase to "
+                                      "phase) or phase_resistance (per phase), not both",
+                                      {"at": ("phase_resistance",)})
+        try:
+            _increasing_points(self.torque_current_curve)
+        except ValueError as error:
+            raise PydanticCustomError("torque_current_curve", str(error),
+                                      {"at": ("torque_current_curve",)}) from None
+        return self
+
+
+class DriveInput(_Strict):
+    """One drive (servo amplifier) of a catalog."""
+
+    id: Identifier = Field(description="unique among the loaded drives")
+    continuous_current: Ranged("drive_current",  # type: ignore[valid-type]
+                               note="rated (continuous) output current, A rms")
+    peak_current: Ranged("drive_current",  # type: ignore[valid-type]
+                         note="maximum (peak) output current, A rms, >= continuous_current")
+    dc_bus_voltage: Ranged("bus_voltage",  # type: ignore[valid-type]
+                           note="nominal DC-link voltage") | None = None
+    bus_capacitance: Ranged("bus_capacitance",  # type: ignore[valid-type]
+                            note="DC-link capacitance, e.g. '110 uF'") | None = None
+    max_bus_voltage: Ranged("bus_voltage",  # type: ignore[valid-type]
+                            note="DC-link overvoltage trip level") | None = None
+    braking_threshold: Ranged("bus_voltage",  # type: ignore[valid-type]
+                              note="DC-link voltage where braking starts") | None = None
+    braking_resistor_power: Ranged("braking_power",  # type: ignore[valid-type]
+                                   note="continuous power of the internal braking "
+                                        "resistor; 0 = none") | None = None
+    price: Ranged("price") | None = None  # type: ignore[valid-type]
+    motors: Annotated[list[Text] | None, OneOrList("string")] = Field(
+        None, description="motor ids or patterns ('SGM7J-*') the drive suits; omitted: "
+                          "matched by rule (continuous current >= the motor's, "
+                          "continuous_torque / torque_constant)")
+    source: Text | None = None
+    part_number: Text | None = None
+    manufacturer: Text | None = None
+    notes: Text | None = Field(None, description="free text, ignored by the tool")
+
+    @model_validator(mode="after")
+    def _levels(self) -> DriveInput:
+        """Peak current >= continuous; braking threshold <= the trip level."""
+        if self.peak_current < self.continuous_current:
+            raise PydanticCustomError(
+                "peak_below_continuous", f"peak current {self.peak_current:g} A is below the "
+                f"continuous current {self.continuous_current:g} A", {"at": ("peak_current",)})
+        if (self.braking_threshold is not None and self.max_bus_voltage is not None
+                and self.braking_threshold > self.max_bus_voltage):
+            raise PydanticCustomError(
+                "braking_above_trip", f"braking threshold {self.braking_threshold:g} V is "
+                f"above the maximum bus voltage {self.max_bus_voltage:g} V",
+                {"at": ("braking_threshold",)})
+        return self
 
 
 class CatalogFile(_Strict):
@@ -157,6 +260,19 @@ class CatalogFile(_Strict):
     source: Text | None = Field(None, description="default for the motors")
     notes: Text | None = Field(None, description="free text, ignored by the tool")
     motors: list[MotorInput] = Field(description="at least one motor")
+    drives: list[DriveInput] | None = Field(
+        None, description="drives (amplifiers) for these motors; a design that loads this "
+                          "catalog pairs its motors with them")
+
+
+class DriveCatalogFile(_Strict):
+    """A drive catalog file (named by a design's ``drives:``)."""
+
+    catalog: Text | None = Field(None, description="the catalog's name")
+    manufacturer: Text | None = Field(None, description="default for the drives")
+    source: Text | None = Field(None, description="default for the drives")
+    notes: Text | None = Field(None, description="free text, ignored by the tool")
+    drives: list[DriveInput] = Field(description="at least one drive")
 
 
 # ---------------------------------------------------------------- design
@@ -303,6 +419,8 @@ class LimitsInput(_Strict):
         "driven", description="numerator of inertia_ratio: 'driven' = everything the motor "
                               "drives (load, screws, gears, couplings) reflected to the motor, "
                               "as vendors define it; 'load' = the load alone")
+    drive_current_margin: Ranged("margin",  # type: ignore[valid-type]
+                                 note="fraction of a drive's currents left unused") = 0.0
     envelope: Literal["book", "linear", "linear_intermittent"] = Field(
         "linear", description="how a motor region without a curve is completed up to "
                               "max_speed: book (rectangles up to the rated speed), linear "
@@ -345,6 +463,9 @@ class DesignFile(_Strict):
     motors: Annotated[list[MotorRef] | None, OneOrList("string")] = Field(
         None, description="catalog paths (relative to this file), bundled catalog names "
                           "or inline motors")
+    drives: Annotated[list[Text] | None, OneOrList("string")] = Field(
+        None, description="drive catalogs (paths relative to this file, or bundled names): "
+                          "each motor is paired with each compatible drive")
     check: CheckInput | None = None
     limits: LimitsInput = Field(default_factory=LimitsInput)
     efficiency_applies_to: Annotated[

@@ -187,6 +187,23 @@ RANGES: dict[str, Range] = {
                        zero=True),
     "price": _r("money", 1e-3, 1e9, "any currency; 0 = free", zero=True),
     "motor_mass": _r("mass", 1e-4, 1e5, "0.1 g to 100 t"),
+    "torque_constant": _r("torque_constant", 1e-5, 1e3, "k_t, torque per ampere (RMS): "
+                          "10 uN*m/A (a micro motor) to 1000 N*m/A (a large torque motor)"),
+    "winding_resistance": _r("resistance", 1e-4, 1e4, "0.1 mOhm (a large motor) to 10 "
+                             "kOhm (a micro motor's fine winding)"),
+    "thermal_time_constant": _r("time", 0.1, 1e6, "0.1 s (a winding alone) to 11.6 days; "
+                                "never 0 (a motor has some heat capacity)"),
+    "winding_temperature_rise": _r("temperature_rise", 1.0, 400.0, "the winding's allowed "
+                                   "rise over the ambient: vendors give 60 K to 155 K"),
+    "curve_current": _r("current", 1e-4, 1e5, "as the currents of motors and drives; a "
+                        "torque-current curve may start at 0", zero=True),
+    # drives
+    "drive_current": _r("current", 1e-4, 1e5, "0.1 mA to 100 kA, RMS; never 0 (a drive "
+                        "with no current drives nothing)"),
+    "bus_voltage": _r("voltage", 1.0, 1e4, "1 V to 10 kV DC"),
+    "bus_capacitance": _r("capacitance", 1e-9, 10.0, "1 nF to 10 F"),
+    "braking_power": _r("power", 1e-3, 1e7, "continuous power of the braking resistor; 0 = "
+                        "none built in", zero=True),
     # limits
     "margin": _r("fraction", 1e-9, 0.95, "a margin of 95 % leaves 1/20 of the capability; "
                  "0 = none", zero=True),

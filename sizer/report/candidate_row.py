@@ -74,9 +74,11 @@ def check_json(result: CandidateResult, check: Check) -> dict[str, Any]:
 
 
 def result_json(result: CandidateResult) -> dict[str, Any]:
-    """The JSON object of one pair, keys in a fixed order, SI units."""
+    """The JSON object of one pair, keys in a fixed order, SI units (``drive`` after
+    ``motor`` where the design has drives)."""
     return {
         "motor": result.motor,
+        **({"drive": result.drive} if result.drive is not None else {}),
         "law": result.law,
         "spec": result.spec,
         "params": {name: float(value) for name, value in result.params.items()},
@@ -158,14 +160,16 @@ def display_spec(result: CandidateResult) -> str:
 
 
 def result_display_cells(rank: int, result: CandidateResult, *,
-                         with_ratio: bool = False) -> tuple[str, ...]:
+                         with_ratio: bool = False, with_drive: bool = False) -> tuple[str, ...]:
     """Cells for a table: rank, motor, law, feasible, T [ms], torques, rpm, margins [%].
 
-    With ``with_ratio`` the transmission ratio follows the law (when it varies by pair).
+    With ``with_ratio`` the transmission ratio follows the law (when it varies by pair);
+    with ``with_drive`` the drive follows the motor.
     """
     ratio = (ratio_text(result),) if with_ratio else ()
+    drive = (result.drive or "",) if with_drive else ()
     return (
-        str(rank), result.motor, display_spec(result), *ratio,
+        str(rank), result.motor, *drive, display_spec(result), *ratio,
         "yes" if result.feasible else "no",
         _short(result.duration, 1000.0), _short(result.peak_torque),
         _short(result.rms_torque), _short(result.max_speed, RPM_PER_RAD_S),

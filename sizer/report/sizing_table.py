@@ -152,6 +152,11 @@ class SizingDocument(Rendered):
                 or any(r.gearbox for r in results))
 
     @property
+    def with_drives(self) -> bool:
+        """True when the design pairs motors with drives: rows show the drive."""
+        return bool(self.design.drives)
+
+    @property
     def with_vibration(self) -> bool:
         """True when the design gives the load's mode: rows show the residual vibration."""
         return self.design.load.elastic is not None
@@ -167,14 +172,17 @@ class SizingDocument(Rendered):
         if sized_as_cycle(self.design):
             duration = f"{duration_name(self.design)} [ms]"
         with_ratio = self.ratio_varies
+        with_drive = self.with_drives
         columns = (
-            Column("#"), Column("motor", "left"), Column("law", "left"),
+            Column("#"), Column("motor", "left"),
+            *((Column("drive", "left"),) if with_drive else ()), Column("law", "left"),
             *((Column("ratio", "left"),) if with_ratio else ()),
             Column(FEASIBLE[compact], "left"), Column(duration), Column("peak [N*m]"),
             Column("rms [N*m]"), Column(SPEED[compact]), Column("peak margin [%]"),
             Column("rms margin [%]"), Column("speed margin [%]"), Column("limiting", "left"),
         )
-        rows = [result_display_cells(rank, r, with_ratio=with_ratio) for rank, r in self.rows]
+        rows = [result_display_cells(rank, r, with_ratio=with_ratio, with_drive=with_drive)
+                for rank, r in self.rows]
         if self.with_vibration:
             unit, factor = self.residual_unit
             columns = (*columns[:-1], Column(f"residual [{unit}]"), columns[-1])
@@ -195,14 +203,18 @@ class SizingDocument(Rendered):
 
     def csv(self) -> str:
         envelope = self.design.limits.envelope
-        if not self.with_vibration:
-            return render_csv(CSV_HEADERS,
-                              (result_csv_cells(rank, r, envelope) for rank, r in self.rows))
-        unit = "m" if self.design.task.linear else "rad"
-        return render_csv((*CSV_HEADERS, f"residual_vibration [{unit}]"),
-                          ((*result_csv_cells(rank, r, envelope),
-                            "" if r.residual_vibration is None else full(r.residual_vibration))
-                           for rank, r in self.rows))
+        headers: tuple[str, ...] = CSV_HEADERS
+        rows = [result_csv_cells(rank, r, envelope) for rank, r in self.rows]
+        if self.with_vibration:
+            unit = "m" if self.design.task.linear else "rad"
+            headers = (*headers, f"residual_vibration [{unit}]")
+            rows = [(*row, "" if r.residual_vibration is None else full(r.residual_vibration))
+                    for row, (_, r) in zip(rows, self.rows, strict=True)]
+        if self.with_drives:  # the drive after the motor (issue 16)
+            headers = (*headers[:2], "drive", *headers[2:])
+            rows = [(*row[:2], r.drive or "", *row[2:])
+                    for row, (_, r) in zip(rows, self.rows, strict=True)]
+        return render_csv(headers, rows)
 
     def json(self) -> str:
         return render_json({

@@ -186,7 +186,26 @@ def evaluate_checks(metrics: CycleMetrics, motors: MotorArrays, drive: Drive,
     x = CheckInput(metrics, motors, drive, limits, linear)
     checks = [kind.evaluate(x) for kind in CHECKS if kind.given(limits)]
     checks.extend(stage_checks(x))
+    checks.extend(drive_checks(x))
     return checks
+
+
+DRIVE_CHECKS = ("drive_peak_current", "drive_rms_current")
+"""The checks of a candidate's drive (sizer.sizing.drives): the current its peak and its
+RMS torque need (through the motor's k_t or torque-current curve) against the drive's peak
+and continuous currents, with the margin ``limits.drive_current_margin``."""
+
+
+def drive_checks(x: CheckInput) -> list[CheckArrays]:
+    """The drive's current checks, for candidates with drives (none without)."""
+    motors = x.motors
+    if motors.drive is None or motors.currents is None:
+        return []
+    required = x.limits.drive_current_margin
+    peak = motors.currents.current(np.broadcast_to(x.metrics.peak_torque, x.ones.shape))
+    rms = motors.currents.current(np.broadcast_to(x.metrics.rms_torque, x.ones.shape))
+    return [CheckArrays(DRIVE_CHECKS[0], peak, motors.peak_current, "A", required),
+            CheckArrays(DRIVE_CHECKS[1], rms, motors.continuous_current, "A", required)]
 
 
 def stage_labels(drive: Drive) -> list[str]:
@@ -233,5 +252,22 @@ def feasible(checks: list[CheckArrays]) -> np.ndarray:
 
 
 def limiting_index(checks: list[CheckArrays]) -> np.ndarray:
-    """Index of the binding check (smallest slack) per candidate."""
-    return np.argmin(np.stack([c.slack for c in checks]), axis=0)
+    """Index of the binding check (smallest slack) per candidate.
+
+    A drive check within TOLERANCE of the smallest slack is named before the motor check
+    it ties with: the drive's torque clips the motor's region, so the peak (or RMS) check
+    and the drive's current check then bind together, and the drive is the cause.
+    """
+    slack = np.stack([c.slack for c in checks])
+    best = np.argmin(slack, axis=0)
+    for k, check in enumerate(checks):
+        if check.name in DRIVE_CHECKS:
+            lowest = slack[best, np.arange(slack.shape[1])]
+            tie = slack[k] <= lowest + TOLERANCE * np.maximum(1.0, np.abs(lowest))
+            best = np.where(tie & (slack[best, np.arange(slack.shape[1])] < np.inf)
+                            & ~np.isin(best, _drive_positions(checks)), k, best)
+    return best
+
+
+def _drive_positions(checks: list[CheckArrays]) -> np.ndarray:
+    return np.array([k for k, c in enumerate(checks) if c.name in DRIVE_CHECKS], dtype=np.intp)

@@ -56,7 +56,7 @@ def size_design(design: Design, rank_by: str | None = None,
         raise UserError("no motors to size: give a catalog in the design or with --catalog",
                         field="motors")
     specs = ranked_laws(design)
-    arrays = MotorArrays.of(motors, design.limits.envelope)
+    arrays = MotorArrays.of(motors, design.limits.envelope, design.drives)
     tables: list[CandidateTable] = []
     if progress is not None:
         progress(0, len(specs))
@@ -273,7 +273,7 @@ def _table(design: Design, law: MotionLaw, candidates: Candidates, duration: np.
         np.asarray(feasible, dtype=bool),
         {k: np.broadcast_to(np.asarray(v, dtype=float), (n,)).copy()
          for k, v in figures.items()},
-        tuple(checks))
+        tuple(checks), drives=motors.drives, drive=motors.drive)
 
 
 def check_design(design: Design) -> CandidateResult:
@@ -287,7 +287,7 @@ def check_design(design: Design) -> CandidateResult:
         raise UserError(f"unknown motor {design.chosen_motor!r}; loaded motors: {known}",
                         field="check.motor")
     table = evaluate_spec(plain_design(design), design.chosen_law,
-                          MotorArrays.of([motor], design.limits.envelope))
+                          MotorArrays.of([motor], design.limits.envelope, design.drives))
     return table.row(0)
 
 

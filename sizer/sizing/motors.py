@@ -9,7 +9,8 @@ from functools import cached_property
 import numpy as np
 
 from sizer.envelope import RegionTable, continuous_region, intermittent_region
-from sizer.model.domain import EnvelopeRule, Motor
+from sizer.model.domain import EnvelopeRule, Motor, ServoDrive
+from sizer.sizing.drives import CurrentCurves, clip_region, pairs
 
 
 @dataclass(frozen=True)
@@ -21,6 +22,10 @@ class MotorArrays:
 
     ``envelope`` is the rule that completed the regions without curves
     (sizer.envelope.completion); ``book`` keeps the book's rectangles.
+
+    With ``drives`` a candidate is a motor with one drive (sizer.sizing.drives): ``drive``
+    indexes ``drives`` per candidate, ``currents`` is each candidate's torque-current
+    curve, and the regions are clipped at the drive's torques.
     """
 
     catalog: tuple[Motor, ...]
@@ -30,10 +35,22 @@ class MotorArrays:
     intermittent: RegionTable
     continuous: RegionTable
     envelope: EnvelopeRule = "book"
+    drives: tuple[ServoDrive, ...] = ()
+    drive: np.ndarray | None = None
+    currents: CurrentCurves | None = None
 
     @classmethod
-    def of(cls, motors: Sequence[Motor], envelope: EnvelopeRule = "book") -> MotorArrays:
-        motors = tuple(motors)
+    def of(cls, motors: Sequence[Motor], envelope: EnvelopeRule = "book",
+           drives: Sequence[ServoDrive] = ()) -> MotorArrays:
+        """The motors' arrays; with ``drives``, one candidate per compatible motor-drive
+        pair, the regions clipped at the drive's torques."""
+        alone = cls._alone(tuple(motors), envelope)
+        if not drives:
+            return alone
+        return alone.with_drives(tuple(drives))
+
+    @classmethod
+    def _alone(cls, motors: tuple[Motor, ...], envelope: EnvelopeRule) -> MotorArrays:
         return cls(
             motors,
             np.arange(len(motors)),
@@ -43,6 +60,33 @@ class MotorArrays:
             RegionTable([continuous_region(m, envelope) for m in motors]),
             envelope,
         )
+
+    def with_drives(self, drives: tuple[ServoDrive, ...]) -> MotorArrays:
+        """Every compatible (motor, drive) pair of these motors (one per motor: the
+        catalog) as candidates, the regions clipped at T(I_peak) and T(I_cont)."""
+        motor, drive = pairs(self.catalog, drives)
+        paired = self.subset(motor)
+        distinct = np.unique(motor)  # the curves once per paired motor, then per pair
+        currents = CurrentCurves.of([self.catalog[int(m)] for m in distinct]).take(
+            np.searchsorted(distinct, motor))
+        peak = np.array([d.peak_current for d in drives])[drive]
+        continuous = np.array([d.continuous_current for d in drives])[drive]
+        return MotorArrays(self.catalog, paired.index, paired.inertia, paired.damping,
+                           clip_region(paired.intermittent, currents.torque(peak)),
+                           clip_region(paired.continuous, currents.torque(continuous)),
+                           self.envelope, drives, drive, currents)
+
+    @property
+    def peak_current(self) -> np.ndarray:
+        """Each candidate's drive peak current (A rms)."""
+        assert self.drive is not None
+        return np.array([d.peak_current for d in self.drives])[self.drive]
+
+    @property
+    def continuous_current(self) -> np.ndarray:
+        """Each candidate's drive continuous current (A rms)."""
+        assert self.drive is not None
+        return np.array([d.continuous_current for d in self.drives])[self.drive]
 
     def __len__(self) -> int:
         return len(self.index)
@@ -85,7 +129,9 @@ class MotorArrays:
         index = np.asarray(index, dtype=np.intp)
         return MotorArrays(self.catalog, self.index[index], self.inertia[index],
                            self.damping[index], self.intermittent.take(index),
-                           self.continuous.take(index), self.envelope)
+                           self.continuous.take(index), self.envelope, self.drives,
+                           None if self.drive is None else self.drive[index],
+                           None if self.currents is None else self.currents.take(index))
 
 
 def _flat_end(table: RegionTable) -> np.ndarray:

@@ -28,6 +28,9 @@ def check_record(check: Check) -> dict[str, object]:
 def record(result: CandidateResult) -> dict[str, object]:
     """One candidate: its fields, shape parameters and checks."""
     out = {name: _plain(getattr(result, name)) for name in FIELDS}
+    if result.drive is not None:  # designs with drives (issue 16): the pair's drive
+        out = {**dict(list(out.items())[:1]), "drive": result.drive,
+               **dict(list(out.items())[1:])}
     out["params"] = {k: float(v) for k, v in result.params.items()}
     if "stage_ratio" in result.extra:
         out["stage_ratio"] = _plain(result.extra["stage_ratio"])

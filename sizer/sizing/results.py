@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from sizer.model.domain import Motor, Transmission
+from sizer.model.domain import Motor, ServoDrive, Transmission
 from sizer.sizing.checks import TOLERANCE
 
 if TYPE_CHECKING:
@@ -147,6 +147,10 @@ class CandidateResult:
     """The motor itself (the catalog's object), so that no report looks it up by id."""
     law_object: MotionLaw | None = field(default=None, compare=False, repr=False)
     """The law itself, parsed once (its ``spec`` is the canonical text)."""
+    drive: str | None = None
+    """The id of the candidate's drive (amplifier), where the design has drives."""
+    drive_object: ServoDrive | None = field(default=None, compare=False, repr=False)
+    """The drive itself (the catalog's object)."""
 
     def check(self, name: str) -> Check | None:
         return next((c for c in self.checks if c.name == name), None)

@@ -18,7 +18,7 @@ from typing import overload
 import numpy as np
 
 from sizer.laws import MotionLaw
-from sizer.model.domain import Motor, Transmission
+from sizer.model.domain import Motor, ServoDrive, Transmission
 from sizer.sizing.checks import CheckArrays, limiting_index
 from sizer.sizing.results import CandidateResult, Check
 
@@ -59,6 +59,9 @@ class CandidateTable:
     figures: dict[str, np.ndarray]
     checks: tuple[CheckArrays, ...]
     stage_ratio: np.ndarray | None = None
+    drives: tuple[ServoDrive, ...] = ()
+    drive: np.ndarray | None = None
+    """Per candidate, its drive (an index into ``drives``); None: motors alone."""
 
     def __len__(self) -> int:
         return len(self.motor)
@@ -71,7 +74,8 @@ class CandidateTable:
             self.transmissions, self.gearboxes, self.option[index], self.feasible[index],
             {k: v[index] for k, v in self.figures.items()},
             tuple(c.take(index) for c in self.checks),
-            None if self.stage_ratio is None else self.stage_ratio[index])
+            None if self.stage_ratio is None else self.stage_ratio[index], self.drives,
+            None if self.drive is None else self.drive[index])
 
     @cached_property
     def binding(self) -> np.ndarray:
@@ -122,6 +126,7 @@ class CandidateTable:
 
         extra = {} if self.stage_ratio is None else {"stage_ratio": float(self.stage_ratio[i])}
         transmission = self.transmissions[option]
+        drive = None if self.drive is None else self.drives[int(self.drive[i])]
         return CandidateResult(
             motor=motor.id, law=law.law_id, spec=law.spec, params=dict(law.params),
             feasible=ok, duration=figure("duration"), peak_torque=figure("peak_torque"),
@@ -133,7 +138,8 @@ class CandidateTable:
             residual_vibration=figure(RESIDUAL) if RESIDUAL in self.figures else None,
             rated_power=motor.continuous_torque * motor.rated_speed,
             continuous_torque=motor.continuous_torque, rotor_inertia=motor.inertia,
-            extra=extra, motor_object=motor, law_object=law)
+            extra=extra, motor_object=motor, law_object=law,
+            drive=None if drive is None else drive.id, drive_object=drive)
 
 
 def concatenate(tables: Sequence[CandidateTable]) -> CandidateTable:
@@ -182,7 +188,8 @@ def concatenate(tables: Sequence[CandidateTable]) -> CandidateTable:
         np.concatenate([t.motor for t in tables]), tuple(transmissions), tuple(gearboxes),
         np.concatenate(option_index), np.concatenate([t.feasible for t in tables]),
         {k: np.concatenate([t.figures[k] for t in tables]) for k in first.figures},
-        tuple(checks), ratios)
+        tuple(checks), ratios, first.drives,
+        None if first.drive is None else np.concatenate([t.drive for t in tables]))
 
 
 class Rows(Sequence[CandidateResult]):
