@@ -85,6 +85,8 @@ def vibration(
         raise UserError("the design gives no mode of the load: add load.natural_frequency "
                         "(and damping_ratio)", file=str(design), field="load.natural_frequency")
     specs = list(law) if law else list(loaded.laws)
+    if not law:  # a law shaped for every duration leaves nothing to sweep: left out
+        specs = [spec for spec in specs if not is_open_shaped(spec)] or specs
     for spec in specs:
         if any(v == AUTO for v in resolve(spec)[1].values()):
             raise UserError(f"{spec}: give the shape (auto parameters depend on the motor)",
