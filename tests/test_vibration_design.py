@@ -65,9 +65,9 @@ def task_design(spec: str, T: float | None, dwell: float, load: ElasticLoad,
                    motors=base.motors[:1])
 
 
-@pytest.mark.parametrize("spec", ["cycloidal", "harmonic", "trapezoidal(alpha=1/3)",
-                                  "polynomial(degree=5)"])
-@pytest.mark.parametrize("back", [False, True])
+@pytest.mark.parametrize("spec, back", [("cycloidal", True), ("harmonic", False),
+                                        ("trapezoidal(alpha=1/3)", False),
+                                        ("polynomial(degree=5)", True)])
 def test_steady_state_residual_equals_the_integrated_ode(spec, back):
     load = ElasticLoad(10.0, 0.1)  # decays by exp(-pi) a cycle: 8 cycles are steady to 1e-10
     T, dwell, h = 0.23, 0.27, math.pi / 2
@@ -105,8 +105,9 @@ def test_undamped_residual_of_a_single_move_is_the_transform_over_wT(spec):
 def test_minimize_moves_T_to_the_first_duration_meeting_the_limit():
     load = ElasticLoad(25.0, 0.02)
     limit = 20 * ARCSEC
-    specs = ("cycloidal", "polynomial(degree=5)", "double_s(alpha=1/3, beta=1/4)")
+    specs = ("cycloidal", "double_s(alpha=1/3, beta=1/4)")
     base = load_design(EXAMPLE)
+    base = replace(base, motors=base.motors[1:3])
     free = size_design(replace(base, laws=specs,
                                limits=replace(base.limits, residual_vibration=None)))
     bound = size_design(replace(base, laws=specs))
@@ -121,9 +122,9 @@ def test_minimize_moves_T_to_the_first_duration_meeting_the_limit():
             # the limit binds: just below T the steady residual is above it (one motor a
             # law: the residual does not depend on the motor)
             T = r.duration
-            at = max(simulated_residuals(r.spec, math.pi / 2, T, 0.35, load, False, 9))
+            at = max(simulated_residuals(r.spec, math.pi / 2, T, 0.35, load, False, 7))
             before = max(simulated_residuals(r.spec, math.pi / 2, T * (1 - 1e-4), 0.35, load,
-                                             False, 9))
+                                             False, 7))
             assert at == pytest.approx(limit, rel=1e-6)
             assert before > limit
             assert r.limiting == "residual_vibration"
