@@ -390,7 +390,16 @@ DRIVE_CASES = [
                ("limits.drive_current_margin",)),
 ]
 
-CASES = [*FIELDS, *IMPOSSIBLE, *GEARBOX_CASES, *DRIVE_CASES]
+BRAKE_CASES = [
+    bad_motor("brake-torque-negative", {f"{M}.brake_holding_torque": "-1 N*m"},
+              (f"{M}.brake_holding_torque", "[1e-6, 1e6] N*m"), (f"{C}.brake_holding_torque",)),
+    bad_motor("brake-torque-an-inertia", {f"{M}.brake_holding_torque": "1 kg*m^2"},
+              (f"{M}.brake_holding_torque",), ()),
+    bad_motor("brake-inertia-negative", {f"{M}.brake_inertia": "-0.1 kg*cm^2"},
+              (f"{M}.brake_inertia",), (f"{C}.brake_inertia",)),
+]
+
+CASES = [*FIELDS, *IMPOSSIBLE, *GEARBOX_CASES, *DRIVE_CASES, *BRAKE_CASES]
 
 
 @pytest.mark.parametrize("case", CASES, ids=str)

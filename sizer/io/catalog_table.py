@@ -268,6 +268,8 @@ def _table(rows: list[dict[str, Any]], ids: list[str], columns: dict[str, Any],
               torque_constant=numbers["torque_constant"][i],
               winding_resistance=line_to_line(numbers["winding_resistance"][i],
                                               numbers["phase_resistance"][i]),
+              brake_holding_torque=numbers["brake_holding_torque"][i],
+              brake_inertia=numbers["brake_inertia"][i] or 0.0,  # type: ignore[arg-type]
               thermal_time_constant=numbers["thermal_time_constant"][i],
               max_winding_temperature_rise=numbers["max_winding_temperature_rise"][i],
               torque_current_curve=currents[i])

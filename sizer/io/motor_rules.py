@@ -617,6 +617,8 @@ def motor_of(item: Any) -> Motor:
         manufacturer=item.manufacturer, price=item.price, mass=item.mass,
         torque_constant=item.torque_constant,
         winding_resistance=line_to_line(item.winding_resistance, item.phase_resistance),
+        brake_holding_torque=item.brake_holding_torque,
+        brake_inertia=item.brake_inertia or 0.0,
         thermal_time_constant=item.thermal_time_constant,
         max_winding_temperature_rise=item.max_winding_temperature_rise,
         torque_current_curve=None if item.torque_current_curve is None else tuple(

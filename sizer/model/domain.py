@@ -211,6 +211,11 @@ class Motor:
     winding_resistance: float | None = None
     """Ohm, phase to phase (line to line: between two terminals; twice the per-phase
     resistance of a star winding)."""
+    brake_holding_torque: float | None = None
+    """N*m: the holding brake's static torque (the motor is a brake variant); None: no
+    brake."""
+    brake_inertia: float = 0.0
+    """kg*m^2: what the brake adds to ``inertia`` (sizing counts both)."""
     thermal_time_constant: float | None = None
     """s: the motor's (winding and frame) thermal time constant."""
     max_winding_temperature_rise: float | None = None

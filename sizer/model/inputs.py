@@ -183,6 +183,12 @@ class MotorInput(_Strict):
                              note="per phase of a star winding, as some vendors give it "
                                   "(Siemens R_ph): read as winding_resistance = 2 x this; "
                                   "give one of the two") | None = None
+    brake_holding_torque: Ranged("brake_holding_torque",  # type: ignore[valid-type]
+                                 note="a holding brake's static torque, e.g. '1.27 N*m': "
+                                      "the motor is the brake variant") | None = None
+    brake_inertia: Ranged("brake_inertia",  # type: ignore[valid-type]
+                          note="the brake's inertia, added to the rotor's (the datasheet's "
+                               "inertia with brake minus without)") | None = None
     thermal_time_constant: Ranged("thermal_time_constant",  # type: ignore[valid-type]
                                   note="'35 min' or '251 s'") | None = None
     max_winding_temperature_rise: Ranged("winding_temperature_rise",  # type: ignore[valid-type]

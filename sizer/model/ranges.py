@@ -191,6 +191,10 @@ RANGES: dict[str, Range] = {
                           "10 uN*m/A (a micro motor) to 1000 N*m/A (a large torque motor)"),
     "winding_resistance": _r("resistance", 1e-4, 1e4, "0.1 mOhm (a large motor) to 10 "
                              "kOhm (a micro motor's fine winding)"),
+    "brake_holding_torque": _r("torque", 1e-6, 1e6, "a holding brake's static friction torque "
+                               "at the motor shaft, as the motors' torques"),
+    "brake_inertia": _r("inertia", 1e-12, 1e3, "what the brake adds to the rotor's inertia; "
+                        "0 = negligible", zero=True),
     "thermal_time_constant": _r("time", 0.1, 1e6, "0.1 s (a winding alone) to 11.6 days; "
                                 "never 0 (a motor has some heat capacity)"),
     "winding_temperature_rise": _r("temperature_rise", 1.0, 400.0, "the winding's allowed "

@@ -187,7 +187,24 @@ def evaluate_checks(metrics: CycleMetrics, motors: MotorArrays, drive: Drive,
     checks = [kind.evaluate(x) for kind in CHECKS if kind.given(limits)]
     checks.extend(stage_checks(x))
     checks.extend(drive_checks(x))
+    brake = holding_brake_check(x)
+    if brake is not None:
+        checks.append(brake)
     return checks
+
+
+def holding_brake_check(x: CheckInput) -> CheckArrays | None:
+    """A brake variant's holding torque against the torque that holds the constant load at
+    rest (a vertical axis, a constant force), at the motor shaft through the transmission
+    and counted as driving (divided by the efficiencies: conservative), with the torque
+    margin. None where no candidate's motor has a brake or nothing is held."""
+    brake = x.motors.brake_torque
+    has = np.isfinite(brake)
+    if not has.any() or x.drive.load.torque == 0.0:
+        return None
+    hold = np.broadcast_to(x.drive.holding_torque, x.ones.shape)
+    return CheckArrays("holding_brake", hold, np.where(has, brake, 1.0), "N*m",
+                       x.limits.torque_margin, None if has.all() else has.copy())
 
 
 DRIVE_CHECKS = ("drive_peak_current", "drive_rms_current")

@@ -54,7 +54,7 @@ class MotorArrays:
         return cls(
             motors,
             np.arange(len(motors)),
-            np.array([m.inertia for m in motors], dtype=float),
+            np.array([m.inertia + m.brake_inertia for m in motors], dtype=float),
             np.array([m.damping for m in motors], dtype=float),
             RegionTable([intermittent_region(m, envelope) for m in motors]),
             RegionTable([continuous_region(m, envelope) for m in motors]),
@@ -90,6 +90,13 @@ class MotorArrays:
 
     def __len__(self) -> int:
         return len(self.index)
+
+    @property
+    def brake_torque(self) -> np.ndarray:
+        """Each candidate's holding-brake torque (N*m; NaN: the motor has no brake)."""
+        values = [np.nan if m.brake_holding_torque is None else m.brake_holding_torque
+                  for m in self.catalog]
+        return np.array(values, dtype=float)[self.index]
 
     @property
     def motors(self) -> tuple[Motor, ...]:
