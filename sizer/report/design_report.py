@@ -117,14 +117,17 @@ class DesignReport:
         """The design's laws with fixed shapes, then the shapes the solver chose for 'auto'
         parameters among the pairs shown (ranking and best candidates)."""
         from sizer.laws import AUTO, make_law, resolve
+        from sizer.laws.open_shaped import is_open_shaped
+
+        def chosen_per_pair(spec: str) -> bool:  # auto shapes, laws shaped for each T
+            return is_open_shaped(spec) or any(v == AUTO for v in resolve(spec)[1].values())
 
         laws: dict[str, MotionLaw] = {}
         for spec in self.design.laws:
-            _, values = resolve(spec)
-            if not any(v == AUTO for v in values.values()):
+            if not chosen_per_pair(spec):
                 law = make_law(spec)
                 laws.setdefault(law.spec, law)
-        if any(any(v == AUTO for v in resolve(s)[1].values()) for s in self.design.laws):
+        if any(chosen_per_pair(s) for s in self.design.laws):
             for result in self._shown_results():
                 if result.spec not in laws:
                     laws[result.spec] = result.law_object or make_law(result.spec)
