@@ -129,3 +129,15 @@ def test_designs_without_the_fields_have_no_energy_figures(tmp_path):
     assert row.check("winding_temperature_rise") is None
     assert row.regenerated_energy is None and row.winding_rise is None
     assert "regenerated_energy" not in record(row)
+
+
+def test_minimize_checks_the_rise_at_t_min_and_says_so():
+    design = heat_design(1.1, "1e5 s")
+    design["task"] = {**design["task"], "duration": "minimize"}
+    result = size_design(load_design_data(design))
+    row = only(result)
+    assert any("checked at T_min" in note for note in result.notes)
+    heat = row.check("winding_temperature_rise")
+    assert row.feasible and heat.passed and heat.note == RMS_NOTE
+    rms, tau_c = row.check("rms").value, row.check("rms").limit
+    assert heat.value == pytest.approx(100.0 * (rms / tau_c) ** 2, rel=1e-12)

@@ -65,6 +65,19 @@ def has_braking_check(design: Design, drives: tuple[ServoDrive, ...]) -> bool:
         or any(d.braking_resistor_power is not None for d in drives)
 
 
+def energy_notes(design: Design) -> list[str]:
+    """What the energy and heat checks left out, for reports (none without them)."""
+    if not (has_heat_check(design.motors) or has_braking_check(design, design.drives)):
+        return []
+    if design.cycle is not None or design.transmission.linkage is not None:
+        return ["winding_temperature_rise and braking_resistor_power are not checked for a "
+                "cycle of segments or a linkage yet"]
+    if design.task.minimize:
+        return ["T_min is searched without winding_temperature_rise and "
+                "braking_resistor_power; they are checked at T_min"]
+    return []
+
+
 @dataclass(frozen=True)
 class EnergyChecks:
     """The checks to append, the verdicts with them, the figures and the duration

@@ -27,7 +27,7 @@ from sizer.sizing.checks import evaluate_checks
 from sizer.sizing.checks import feasible as all_pass
 from sizer.sizing.cycle import CycleCalculator
 from sizer.sizing.cycle_shape import given_scale, left_out_laws, plain_design, ranked_laws
-from sizer.sizing.energy_check import energy_checks
+from sizer.sizing.energy_check import energy_checks, energy_notes
 from sizer.sizing.grid import law_grid
 from sizer.sizing.minimum_duration import is_purely_inertial, minimum_duration
 from sizer.sizing.motors import MotorArrays
@@ -338,6 +338,7 @@ def assumptions(design: Design) -> tuple[str, ...]:
                          "constant load); inertial torque without loss (Yaskawa's convention)")
         else:
             notes.append("efficiency applied in the direction of power flow")
+    notes.extend(energy_notes(plain_design(design)))
     if design.limits.inertia_ratio is not None:
         if design.limits.inertia_ratio_of == "load":
             notes.append("inertia ratio: the load alone reflected to the motor, over the "
