@@ -394,8 +394,21 @@ VIBRATION = [
          ("limits.residual_vibration",), ()),
 ]
 
+ENERGY = [
+    case("winding-rise-limit-below-1-k", GEARBOX, {"limits.winding_temperature_rise": "0.5 K"},
+         ("limits.winding_temperature_rise", "[1, 400] K", "0.5"),
+         ("limits.winding_temperature_rise",)),
+    case("winding-rise-limit-a-power", GEARBOX, {"limits.winding_temperature_rise": "80 W"},
+         ("limits.winding_temperature_rise",), ()),
+    case("braking-power-limit-negative", GEARBOX, {"limits.braking_resistor_power": "-5 W"},
+         ("limits.braking_resistor_power", "0 or in [0.001, 1e7] W", "-5"),
+         ("limits.braking_resistor_power",)),
+    case("braking-power-limit-a-list", GEARBOX, {"limits.braking_resistor_power": [1, 2]},
+         ("limits.braking_resistor_power",), ()),
+]
+
 CASES = [*TASK, *LOAD, *GEARBOXES, *BELTS, *SCREWS, *RACKS, *REST, *LINKAGES,
-         *LINKAGE_READINGS, *VIBRATION]
+         *LINKAGE_READINGS, *VIBRATION, *ENERGY]
 
 
 @pytest.mark.parametrize("case", CASES, ids=str)

@@ -590,6 +590,8 @@ def _limits(model: DesignFile, source: YamlSource, linear: bool) -> Limits:
         max_speed=quantity("max_speed"),
         residual_vibration=quantity("residual_vibration"),
         drive_current_margin=given.drive_current_margin,
+        braking_resistor_power=given.braking_resistor_power,
+        winding_temperature_rise=given.winding_temperature_rise,
     )
 
 

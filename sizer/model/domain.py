@@ -280,6 +280,12 @@ class Limits:
     drive_current_margin: float = 0.0
     """Fraction of a drive's currents left unused (checks drive_peak_current and
     drive_rms_current)."""
+    braking_resistor_power: float | None = None
+    """W: the largest continuous power of the braking resistor (check
+    braking_resistor_power; overrides the drives' ratings)."""
+    winding_temperature_rise: float | None = None
+    """K: the largest winding temperature rise over the ambient (check
+    winding_temperature_rise; overrides the motors' allowed rise)."""
 
 
 @dataclass(frozen=True)

@@ -427,6 +427,14 @@ class LimitsInput(_Strict):
                               "as vendors define it; 'load' = the load alone")
     drive_current_margin: Ranged("margin",  # type: ignore[valid-type]
                                  note="fraction of a drive's currents left unused") = 0.0
+    braking_resistor_power: Ranged("braking_power",  # type: ignore[valid-type]
+                                   note="W: the largest continuous power of the braking "
+                                        "resistor (overrides the drives' "
+                                        "braking_resistor_power)") | None = None
+    winding_temperature_rise: Ranged("winding_temperature_rise",  # type: ignore[valid-type]
+                                     note="K over the ambient, e.g. '80 K': the largest "
+                                          "winding rise (overrides the motors' "
+                                          "max_winding_temperature_rise)") | None = None
     envelope: Literal["book", "linear", "linear_intermittent"] = Field(
         "linear", description="how a motor region without a curve is completed up to "
                               "max_speed: book (rectangles up to the rated speed), linear "

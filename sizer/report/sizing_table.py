@@ -166,6 +166,16 @@ class SizingDocument(Rendered):
         """The display unit of the residual vibration and its factor from SI."""
         return ("um", 1e6) if self.design.task.linear else ("arcsec", 180.0 / math.pi * 3600.0)
 
+    @property
+    def energy_figures(self) -> tuple[str, ...]:
+        """The energy and heat figures the results carry (sizer.sizing.energy_check), in
+        order: the CSV and JSON show them; none for designs without those checks."""
+        from sizer.sizing.energy_check import ENERGY_FIGURES
+
+        table = self.sizing.table
+        present = () if table is None else tuple(table.figures)
+        return tuple(k for k in ENERGY_FIGURES if k in present)
+
     def table(self, compact: bool = False) -> Table:
         """The display table; ``compact`` headers for a terminal (they wrap in rich)."""
         duration = "T_min [ms]" if self.sizing.mode == "minimize" else "T [ms]"
@@ -210,6 +220,12 @@ class SizingDocument(Rendered):
             headers = (*headers, f"residual_vibration [{unit}]")
             rows = [(*row, "" if r.residual_vibration is None else full(r.residual_vibration))
                     for row, (_, r) in zip(rows, self.rows, strict=True)]
+        energy = self.energy_figures
+        if energy:  # energy and heat (issue 16), designs with those checks only
+            headers = (*headers, *(f"{k} [{ENERGY_UNITS[k]}]" for k in energy))
+            rows = [(*row, *("" if getattr(r, k) is None else full(getattr(r, k))
+                             for k in energy))
+                    for row, (_, r) in zip(rows, self.rows, strict=True)]
         if self.with_drives:  # the drive after the motor (issue 16)
             headers = (*headers[:2], "drive", *headers[2:])
             rows = [(*row[:2], r.drive or "", *row[2:])
@@ -223,8 +239,10 @@ class SizingDocument(Rendered):
             "ranked_by": self.rank_key,
             "ranking": self.rank_rule.text,
             "units": {**RESULT_UNITS, **({"residual_vibration": RESIDUAL_UNIT}
-                                         if self.with_vibration else {})},
-            "results": [_with_residual(result_json(r), r, self.with_vibration)
+                                         if self.with_vibration else {}),
+                      **{k: ENERGY_UNITS[k] for k in self.energy_figures}},
+            "results": [_with_energy(_with_residual(result_json(r), r, self.with_vibration),
+                                     r, self.energy_figures)
                         for _, r in self.rows],
         })
 
@@ -251,6 +269,20 @@ def _with_residual(fields: dict[str, Any], result: CandidateResult,
     """The JSON of a result with its residual vibration (designs with a mode only)."""
     if shown:
         fields["residual_vibration"] = result.residual_vibration
+    return fields
+
+
+ENERGY_UNITS = {"regenerated_energy": "J", "braking_power": "W", "winding_rise": "K"}
+"""Units of the energy and heat figures: J per machine cycle returned to the DC bus, the
+braking resistor's continuous power, the winding's temperature rise over the ambient."""
+
+
+def _with_energy(fields: dict[str, Any], result: CandidateResult,
+                 shown: tuple[str, ...]) -> dict[str, Any]:
+    """The JSON of a result with the energy and heat figures the design has."""
+    for name in shown:
+        value = getattr(result, name)
+        fields[name] = None if value is None or not math.isfinite(value) else value
     return fields
 
 

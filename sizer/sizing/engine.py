@@ -27,6 +27,7 @@ from sizer.sizing.checks import evaluate_checks
 from sizer.sizing.checks import feasible as all_pass
 from sizer.sizing.cycle import CycleCalculator
 from sizer.sizing.cycle_shape import given_scale, left_out_laws, plain_design, ranked_laws
+from sizer.sizing.energy_check import energy_checks, energy_notes
 from sizer.sizing.grid import law_grid
 from sizer.sizing.minimum_duration import is_purely_inertial, minimum_duration
 from sizer.sizing.motors import MotorArrays
@@ -164,10 +165,15 @@ def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates) -> C
         duration = T
     vibration = _vibration(design, law, calculator, duration, metrics, checks, feasible,
                            design.task.minimize, design.task.linear)
+    residual = None
     if vibration is not None:
         duration, metrics, checks, feasible, residual = vibration
+    energy = energy_checks(design, calculator, duration, metrics, feasible,
+                           design.task.minimize)
+    if energy is None:
         return _table(design, law, candidates, duration, metrics, checks, feasible, residual)
-    return _table(design, law, candidates, duration, metrics, checks, feasible)
+    return _table(design, law, candidates, energy.duration, metrics,
+                  [*checks, *energy.checks], energy.feasible, residual, energy.figures)
 
 
 def _vibration(design: Design, law: MotionLaw, calculator, scale: np.ndarray, metrics,
@@ -258,7 +264,8 @@ def _evaluate_linkage_chunk(design: Design, law: MotionLaw,
 
 
 def _table(design: Design, law: MotionLaw, candidates: Candidates, duration: np.ndarray,
-           metrics, checks, feasible, residual: np.ndarray | None = None) -> CandidateTable:
+           metrics, checks, feasible, residual: np.ndarray | None = None,
+           extra: dict[str, np.ndarray] | None = None) -> CandidateTable:
     motors, drive = candidates.motors, candidates.drive
     n = len(motors)
     figures = {"duration": duration, "peak_torque": metrics.peak_torque,
@@ -267,6 +274,7 @@ def _table(design: Design, law: MotionLaw, candidates: Candidates, duration: np.
     assert set(figures) == set(FIGURES)
     if residual is not None:
         figures[RESIDUAL] = residual
+    figures.update(extra or {})  # energy and heat (sizer.sizing.energy_check)
     return CandidateTable(
         mode_of(design), (law,), np.zeros(n, dtype=np.intp), motors.catalog, motors.index,
         drive.transmissions, candidates.gearbox_names, candidates.option,
@@ -330,6 +338,7 @@ def assumptions(design: Design) -> tuple[str, ...]:
                          "constant load); inertial torque without loss (Yaskawa's convention)")
         else:
             notes.append("efficiency applied in the direction of power flow")
+    notes.extend(energy_notes(plain_design(design)))
     if design.limits.inertia_ratio is not None:
         if design.limits.inertia_ratio_of == "load":
             notes.append("inertia ratio: the load alone reflected to the motor, over the "

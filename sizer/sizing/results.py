@@ -138,6 +138,14 @@ class CandidateResult:
     residual_vibration: float | None = None
     """The largest residual vibration of the moves at the load (m or rad), where the
     design gives the load's mode (sizer.sizing.vibration_check); None otherwise."""
+    regenerated_energy: float | None = None
+    """J per machine cycle returned to the DC bus, where the design has a braking check
+    (sizer.sizing.energy_check); None otherwise."""
+    braking_power: float | None = None
+    """W: the braking resistor's continuous power, with the braking check; None otherwise."""
+    winding_rise: float | None = None
+    """K: the winding temperature rise of the heat check that applies (the thermal model's
+    periodic peak, or the RMS-equivalent rise); None where the motor has no heat check."""
     transmission: Transmission | None = None
     rated_power: float | None = None
     continuous_torque: float | None = None

@@ -20,6 +20,7 @@ import numpy as np
 from sizer.laws import MotionLaw
 from sizer.model.domain import Motor, ServoDrive, Transmission
 from sizer.sizing.checks import CheckArrays, limiting_index
+from sizer.sizing.energy_check import ENERGY_FIGURES
 from sizer.sizing.results import CandidateResult, Check
 
 
@@ -136,6 +137,7 @@ class CandidateTable:
             gearbox=self.gearboxes[option], transmission=transmission,
             load_speed=figure("load_speed"), load_torque=figure("load_torque"),
             residual_vibration=figure(RESIDUAL) if RESIDUAL in self.figures else None,
+            **{k: figure(k) for k in ENERGY_FIGURES if k in self.figures},
             rated_power=motor.continuous_torque * motor.rated_speed,
             continuous_torque=motor.continuous_torque, rotor_inertia=motor.inertia,
             extra=extra, motor_object=motor, law_object=law,

@@ -1,0 +1,199 @@
+"""Energy and heat of the sized candidates (issue 16): the braking resistor's continuous
+power and the winding temperature rise, as checks and figures of the engine.
+
+On the samples of one machine cycle (sizer.sizing.cycle_samples) of each candidate at its
+duration:
+
+- ``braking_resistor_power``: the bus power (sizer.energy.axis_power: shaft power plus the
+  copper loss 3/2 R_LL (tau/k_t)^2 where the motor gives k_t and R) split into stops
+  (sizer.energy.braking); what a stop returns beyond the bus capacitors' absorbable energy
+  C (U_max^2 - U_nom^2)/2 (U_max the chopper's threshold, else the overvoltage level)
+  goes to the resistor, whose continuous power (energy per cycle over the cycle time) is
+  checked against ``limits.braking_resistor_power`` or the drive's
+  ``braking_resistor_power`` (W), with no margin;
+- ``winding_temperature_rise``: the first-order winding model (sizer.thermal.winding_check,
+  R_th from the motor's continuous torque at the thermal speed and its allowed rise) in the
+  periodic steady state; where the cycle is shorter than 1/10 of tau_th the rise the RMS
+  torque implies, dT_max (tau_rms/tau_c)^2 (book sec. 6.1.1: the RMS check), else the
+  model's peak rise; against ``limits.winding_temperature_rise`` or the motor's
+  ``max_winding_temperature_rise`` (K), with the rise margin 1 - (1 - m)^2 of the torque
+  margin m, so that where the RMS check applies the verdict is the RMS check's.
+
+Figures: ``regenerated_energy`` (J per cycle at the bus) and ``braking_power`` (W, the
+resistor's continuous power) with the braking check, ``winding_rise`` (K) with the heat
+check; NaN where a candidate has no such check.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from sizer.envelope import RegionTable, continuous_region
+from sizer.model.domain import Design, Motor, ServoDrive
+from sizer.sizing.checks import CheckArrays
+from sizer.sizing.cycle import CycleCalculator, CycleMetrics
+
+REGENERATED = "regenerated_energy"
+BRAKING_POWER = "braking_power"
+WINDING_RISE = "winding_rise"
+ENERGY_FIGURES = (REGENERATED, BRAKING_POWER, WINDING_RISE)
+"""The optional figures of this module, in the order results list them."""
+
+HEAT_CHECK = "winding_temperature_rise"
+BRAKING_CHECK = "braking_resistor_power"
+
+RMS_NOTE = "RMS-equivalent rise applied: the cycle is much shorter than the thermal time constant"
+THERMAL_NOTE = ("thermal model applied: the cycle is not much shorter than the thermal time "
+                "constant (the periodic peak rise)")
+
+
+def _heated(motor: Motor) -> bool:
+    return motor.thermal_time_constant is not None \
+        and motor.max_winding_temperature_rise is not None
+
+
+def has_heat_check(motors: tuple[Motor, ...]) -> bool:
+    """A heat check where some motor gives its thermal time constant and allowed rise."""
+    return any(_heated(m) for m in motors)
+
+
+def has_braking_check(design: Design, drives: tuple[ServoDrive, ...]) -> bool:
+    """A braking check where the design limits the resistor or a drive rates its own."""
+    return design.limits.braking_resistor_power is not None \
+        or any(d.braking_resistor_power is not None for d in drives)
+
+
+def energy_notes(design: Design) -> list[str]:
+    """What the energy and heat checks left out, for reports (none without them)."""
+    if not (has_heat_check(design.motors) or has_braking_check(design, design.drives)):
+        return []
+    if design.cycle is not None or design.transmission.linkage is not None:
+        return ["winding_temperature_rise and braking_resistor_power are not checked for a "
+                "cycle of segments or a linkage yet"]
+    if design.task.minimize:
+        return ["T_min is searched without winding_temperature_rise and "
+                "braking_resistor_power; they are checked at T_min"]
+    return []
+
+
+@dataclass(frozen=True)
+class EnergyChecks:
+    """The checks to append, the verdicts with them, the figures and the duration
+    (NaN where infeasible in minimize mode)."""
+
+    checks: list[CheckArrays]
+    feasible: np.ndarray
+    figures: dict[str, np.ndarray]
+    duration: np.ndarray
+
+
+def _motor_column(motors: tuple[Motor, ...], index: np.ndarray, name: str) -> np.ndarray:
+    values = np.array([np.nan if getattr(m, name) is None else float(getattr(m, name))
+                       for m in motors], dtype=float)
+    return values[index]
+
+
+def _drive_column(drives: tuple[ServoDrive, ...], index: np.ndarray | None, n: int,
+                  name: str) -> np.ndarray:
+    if index is None or not drives:
+        return np.full(n, np.nan)
+    values = np.array([np.nan if getattr(d, name) is None else float(getattr(d, name))
+                       for d in drives], dtype=float)
+    return values[index]
+
+
+def energy_checks(design: Design, calculator: CycleCalculator, duration: np.ndarray,
+                  metrics: CycleMetrics, feasible: np.ndarray,
+                  minimize: bool) -> EnergyChecks | None:
+    """The braking and heat checks of the candidates of ``calculator`` at ``duration``
+    (module docstring), or None when the design has neither."""
+    motors = calculator.motors
+    heat = has_heat_check(motors.catalog)
+    brake = has_braking_check(design, motors.drives)
+    if not (heat or brake):
+        return None
+    from sizer.sizing.cycle_samples import cycle_samples
+
+    n = len(motors)
+    T = np.broadcast_to(np.asarray(duration, dtype=float), (n,))
+    known = np.isfinite(T) & (T > 0.0)
+    samples = cycle_samples(design, calculator, np.where(known, T, 1.0))
+    feasible = np.asarray(feasible, dtype=bool).copy()
+    checks: list[CheckArrays] = []
+    figures: dict[str, np.ndarray] = {}
+    if brake:
+        check, regenerated, power = _braking(design, motors, samples, known)
+        checks.append(check)
+        feasible &= check.passed
+        figures[REGENERATED], figures[BRAKING_POWER] = regenerated, power
+    if heat:
+        check, rise = _heat(design, motors, samples, metrics, known)
+        checks.append(check)
+        feasible &= check.passed
+        figures[WINDING_RISE] = rise
+    if minimize:
+        T = np.where(feasible, T, np.nan)
+    return EnergyChecks(checks, feasible, figures, np.array(T, dtype=float))
+
+
+def _braking(design: Design, motors, samples, known: np.ndarray):
+    """The braking check, the regenerated energy per cycle and the resistor's power."""
+    from sizer.energy import axis_power, braking, capacitor_energy
+
+    n = len(motors)
+    k_t = _motor_column(motors.catalog, motors.index, "torque_constant")
+    R = _motor_column(motors.catalog, motors.index, "winding_resistance")
+    wound = np.isfinite(k_t) & np.isfinite(R)
+    power = axis_power(samples.time, samples.torque, samples.speed,
+                       torque_constant=np.where(wound, k_t, 1.0),
+                       winding_resistance=np.where(wound, R, 0.0))
+    C = _drive_column(motors.drives, motors.drive, n, "bus_capacitance")
+    u_nom = _drive_column(motors.drives, motors.drive, n, "dc_bus_voltage")
+    u_top = _drive_column(motors.drives, motors.drive, n, "braking_threshold")
+    u_top = np.where(np.isfinite(u_top), u_top,
+                     _drive_column(motors.drives, motors.drive, n, "max_bus_voltage"))
+    stored = np.isfinite(C) & np.isfinite(u_nom) & np.isfinite(u_top) & (u_top > u_nom)
+    absorbable = np.zeros(n)
+    if stored.any():
+        absorbable[stored] = capacitor_energy(C[stored], u_top[stored], u_nom[stored])
+    result = braking(samples.time, power.bus, absorbable)
+    rated = _drive_column(motors.drives, motors.drive, n, "braking_resistor_power")
+    given = design.limits.braking_resistor_power
+    limit = np.full(n, float(given)) if given is not None else rated
+    applies = np.isfinite(limit)
+    value = np.where(known & applies, result.resistor_continuous_power, 0.0)
+    check = CheckArrays(BRAKING_CHECK, value, np.where(applies, limit, 1.0), "W", 0.0,
+                        None if applies.all() else applies)
+    regenerated = np.where(known, result.regenerated_energy, np.nan)
+    return check, regenerated, np.where(known, result.resistor_continuous_power, np.nan)
+
+
+def _heat(design: Design, motors, samples, metrics: CycleMetrics, known: np.ndarray):
+    """The winding temperature rise check and the rise per candidate."""
+    from sizer.thermal import winding_check
+
+    n = len(motors)
+    tau_th = _motor_column(motors.catalog, motors.index, "thermal_time_constant")
+    allowed = _motor_column(motors.catalog, motors.index, "max_winding_temperature_rise")
+    region = RegionTable([continuous_region(m, motors.envelope) for m in motors.catalog])
+    thermal_speed = np.broadcast_to(metrics.thermal_speed, (n,))
+    tau_c = region.take(motors.index).limit_clipped(thermal_speed)
+    applies = np.isfinite(tau_th) & np.isfinite(allowed) & (tau_c > 0.0)
+    result = winding_check(samples.time, samples.torque, np.where(applies, tau_c, 1.0),
+                           np.where(applies, allowed, 1.0), np.where(applies, tau_th, 1.0))
+    rms = np.broadcast_to(metrics.rms_torque, (n,))
+    by_rms = result.verdict.applied == "rms"
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rms_rise = allowed * (rms / tau_c) ** 2
+    rise = np.where(by_rms, rms_rise, result.verdict.peak_rise)
+    given = design.limits.winding_temperature_rise
+    limit = np.full(n, float(given)) if given is not None else allowed
+    margin = design.limits.torque_margin
+    value = np.where(known & applies, rise, 0.0)
+    notes = np.where(by_rms, RMS_NOTE, THERMAL_NOTE).astype(object)
+    check = CheckArrays(HEAT_CHECK, value, np.where(applies, limit, 1.0), "K",
+                        1.0 - (1.0 - margin) ** 2, None if applies.all() else applies,
+                        notes)
+    return check, np.where(known & applies, rise, np.nan)
