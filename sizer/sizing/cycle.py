@@ -357,9 +357,10 @@ class CycleCalculator:
         for pieces in terms[1:]:  # each stage's output at the ends of every interval
             x = _linear_maximum(pieces, g.end_acceleration, g.end_velocity)
             lo, hi = x[..., 0], x[..., 1]
-            with np.errstate(invalid="ignore"):
-                s_lo = np.nan_to_num(np.sign(lo))
-                s_hi = np.nan_to_num(np.sign(hi))
+            s_lo = np.sign(lo)  # NaN (a move of 1e-200 s) counts as zero
+            s_hi = np.sign(hi)
+            s_lo[np.isnan(s_lo)] = 0.0
+            s_hi[np.isnan(s_hi)] = 0.0
             left_class = np.where(s_lo != 0.0, s_lo, s_hi)
             right_class = np.where(s_hi != 0.0, s_hi, s_lo)
             edge |= right_class[:, :-1] != left_class[:, 1:]
@@ -413,13 +414,13 @@ class CycleCalculator:
         chosen = [tuple(np.broadcast_to(x, (len(self.motors),))[cand] for x in part)
                   for part in pieces]
 
-        def along(z, rows):
-            v_n, a_n = piece_values(law, lo_edge[rows] + z * width[rows], piece[rows], (1, 2))
-            return np.max([P[rows] * a_n + Q[rows] * v_n + C[rows] for P, Q, C in chosen],
-                          axis=0)
+        at = PieceEvaluator(law, piece)  # the points grouped by piece once for every step
 
-        z = illinois(along, np.zeros(len(cand)), np.ones(len(cand)), f_lo, f_hi, xtol=1e-9,
-                     args=(np.arange(len(cand)),))
+        def along(z):
+            a_n, v_n = at.orders(lo_edge + z * width, (2, 1))
+            return np.max([P * a_n + Q * v_n + C for P, Q, C in chosen], axis=0)
+
+        z = illinois(along, np.zeros(len(cand)), np.ones(len(cand)), f_lo, f_hi, xtol=1e-9)
         return np.minimum(np.maximum(z, 0.0), 1.0)
 
     def _partial_moments(self, interval: np.ndarray, z: np.ndarray) -> np.ndarray:
