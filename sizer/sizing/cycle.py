@@ -38,7 +38,6 @@ from sizer.model.domain import Task, ThermalSpeedRule
 from sizer.sizing.golden import golden_step, interior_points
 from sizer.sizing.grid import LawGrid, PieceEvaluator, law_grid
 from sizer.sizing.motors import MotorArrays
-from sizer.sizing.roots import illinois
 
 GOLDEN_STEPS = 40
 REFINED = 6
@@ -406,22 +405,59 @@ class CycleCalculator:
                    f_hi: np.ndarray) -> np.ndarray:
         """Where a stage's output torque (its linear ``pieces``) is zero inside the grid
         intervals at ``interval`` of the candidates at ``cand``: the coordinate z in [0, 1]
-        of each interval."""
+        of each interval (f_lo, f_hi: the torque at its ends, of opposite signs).
+
+        Newton's method on the function that is the torque (its derivative P j_N + Q a_N),
+        kept inside the shrinking sign bracket (bisection where a step would leave it),
+        from the regula falsi point; each step evaluates only the roots still open, the
+        points sorted by piece once so that a subset needs no regrouping. Stops at a step
+        of 1e-10 (the root is then far below that: quadratic convergence).
+        """
         g, law = self.grid, self.law
-        piece = g.piece[interval]
-        lo_edge = g.left[interval]
-        width = g.right[interval] - lo_edge
-        chosen = [tuple(np.broadcast_to(x, (len(self.motors),))[cand] for x in part)
+        count = len(cand)
+        by_piece = np.argsort(g.piece[interval], kind="stable")
+        piece = g.piece[interval][by_piece]
+        lo_edge = g.left[interval][by_piece]
+        width = g.right[interval][by_piece] - lo_edge
+        n = len(self.motors)
+        chosen = [tuple(np.broadcast_to(x, (n,))[cand[by_piece]] for x in part)
                   for part in pieces]
-
-        at = PieceEvaluator(law, piece)  # the points grouped by piece once for every step
-
-        def along(z):
-            a_n, v_n = at.orders(lo_edge + z * width, (2, 1))
-            return np.max([P * a_n + Q * v_n + C for P, Q, C in chosen], axis=0)
-
-        z = illinois(along, np.zeros(len(cand)), np.ones(len(cand)), f_lo, f_hi, xtol=1e-9)
-        return np.minimum(np.maximum(z, 0.0), 1.0)
+        sign_lo = np.sign(f_lo[by_piece])
+        lo, hi = np.zeros(count), np.ones(count)
+        f0, f1 = f_lo[by_piece], f_hi[by_piece]
+        z = np.clip(f0 / (f0 - f1), 0.0, 1.0)
+        rows = np.arange(count)
+        bounds_of = np.arange(len(law.pieces) + 1)
+        for _ in range(60):
+            if not len(rows):
+                break
+            tau = lo_edge[rows] + z[rows] * width[rows]
+            mine = piece[rows]
+            bounds = np.searchsorted(mine, bounds_of)
+            v_n, a_n, j_n = (np.empty(len(rows)) for _ in range(3))
+            for index in np.flatnonzero(np.diff(bounds)):
+                part = slice(bounds[index], bounds[index + 1])
+                at = law.pieces[index].clamp(tau[part])
+                for out, order in ((v_n, 1), (a_n, 2), (j_n, 3)):
+                    out[part] = law.pieces[index].evaluate(at, order)
+            values = np.stack([P[rows] * a_n + Q[rows] * v_n + C[rows] for P, Q, C in chosen])
+            k = np.argmax(values, axis=0)
+            f = values[k, np.arange(len(rows))]
+            slope = np.choose(k, [P[rows] * j_n + Q[rows] * a_n for P, Q, _ in chosen])
+            below = np.sign(f) == sign_lo[rows]
+            lo[rows] = np.where(below, z[rows], lo[rows])
+            hi[rows] = np.where(below, hi[rows], z[rows])
+            with np.errstate(divide="ignore", invalid="ignore"):
+                step = z[rows] - f / (slope * width[rows])
+            inside = (step > lo[rows]) & (step < hi[rows])
+            new = np.where(inside, step, 0.5 * (lo[rows] + hi[rows]))
+            done = (np.abs(new - z[rows]) <= 1e-10) | (f == 0.0) \
+                | (hi[rows] - lo[rows] <= 1e-10)
+            z[rows] = np.where(f == 0.0, z[rows], new)
+            rows = rows[~done]
+        out = np.empty(count)
+        out[by_piece] = np.minimum(np.maximum(z, 0.0), 1.0)
+        return out
 
     def _partial_moments(self, interval: np.ndarray, z: np.ndarray) -> np.ndarray:
         """The law's moments over the first part [left, left + z width] of each grid
