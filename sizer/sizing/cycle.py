@@ -104,7 +104,7 @@ class RmsModel:
             for move in self.moves:
                 for P, Q, C, M in move:
                     square += T * _form(pick(P) * scale * scale, pick(Q) * scale, pick(C),
-                                        pick(M))
+                                        M if index is None else M[:, index])
             n = len(self.moves)
             mean = (square + n * self.dwell * np.square(pick(self.hold))) / (n * (T + self.dwell))
         return np.sqrt(np.where(np.isnan(mean), np.inf, mean))
@@ -257,7 +257,8 @@ class CycleCalculator:
         (int a_N^2, v_N^2, 1, a_N v_N, a_N, v_N) over the stretch: differences of the law's
         prefix-sum moment table (:func:`moment_table`, once per law) between the power-flow
         reversals (:meth:`_flow_sums`). With ``model`` the motor's functions and their
-        summed moments are appended to it (:class:`RmsModel`).
+        summed moments are appended to it (:class:`RmsModel`; moments as (6, candidates)
+        arrays, each moment's row contiguous).
         """
         drive = self.drive
         if drive.is_ideal:
@@ -285,7 +286,7 @@ class CycleCalculator:
         return [(np.broadcast_to((self.motors.inertia * K + a_part) * scales.acc, (n,)),
                  np.broadcast_to((self.motors.damping * K + v_part) * scales.vel, (n,)),
                  np.broadcast_to(np.asarray(const, dtype=float), (n,)),
-                 np.broadcast_to(moments, (n, 6)))]
+                 np.broadcast_to(moments[:, None], (6, n)))]
 
     def _channel_terms(self, scales: MoveScales) -> list[list[tuple[np.ndarray, ...]]]:
         """Per channel (the motor, then each stage's output) its linear functions of the
@@ -333,7 +334,7 @@ class CycleCalculator:
 
     def _flow_sums(self, terms) -> list[list[np.ndarray]]:
         """Per channel and per function of it, the law's moments summed over the stretches
-        of the move where that function is the torque: (candidates, 6) arrays.
+        of the move where that function is the torque: (6, candidates) arrays.
 
         Between two power-flow reversals of the stages every channel is one of its linear
         functions (the reflections switch only where a stage's output torque is zero), so
@@ -388,14 +389,14 @@ class CycleCalculator:
         sums = []
         for channel in terms:
             if len(channel) == 1:
-                sums.append([np.broadcast_to(table[-1], (n, 6)).copy()])
+                sums.append([np.repeat(table[-1][:, None], n, axis=1)])
                 continue
             best = _largest_integral([tuple(np.broadcast_to(x, (n,))[run_cand] for x in f)
                                       for f in channel], run)
             mine = []
             for k in range(len(channel)):
                 rows = best == k
-                mine.append(np.column_stack([
+                mine.append(np.stack([
                     np.bincount(run_cand[rows], weights=run[rows, j], minlength=n)
                     for j in range(6)]))
             sums.append(mine)
@@ -810,9 +811,9 @@ def _linear_maximum(pieces, a_n: np.ndarray, v_n: np.ndarray) -> np.ndarray:
 
 
 def _form(P, Q, C, m: np.ndarray) -> np.ndarray:
-    """int (P a + Q v + C)^2 from the moments m (rows, 6: a^2, v^2, 1, a v, a, v)."""
-    return (P * P * m[:, 0] + Q * Q * m[:, 1] + C * C * m[:, 2]
-            + 2.0 * (P * Q * m[:, 3] + P * C * m[:, 4] + Q * C * m[:, 5]))
+    """int (P a + Q v + C)^2 from the moments m (6, rows: a^2, v^2, 1, a v, a, v)."""
+    return (P * P * m[0] + Q * Q * m[1] + C * C * m[2]
+            + 2.0 * (P * Q * m[3] + P * C * m[4] + Q * C * m[5]))
 
 
 def _largest_integral(pieces, moments: np.ndarray) -> np.ndarray:
