@@ -357,14 +357,15 @@ class CycleCalculator:
         for pieces in terms[1:]:  # each stage's output at the ends of every interval
             x = _linear_maximum(pieces, g.end_acceleration, g.end_velocity)
             lo, hi = x[..., 0], x[..., 1]
-            s_lo = np.sign(lo)  # NaN (a move of 1e-200 s) counts as zero
-            s_hi = np.sign(hi)
-            s_lo[np.isnan(s_lo)] = 0.0
-            s_hi[np.isnan(s_hi)] = 0.0
-            left_class = np.where(s_lo != 0.0, s_lo, s_hi)
-            right_class = np.where(s_hi != 0.0, s_hi, s_lo)
-            edge |= right_class[:, :-1] != left_class[:, 1:]
-            cand, interval = np.nonzero(s_lo * s_hi < 0.0)
+            # sign classes as booleans (NaN, a move of 1e-200 s, counts as zero): an end
+            # at zero takes the class of the interval's other end
+            pos_lo, neg_lo, pos_hi, neg_hi = lo > 0.0, lo < 0.0, hi > 0.0, hi < 0.0
+            left_pos = pos_lo | (pos_hi & ~neg_lo)
+            left_neg = neg_lo | (neg_hi & ~pos_lo)
+            right_pos = pos_hi | (pos_lo & ~neg_hi)
+            right_neg = neg_hi | (neg_lo & ~pos_hi)
+            edge |= (right_pos[:, :-1] != left_pos[:, 1:]) | (right_neg[:, :-1] != left_neg[:, 1:])
+            cand, interval = np.nonzero((pos_lo & neg_hi) | (neg_lo & pos_hi))
             if len(cand):
                 roots.append((cand, interval, self._flow_root(pieces, cand, interval,
                                                               lo[cand, interval],
