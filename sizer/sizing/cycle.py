@@ -12,9 +12,10 @@ direction of power flow (sizer.mechanics.drive). During a dwell the motor holds 
 constant external load. The RMS torque covers the whole cycle; so do the RMS torques at
 the outputs of transmission stages that have torque ratings.
 
-Integrals are exact: Gauss-Legendre on the law's grid (as quadratic forms of the law's
-moments per interval), each interval cut where a stage's power flow reverses; with ideal
-stages the RMS is the closed form in C_v_rms, C_a_rms. Peaks are exact where they can be
+Integrals are exact: quadratic forms of the law's moments (Gauss-Legendre on its grid,
+summed into a prefix-sum table once per law: :func:`moment_table`) over the stretches
+between the power-flow reversals of the stages, each reversal a root; with ideal stages
+the RMS is the closed form in C_v_rms, C_a_rms. Peaks are exact where they can be
 (:meth:`CycleCalculator._exact_peaks`: the law's linear peaks, and against a concave
 speed-torque region the linear-fractional peaks of Dinkelbach's method); elsewhere they
 are found on the grid (piece ends and the ends of the move included) and the largest
