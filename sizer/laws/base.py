@@ -50,7 +50,8 @@ class Piece:
 
     def clamp(self, tau: np.ndarray) -> np.ndarray:
         """tau moved into [start, end]: a point one ulp outside reads the end's value."""
-        return np.clip(tau, self.start, self.end)
+        # np.minimum(np.maximum()) is np.clip's result without its ~10 us of overhead
+        return np.minimum(np.maximum(tau, self.start), self.end)
 
 
 def mirrored(pieces: Sequence[Piece]) -> list[Piece]:

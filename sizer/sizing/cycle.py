@@ -12,9 +12,10 @@ direction of power flow (sizer.mechanics.drive). During a dwell the motor holds 
 constant external load. The RMS torque covers the whole cycle; so do the RMS torques at
 the outputs of transmission stages that have torque ratings.
 
-Integrals are exact: Gauss-Legendre on the law's grid (as quadratic forms of the law's
-moments per interval), each interval cut where a stage's power flow reverses; with ideal
-stages the RMS is the closed form in C_v_rms, C_a_rms. Peaks are exact where they can be
+Integrals are exact: quadratic forms of the law's moments (Gauss-Legendre on its grid,
+summed into a prefix-sum table once per law: :func:`moment_table`) over the stretches
+between the power-flow reversals of the stages, each reversal a root; with ideal stages
+the RMS is the closed form in C_v_rms, C_a_rms. Peaks are exact where they can be
 (:meth:`CycleCalculator._exact_peaks`: the law's linear peaks, and against a concave
 speed-torque region the linear-fractional peaks of Dinkelbach's method); elsewhere they
 are found on the grid (piece ends and the ends of the move included) and the largest
@@ -38,7 +39,6 @@ from sizer.model.domain import Task, ThermalSpeedRule
 from sizer.sizing.golden import golden_step, interior_points
 from sizer.sizing.grid import LawGrid, PieceEvaluator, law_grid
 from sizer.sizing.motors import MotorArrays
-from sizer.sizing.roots import illinois
 
 GOLDEN_STEPS = 40
 REFINED = 6
@@ -105,7 +105,7 @@ class RmsModel:
             for move in self.moves:
                 for P, Q, C, M in move:
                     square += T * _form(pick(P) * scale * scale, pick(Q) * scale, pick(C),
-                                        pick(M))
+                                        M if index is None else M[:, index])
             n = len(self.moves)
             mean = (square + n * self.dwell * np.square(pick(self.hold))) / (n * (T + self.dwell))
         return np.sqrt(np.where(np.isnan(mean), np.inf, mean))
@@ -254,31 +254,20 @@ class CycleCalculator:
         Each torque is a maximum of linear functions L_k = P a_N + Q v_N + C of the law
         (Drive.linear_pieces); on an interval of the law's grid where no stage's power flow
         reverses one of them is the torque throughout (the one with the largest integral
-        there), so its Gauss-Legendre integral is the quadratic form of (P, Q, C) with the
-        interval's moments of the law (int a_N^2, v_N^2, 1, a_N v_N, a_N, v_N:
-        :func:`interval_moments`, once per law). Intervals where a flow reverses are cut
-        at the root and each part integrated the same way (:meth:`_split_integrals`).
-        With ``model`` the motor's functions and their summed moments are appended to it
-        (:class:`RmsModel`).
+        there), so its integral is the quadratic form of (P, Q, C) with the law's moments
+        (int a_N^2, v_N^2, 1, a_N v_N, a_N, v_N) over the stretch: differences of the law's
+        prefix-sum moment table (:func:`moment_table`, once per law) between the power-flow
+        reversals (:meth:`_flow_sums`). With ``model`` the motor's functions and their
+        summed moments are appended to it (:class:`RmsModel`; moments as (6, candidates)
+        arrays, each moment's row contiguous).
         """
         drive = self.drive
         if drive.is_ideal:
             if model is not None:
                 model.append(self._ideal_motor_terms(scales))
             return self._ideal_mean_squares(scales)
-        g = self.grid
         terms = self._channel_terms(scales)
-        crossing = np.zeros((len(self.motors), g.size), dtype=bool)
-        for pieces in terms[1:]:  # each stage's output at the ends of every interval
-            x = _linear_maximum(pieces, g.end_acceleration, g.end_velocity)
-            crossing |= x[..., 0] * x[..., 1] < 0.0
-        moments = interval_moments(self.law)
-        sums = [_moment_sums(channel, moments, ~crossing) for channel in terms]
-        if crossing.any():
-            for mine, extra in zip(sums, self._split_integrals(np.nonzero(crossing), terms),
-                                   strict=True):
-                for k, more in enumerate(extra):
-                    mine[k] += more
+        sums = self._flow_sums(terms)
         if model is not None:
             model.append([(*piece, m) for piece, m in zip(terms[0], sums[0], strict=True)])
         with np.errstate(over="ignore", invalid="ignore"):
@@ -298,7 +287,7 @@ class CycleCalculator:
         return [(np.broadcast_to((self.motors.inertia * K + a_part) * scales.acc, (n,)),
                  np.broadcast_to((self.motors.damping * K + v_part) * scales.vel, (n,)),
                  np.broadcast_to(np.asarray(const, dtype=float), (n,)),
-                 np.broadcast_to(moments, (n, 6)))]
+                 np.broadcast_to(moments[:, None], (6, n)))]
 
     def _channel_terms(self, scales: MoveScales) -> list[list[tuple[np.ndarray, ...]]]:
         """Per channel (the motor, then each stage's output) its linear functions of the
@@ -344,67 +333,152 @@ class CycleCalculator:
                                        c.C_a_rms, c.C_v_rms))
         return result
 
-    def _split_integrals(self, where, terms) -> list[list[np.ndarray]]:
-        """Moments of the law over intervals where a power flow reverses, summed per
-        candidate for each channel's function that is the torque there.
+    def _flow_sums(self, terms) -> list[list[np.ndarray]]:
+        """Per channel and per function of it, the law's moments summed over the stretches
+        of the move where that function is the torque: (6, candidates) arrays.
 
-        The interval is cut at each root of a stage's output torque (Illinois, in the
-        interval's own coordinate), and each part's Gauss-Legendre moments go to the
-        function that is the torque there, so no kink of a reflection lies inside a rule.
-        A root error dz changes an integral by O(dz^2) (the two reflections agree at the
-        root): 1e-9 is rounding.
+        Between two power-flow reversals of the stages every channel is one of its linear
+        functions (the reflections switch only where a stage's output torque is zero), so
+        a stretch's moments are a difference of the law's prefix-sum moment table
+        (:func:`moment_table`) and the work per candidate is per reversal, not per grid
+        interval. The reversals: a stage's output torque (a maximum of linear functions)
+        is read at the ends of every grid interval; where it changes sign inside an
+        interval the root is found (Illinois, in the interval's own coordinate, to 1e-9:
+        the two reflections agree at the root, so a root error dz changes an integral by
+        O(dz^2)) and the table read there by Gauss-Legendre on the part of the interval
+        before it; where its sign class changes across a grid edge (a jump of a_N) the
+        edge is a split. Each stretch's function is the one with the largest integral
+        over it (the torque is the maximum of the functions).
         """
-        cand, interval = where
         g, law = self.grid, self.law
-        piece = g.piece[interval]
-        lo_edge, hi_edge = g.left[interval], g.right[interval]
-        width = hi_edge - lo_edge
-        cuts = []
-        for stage in range(len(self.drive.stages)):
-            pieces = [tuple(x[cand] for x in part) for part in terms[1 + stage]]
-
-            def output(tau, rows, piece=piece, pieces=pieces):
-                v_n, a_n = piece_values(law, tau, piece[rows], (1, 2))
-                return np.max([P[rows] * a_n + Q[rows] * v_n + C[rows]
-                               for P, Q, C in pieces], axis=0)
-
-            every = np.arange(len(cand))
-            f_lo, f_hi = output(lo_edge, every), output(hi_edge, every)
-            root = hi_edge.copy()
-            crossing = np.flatnonzero(f_lo * f_hi < 0.0)
-            if len(crossing):
-                def along(z, rows):
-                    return output(lo_edge[rows] + z * width[rows], rows)
-
-                z = illinois(along, np.zeros(len(crossing)), np.ones(len(crossing)),
-                             f_lo[crossing], f_hi[crossing], xtol=1e-9, args=(crossing,))
-                root[crossing] = np.clip(lo_edge[crossing] + z * width[crossing],
-                                         lo_edge[crossing], hi_edge[crossing])
-            cuts.append(root)
-        edges = np.sort(np.column_stack([lo_edge, *cuts, hi_edge]), axis=1)
-        x, w = leggauss(g.nodes.shape[1])
-        nodes_piece = np.broadcast_to(piece[:, None], (len(cand), len(x)))
-        on_pieces = PieceEvaluator(law, nodes_piece)
-        chosen = [[tuple(x[cand] for x in part) for part in channel] for channel in terms]
-        sums = [[np.zeros((len(self.motors), 6)) for _ in channel] for channel in terms]
-        for part in range(edges.shape[1] - 1):
-            a, b = edges[:, part], edges[:, part + 1]
-            half = 0.5 * (b - a)
-            tau = (0.5 * (a + b))[:, None] + half[:, None] * x
-            a_n, v_n = on_pieces.orders(tau, (2, 1))
-            weight = half[:, None] * w
-            moments = np.column_stack([(weight * a_n * a_n).sum(axis=1),
-                                       (weight * v_n * v_n).sum(axis=1), weight.sum(axis=1),
-                                       (weight * a_n * v_n).sum(axis=1),
-                                       (weight * a_n).sum(axis=1), (weight * v_n).sum(axis=1)])
-            for mine, channel in zip(sums, chosen, strict=True):
-                best = _largest_integral(channel, moments)
-                for k, m in enumerate(mine):
-                    rows = best == k
-                    for j in range(6):
-                        m[:, j] += np.bincount(cand[rows], weights=moments[rows, j],
-                                               minlength=len(m))
+        n, size = len(self.motors), g.size
+        table = moment_table(law)
+        edge = np.zeros((n, max(size - 1, 0)), dtype=bool)
+        roots: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []  # (cand, interval, z)
+        for pieces in terms[1:]:  # each stage's output at the ends of every interval
+            x = _linear_maximum(pieces, g.end_acceleration, g.end_velocity)
+            lo, hi = x[..., 0], x[..., 1]
+            # sign classes as booleans (NaN, a move of 1e-200 s, counts as zero): an end
+            # at zero takes the class of the interval's other end
+            pos_lo, neg_lo, pos_hi, neg_hi = lo > 0.0, lo < 0.0, hi > 0.0, hi < 0.0
+            left_pos = pos_lo | (pos_hi & ~neg_lo)
+            left_neg = neg_lo | (neg_hi & ~pos_lo)
+            right_pos = pos_hi | (pos_lo & ~neg_hi)
+            right_neg = neg_hi | (neg_lo & ~pos_hi)
+            edge |= (right_pos[:, :-1] != left_pos[:, 1:]) | (right_neg[:, :-1] != left_neg[:, 1:])
+            cand, interval = np.nonzero((pos_lo & neg_hi) | (neg_lo & pos_hi))
+            if len(cand):
+                roots.append((cand, interval, self._flow_root(pieces, cand, interval,
+                                                              lo[cand, interval],
+                                                              hi[cand, interval])))
+        # every split point: (candidate, position along the grid, prefix moments there)
+        e_cand, e_index = np.nonzero(edge)
+        cands = [np.arange(n), np.arange(n), e_cand]
+        keys = [np.zeros(n), np.full(n, float(size)), (e_index + 1).astype(float)]
+        values = [np.zeros((n, 6)), np.broadcast_to(table[-1], (n, 6)), table[e_index + 1]]
+        for cand, interval, z in roots:
+            cands.append(cand)
+            keys.append(interval + z)
+            values.append(table[interval] + self._partial_moments(interval, z))
+        cand = np.concatenate(cands)
+        key = np.concatenate(keys)
+        value = np.concatenate(values)
+        order = np.lexsort((key, cand))
+        cand, value = cand[order], value[order]
+        same = cand[1:] == cand[:-1]
+        run_cand = cand[:-1][same]
+        run = (value[1:] - value[:-1])[same]
+        sums = []
+        for channel in terms:
+            if len(channel) == 1:
+                sums.append([np.repeat(table[-1][:, None], n, axis=1)])
+                continue
+            best = _largest_integral([tuple(np.broadcast_to(x, (n,))[run_cand] for x in f)
+                                      for f in channel], run)
+            mine = []
+            for k in range(len(channel)):
+                rows = best == k
+                mine.append(np.stack([
+                    np.bincount(run_cand[rows], weights=run[rows, j], minlength=n)
+                    for j in range(6)]))
+            sums.append(mine)
         return sums
+
+    def _flow_root(self, pieces, cand: np.ndarray, interval: np.ndarray, f_lo: np.ndarray,
+                   f_hi: np.ndarray) -> np.ndarray:
+        """Where a stage's output torque (its linear ``pieces``) is zero inside the grid
+        intervals at ``interval`` of the candidates at ``cand``: the coordinate z in [0, 1]
+        of each interval (f_lo, f_hi: the torque at its ends, of opposite signs).
+
+        Newton's method on the function that is the torque (its derivative P j_N + Q a_N),
+        kept inside the shrinking sign bracket (bisection where a step would leave it),
+        from the regula falsi point; each step evaluates only the roots still open, the
+        points sorted by piece once so that a subset needs no regrouping. Stops at a step
+        of 1e-10 (the root is then far below that: quadratic convergence).
+        """
+        g, law = self.grid, self.law
+        count = len(cand)
+        by_piece = np.argsort(g.piece[interval], kind="stable")
+        piece = g.piece[interval][by_piece]
+        lo_edge = g.left[interval][by_piece]
+        width = g.right[interval][by_piece] - lo_edge
+        n = len(self.motors)
+        chosen = [tuple(np.broadcast_to(x, (n,))[cand[by_piece]] for x in part)
+                  for part in pieces]
+        sign_lo = np.sign(f_lo[by_piece])
+        lo, hi = np.zeros(count), np.ones(count)
+        f0, f1 = f_lo[by_piece], f_hi[by_piece]
+        z = np.clip(f0 / (f0 - f1), 0.0, 1.0)
+        rows = np.arange(count)
+        bounds_of = np.arange(len(law.pieces) + 1)
+        for _ in range(60):
+            if not len(rows):
+                break
+            tau = lo_edge[rows] + z[rows] * width[rows]
+            mine = piece[rows]
+            bounds = np.searchsorted(mine, bounds_of)
+            v_n, a_n, j_n = (np.empty(len(rows)) for _ in range(3))
+            for index in np.flatnonzero(np.diff(bounds)):
+                part = slice(bounds[index], bounds[index + 1])
+                at = law.pieces[index].clamp(tau[part])
+                for out, order in ((v_n, 1), (a_n, 2), (j_n, 3)):
+                    out[part] = law.pieces[index].evaluate(at, order)
+            values = np.stack([P[rows] * a_n + Q[rows] * v_n + C[rows] for P, Q, C in chosen])
+            k = np.argmax(values, axis=0)
+            f = values[k, np.arange(len(rows))]
+            slope = np.choose(k, [P[rows] * j_n + Q[rows] * a_n for P, Q, _ in chosen])
+            below = np.sign(f) == sign_lo[rows]
+            lo[rows] = np.where(below, z[rows], lo[rows])
+            hi[rows] = np.where(below, hi[rows], z[rows])
+            with np.errstate(divide="ignore", invalid="ignore"):
+                step = z[rows] - f / (slope * width[rows])
+            inside = (step > lo[rows]) & (step < hi[rows])
+            new = np.where(inside, step, 0.5 * (lo[rows] + hi[rows]))
+            done = (np.abs(new - z[rows]) <= 1e-10) | (f == 0.0) \
+                | (hi[rows] - lo[rows] <= 1e-10)
+            z[rows] = np.where(f == 0.0, z[rows], new)
+            rows = rows[~done]
+        out = np.empty(count)
+        out[by_piece] = np.minimum(np.maximum(z, 0.0), 1.0)
+        return out
+
+    def _partial_moments(self, interval: np.ndarray, z: np.ndarray) -> np.ndarray:
+        """The law's moments over the first part [left, left + z width] of each grid
+        interval at ``interval`` (Gauss-Legendre with the grid's node count, on the
+        interval's piece): (len(interval), 6), columns as :func:`interval_moments`."""
+        g = self.grid
+        lo_edge = g.left[interval]
+        half = 0.5 * z * (g.right[interval] - lo_edge)
+        x, w = leggauss(g.nodes.shape[1])
+        tau = (lo_edge + half)[:, None] + half[:, None] * x
+        on_pieces = PieceEvaluator(self.law, np.broadcast_to(g.piece[interval][:, None],
+                                                             tau.shape))
+        a_n, v_n = on_pieces.orders(tau, (2, 1))
+        weight = half[:, None] * w
+        return np.column_stack([(weight * a_n * a_n).sum(axis=1),
+                                (weight * v_n * v_n).sum(axis=1), weight.sum(axis=1),
+                                (weight * a_n * v_n).sum(axis=1), (weight * a_n).sum(axis=1),
+                                (weight * v_n).sum(axis=1)])
 
     # ------------------------------------------------------------------ peaks
     def _peaks(self, moves: list[MoveScales]):
@@ -739,9 +813,9 @@ def _linear_maximum(pieces, a_n: np.ndarray, v_n: np.ndarray) -> np.ndarray:
 
 
 def _form(P, Q, C, m: np.ndarray) -> np.ndarray:
-    """int (P a + Q v + C)^2 from the moments m (rows, 6: a^2, v^2, 1, a v, a, v)."""
-    return (P * P * m[:, 0] + Q * Q * m[:, 1] + C * C * m[:, 2]
-            + 2.0 * (P * Q * m[:, 3] + P * C * m[:, 4] + Q * C * m[:, 5]))
+    """int (P a + Q v + C)^2 from the moments m (6, rows: a^2, v^2, 1, a v, a, v)."""
+    return (P * P * m[0] + Q * Q * m[1] + C * C * m[2]
+            + 2.0 * (P * Q * m[3] + P * C * m[4] + Q * C * m[5]))
 
 
 def _largest_integral(pieces, moments: np.ndarray) -> np.ndarray:
@@ -757,24 +831,6 @@ def _largest_integral(pieces, moments: np.ndarray) -> np.ndarray:
                                for P, Q, C in pieces]), axis=0)
 
 
-def _moment_sums(pieces, moments: np.ndarray, use: np.ndarray) -> list[np.ndarray]:
-    """Per function of ``pieces`` the law's moments summed over the intervals marked in
-    ``use`` (candidates, intervals) where it is the torque: (candidates, 6) each."""
-    columns = np.ascontiguousarray(moments.T)
-    if len(pieces) == 1:
-        masks = [use]
-    else:
-        best = _largest_integral(pieces, np.broadcast_to(moments, (*use.shape, 6)))
-        masks = [(best == k) & use for k in range(len(pieces))]
-    # a matrix-vector product per moment: a (candidates x intervals x 6) matrix product
-    # is threaded by BLAS and costs several times the CPU time on a shared machine
-    out = []
-    for mask in masks:
-        weights = mask.astype(float)
-        out.append(np.column_stack([weights @ column for column in columns]))
-    return out
-
-
 @lru_cache(maxsize=256)
 def interval_moments(law) -> np.ndarray:
     """Per interval of the law's grid the Gauss-Legendre integrals of a_N^2, v_N^2, 1,
@@ -783,6 +839,18 @@ def interval_moments(law) -> np.ndarray:
     a, v, w = g.acceleration, g.velocity, g.weights
     return np.column_stack([(w * a * a).sum(axis=1), (w * v * v).sum(axis=1), w.sum(axis=1),
                             (w * a * v).sum(axis=1), (w * a).sum(axis=1), (w * v).sum(axis=1)])
+
+
+@lru_cache(maxsize=256)
+def moment_table(law) -> np.ndarray:
+    """The law's moments (columns as :func:`interval_moments`) integrated from 0 to each
+    edge of its grid: prefix sums, shape (intervals + 1, 6), first row zero. The moments
+    over a stretch of grid edges are a difference of two rows."""
+    moments = interval_moments(law)
+    table = np.zeros((len(moments) + 1, 6))
+    np.cumsum(moments, axis=0, out=table[1:])
+    table.setflags(write=False)
+    return table
 
 
 def _square_mean(p, q, const, c_a_rms: float, c_v_rms: float):
