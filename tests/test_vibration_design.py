@@ -107,7 +107,7 @@ def test_minimize_moves_T_to_the_first_duration_meeting_the_limit():
     limit = 20 * ARCSEC
     specs = ("cycloidal", "double_s(alpha=1/3, beta=1/4)")
     base = load_design(EXAMPLE)
-    base = replace(base, motors=base.motors[1:3])
+    base = replace(base, motors=base.motors[2:3])
     free = size_design(replace(base, laws=specs,
                                limits=replace(base.limits, residual_vibration=None)))
     bound = size_design(replace(base, laws=specs))
