@@ -119,17 +119,29 @@ def energy_checks(design: Design, calculator: CycleCalculator, duration: np.ndar
     n = len(motors)
     T = np.broadcast_to(np.asarray(duration, dtype=float), (n,))
     known = np.isfinite(T) & (T > 0.0)
-    samples = cycle_samples(design, calculator, np.where(known, T, 1.0))
+    # samples only where a check needs them: a braking limit, or a heat check whose cycle
+    # is not much shorter than tau_th (else the RMS-equivalent rise needs none)
+    need = np.zeros(n, dtype=bool)
+    if brake:
+        need |= np.isfinite(_braking_limit(design, motors))
+    thermal = np.zeros(n, dtype=bool)
+    if heat:
+        thermal = _thermal_model_applies(design, motors, T) & known
+        need |= thermal
+    rows = np.flatnonzero(need & known)
+    samples = None
+    if rows.size:
+        samples = cycle_samples(design, calculator.take(rows), T[rows])
     feasible = np.asarray(feasible, dtype=bool).copy()
     checks: list[CheckArrays] = []
     figures: dict[str, np.ndarray] = {}
     if brake:
-        check, regenerated, power = _braking(design, motors, samples, known)
+        check, regenerated, power = _braking(design, motors, samples, rows, known)
         checks.append(check)
         feasible &= check.passed
         figures[REGENERATED], figures[BRAKING_POWER] = regenerated, power
     if heat:
-        check, rise = _heat(design, motors, samples, metrics, known)
+        check, rise = _heat(design, motors, samples, rows, thermal, metrics, known)
         checks.append(check)
         feasible &= check.passed
         figures[WINDING_RISE] = rise
@@ -138,40 +150,71 @@ def energy_checks(design: Design, calculator: CycleCalculator, duration: np.ndar
     return EnergyChecks(checks, feasible, figures, np.array(T, dtype=float))
 
 
-def _braking(design: Design, motors, samples, known: np.ndarray):
-    """The braking check, the regenerated energy per cycle and the resistor's power."""
+def _braking_limit(design: Design, motors) -> np.ndarray:
+    """The resistor's allowed continuous power per candidate (NaN: no braking check)."""
+    given = design.limits.braking_resistor_power
+    if given is not None:
+        return np.full(len(motors), float(given))
+    return _drive_column(motors.drives, motors.drive, len(motors), "braking_resistor_power")
+
+
+def _braking(design: Design, motors, samples, rows: np.ndarray, known: np.ndarray):
+    """The braking check, the regenerated energy per cycle and the resistor's power; the
+    samples are those of the candidates at ``rows``."""
     from sizer.energy import axis_power, braking, capacitor_energy
 
     n = len(motors)
-    k_t = _motor_column(motors.catalog, motors.index, "torque_constant")
-    R = _motor_column(motors.catalog, motors.index, "winding_resistance")
-    wound = np.isfinite(k_t) & np.isfinite(R)
-    power = axis_power(samples.time, samples.torque, samples.speed,
-                       torque_constant=np.where(wound, k_t, 1.0),
-                       winding_resistance=np.where(wound, R, 0.0))
-    C = _drive_column(motors.drives, motors.drive, n, "bus_capacitance")
-    u_nom = _drive_column(motors.drives, motors.drive, n, "dc_bus_voltage")
-    u_top = _drive_column(motors.drives, motors.drive, n, "braking_threshold")
-    u_top = np.where(np.isfinite(u_top), u_top,
-                     _drive_column(motors.drives, motors.drive, n, "max_bus_voltage"))
-    stored = np.isfinite(C) & np.isfinite(u_nom) & np.isfinite(u_top) & (u_top > u_nom)
-    absorbable = np.zeros(n)
-    if stored.any():
-        absorbable[stored] = capacitor_energy(C[stored], u_top[stored], u_nom[stored])
-    result = braking(samples.time, power.bus, absorbable)
-    rated = _drive_column(motors.drives, motors.drive, n, "braking_resistor_power")
-    given = design.limits.braking_resistor_power
-    limit = np.full(n, float(given)) if given is not None else rated
+    limit = _braking_limit(design, motors)
     applies = np.isfinite(limit)
-    value = np.where(known & applies, result.resistor_continuous_power, 0.0)
+    regenerated = np.full(n, np.nan)
+    resistor = np.full(n, np.nan)
+    if samples is not None:
+        k_t = _motor_column(motors.catalog, motors.index, "torque_constant")[rows]
+        R = _motor_column(motors.catalog, motors.index, "winding_resistance")[rows]
+        wound = np.isfinite(k_t) & np.isfinite(R)
+        power = axis_power(samples.time, samples.torque, samples.speed,
+                           torque_constant=np.where(wound, k_t, 1.0),
+                           winding_resistance=np.where(wound, R, 0.0))
+        C = _drive_column(motors.drives, motors.drive, n, "bus_capacitance")[rows]
+        u_nom = _drive_column(motors.drives, motors.drive, n, "dc_bus_voltage")[rows]
+        u_top = _drive_column(motors.drives, motors.drive, n, "braking_threshold")
+        u_top = np.where(np.isfinite(u_top), u_top,
+                         _drive_column(motors.drives, motors.drive, n, "max_bus_voltage"))[rows]
+        stored = np.isfinite(C) & np.isfinite(u_nom) & np.isfinite(u_top) & (u_top > u_nom)
+        absorbable = np.zeros(rows.size)
+        if stored.any():
+            absorbable[stored] = capacitor_energy(C[stored], u_top[stored], u_nom[stored])
+        result = braking(samples.time, power.bus, absorbable)
+        regenerated[rows] = result.regenerated_energy
+        resistor[rows] = result.resistor_continuous_power
+    value = np.where(known & applies, np.nan_to_num(resistor, nan=0.0), 0.0)
     check = CheckArrays(BRAKING_CHECK, value, np.where(applies, limit, 1.0), "W", 0.0,
                         None if applies.all() else applies)
-    regenerated = np.where(known, result.regenerated_energy, np.nan)
-    return check, regenerated, np.where(known, result.resistor_continuous_power, np.nan)
+    return check, np.where(known, regenerated, np.nan), np.where(known, resistor, np.nan)
 
 
-def _heat(design: Design, motors, samples, metrics: CycleMetrics, known: np.ndarray):
-    """The winding temperature rise check and the rise per candidate."""
+def _cycle_time(design: Design, T: np.ndarray) -> np.ndarray:
+    """The task shorthand's cycle time at move durations T."""
+    task = design.task
+    moves = task.moves_per_cycle
+    return moves * (T + task.dwell)
+
+
+def _thermal_model_applies(design: Design, motors, T: np.ndarray) -> np.ndarray:
+    """Where the heat check needs the winding model (the cycle is not much shorter than
+    tau_th, sizer.thermal.applied_check); elsewhere the RMS-equivalent rise applies."""
+    from sizer.thermal.verdict import RMS_SHARE
+
+    tau_th = _motor_column(motors.catalog, motors.index, "thermal_time_constant")
+    allowed = _motor_column(motors.catalog, motors.index, "max_winding_temperature_rise")
+    heated = np.isfinite(tau_th) & np.isfinite(allowed)
+    return heated & ~(RMS_SHARE * np.where(heated, tau_th, 0.0) > _cycle_time(design, T))
+
+
+def _heat(design: Design, motors, samples, rows: np.ndarray, thermal: np.ndarray,
+          metrics: CycleMetrics, known: np.ndarray):
+    """The winding temperature rise check and the rise per candidate: the winding model's
+    periodic peak where ``thermal`` (its samples at ``rows``), else the RMS rise."""
     from sizer.thermal import winding_check
 
     n = len(motors)
@@ -181,13 +224,17 @@ def _heat(design: Design, motors, samples, metrics: CycleMetrics, known: np.ndar
     thermal_speed = np.broadcast_to(metrics.thermal_speed, (n,))
     tau_c = region.take(motors.index).limit_clipped(thermal_speed)
     applies = np.isfinite(tau_th) & np.isfinite(allowed) & (tau_c > 0.0)
-    result = winding_check(samples.time, samples.torque, np.where(applies, tau_c, 1.0),
-                           np.where(applies, allowed, 1.0), np.where(applies, tau_th, 1.0))
     rms = np.broadcast_to(metrics.rms_torque, (n,))
-    by_rms = result.verdict.applied == "rms"
     with np.errstate(divide="ignore", invalid="ignore"):
-        rms_rise = allowed * (rms / tau_c) ** 2
-    rise = np.where(by_rms, rms_rise, result.verdict.peak_rise)
+        rise = allowed * (rms / tau_c) ** 2
+    by_rms = ~thermal
+    modelled = thermal & applies
+    if samples is not None and modelled.any():
+        at = np.isin(rows, np.flatnonzero(modelled))
+        pick = rows[at]
+        result = winding_check(samples.time[at], samples.torque[at], tau_c[pick],
+                               allowed[pick], tau_th[pick])
+        rise[pick] = result.verdict.peak_rise
     given = design.limits.winding_temperature_rise
     limit = np.full(n, float(given)) if given is not None else allowed
     margin = design.limits.torque_margin
