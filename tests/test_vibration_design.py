@@ -253,3 +253,13 @@ def test_a_cycle_with_runs_and_boundary_speeds_against_the_integrated_ode(tmp_pa
             else:
                 x = rest(x, seg[1])
     assert result.residual_vibration == pytest.approx(max(ends), rel=1e-7)
+
+
+def test_a_limit_no_duration_meets_is_named_as_the_reason():
+    load = ElasticLoad(25.0, 0.02)
+    design = task_design("harmonic", None, 0.35, load, limit=1e-15)
+    design = replace(design, limits=replace(design.limits, inertia_ratio=None))
+    result = size_design(design).results[0]
+    assert not result.feasible and result.duration is None
+    assert result.limiting == "residual_vibration"
+    assert "residual_vibration" in result.reason

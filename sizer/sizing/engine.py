@@ -198,8 +198,9 @@ def _vibration(design: Design, law: MotionLaw, calculator, scale: np.ndarray, me
             checks = evaluate_checks(metrics, calculator.motors, calculator.drive,
                                      design.limits, linear)
             feasible = np.asarray(feasible, dtype=bool) & np.isfinite(moved) & all_pass(checks)
+            # where no duration within the search meets the limit, the check at T_min
+            # fails and names the limit (the pair is infeasible)
             scale = np.where(np.isfinite(moved), moved, scale)
-            known = known & np.isfinite(moved)
     residual = np.where(known, vibration.worst(np.where(known, scale, 1.0)), np.nan)
     if limit is not None:
         check = residual_check(vibration, np.where(known, scale, 1.0), limit, linear)
