@@ -73,6 +73,18 @@ class CycleMetrics:
     rms_model: RmsCurve | None = None
 
 
+def rule_speed(rule: str, peak: np.ndarray, square: np.ndarray, travel: np.ndarray,
+               cycle_time: np.ndarray) -> np.ndarray:
+    """The thermal speed of a cycle from its statistics (sec. 6.1.1): the peak speed (the
+    book's rule, ``max``), the RMS speed sqrt(int w^2 dt / T_c) or the mean speed
+    int |w| dt / T_c, from the peak, int w^2 dt, int |w| dt and the cycle time T_c."""
+    if rule == "max":
+        return peak
+    if rule == "rms":
+        return np.sqrt(square / cycle_time)
+    return travel / cycle_time
+
+
 class RmsCurve(Protocol):
     """The RMS torque as a function of the duration near where it was built: a law's
     :class:`RmsModel`, or a cycle's (sizer.sizing.segment_cycle.CycleRmsModel)."""

@@ -23,7 +23,7 @@ from sizer.laws import MotionLaw
 from sizer.mechanics.drive import Drive
 from sizer.model.cycle import Cycle, Move, Run
 from sizer.model.domain import Design, Limits, Load, Task
-from sizer.sizing.cycle import CycleMetrics
+from sizer.sizing.cycle import CycleMetrics, rule_speed
 from sizer.sizing.linkage_sizing import (
     FixedShape,
     LinkageCalculator,
@@ -175,12 +175,8 @@ class LinkageCycle:
             return sum((p[name] for p in parts), np.zeros_like(cycle))
 
         stages = len(self.drive.stages)
-        if self.thermal_rule == "max":
-            thermal = most("max_speed")
-        elif self.thermal_rule == "rms":
-            thermal = np.sqrt(total("speed_square") / cycle)
-        else:
-            thermal = total("turn") / cycle
+        thermal = rule_speed(self.thermal_rule, most("max_speed"), total("speed_square"),
+                             total("turn"), cycle)
         return CycleMetrics(
             duration=cycle, max_speed=most("max_speed"), peak_torque=most("peak_torque"),
             peak_ratio=most("peak_ratio"), rms_torque=np.sqrt(total("square") / cycle),

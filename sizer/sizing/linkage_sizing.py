@@ -30,7 +30,7 @@ from sizer.laws import MotionLaw
 from sizer.mechanics.drive import Drive
 from sizer.model.domain import Design, Limits, LinkageStage, Load, Task
 from sizer.sizing.checks import CheckArrays, evaluate_checks
-from sizer.sizing.cycle import CycleMetrics
+from sizer.sizing.cycle import CycleMetrics, rule_speed
 from sizer.sizing.motors import MotorArrays
 
 PEAK_POINTS = 4001
@@ -389,11 +389,9 @@ class LinkageCalculator:
         """The speed the continuous region is read at: the peak (book), RMS or mean."""
         p, N = self.profile, self.drive.ratio
         cycle = T + self.task.dwell
-        if self.thermal_rule == "max":
-            return N * np.max(np.abs(p.theta1)) / T
-        if self.thermal_rule == "rms":
-            return N * np.sqrt(float(p.theta1**2 @ p.weights) * T / cycle) / T
-        return N * abs(p.turn) / cycle
+        # the profile's crank speed is per unit T: w = N theta1 / T over the move
+        return rule_speed(self.thermal_rule, N * np.max(np.abs(p.theta1)) / T,
+                          N**2 * float(p.theta1**2 @ p.weights) / T, N * abs(p.turn), cycle)
 
     def _stages(self, crank: np.ndarray, T: np.ndarray):
         """Each gear stage's output torque (the crank torque reflected through the

@@ -34,6 +34,7 @@ from sizer.sizing.cycle import (
     MoveScales,
     RmsModel,
     _safe_ratio,
+    rule_speed,
 )
 from sizer.sizing.motors import MotorArrays
 from sizer.sizing.polynomial_move import MoveFigures, polynomial_move
@@ -350,11 +351,7 @@ class SegmentCycle:
                 peak = np.maximum(peak, speed)
                 square = square + speed * speed * t
                 travel = travel + speed * t
-        if self.thermal_rule == "max":
-            return peak
-        if self.thermal_rule == "rms":
-            return np.sqrt(square / cycle_time)
-        return travel / cycle_time
+        return rule_speed(self.thermal_rule, peak, square, travel, cycle_time)
 
     def evaluate(self, duration: np.ndarray, peaks: bool = True,
                  model: bool = False) -> CycleMetrics:
@@ -376,12 +373,8 @@ class SegmentCycle:
             rms = np.sqrt(total("torque_square") / T)
             stage_rms = [np.sqrt(np.sum(np.stack([p.stage_square[i] for p in parts]), axis=0)
                                  / T) for i in range(n_stages)]
-            if self.thermal_rule == "max":
-                thermal = most("max_speed")
-            elif self.thermal_rule == "rms":
-                thermal = np.sqrt(total("speed_square") / T)
-            else:
-                thermal = total("speed_abs") / T
+            thermal = rule_speed(self.thermal_rule, most("max_speed"), total("speed_square"),
+                                 total("speed_abs"), T)
         return CycleMetrics(
             duration=T, max_speed=most("max_speed"), peak_torque=most("peak_torque"),
             peak_ratio=most("peak_ratio"), rms_torque=_finite_or_inf(rms),
