@@ -30,6 +30,7 @@ Slow (tens of milliseconds per duration) and simple on purpose.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 from functools import cache, cached_property
 from itertools import pairwise
@@ -316,11 +317,17 @@ class Move:
 
     def integral(self, f) -> float:
         """int_0^T f(piece, t/T)^2 dt, by quad over the parts."""
-        total = 0.0
+        total = error = 0.0
         for i in range(len(self.c.law.pieces)):
             for a, b in self._parts(i):
-                total += integrate.quad(lambda t, i=i: float(f(i, np.array([t]))[0]) ** 2,
-                                        a, b, epsabs=0.0, epsrel=1e-13, limit=200)[0]
+                with warnings.catch_warnings():  # roundoff near 1e-13: its estimate is checked
+                    warnings.simplefilter("ignore", integrate.IntegrationWarning)
+                    value, bound = integrate.quad(
+                        lambda t, i=i: float(f(i, np.array([t]))[0]) ** 2,
+                        a, b, epsabs=0.0, epsrel=1e-13, limit=200)
+                total, error = total + value, error + bound
+        if error > 1e-11 * total:
+            raise ArithmeticError(f"quad's error estimate {error:.3g} of {total:.3g}")
         return self.T * total
 
     def _parts(self, piece: int):
