@@ -25,6 +25,7 @@ uniform intervals a piece starts from (:class:`Resolution`).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cache
 
 import numpy as np
 from numpy.polynomial.legendre import leggauss
@@ -130,9 +131,19 @@ def exact_nodes(degree: int, lowest_order: int) -> int:
     return max(1, degree - lowest_order + 1)
 
 
+@cache
+def gauss_legendre(nodes: int) -> tuple[np.ndarray, np.ndarray]:
+    """numpy's Gauss-Legendre nodes and weights on [-1, 1], computed once per count
+    (read-only: every law of a shape search asks for the same few)."""
+    x, w = leggauss(nodes)
+    x.setflags(write=False)
+    w.setflags(write=False)
+    return x, w
+
+
 def gauss(edges: np.ndarray, nodes: int) -> tuple[np.ndarray, np.ndarray]:
     """Composite Gauss-Legendre nodes and weights, arrays (intervals, nodes)."""
-    x, w = leggauss(nodes)
+    x, w = gauss_legendre(nodes)
     half = 0.5 * np.diff(edges)
     mid = 0.5 * (edges[:-1] + edges[1:])
     return mid[:, None] + half[:, None] * x, half[:, None] * w
@@ -200,7 +211,7 @@ def _interval_sums(law: MotionLaw, index: int, base: np.ndarray, level: int) -> 
     parts = 2**level
     steps = np.arange(parts + 1) / parts
     edges = (base[:-1, None] + np.diff(base)[:, None] * steps)  # (count, parts + 1)
-    x, w = leggauss(NODES)
+    x, w = gauss_legendre(NODES)
     half = 0.5 * np.diff(edges, axis=1)
     tau = (0.5 * (edges[:, :-1] + edges[:, 1:]))[..., None] + half[..., None] * x
     weight = half[..., None] * w
