@@ -136,8 +136,39 @@ def test_minimize_checks_the_rise_at_t_min_and_says_so():
     design["task"] = {**design["task"], "duration": "minimize"}
     result = size_design(load_design_data(design))
     row = only(result)
-    assert any("checked at T_min" in note for note in result.notes)
+    assert any("lengthened to the first duration" in note for note in result.notes)
+    h = 1.1 * 8.0 * 100.0 / 4.5  # the RMS check's T_min, not moved: tau sqrt(2/3) = 8
+    assert row.duration == pytest.approx(math.sqrt(4.5 * h * math.sqrt(2.0 / 3.0) / 8.0),
+                                         rel=1e-9)
     heat = row.check("winding_temperature_rise")
     assert row.feasible and heat.passed and heat.note == RMS_NOTE
     rms, tau_c = row.check("rms").value, row.check("rms").limit
     assert heat.value == pytest.approx(100.0 * (rms / tau_c) ** 2, rel=1e-12)
+
+
+def test_minimize_lengthens_the_move_until_the_winding_model_passes():
+    """tau_th = 1 s against a cycle of about 10 s: at the RMS check's T_min the winding
+    model's periodic peak is over 100 K; the move is lengthened to the T where it is
+    100 K: the torque of the 1/3 trapezoid is tau = 4.5 h / T^2 (J = 1), the loss A(T) =
+    100 (tau/8)^2 K for 2T/3 of each cycle, 0 for T/3 (the closed form of the module's
+    docstring), solved here by brentq."""
+    from scipy.optimize import brentq
+
+    design = heat_design(1.1, "1 s")
+    design["task"] = {**design["task"], "duration": "minimize"}
+    h = 1.1 * 8.0 * 100.0 / 4.5
+
+    def peak(T):
+        A = 100.0 * (4.5 * h / T**2 / 8.0) ** 2
+        return A * (1.0 - math.exp(-2.0 * T / 3.0)) / (1.0 - math.exp(-T))
+
+    T_rms = math.sqrt(4.5 * h * math.sqrt(2.0 / 3.0) / 8.0)  # tau_rms = tau sqrt(2/3) = 8
+    assert peak(T_rms) > 100.0
+    expected = brentq(lambda T: peak(T) - 100.0, T_rms, 4.0 * T_rms, xtol=1e-14)
+    row = only(size_design(load_design_data(design)))
+    assert row.feasible
+    assert row.duration == pytest.approx(expected, rel=1e-9)
+    heat = row.check("winding_temperature_rise")
+    assert heat.note == THERMAL_NOTE and heat.passed
+    assert heat.value == pytest.approx(100.0, rel=1e-9)
+

@@ -72,9 +72,13 @@ def energy_notes(design: Design) -> list[str]:
     if design.cycle is not None or design.transmission.linkage is not None:
         return ["winding_temperature_rise and braking_resistor_power are not checked for a "
                 "cycle of segments or a linkage yet"]
-    if design.task.minimize:
+    if design.task.minimize and design.load.elastic is not None:
         return ["T_min is searched without winding_temperature_rise and "
                 "braking_resistor_power; they are checked at T_min"]
+    if design.task.minimize:
+        return ["where winding_temperature_rise or braking_resistor_power fails at the T_min "
+                "of the other checks, the move is lengthened to the first duration that "
+                "passes them"]
     return []
 
 

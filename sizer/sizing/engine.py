@@ -29,7 +29,7 @@ from sizer.sizing.cycle import CycleCalculator
 from sizer.sizing.cycle_shape import given_scale, left_out_laws, plain_design, ranked_laws
 from sizer.sizing.energy_check import energy_checks, energy_notes
 from sizer.sizing.grid import law_grid
-from sizer.sizing.minimum_duration import is_purely_inertial, minimum_duration
+from sizer.sizing.minimum_duration import is_purely_inertial, merge_metrics, minimum_duration
 from sizer.sizing.motors import MotorArrays
 from sizer.sizing.ranking import rank_order
 from sizer.sizing.results import CandidateResult, SizingResult
@@ -170,10 +170,38 @@ def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates) -> C
         duration, metrics, checks, feasible, residual = vibration
     energy = energy_checks(design, calculator, duration, metrics, feasible,
                            design.task.minimize)
+    if energy is not None and design.task.minimize and residual is None:
+        moved = _energy_moved(design, calculator, duration, feasible, energy.feasible)
+        if moved is not None:
+            rows, T = moved
+            metrics = merge_metrics(metrics, rows, calculator.take(rows).evaluate(T))
+            checks = evaluate_checks(metrics, motors, drive, design.limits, design.task.linear)
+            feasible = all_pass(checks)
+            duration = np.where(feasible, metrics.duration, np.nan)
+            energy = energy_checks(design, calculator, duration, metrics, feasible, True)
     if energy is None:
         return _table(design, law, candidates, duration, metrics, checks, feasible, residual)
     return _table(design, law, candidates, energy.duration, metrics,
                   [*checks, *energy.checks], energy.feasible, residual, energy.figures)
+
+
+def _energy_moved(design: Design, calculator, duration: np.ndarray, feasible: np.ndarray,
+                  energy_feasible: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """Minimize mode: the candidates that pass every check but the energy and heat ones
+    at T_min, and the first durations at which those pass too
+    (sizer.sizing.energy_duration); where none does, the candidate stays at T_min (its
+    energy check fails there and names the limit). None when no candidate moves."""
+    late = np.asarray(feasible, dtype=bool) & ~energy_feasible & np.isfinite(duration)
+    if not late.any():
+        return None
+    from sizer.sizing.energy_duration import energy_duration
+
+    rows = np.flatnonzero(late)
+    moved = energy_duration(design, calculator.take(rows), duration[rows])
+    found = np.isfinite(moved)
+    if not found.any():
+        return None
+    return rows[found], moved[found]
 
 
 def _vibration(design: Design, law: MotionLaw, calculator, scale: np.ndarray, metrics,
