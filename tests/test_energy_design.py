@@ -172,3 +172,27 @@ def test_minimize_lengthens_the_move_until_the_winding_model_passes():
     assert heat.note == THERMAL_NOTE and heat.passed
     assert heat.value == pytest.approx(100.0, rel=1e-9)
 
+
+
+def test_minimize_lengthens_the_move_until_the_braking_resistor_passes(tmp_path):
+    """No bus capacitor: the resistor takes the whole stop energy E(T) = J_m w^2 / 2 +
+    eta J_L (w/K)^2 / 2 with w = K 1.5 h / T, once per cycle of T + 1 s; the duration is
+    where E(T) / (T + 1) = 50 W (brentq), longer than the torque checks' T_min."""
+    from scipy.optimize import brentq
+
+    design = braking_design(tmp_path, {}, braking_resistor_power="50 W")
+    design["task"] = {**design["task"], "duration": "minimize"}
+
+    def power(T):
+        w = 4.0 * 1.5 * 20.0 / T
+        return (0.5 * 0.002 * w**2 + 0.9 * 0.5 * 0.3 * (w / 4.0) ** 2) / (T + 1.0)
+
+    expected = brentq(lambda T: power(T) - 50.0, 0.1, 10.0, xtol=1e-14)
+    row = only(size_design(load_design_data(design, base=tmp_path)))
+    assert row.feasible
+    assert row.duration == pytest.approx(expected, rel=1e-9)
+    check = row.check("braking_resistor_power")
+    assert check.passed and check.value == pytest.approx(50.0, rel=1e-9)
+    # every other check has room left: they alone would allow a shorter move
+    assert all(c.margin - c.required > 1e-3 for c in row.checks
+               if c.name != "braking_resistor_power")
