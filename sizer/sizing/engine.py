@@ -176,8 +176,11 @@ def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates) -> C
             rows, T = moved
             metrics = merge_metrics(metrics, rows, calculator.take(rows).evaluate(T))
             checks = evaluate_checks(metrics, motors, drive, design.limits, design.task.linear)
-            feasible = all_pass(checks)
-            duration = np.where(feasible, metrics.duration, np.nan)
+            # only the moved rows change: their verdicts and durations from the new checks
+            feasible = np.array(feasible, dtype=bool)
+            feasible[rows] = all_pass(checks)[rows]
+            duration = np.array(duration, dtype=float)
+            duration[rows] = np.where(feasible[rows], T, np.nan)
             energy = energy_checks(design, calculator, duration, metrics, feasible, True)
     if energy is None:
         return _table(design, law, candidates, duration, metrics, checks, feasible, residual)
