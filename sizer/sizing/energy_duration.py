@@ -42,15 +42,15 @@ def energy_slack(design: Design, calculator: CycleCalculator, duration: np.ndarr
     return np.min([check.slack for check in energy.checks], axis=0) + TOLERANCE
 
 
-def energy_duration(design: Design, calculator: CycleCalculator,
-                    duration: np.ndarray) -> np.ndarray:
+def energy_duration(design: Design, calculator: CycleCalculator, duration: np.ndarray,
+                    slack: np.ndarray | None = None) -> np.ndarray:
     """Per candidate, the smallest duration >= ``duration`` at which the energy and heat
-    checks pass; inf where none does up to ``duration`` 2^DOUBLINGS."""
-    T = np.asarray(duration, dtype=float)
-    n = len(T)
-    rows = np.arange(n)
-    lo = T.copy()
-    f_lo = energy_slack(design, calculator, lo, rows)
+    checks pass; inf where none does up to ``duration`` 2^DOUBLINGS. ``slack``: that of
+    :func:`energy_slack` at ``duration`` where the caller has it (else evaluated)."""
+    lo = np.array(duration, dtype=float)
+    n = len(lo)
+    f_lo = np.array(slack, dtype=float) if slack is not None \
+        else energy_slack(design, calculator, lo, np.arange(n))
     out = np.where(f_lo >= 0.0, lo, np.inf)
     hi, f_hi = np.full(n, np.nan), np.full(n, np.nan)
     todo = np.flatnonzero(f_lo < 0.0)

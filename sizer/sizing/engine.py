@@ -23,11 +23,11 @@ from sizer.model.cycle import Dwell
 from sizer.model.domain import Design, Motor
 from sizer.sizing.auto_shape import choose_shape
 from sizer.sizing.candidates import Candidates
-from sizer.sizing.checks import evaluate_checks
+from sizer.sizing.checks import TOLERANCE, evaluate_checks
 from sizer.sizing.checks import feasible as all_pass
 from sizer.sizing.cycle import CycleCalculator
 from sizer.sizing.cycle_shape import given_scale, left_out_laws, plain_design, ranked_laws
-from sizer.sizing.energy_check import energy_checks, energy_notes
+from sizer.sizing.energy_check import EnergyChecks, energy_checks, energy_notes
 from sizer.sizing.grid import law_grid
 from sizer.sizing.minimum_duration import is_purely_inertial, merge_metrics, minimum_duration
 from sizer.sizing.motors import MotorArrays
@@ -171,7 +171,7 @@ def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates) -> C
     energy = energy_checks(design, calculator, duration, metrics, feasible,
                            design.task.minimize)
     if energy is not None and design.task.minimize and residual is None:
-        moved = _energy_moved(design, calculator, duration, feasible, energy.feasible)
+        moved = _energy_moved(design, calculator, duration, feasible, energy)
         if moved is not None:
             rows, T = moved
             metrics = merge_metrics(metrics, rows, calculator.take(rows).evaluate(T))
@@ -189,18 +189,19 @@ def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates) -> C
 
 
 def _energy_moved(design: Design, calculator, duration: np.ndarray, feasible: np.ndarray,
-                  energy_feasible: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+                  energy: EnergyChecks) -> tuple[np.ndarray, np.ndarray] | None:
     """Minimize mode: the candidates that pass every check but the energy and heat ones
     at T_min, and the first durations at which those pass too
     (sizer.sizing.energy_duration); where none does, the candidate stays at T_min (its
     energy check fails there and names the limit). None when no candidate moves."""
-    late = np.asarray(feasible, dtype=bool) & ~energy_feasible & np.isfinite(duration)
+    late = np.asarray(feasible, dtype=bool) & ~energy.feasible & np.isfinite(duration)
     if not late.any():
         return None
     from sizer.sizing.energy_duration import energy_duration
 
     rows = np.flatnonzero(late)
-    moved = energy_duration(design, calculator.take(rows), duration[rows])
+    slack = np.min([check.slack[rows] for check in energy.checks], axis=0) + TOLERANCE
+    moved = energy_duration(design, calculator.take(rows), duration[rows], slack)
     found = np.isfinite(moved)
     if not found.any():
         return None
