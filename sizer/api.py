@@ -28,8 +28,10 @@ from typing import TYPE_CHECKING, Any
 
 from sizer.errors import UserError
 from sizer.model.domain import Design, Motor
+from sizer.model.machine import Machine
 
 if TYPE_CHECKING:
+    from sizer.sizing.machine import MachineResult
     from sizer.sizing.results import CandidateResult, SizingResult
 
 DesignLike = str | PathLike[str] | Mapping[str, Any] | Design
@@ -168,3 +170,39 @@ def assumptions(design: Design) -> tuple[str, ...]:
     from sizer import sizing
 
     return sizing.assumptions(design)
+
+
+MachineLike = str | PathLike[str] | Mapping[str, Any] | Machine
+"""A machine file's path, the same content as a mapping, or a :class:`Machine`."""
+
+
+def load_machine(machine: MachineLike, *, base: str | PathLike[str] | None = None
+                 ) -> Machine:
+    """The :class:`Machine` of a machine file's path or mapping (``axes:``; relative paths
+    from ``base``, the working directory by default), or a Machine as it is."""
+    from sizer.io.machine_loader import load_machine as read
+    from sizer.io.machine_loader import load_machine_data
+
+    if isinstance(machine, Machine):
+        return machine
+    if isinstance(machine, Mapping):
+        return load_machine_data(machine, base=Path(base) if base is not None else None)
+    return read(Path(machine))
+
+
+def size_machine(machine: MachineLike, *, rank_by: str | None = None,
+                 envelope: str | None = None,
+                 progress: Progress | None = None) -> MachineResult:
+    """Every axis of a machine at its master speed, the slowest axis setting it with
+    ``master_speed: minimize`` (book sec. 5.3), and the DC bus of the axes' choices
+    (``sizer size`` of a machine file). ``rank_by`` and ``envelope`` as in :func:`size`,
+    for every axis."""
+    from sizer.sizing.machine import size_machine as run
+
+    check_rank_by(rank_by)
+    loaded = load_machine(machine)
+    if envelope is not None:
+        axes = tuple(replace(a, design=override(a.design, envelope=envelope))
+                     for a in loaded.axes)
+        loaded = replace(loaded, axes=axes)
+    return run(loaded, rank_by, progress)

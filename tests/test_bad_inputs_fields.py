@@ -2,8 +2,9 @@
 names the file, the field and what is allowed (the range in SI units, or the choices).
 
 The ranges are those of sizer/model/ranges.py (docs/input-ranges.md); the last test walks
-the models and fails when a field of the design, motor catalog or gearbox catalog files
-has no case here or in tests/test_bad_inputs_catalogs.py.
+the models and fails when a field of the design, motor catalog, gearbox catalog or machine
+files has no case here, in tests/test_bad_inputs_catalogs.py or
+tests/test_bad_inputs_machine.py.
 """
 
 from __future__ import annotations
@@ -423,9 +424,13 @@ def test_case_ids_are_unique():
 
 def test_every_field_of_the_input_files_has_a_case():
     from test_bad_inputs_catalogs import CASES as CATALOG_CASES
+    from test_bad_inputs_machine import CASES as MACHINE_CASES
     from test_cycle_input import CASES as CYCLE_CASES  # the fields of `cycle:`
 
-    named = {f for c in (*CASES, *CATALOG_CASES, *CYCLE_CASES) for f in c.fields}
+    named = {f for c in (*CASES, *CATALOG_CASES, *CYCLE_CASES, *MACHINE_CASES)
+             for f in c.fields}
+    # an axis's design fields are read by the design loader: the design's cases cover them
+    named |= {f"machine:axes.{f}" for f in named if f"machine:axes.{f}" in input_fields()}
     fields = set(input_fields())
     assert sorted(fields - named) == [], "fields without a bad-input case"
     assert sorted(named - fields) == [], "cases naming no field of the models"

@@ -20,16 +20,21 @@ from jsonschema import Draft202012Validator
 from pydantic import BaseModel, ValidationError
 
 from sizer.io.loader import catalog_schema, design_schema, gearbox_catalog_schema
+from sizer.io.machine_loader import machine_schema
 from sizer.model.inputs import CatalogFile, DesignFile
+from sizer.model.machine_inputs import MachineFile
 from sizer.model.transmission_inputs import GearboxCatalogFile
 
 ROOT = Path(__file__).resolve().parent.parent
 SCHEMAS = {"design": (design_schema, DesignFile), "catalog": (catalog_schema, CatalogFile),
-           "gearboxes": (gearbox_catalog_schema, GearboxCatalogFile)}
+           "gearboxes": (gearbox_catalog_schema, GearboxCatalogFile),
+           "machine": (machine_schema, MachineFile)}
 NOT_SIZER_FILES = {"examples/ci"}  # CI and pre-commit configurations, not sizer inputs
 
 
 def kind_of(data: Any) -> str:
+    if isinstance(data, dict) and "axes" in data:
+        return "machine"
     if isinstance(data, dict) and ("task" in data or "cycle" in data):
         return "design"
     if isinstance(data, dict) and "gearboxes" in data:
@@ -78,7 +83,7 @@ def test_schema_is_draft_2020_12_with_an_id(kind: str) -> None:
 def test_there_are_examples_of_every_kind() -> None:
     kinds = [kind_of(yaml.safe_load(f.read_text(encoding="utf-8"))) for f in input_files()]
     assert kinds.count("design") >= 9 and kinds.count("gearboxes") >= 1
-    assert kinds.count("catalog") >= 12
+    assert kinds.count("catalog") >= 12 and kinds.count("machine") >= 1
 
 
 @pytest.mark.parametrize("path", input_files(), ids=lambda p: p.relative_to(ROOT).as_posix())

@@ -1,4 +1,5 @@
-"""``sizer schema``: the JSON Schema of the design file, the motor or the gearbox catalog."""
+"""``sizer schema``: the JSON Schema of the design file, the motor or the gearbox catalog,
+or the machine file."""
 
 from __future__ import annotations
 
@@ -16,13 +17,14 @@ class SchemaName(StrEnum):
     DESIGN = "design"
     CATALOG = "catalog"
     GEARBOXES = "gearboxes"
+    MACHINE = "machine"
 
 
 def schema(
     which: Annotated[SchemaName, typer.Argument(
-        metavar="design|catalog|gearboxes", case_sensitive=False,
-        help="design (a design file), catalog (a motor catalog) or gearboxes (a gearbox "
-             "catalog).", show_default=False)],
+        metavar="design|catalog|gearboxes|machine", case_sensitive=False,
+        help="design (a design file), catalog (a motor catalog), gearboxes (a gearbox "
+             "catalog) or machine (several axes on one master).", show_default=False)],
     output: OutputOption = None,
 ) -> None:
     """Print the JSON Schema (draft 2020-12) of a design file, a motor catalog or a gearbox
@@ -44,8 +46,11 @@ def schema(
     from sizer.report.output import emit
 
     check_output(output)
+    from sizer.io.machine_loader import machine_schema
+
     build = {SchemaName.DESIGN: design_schema, SchemaName.CATALOG: catalog_schema,
-             SchemaName.GEARBOXES: gearbox_catalog_schema}[which]
+             SchemaName.GEARBOXES: gearbox_catalog_schema,
+             SchemaName.MACHINE: machine_schema}[which]
     emit(render_json(build()), output)
 
 

@@ -69,11 +69,51 @@ def size(
 
     check_rank_key(rank_by)
     check_output(output, [design, *(catalog or ())])
+    if _is_machine(design):
+        _size_machine(design, catalog, motor, rank_by, top, show_all, fmt, output, envelope)
+        return
     loaded, sizing = load_and_size(design, catalog, motor, rank_by, envelope=envelope,
                                    outputs=() if output is None else (output,))
     document = SizingDocument(sizing, loaded, rank_by=rank_by, top=top,
                               include_infeasible=show_all)
     publish_sizing(document, fmt, output)
+
+
+def _is_machine(path: Path) -> bool:
+    """A machine file (``axes:``); anything unreadable goes the design's way, whose
+    loader says what is wrong."""
+    from sizer.io.machine_loader import is_machine_file
+
+    try:
+        return path.is_file() and is_machine_file(path)
+    except (UserError, OSError):
+        return False
+
+
+def _size_machine(path: Path, catalog: Sequence[str] | None, motor: Sequence[str] | None,
+                  rank_by: str | None, top: int | None, show_all: bool, fmt: Format,
+                  output: Path | None, envelope: str | None) -> None:
+    """``sizer size`` of a machine file: every axis at the master speed, and the bus."""
+    from sizer import api
+    from sizer.cli.output_guard import check_outputs
+    from sizer.cli.progress import sizing_progress
+    from sizer.report.machine_report import MachineDocument, publish_machine
+
+    for given, option in ((catalog, "--catalog"), (motor, "--motor")):
+        if given:
+            raise UserError("not for a machine file: each axis names its motors",
+                            field=option)
+    machine = api.load_machine(path)
+    check_outputs(() if output is None else (output,), machine.files)
+    try:
+        with sizing_progress(f"sizing {path.name}") as progress:
+            result = api.size_machine(machine, rank_by=rank_by, envelope=envelope or None,
+                                      progress=progress)
+    except UserError as error:
+        raise error.located(file=str(path)) from None
+    document = MachineDocument(result, machine, rank_by=rank_by, top=top,
+                               include_infeasible=show_all)
+    publish_machine(document, fmt, output)
 
 
 def load_and_size(design: Path, catalog: Sequence[str] | None, motor: Sequence[str] | None,

@@ -459,6 +459,13 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
     )
 
 
+def design_of_source(source: YamlSource, folder: Path, name: str,
+                     files: list[Path]) -> Design:
+    """The Design of a parsed design document (an axis of a machine file: its lines are
+    the file's), sized against the bundled catalogs when it names no motors."""
+    return _design_of(source, folder, name, files, (), True)
+
+
 def _gearbox_catalog_files(items: Any, folder: Path) -> list[Path]:
     """The gearbox catalog files the transmission's stages name (read while building it)."""
     items = items if isinstance(items, list) else [items]
@@ -647,7 +654,7 @@ def schema_id(name: str) -> str:
     return f"urn:sizer-motion:schema:{name}:{SCHEMA_VERSION}"
 
 
-def _schema_document(model: type[BaseModel], name: str) -> dict[str, Any]:
+def schema_document(model: type[BaseModel], name: str) -> dict[str, Any]:
     """The model's JSON Schema (derived by pydantic, shorthands included) with ``$schema``
     (draft 2020-12) and ``$id`` first."""
     return {"$schema": SCHEMA_DIALECT, "$id": schema_id(name),
@@ -656,19 +663,19 @@ def _schema_document(model: type[BaseModel], name: str) -> dict[str, Any]:
 
 def design_schema() -> dict[str, Any]:
     """JSON Schema of the design file (for ``sizer schema design``)."""
-    return _schema_document(DesignFile, "design")
+    return schema_document(DesignFile, "design")
 
 
 def catalog_schema() -> dict[str, Any]:
     """JSON Schema of the motor catalog file (for ``sizer schema catalog``)."""
-    return _schema_document(CatalogFile, "catalog")
+    return schema_document(CatalogFile, "catalog")
 
 
 def gearbox_catalog_schema() -> dict[str, Any]:
     """JSON Schema of the gearbox catalog file (for ``sizer schema gearboxes``)."""
     from sizer.model.transmission_inputs import GearboxCatalogFile
 
-    return _schema_document(GearboxCatalogFile, "gearboxes")
+    return schema_document(GearboxCatalogFile, "gearboxes")
 
 
 __all__ = [

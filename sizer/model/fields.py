@@ -3,7 +3,8 @@
 Paths are dotted, list items unmarked, a transmission stage named by its type:
 ``task.duration``, ``transmission[ball_screw].lead``; the fields of a motor catalog start
 with ``catalog:`` (``catalog:motors.continuous_curve.speed``), those of a gearbox catalog
-with ``gearboxes:``. An inline motor of a design has the fields of a catalog motor.
+with ``gearboxes:``, those of a machine file with ``machine:``. An inline motor of a
+design has the fields of a catalog motor.
 
     input_fields()   -> {"task.duration": InputField(...), ...}
     fields_by_range() -> {"duration": ["task.duration"], ...}
@@ -20,10 +21,12 @@ from pydantic import BaseModel
 
 from sizer.model.inputs import CatalogFile, DesignFile
 from sizer.model.inputs_base import AxisRanges, RangeRef, field_markers
+from sizer.model.machine_inputs import MachineFile
 from sizer.model.transmission_inputs import GearboxCatalogFile
 
 FILES: dict[str, type[BaseModel]] = {"": DesignFile, "catalog:": CatalogFile,
-                                     "gearboxes:": GearboxCatalogFile}
+                                     "gearboxes:": GearboxCatalogFile,
+                                     "machine:": MachineFile}
 """The prefix of each file's field paths, and its model."""
 
 

@@ -99,6 +99,12 @@ RANGES: dict[str, Range] = {
                               "direction", signed=True),
     "master_speed": _r("angular_speed", 1e-6, 1e6, "the speed of the master axis of an "
                        "electronic cam, e.g. '120 rpm'"),
+    # machine (several axes on one master: book sec. 5.3)
+    "master_angle": _r("angle", 1e-6, 1e7, "a share of the master's cycle, e.g. '120 deg' "
+                       "of its 360 deg"),
+    "master_phase": _r("angle", 1e-6, 1e7, "where an axis's cycle starts on the master, "
+                       "0 = at the machine cycle's start", zero=True),
+    "master_dwell": _r("angle", 1e-6, 1e7, "a rest on the master, 0 = none", zero=True),
     # cycle (segments of a machine cycle)
     "cycle_rate": _r("rate", 1e-6, 1e6, "cycles per second: the inverse of the durations' "
                      "range (one cycle in 11.6 days to one in 1 us)"),
