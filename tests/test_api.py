@@ -4,6 +4,7 @@ Design give the same results; results are plain data and hold the objects sized.
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 import pytest
@@ -200,3 +201,21 @@ def test_the_readme_example_runs(monkeypatch, capsys):
     lines = capsys.readouterr().out.splitlines()
     assert lines[0].startswith("ex6_1 ") and lines[0].endswith(" True")
     assert lines[-4:] == ["0/2 laws", "1/2 laws", "2/2 laws", "True"]
+
+
+def test_records_carry_the_energy_figures_of_designs_with_those_checks():
+    """With a braking limit the records hold the energy returned per cycle, 1/2 J
+    omega_max^2 with omega_max = 2 h / T (cycloidal, a lossless inertia), and the
+    resistor's power, that over the cycle time T + dwell; without a limit, neither key."""
+    design = {"task": {"displacement": "90 deg", "duration": "0.2 s", "dwell": "0.3 s"},
+              "load": {"inertia": "0.02 kg*m^2"}, "laws": ["cycloidal"],
+              "motors": [{"id": "m", "inertia": 0, "continuous_torque": 50,
+                          "peak_torque": 100, "rated_speed": 1000}]}
+    plain = sizer.size(design).to_records()[0]
+    assert "regenerated_energy" not in plain and "braking_power" not in plain
+    braked = sizer.size({**design, "limits": {"braking_resistor_power": "1000 W"}}
+                        ).to_records()[0]
+    stop = 0.5 * 0.02 * (2 * (math.pi / 2) / 0.2) ** 2
+    assert braked["regenerated_energy"] == pytest.approx(stop, rel=1e-5)
+    assert braked["braking_power"] == pytest.approx(braked["regenerated_energy"] / 0.5,
+                                                    rel=1e-12)
