@@ -9,7 +9,8 @@ The motor torque comes from the same calculator the engine uses
 transmission with its efficiencies in the direction of power flow, the load), as
 :func:`sizer.sizing.profile.task_curve` does for one candidate; a dwell holds the constant
 load. These are the inputs of sizer.energy and sizer.thermal (samples, piecewise linear in
-between). A cycle of segments or a linkage is refused (not sampled here yet).
+between). A cycle of segments is sampled by sizer.sizing.segment_samples; a linkage is
+refused (not sampled yet).
 """
 
 from __future__ import annotations
@@ -53,10 +54,11 @@ def law_samples(law: MotionLaw, samples: int = SAMPLES) -> tuple[np.ndarray, ...
 
 
 def refuse_unsupported(design: Design) -> None:
-    """A UserError for what is not sampled yet: a cycle of segments, a linkage."""
+    """A UserError for what is not sampled here: a cycle of segments (its own sampler,
+    sizer.sizing.segment_samples), a linkage (not yet)."""
     if design.cycle is not None:
-        raise UserError("energy and heat over a cycle of segments are not computed yet; "
-                        "use the task shorthand (move, dwell, return)", field="cycle")
+        raise UserError("a cycle of segments is sampled by sizer.sizing.segment_samples",
+                        field="cycle")
     if design.transmission.linkage is not None:
         raise UserError("energy and heat through a linkage are not computed yet",
                         field="transmission")

@@ -69,15 +69,17 @@ def energy_notes(design: Design) -> list[str]:
     """What the energy and heat checks left out, for reports (none without them)."""
     if not (has_heat_check(design.motors) or has_braking_check(design, design.drives)):
         return []
-    if design.cycle is not None or design.transmission.linkage is not None:
-        return ["winding_temperature_rise and braking_resistor_power are not checked for a "
-                "cycle of segments or a linkage yet"]
-    if design.task.minimize and design.load.elastic is not None:
+    if design.transmission.linkage is not None:
+        return ["winding_temperature_rise and braking_resistor_power are not checked "
+                "through a linkage yet"]
+    minimize = design.cycle.minimize if design.cycle is not None else design.task.minimize
+    if minimize and design.load.elastic is not None:
         return ["T_min is searched without winding_temperature_rise and "
                 "braking_resistor_power; they are checked at T_min"]
-    if design.task.minimize:
+    if minimize:
+        what = "the free durations are" if design.cycle is not None else "the move is"
         return ["where winding_temperature_rise or braking_resistor_power fails at the T_min "
-                "of the other checks, the move is lengthened to the first duration that "
+                f"of the other checks, {what} lengthened to the first duration that "
                 "passes them"]
     return []
 
@@ -118,11 +120,10 @@ def energy_checks(design: Design, calculator: CycleCalculator, duration: np.ndar
     brake = has_braking_check(design, motors.drives)
     if not (heat or brake):
         return None
-    from sizer.sizing.cycle_samples import cycle_samples
-
     n = len(motors)
     T = np.broadcast_to(np.asarray(duration, dtype=float), (n,))
     known = np.isfinite(T) & (T > 0.0)
+    cycle_time = _cycle_time(design, calculator, np.where(known, T, 1.0))
     # samples only where a check needs them: a braking limit, or a heat check whose cycle
     # is not much shorter than tau_th (else the RMS-equivalent rise needs none)
     need = np.zeros(n, dtype=bool)
@@ -130,12 +131,12 @@ def energy_checks(design: Design, calculator: CycleCalculator, duration: np.ndar
         need |= np.isfinite(_braking_limit(design, motors))
     thermal = np.zeros(n, dtype=bool)
     if heat:
-        thermal = _thermal_model_applies(design, motors, T) & known
+        thermal = _thermal_model_applies(motors, cycle_time) & known
         need |= thermal
     rows = np.flatnonzero(need & known)
     samples = None
     if rows.size:
-        samples = cycle_samples(design, calculator.take(rows), T[rows])
+        samples = _samples(design, calculator.take(rows), T[rows])
     feasible = np.asarray(feasible, dtype=bool).copy()
     checks: list[CheckArrays] = []
     figures: dict[str, np.ndarray] = {}
@@ -197,14 +198,32 @@ def _braking(design: Design, motors, samples, rows: np.ndarray, known: np.ndarra
     return check, np.where(known, regenerated, np.nan), np.where(known, resistor, np.nan)
 
 
-def _cycle_time(design: Design, T: np.ndarray) -> np.ndarray:
-    """The task shorthand's cycle time at move durations T."""
+def _segmented(calculator) -> bool:
+    """A cycle of segments (sizer.sizing.segment_cycle): its 'duration' is the scale s."""
+    return bool(getattr(calculator, "segmented", False))
+
+
+def _samples(design: Design, calculator, T: np.ndarray):
+    """One machine cycle sampled per candidate: the task shorthand at move durations T,
+    a cycle of segments at scales T (sizer.sizing.segment_samples)."""
+    if _segmented(calculator):
+        from sizer.sizing.segment_samples import segment_samples
+
+        return segment_samples(calculator, T)
+    from sizer.sizing.cycle_samples import cycle_samples
+
+    return cycle_samples(design, calculator, T)
+
+
+def _cycle_time(design: Design, calculator, T: np.ndarray) -> np.ndarray:
+    """The machine cycle's time at move durations (or a cycle's scales) T."""
+    if _segmented(calculator):
+        return np.asarray(calculator.cycle_time(T), dtype=float)
     task = design.task
-    moves = task.moves_per_cycle
-    return moves * (T + task.dwell)
+    return task.moves_per_cycle * (T + task.dwell)
 
 
-def _thermal_model_applies(design: Design, motors, T: np.ndarray) -> np.ndarray:
+def _thermal_model_applies(motors, cycle_time: np.ndarray) -> np.ndarray:
     """Where the heat check needs the winding model (the cycle is not much shorter than
     tau_th, sizer.thermal.applied_check); elsewhere the RMS-equivalent rise applies."""
     from sizer.thermal.verdict import RMS_SHARE
@@ -212,7 +231,7 @@ def _thermal_model_applies(design: Design, motors, T: np.ndarray) -> np.ndarray:
     tau_th = _motor_column(motors.catalog, motors.index, "thermal_time_constant")
     allowed = _motor_column(motors.catalog, motors.index, "max_winding_temperature_rise")
     heated = np.isfinite(tau_th) & np.isfinite(allowed)
-    return heated & ~(RMS_SHARE * np.where(heated, tau_th, 0.0) > _cycle_time(design, T))
+    return heated & ~(RMS_SHARE * np.where(heated, tau_th, 0.0) > cycle_time)
 
 
 def _heat(design: Design, motors, samples, rows: np.ndarray, thermal: np.ndarray,

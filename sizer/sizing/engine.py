@@ -168,14 +168,28 @@ def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates) -> C
     residual = None
     if vibration is not None:
         duration, metrics, checks, feasible, residual = vibration
-    energy = energy_checks(design, calculator, duration, metrics, feasible,
-                           design.task.minimize)
-    if energy is not None and design.task.minimize and residual is None:
+    duration, metrics, checks, feasible, figures = _with_energy(
+        design, calculator, duration, metrics, checks, feasible, design.task.minimize,
+        residual is not None, design.task.linear)
+    return _table(design, law, candidates, duration, metrics, checks, feasible, residual,
+                  figures)
+
+
+def _with_energy(design: Design, calculator, duration: np.ndarray, metrics, checks, feasible,
+                 minimize: bool, vibrating: bool, linear: bool):
+    """The braking and heat checks added (sizer.sizing.energy_check), and in minimize mode
+    the candidates that fail only those moved to the first duration that passes them
+    (not with a load mode: ``vibrating``). ``duration`` is the move's T, or a cycle's scale
+    s. Returns (duration, metrics, checks, feasible, figures); unchanged, without figures,
+    for a design with neither check."""
+    energy = energy_checks(design, calculator, duration, metrics, feasible, minimize)
+    if energy is not None and minimize and not vibrating:
         moved = _energy_moved(design, calculator, duration, feasible, energy)
         if moved is not None:
             rows, T = moved
             metrics = merge_metrics(metrics, rows, calculator.take(rows).evaluate(T))
-            checks = evaluate_checks(metrics, motors, drive, design.limits, design.task.linear)
+            checks = evaluate_checks(metrics, calculator.motors, calculator.drive,
+                                     design.limits, linear)
             # only the moved rows change: their verdicts and durations from the new checks
             feasible = np.array(feasible, dtype=bool)
             feasible[rows] = all_pass(checks)[rows]
@@ -183,9 +197,8 @@ def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates) -> C
             duration[rows] = np.where(feasible[rows], T, np.nan)
             energy = energy_checks(design, calculator, duration, metrics, feasible, True)
     if energy is None:
-        return _table(design, law, candidates, duration, metrics, checks, feasible, residual)
-    return _table(design, law, candidates, energy.duration, metrics,
-                  [*checks, *energy.checks], energy.feasible, residual, energy.figures)
+        return duration, metrics, checks, feasible, None
+    return energy.duration, metrics, [*checks, *energy.checks], energy.feasible, energy.figures
 
 
 def _energy_moved(design: Design, calculator, duration: np.ndarray, feasible: np.ndarray,
@@ -269,10 +282,14 @@ def _evaluate_cycle_chunk(design: Design, law: MotionLaw,
                            cycle.minimize, cycle.linear)
     residual = None
     if vibration is not None:
-        _, metrics, checks, feasible, residual = vibration
+        scale, metrics, checks, feasible, residual = vibration
+    _, metrics, checks, feasible, figures = _with_energy(
+        design, calculator, scale, metrics, checks, feasible, cycle.minimize,
+        residual is not None, cycle.linear)
     duration = np.where(feasible, metrics.duration, np.nan) if cycle.minimize \
         else metrics.duration
-    return _table(design, law, candidates, duration, metrics, checks, feasible, residual)
+    return _table(design, law, candidates, duration, metrics, checks, feasible, residual,
+                  figures)
 
 
 LINKAGE_SAMPLES = 8192

@@ -1,0 +1,116 @@
+"""Energy and heat over a cycle of segments (issue 16): the braking and heat checks of the
+engine on cycles of moves, runs and dwells (sizer.sizing.segment_samples).
+
+Numbers from closed forms: a lossless mass returns its kinetic energy 1/2 M v^2 at each
+stop (M = m + J_m K^2, the rotor reflected to the load); and from an independent path:
+the task shorthand written as a cycle of segments gives the figures of the task.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from sizer import api
+
+MOTOR = {"id": "m1", "inertia": "1e-4 kg*m^2", "continuous_torque": "2 N*m",
+         "peak_torque": "6 N*m", "rated_speed": "3000 rpm"}
+HEATED = {**MOTOR, "torque_constant": "0.5 N*m/A", "winding_resistance": "2 ohm",
+          "thermal_time_constant": "2 s", "max_winding_temperature_rise": "100 K"}
+
+
+def _records(design: dict) -> list[dict]:
+    return api.size(design).to_records()
+
+
+def test_a_lossless_flying_saw_returns_the_kinetic_energy_of_its_stops() -> None:
+    """Accelerate 100 mm to 0.5 m/s in 0.4 s and stop from it over 100 mm in 0.4 s: a
+    cubic between those speeds is a linear ramp of the speed (q = 2u - u^2), so each
+    stop returns 1/2 M v^2 exactly; the return (cycloidal, 400 mm in 0.5 s) returns
+    1/2 M (2 L / T)^2; the run at constant speed against 120 N returns nothing."""
+    m, r, J_m = 20.0, 0.03, 1e-4
+    design = {
+        "name": "saw",
+        "cycle": {"closed": True, "segments": [
+            {"move": {"displacement": "100 mm", "end_speed": "0.5 m/s", "duration": "0.4 s"}},
+            {"run": {"speed": "0.5 m/s", "duration": "0.4 s", "force": "120 N"}},
+            {"move": {"displacement": "100 mm", "start_speed": "0.5 m/s",
+                      "duration": "0.4 s"}},
+            {"move": {"displacement": "-400 mm", "duration": "0.5 s",
+                      "law": "cycloidal"}},
+            {"dwell": {"duration": "0.3 s"}}]},
+        "load": {"mass": f"{m} kg"},
+        "transmission": {"type": "rack_pinion", "pitch_radius": f"{r * 1000} mm"},
+        "laws": ["poly3"],
+        "motors": [MOTOR],
+        "limits": {"braking_resistor_power": "1000 W"},
+    }
+    result = _records(design)[0]
+    M = m + J_m / r**2
+    expected = 0.5 * M * 0.5**2 + 0.5 * M * (2 * 0.4 / 0.5) ** 2
+    # the bus power is the piecewise-linear interpolant of 1001 samples per move: to 1e-5
+    assert result["regenerated_energy"] == pytest.approx(expected, rel=1e-5)
+    assert result["braking_power"] == pytest.approx(expected / 2.0, rel=1e-5)  # T_c = 2 s
+    check = next(c for c in result["checks"] if c["name"] == "braking_resistor_power")
+    assert check["limit"] == 1000.0 and check["passed"]
+
+
+def _as_cycle(task: dict) -> dict:
+    """The task's cycle with its first dwell split in two halves: the same motion, but not
+    the task shorthand, so the engine sizes it as a cycle of segments."""
+    T, h = task["duration"], task["displacement"]
+    half = {"dwell": {"duration": f"{float(task['dwell'].split()[0]) / 2} s"}}
+    return {"closed": True, "segments": [
+        {"move": {"displacement": h, "duration": T}}, half, half,
+        {"move": {"displacement": "-" + h, "duration": T}},
+        {"dwell": {"duration": task["dwell"]}}]}
+
+
+@pytest.mark.parametrize("load", [
+    {"inertia": "0.02 kg*m^2"},
+    {"inertia": "0.02 kg*m^2", "friction": "0.3 N*m", "damping": "0.01 N*m*s/rad"},
+    {"inertia": "0.02 kg*m^2", "torque": "0.4 N*m"},
+])
+def test_the_task_as_a_cycle_of_segments_has_the_tasks_energy_and_heat(load: dict) -> None:
+    task = {"displacement": "90 deg", "duration": "0.2 s", "dwell": "0.3 s", "return": True}
+    base = {"load": load, "transmission": {"type": "gearbox", "ratio": 5, "efficiency": 0.9},
+            "laws": ["cycloidal", "poly5"], "motors": [HEATED],
+            "limits": {"braking_resistor_power": "50 W"}}
+    by_task = _records({**base, "task": task})
+    by_cycle = _records({**base, "cycle": _as_cycle(task)})
+    assert len(by_task) == len(by_cycle) == 2
+    for a, b in zip(sorted(by_task, key=lambda r: r["spec"]),
+                    sorted(by_cycle, key=lambda r: r["spec"]), strict=True):
+        for name in ("regenerated_energy", "braking_power", "winding_rise", "rms_torque"):
+            assert b[name] == pytest.approx(a[name], rel=1e-9), name
+        names = {c["name"] for c in b["checks"]}
+        assert {"braking_resistor_power", "winding_temperature_rise"} <= names
+
+
+def test_a_minimized_cycle_is_lengthened_until_the_resistor_copes() -> None:
+    """The free moves' duration grows until the braking power meets the limit: at the
+    answer the resistor's power equals the limit (the binding check), and the cycle is
+    longer than without the limit. Lossless: each stop returns 1/2 J omega^2 with
+    omega = 2 h / T (cycloidal), two stops per cycle."""
+    design = {
+        "cycle": {"closed": True, "segments": [
+            {"move": {"displacement": "180 deg", "duration": "free"}},
+            {"dwell": {"duration": "0.1 s"}}, {"dwell": {"duration": "0.1 s"}},
+            {"move": {"displacement": "-180 deg", "duration": "free"}},
+            {"dwell": {"duration": "0.2 s"}}]},
+        "load": {"inertia": "0.05 kg*m^2"},
+        "laws": ["cycloidal"], "motors": [{**MOTOR, "peak_torque": "60 N*m",
+                                           "continuous_torque": "30 N*m"}],
+    }
+    free = _records(design)[0]
+    limited = _records({**design, "limits": {"braking_resistor_power": "20 W"}})[0]
+    assert limited["feasible"] and limited["duration"] > free["duration"]
+    assert limited["braking_power"] == pytest.approx(20.0, rel=1e-6)
+    assert limited["limiting"] == "braking_resistor_power"
+    J = 0.05 + 1e-4
+    T = (limited["duration"] - 0.4) / 2  # the duration of a cycle is its cycle time
+    assert limited["regenerated_energy"] == pytest.approx(
+        2 * 0.5 * J * (2 * math.pi / T) ** 2, rel=1e-5)
+    assert limited["braking_power"] == pytest.approx(
+        limited["regenerated_energy"] / limited["duration"], rel=1e-12)
