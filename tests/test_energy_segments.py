@@ -114,3 +114,17 @@ def test_a_minimized_cycle_is_lengthened_until_the_resistor_copes() -> None:
         2 * 0.5 * J * (2 * math.pi / T) ** 2, rel=1e-5)
     assert limited["braking_power"] == pytest.approx(
         limited["regenerated_energy"] / limited["duration"], rel=1e-12)
+
+
+def test_the_design_report_states_the_energy_figures() -> None:
+    from sizer.report.design_report import DesignReport
+
+    design = api.load({"task": {"displacement": "90 deg", "duration": "0.2 s",
+                                "dwell": "0.3 s"},
+                       "load": {"inertia": "0.02 kg*m^2"}, "laws": ["cycloidal"],
+                       "motors": [HEATED], "limits": {"braking_resistor_power": "100 W"}})
+    sizing = api.size(design)
+    best = sizing.results[0]
+    text = DesignReport(design, sizing, best=1).markdown()
+    assert f"{best.regenerated_energy:.5g} J per cycle returned to the DC bus" in text
+    assert f"{best.winding_rise:.5g} K winding temperature rise" in text

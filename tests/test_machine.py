@@ -257,3 +257,28 @@ def test_the_cli_refuses_design_options_on_a_machine(tmp_path: Path) -> None:
     out = run_cli("size", str(bad))
     assert out.returncode == 2 and "axes[0].task.move" in out.stderr
     assert f"{bad}:" in out.stderr and "Traceback" not in out.stderr
+
+
+def test_the_report_of_a_machine_links_each_axis_report(tmp_path: Path) -> None:
+    out = run_cli("report", str(EXAMPLE), "-o", str(tmp_path / "r"), "--best", "1")
+    assert out.returncode == 0, out.stderr
+    text = (tmp_path / "r" / "report.md").read_text()
+    assert text.startswith("# Two-axis packer: 2 axes") and "(bus.png)" in text
+    for folder in ("1-table", "2-pusher"):
+        assert f"]({folder}/report.md)" in text
+        assert (tmp_path / "r" / folder / "report.md").read_text().startswith("# ")
+    assert (tmp_path / "r" / "bus.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    again = tmp_path / "again"
+    assert run_cli("report", str(EXAMPLE), "-o", str(again), "--best", "1").returncode == 0
+    assert (again / "report.md").read_text() == text  # deterministic
+
+
+def test_the_bus_figure_draws_the_summed_power() -> None:
+    from sizer.report.plots.bus_power import GID_POWER, bus_figure
+
+    result = api.size_machine(EXAMPLE)
+    assert result.bus is not None
+    figure = bus_figure(result.bus)
+    lines = [a for ax in figure.axes for a in ax.get_lines() if a.get_gid() == GID_POWER]
+    assert len(lines) == 1
+    np.testing.assert_array_equal(lines[0].get_ydata(), result.bus.power)

@@ -9,6 +9,7 @@ import typer
 
 from sizer.cli.catalog_option import CatalogOption, DesignArgument
 from sizer.cli.plot_command import DpiOption
+from sizer.cli.size_command import _is_machine
 from sizer.errors import UserError
 from sizer.report.printable import printable
 
@@ -68,10 +69,40 @@ def report(
     targets = [output / REPORT_FILE, output / LAWS_FIGURE, output / TIME_FIGURE,
                *(output / candidate_figure(rank) for rank in range(1, best + 1))]
     check_outputs(targets, [design, *(catalog or ())])
+    if _is_machine(design):
+        _machine_report(design, output, catalog, motor, rank_by, top, best, dpi, targets)
+        return
     loaded, sizing = load_and_size(design, catalog, motor, rank_by, outputs=targets)
     written = write_report(loaded, sizing, output, top=top, best=best, rank_by=rank_by,
                            source=design.name, dpi=dpi)
     typer.echo(printable(f"{written[0]}: report with {len(written) - 1} figures"))
+
+
+def _machine_report(path: Path, output: Path, catalog, motor, rank_by: str | None, top: int,
+                    best: int, dpi: float, targets: list[Path]) -> None:
+    """``sizer report`` of a machine file: DIR/report.md, the bus figure, and each axis's
+    design report in DIR/<n>-<axis>/."""
+    from sizer import api
+    from sizer.cli.output_guard import check_outputs
+    from sizer.cli.progress import sizing_progress
+    from sizer.report.machine_file_report import BUS_FIGURE, axis_folder, write_machine_report
+
+    for given, option in ((catalog, "--catalog"), (motor, "--motor")):
+        if given:
+            raise UserError("not for a machine file: each axis names its motors",
+                            field=option)
+    machine = api.load_machine(path)
+    folders = [output / axis_folder(a.name, i) for i, a in enumerate(machine.axes)]
+    check_outputs([*targets, output / BUS_FIGURE,
+                   *(f / t.name for f in folders for t in targets)], machine.files)
+    try:
+        with sizing_progress(f"sizing {path.name}") as progress:
+            result = api.size_machine(machine, rank_by=rank_by, progress=progress)
+    except UserError as error:
+        raise error.located(file=str(path)) from None
+    written = write_machine_report(machine, result, output, top=top, best=best,
+                                   rank_by=rank_by, dpi=dpi)
+    typer.echo(printable(f"{written[0]}: machine report with {len(written) - 1} files"))
 
 
 def register(app: typer.Typer) -> None:

@@ -464,6 +464,13 @@ class DesignReport:
             parts.append(f"RMS torque {short(r.rms_torque)} N*m")
         if r.max_speed is not None:
             parts.append(f"max speed {short(r.max_speed * RPM_PER_RAD_S)} rpm")
+        if r.drive is not None:
+            parts.append(f"drive {r.drive}")
+        for value, text in ((r.regenerated_energy, "J per cycle returned to the DC bus"),
+                            (r.braking_power, "W braking resistor (continuous)"),
+                            (r.winding_rise, "K winding temperature rise")):
+            if value is not None and math.isfinite(value):
+                parts.append(f"{short(value)} {text}")
         return ", ".join(parts)
 
 
