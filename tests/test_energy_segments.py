@@ -128,3 +128,26 @@ def test_the_design_report_states_the_energy_figures() -> None:
     text = DesignReport(design, sizing, best=1).markdown()
     assert f"{best.regenerated_energy:.5g} J per cycle returned to the DC bus" in text
     assert f"{best.winding_rise:.5g} K winding temperature rise" in text
+
+
+def test_the_power_figures_of_a_lossless_inertia() -> None:
+    """Cycloidal, h in T then a dwell, J on a motor with k_t and R: the shaft power
+    P = J h^2/T^3 v_N a_N peaks at u = 1/3 (cos 2 pi u = -1/2): 2 pi (3 sqrt 3 / 4)
+    J h^2/T^3; the motoring half gives 1/2 J omega_max^2 per cycle, omega_max = 2 h/T;
+    the copper loss is 3/2 R (tau_rms/k_t)^2 and, the mechanics lossless, the net energy
+    per cycle is that loss over the cycle."""
+    J, h, T, dwell, k_t, R = 0.02, math.pi / 2, 0.2, 0.3, 0.5, 2.0
+    motor = {**HEATED, "inertia": 0}
+    design = {"task": {"displacement": "90 deg", "duration": f"{T} s", "dwell": f"{dwell} s"},
+              "load": {"inertia": f"{J} kg*m^2"}, "laws": ["cycloidal"], "motors": [motor],
+              "limits": {"braking_resistor_power": "100 W"}}
+    r = _records(design)[0]
+    peak = 2 * math.pi * 3 * math.sqrt(3) / 4 * J * h**2 / T**3
+    assert r["peak_power"] == pytest.approx(peak, rel=1e-5)
+    assert r["mean_power"] == pytest.approx(0.5 * J * (2 * h / T) ** 2 / (T + dwell), rel=1e-5)
+    copper = 1.5 * R * (r["rms_torque"] / k_t) ** 2
+    assert r["copper_loss"] == pytest.approx(copper, rel=1e-5)
+    assert r["cycle_energy"] == pytest.approx(copper * (T + dwell), rel=1e-5)
+    without = _records({**design, "motors": [{**MOTOR, "inertia": 0}]})[0]
+    assert without["peak_power"] == pytest.approx(peak, rel=1e-5)
+    assert without.get("copper_loss") is None and without.get("cycle_energy") is None

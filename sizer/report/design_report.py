@@ -466,7 +466,11 @@ class DesignReport:
             parts.append(f"max speed {short(r.max_speed * RPM_PER_RAD_S)} rpm")
         if r.drive is not None:
             parts.append(f"drive {r.drive}")
-        for value, text in ((r.regenerated_energy, "J per cycle returned to the DC bus"),
+        for value, text in ((r.peak_power, "W peak motoring power"),
+                            (r.mean_power, "W mean motoring power"),
+                            (r.copper_loss, "W mean copper loss"),
+                            (r.cycle_energy, "J per cycle drawn from the DC bus (net)"),
+                            (r.regenerated_energy, "J per cycle returned to the DC bus"),
                             (r.braking_power, "W braking resistor (continuous)"),
                             (r.winding_rise, "K winding temperature rise")):
             if value is not None and math.isfinite(value):

@@ -21,7 +21,12 @@ duration:
 
 Figures: ``regenerated_energy`` (J per cycle at the bus) and ``braking_power`` (W, the
 resistor's continuous power) with the braking check, ``winding_rise`` (K) with the heat
-check; NaN where a candidate has no such check.
+check; NaN where a candidate has no such check. With either check, for every candidate
+with a duration, the power at the shaft and the bus (sizer.energy.power.PowerFigures):
+``peak_power`` (the largest motoring shaft power tau*omega, W), ``mean_power`` (the
+motoring shaft power's mean over the cycle, W), ``copper_loss`` (the mean copper loss, W)
+and ``cycle_energy`` (the net energy drawn from the bus per cycle, J: motoring minus
+regenerated, copper included); the last two NaN where the motor lacks k_t or R.
 """
 
 from __future__ import annotations
@@ -38,7 +43,12 @@ from sizer.sizing.cycle import CycleCalculator, CycleMetrics
 REGENERATED = "regenerated_energy"
 BRAKING_POWER = "braking_power"
 WINDING_RISE = "winding_rise"
-ENERGY_FIGURES = (REGENERATED, BRAKING_POWER, WINDING_RISE)
+PEAK_POWER = "peak_power"
+MEAN_POWER = "mean_power"
+COPPER_LOSS = "copper_loss"
+CYCLE_ENERGY = "cycle_energy"
+ENERGY_FIGURES = (REGENERATED, BRAKING_POWER, WINDING_RISE, PEAK_POWER, MEAN_POWER,
+                  COPPER_LOSS, CYCLE_ENERGY)
 """The optional figures of this module, in the order results list them."""
 
 HEAT_CHECK = "winding_temperature_rise"
@@ -124,32 +134,29 @@ def energy_checks(design: Design, calculator: CycleCalculator, duration: np.ndar
     T = np.broadcast_to(np.asarray(duration, dtype=float), (n,))
     known = np.isfinite(T) & (T > 0.0)
     cycle_time = _cycle_time(design, calculator, np.where(known, T, 1.0))
-    # samples only where a check needs them: a braking limit, or a heat check whose cycle
-    # is not much shorter than tau_th (else the RMS-equivalent rise needs none)
-    need = np.zeros(n, dtype=bool)
-    if brake:
-        need |= np.isfinite(_braking_limit(design, motors))
-    thermal = np.zeros(n, dtype=bool)
+    thermal = np.zeros(n, dtype=bool)  # the winding model, where the cycle is not short
     if heat:
         thermal = _thermal_model_applies(motors, cycle_time) & known
-        need |= thermal
-    rows = np.flatnonzero(need & known)
-    samples = None
+    wound = None
+    rows = np.flatnonzero(known)  # every candidate with a duration: its power figures
+    samples = power = None
     if rows.size:
         samples = _samples(design, calculator.take(rows), T[rows])
+        power, wound = _axis_power(motors, samples, rows)
     feasible = np.asarray(feasible, dtype=bool).copy()
     checks: list[CheckArrays] = []
     figures: dict[str, np.ndarray] = {}
     if brake:
-        check, regenerated, power = _braking(design, motors, samples, rows, known)
+        check, regenerated, resistor = _braking(design, motors, power, rows, known)
         checks.append(check)
         feasible &= check.passed
-        figures[REGENERATED], figures[BRAKING_POWER] = regenerated, power
+        figures[REGENERATED], figures[BRAKING_POWER] = regenerated, resistor
     if heat:
         check, rise = _heat(design, motors, samples, rows, thermal, metrics, known)
         checks.append(check)
         feasible &= check.passed
         figures[WINDING_RISE] = rise
+    figures.update(_power_figures(n, power, wound, rows))
     if minimize:
         T = np.where(feasible, T, np.nan)
     return EnergyChecks(checks, feasible, figures, np.array(T, dtype=float))
@@ -163,23 +170,47 @@ def _braking_limit(design: Design, motors) -> np.ndarray:
     return _drive_column(motors.drives, motors.drive, len(motors), "braking_resistor_power")
 
 
-def _braking(design: Design, motors, samples, rows: np.ndarray, known: np.ndarray):
+def _axis_power(motors, samples, rows: np.ndarray):
+    """The shaft, copper and bus power of the candidates at ``rows`` (their samples), and
+    where the copper loss is known (the motor gives k_t and R)."""
+    from sizer.energy import axis_power
+
+    k_t = _motor_column(motors.catalog, motors.index, "torque_constant")[rows]
+    R = _motor_column(motors.catalog, motors.index, "winding_resistance")[rows]
+    wound = np.isfinite(k_t) & np.isfinite(R)
+    power = axis_power(samples.time, samples.torque, samples.speed,
+                       torque_constant=np.where(wound, k_t, 1.0),
+                       winding_resistance=np.where(wound, R, 0.0))
+    return power, wound
+
+
+def _power_figures(n: int, power, wound: np.ndarray | None,
+                   rows: np.ndarray) -> dict[str, np.ndarray]:
+    """Peak and mean motoring shaft power, mean copper loss and net bus energy per cycle
+    for every candidate (NaN where unknown)."""
+    out = {name: np.full(n, np.nan) for name in (PEAK_POWER, MEAN_POWER, COPPER_LOSS,
+                                                 CYCLE_ENERGY)}
+    if power is None or wound is None:
+        return out
+    f = power.figures()
+    out[PEAK_POWER][rows] = f.peak_motoring_power
+    out[MEAN_POWER][rows] = f.mean_motoring_power
+    out[COPPER_LOSS][rows] = np.where(wound, f.mean_copper_loss, np.nan)
+    out[CYCLE_ENERGY][rows] = np.where(wound, f.net_energy, np.nan)
+    return out
+
+
+def _braking(design: Design, motors, power, rows: np.ndarray, known: np.ndarray):
     """The braking check, the regenerated energy per cycle and the resistor's power; the
-    samples are those of the candidates at ``rows``."""
-    from sizer.energy import axis_power, braking, capacitor_energy
+    bus power is that of the candidates at ``rows``."""
+    from sizer.energy import braking, capacitor_energy
 
     n = len(motors)
     limit = _braking_limit(design, motors)
     applies = np.isfinite(limit)
     regenerated = np.full(n, np.nan)
     resistor = np.full(n, np.nan)
-    if samples is not None:
-        k_t = _motor_column(motors.catalog, motors.index, "torque_constant")[rows]
-        R = _motor_column(motors.catalog, motors.index, "winding_resistance")[rows]
-        wound = np.isfinite(k_t) & np.isfinite(R)
-        power = axis_power(samples.time, samples.torque, samples.speed,
-                           torque_constant=np.where(wound, k_t, 1.0),
-                           winding_resistance=np.where(wound, R, 0.0))
+    if power is not None:
         C = _drive_column(motors.drives, motors.drive, n, "bus_capacitance")[rows]
         u_nom = _drive_column(motors.drives, motors.drive, n, "dc_bus_voltage")[rows]
         u_top = _drive_column(motors.drives, motors.drive, n, "braking_threshold")
@@ -189,7 +220,7 @@ def _braking(design: Design, motors, samples, rows: np.ndarray, known: np.ndarra
         absorbable = np.zeros(rows.size)
         if stored.any():
             absorbable[stored] = capacitor_energy(C[stored], u_top[stored], u_nom[stored])
-        result = braking(samples.time, power.bus, absorbable)
+        result = braking(power.time, power.bus, absorbable)
         regenerated[rows] = result.regenerated_energy
         resistor[rows] = result.resistor_continuous_power
     value = np.where(known & applies, np.nan_to_num(resistor, nan=0.0), 0.0)

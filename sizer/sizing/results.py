@@ -146,6 +146,16 @@ class CandidateResult:
     winding_rise: float | None = None
     """K: the winding temperature rise of the heat check that applies (the thermal model's
     periodic peak, or the RMS-equivalent rise); None where the motor has no heat check."""
+    peak_power: float | None = None
+    """W: the largest motoring power at the motor shaft (tau*omega > 0), where the design
+    has a braking or heat check; None otherwise. So are the next three."""
+    mean_power: float | None = None
+    """W: the motoring shaft power's mean over the machine cycle."""
+    copper_loss: float | None = None
+    """W: the mean copper loss, 3/2 R (tau/k_t)^2 (None where the motor lacks k_t or R)."""
+    cycle_energy: float | None = None
+    """J: the net energy drawn from the DC bus per machine cycle (motoring minus
+    regenerated, copper included; None where the motor lacks k_t or R)."""
     transmission: Transmission | None = None
     rated_power: float | None = None
     continuous_torque: float | None = None
