@@ -282,3 +282,18 @@ def test_the_bus_figure_draws_the_summed_power() -> None:
     lines = [a for ax in figure.axes for a in ax.get_lines() if a.get_gid() == GID_POWER]
     assert len(lines) == 1
     np.testing.assert_array_equal(lines[0].get_ydata(), result.bus.power)
+
+
+def test_sizer_check_passes_a_feasible_machine_and_fails_a_too_fast_one(tmp_path: Path) -> None:
+    out = run_cli("check", str(EXAMPLE))
+    assert out.returncode == 0 and "\nPASS: machine Two-axis packer" in out.stdout
+    fast = tmp_path / "fast.yaml"
+    catalog = (ROOT / "examples" / "catalogs" / "example-servo.yaml").as_posix()
+    fast.write_text(EXAMPLE.read_text().replace("master_speed: minimize", "master_speed: 1000 rpm")
+                    .replace("../catalogs/example-servo.yaml", catalog))
+    out = run_cli("check", str(fast), "--format", "json")
+    assert out.returncode == 1, out.stderr
+    data = json.loads(out.stdout)
+    assert data["passed"] is False and data["reason"].startswith("axis ")
+    text = run_cli("check", str(fast)).stdout
+    assert "FAIL: machine Two-axis packer: axis" in text

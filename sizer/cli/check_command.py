@@ -28,7 +28,8 @@ class CheckFormat(StrEnum):
 def check(
     designs: Annotated[list[Path], typer.Argument(
         metavar="DESIGN.yaml...",
-        help="Design files, each naming the motor and law to check.", show_default=False)],
+        help="Design files, each naming the motor and law to check, or machine files.",
+        show_default=False)],
     catalog: CatalogOption = None,
     fmt: Annotated[CheckFormat, typer.Option(
         "--format", "-f", case_sensitive=False,
@@ -38,6 +39,9 @@ def check(
     envelope: EnvelopeOption = None,
 ) -> None:
     """Check the motor and law each design names (`check: {motor: ID, law: SPEC}`).
+
+    A machine file (`axes:`) passes when every axis has a feasible pair at the master
+    speed and the bus copes.
 
     Exit code 0 when every design's pair meets every limit with the required margins,
     1 when one does not (the output says which limit fails and by how much), 2 when a
@@ -89,9 +93,12 @@ def check_one(design: Path, catalogs: list[str] | tuple[str, ...],
     """Load a design (with --envelope) and check its chosen pair (sizer.api); UserErrors
     name the file."""
     from sizer import api
+    from sizer.cli.size_command import _is_machine
     from sizer.report.check_report import CheckDocument
     from sizer.report.segment_table import breakdown_for
 
+    if _is_machine(design):
+        return _check_machine(design, catalogs, envelope)  # type: ignore[return-value]
     loaded = api.override(load_design_file(design, catalogs), envelope=envelope or None)
     try:
         result = api.check(loaded)
@@ -99,6 +106,24 @@ def check_one(design: Path, catalogs: list[str] | tuple[str, ...],
     except UserError as error:
         raise error.located(file=str(design)) from None
     return CheckDocument(result, loaded, api.assumptions(loaded), segments)
+
+
+def _check_machine(path: Path, catalogs: list[str] | tuple[str, ...],
+                   envelope: str | None):
+    """A machine file: PASS when every axis has a feasible pair at the master speed (the
+    slowest axis's with minimize) and the bus copes."""
+    from sizer import api
+    from sizer.report.machine_report import MachineCheckDocument
+
+    if catalogs:
+        raise UserError("not for a machine file: each axis names its motors",
+                        field="--catalog")
+    machine = api.load_machine(path)
+    try:
+        result = api.size_machine(machine, envelope=envelope or None)
+    except UserError as error:
+        raise error.located(file=str(path)) from None
+    return MachineCheckDocument(result, machine, path.stem)
 
 
 def register(app: typer.Typer) -> None:

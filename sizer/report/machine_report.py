@@ -175,6 +175,37 @@ def _bus_json(bus: BusResult) -> dict[str, Any]:
     return out
 
 
+class MachineCheckDocument:
+    """``sizer check`` of a machine file: the machine's lines, then PASS (every axis has a
+    feasible pair at the master speed and the bus copes) or FAIL with the reason."""
+
+    def __init__(self, result: MachineResult, machine: Machine, source: str) -> None:
+        self.document = MachineDocument(result, machine)
+        self.result = result
+        self.source = source
+
+    @property
+    def passed(self) -> bool:
+        return self.result.feasible
+
+    def text(self) -> str:
+        lines = self.document.lines()[:-1]  # the verdict line is the PASS/FAIL below
+        r = self.result
+        if r.feasible:
+            chosen = ", ".join(f"{a.name}: {a.chosen.motor} with {a.chosen.spec}"
+                               for a in r.axes if a.chosen is not None)
+            lines.append(f"PASS: machine {r.name or self.source}: every axis has a feasible "
+                         f"pair ({chosen})")
+        else:
+            lines.append(f"FAIL: machine {r.name or self.source}: {r.reason}")
+        return "\n".join(lines) + "\n"
+
+    def data(self) -> dict[str, Any]:
+        out = json.loads(self.document.json())
+        out["passed"] = self.passed
+        return out
+
+
 def publish_machine(document: MachineDocument, fmt: Format, output: Path | None) -> None:
     """Write the document to ``output`` or stdout (rich tables on a terminal)."""
     if fmt is Format.TABLE and output is None and stdout_is_terminal():
