@@ -151,3 +151,44 @@ def test_the_power_figures_of_a_lossless_inertia() -> None:
     without = _records({**design, "motors": [{**MOTOR, "inertia": 0}]})[0]
     assert without["peak_power"] == pytest.approx(peak, rel=1e-5)
     assert without.get("copper_loss") is None and without.get("cycle_energy") is None
+
+
+def _crank(**task: object) -> dict:
+    """A slider-crank turned by its crank (law on the crank) with a negligible slider mass:
+    the crank's own inertia J_c behind a lossless 10:1 gearbox is the whole load."""
+    return {"task": {"displacement": "180 deg", "duration": "0.3 s", "dwell": "0.2 s",
+                     **task},
+            "load": {"mass": "1e-6 kg"},
+            "transmission": [{"type": "gearbox", "ratio": 10},
+                             {"type": "slider_crank", "crank_radius": "50 mm",
+                              "rod_length": "200 mm", "law_on": "crank",
+                              "crank_inertia": "0.002 kg*m^2"}],
+            "laws": ["cycloidal"],
+            "motors": [{**MOTOR, "inertia": "1e-5 kg*m^2"}],
+            "limits": {"braking_resistor_power": "1000 W"}}
+
+
+@pytest.mark.parametrize(("task", "stops", "cycle_time"), [
+    ({}, 1, 0.5), ({"return": True}, 2, 1.0)])
+def test_a_crank_stopped_returns_its_kinetic_energy(task: dict, stops: int,
+                                                    cycle_time: float) -> None:
+    """Each stop of the crank (cycloidal, pi in 0.3 s: omega_max = 2 pi / 0.3) returns
+    1/2 (J_c + J_m N^2) omega_max^2 (the slider's 1e-6 kg adds about 1e-6 of it); a move
+    back is a second stop."""
+    r = _records(_crank(**task))[0]
+    stop = 0.5 * (0.002 + 1e-5 * 10**2) * (2 * math.pi / 0.3) ** 2
+    assert r["duration"] == pytest.approx(0.3, rel=1e-12)
+    assert r["regenerated_energy"] == pytest.approx(stops * stop, rel=2e-5)
+    assert r["braking_power"] == pytest.approx(r["regenerated_energy"] / cycle_time,
+                                               rel=1e-12)
+    assert "braking_resistor_power" in [c["name"] for c in r["checks"]]
+    assert "dead_point" in [c["name"] for c in r["checks"]]
+
+
+def test_a_minimized_crank_is_lengthened_until_the_resistor_copes() -> None:
+    free = _records(_crank(duration="minimize"))[0]
+    limited = _records({**_crank(duration="minimize"),
+                        "limits": {"braking_resistor_power": "1 W"}})[0]
+    assert limited["feasible"] and limited["duration"] > free["duration"]
+    assert limited["braking_power"] == pytest.approx(1.0, rel=1e-6)
+    assert [c["name"] for c in limited["checks"]][0] == "dead_point"

@@ -79,9 +79,6 @@ def energy_notes(design: Design) -> list[str]:
     """What the energy and heat checks left out, for reports (none without them)."""
     if not (has_heat_check(design.motors) or has_braking_check(design, design.drives)):
         return []
-    if design.transmission.linkage is not None:
-        return ["winding_temperature_rise and braking_resistor_power are not checked "
-                "through a linkage yet"]
     minimize = design.cycle.minimize if design.cycle is not None else design.task.minimize
     if minimize and design.load.elastic is not None:
         return ["T_min is searched without winding_temperature_rise and "
@@ -229,18 +226,30 @@ def _braking(design: Design, motors, power, rows: np.ndarray, known: np.ndarray)
     return check, np.where(known, regenerated, np.nan), np.where(known, resistor, np.nan)
 
 
-def _segmented(calculator) -> bool:
-    """A cycle of segments (sizer.sizing.segment_cycle): its 'duration' is the scale s."""
-    return bool(getattr(calculator, "segmented", False))
+def _kind(calculator) -> str:
+    """'segments' (sizer.sizing.segment_cycle: its 'duration' is the scale s), 'linkage'
+    (sizer.sizing.linkage_sizing or linkage_cycle) or 'task'."""
+    module = type(calculator).__module__
+    if module.endswith("segment_cycle"):
+        return "segments"
+    if module.endswith(("linkage_sizing", "linkage_cycle")):
+        return "linkage"
+    return "task"
 
 
 def _samples(design: Design, calculator, T: np.ndarray):
     """One machine cycle sampled per candidate: the task shorthand at move durations T,
-    a cycle of segments at scales T (sizer.sizing.segment_samples)."""
-    if _segmented(calculator):
+    a cycle of segments at scales T (sizer.sizing.segment_samples), a linkage at its
+    durations or scales (sizer.sizing.linkage_samples)."""
+    kind = _kind(calculator)
+    if kind == "segments":
         from sizer.sizing.segment_samples import segment_samples
 
         return segment_samples(calculator, T)
+    if kind == "linkage":
+        from sizer.sizing.linkage_samples import linkage_samples
+
+        return linkage_samples(calculator, T)
     from sizer.sizing.cycle_samples import cycle_samples
 
     return cycle_samples(design, calculator, T)
@@ -248,8 +257,13 @@ def _samples(design: Design, calculator, T: np.ndarray):
 
 def _cycle_time(design: Design, calculator, T: np.ndarray) -> np.ndarray:
     """The machine cycle's time at move durations (or a cycle's scales) T."""
-    if _segmented(calculator):
+    kind = _kind(calculator)
+    if kind == "segments":
         return np.asarray(calculator.cycle_time(T), dtype=float)
+    if kind == "linkage":
+        from sizer.sizing.linkage_samples import cycle_time
+
+        return cycle_time(calculator, T)
     task = design.task
     return task.moves_per_cycle * (T + task.dwell)
 

@@ -27,7 +27,13 @@ from sizer.sizing.checks import TOLERANCE, evaluate_checks
 from sizer.sizing.checks import feasible as all_pass
 from sizer.sizing.cycle import CycleCalculator
 from sizer.sizing.cycle_shape import given_scale, left_out_laws, plain_design, ranked_laws
-from sizer.sizing.energy_check import EnergyChecks, energy_checks, energy_notes
+from sizer.sizing.energy_check import (
+    EnergyChecks,
+    energy_checks,
+    energy_notes,
+    has_braking_check,
+    has_heat_check,
+)
 from sizer.sizing.grid import law_grid
 from sizer.sizing.minimum_duration import is_purely_inertial, merge_metrics, minimum_duration
 from sizer.sizing.motors import MotorArrays
@@ -188,8 +194,9 @@ def _with_energy(design: Design, calculator, duration: np.ndarray, metrics, chec
         if moved is not None:
             rows, T = moved
             metrics = merge_metrics(metrics, rows, calculator.take(rows).evaluate(T))
-            checks = evaluate_checks(metrics, calculator.motors, calculator.drive,
-                                     design.limits, linear)
+            checks = _replaced(checks, evaluate_checks(metrics, calculator.motors,
+                                                       calculator.drive, design.limits,
+                                                       linear))
             # only the moved rows change: their verdicts and durations from the new checks
             feasible = np.array(feasible, dtype=bool)
             feasible[rows] = all_pass(checks)[rows]
@@ -199,6 +206,14 @@ def _with_energy(design: Design, calculator, duration: np.ndarray, metrics, chec
     if energy is None:
         return duration, metrics, checks, feasible, None
     return energy.duration, metrics, [*checks, *energy.checks], energy.feasible, energy.figures
+
+
+def _replaced(checks, new) -> list:
+    """``checks`` with those ``new`` evaluates again in their place (by name; the others,
+    such as a linkage's dead_point, kept)."""
+    by_name = {c.name: c for c in new}
+    out = [by_name.pop(c.name, c) for c in checks]
+    return [*out, *by_name.values()]
 
 
 def _energy_moved(design: Design, calculator, duration: np.ndarray, feasible: np.ndarray,
@@ -310,7 +325,27 @@ def _evaluate_linkage_chunk(design: Design, law: MotionLaw,
         evaluate = evaluate_linkage
     duration, metrics, checks, feasible = evaluate(design, law, candidates.motors,
                                                    candidates.drive)
-    return _table(design, law, candidates, duration, metrics, checks, feasible)
+    if not (has_heat_check(candidates.motors.catalog)
+            or has_braking_check(design, candidates.motors.drives)):
+        return _table(design, law, candidates, duration, metrics, checks, feasible)
+    from sizer.sizing.linkage_samples import linkage_calculator, scale_of_durations
+
+    calculator = linkage_calculator(design, law, candidates.motors, candidates.drive)
+    cycle = design.cycle is not None or design.task.return_move
+    scale = scale_of_durations(calculator, metrics.duration if cycle else duration)
+    scale = np.where(np.isfinite(duration), scale, np.nan)
+    minimize = design.cycle.minimize if design.cycle is not None else design.task.minimize
+    moved, metrics, checks, feasible, figures = _with_energy(
+        design, calculator, scale, metrics, checks, feasible, minimize, False,
+        design.cycle.linear if design.cycle is not None else design.task.linear)
+    if cycle:  # the cycle time, or for a task with a return each move's T
+        duration = metrics.duration if design.cycle is not None else \
+            (metrics.duration - 2.0 * design.task.dwell) / 2.0
+        duration = np.where(feasible, duration, np.nan) if minimize else duration
+    else:
+        duration = moved
+    return _table(design, law, candidates, duration, metrics, checks, feasible,
+                  extra=figures)
 
 
 def _table(design: Design, law: MotionLaw, candidates: Candidates, duration: np.ndarray,
