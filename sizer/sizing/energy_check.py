@@ -31,6 +31,9 @@ regenerated, copper included); the last two NaN where the motor lacks k_t or R.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass
 
 import numpy as np
@@ -57,6 +60,21 @@ BRAKING_CHECK = "braking_resistor_power"
 RMS_NOTE = "RMS-equivalent rise applied: the cycle is much shorter than the thermal time constant"
 THERMAL_NOTE = ("thermal model applied: the cycle is not much shorter than the thermal time "
                 "constant (the periodic peak rise)")
+
+
+_POWER_FIGURES: ContextVar[bool] = ContextVar("sizer_power_figures", default=True)
+
+
+@contextmanager
+def without_power_figures() -> Iterator[None]:
+    """Within: the energy checks sample only the candidates a check needs and leave out
+    the power figures (the searches that only compare verdicts: ratio, auto shape, the
+    energy lengthening, a machine's speed; their final tables are evaluated with them)."""
+    token = _POWER_FIGURES.set(False)
+    try:
+        yield
+    finally:
+        _POWER_FIGURES.reset(token)
 
 
 def _heated(motor: Motor) -> bool:
@@ -135,7 +153,12 @@ def energy_checks(design: Design, calculator: CycleCalculator, duration: np.ndar
     if heat:
         thermal = _thermal_model_applies(motors, cycle_time) & known
     wound = None
-    rows = np.flatnonzero(known)  # every candidate with a duration: its power figures
+    with_power = _POWER_FIGURES.get()
+    if with_power:  # every candidate with a duration: its power figures
+        rows = np.flatnonzero(known)
+    else:  # only where a check needs samples: a braking limit, or the winding model
+        need = thermal | (np.isfinite(_braking_limit(design, motors)) if brake else False)
+        rows = np.flatnonzero(need & known)
     samples = power = None
     if rows.size:
         samples = _samples(design, calculator.take(rows), T[rows])
@@ -153,7 +176,8 @@ def energy_checks(design: Design, calculator: CycleCalculator, duration: np.ndar
         checks.append(check)
         feasible &= check.passed
         figures[WINDING_RISE] = rise
-    figures.update(_power_figures(n, power, wound, rows))
+    if with_power:
+        figures.update(_power_figures(n, power, wound, rows))
     if minimize:
         T = np.where(feasible, T, np.nan)
     return EnergyChecks(checks, feasible, figures, np.array(T, dtype=float))

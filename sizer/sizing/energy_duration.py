@@ -19,7 +19,7 @@ from sizer.model.domain import Design
 from sizer.numerics.roots import illinois
 from sizer.sizing.checks import TOLERANCE
 from sizer.sizing.cycle import CycleCalculator
-from sizer.sizing.energy_check import energy_checks
+from sizer.sizing.energy_check import energy_checks, without_power_figures
 
 DOUBLINGS = 30
 """How far past T_min a passing duration is looked for: T_min 2^30."""
@@ -36,7 +36,9 @@ def energy_slack(design: Design, calculator: CycleCalculator, duration: np.ndarr
     sub = calculator.take(rows)
     T = np.asarray(duration, dtype=float)
     metrics = sub.evaluate(T)
-    energy = energy_checks(design, sub, T, metrics, np.ones(len(rows), dtype=bool), False)
+    with without_power_figures():
+        energy = energy_checks(design, sub, T, metrics, np.ones(len(rows), dtype=bool),
+                               False)
     if energy is None or not energy.checks:
         return np.full(len(rows), np.inf)
     return np.min([check.slack for check in energy.checks], axis=0) + TOLERANCE

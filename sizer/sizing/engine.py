@@ -33,6 +33,7 @@ from sizer.sizing.energy_check import (
     energy_notes,
     has_braking_check,
     has_heat_check,
+    without_power_figures,
 )
 from sizer.sizing.grid import law_grid
 from sizer.sizing.minimum_duration import is_purely_inertial, merge_metrics, minimum_duration
@@ -99,7 +100,8 @@ def evaluate_law(design: Design, spec: str, candidates: Candidates) -> Candidate
             raise UserError(f"{spec}: `auto` shape parameters are chosen for the task "
                             "shorthand only, not yet for a cycle of segments; give the "
                             "shape", field="laws")
-        laws = choose_shape(family, values, design, candidates)
+        with without_power_figures():  # verdicts only; the chosen laws get them below
+            laws = choose_shape(family, values, design, candidates)
     else:
         return evaluate_fixed_law(design, make_law(spec), candidates)
     distinct = list(dict.fromkeys(laws))

@@ -26,6 +26,7 @@ import numpy as np
 
 from sizer.model.machine import Machine, MachineAxis
 from sizer.numerics.roots import illinois
+from sizer.sizing.energy_check import without_power_figures
 from sizer.sizing.engine import size_design
 
 RELATIVE_TOLERANCE = 1e-12
@@ -47,7 +48,8 @@ class AxisSpeed:
 def best_duration(axis: MachineAxis, dwell_time: float) -> float:
     """min over the axis's candidates of T_min with each dwell ``dwell_time`` (s); inf
     when none is feasible at any duration."""
-    table = size_design(axis.minimizing(dwell_time)).table
+    with without_power_figures():  # only the durations count here
+        table = size_design(axis.minimizing(dwell_time)).table
     assert table is not None
     durations = np.asarray(table.figures["duration"], dtype=float)[table.feasible]
     durations = durations[np.isfinite(durations)]

@@ -15,11 +15,13 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Callable
+from contextlib import nullcontext
 
 import numpy as np
 
 from sizer.model.domain import Design, Transmission
 from sizer.sizing.candidates import Candidates
+from sizer.sizing.energy_check import has_braking_check, has_heat_check, without_power_figures
 from sizer.sizing.motors import MotorArrays
 from sizer.sizing.table import CandidateTable, Mode, concatenate
 
@@ -100,12 +102,21 @@ def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate) -> Can
     names: list[str | None] = [g.gearbox for g in choice.gearboxes]
     listed += [with_ratio(r) for r in choice.ratios]
     names += [None] * len(choice.ratios)
-    if listed:
-        n, m = len(motors), len(listed)
-        consider(listed, names, np.repeat(np.arange(n), m), np.tile(np.arange(m), n))
-    if choice.bounds is not None:
-        _continuous(choice.bounds, with_ratio, consider, best, len(motors))
-    return best.table()
+    energy = has_heat_check(motors.catalog) or has_braking_check(design, motors.drives)
+    with without_power_figures() if energy else nullcontext():
+        if listed:
+            n, m = len(motors), len(listed)
+            consider(listed, names, np.repeat(np.arange(n), m), np.tile(np.arange(m), n))
+        if choice.bounds is not None:
+            _continuous(choice.bounds, with_ratio, consider, best, len(motors))
+    chosen = best.table()
+    if not energy:
+        return chosen
+    # the chosen candidates once more, with the power figures the search left out
+    again = evaluate(Candidates.pairs(motors, design.load, list(chosen.transmissions),
+                                      np.arange(len(motors)), chosen.option,
+                                      gearboxes=chosen.gearboxes))
+    return dataclasses.replace(again, stage_ratio=chosen.stage_ratio)
 
 
 def _continuous(bounds, with_ratio, consider, best: _Best, motors: int) -> None:
