@@ -134,7 +134,8 @@ class MoveScales:
 
     acc: np.ndarray
     vel: np.ndarray
-    direction: float
+    direction: float | np.ndarray
+    """+1 or -1 (per candidate where several moves are stacked: CycleCalculator._exact_moves)."""
 
 
 class CycleCalculator:
@@ -504,8 +505,8 @@ class CycleCalculator:
         changes sign).
         """
         out = []
-        for scales in moves:
-            (peak, ratio, load, stages), exact, certified = self._exact_peaks(scales)
+        for scales, found_exactly in zip(moves, self._exact_moves(moves), strict=True):
+            (peak, ratio, load, stages), exact, certified = found_exactly
             if not exact.all():
                 index = np.flatnonzero(~exact)
                 sub = self.take(index)
@@ -522,12 +523,36 @@ class CycleCalculator:
             out.append((peak, ratio, load, stages))
         return out
 
+    def _exact_moves(self, moves: list[MoveScales]):
+        """:meth:`_exact_peaks` of every move, the moves' candidates stacked into one run
+        (the same linear functions per candidate in every move, their coefficients and
+        the direction per row): each query elementwise, so the answers are those of one
+        run per move, at the cost of one."""
+        if len(moves) == 1:
+            return [self._exact_peaks(moves[0])]
+        n = len(self.motors)
+        joined = _stacked_terms([self._channel_terms(scales) for scales in moves], n)
+        if joined is None:
+            return [self._exact_peaks(scales) for scales in moves]
+
+        def stack(values):
+            return np.concatenate([np.broadcast_to(x, (n,)) for x in values])
+
+        scales = MoveScales(stack([s.acc for s in moves]), stack([s.vel for s in moves]),
+                            np.repeat([s.direction for s in moves], n))
+        big = self.take(np.tile(np.arange(n), len(moves)))
+        (peak, ratio, load, stages), exact, certified = big._exact_peaks(scales, joined)
+        parts = [slice(i * n, (i + 1) * n) for i in range(len(moves))]
+        return [((peak[at].copy(), ratio[at].copy(), load[at].copy(),
+                  [x[at].copy() for x in stages]), exact[at].copy(), certified[at].copy())
+                for at in parts]
+
     def take(self, index: np.ndarray) -> CycleCalculator:
         """The calculator of the candidates at ``index`` (same law and grid)."""
         return CycleCalculator(self._grid, self.task, self.drive.take(index),
                                self.motors.subset(index), self.thermal_rule, law=self.law)
 
-    def _exact_peaks(self, scales: MoveScales):
+    def _exact_peaks(self, scales: MoveScales, terms=None):
         """Exact peaks of a move from the law's linear peaks (sizer.laws.linear_peaks).
 
         Every torque is a maximum of linear functions of the load's (a, v): the motor
@@ -541,6 +566,8 @@ class CycleCalculator:
         the peak over the intermittent torque at rest where the move's speed stays on the
         flat part of the region. Returns the peaks, the mask of the exact candidates and that of
         those whose torques are exact (their ratio may still need the grid search).
+        ``terms``: the channels' linear functions when the caller has them
+        (:meth:`_exact_moves`: several moves stacked; ``scales.direction`` per row).
         """
         n = len(self.motors)
         c = self.law.coefficients
@@ -585,7 +612,7 @@ class CycleCalculator:
             return np.maximum(top, -bottom)
 
         places: list[tuple[np.ndarray, np.ndarray] | None] = []  # where each |peak| is
-        motor_terms, *stage_terms = self._channel_terms(scales)
+        motor_terms, *stage_terms = self._channel_terms(scales) if terms is None else terms
         load_terms = [(np.broadcast_to(drive.load.inertia * scales.acc, (n,)),
                        np.broadcast_to(drive.load.damping * scales.vel, (n,)),
                        np.full(n, drive.load.friction + scales.direction * drive.load.torque))]
@@ -960,6 +987,21 @@ class CycleCalculator:
         lo = tau[interval, np.maximum(column - 1, 0)]
         hi = tau[interval, np.minimum(column + 1, columns - 1)]
         return lo, hi, g.piece[interval], valid, best_value
+
+
+def _stacked_terms(terms: list, n: int):
+    """The channels' linear functions of several moves (:meth:`CycleCalculator._channel_terms`
+    each) stacked along the candidates, move after move; None where the moves' channels
+    have different numbers of functions."""
+    counts = [[len(channel) for channel in t] for t in terms]
+    if any(c != counts[0] for c in counts):
+        return None
+
+    def stack(values):
+        return np.concatenate([np.broadcast_to(x, (n,)) for x in values])
+
+    return [[tuple(stack([t[c][k][i] for t in terms]) for i in range(3))
+             for k in range(len(terms[0][c]))] for c in range(len(terms[0]))]
 
 
 def _linear_maximum(pieces, a_n: np.ndarray, v_n: np.ndarray) -> np.ndarray:
