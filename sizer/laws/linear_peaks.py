@@ -135,6 +135,9 @@ def piece_values(law: MotionLaw, tau: np.ndarray, piece: np.ndarray,
     tau, piece = np.broadcast_arrays(np.asarray(tau, dtype=float), np.asarray(piece))
     flat_tau, flat_piece = tau.ravel(), piece.ravel()
     out = [np.empty(flat_tau.shape) for _ in orders]
+    if len(law.pieces) == 1:  # one piece: no grouping
+        shaped = tuple(law.piece_derivative(0, flat_tau, k).reshape(tau.shape) for k in orders)
+        return shaped[0] if isinstance(order, int) else shaped
     by_piece = np.argsort(flat_piece, kind="stable")
     bounds = np.searchsorted(flat_piece[by_piece], np.arange(len(law.pieces) + 1))
     for index in range(len(law.pieces)):
@@ -507,6 +510,16 @@ class LinearPeaks:
         bound = np.asarray(bound, dtype=float).ravel()
         last = np.searchsorted(order.x, side * bound, side="right") - 1
         return SpeedBand(side, bound, last, *order.crossings(self.law, bound))
+
+    def bands(self, bound: np.ndarray) -> tuple[SpeedBand, SpeedBand]:
+        """The parts below and above ``bound`` (:meth:`band` with side +1 and -1), their
+        common ends (the crossings of v_N = bound) found once."""
+        below, above = self._speed_order(1.0), self._speed_order(-1.0)
+        bound = np.asarray(bound, dtype=float).ravel()
+        ends = below.crossings(self.law, bound)
+        return (SpeedBand(1.0, bound, np.searchsorted(below.x, bound, side="right") - 1, *ends),
+                SpeedBand(-1.0, bound, np.searchsorted(above.x, -bound, side="right") - 1,
+                          *ends))
 
     def maximum_within(self, p: np.ndarray | float, q: np.ndarray | float,
                        band: SpeedBand) -> LinearPeak:

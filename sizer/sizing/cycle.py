@@ -724,8 +724,9 @@ class CycleCalculator:
         # above the top speed: max |tau| over v_N >= u, against the end torque
         sel = np.flatnonzero(ok)
         m = len(sel)
+        below = None
         if m:
-            band = peaks.band(bound[sel], -1.0)
+            below, band = peaks.bands(bound[sel])
             tile = np.tile(np.arange(m), 2 * count)
             solved = peaks.maximum_within(
                 np.concatenate([sign * P[sel] for sign in (1.0, -1.0) for P, _, _ in parts]),
@@ -747,13 +748,14 @@ class CycleCalculator:
             found[sel[inside]] = np.maximum(found[sel[inside]],
                                             _safe_ratio(np.maximum(top[inside], 0.0),
                                                         end[sel][inside]))
+        banded = sel  # the rows of the bands (those below are among them)
         # below the top speed: |tau| over each line of the region, where the lines are
         # positive (e > 0; where e = 0 the part above gave inf, or the row is left)
         positive = end > 0.0
         ok &= positive | (found == np.inf)
         sel = np.flatnonzero(ok & positive)
-        if len(sel):
-            band = peaks.band(bound[sel], 1.0)
+        if len(sel) and below is not None:
+            band = below.take(np.searchsorted(banded, sel))
             blocks, queries, band_rows, floors = [], [], [], []
             for column in range(alpha.shape[1]):
                 use = np.isfinite(alpha[sel, column])
