@@ -528,12 +528,16 @@ class CycleCalculator:
         (the same linear functions per candidate in every move, their coefficients and
         the direction per row): each query elementwise, so the answers are those of one
         run per move, at the cost of one."""
-        if len(moves) == 1:
-            return [self._exact_peaks(moves[0])]
+        load = self.drive.load
+        terms = [self._channel_terms(scales) for scales in moves]
         n = len(self.motors)
-        joined = _stacked_terms([self._channel_terms(scales) for scales in moves], n)
+        joined = None
+        if len(moves) > 1 and not (_inertial(terms[0][0]) and load.damping == 0.0
+                                   and load.friction == 0.0 and load.torque == 0.0):
+            joined = _stacked_terms(terms, n)
         if joined is None:
-            return [self._exact_peaks(scales) for scales in moves]
+            # no linear-peak query to share (the book's inertial case), or a single move
+            return [self._exact_peaks(scales, t) for scales, t in zip(moves, terms, strict=True)]
 
         def stack(values):
             return np.concatenate([np.broadcast_to(x, (n,)) for x in values])
@@ -576,10 +580,7 @@ class CycleCalculator:
         peaks = self.law.linear_peaks
         certified = np.ones(n, dtype=bool)
 
-        def inertial(coefficients) -> bool:
-            """Proportional to the acceleration (the book's inertial case): |P| C_a."""
-            return len(coefficients) == 1 and not np.any(coefficients[0][1]) \
-                and not np.any(coefficients[0][2])
+        inertial = _inertial
 
         def channel(coefficients, highs, lows):
             """max |value| of a maximum of linear functions of (a_N, v_N), from each
@@ -989,6 +990,13 @@ class CycleCalculator:
         lo = tau[interval, np.maximum(column - 1, 0)]
         hi = tau[interval, np.minimum(column + 1, columns - 1)]
         return lo, hi, g.piece[interval], valid, best_value
+
+
+def _inertial(coefficients) -> bool:
+    """A channel proportional to the acceleration (the book's inertial case): its peak is
+    |P| C_a, no linear-peak query."""
+    return len(coefficients) == 1 and not np.any(coefficients[0][1]) \
+        and not np.any(coefficients[0][2])
 
 
 def _stacked_terms(terms: list, n: int):
