@@ -100,9 +100,25 @@ def test_ratio_maximum_within_equals_dense_sampling(name):
         assert found.value[i] <= sampled + 1e-9 * abs(sampled)
 
 
+def concave_curve(rng: np.random.Generator, shape: int, peak: float, top: float,
+                  end: float):
+    """A concave peak region ending at (top, end): flat to a knee then falling (shape 0),
+    falling from standstill (1), or flat, then two falling segments, the second
+    steeper (2)."""
+    knee = top * float(rng.uniform(0.3, 0.8))
+    if shape == 0:
+        return ((0.0, peak), (knee, peak), (top, end))
+    if shape == 1:
+        return ((0.0, peak), (top, end))
+    middle = 0.5 * (knee + top)
+    # on the chord's upper side: the slopes fall, the curve is concave
+    at_middle = end + (peak - end) * 0.5 + (peak - end) * float(rng.uniform(0.05, 0.45))
+    return ((0.0, peak), (knee, peak), (middle, min(at_middle, peak)), (top, end))
+
+
 def leaving_case(rng: np.random.Generator, efficiency: float):
-    """A gearbox axis and motors whose peak region is flat to s1, then falls to a
-    positive end torque at v_max: concave, so the limit is the minimum of two lines."""
+    """A gearbox axis and motors whose peak region is concave and ends at a positive
+    torque at v_max (:func:`concave_curve`), so the limit is the minimum of its lines."""
     stage = Stage("gearbox", float(rng.uniform(3.0, 10.0)), efficiency, 0.0)
     load = Load(float(rng.uniform(0.01, 0.2)), damping=float(rng.uniform(0.0, 0.1)),
                 friction=float(rng.uniform(0.0, 1.0)), torque=float(rng.uniform(-2.0, 2.0)))
@@ -110,11 +126,10 @@ def leaving_case(rng: np.random.Generator, efficiency: float):
     for i in range(6):
         peak = float(rng.uniform(2.0, 8.0))
         top = float(rng.uniform(300.0, 500.0))
-        knee = top * float(rng.uniform(0.3, 0.8))
         end = peak * float(rng.uniform(0.2, 0.7))
-        curve = ((0.0, peak), (knee, peak), (top, end))
+        curve = concave_curve(rng, i % 3, peak, top, end)
         motors.append(Motor(f"m{i}", float(10 ** rng.uniform(-5, -3.5)), peak / 3.0, peak,
-                            knee, max_speed=top, intermittent_curve=curve,
+                            curve[1][0], max_speed=top, intermittent_curve=curve,
                             continuous_curve=((0.0, peak / 3.0), (top, peak / 4.0))))
     return Drive(load, Transmission((stage,))), MotorArrays.of(tuple(motors), "book")
 
@@ -154,3 +169,25 @@ def test_peak_ratio_of_moves_leaving_the_region_equals_dense_sampling(seed):
             sampled = dense_ratio(calculator, law, scales, row)
             assert ratio[row] >= sampled * (1.0 - 1e-12)
             assert ratio[row] <= sampled * (1.0 + 1e-9)
+
+
+def test_a_region_ending_at_zero_torque_gives_an_infinite_ratio():
+    """Past a region that ends at zero torque the clipped limit is zero: a move that
+    leaves it with any torque there has an infinite peak ratio (as the grid search
+    says)."""
+    stage = Stage("gearbox", 5.0, 0.9, 0.0)
+    drive = Drive(Load(0.05, damping=0.02, friction=0.3, torque=0.5), Transmission((stage,)))
+    motors = MotorArrays.of((Motor("zero", 1e-4, 1.0, 3.0, 200.0, max_speed=400.0,
+                                   intermittent_curve=((0.0, 3.0), (200.0, 3.0),
+                                                       (400.0, 0.0))),), "book")
+    law = make_law("cycloidal")
+    calculator = CycleCalculator(None, Task(1.0, 0.5, 0.1, return_move=True), drive, motors,
+                                 law=law)
+    T = np.array([5.0 * 2.0 / (1.5 * 400.0)])  # peak speed 1.5 times the end
+    for direction in (1.0, -1.0):
+        scales = MoveScales(1.0 / T / T, 1.0 / T, direction)
+        (_, ratio, _, _), exact, _ = calculator._exact_peaks(scales)
+        assert exact.all()
+        assert ratio[0] == np.inf
+        grid = calculator._sampled_peaks([scales], ratio_only=True)[0][1]
+        assert grid[0] == np.inf
