@@ -256,7 +256,8 @@ def _persistent_chain(x: list[float], y: list[float], upper: bool) -> _Chain:
         parent[i] = hull[-1] if hull else i
         hull.append(i)
     levels = max(1, int(count - 1).bit_length())
-    up = np.empty((levels, count), dtype=np.intp)
+    # 32-bit positions: the table is levels x points (a cam table's 10^5 points: 7 MB)
+    up = np.empty((levels, count), dtype=np.int32 if count < 2**31 else np.intp)
     up[0] = parent
     for k in range(1, levels):
         up[k] = up[k - 1][up[k - 1]]
