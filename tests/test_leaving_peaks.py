@@ -191,3 +191,25 @@ def test_a_region_ending_at_zero_torque_gives_an_infinite_ratio():
         assert ratio[0] == np.inf
         grid = calculator._sampled_peaks([scales], ratio_only=True)[0][1]
         assert grid[0] == np.inf
+
+
+def test_empty_bands_and_floors():
+    """A part of the move with no point gives -inf (and leaves a floor as it is); a floor
+    above the part's maximum is returned as it is, one below it gives the maximum."""
+    law = make_law("cycloidal")
+    peaks = law.linear_peaks
+    C_v = law.coefficients.C_v
+    empty = peaks.band(np.array([1.5 * C_v, 2.0 * C_v]), -1.0)  # v_N >= 1.5 C_v: nowhere
+    below_zero = peaks.band(np.array([-0.5]), 1.0)  # v_N <= -0.5: nowhere
+    assert np.all(peaks.maximum_within([1.0, 1.0], [1.0, 1.0], empty).value == -np.inf)
+    assert peaks.maximum_within([1.0], [1.0], below_zero).value[0] == -np.inf
+    got = peaks.ratio_maximum_within(1.0, 1.0, 0.0, 2.0, -0.1, below_zero, floor=[0.25])
+    assert got.value[0] == 0.25
+    band = peaks.band(np.array([0.8 * C_v, 0.8 * C_v]), 1.0)
+    free = peaks.ratio_maximum_within(np.ones(2), np.ones(2), np.zeros(2), np.full(2, 2.0),
+                                      np.full(2, -0.1), band)
+    top = free.value[0]
+    floored = peaks.ratio_maximum_within(np.ones(2), np.ones(2), np.zeros(2), np.full(2, 2.0),
+                                         np.full(2, -0.1), band, floor=[top + 1.0, top - 1.0])
+    assert floored.value[0] == top + 1.0
+    assert floored.value[1] == pytest.approx(top, rel=1e-15)

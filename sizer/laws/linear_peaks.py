@@ -624,7 +624,7 @@ class LinearPeaks:
                                        band.take(index))
             v, a = piece_values(self.law, peak.tau, peak.piece, (1, 2))
             new = (p[index] * a + q[index] * v + c[index]) / (alpha[index] + rate[index] * v)
-            better = new > r[index]
+            better = (new > r[index]) & np.isfinite(peak.value)  # (an empty part: no point)
             rows = index[better]
             gain = new[better] - r[rows]
             r[rows], tau[rows], piece[rows] = new[better], peak.tau[better], peak.piece[better]
