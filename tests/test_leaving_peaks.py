@@ -213,3 +213,29 @@ def test_empty_bands_and_floors():
                                          np.full(2, -0.1), band, floor=[top + 1.0, top - 1.0])
     assert floored.value[0] == top + 1.0
     assert floored.value[1] == pytest.approx(top, rel=1e-15)
+
+
+@pytest.mark.parametrize("name", LAWS)
+def test_peak_ratio_on_regions_not_flat_at_standstill(name):
+    """Moves inside a region that falls from standstill (its first line not flat) or rises
+    before it falls: the ratio against the first line counts too (it is not the torque
+    peak over the standstill torque there)."""
+    stage = Stage("gearbox", 5.0, 0.9, 0.0)
+    drive = Drive(Load(0.05, damping=0.02, friction=0.3, torque=0.5), Transmission((stage,)))
+    motors = MotorArrays.of((
+        Motor("falling", 1e-4, 1.0, 3.0, 400.0, max_speed=400.0,
+              intermittent_curve=((0.0, 3.0), (400.0, 1.0))),
+        Motor("rising", 1e-4, 1.0, 3.0, 400.0, max_speed=400.0,
+              intermittent_curve=((0.0, 2.0), (100.0, 3.0), (400.0, 1.0)))), "book")
+    law = make_law(name)
+    calculator = CycleCalculator(None, Task(1.0, 0.5, 0.1, return_move=True), drive, motors,
+                                 law=law)
+    T = np.full(2, 5.0 * law.coefficients.C_v / (0.9 * 400.0))  # peak speed 0.9 of the end
+    for direction in (1.0, -1.0):
+        scales = MoveScales(1.0 / T / T, 1.0 / T, direction)
+        (_, ratio, _, _), exact, _ = calculator._exact_peaks(scales)
+        assert exact.all()
+        for row in range(2):
+            sampled = dense_ratio(calculator, law, scales, row)
+            assert ratio[row] >= sampled * (1.0 - 1e-12)
+            assert ratio[row] <= sampled * (1.0 + 1e-9)

@@ -808,8 +808,11 @@ class CycleCalculator:
         for the torque's functions L_k a linear-fractional peak each
         (LinearPeaks.ratio_maximum); for -tau = min_k(-L_k) the smallest of the -L_k
         peaks, exact where its function is the torque at its maximizer (as for the torque
-        minimum in :meth:`_exact_peaks`). Candidates whose region is not concave, whose
-        move leaves the region or reaches a line's zero are left to the grid search.
+        minimum in :meth:`_exact_peaks`). The first line too where it is not flat (a
+        region falling from standstill, as a published speed-torque line); where it is
+        flat, the torque peak over it, which ``ratio`` holds. Candidates whose region is
+        not concave, whose move leaves the region or reaches a line's zero are left to
+        the grid search.
         """
         region = self.motors.intermittent.take(rows)
         with np.errstate(invalid="ignore"):  # -inf - -inf past the ends of padded curves
@@ -818,7 +821,9 @@ class CycleCalculator:
         peak_speed = speed_scale * C_v
         starts = region.speeds[:, :-1]
         used = (starts < peak_speed[:, None]) & np.isfinite(alpha)
-        used[:, 0] = False  # the flat line: the torque peak over the standstill torque
+        # a flat first line gives the torque peak over the standstill torque (``ratio``
+        # holds it); a first line that is not flat is queried like the others
+        used[:, 0] = sigma[:, 0] != 0.0
         ok = concave & (peak_speed <= region.max_speed)
         ok &= np.all(~used | (alpha + sigma * peak_speed[:, None] > 0.0), axis=1)
         n = len(self.motors)
@@ -826,8 +831,10 @@ class CycleCalculator:
         # every (line, function, side) problem in one Dinkelbach run: blocks per line of
         # the functions' +L_k, then their -L_k, over the candidates that reach the line
         blocks, queries, floors = [], [], []
-        found = ratio[rows].copy()
-        for column in range(1, alpha.shape[1]):
+        # the peak over the standstill torque is reached where the region does not rise
+        # above it (its first line flat or falling); elsewhere no floor
+        found = np.where(sigma[:, 0] <= 0.0, ratio[rows], -np.inf)
+        for column in range(alpha.shape[1]):
             sel = np.flatnonzero(ok & used[:, column])
             if len(sel):
                 blocks.append(sel)
