@@ -33,6 +33,20 @@ samples near a maximum): 1024 uniform intervals per piece and 16 points a decade
 toward the piece ends and the fine points do so at the ends of the parameter ranges too
 (elliptic n = 1000, modified cycloidal kappa = +-0.99, exponential sigma = 1, lam = 0.15),
 checked against a graded brute force.
+
+Restricted to a speed band. A move that leaves the speed-torque region needs the peaks
+over the part of the move below its top speed (v_N <= u) and the part above it
+(v_N >= u) (:meth:`LinearPeaks.band`, :meth:`LinearPeaks.maximum_within`,
+:meth:`LinearPeaks.ratio_maximum_within`). The maximum over such a part is at a
+stationary point inside it or at one of its ends, where v_N = u. The samples (with the
+exact extrema of v_N added, so that v_N is monotone between samples) ordered by v_N
+(or -v_N) make each part's samples a prefix of that order; the hull of every prefix is
+held at once by the monotone chain's persistent lower and upper chains (each point's
+predecessor when it was added), and a support query walks the chain from the prefix's
+last point by binary lifting. The vertex is refined as above (a stationary point
+outside the part does not count), and the part's ends, the roots of v_N = u in each
+monotone run of v_N (cubic Hermite model, then a Newton step on the law), are compared
+with it.
 """
 
 from __future__ import annotations
@@ -72,6 +86,46 @@ class LinearPeak:
     piece: np.ndarray
 
 
+@dataclass(frozen=True)
+class SpeedBand:
+    """Per row, the part of a move where v_N <= bound (``side`` +1: below a top speed) or
+    v_N >= bound (``side`` -1: above it), for :meth:`LinearPeaks.maximum_within`; made by
+    :meth:`LinearPeaks.band`. ``last``: the position, in the law's samples ordered by
+    side*v_N, of the last sample inside (-1: none); ``cross_*``: the points where v_N
+    crosses the bound between two samples (rows x monotone runs of v_N, ``cross_ok``
+    where there is one), the band's ends."""
+
+    side: float
+    bound: np.ndarray
+    last: np.ndarray
+    cross_tau: np.ndarray
+    cross_piece: np.ndarray
+    cross_v: np.ndarray
+    cross_a: np.ndarray
+    cross_ok: np.ndarray
+
+    def take(self, index: np.ndarray) -> SpeedBand:
+        """The rows at ``index`` (repeats allowed)."""
+        return SpeedBand(self.side, self.bound[index], self.last[index],
+                         self.cross_tau[index], self.cross_piece[index],
+                         self.cross_v[index], self.cross_a[index], self.cross_ok[index])
+
+
+@dataclass(frozen=True)
+class _Table:
+    """Samples of a law's (v_N, a_N) curve in tau order, piece by piece (one-sided values
+    at the piece ends), with j_N and q_N^(4) for the refinement."""
+
+    tau: np.ndarray
+    piece: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+    j: np.ndarray
+    snap: np.ndarray
+    first: np.ndarray
+    last: np.ndarray
+
+
 def piece_values(law: MotionLaw, tau: np.ndarray, piece: np.ndarray,
                  order: int | Sequence[int]) -> np.ndarray | tuple[np.ndarray, ...]:
     """q_N^(order) at each (tau, piece index) pair: each piece evaluated once, on its
@@ -81,6 +135,9 @@ def piece_values(law: MotionLaw, tau: np.ndarray, piece: np.ndarray,
     tau, piece = np.broadcast_arrays(np.asarray(tau, dtype=float), np.asarray(piece))
     flat_tau, flat_piece = tau.ravel(), piece.ravel()
     out = [np.empty(flat_tau.shape) for _ in orders]
+    if len(law.pieces) == 1:  # one piece: no grouping
+        shaped = tuple(law.piece_derivative(0, flat_tau, k).reshape(tau.shape) for k in orders)
+        return shaped[0] if isinstance(order, int) else shaped
     by_piece = np.argsort(flat_piece, kind="stable")
     bounds = np.searchsorted(flat_piece[by_piece], np.arange(len(law.pieces) + 1))
     for index in range(len(law.pieces)):
@@ -91,6 +148,32 @@ def piece_values(law: MotionLaw, tau: np.ndarray, piece: np.ndarray,
                 values[rows] = law.piece_derivative(index, at, k)
     shaped = tuple(values.reshape(tau.shape) for values in out)
     return shaped[0] if isinstance(order, int) else shaped
+
+
+def _hermite_root(g0: np.ndarray, g1: np.ndarray, d0: np.ndarray,
+                  d1: np.ndarray) -> np.ndarray:
+    """s in [0, 1] where the cubic H(s) = g0 + d0 s + c2 s^2 + c3 s^3 with H(0) = g0,
+    H(1) = g1 (of opposite signs) and slopes d0, d1 vanishes: safeguarded Newton steps
+    from the secant point, bisection where a step would leave the sign bracket."""
+    c2 = 3.0 * (g1 - g0) - 2.0 * d0 - d1
+    c3 = 2.0 * (g0 - g1) + d0 + d1
+    low, high = np.zeros_like(g0), np.ones_like(g0)
+    rising = g0 < 0.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        s = g0 / (g0 - g1)
+    for _ in range(NEWTON_STEPS):
+        h = g0 + s * (d0 + s * (c2 + s * c3))
+        before = (h < 0.0) == rising  # the root lies above s
+        low, high = np.where(before, s, low), np.where(before, high, s)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = s - h / (d0 + s * (2.0 * c2 + 3.0 * s * c3))
+        # a step inside the bracket, or one at rounding level (converged), is taken;
+        # a zero of the model is kept; else bisect
+        if bool(np.all((h == 0.0) | (step == s))):
+            break  # every row at its fixed point: the remaining steps would keep it
+        take = ((step >= low) & (step <= high)) | (np.abs(step - s) <= 1e-15)
+        s = np.where(h == 0.0, s, np.where(take, step, 0.5 * (low + high)))
+    return np.clip(s, 0.0, 1.0)
 
 
 def _convex_hull(x: np.ndarray, y: np.ndarray) -> np.ndarray:
@@ -114,6 +197,184 @@ def _convex_hull(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     lower = chain(range(len(xs)))
     upper = chain(range(len(xs) - 1, -1, -1))
     return order[np.array(lower[:-1] + upper[:-1])]
+
+
+def _with_speed_extrema(peaks: LinearPeaks) -> _Table:
+    """The law's samples with the exact extrema of v_N inside sample intervals added (the
+    roots of a_N where it changes sign between two samples of a piece: the model root of
+    :meth:`LinearPeaks._stationary_points`, polished by a Newton step on the law), so that
+    v_N is monotone between neighbouring samples and its top is a sample."""
+    law, base = peaks.law, peaks._table
+    inner = ~base.last[:-1]
+    lo = np.flatnonzero(inner & (((base.a[:-1] > 0.0) & (base.a[1:] < 0.0))
+                                 | ((base.a[:-1] < 0.0) & (base.a[1:] > 0.0))))
+    if len(lo) == 0:
+        return base
+    piece = base.piece[lo]
+    root = peaks._stationary_points(lo, np.zeros(len(lo)), np.ones(len(lo)), base)
+    a, j = piece_values(law, root, piece, (2, 3))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        newton = root - a / j
+    newton = np.clip(np.where(np.isfinite(newton), newton, root), base.tau[lo], base.tau[lo + 1])
+    a1 = piece_values(law, newton, piece, 2)
+    tau = np.where(np.abs(a1) < np.abs(a), newton, root)
+    v, a, j, snap = piece_values(law, tau, piece, (1, 2, 3, 4))
+    merged = [np.concatenate((x, y)) for x, y in ((base.tau, tau), (base.piece, piece),
+                                                  (base.v, v), (base.a, a), (base.j, j),
+                                                  (base.snap, snap))]
+    order = np.lexsort((merged[0], merged[1]))
+    tau, piece, v, a, j, snap = (x[order] for x in merged)
+    first = np.concatenate(([True], piece[1:] != piece[:-1]))
+    last = np.concatenate((piece[1:] != piece[:-1], [True]))
+    return _Table(tau, piece, v, a, j, snap, first, last)
+
+
+@dataclass(frozen=True)
+class _Chain:
+    """One persistent hull chain (lower or upper) of points sorted by (x, y): parent[i] is
+    the chain's vertex before point i when i was added, so the chain of the first m + 1
+    points is the path from m to the root (position 0); up[k] is the 2^k-th ancestor."""
+
+    parent: np.ndarray
+    up: np.ndarray
+
+
+def _persistent_chain(x: list[float], y: list[float], upper: bool) -> _Chain:
+    """The monotone chain's lower (or upper) hull built point by point, each point's parent
+    kept (collinear and repeated points dropped), with its jump table."""
+    count = len(x)
+    parent = np.zeros(count, dtype=np.intp)
+    hull: list[int] = []
+    sign = -1.0 if upper else 1.0
+    for i in range(count):
+        while len(hull) >= 2:
+            a, b = hull[-2], hull[-1]
+            cross = (x[b] - x[a]) * (y[i] - y[a]) - (y[b] - y[a]) * (x[i] - x[a])
+            if sign * cross > 0.0:
+                break
+            hull.pop()
+        parent[i] = hull[-1] if hull else i
+        hull.append(i)
+    levels = max(1, int(count - 1).bit_length())
+    # 32-bit positions: the table is levels x points (a cam table's 10^5 points: 7 MB)
+    up = np.empty((levels, count), dtype=np.int32 if count < 2**31 else np.intp)
+    up[0] = parent
+    for k in range(1, levels):
+        up[k] = up[k - 1][up[k - 1]]
+    return _Chain(parent, up)
+
+
+class _SpeedOrder:
+    """A law's samples (with the extrema of v_N) ordered by (side*v_N, a_N): the samples
+    with side*v_N <= side*bound are a prefix, and the hull of a prefix is the path from its
+    last point in the lower and in the upper persistent chain. Also the monotone runs of
+    v_N in tau order, for the points where v_N crosses a bound."""
+
+    def __init__(self, table: _Table, side: float) -> None:
+        self.table = table
+        x_all = side * table.v
+        self.order = np.lexsort((table.a, x_all))
+        self.x = x_all[self.order]
+        self.y = table.a[self.order]
+        xs, ys = self.x.tolist(), self.y.tolist()
+        self.lower = _persistent_chain(xs, ys, upper=False)
+        self.upper = _persistent_chain(xs, ys, upper=True)
+        # monotone runs of v_N along the move (zero steps join the run they are in)
+        step = np.sign(np.diff(table.v))
+        moving = np.flatnonzero(step)
+        self.runs: list[tuple[int, int, float]] = []
+        if len(moving):
+            fill = np.zeros(len(step), dtype=np.intp)
+            fill[moving] = moving
+            fill = np.maximum.accumulate(fill)
+            fill[:moving[0]] = moving[0]
+            filled = step[fill]
+            breaks = np.flatnonzero(filled[1:] != filled[:-1]) + 1
+            starts = np.concatenate(([0], breaks))
+            ends = np.concatenate((breaks, [len(table.v) - 1]))
+            self.runs = [(int(a), int(b), float(filled[a])) for a, b in zip(starts, ends,
+                                                                            strict=True)]
+
+    def support(self, chain: _Chain, other: _Chain, m: np.ndarray, qx: np.ndarray,
+                py: np.ndarray) -> tuple[np.ndarray, list[np.ndarray]]:
+        """The vertex maximizing qx*x + py*y over the first m + 1 points (positions in the
+        order), on ``chain`` (the upper one for py >= 0, the lower one for py < 0), and its
+        neighbours on the prefix's hull (-1 where none): along the chain's path from m the
+        value rises to the maximum and falls after it (a convex chain), so the last point
+        before the rise stops is found by binary lifting."""
+        x, y = self.x, self.y
+        parent, up = chain.parent, chain.up
+
+        def rises(node):
+            above = parent[node]
+            return qx * x[above] + py * y[above] > qx * x[node] + py * y[node]
+
+        node = m.copy()
+        climbing = rises(node)
+        for k in range(len(up) - 1, -1, -1):
+            ahead = up[k][node]
+            node = np.where(climbing & rises(ahead), ahead, node)
+        best = np.where(climbing, parent[node], m)
+        child = np.where(climbing, node, -1)
+        root = best == 0
+        before = np.where(root, -1, parent[best])
+        # at the prefix's last point the other neighbour is on the other chain
+        after = np.where(climbing, child, np.where(m > 0, other.parent[m], -1))
+        # at the root, the other chain's vertex next to it
+        beside = np.full(len(m), -1, dtype=np.intp)
+        at_root = np.flatnonzero(root & (m > 0))
+        if len(at_root):
+            tail = m[at_root]
+            for k in range(len(other.up) - 1, -1, -1):
+                ahead = other.up[k][tail]
+                tail = np.where(ahead != 0, ahead, tail)
+            beside[at_root] = tail
+        return best, [before, after, beside]
+
+    def crossings(self, law: MotionLaw, bound: np.ndarray):
+        """Per bound and monotone run of v_N, the point where v_N crosses the bound between
+        two samples of a piece: (tau, piece, v_N, a_N, ok) arrays (bounds x runs). The root
+        of the cubic Hermite model of v_N - bound, polished by a Newton step on the law."""
+        t = self.table
+        count, runs = len(bound), len(self.runs)
+        tau = np.zeros((count, runs))
+        piece = np.zeros((count, runs), dtype=np.intp)
+        v = np.zeros((count, runs))
+        a = np.zeros((count, runs))
+        ok = np.zeros((count, runs), dtype=bool)
+        los, cols, rows = [], [], []
+        for col, (start, end, direction) in enumerate(self.runs):
+            key = direction * t.v[start:end + 1]
+            k = np.searchsorted(key, direction * bound, side="left")
+            inside = (k >= 1) & (k <= end - start)
+            lo = start + np.clip(k - 1, 0, max(end - start - 1, 0))
+            inside &= (direction * (t.v[lo] - bound) < 0.0)
+            inside &= (direction * (t.v[lo + 1] - bound) > 0.0)
+            inside &= t.piece[lo] == t.piece[lo + 1]
+            sel = np.flatnonzero(inside)
+            los.append(lo[sel])
+            rows.append(sel)
+            cols.append(np.full(len(sel), col))
+        if not runs or not sum(len(r) for r in rows):
+            return tau, piece, v, a, ok
+        lo, row, col = np.concatenate(los), np.concatenate(rows), np.concatenate(cols)
+        u = bound[row]
+        width = t.tau[lo + 1] - t.tau[lo]
+        root = t.tau[lo] + _hermite_root(t.v[lo] - u, t.v[lo + 1] - u, t.a[lo] * width,
+                                         t.a[lo + 1] * width) * width
+        at = t.piece[lo]
+        v0, a0 = piece_values(law, root, at, (1, 2))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            newton = root - (v0 - u) / a0
+        newton = np.clip(np.where(np.isfinite(newton), newton, root), t.tau[lo], t.tau[lo + 1])
+        v1, a1 = piece_values(law, newton, at, (1, 2))
+        closer = np.abs(v1 - u) < np.abs(v0 - u)
+        tau[row, col] = np.where(closer, newton, root)
+        piece[row, col] = at
+        v[row, col] = np.where(closer, v1, v0)
+        a[row, col] = np.where(closer, a1, a0)
+        ok[row, col] = True
+        return tau, piece, v, a, ok
 
 
 class LinearPeaks:
@@ -140,6 +401,9 @@ class LinearPeaks:
             self.tau, self.piece, self.v, self.a, self.j, self.snap, self.first, self.last = (
                 x[keep] for x in (self.tau, self.piece, self.v, self.a, self.j, self.snap,
                                   self.first, self.last))
+        self._table = _Table(self.tau, self.piece, self.v, self.a, self.j, self.snap,
+                             self.first, self.last)
+        self._speed_orders: dict[float, _SpeedOrder] = {}
         snap = self.snap
         # second-order bound of what the samples miss of a maximum inside an interval
         inner = ~self.last[:-1]
@@ -191,7 +455,7 @@ class LinearPeaks:
         return LinearPeak(-peak.value, peak.tau, peak.piece)
 
     def ratio_maximum(self, p: np.ndarray, q: np.ndarray, c: np.ndarray, alpha: np.ndarray,
-                      rate: np.ndarray) -> LinearPeak:
+                      rate: np.ndarray, floor: np.ndarray | None = None) -> LinearPeak:
         """max over tau of (p a_N + q v_N + c) / (alpha + rate v_N), elementwise, where the
         denominator is positive along the whole move (a torque over a speed-dependent
         limit, book sec. 6.1.1).
@@ -199,14 +463,25 @@ class LinearPeaks:
         Dinkelbach's method: r_{k+1} = N/D at the maximizer of N - r_k D, a linear peak
         (:meth:`maximum`). Each r_k is a value the law reaches; the sequence rises to the
         maximum superlinearly and stops when N - r_k D <= 0 everywhere (to rounding).
+        With ``floor`` (per row, a value known to be reached elsewhere; -inf for none)
+        the sequence starts there instead of at the maximizer of N: where no point of the
+        move exceeds it the row stops after one step with the floor as its value (tau
+        and piece then mean nothing).
         """
         p, q, c, alpha, rate = (np.asarray(x, dtype=float).ravel()
                                 for x in np.broadcast_arrays(p, q, c, alpha, rate))
-        start = self.maximum(p, q)
-        tau, piece = start.tau.copy(), start.piece.copy()
-        v, a = piece_values(self.law, tau, piece, (1, 2))
-        r = (p * a + q * v + c) / (alpha + rate * v)
-        index = np.arange(len(p))
+        n = len(p)
+        low = np.full(n, -np.inf) if floor is None else np.asarray(floor, dtype=float).ravel()
+        tau, piece = np.zeros(n), np.zeros(n, dtype=np.intp)
+        r = low.copy()
+        fresh = np.flatnonzero(~np.isfinite(low))
+        if len(fresh):
+            start = self.maximum(p[fresh], q[fresh])
+            tau[fresh], piece[fresh] = start.tau, start.piece
+            v, a = piece_values(self.law, start.tau, start.piece, (1, 2))
+            r[fresh] = (p[fresh] * a + q[fresh] * v + c[fresh]) / (alpha[fresh]
+                                                                   + rate[fresh] * v)
+        index = np.arange(n)
         for _ in range(DINKELBACH_STEPS):
             if len(index) == 0:
                 break
@@ -220,33 +495,166 @@ class LinearPeaks:
             index = rows[gain > 1e-15 * np.abs(r[rows])]
         return LinearPeak(r, tau, piece)
 
+    # ------------------------------------------------- restricted to a speed band
+    @property
+    def speeds_nonnegative(self) -> bool:
+        """Whether v_N >= 0 along the whole move (to rounding, the exact minima of v_N
+        included): where it holds, |v_N| = v_N and the bands of :meth:`band` are the
+        parts of the move below and above a top speed."""
+        order = self._speed_order(1.0)
+        return bool(order.table.v.min() >= -1e-12 * self._scale_v)
+
+    def band(self, bound: np.ndarray, side: float) -> SpeedBand:
+        """The part of the move where v_N <= bound (side +1) or >= bound (side -1), per
+        element of ``bound``: the samples inside and the points where v_N crosses it."""
+        order = self._speed_order(side)
+        bound = np.asarray(bound, dtype=float).ravel()
+        last = np.searchsorted(order.x, side * bound, side="right") - 1
+        return SpeedBand(side, bound, last, *order.crossings(self.law, bound))
+
+    def bands(self, bound: np.ndarray) -> tuple[SpeedBand, SpeedBand]:
+        """The parts below and above ``bound`` (:meth:`band` with side +1 and -1), their
+        common ends (the crossings of v_N = bound) found once."""
+        below, above = self._speed_order(1.0), self._speed_order(-1.0)
+        bound = np.asarray(bound, dtype=float).ravel()
+        ends = below.crossings(self.law, bound)
+        return (SpeedBand(1.0, bound, np.searchsorted(below.x, bound, side="right") - 1, *ends),
+                SpeedBand(-1.0, bound, np.searchsorted(above.x, -bound, side="right") - 1,
+                          *ends))
+
+    def maximum_within(self, p: np.ndarray | float, q: np.ndarray | float,
+                       band: SpeedBand) -> LinearPeak:
+        """max of p*a_N + q*v_N over the part of the move in ``band`` (one row of it per
+        element of p, q), with its tau and piece; -inf where the part is empty.
+
+        The maximum over a part of the curve is at a stationary point inside it or at one
+        of its ends (where v_N crosses the bound). The samples inside are a prefix of the
+        samples ordered by side*v_N, whose convex hulls the persistent chains of
+        :class:`_SpeedOrder` hold: the support vertex is found on them by binary lifting
+        (O(log n) per query), refined between its neighbouring samples as in
+        :meth:`maximum` (a stationary point outside the band does not count), near ties
+        with its neighbours on the hull likewise; the crossings are compared with it.
+        """
+        p, q = np.broadcast_arrays(np.asarray(p, dtype=float), np.asarray(q, dtype=float))
+        P, Q = p.ravel(), q.ravel()
+        n = len(P)
+        order = self._speed_order(band.side)
+        t = order.table
+        value = np.full(n, -np.inf)
+        tau = np.zeros(n)
+        piece = np.zeros(n, dtype=np.intp)
+        rows = np.flatnonzero(band.last >= 0)
+        if len(rows):
+            m, Pr, Qr = band.last[rows], P[rows], Q[rows]
+            bound = band.bound[rows]
+            found = np.empty(len(rows), dtype=np.intp)
+            nearby = [np.full(len(rows), -1, dtype=np.intp) for _ in range(3)]
+            for use_upper in (True, False):
+                sel = np.flatnonzero((Pr >= 0.0) == use_upper)
+                if len(sel):
+                    chain, other = ((order.upper, order.lower) if use_upper
+                                    else (order.lower, order.upper))
+                    pos, near = order.support(chain, other, m[sel], band.side * Qr[sel],
+                                              Pr[sel])
+                    found[sel] = pos
+                    for mine, theirs in zip(nearby, near, strict=True):
+                        mine[sel] = theirs
+            sample = order.order[found]
+            val, tv, pv = self._refine(sample, Pr, Qr, t, bound, band.side)
+            # near ties: the hull neighbours (on other arcs) within the sampling error
+            margin = (np.abs(Pr) * self._miss_j + np.abs(Qr) * self._miss_snap
+                      + 1e-13 * (np.abs(Pr) * self._scale_a + np.abs(Qr) * self._scale_v))
+            for pos in nearby:
+                ok = pos >= 0
+                other = order.order[np.where(ok, pos, 0)]
+                ok &= (np.abs(other - sample) > 1) | (t.piece[other] != t.piece[sample])
+                ok &= Pr * t.a[other] + Qr * t.v[other] >= val - margin
+                if ok.any():
+                    sub = np.flatnonzero(ok)
+                    v2, t2, i2 = self._refine(other[sub], Pr[sub], Qr[sub], t, bound[sub],
+                                              band.side)
+                    better = v2 > val[sub]
+                    sub = sub[better]
+                    val[sub], tv[sub], pv[sub] = v2[better], t2[better], i2[better]
+            value[rows], tau[rows], piece[rows] = val, tv, pv
+        if band.cross_ok.shape[1]:
+            at = np.where(band.cross_ok, P[:, None] * band.cross_a + Q[:, None] * band.cross_v,
+                          -np.inf)
+            k = np.argmax(at, axis=1)
+            best = at[np.arange(n), k]
+            better = best > value
+            value = np.where(better, best, value)
+            tau = np.where(better, band.cross_tau[np.arange(n), k], tau)
+            piece = np.where(better, band.cross_piece[np.arange(n), k], piece)
+        shape = p.shape
+        return LinearPeak(value.reshape(shape), tau.reshape(shape), piece.reshape(shape))
+
+    def ratio_maximum_within(self, p: np.ndarray, q: np.ndarray, c: np.ndarray,
+                             alpha: np.ndarray, rate: np.ndarray, band: SpeedBand,
+                             floor: np.ndarray | None = None) -> LinearPeak:
+        """max of (p a_N + q v_N + c) / (alpha + rate v_N) over the part of the move in
+        ``band`` (the denominator positive there), elementwise: Dinkelbach's method as in
+        :meth:`ratio_maximum`, each step a :meth:`maximum_within`. -inf where the part is
+        empty.
+
+        With ``floor`` (per row, a value known to be reached elsewhere) the iteration
+        starts at r = floor: where max (N - floor D) <= 0 no point of the part exceeds
+        it, the row stops after one step and its value is the floor itself (its tau and
+        piece then mean nothing); elsewhere the result is the part's maximum."""
+        p, q, c, alpha, rate = (np.asarray(x, dtype=float).ravel()
+                                for x in np.broadcast_arrays(p, q, c, alpha, rate))
+        n = len(p)
+        low = np.full(n, -np.inf) if floor is None else np.asarray(floor, dtype=float).ravel()
+        tau, piece = np.zeros(n), np.zeros(n, dtype=np.intp)
+        r = low.copy()
+        fresh = np.flatnonzero(~np.isfinite(low))
+        if len(fresh):
+            start = self.maximum_within(p[fresh], q[fresh], band.take(fresh))
+            tau[fresh], piece[fresh] = start.tau, start.piece
+            v, a = piece_values(self.law, start.tau, start.piece, (1, 2))
+            with np.errstate(divide="ignore", invalid="ignore"):
+                r[fresh] = np.where(np.isfinite(start.value),
+                                    (p[fresh] * a + q[fresh] * v + c[fresh])
+                                    / (alpha[fresh] + rate[fresh] * v), -np.inf)
+        index = np.flatnonzero(np.isfinite(r))
+        for _ in range(DINKELBACH_STEPS):
+            if len(index) == 0:
+                break
+            peak = self.maximum_within(p[index], q[index] - r[index] * rate[index],
+                                       band.take(index))
+            v, a = piece_values(self.law, peak.tau, peak.piece, (1, 2))
+            new = (p[index] * a + q[index] * v + c[index]) / (alpha[index] + rate[index] * v)
+            better = (new > r[index]) & np.isfinite(peak.value)  # (an empty part: no point)
+            rows = index[better]
+            gain = new[better] - r[rows]
+            r[rows], tau[rows], piece[rows] = new[better], peak.tau[better], peak.piece[better]
+            index = rows[gain > 1e-15 * np.abs(r[rows])]
+        return LinearPeak(r, tau, piece)
+
+    def _speed_order(self, side: float) -> _SpeedOrder:
+        """The samples ordered by side*v_N with their persistent hull chains (per side,
+        built on first use)."""
+        if side not in self._speed_orders:
+            if -side in self._speed_orders:
+                table = self._speed_orders[-side].table
+            else:
+                table = _with_speed_extrema(self)
+            self._speed_orders[side] = _SpeedOrder(table, side)
+        return self._speed_orders[side]
+
     # ------------------------------------------------------------------ steps
-    def _stationary_points(self, lo: np.ndarray, P: np.ndarray, Q: np.ndarray) -> np.ndarray:
+    def _stationary_points(self, lo: np.ndarray, P: np.ndarray, Q: np.ndarray,
+                           table: _Table | None = None) -> np.ndarray:
         """tau where the cubic Hermite model of g = p*j + q*a between the samples lo and
         lo + 1 (one piece, g changing sign) vanishes: safeguarded Newton on the model."""
+        t = self._table if table is None else table
         hi = lo + 1
-        width = self.tau[hi] - self.tau[lo]
-        g0 = P * self.j[lo] + Q * self.a[lo]
-        g1 = P * self.j[hi] + Q * self.a[hi]
-        d0 = (P * self.snap[lo] + Q * self.j[lo]) * width
-        d1 = (P * self.snap[hi] + Q * self.j[hi]) * width
-        # H(s) = g0 + d0 s + c2 s^2 + c3 s^3 on [0, 1]: H(0) = g0, H(1) = g1, slopes d0, d1
-        c2 = 3.0 * (g1 - g0) - 2.0 * d0 - d1
-        c3 = 2.0 * (g0 - g1) + d0 + d1
-        low, high = np.zeros_like(g0), np.ones_like(g0)
-        rising = g0 < 0.0
-        s = g0 / (g0 - g1)
-        for _ in range(NEWTON_STEPS):
-            h = g0 + s * (d0 + s * (c2 + s * c3))
-            before = (h < 0.0) == rising  # the root lies above s
-            low, high = np.where(before, s, low), np.where(before, high, s)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                step = s - h / (d0 + s * (2.0 * c2 + 3.0 * s * c3))
-            # a step inside the bracket, or one at rounding level (converged), is taken;
-            # a zero of the model is kept; else bisect
-            take = ((step >= low) & (step <= high)) | (np.abs(step - s) <= 1e-15)
-            s = np.where(h == 0.0, s, np.where(take, step, 0.5 * (low + high)))
-        return self.tau[lo] + np.clip(s, 0.0, 1.0) * width
+        width = t.tau[hi] - t.tau[lo]
+        g0 = P * t.j[lo] + Q * t.a[lo]
+        g1 = P * t.j[hi] + Q * t.a[hi]
+        d0 = (P * t.snap[lo] + Q * t.j[lo]) * width
+        d1 = (P * t.snap[hi] + Q * t.j[hi]) * width
+        return t.tau[lo] + _hermite_root(g0, g1, d0, d1) * width
 
     def _support_vertex(self, P: np.ndarray, Q: np.ndarray) -> np.ndarray:
         """Position in the hull of the vertex maximizing (Q, P).(v, a) (the support point)."""
@@ -256,36 +664,44 @@ class LinearPeaks:
         k = np.searchsorted(self._angles, theta, side="left")
         return (self._shift + k) % len(self.hull)
 
-    def _refine(self, sample: np.ndarray, P: np.ndarray,
-                Q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def _refine(self, sample: np.ndarray, P: np.ndarray, Q: np.ndarray,
+                table: _Table | None = None, bound: np.ndarray | None = None,
+                side: float = 1.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The maximum on the sample's piece between its neighbouring samples: the
-        stationary point of p*a + q*v where its derivative changes sign, else the sample."""
-        value = P * self.a[sample] + Q * self.v[sample]
-        tau = self.tau[sample].copy()
-        piece = self.piece[sample].copy()
-        slope = P * self.j[sample] + Q * self.a[sample]
-        right = np.minimum(sample + 1, len(self.tau) - 1)
+        stationary point of p*a + q*v where its derivative changes sign, else the sample.
+        With ``bound`` (per row) a stationary point counts only where side*(v_N - bound)
+        <= 0 (the part of the move a :class:`SpeedBand` keeps; the sample is in it)."""
+        t = self._table if table is None else table
+        value = P * t.a[sample] + Q * t.v[sample]
+        tau = t.tau[sample].copy()
+        piece = t.piece[sample].copy()
+        slope = P * t.j[sample] + Q * t.a[sample]
+        right = np.minimum(sample + 1, len(t.tau) - 1)
         left = np.maximum(sample - 1, 0)
-        go_right = (slope > 0.0) & ~self.last[sample]
-        go_right &= P * self.j[right] + Q * self.a[right] < 0.0
-        go_left = (slope < 0.0) & ~self.first[sample]
-        go_left &= P * self.j[left] + Q * self.a[left] > 0.0
+        go_right = (slope > 0.0) & ~t.last[sample]
+        go_right &= P * t.j[right] + Q * t.a[right] < 0.0
+        go_left = (slope < 0.0) & ~t.first[sample]
+        go_left &= P * t.j[left] + Q * t.a[left] > 0.0
         rows = np.nonzero(go_right | go_left)[0]
         if len(rows) == 0:
             return value, tau, piece
         lo = np.where(go_right[rows], sample[rows], left[rows])
         P, Q, at = P[rows], Q[rows], piece[rows]
-        root = self._stationary_points(lo, P, Q)
+        root = self._stationary_points(lo, P, Q, t)
         # one Newton step on the law itself: the model's error (h^4) squared
         v, a, j, snap = piece_values(self.law, root, at, (1, 2, 3, 4))
         with np.errstate(divide="ignore", invalid="ignore"):
             newton = root - (P * j + Q * a) / (P * snap + Q * j)
         newton = np.clip(np.where(np.isfinite(newton), newton, root),
-                         self.tau[lo], self.tau[lo + 1])
+                         t.tau[lo], t.tau[lo + 1])
         v1, a1 = piece_values(self.law, newton, at, (1, 2))
-        found, where = P * a + Q * v, root
-        polished = P * a1 + Q * v1
-        found, where = np.maximum(found, polished), np.where(polished > found, newton, root)
+        found, polished = P * a + Q * v, P * a1 + Q * v1
+        if bound is not None:
+            limit = bound[rows]
+            found = np.where(side * (v - limit) <= 0.0, found, -np.inf)
+            polished = np.where(side * (v1 - limit) <= 0.0, polished, -np.inf)
+        where = np.where(polished > found, newton, root)
+        found = np.maximum(found, polished)
         better = found > value[rows]
         chosen = rows[better]
         value[chosen], tau[chosen] = found[better], where[better]

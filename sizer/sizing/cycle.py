@@ -17,10 +17,11 @@ summed into a prefix-sum table once per law: :func:`moment_table`) over the stre
 between the power-flow reversals of the stages, each reversal a root; with ideal stages
 the RMS is the closed form in C_v_rms, C_a_rms. Peaks are exact where they can be
 (:meth:`CycleCalculator._exact_peaks`: the law's linear peaks, and against a concave
-speed-torque region the linear-fractional peaks of Dinkelbach's method); elsewhere they
-are found on the grid (piece ends and the ends of the move included) and the largest
-local maxima of the samples, in whatever interval or piece, are refined by golden-section
-search.
+speed-torque region the linear-fractional peaks of Dinkelbach's method, restricted to the
+parts of the move below and above the region's top speed where the move leaves it);
+elsewhere they are found on the grid (piece ends and the ends of the move included) and
+the largest local maxima of the samples, in whatever interval or piece, are refined by
+golden-section search.
 """
 
 from __future__ import annotations
@@ -33,7 +34,7 @@ from typing import Protocol
 import numpy as np
 from numpy.polynomial.legendre import leggauss
 
-from sizer.laws.linear_peaks import piece_values
+from sizer.laws.linear_peaks import LinearPeak, piece_values
 from sizer.mechanics import Drive
 from sizer.model.domain import Task, ThermalSpeedRule
 from sizer.sizing.golden import golden_step, interior_points
@@ -133,7 +134,8 @@ class MoveScales:
 
     acc: np.ndarray
     vel: np.ndarray
-    direction: float
+    direction: float | np.ndarray
+    """+1 or -1 (per candidate where several moves are stacked: CycleCalculator._exact_moves)."""
 
 
 class CycleCalculator:
@@ -497,11 +499,14 @@ class CycleCalculator:
         """Per move: max |tau|, max |tau|/tau_int(|speed|), max |u| and stage output peaks.
 
         Exact by the law's linear peaks (:meth:`_exact_peaks`) wherever their conditions
-        hold; the grid search (:meth:`_sampled_peaks`) for the other candidates.
+        hold (moves that leave the region included: :meth:`_leaving_ratio`); the grid
+        search (:meth:`_sampled_peaks`) for the other candidates (a torque minimum or a
+        ratio that could not be certified, a region that is not concave, a law whose speed
+        changes sign).
         """
         out = []
-        for scales in moves:
-            (peak, ratio, load, stages), exact, certified = self._exact_peaks(scales)
+        for scales, found_exactly in zip(moves, self._exact_moves(moves), strict=True):
+            (peak, ratio, load, stages), exact, certified = found_exactly
             if not exact.all():
                 index = np.flatnonzero(~exact)
                 sub = self.take(index)
@@ -518,12 +523,40 @@ class CycleCalculator:
             out.append((peak, ratio, load, stages))
         return out
 
+    def _exact_moves(self, moves: list[MoveScales]):
+        """:meth:`_exact_peaks` of every move, the moves' candidates stacked into one run
+        (the same linear functions per candidate in every move, their coefficients and
+        the direction per row): each query elementwise, so the answers are those of one
+        run per move, at the cost of one."""
+        load = self.drive.load
+        terms = [self._channel_terms(scales) for scales in moves]
+        n = len(self.motors)
+        joined = None
+        if len(moves) > 1 and not (_inertial(terms[0][0]) and load.damping == 0.0
+                                   and load.friction == 0.0 and load.torque == 0.0):
+            joined = _stacked_terms(terms, n)
+        if joined is None:
+            # no linear-peak query to share (the book's inertial case), or a single move
+            return [self._exact_peaks(scales, t) for scales, t in zip(moves, terms, strict=True)]
+
+        def stack(values):
+            return np.concatenate([np.broadcast_to(x, (n,)) for x in values])
+
+        scales = MoveScales(stack([s.acc for s in moves]), stack([s.vel for s in moves]),
+                            np.repeat([s.direction for s in moves], n))
+        big = self.take(np.tile(np.arange(n), len(moves)))
+        (peak, ratio, load, stages), exact, certified = big._exact_peaks(scales, joined)
+        parts = [slice(i * n, (i + 1) * n) for i in range(len(moves))]
+        return [((peak[at].copy(), ratio[at].copy(), load[at].copy(),
+                  [x[at].copy() for x in stages]), exact[at].copy(), certified[at].copy())
+                for at in parts]
+
     def take(self, index: np.ndarray) -> CycleCalculator:
         """The calculator of the candidates at ``index`` (same law and grid)."""
         return CycleCalculator(self._grid, self.task, self.drive.take(index),
                                self.motors.subset(index), self.thermal_rule, law=self.law)
 
-    def _exact_peaks(self, scales: MoveScales):
+    def _exact_peaks(self, scales: MoveScales, terms=None):
         """Exact peaks of a move from the law's linear peaks (sizer.laws.linear_peaks).
 
         Every torque is a maximum of linear functions of the load's (a, v): the motor
@@ -537,6 +570,8 @@ class CycleCalculator:
         the peak over the intermittent torque at rest where the move's speed stays on the
         flat part of the region. Returns the peaks, the mask of the exact candidates and that of
         those whose torques are exact (their ratio may still need the grid search).
+        ``terms``: the channels' linear functions when the caller has them
+        (:meth:`_exact_moves`: several moves stacked; ``scales.direction`` per row).
         """
         n = len(self.motors)
         c = self.law.coefficients
@@ -545,24 +580,23 @@ class CycleCalculator:
         peaks = self.law.linear_peaks
         certified = np.ones(n, dtype=bool)
 
-        def channel(coefficients):
-            """max |value| of a maximum of linear functions of (a_N, v_N); clears
+        inertial = _inertial
+
+        def channel(coefficients, highs, lows):
+            """max |value| of a maximum of linear functions of (a_N, v_N), from each
+            function's linear peaks (``highs``) and lowest points (``lows``); clears
             ``certified`` where the minimum could not be certified."""
-            if len(coefficients) == 1 and not np.any(coefficients[0][1]) \
-                    and not np.any(coefficients[0][2]):
-                # proportional to the acceleration (the book's inertial case): |P| C_a
+            if inertial(coefficients):
                 places.append(None)
                 return np.broadcast_to(np.abs(coefficients[0][0]) * c.C_a, (n,)).copy()
             top = np.full(n, -np.inf)
             top_tau, top_piece = np.zeros(n), np.zeros(n, dtype=np.intp)
-            for P, Q, C in coefficients:
-                high = peaks.maximum(P, Q)
+            for high, (_, _, C) in zip(highs, coefficients, strict=True):
                 value = high.value + C
                 better = value > top
                 top = np.where(better, value, top)
                 top_tau = np.where(better, high.tau, top_tau)
                 top_piece = np.where(better, high.piece, top_piece)
-            lows = [peaks.minimum(P, Q) for P, Q, _ in coefficients]
             floors = np.stack([low.value + C for low, (_, _, C) in zip(lows, coefficients,
                                                                        strict=True)])
             best = np.argmax(floors, axis=0)
@@ -579,16 +613,35 @@ class CycleCalculator:
             return np.maximum(top, -bottom)
 
         places: list[tuple[np.ndarray, np.ndarray] | None] = []  # where each |peak| is
-        motor_terms, *stage_terms = self._channel_terms(scales)
-        peak = channel(motor_terms)
-        peak_place = places[-1]
-        load = channel([(np.broadcast_to(drive.load.inertia * scales.acc, (n,)),
-                         np.broadcast_to(drive.load.damping * scales.vel, (n,)),
-                         np.full(n, drive.load.friction + scales.direction * drive.load.torque))])
-        if self.stage_checks:
-            stages = [channel(pieces) for pieces in stage_terms]
-        else:
-            stages = [np.zeros(n) for _ in drive.stages]
+        motor_terms, *stage_terms = self._channel_terms(scales) if terms is None else terms
+        load_terms = [(np.broadcast_to(drive.load.inertia * scales.acc, (n,)),
+                       np.broadcast_to(drive.load.damping * scales.vel, (n,)),
+                       np.full(n, drive.load.friction + scales.direction * drive.load.torque))]
+        channels = [motor_terms, load_terms] + (stage_terms if self.stage_checks else [])
+        # every function's highest and lowest point, all channels in one query
+        functions = [f for co in channels if not inertial(co) for f in co]
+        solved = peaks.maximum(
+            np.concatenate([sign * np.broadcast_to(P, (n,)) for sign in (1.0, -1.0)
+                            for P, _, _ in functions]),
+            np.concatenate([sign * np.broadcast_to(Q, (n,)) for sign in (1.0, -1.0)
+                            for _, Q, _ in functions])) if functions else None
+        results, start = [], 0
+        for co in channels:
+            if inertial(co):
+                results.append(channel(co, [], []))
+                continue
+            size = len(co)
+            at = [slice((start + i) * n, (start + i + 1) * n) for i in range(size)]
+            low_at = [slice((len(functions) + start + i) * n,
+                            (len(functions) + start + i + 1) * n) for i in range(size)]
+            start += size
+            highs = [LinearPeak(solved.value[t], solved.tau[t], solved.piece[t]) for t in at]
+            lows = [LinearPeak(-solved.value[t], solved.tau[t], solved.piece[t])
+                    for t in low_at]
+            results.append(channel(co, highs, lows))
+        peak, load = results[0], results[1]
+        peak_place = places[0]
+        stages = results[2:] if self.stage_checks else [np.zeros(n) for _ in drive.stages]
         speed = K * scales.vel * c.C_v
         # speeds past the region are clipped into it for the ratio (the speed check covers
         # them): a region flat to its end is flat at every speed
@@ -606,6 +659,11 @@ class CycleCalculator:
         if len(beyond) and peak_place is not None:
             exact[beyond] = self._beyond_ratio(peak, peak_place, beyond, speed_scale[beyond],
                                                ratio)
+        leaving = np.flatnonzero(certified & ~exact & (np.broadcast_to(speed, (n,))
+                                                       > motors.speed_limit))
+        if len(leaving):
+            exact[leaving] = self._leaving_ratio(motor_terms, leaving, speed_scale[leaving],
+                                                 ratio)
         return (peak, ratio, load, stages), exact, certified
 
     def _beyond_ratio(self, peak: np.ndarray, place, rows: np.ndarray,
@@ -623,6 +681,123 @@ class CycleCalculator:
         ratio[rows[done]] = _safe_ratio(peak[rows[done]], end[done])
         return done
 
+    def _leaving_ratio(self, terms, rows: np.ndarray, speed_scale: np.ndarray,
+                       ratio: np.ndarray) -> np.ndarray:
+        """The peak ratio |tau|/tau_int(min(|speed|, v_max)) of moves that leave a concave
+        region (the speed check fails them; the ratio is read with the speed clipped to
+        the region's end), exactly; returns where it was found (written into ``ratio``).
+
+        With u = v_max/(K vel) the move splits into the part above the top speed, v_N >= u,
+        where the limit is the region's end torque e: there the ratio is max |tau| / e,
+        from linear peaks restricted to that part (LinearPeaks.maximum_within); and the
+        part below, v_N <= u, where the limit is the minimum of the segments' lines (all
+        positive there when e > 0), so the ratio is the largest over the lines of |tau|
+        over the line: linear-fractional peaks restricted to that part
+        (LinearPeaks.ratio_maximum_within). Both parts include their ends, the points where
+        v_N = u. For -tau = min_k(-L_k) the smallest of the -L_k peaks, exact where its
+        function is the torque at its maximizer (as in :meth:`_curve_ratio`). A flat
+        first segment (the standstill torque t0, the region falling from it) gives at most
+        peak/t0, which ``ratio`` holds already. Candidates whose region is not concave or
+        whose law's speed changes sign are left to the grid search.
+        """
+        peaks = self.law.linear_peaks
+        if not peaks.speeds_nonnegative:
+            return np.zeros(len(rows), dtype=bool)
+        region = self.motors.intermittent.take(rows)
+        with np.errstate(invalid="ignore"):  # -inf - -inf past the ends of padded curves
+            alpha, sigma, concave = region.lines()
+        end = region.limit(region.max_speed)
+        ok = concave & (speed_scale > 0.0) & (region.max_speed > 0.0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            bound = region.max_speed / speed_scale
+        n = len(self.motors)
+        parts = [tuple(np.broadcast_to(x, (n,))[rows] for x in part) for part in terms]
+        count = len(parts)
+
+        def certify(sel, k, solved_tau, solved_piece):
+            """Where the function k (per row) is the torque at the found points."""
+            v_n, a_n = piece_values(self.law, solved_tau, solved_piece, (1, 2))
+            torques = np.stack([P[sel] * a_n + Q[sel] * v_n + C[sel] for P, Q, C in parts])
+            mine = torques[k, np.arange(len(sel))]
+            scale = np.max(np.abs(torques), axis=0)
+            return mine >= torques.max(axis=0) - 1e-12 * scale
+
+        found = np.where(sigma[:, 0] == 0.0, ratio[rows], -np.inf)
+        # above the top speed: max |tau| over v_N >= u, against the end torque
+        sel = np.flatnonzero(ok)
+        m = len(sel)
+        below = None
+        if m:
+            below, band = peaks.bands(bound[sel])
+            tile = np.tile(np.arange(m), 2 * count)
+            solved = peaks.maximum_within(
+                np.concatenate([sign * P[sel] for sign in (1.0, -1.0) for P, _, _ in parts]),
+                np.concatenate([sign * Q[sel] for sign in (1.0, -1.0) for _, Q, _ in parts]),
+                band.take(tile))
+            take = [slice(i * m, (i + 1) * m) for i in range(2 * count)]
+            tops = np.stack([solved.value[t] + C[sel]
+                             for t, (_, _, C) in zip(take[:count], parts, strict=True)])
+            lows = np.stack([solved.value[t] - C[sel]
+                             for t, (_, _, C) in zip(take[count:], parts, strict=True)])
+            k = np.argmin(lows, axis=0)
+            bottom = lows[k, np.arange(m)]
+            if count > 1:
+                tau = np.choose(k, [solved.tau[t] for t in take[count:]])
+                piece = np.choose(k, [solved.piece[t] for t in take[count:]])
+                ok[sel] &= ~np.isfinite(bottom) | certify(sel, k, tau, piece)
+            top = np.maximum(tops.max(axis=0), bottom)
+            inside = np.isfinite(top)
+            found[sel[inside]] = np.maximum(found[sel[inside]],
+                                            _safe_ratio(np.maximum(top[inside], 0.0),
+                                                        end[sel][inside]))
+        banded = sel  # the rows of the bands (those below are among them)
+        # below the top speed: |tau| over each line of the region, where the lines are
+        # positive (e > 0; where e = 0 the part above gave inf, or the row is left)
+        positive = end > 0.0
+        ok &= positive | (found == np.inf)
+        sel = np.flatnonzero(ok & positive)
+        if len(sel) and below is not None:
+            band = below.take(np.searchsorted(banded, sel))
+            blocks, queries, band_rows, floors = [], [], [], []
+            for column in range(alpha.shape[1]):
+                use = np.isfinite(alpha[sel, column])
+                if column == 0:
+                    use &= sigma[sel, 0] != 0.0
+                mine = np.flatnonzero(use)
+                if not len(mine):
+                    continue
+                at = sel[mine]
+                blocks.append(at)
+                line = (alpha[at, column], sigma[at, column] * speed_scale[at])
+                for sign in (1.0, -1.0):
+                    for P, Q, C in parts:
+                        queries.append((sign * P[at], sign * Q[at], sign * C[at], *line))
+                        band_rows.append(mine)
+                        floors.append(found[at])
+            if blocks:
+                # each query starts at the ratio found so far: most stop after one step
+                solved = peaks.ratio_maximum_within(
+                    *(np.concatenate([q[i] for q in queries]) for i in range(5)),
+                    band.take(np.concatenate(band_rows)), floor=np.concatenate(floors))
+                start = 0
+                for at in blocks:
+                    size = len(at)
+                    take = [slice(start + i * size, start + (i + 1) * size)
+                            for i in range(2 * count)]
+                    start += 2 * count * size
+                    tops = np.stack([solved.value[t] for t in take[:count]])
+                    lows = np.stack([solved.value[t] for t in take[count:]])
+                    k = np.argmin(lows, axis=0)
+                    bottom = lows[k, np.arange(size)]
+                    if count > 1:  # needed only where every -L_k beat the floor
+                        tau = np.choose(k, [solved.tau[t] for t in take[count:]])
+                        piece = np.choose(k, [solved.piece[t] for t in take[count:]])
+                        ok[at] &= (bottom <= found[at]) | certify(at, k, tau, piece)
+                    found[at] = np.maximum(found[at], np.maximum(tops.max(axis=0), bottom))
+        ok &= np.isfinite(found) | (found == np.inf)
+        ratio[rows[ok]] = found[ok]
+        return ok
+
     def _curve_ratio(self, terms, rows: np.ndarray, speed_scale: np.ndarray, C_v: float,
                      ratio: np.ndarray) -> np.ndarray:
         """The peak ratio |tau|/tau_int(speed) of the candidates at ``rows`` against a
@@ -633,24 +808,33 @@ class CycleCalculator:
         for the torque's functions L_k a linear-fractional peak each
         (LinearPeaks.ratio_maximum); for -tau = min_k(-L_k) the smallest of the -L_k
         peaks, exact where its function is the torque at its maximizer (as for the torque
-        minimum in :meth:`_exact_peaks`). Candidates whose region is not concave, whose
-        move leaves the region or reaches a line's zero are left to the grid search.
+        minimum in :meth:`_exact_peaks`). The first line too where it is not flat (a
+        region falling from standstill, as a published speed-torque line); where it is
+        flat, the torque peak over it, which ``ratio`` holds. Candidates whose region is
+        not concave, whose move leaves the region or reaches a line's zero are left to
+        the grid search.
         """
         region = self.motors.intermittent.take(rows)
-        alpha, sigma, concave = region.lines()
+        with np.errstate(invalid="ignore"):  # -inf - -inf past the ends of padded curves
+            alpha, sigma, concave = region.lines()
         rate = sigma * speed_scale[:, None]  # the line over v_N: alpha + sigma K vel v_N
         peak_speed = speed_scale * C_v
         starts = region.speeds[:, :-1]
         used = (starts < peak_speed[:, None]) & np.isfinite(alpha)
-        used[:, 0] = False  # the flat line: the torque peak over the standstill torque
+        # a flat first line gives the torque peak over the standstill torque (``ratio``
+        # holds it); a first line that is not flat is queried like the others
+        used[:, 0] = sigma[:, 0] != 0.0
         ok = concave & (peak_speed <= region.max_speed)
         ok &= np.all(~used | (alpha + sigma * peak_speed[:, None] > 0.0), axis=1)
         n = len(self.motors)
         parts = [tuple(np.broadcast_to(x, (n,))[rows] for x in part) for part in terms]
         # every (line, function, side) problem in one Dinkelbach run: blocks per line of
         # the functions' +L_k, then their -L_k, over the candidates that reach the line
-        blocks, queries = [], []
-        for column in range(1, alpha.shape[1]):
+        blocks, queries, floors = [], [], []
+        # the peak over the standstill torque is reached where the region does not rise
+        # above it (its first line flat or falling); elsewhere no floor
+        found = np.where(sigma[:, 0] <= 0.0, ratio[rows], -np.inf)
+        for column in range(alpha.shape[1]):
             sel = np.flatnonzero(ok & used[:, column])
             if len(sel):
                 blocks.append(sel)
@@ -658,12 +842,15 @@ class CycleCalculator:
                 for sign in (1.0, -1.0):
                     queries += [(sign * P[sel], sign * Q[sel], sign * C[sel], *line)
                                 for P, Q, C in parts]
-        found = ratio[rows].copy()
+                    floors += [found[sel]] * len(parts)
         if not blocks:
             ratio[rows[ok]] = found[ok]
             return ok
+        # each query starts at the ratio known already (peak over the standstill torque):
+        # where the line cannot beat it, one step
         solved = self.law.linear_peaks.ratio_maximum(
-            *(np.concatenate([q[i] for q in queries]) for i in range(5)))
+            *(np.concatenate([q[i] for q in queries]) for i in range(5)),
+            floor=np.concatenate(floors))
         start, count = 0, len(parts)
         for sel in blocks:
             m = len(sel)
@@ -674,13 +861,14 @@ class CycleCalculator:
             k = np.argmin(lows, axis=0)
             bottom = lows[k, np.arange(m)]
             if count > 1:  # -tau = min_k(-L_k): exact where L_k is the torque there
+                # (needed only where every -L_k beat the floor)
                 tau = np.choose(k, [solved.tau[t] for t in take[count:]])
                 piece = np.choose(k, [solved.piece[t] for t in take[count:]])
                 v_n, a_n = piece_values(self.law, tau, piece, (1, 2))
                 torques = np.stack([P[sel] * a_n + Q[sel] * v_n + C[sel] for P, Q, C in parts])
                 mine = torques[k, np.arange(m)]
                 scale = np.max(np.abs(torques), axis=0)
-                ok[sel] &= mine >= torques.max(axis=0) - 1e-12 * scale
+                ok[sel] &= (bottom <= found[sel]) | (mine >= torques.max(axis=0) - 1e-12 * scale)
             found[sel] = np.maximum(found[sel], np.maximum(tops.max(axis=0), bottom))
         done = ok
         ratio[rows[done]] = found[done]
@@ -811,6 +999,28 @@ class CycleCalculator:
         lo = tau[interval, np.maximum(column - 1, 0)]
         hi = tau[interval, np.minimum(column + 1, columns - 1)]
         return lo, hi, g.piece[interval], valid, best_value
+
+
+def _inertial(coefficients) -> bool:
+    """A channel proportional to the acceleration (the book's inertial case): its peak is
+    |P| C_a, no linear-peak query."""
+    return len(coefficients) == 1 and not np.any(coefficients[0][1]) \
+        and not np.any(coefficients[0][2])
+
+
+def _stacked_terms(terms: list, n: int):
+    """The channels' linear functions of several moves (:meth:`CycleCalculator._channel_terms`
+    each) stacked along the candidates, move after move; None where the moves' channels
+    have different numbers of functions."""
+    counts = [[len(channel) for channel in t] for t in terms]
+    if any(c != counts[0] for c in counts):
+        return None
+
+    def stack(values):
+        return np.concatenate([np.broadcast_to(x, (n,)) for x in values])
+
+    return [[tuple(stack([t[c][k][i] for t in terms]) for i in range(3))
+             for k in range(len(terms[0][c]))] for c in range(len(terms[0]))]
 
 
 def _linear_maximum(pieces, a_n: np.ndarray, v_n: np.ndarray) -> np.ndarray:
