@@ -278,9 +278,10 @@ _SI_FACTORS: dict[str, dict[str, float]] = {
     "rate": {"Hz": 1.0, "kHz": 1000.0, "1/s": 1.0},
     "current": {"A": 1.0},
     "temperature_rise": {"K": 1.0, "kelvin": 1.0},  # a difference of temperatures
-    "torque_constant": {"N*m/A": 1.0},
+    "torque_constant": {"N*m/A": 1.0, "mN*m/A": 0.001},
     "resistance": {"ohm": 1.0},
     "voltage": {"V": 1.0},
+    "capacitance": {"F": 1.0, "uF": 1e-06, "mF": 0.001},
     "power": {"W": 1.0, "kW": 1000.0},
 }
 """SI factors of the units written most often, per kind, so that those never need pint:

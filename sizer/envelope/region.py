@@ -125,7 +125,8 @@ class RegionTable:
         alpha = t[:, :-1] - sigma * s[:, :-1]
         inside = s[:, :-1] < self.max_speed[:, None]
         inside[:, 0] = True
-        rise = np.diff(np.where(inside, sigma, -np.inf), axis=1)
+        with np.errstate(invalid="ignore"):  # -inf - -inf past the ends of padded curves
+            rise = np.diff(np.where(inside, sigma, -np.inf), axis=1)
         scale = np.abs(t).max(axis=1, keepdims=True) / np.maximum(self.max_speed[:, None], 1e-300)
         concave = np.all((rise <= _CONCAVE_TOLERANCE * scale) | ~inside[:, 1:], axis=1)
         alpha = np.where(inside & concave[:, None], alpha, np.inf)

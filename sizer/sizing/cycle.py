@@ -704,8 +704,7 @@ class CycleCalculator:
         if not peaks.speeds_nonnegative:
             return np.zeros(len(rows), dtype=bool)
         region = self.motors.intermittent.take(rows)
-        with np.errstate(invalid="ignore"):  # -inf - -inf past the ends of padded curves
-            alpha, sigma, concave = region.lines()
+        alpha, sigma, concave = region.lines()
         end = region.limit(region.max_speed)
         ok = concave & (speed_scale > 0.0) & (region.max_speed > 0.0)
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -815,8 +814,7 @@ class CycleCalculator:
         the grid search.
         """
         region = self.motors.intermittent.take(rows)
-        with np.errstate(invalid="ignore"):  # -inf - -inf past the ends of padded curves
-            alpha, sigma, concave = region.lines()
+        alpha, sigma, concave = region.lines()
         rate = sigma * speed_scale[:, None]  # the line over v_N: alpha + sigma K vel v_N
         peak_speed = speed_scale * C_v
         starts = region.speeds[:, :-1]
