@@ -406,6 +406,11 @@ ENERGY = [
          ("limits.braking_resistor_power",)),
     case("braking-power-limit-a-list", GEARBOX, {"limits.braking_resistor_power": [1, 2]},
          ("limits.braking_resistor_power",), ()),
+    case("thermal-duty-unknown", GEARBOX, {"limits.thermal_duty": "sometimes"},
+         ("limits.thermal_duty", "repeated", "once"), ("limits.thermal_duty",)),
+    case("thermal-duty-once-with-minimize", GEARBOX,
+         {"limits.thermal_duty": "once", "task.duration": "minimize"},
+         ("limits.thermal_duty", "given durations"), ()),
 ]
 
 CASES = [*TASK, *LOAD, *GEARBOXES, *BELTS, *SCREWS, *RACKS, *REST, *LINKAGES,

@@ -435,6 +435,11 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
     catalog_drives: list[_LocatedDrive] = []
     motors = _design_motors(model, source, folder, extra, warnings, files, catalog_drives)
     drives = _design_drives(model, source, folder, catalog_drives, motors, files)
+    limits = _limits(model, source, linear)
+    minimize = cycle.minimize if cycle is not None else task.minimize
+    if limits.thermal_duty == "once" and minimize:
+        raise source.error("'once' is checked at given durations (with minimize the RMS "
+                           "check bounds T_min); give the duration", ("limits", "thermal_duty"))
     by_id = {m.id: m for m in motors}
     chosen_motor = chosen_law = None
     if model.check is not None:
@@ -448,7 +453,7 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
         ratio_choice=ratio_choice,
         laws=tuple(model.laws) if model.laws is not None else default_laws(),
         motors=motors,
-        limits=_limits(model, source, linear),
+        limits=limits,
         chosen_motor=chosen_motor,
         chosen_law=chosen_law,
         name=model.name if model.name is not None else name,
@@ -599,6 +604,7 @@ def _limits(model: DesignFile, source: YamlSource, linear: bool) -> Limits:
         drive_current_margin=given.drive_current_margin,
         braking_resistor_power=given.braking_resistor_power,
         winding_temperature_rise=given.winding_temperature_rise,
+        thermal_duty=given.thermal_duty,
     )
 
 

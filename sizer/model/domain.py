@@ -24,6 +24,8 @@ EfficiencyRule = Literal["power_flow", "steady_load"]
 (Siemens, Mitsubishi; sizer's default), or on the load's steady torque only, the inertial
 torque passing without loss (Yaskawa: T_L = F P / (2 pi R eta), T_a = J omega / t_a)."""
 
+ThermalDuty = Literal["repeated", "once"]
+"""A machine cycle repeated without end, or a one-off sequence (issue 16)."""
 InertiaRatioRule = Literal["driven", "load"]
 """Numerator of the inertia ratio: everything the motor drives (load, screw, gears,
 couplings, reflected to the motor; the vendors' definition) or the load alone."""
@@ -286,6 +288,10 @@ class Limits:
     winding_temperature_rise: float | None = None
     """K: the largest winding temperature rise over the ambient (check
     winding_temperature_rise; overrides the motors' allowed rise)."""
+    thermal_duty: ThermalDuty = "repeated"
+    """How the cycle heats the winding: "repeated" (the periodic steady state; the RMS
+    check where the cycle is short) or "once" (one run from the ambient: the winding
+    model's peak rise decides, the RMS check is no criterion where the motor has it)."""
 
 
 @dataclass(frozen=True)

@@ -435,6 +435,12 @@ class LimitsInput(_Strict):
                                      note="K over the ambient, e.g. '80 K': the largest "
                                           "winding rise (overrides the motors' "
                                           "max_winding_temperature_rise)") | None = None
+    thermal_duty: Literal["repeated", "once"] = Field(
+        "repeated", description="how the cycle heats the winding (motors with "
+                                "thermal_time_constant and max_winding_temperature_rise): "
+                                "'repeated' (its periodic steady state) or 'once' (a "
+                                "one-off run from the ambient: the winding model decides, "
+                                "not the RMS check; given durations only)")
     envelope: Literal["book", "linear", "linear_intermittent"] = Field(
         "linear", description="how a motor region without a curve is completed up to "
                               "max_speed: book (rectangles up to the rated speed), linear "

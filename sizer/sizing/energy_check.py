@@ -60,6 +60,8 @@ BRAKING_CHECK = "braking_resistor_power"
 RMS_NOTE = "RMS-equivalent rise applied: the cycle is much shorter than the thermal time constant"
 THERMAL_NOTE = ("thermal model applied: the cycle is not much shorter than the thermal time "
                 "constant (the periodic peak rise)")
+ONCE_NOTE = ("thermal model applied: one run of the cycle from the ambient (thermal_duty: "
+             "once), its peak rise")
 
 
 _POWER_FIGURES: ContextVar[bool] = ContextVar("sizer_power_figures", default=True)
@@ -150,8 +152,9 @@ def energy_checks(design: Design, calculator: CycleCalculator, duration: np.ndar
     known = np.isfinite(T) & (T > 0.0)
     cycle_time = _cycle_time(design, calculator, np.where(known, T, 1.0))
     thermal = np.zeros(n, dtype=bool)  # the winding model, where the cycle is not short
+    once = design.limits.thermal_duty == "once"  # or always, for a one-off run
     if heat:
-        thermal = _thermal_model_applies(motors, cycle_time) & known
+        thermal = _thermal_model_applies(motors, cycle_time, once) & known
     wound = None
     with_power = _POWER_FIGURES.get()
     if with_power:  # every candidate with a duration: its power figures
@@ -292,14 +295,17 @@ def _cycle_time(design: Design, calculator, T: np.ndarray) -> np.ndarray:
     return task.moves_per_cycle * (T + task.dwell)
 
 
-def _thermal_model_applies(motors, cycle_time: np.ndarray) -> np.ndarray:
+def _thermal_model_applies(motors, cycle_time: np.ndarray, once: bool = False) -> np.ndarray:
     """Where the heat check needs the winding model (the cycle is not much shorter than
-    tau_th, sizer.thermal.applied_check); elsewhere the RMS-equivalent rise applies."""
+    tau_th, sizer.thermal.applied_check, or a one-off run); elsewhere the RMS-equivalent
+    rise applies."""
     from sizer.thermal.verdict import RMS_SHARE
 
     tau_th = _motor_column(motors.catalog, motors.index, "thermal_time_constant")
     allowed = _motor_column(motors.catalog, motors.index, "max_winding_temperature_rise")
     heated = np.isfinite(tau_th) & np.isfinite(allowed)
+    if once:
+        return heated
     return heated & ~(RMS_SHARE * np.where(heated, tau_th, 0.0) > cycle_time)
 
 
@@ -325,13 +331,15 @@ def _heat(design: Design, motors, samples, rows: np.ndarray, thermal: np.ndarray
         at = np.isin(rows, np.flatnonzero(modelled))
         pick = rows[at]
         result = winding_check(samples.time[at], samples.torque[at], tau_c[pick],
-                               allowed[pick], tau_th[pick])
+                               allowed[pick], tau_th[pick],
+                               periodic=design.limits.thermal_duty != "once")
         rise[pick] = result.verdict.peak_rise
     given = design.limits.winding_temperature_rise
     limit = np.full(n, float(given)) if given is not None else allowed
     margin = design.limits.torque_margin
     value = np.where(known & applies, rise, 0.0)
-    notes = np.where(by_rms, RMS_NOTE, THERMAL_NOTE).astype(object)
+    modelled_note = ONCE_NOTE if design.limits.thermal_duty == "once" else THERMAL_NOTE
+    notes = np.where(by_rms, RMS_NOTE, modelled_note).astype(object)
     check = CheckArrays(HEAT_CHECK, value, np.where(applies, limit, 1.0), "K",
                         1.0 - (1.0 - margin) ** 2, None if applies.all() else applies,
                         notes)

@@ -10,6 +10,7 @@ chosen per candidate (sizer.sizing.auto_shape).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable, Sequence
 
@@ -28,6 +29,7 @@ from sizer.sizing.checks import feasible as all_pass
 from sizer.sizing.cycle import CycleCalculator
 from sizer.sizing.cycle_shape import given_scale, left_out_laws, plain_design, ranked_laws
 from sizer.sizing.energy_check import (
+    HEAT_CHECK,
     EnergyChecks,
     energy_checks,
     energy_notes,
@@ -207,7 +209,23 @@ def _with_energy(design: Design, calculator, duration: np.ndarray, metrics, chec
             energy = energy_checks(design, calculator, duration, metrics, feasible, True)
     if energy is None:
         return duration, metrics, checks, feasible, None
-    return energy.duration, metrics, [*checks, *energy.checks], energy.feasible, energy.figures
+    verdict = energy.feasible
+    if design.limits.thermal_duty == "once":  # a one-off run: the winding model decides
+        checks, verdict = _once(checks, energy)
+    return energy.duration, metrics, [*checks, *energy.checks], verdict, energy.figures
+
+
+def _once(checks, energy: EnergyChecks):
+    """A one-off run (``thermal_duty: once``): where the winding model checks the motor,
+    the RMS check is no criterion (it does not apply there); the verdicts again."""
+    heat = next((c for c in energy.checks if c.name == HEAT_CHECK), None)
+    if heat is None:
+        return checks, energy.feasible
+    modelled = np.ones(len(heat.value), dtype=bool) if heat.applies is None else heat.applies
+    out = [dataclasses.replace(c, applies=~modelled if c.applies is None
+                               else c.applies & ~modelled) if c.name == "rms" else c
+           for c in checks]
+    return out, all_pass([*out, *energy.checks])
 
 
 def _replaced(checks, new) -> list:
