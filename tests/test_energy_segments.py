@@ -192,3 +192,17 @@ def test_a_minimized_crank_is_lengthened_until_the_resistor_copes() -> None:
     assert limited["feasible"] and limited["duration"] > free["duration"]
     assert limited["braking_power"] == pytest.approx(1.0, rel=1e-6)
     assert [c["name"] for c in limited["checks"]][0] == "dead_point"
+
+
+def test_the_largest_stop_and_the_resistors_peak() -> None:
+    """One stop per cycle of a lossless inertia (cycloidal, h in T): it returns
+    1/2 J omega_max^2; with no capacitance the resistor takes it, its peak the largest
+    regenerative power, which by the symmetry of the law equals the peak motoring power."""
+    design = {"task": {"displacement": "90 deg", "duration": "0.2 s", "dwell": "0.3 s"},
+              "load": {"inertia": "0.02 kg*m^2"}, "laws": ["cycloidal"],
+              "motors": [{**MOTOR, "inertia": 0}],
+              "limits": {"braking_resistor_power": "100 W"}}
+    r = _records(design)[0]
+    assert r["stop_energy"] == pytest.approx(0.5 * 0.02 * (math.pi / 0.2) ** 2, rel=1e-5)
+    assert r["stop_energy"] == pytest.approx(r["regenerated_energy"], rel=1e-12)
+    assert r["braking_peak_power"] == pytest.approx(r["peak_power"], rel=1e-9)

@@ -471,7 +471,9 @@ class DesignReport:
                             (r.copper_loss, "W mean copper loss"),
                             (r.cycle_energy, "J per cycle drawn from the DC bus (net)"),
                             (r.regenerated_energy, "J per cycle returned to the DC bus"),
+                            (r.stop_energy, "J returned by the largest stop"),
                             (r.braking_power, "W braking resistor (continuous)"),
+                            (r.braking_peak_power, "W braking resistor (peak)"),
                             (r.winding_rise, "K winding temperature rise")):
             if value is not None and math.isfinite(value):
                 parts.append(f"{short(value)} {text}")

@@ -274,11 +274,11 @@ def _with_residual(fields: dict[str, Any], result: CandidateResult,
 
 ENERGY_UNITS = {"regenerated_energy": "J", "braking_power": "W", "winding_rise": "K",
                 "peak_power": "W", "mean_power": "W", "copper_loss": "W",
-                "cycle_energy": "J"}
+                "cycle_energy": "J", "stop_energy": "J", "braking_peak_power": "W"}
 """Units of the energy and heat figures: J per machine cycle returned to the DC bus, the
 braking resistor's continuous power, the winding's temperature rise over the ambient, the
-peak and mean motoring power at the shaft, the mean copper loss, and the net energy drawn
-from the bus per machine cycle."""
+peak and mean motoring power at the shaft, the mean copper loss, the net energy drawn
+from the bus per machine cycle, the largest stop's energy and the resistor's peak power."""
 
 
 def _with_energy(fields: dict[str, Any], result: CandidateResult,

@@ -19,10 +19,12 @@ duration:
   ``max_winding_temperature_rise`` (K), with the rise margin 1 - (1 - m)^2 of the torque
   margin m, so that where the RMS check applies the verdict is the RMS check's.
 
-Figures: ``regenerated_energy`` (J per cycle at the bus) and ``braking_power`` (W, the
-resistor's continuous power) with the braking check, ``winding_rise`` (K) with the heat
-check; NaN where a candidate has no such check. With either check, for every candidate
-with a duration, the power at the shaft and the bus (sizer.energy.power.PowerFigures):
+Figures: ``regenerated_energy`` (J per cycle at the bus), ``braking_power`` (W, the
+resistor's continuous power), ``stop_energy`` (J, what the largest stop returns) and
+``braking_peak_power`` (W, the resistor's peak: the largest regenerative bus power of a
+stop that overflows the capacitors, 0 when none does) with the braking check,
+``winding_rise`` (K) with the heat check; NaN where a candidate has no such check. With
+either check, for every candidate with a duration, the power at the shaft and the bus (sizer.energy.power.PowerFigures):
 ``peak_power`` (the largest motoring shaft power tau*omega, W), ``mean_power`` (the
 motoring shaft power's mean over the cycle, W), ``copper_loss`` (the mean copper loss, W)
 and ``cycle_energy`` (the net energy drawn from the bus per cycle, J: motoring minus
@@ -50,8 +52,10 @@ PEAK_POWER = "peak_power"
 MEAN_POWER = "mean_power"
 COPPER_LOSS = "copper_loss"
 CYCLE_ENERGY = "cycle_energy"
+STOP_ENERGY = "stop_energy"
+BRAKING_PEAK = "braking_peak_power"
 ENERGY_FIGURES = (REGENERATED, BRAKING_POWER, WINDING_RISE, PEAK_POWER, MEAN_POWER,
-                  COPPER_LOSS, CYCLE_ENERGY)
+                  COPPER_LOSS, CYCLE_ENERGY, STOP_ENERGY, BRAKING_PEAK)
 """The optional figures of this module, in the order results list them."""
 
 HEAT_CHECK = "winding_temperature_rise"
@@ -170,10 +174,12 @@ def energy_checks(design: Design, calculator: CycleCalculator, duration: np.ndar
     checks: list[CheckArrays] = []
     figures: dict[str, np.ndarray] = {}
     if brake:
-        check, regenerated, resistor = _braking(design, motors, power, rows, known)
+        check, regenerated, resistor, stop, peak = _braking(design, motors, power, rows,
+                                                            known)
         checks.append(check)
         feasible &= check.passed
         figures[REGENERATED], figures[BRAKING_POWER] = regenerated, resistor
+        figures[STOP_ENERGY], figures[BRAKING_PEAK] = stop, peak
     if heat:
         check, rise = _heat(design, motors, samples, rows, thermal, metrics, known)
         checks.append(check)
@@ -232,8 +238,7 @@ def _braking(design: Design, motors, power, rows: np.ndarray, known: np.ndarray)
     n = len(motors)
     limit = _braking_limit(design, motors)
     applies = np.isfinite(limit)
-    regenerated = np.full(n, np.nan)
-    resistor = np.full(n, np.nan)
+    regenerated, resistor, stop, peak = (np.full(n, np.nan) for _ in range(4))
     if power is not None:
         C = _drive_column(motors.drives, motors.drive, n, "bus_capacitance")[rows]
         u_nom = _drive_column(motors.drives, motors.drive, n, "dc_bus_voltage")[rows]
@@ -247,10 +252,12 @@ def _braking(design: Design, motors, power, rows: np.ndarray, known: np.ndarray)
         result = braking(power.time, power.bus, absorbable)
         regenerated[rows] = result.regenerated_energy
         resistor[rows] = result.resistor_continuous_power
+        stop[rows] = result.worst_stop_energy
+        peak[rows] = result.resistor_peak_power
     value = np.where(known & applies, np.nan_to_num(resistor, nan=0.0), 0.0)
     check = CheckArrays(BRAKING_CHECK, value, np.where(applies, limit, 1.0), "W", 0.0,
                         None if applies.all() else applies)
-    return check, np.where(known, regenerated, np.nan), np.where(known, resistor, np.nan)
+    return check, *(np.where(known, x, np.nan) for x in (regenerated, resistor, stop, peak))
 
 
 def _kind(calculator) -> str:

@@ -156,6 +156,11 @@ class CandidateResult:
     cycle_energy: float | None = None
     """J: the net energy drawn from the DC bus per machine cycle (motoring minus
     regenerated, copper included; None where the motor lacks k_t or R)."""
+    stop_energy: float | None = None
+    """J: what the largest stop returns to the bus, with the braking check."""
+    braking_peak_power: float | None = None
+    """W: the braking resistor's peak power (0 when the capacitors take every stop), with
+    the braking check."""
     transmission: Transmission | None = None
     rated_power: float | None = None
     continuous_torque: float | None = None
