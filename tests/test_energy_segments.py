@@ -191,7 +191,7 @@ def test_a_minimized_crank_is_lengthened_until_the_resistor_copes() -> None:
                         "limits": {"braking_resistor_power": "1 W"}})[0]
     assert limited["feasible"] and limited["duration"] > free["duration"]
     assert limited["braking_power"] == pytest.approx(1.0, rel=1e-6)
-    assert [c["name"] for c in limited["checks"]][0] == "dead_point"
+    assert limited["checks"][0]["name"] == "dead_point"
 
 
 def test_the_largest_stop_and_the_resistors_peak() -> None:

@@ -24,7 +24,8 @@ resistor's continuous power), ``stop_energy`` (J, what the largest stop returns)
 ``braking_peak_power`` (W, the resistor's peak: the largest regenerative bus power of a
 stop that overflows the capacitors, 0 when none does) with the braking check,
 ``winding_rise`` (K) with the heat check; NaN where a candidate has no such check. With
-either check, for every candidate with a duration, the power at the shaft and the bus (sizer.energy.power.PowerFigures):
+either check, for every candidate with a duration, the power at the shaft and the bus
+(sizer.energy.power.PowerFigures):
 ``peak_power`` (the largest motoring shaft power tau*omega, W), ``mean_power`` (the
 motoring shaft power's mean over the cycle, W), ``copper_loss`` (the mean copper loss, W)
 and ``cycle_energy`` (the net energy drawn from the bus per cycle, J: motoring minus
