@@ -24,13 +24,13 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import replace
 from os import PathLike
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 from sizer.errors import UserError
 from sizer.model.domain import Design, Motor
-from sizer.model.machine import Machine
 
 if TYPE_CHECKING:
+    from sizer.model.machine import Machine
     from sizer.sizing.machine import MachineResult
     from sizer.sizing.results import CandidateResult, SizingResult
 
@@ -172,8 +172,9 @@ def assumptions(design: Design) -> tuple[str, ...]:
     return sizing.assumptions(design)
 
 
-MachineLike = str | PathLike[str] | Mapping[str, Any] | Machine
-"""A machine file's path, the same content as a mapping, or a :class:`Machine`."""
+MachineLike: TypeAlias = "str | PathLike[str] | Mapping[str, Any] | Machine"
+"""A machine file's path, the same content as a mapping, or a :class:`Machine` (a
+string: the machine model is imported only when a machine is loaded)."""
 
 
 def load_machine(machine: MachineLike, *, base: str | PathLike[str] | None = None
@@ -182,6 +183,7 @@ def load_machine(machine: MachineLike, *, base: str | PathLike[str] | None = Non
     from ``base``, the working directory by default), or a Machine as it is."""
     from sizer.io.machine_loader import load_machine as read
     from sizer.io.machine_loader import load_machine_data
+    from sizer.model.machine import Machine
 
     if isinstance(machine, Machine):
         return machine

@@ -82,7 +82,7 @@ def size(
 def _is_machine(path: Path) -> bool:
     """A machine file (``axes:``); anything unreadable goes the design's way, whose
     loader says what is wrong."""
-    from sizer.io.machine_loader import is_machine_file
+    from sizer.io.file_kind import is_machine_file
 
     try:
         return path.is_file() and is_machine_file(path)

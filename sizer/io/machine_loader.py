@@ -1,7 +1,7 @@
 """Load a machine file (several axes on one master, book sec. 5.3) into a Machine.
 
     load_machine("packer.yaml")        -> Machine
-    is_machine_file("packer.yaml")     -> True when the file has ``axes:``
+    is_machine_file("packer.yaml")     -> True when the file has ``axes:`` (sizer.io.file_kind)
     machine_schema()                   -> JSON Schema (draft 2020-12)
 
 Each axis is loaded as a design file would be (sizer.io.loader: its load, transmission,
@@ -18,24 +18,17 @@ from typing import Any
 
 from sizer.errors import UserError
 from sizer.input_limits import MAX_DESIGN_BYTES, MAX_DESIGN_NODES
+from sizer.io.file_kind import is_machine_data, is_machine_file
 from sizer.io.validation import validate
 from sizer.io.yaml_source import YamlSource, format_path, parse_yaml, read_yaml
 from sizer.model.machine import Bus, Machine, MachineAxis
 from sizer.model.machine_inputs import MINIMIZE, AxisInput, MachineFile
 
+__all__ = ["is_machine_data", "is_machine_file", "load_machine", "load_machine_data",
+           "machine_schema"]
+
 FIT = 1e-9
 """Relative tolerance of an axis's moves and dwells against the machine cycle."""
-
-
-def is_machine_data(data: Any) -> bool:
-    """A machine file's content: a mapping with ``axes:``."""
-    return isinstance(data, Mapping) and "axes" in data
-
-
-def is_machine_file(path: str | Path) -> bool:
-    """Whether ``path`` holds a machine file (``axes:``; a design has ``task``/``cycle``)."""
-    source = read_yaml(path, limit=MAX_DESIGN_BYTES, max_nodes=MAX_DESIGN_NODES)
-    return is_machine_data(source.data)
 
 
 def load_machine(path: str | Path) -> Machine:
