@@ -297,3 +297,12 @@ def test_sizer_check_passes_a_feasible_machine_and_fails_a_too_fast_one(tmp_path
     assert data["passed"] is False and data["reason"].startswith("axis ")
     text = run_cli("check", str(fast)).stdout
     assert "FAIL: machine Two-axis packer: axis" in text
+
+
+@pytest.mark.parametrize("command", [["plot", "-o", "{tmp}/x.png"], ["segments"],
+                                     ["vibration"]])
+def test_commands_for_design_files_say_a_machine_file_is_not_one(command, tmp_path) -> None:
+    args = [a.format(tmp=tmp_path) for a in command]
+    out = run_cli(args[0], str(EXAMPLE), *args[1:])
+    assert out.returncode == 2 and "a machine file (axes:)" in out.stderr
+    assert "Traceback" not in out.stderr and not (tmp_path / "x.png").exists()

@@ -49,6 +49,23 @@ def load_design_file(design: Path, catalogs: Sequence[str] | None) -> Design:
     from sizer.cli.app import report_warnings
 
     check_catalog_references(catalogs or ())
+    _refuse_machine(design)
     loaded = api.load(design, catalogs or ())
     report_warnings(loaded.warnings)
     return loaded
+
+
+def _refuse_machine(design: Path) -> None:
+    """A machine file given to a command that reads design files: say so (``sizer size``,
+    ``check`` and ``report`` read machine files before they get here)."""
+    from sizer.errors import UserError
+    from sizer.io.file_kind import is_machine_file
+
+    try:
+        machine = design.is_file() and is_machine_file(design)
+    except (UserError, OSError):
+        return  # the design loader says what is wrong with the file
+    if machine:
+        raise UserError("a machine file (axes:): this command reads a design file; sizer "
+                        "size, check and report read machine files (or copy an axis into "
+                        "a design file of its own)", file=str(design))
