@@ -52,7 +52,7 @@ with it.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -468,32 +468,8 @@ class LinearPeaks:
         move exceeds it the row stops after one step with the floor as its value (tau
         and piece then mean nothing).
         """
-        p, q, c, alpha, rate = (np.asarray(x, dtype=float).ravel()
-                                for x in np.broadcast_arrays(p, q, c, alpha, rate))
-        n = len(p)
-        low = np.full(n, -np.inf) if floor is None else np.asarray(floor, dtype=float).ravel()
-        tau, piece = np.zeros(n), np.zeros(n, dtype=np.intp)
-        r = low.copy()
-        fresh = np.flatnonzero(~np.isfinite(low))
-        if len(fresh):
-            start = self.maximum(p[fresh], q[fresh])
-            tau[fresh], piece[fresh] = start.tau, start.piece
-            v, a = piece_values(self.law, start.tau, start.piece, (1, 2))
-            r[fresh] = (p[fresh] * a + q[fresh] * v + c[fresh]) / (alpha[fresh]
-                                                                   + rate[fresh] * v)
-        index = np.arange(n)
-        for _ in range(DINKELBACH_STEPS):
-            if len(index) == 0:
-                break
-            peak = self.maximum(p[index], q[index] - r[index] * rate[index])
-            v, a = piece_values(self.law, peak.tau, peak.piece, (1, 2))
-            new = (p[index] * a + q[index] * v + c[index]) / (alpha[index] + rate[index] * v)
-            better = new > r[index]
-            rows = index[better]
-            gain = new[better] - r[rows]
-            r[rows], tau[rows], piece[rows] = new[better], peak.tau[better], peak.piece[better]
-            index = rows[gain > 1e-15 * np.abs(r[rows])]
-        return LinearPeak(r, tau, piece)
+        return self._dinkelbach(p, q, c, alpha, rate, floor,
+                                lambda rows, P, Q: self.maximum(P, Q))
 
     # ------------------------------------------------- restricted to a speed band
     @property
@@ -601,6 +577,15 @@ class LinearPeaks:
         starts at r = floor: where max (N - floor D) <= 0 no point of the part exceeds
         it, the row stops after one step and its value is the floor itself (its tau and
         piece then mean nothing); elsewhere the result is the part's maximum."""
+        return self._dinkelbach(p, q, c, alpha, rate, floor,
+                                lambda rows, P, Q: self.maximum_within(P, Q, band.take(rows)))
+
+    def _dinkelbach(self, p, q, c, alpha, rate, floor: np.ndarray | None,
+                    maximize: Callable[[np.ndarray, np.ndarray, np.ndarray], LinearPeak]
+                    ) -> LinearPeak:
+        """Dinkelbach's iteration for :meth:`ratio_maximum` and
+        :meth:`ratio_maximum_within`: ``maximize(rows, P, Q)`` is the linear peak of
+        P a_N + Q v_N over the part of the move of those rows (-inf where it is empty)."""
         p, q, c, alpha, rate = (np.asarray(x, dtype=float).ravel()
                                 for x in np.broadcast_arrays(p, q, c, alpha, rate))
         n = len(p)
@@ -609,7 +594,7 @@ class LinearPeaks:
         r = low.copy()
         fresh = np.flatnonzero(~np.isfinite(low))
         if len(fresh):
-            start = self.maximum_within(p[fresh], q[fresh], band.take(fresh))
+            start = maximize(fresh, p[fresh], q[fresh])
             tau[fresh], piece[fresh] = start.tau, start.piece
             v, a = piece_values(self.law, start.tau, start.piece, (1, 2))
             with np.errstate(divide="ignore", invalid="ignore"):
@@ -620,8 +605,7 @@ class LinearPeaks:
         for _ in range(DINKELBACH_STEPS):
             if len(index) == 0:
                 break
-            peak = self.maximum_within(p[index], q[index] - r[index] * rate[index],
-                                       band.take(index))
+            peak = maximize(index, p[index], q[index] - r[index] * rate[index])
             v, a = piece_values(self.law, peak.tau, peak.piece, (1, 2))
             new = (p[index] * a + q[index] * v + c[index]) / (alpha[index] + rate[index] * v)
             better = (new > r[index]) & np.isfinite(peak.value)  # (an empty part: no point)
