@@ -22,6 +22,7 @@ from typing import Any
 
 from sizer.model.machine import Machine
 from sizer.report.csv_text import render_csv
+from sizer.report.design_summary import finite_or_none
 from sizer.report.formats import Format, Rendered
 from sizer.report.json_text import render_json
 from sizer.report.numbers import short
@@ -42,10 +43,6 @@ def _deg(value: float) -> str:
 
 def _ms(value: float) -> str:
     return f"{short(value * 1000.0)} ms"
-
-
-def _number(value: float | None) -> float | None:
-    return value if value is not None and math.isfinite(value) else None
 
 
 class MachineDocument(Rendered):
@@ -126,15 +123,15 @@ class MachineDocument(Rendered):
                 "name": axis.name, "move": given.move, "dwell": given.dwell,
                 "start": given.start, "move_time": axis.move_time,
                 "dwell_time": axis.dwell_time, "phase": axis.phase,
-                "fastest_cycle_time": _number(axis.fastest_cycle_time),
+                "fastest_cycle_time": finite_or_none(axis.fastest_cycle_time),
                 "chosen": None if c is None else {"motor": c.motor, "drive": c.drive,
                                                   "law": c.spec, "ratio": c.ratio},
                 "sizing": sizing})
         return render_json({
             "format": FORMAT,
             "machine": {"name": r.name, "mode": "minimize" if r.minimize else "given",
-                        "cycle_angle": r.cycle_angle, "cycle_time": _number(r.cycle_time),
-                        "master_speed": _number(r.master_speed),
+                        "cycle_angle": r.cycle_angle, "cycle_time": finite_or_none(r.cycle_time),
+                        "master_speed": finite_or_none(r.master_speed),
                         "limiting_axis": r.limiting_axis},
             "axes": axes,
             "bus": None if r.bus is None else _bus_json(r.bus),
@@ -169,7 +166,7 @@ def _bus_json(bus: BusResult) -> dict[str, Any]:
              "resistor_peak_power", "resistor_power", "separate_resistor_power",
              "resistor_limit")
     out: dict[str, Any] = {"axes": list(bus.axes)}
-    out.update({name: _number(getattr(bus, name)) for name in names})
+    out.update({name: finite_or_none(getattr(bus, name)) for name in names})
     out["passed"] = bus.passed
     out["units"] = BUS_UNITS
     return out

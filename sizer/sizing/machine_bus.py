@@ -17,7 +17,6 @@ threshold (or the trip level) are the lowest of the drives'.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -160,7 +159,3 @@ def bus_result(axes: Sequence[AxisOnBus], cycle_time: float, bus: Bus | None) ->
         resistor_limit=None if bus is None else bus.braking_resistor_power,
         time=time[0], power=total[0])
 
-
-def finite_or_none(value: float | None) -> float | None:
-    """A figure for a report: None for NaN/inf (never printed as a number)."""
-    return value if value is not None and math.isfinite(value) else None
