@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 import pytest
+import yaml
 from cli_run import run_cli
 
 from sizer import api
@@ -306,3 +307,21 @@ def test_commands_for_design_files_say_a_machine_file_is_not_one(command, tmp_pa
     out = run_cli(args[0], str(EXAMPLE), *args[1:])
     assert out.returncode == 2 and "a machine file (axes:)" in out.stderr
     assert "Traceback" not in out.stderr and not (tmp_path / "x.png").exists()
+
+
+def test_a_machine_no_axis_can_run_says_why_without_a_number_it_has_not(tmp_path) -> None:
+    weak = {"id": "weak", "inertia": 1e-5, "continuous_torque": 0.1, "peak_torque": 0.3,
+            "rated_speed": 300}
+    held = {"inertia": 0.01, "torque": 0.5}
+    data = machine(axis("a", "120 deg", motors=[weak], load=held),
+                   axis("b", "90 deg", motors=[weak], load=held), master_speed="minimize")
+    result = api.size_machine(data)
+    assert result.cycle_time is None and not result.feasible and result.bus is None
+    assert all(a.move_time is None and a.chosen is None for a in result.axes)
+    path = tmp_path / "m.yaml"
+    path.write_text(yaml.safe_dump(data))
+    for fmt in ("table", "json", "csv", "md"):
+        out = run_cli("size", str(path), "--all", "--format", fmt)
+        assert out.returncode == 0, out.stderr
+        assert "nan" not in out.stdout.lower().replace("infeasible", "")
+    assert "no master speed suits every axis" in run_cli("size", str(path)).stdout

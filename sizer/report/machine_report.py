@@ -45,6 +45,11 @@ def _ms(value: float) -> str:
     return f"{short(value * 1000.0)} ms"
 
 
+def _in_ms(value: float | None) -> str:
+    """' (172.76 ms)' after an angle, or nothing for an unknown time."""
+    return "" if value is None else f" ({_ms(value)})"
+
+
 class MachineDocument(Rendered):
     """The result of a machine with one SizingDocument per axis."""
 
@@ -74,8 +79,8 @@ class MachineDocument(Rendered):
                      if r.minimize else f" at {speed}")
         out = [head]
         for axis, given in zip(r.axes, self.machine.axes, strict=True):
-            text = (f"  {axis.name}: move {_deg(given.move)} ({_ms(axis.move_time)}), dwell "
-                    f"{_deg(given.dwell)} ({_ms(axis.dwell_time)}), start {_deg(given.start)}")
+            text = (f"  {axis.name}: move {_deg(given.move)}{_in_ms(axis.move_time)}, dwell "
+                    f"{_deg(given.dwell)}{_in_ms(axis.dwell_time)}, start {_deg(given.start)}")
             if r.minimize:
                 text += (f"; alone it allows a cycle of {_ms(axis.fastest_cycle_time)}"
                          if axis.fastest_cycle_time is not None

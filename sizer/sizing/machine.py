@@ -36,9 +36,11 @@ class AxisResult:
     sizing: SizingResult
     chosen: CandidateResult | None
     fastest_cycle_time: float | None
-    move_time: float
-    dwell_time: float
-    phase: float
+    move_time: float | None
+    dwell_time: float | None
+    phase: float | None
+    """The times at the machine's speed (None when no master speed suits any axis: the
+    axis is then sized alone in minimize mode, without dwell, to show what fails)."""
 
 
 @dataclass(frozen=True)
@@ -99,20 +101,23 @@ def size_machine(machine: Machine, rank_by: str | None = None,
         cycle_time = machine.cycle_time(machine.master_speed)
     results = []
     for axis, own in zip(machine.axes, fastest, strict=True):
-        at = cycle_time if cycle_time is not None else (own or 1.0)
-        design = axis.at(at, machine.cycle_angle)
+        if cycle_time is None:  # no axis suits any speed: each shows why, minimized alone
+            design, share = axis.minimizing(0.0), None
+        else:
+            design, share = axis.at(cycle_time, machine.cycle_angle), \
+                cycle_time / machine.cycle_angle
         sizing = size_design(design, rank_by)
         step()
         chosen = sizing.feasible[0] if sizing.feasible else None
         if chosen is None and not reason:
             reason = f"axis {axis.name!r}: no candidate is feasible at this master speed"
-        share = at / machine.cycle_angle
-        results.append(AxisResult(axis.name, design, sizing, chosen, own, axis.move * share,
-                                  axis.dwell * share, axis.start * share))
+        times = (None, None, None) if share is None else \
+            (axis.move * share, axis.dwell * share, axis.start * share)
+        results.append(AxisResult(axis.name, design, sizing, chosen, own, *times))
     bus = None
     if cycle_time is not None and all(r.chosen is not None for r in results):
         on_bus = [AxisOnBus(r.name, r.design, r.chosen, r.phase)
-                  for r in results if r.chosen is not None]
+                  for r in results if r.chosen is not None and r.phase is not None]
         bus = bus_result(on_bus, cycle_time, machine.bus)
         if not bus.passed and not reason:
             reason = (f"bus: the braking resistor needs {bus.resistor_power:.6g} W, the "
