@@ -388,8 +388,8 @@ class LinearPeaks:
                  for piece in law.pieces]
         self.tau = np.concatenate(grids)
         self.piece = np.repeat(np.arange(len(grids)), [len(g) for g in grids])
-        self.v, self.a, self.j, self.snap = (piece_values(law, self.tau, self.piece, order)
-                                             for order in (1, 2, 3, 4))
+        self.v, self.a, self.j, self.snap = piece_values(law, self.tau, self.piece,
+                                                         (1, 2, 3, 4))
         self.first = np.concatenate(([True], self.piece[1:] != self.piece[:-1]))
         self.last = np.concatenate((self.piece[1:] != self.piece[:-1], [True]))
         # a piece of constant acceleration (zero jerk: the trapezoid's) is a straight
