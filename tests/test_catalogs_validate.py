@@ -9,6 +9,8 @@ import pytest
 from sizer.catalog_tools import Finding, check_motor, validate_catalogs
 from sizer.model.inputs import MotorInput
 
+ROOT = Path(__file__).resolve().parents[1]
+
 GOOD = """\
 catalog: Good motors
 manufacturer: ACME
@@ -315,3 +317,18 @@ def test_every_bundled_catalog_validates_clean():
 
     report = validate_catalogs([str(p) for p in bundled_catalogs().values()])
     assert report.findings == [] and report.unreadable == [] and report.motors == 67
+
+
+def test_drive_catalogs_are_validated_as_drive_catalogs(tmp_path):
+    """The bundled drive catalogs pass; a drive whose peak current is below its
+    continuous one and a repeated drive id are findings (exit 1), with file and line."""
+    drives = sorted((ROOT / "sizer" / "catalogs" / "drives").glob("*.yaml"))
+    report = validate_catalogs([str(p) for p in drives])
+    assert report.findings == [] and report.drives >= 3 and report.exit_code == 0
+    bad = tmp_path / "drives.yaml"
+    bad.write_text("drives:\n  - {id: A, continuous_current: 5 A, peak_current: 3 A}\n"
+                   "  - {id: A, continuous_current: 5 A, peak_current: 10 A}\n")
+    report = validate_catalogs([str(bad)])
+    assert [(f.line, f.field) for f in report.findings] == [(2, "drives[0].peak_current"),
+                                                            (3, "drives[1].id")]
+    assert report.exit_code == 1

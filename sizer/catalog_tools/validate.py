@@ -25,7 +25,7 @@ from sizer.io.loader import resolve_catalog
 from sizer.io.motor_rules import check_motor
 from sizer.io.validation import all_problems
 from sizer.io.yaml_source import YamlSource, format_path, read_yaml
-from sizer.model.inputs import CatalogFile, MotorInput
+from sizer.model.inputs import CatalogFile, DriveCatalogFile, MotorInput
 
 
 @dataclass
@@ -37,6 +37,8 @@ class ValidationReport:
     unreadable: list[UserError] = field(default_factory=list)
     motors: int = 0
     """How many motor entries the readable files hold."""
+    drives: int = 0
+    """How many drive entries the readable drive catalogs hold."""
 
     @property
     def exit_code(self) -> int:
@@ -101,6 +103,9 @@ def _validate_source(source: YamlSource, ids: dict[str, _Seen],
         findings.append(Finding(file, source.line_of(path), format_path(path) or None,
                                 message, severity))  # type: ignore[arg-type]
 
+    data = source.data
+    if isinstance(data, dict) and "drives" in data and "motors" not in data:
+        return _validate_drives(source, finding, report, findings)
     try:
         CatalogFile.model_validate(source.data)
     except ValidationError as error:
@@ -109,7 +114,6 @@ def _validate_source(source: YamlSource, ids: dict[str, _Seen],
     except RecursionError:
         finding((), "the data is nested too deeply")
         return findings
-    data = source.data
     motors = data.get("motors")
     if not isinstance(motors, list):
         return findings  # the schema said so
@@ -129,6 +133,34 @@ def _validate_source(source: YamlSource, ids: dict[str, _Seen],
         for problem in check_motor(item, manufacturer=manufacturer, source=default_source,
                                    given=raw):
             finding((*at, *problem.path), problem.message, problem.severity)
+    return findings
+
+
+def _validate_drives(source: YamlSource, finding: Any, report: ValidationReport,
+                     findings: list[Finding]) -> list[Finding]:
+    """A drive catalog (``drives:`` without ``motors:``): its schema (currents, voltage
+    levels) and unique drive ids. Which motors a drive suits is checked when a design
+    pairs them (it needs the motors)."""
+    file = source.file or "?"
+    try:
+        DriveCatalogFile.model_validate(source.data)
+    except ValidationError as error:
+        for problem in all_problems(error, DriveCatalogFile, source):
+            findings.append(Finding(file, problem.line, problem.field, problem.message))
+    drives = source.data.get("drives")
+    if isinstance(drives, list):
+        report.drives += len(drives)
+        seen: dict[str, _Seen] = {}
+        for index, raw in enumerate(drives):
+            value = raw.get("id") if isinstance(raw, dict) else None
+            if isinstance(value, str) and value.strip():
+                at = ("drives", index, "id")
+                earlier = seen.get(value.strip())
+                if earlier is not None:
+                    finding(at, f"duplicate drive id {value.strip()!r} (first defined at "
+                                f"line {earlier.line})")
+                else:
+                    seen[value.strip()] = _Seen(file, source.line_of(at))
     return findings
 
 

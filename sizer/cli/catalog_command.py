@@ -149,7 +149,8 @@ def validate(
         typer.echo(printable(f"error: {error}"), err=True)
     if not quiet:
         count = len(report.findings)
-        summary = (f"{len(report.files)} file(s), {report.motors} motor(s): "
+        drives = f", {report.drives} drive(s)" if report.drives else ""
+        summary = (f"{len(report.files)} file(s), {report.motors} motor(s){drives}: "
                    f"{count or 'no'} finding{'s' * (count != 1)}")
         if report.unreadable:
             summary += f", {len(report.unreadable)} file(s) not readable"
