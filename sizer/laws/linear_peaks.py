@@ -164,6 +164,11 @@ def _piece_samples(law: MotionLaw, index: int) -> tuple[np.ndarray, ...]:
     return tau, np.full(len(tau), index), v, a, j, snap
 
 
+def _next(x: np.ndarray) -> np.ndarray:
+    """x[i + 1] at i, cyclically (np.roll(x, -1) without its overhead)."""
+    return np.concatenate((x[1:], x[:1]))
+
+
 def _hermite_root(g0: np.ndarray, g1: np.ndarray, d0: np.ndarray,
                   d1: np.ndarray) -> np.ndarray:
     """s in [0, 1] where the cubic H(s) = g0 + d0 s + c2 s^2 + c3 s^3 with H(0) = g0,
@@ -417,10 +422,10 @@ class LinearPeaks:
         self._scale_v = float(np.max(np.abs(self.v)))
         self.hull = _convex_hull(self.v, self.a)
         hx, hy = self.v[self.hull], self.a[self.hull]
-        ex, ey = np.roll(hx, -1) - hx, np.roll(hy, -1) - hy
+        ex, ey = _next(hx) - hx, _next(hy) - hy
         angles = np.arctan2(-ex, ey)  # outward normal of edge i (vertex i to i + 1)
-        self._shift = int(np.argmin(angles))
-        self._angles = np.maximum.accumulate(np.roll(angles, -self._shift))
+        self._shift = shift = int(np.argmin(angles))
+        self._angles = np.maximum.accumulate(np.concatenate((angles[shift:], angles[:shift])))
 
     # ------------------------------------------------------------------ queries
     def maximum(self, p: np.ndarray | float, q: np.ndarray | float) -> LinearPeak:
