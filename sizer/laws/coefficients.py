@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import cache
 
 import numpy as np
 
@@ -134,15 +135,26 @@ def scan_grid(piece: Piece, uniform: int = GRID_PER_PIECE, toward: Sequence[floa
     """Uniform points over a piece plus points graded geometrically toward both ends and
     toward each of the ``toward`` points that lie in the piece (from both sides)."""
     width = piece.end - piece.start
-    exponents = np.arange(END_REFINEMENT * per_decade, per_decade - 1, -1) / per_decade
-    graded = width * 10.0 ** -exponents
+    graded = width * _decades(per_decade)
     parts = [np.linspace(piece.start, piece.end, uniform + 1), piece.start + graded,
              piece.end - graded]
     for point in toward:
         if piece.start <= point <= piece.end:
             parts += [np.array([point]), point - graded, point + graded]
     grid = np.concatenate(parts)
-    return sorted_unique(grid[(grid >= piece.start) & (grid <= piece.end)])
+    if len(parts) > 3:  # points graded toward a fine point may leave the piece
+        grid = grid[(grid >= piece.start) & (grid <= piece.end)]
+    return sorted_unique(grid)
+
+
+@cache
+def _decades(per_decade: int) -> np.ndarray:
+    """10^-e for e from END_REFINEMENT down to 1 in steps of 1/per_decade (read-only,
+    computed once: every law of a shape search asks for the same)."""
+    exponents = np.arange(END_REFINEMENT * per_decade, per_decade - 1, -1) / per_decade
+    factors = 10.0 ** -exponents
+    factors.setflags(write=False)
+    return factors
 
 
 def rms(law: MotionLaw, order: int) -> float:
@@ -158,15 +170,15 @@ def one_sided_limits(law: MotionLaw, order: int) -> list[tuple[float, float, flo
     or, for a law whose ends move, as ``law.outside`` says (the period's wrap).
     """
     pieces = law.pieces
-
-    def value(index: int, tau: float) -> float:
-        return float(law.piece_derivative(index, np.array([tau]), order)[0])
-
+    # each piece's one-sided values at its start and at the next piece's start (its end)
+    stops = [p.start for p in pieces[1:]] + [pieces[-1].end]
+    ends = [law.piece_derivative(i, np.array([piece.start, stop]), order).tolist()
+            for i, (piece, stop) in enumerate(zip(pieces, stops, strict=True))]
     before, after = law.outside(order)
-    rows = [(pieces[0].start, before, value(0, pieces[0].start))]
+    rows = [(pieces[0].start, before, ends[0][0])]
     for i in range(1, len(pieces)):
-        rows.append((pieces[i].start, value(i - 1, pieces[i].start), value(i, pieces[i].start)))
-    rows.append((pieces[-1].end, value(len(pieces) - 1, pieces[-1].end), after))
+        rows.append((pieces[i].start, ends[i - 1][1], ends[i][0]))
+    rows.append((pieces[-1].end, ends[-1][1], after))
     return rows
 
 

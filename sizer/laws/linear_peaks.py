@@ -150,6 +150,25 @@ def piece_values(law: MotionLaw, tau: np.ndarray, piece: np.ndarray,
     return shaped[0] if isinstance(order, int) else shaped
 
 
+def _piece_samples(law: MotionLaw, index: int) -> tuple[np.ndarray, ...]:
+    """tau, piece index, v_N, a_N, j_N and q_N^(4) at the samples of one piece (its scan
+    grid). A piece of constant acceleration (zero jerk at every sample: the trapezoid's)
+    is a straight segment of the curve, whose hull is its two ends: only they are kept
+    (the jerk is read first, the other orders only where needed)."""
+    tau = scan_grid(law.pieces[index], uniform=SAMPLES_PER_PIECE, toward=law.fine_points(),
+                    per_decade=GRADED_PER_DECADE)
+    j = law.piece_derivative(index, tau, 3)
+    if not j.any():
+        tau, j = tau[[0, -1]], j[[0, -1]]
+    v, a, snap = (law.piece_derivative(index, tau, order) for order in (1, 2, 4))
+    return tau, np.full(len(tau), index), v, a, j, snap
+
+
+def _next(x: np.ndarray) -> np.ndarray:
+    """x[i + 1] at i, cyclically (np.roll(x, -1) without its overhead)."""
+    return np.concatenate((x[1:], x[:1]))
+
+
 def _hermite_root(g0: np.ndarray, g1: np.ndarray, d0: np.ndarray,
                   d1: np.ndarray) -> np.ndarray:
     """s in [0, 1] where the cubic H(s) = g0 + d0 s + c2 s^2 + c3 s^3 with H(0) = g0,
@@ -383,24 +402,11 @@ class LinearPeaks:
 
     def __init__(self, law: MotionLaw) -> None:
         self.law = law
-        grids = [scan_grid(piece, uniform=SAMPLES_PER_PIECE, toward=law.fine_points(),
-                           per_decade=GRADED_PER_DECADE)
-                 for piece in law.pieces]
-        self.tau = np.concatenate(grids)
-        self.piece = np.repeat(np.arange(len(grids)), [len(g) for g in grids])
-        self.v, self.a, self.j, self.snap = piece_values(law, self.tau, self.piece,
-                                                         (1, 2, 3, 4))
+        columns = [_piece_samples(law, index) for index in range(len(law.pieces))]
+        self.tau, self.piece, self.v, self.a, self.j, self.snap = (
+            np.concatenate(parts) for parts in zip(*columns, strict=True))
         self.first = np.concatenate(([True], self.piece[1:] != self.piece[:-1]))
         self.last = np.concatenate((self.piece[1:] != self.piece[:-1], [True]))
-        # a piece of constant acceleration (zero jerk: the trapezoid's) is a straight
-        # segment of the curve, whose hull is its two ends: the samples between go
-        jerkless = np.ones(len(grids), dtype=bool)
-        np.logical_and.at(jerkless, self.piece, self.j == 0.0)
-        keep = ~jerkless[self.piece] | self.first | self.last
-        if not keep.all():
-            self.tau, self.piece, self.v, self.a, self.j, self.snap, self.first, self.last = (
-                x[keep] for x in (self.tau, self.piece, self.v, self.a, self.j, self.snap,
-                                  self.first, self.last))
         self._table = _Table(self.tau, self.piece, self.v, self.a, self.j, self.snap,
                              self.first, self.last)
         self._speed_orders: dict[float, _SpeedOrder] = {}
@@ -416,10 +422,10 @@ class LinearPeaks:
         self._scale_v = float(np.max(np.abs(self.v)))
         self.hull = _convex_hull(self.v, self.a)
         hx, hy = self.v[self.hull], self.a[self.hull]
-        ex, ey = np.roll(hx, -1) - hx, np.roll(hy, -1) - hy
+        ex, ey = _next(hx) - hx, _next(hy) - hy
         angles = np.arctan2(-ex, ey)  # outward normal of edge i (vertex i to i + 1)
-        self._shift = int(np.argmin(angles))
-        self._angles = np.maximum.accumulate(np.roll(angles, -self._shift))
+        self._shift = shift = int(np.argmin(angles))
+        self._angles = np.maximum.accumulate(np.concatenate((angles[shift:], angles[:shift])))
 
     # ------------------------------------------------------------------ queries
     def maximum(self, p: np.ndarray | float, q: np.ndarray | float) -> LinearPeak:

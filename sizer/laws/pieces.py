@@ -7,7 +7,6 @@ from collections.abc import Sequence
 from dataclasses import replace
 
 import numpy as np
-from numpy.polynomial import polynomial as P
 
 from sizer.laws.base import Piece
 
@@ -27,17 +26,33 @@ def trig_poly_piece(
     """
     coef = np.asarray(poly, dtype=float) if len(poly) else np.zeros(1)
     sines = tuple(sines)
-    derivatives = [coef]  # polynomial coefficients of each derivative order, built once
+    derivatives = [coef.tolist()]  # polynomial coefficients of each derivative order, built once
 
     def evaluate(tau: np.ndarray, order: int) -> np.ndarray:
         while len(derivatives) <= order:
-            derivatives.append(P.polyder(derivatives[-1]))
-        out = P.polyval(tau - origin, derivatives[order]) + np.zeros_like(tau)
+            derivatives.append(_derivative(derivatives[-1]))
+        out = _horner(derivatives[order], tau - origin) + 0.0  # (-0.0 read as 0.0)
         for amplitude, omega, phase in sines:
             out = out + amplitude * omega**order * np.sin(omega * tau + phase + order * math.pi / 2)
         return out
 
     return Piece(start, end, evaluate, None if sines else len(coef) - 1)
+
+
+def _derivative(coef: list[float]) -> list[float]:
+    """Coefficients of the derivative of sum coef[k] x^k (numpy's polyder, as lists)."""
+    if len(coef) == 1:
+        return [coef[0] * 0.0]
+    return [k * c for k, c in enumerate(coef[1:], start=1)]
+
+
+def _horner(coef: list[float], x: np.ndarray) -> np.ndarray:
+    """sum coef[k] x^k by Horner's scheme, the operations of numpy's polyval in its order
+    (its result, without its per-call overhead: a law makes many small calls)."""
+    out = coef[-1] + x * 0.0
+    for c in coef[-2::-1]:
+        out = c + out * x
+    return out
 
 
 def constant_jerk_pieces(

@@ -17,7 +17,7 @@ from functools import lru_cache
 import numpy as np
 
 from sizer.laws import MotionLaw
-from sizer.laws.quadrature import Resolution, law_intervals
+from sizer.laws.quadrature import PieceIntervals, Resolution, law_intervals
 from sizer.numerics.arrays import sorted_unique
 
 POLYNOMIAL_INTERVALS = 16
@@ -71,18 +71,26 @@ def law_grid(law: MotionLaw) -> LawGrid:
     piece = np.concatenate([np.full(len(part.edges) - 1, part.index) for part in parts])
     nodes = np.concatenate([tau for tau, _ in rules])
     weights = np.concatenate([weight for _, weight in rules])
-    end_v = np.empty((len(left), 2))
-    end_a = np.empty((len(left), 2))
-    for index in range(len(law.pieces)):
-        mask = piece == index
-        for side, where in enumerate((left[mask], right[mask])):
-            end_v[mask, side] = law.piece_derivative(index, where, 1)
-            end_a[mask, side] = law.piece_derivative(index, where, 2)
     # nodes are evaluated on their interval's piece: in an interval a few ulps wide a node
     # may round onto the next piece's start, where law.derivative would switch pieces
-    on_pieces = PieceEvaluator(law, np.broadcast_to(piece[:, None], nodes.shape))
-    return LawGrid(law, left, right, piece, nodes, weights, on_pieces(nodes, 1),
-                   on_pieces(nodes, 2), end_v, end_a)
+    on_pieces = [_edge_and_node_values(law, part, tau)
+                 for part, (tau, _) in zip(parts, rules, strict=True)]
+    end_v, end_a, velocity, acceleration = (np.concatenate(columns)
+                                            for columns in zip(*on_pieces, strict=True))
+    return LawGrid(law, left, right, piece, nodes, weights, velocity, acceleration,
+                   end_v, end_a)
+
+
+def _edge_and_node_values(law: MotionLaw, part: PieceIntervals, tau: np.ndarray
+                          ) -> tuple[np.ndarray, ...]:
+    """v_N and a_N of one piece (one-sided at its ends) at its intervals' ends, (intervals,
+    2) arrays, and at their nodes ``tau``, (intervals, nodes): one evaluation per order."""
+    edges = len(part.edges)
+    at = np.concatenate((part.edges, tau.ravel()))
+    v, a = (law.piece_derivative(part.index, at, order) for order in (1, 2))
+    return (np.stack((v[:edges - 1], v[1:edges]), axis=1),
+            np.stack((a[:edges - 1], a[1:edges]), axis=1),
+            v[edges:].reshape(tau.shape), a[edges:].reshape(tau.shape))
 
 
 class PieceEvaluator:
