@@ -113,11 +113,10 @@ def _check_machine(path: Path, catalogs: list[str] | tuple[str, ...],
     """A machine file: PASS when every axis has a feasible pair at the master speed (the
     slowest axis's with minimize) and the bus copes."""
     from sizer import api
+    from sizer.cli.size_command import refuse_motor_options
     from sizer.report.machine_report import MachineCheckDocument
 
-    if catalogs:
-        raise UserError("not for a machine file: each axis names its motors",
-                        field="--catalog")
+    refuse_motor_options(catalogs)
     machine = api.load_machine(path)
     try:
         result = api.size_machine(machine, envelope=envelope or None)

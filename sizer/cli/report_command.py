@@ -9,7 +9,7 @@ import typer
 
 from sizer.cli.catalog_option import CatalogOption, DesignArgument
 from sizer.cli.plot_command import DpiOption
-from sizer.cli.size_command import _is_machine
+from sizer.cli.size_command import _is_machine, refuse_motor_options
 from sizer.errors import UserError
 from sizer.report.printable import printable
 
@@ -87,10 +87,7 @@ def _machine_report(path: Path, output: Path, catalog, motor, rank_by: str | Non
     from sizer.cli.progress import sizing_progress
     from sizer.report.machine_file_report import BUS_FIGURE, axis_folder, write_machine_report
 
-    for given, option in ((catalog, "--catalog"), (motor, "--motor")):
-        if given:
-            raise UserError("not for a machine file: each axis names its motors",
-                            field=option)
+    refuse_motor_options(catalog, motor)
     machine = api.load_machine(path)
     folders = [output / axis_folder(a.name, i) for i, a in enumerate(machine.axes)]
     check_outputs([*targets, output / BUS_FIGURE,

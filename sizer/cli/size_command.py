@@ -90,6 +90,15 @@ def _is_machine(path: Path) -> bool:
         return False
 
 
+def refuse_motor_options(catalog: Sequence[str] | None,
+                         motor: Sequence[str] | None = None) -> None:
+    """--catalog and --motor are for design files: a machine's axes name their motors."""
+    for given, option in ((catalog, "--catalog"), (motor, "--motor")):
+        if given:
+            raise UserError("not for a machine file: each axis names its motors",
+                            field=option)
+
+
 def _size_machine(path: Path, catalog: Sequence[str] | None, motor: Sequence[str] | None,
                   rank_by: str | None, top: int | None, show_all: bool, fmt: Format,
                   output: Path | None, envelope: str | None) -> None:
@@ -99,10 +108,7 @@ def _size_machine(path: Path, catalog: Sequence[str] | None, motor: Sequence[str
     from sizer.cli.progress import sizing_progress
     from sizer.report.machine_report import MachineDocument, publish_machine
 
-    for given, option in ((catalog, "--catalog"), (motor, "--motor")):
-        if given:
-            raise UserError("not for a machine file: each axis names its motors",
-                            field=option)
+    refuse_motor_options(catalog, motor)
     machine = api.load_machine(path)
     check_outputs(() if output is None else (output,), machine.files)
     try:

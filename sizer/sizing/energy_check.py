@@ -264,10 +264,13 @@ def _braking(design: Design, motors, power, rows: np.ndarray, known: np.ndarray)
 def _kind(calculator) -> str:
     """'segments' (sizer.sizing.segment_cycle: its 'duration' is the scale s), 'linkage'
     (sizer.sizing.linkage_sizing or linkage_cycle) or 'task'."""
-    module = type(calculator).__module__
-    if module.endswith("segment_cycle"):
+    from sizer.sizing.linkage_cycle import LinkageCycle
+    from sizer.sizing.linkage_sizing import LinkageCalculator
+    from sizer.sizing.segment_cycle import SegmentCycle
+
+    if isinstance(calculator, SegmentCycle):
         return "segments"
-    if module.endswith(("linkage_sizing", "linkage_cycle")):
+    if isinstance(calculator, LinkageCalculator | LinkageCycle):
         return "linkage"
     return "task"
 
