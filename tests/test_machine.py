@@ -325,3 +325,10 @@ def test_a_machine_no_axis_can_run_says_why_without_a_number_it_has_not(tmp_path
         assert out.returncode == 0, out.stderr
         assert "nan" not in out.stdout.lower().replace("infeasible", "")
     assert "no master speed suits every axis" in run_cli("size", str(path)).stdout
+
+
+def test_a_mapping_that_is_not_yaml_data_is_a_user_error() -> None:
+    data = machine(axis("a", "120 deg"), master_speed="60 rpm")
+    data["axes"][0]["load"] = {"inertia": object()}
+    with pytest.raises(UserError, match="cannot be written as YAML"):
+        api.load_machine(data)

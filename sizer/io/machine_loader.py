@@ -43,7 +43,10 @@ def load_machine_data(data: Mapping[str, Any], *, base: Path | None = None,
     """A machine given as a mapping (``<machine>`` for the file name in messages)."""
     import yaml
 
-    text = yaml.safe_dump(dict(data), sort_keys=False, allow_unicode=True)
+    try:
+        text = yaml.safe_dump(dict(data), sort_keys=False, allow_unicode=True)
+    except yaml.YAMLError as error:
+        raise UserError(f"the machine mapping cannot be written as YAML: {error}") from None
     if len(text.encode()) > MAX_DESIGN_BYTES:
         raise UserError(f"the machine mapping is larger than {MAX_DESIGN_BYTES} bytes")
     source = parse_yaml(text, file="<machine>", max_nodes=MAX_DESIGN_NODES)
