@@ -196,26 +196,64 @@ def _hermite_root(g0: np.ndarray, g1: np.ndarray, d0: np.ndarray,
 
 
 def _convex_hull(x: np.ndarray, y: np.ndarray) -> np.ndarray:
-    """Indices of the hull vertices of the points (x, y), counterclockwise (monotone
-    chain; collinear and repeated points dropped)."""
+    """Indices of the hull vertices of the points (x, y), counterclockwise: the vertices
+    of the monotone chain (collinear and repeated points dropped; of repeated points the
+    one the chain keeps), each chain found by :func:`_chain_vertices`, vectorized."""
     order = np.lexsort((y, x))
-    xs, ys = x[order].tolist(), y[order].tolist()
+    xs, ys = x[order], y[order]
+    count = len(xs)
+    # runs of repeated points (adjacent once sorted): the chains work on their first
+    new = np.ones(count, dtype=bool)
+    new[1:] = (xs[1:] != xs[:-1]) | (ys[1:] != ys[:-1])
+    starts = np.flatnonzero(new)
+    ends = np.append(starts[1:], count) - 1
+    if len(starts) == 1:  # one point, maybe repeated: the chain keeps the first and last
+        return order[[0, count - 1]] if count > 1 else order[:0]
+    ux, uy = xs[starts], ys[starts]
+    lower = _chain_vertices(ux, uy)
+    upper = _chain_vertices(ux[::-1], uy[::-1])
+    last = len(starts) - 1
+    # the monotone chain keeps the first of a repeated start and the last of the others
+    lower_sorted = np.where(lower == 0, starts[0], ends[lower])[:-1]
+    upper_runs = last - upper
+    upper_sorted = np.where(upper == 0, ends[last], starts[upper_runs])[:-1]
+    return order[np.concatenate((lower_sorted, upper_sorted))]
 
-    def chain(indices: range) -> list[int]:
-        hull: list[int] = []
-        for i in indices:
-            while len(hull) >= 2:
-                a, b = hull[-2], hull[-1]
-                cross = (xs[b] - xs[a]) * (ys[i] - ys[a]) - (ys[b] - ys[a]) * (xs[i] - xs[a])
-                if cross > 0.0:
-                    break
-                hull.pop()
-            hull.append(i)
-        return hull
 
-    lower = chain(range(len(xs)))
-    upper = chain(range(len(xs) - 1, -1, -1))
-    return order[np.array(lower[:-1] + upper[:-1])]
+THINNING_PASSES = 32
+"""Vectorized passes of :func:`_chain_vertices` before the point-by-point chain takes
+the rest (a smooth law's curve needs a few, a cam table's sampled one a few dozen)."""
+
+
+def _chain_vertices(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Positions of the vertices of one monotone chain of distinct points, in the chain's
+    order (x, y sorted along it), first and last included.
+
+    Thinning: every point that does not turn the chain strictly left from its current
+    neighbours (cross product <= 0) lies inside the triangle of its neighbours' chord or
+    on it, so it is no vertex (the points are distinct: no vertex hides behind a copy of
+    itself); all are dropped at once, pass after pass, until every turn is strictly left:
+    the monotone chain of the points. After THINNING_PASSES, the monotone chain runs
+    point by point on what is left."""
+    kept = np.arange(len(x), dtype=np.intp)
+    for _ in range(THINNING_PASSES):
+        if len(kept) < 3:
+            return kept
+        a, b, c = kept[:-2], kept[1:-1], kept[2:]
+        flat = (x[b] - x[a]) * (y[c] - y[a]) - (y[b] - y[a]) * (x[c] - x[a]) <= 0.0
+        if not flat.any():
+            return kept
+        kept = kept[~np.concatenate(([False], flat, [False]))]
+    xs, ys = x.tolist(), y.tolist()
+    hull: list[int] = []
+    for i in kept.tolist():
+        while len(hull) >= 2:
+            a0, b0 = hull[-2], hull[-1]
+            if (xs[b0] - xs[a0]) * (ys[i] - ys[a0]) - (ys[b0] - ys[a0]) * (xs[i] - xs[a0]) > 0.0:
+                break
+            hull.pop()
+        hull.append(i)
+    return np.array(hull, dtype=np.intp)
 
 
 def _with_speed_extrema(peaks: LinearPeaks) -> _Table:
