@@ -69,27 +69,35 @@ class Exponential(MotionLaw):
             x = 2.0 * tau - 1.0
             if order == 0:
                 return 0.5 + np.sign(x) * 0.5 * v_c * integral(np.abs(x))
-            e = shape(x)
             out = np.zeros_like(x)
-            live = e > 0.0
-            x, e = x[live], e[live]
             w = 1.0 - x * x
-            f1 = 2 * x * w**-lam + 2 * lam * x**3 * w ** (-lam - 1)
+            live = w > 0.0
+            x, w = x[live], w[live]
+            x2 = x * x
+            with np.errstate(over="ignore", under="ignore", divide="ignore"):
+                p = w**-lam  # the one power: w^(-lam - k) = p / w^k
+                e = np.exp(-sigma * x2 * p)
+            keep = e > 0.0
+            if not keep.all():
+                x, w, x2, p, e = x[keep], w[keep], x2[keep], p[keep], e[keep]
+                live[live] = keep
             if order == 1:
                 out[live] = v_c * e
-            elif order == 2:
+                return out
+            r = p / w  # w^(-lam - 1)
+            f1 = 2 * x * p + 2 * lam * x * x2 * r
+            if order == 2:
                 out[live] = 2 * v_c * (-sigma * f1) * e
-            else:
-                f2 = (2 * w**-lam + 10 * lam * x * x * w ** (-lam - 1)
-                      + 4 * lam * (lam + 1) * x**4 * w ** (-lam - 2))
-                if order == 3:
-                    out[live] = 4 * v_c * (sigma**2 * f1**2 - sigma * f2) * e
-                else:
-                    f3 = (24 * lam * x * w ** (-lam - 1)
-                          + 36 * lam * (lam + 1) * x**3 * w ** (-lam - 2)
-                          + 8 * lam * (lam + 1) * (lam + 2) * x**5 * w ** (-lam - 3))
-                    out[live] = 8 * v_c * (-(sigma**3) * f1**3 + 3 * sigma**2 * f1 * f2
-                                           - sigma * f3) * e
+                return out
+            r2 = r / w  # w^(-lam - 2)
+            f2 = 2 * p + 10 * lam * x2 * r + 4 * lam * (lam + 1) * x2 * x2 * r2
+            if order == 3:
+                out[live] = 4 * v_c * (sigma**2 * f1**2 - sigma * f2) * e
+                return out
+            f3 = (24 * lam * x * r + 36 * lam * (lam + 1) * x * x2 * r2
+                  + 8 * lam * (lam + 1) * (lam + 2) * x * x2 * x2 * (r2 / w))
+            out[live] = 8 * v_c * (-(sigma**3) * f1**3 + 3 * sigma**2 * f1 * f2
+                                   - sigma * f3) * e
             return out
 
         self._v_c = v_c
