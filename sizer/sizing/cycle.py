@@ -32,9 +32,9 @@ from functools import lru_cache
 from typing import Protocol
 
 import numpy as np
-from numpy.polynomial.legendre import leggauss
 
 from sizer.laws.linear_peaks import LinearPeak, piece_values
+from sizer.laws.quadrature import gauss_legendre
 from sizer.mechanics import Drive
 from sizer.model.domain import Task, ThermalSpeedRule
 from sizer.sizing.golden import golden_step, interior_points
@@ -483,7 +483,7 @@ class CycleCalculator:
         g = self.grid
         lo_edge = g.left[interval]
         half = 0.5 * z * (g.right[interval] - lo_edge)
-        x, w = leggauss(g.nodes.shape[1])
+        x, w = gauss_legendre(g.nodes.shape[1])
         tau = (lo_edge + half)[:, None] + half[:, None] * x
         on_pieces = PieceEvaluator(self.law, np.broadcast_to(g.piece[interval][:, None],
                                                              tau.shape))

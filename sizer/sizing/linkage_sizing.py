@@ -27,6 +27,7 @@ import numpy as np
 
 from sizer.errors import UserError
 from sizer.laws import MotionLaw
+from sizer.laws.quadrature import gauss_legendre
 from sizer.mechanics.drive import Drive
 from sizer.model.domain import Design, Limits, LinkageStage, Load, Task
 from sizer.sizing.checks import CheckArrays, evaluate_checks
@@ -74,7 +75,7 @@ class LinkageProfile:
 def _grid(law: MotionLaw | FixedShape) -> tuple[np.ndarray, np.ndarray]:
     """Sample points of [0, 1] and their quadrature weights (0 for the peak-only ones)."""
     cuts = np.unique(np.concatenate((law.breakpoints, np.linspace(0.0, 1.0, GAUSS_PIECES + 1))))
-    x, w = np.polynomial.legendre.leggauss(GAUSS_NODES)
+    x, w = gauss_legendre(GAUSS_NODES)
     left, width = cuts[:-1, None], np.diff(cuts)[:, None]
     nodes = (left + 0.5 * width * (x + 1.0)).ravel()
     weights = (0.5 * width * w).ravel()

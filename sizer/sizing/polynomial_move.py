@@ -40,8 +40,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.polynomial.legendre import leggauss
 
+from sizer.laws.quadrature import gauss_legendre
 from sizer.mechanics import Drive
 from sizer.numerics.roots import illinois
 from sizer.sizing.motors import MotorArrays
@@ -239,7 +239,7 @@ def _figures(kin: _Kinematics, channels: _Channels, drive: Drive, motors: MotorA
     motor = channels.polynomial(channels.motor, kin)  # along the motion
     stages = [channels.polynomial(f, kin) for f in channels.stages]
     load = channels.polynomial(channels.load, kin)
-    nodes, weights = leggauss(kin.V.shape[-1])
+    nodes, weights = gauss_legendre(kin.V.shape[-1])
     nodes = 0.5 * (nodes + 1.0)
     weights = np.where(valid, kin.w, 0.0)[..., None] * (0.5 * weights)
 

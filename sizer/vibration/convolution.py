@@ -23,10 +23,9 @@ from dataclasses import dataclass
 from functools import cached_property, lru_cache
 
 import numpy as np
-from numpy.polynomial.legendre import leggauss
 
 from sizer.laws.base import MotionLaw
-from sizer.laws.quadrature import law_intervals
+from sizer.laws.quadrature import gauss_legendre, law_intervals
 from sizer.vibration.transform import NODES
 
 CHUNK = 1 << 21
@@ -77,7 +76,7 @@ class Grid:
 
 
 def _gauss01() -> tuple[np.ndarray, np.ndarray]:
-    x, w = leggauss(NODES)
+    x, w = gauss_legendre(NODES)
     return 0.5 * (x + 1.0), 0.5 * w
 
 

@@ -20,6 +20,7 @@ import itertools
 import numpy as np
 
 from sizer.laws.base import MotionLaw
+from sizer.laws.quadrature import gauss_legendre
 from sizer.vibration.elastic_load import ElasticLoad
 
 
@@ -63,8 +64,6 @@ def polynomial_increment(acceleration, breaks: np.ndarray, duration: np.ndarray,
     a_N at the nodes u for every candidate, (n, len(u)); ``breaks`` are its pieces' ends.
     Composite Gauss-Legendre on the pieces, cut so that a part's phase stays below
     PHASE_STEP (exact to rounding for polynomial pieces times the exponential)."""
-    from numpy.polynomial.legendre import leggauss
-
     T = np.asarray(duration, dtype=float)
     s = eigenvalue(load) * T
     s_max = float(np.max(np.abs(s), initial=0.0))
@@ -73,7 +72,7 @@ def polynomial_increment(acceleration, breaks: np.ndarray, duration: np.ndarray,
         cuts = max(1, int(np.ceil(s_max * (end - start) / PHASE_STEP)))
         edges.append(np.linspace(start, end, cuts + 1)[1:])
     fine = np.concatenate(edges)
-    x, w = leggauss(NODES)
+    x, w = gauss_legendre(NODES)
     half = 0.5 * np.diff(fine)
     u = ((0.5 * (fine[:-1] + fine[1:]))[:, None] + half[:, None] * x).ravel()
     weight = (half[:, None] * w).ravel()
