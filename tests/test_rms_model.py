@@ -18,7 +18,7 @@ from test_engine_vs_scalar import candidate, engine_calculator, minimize_design
 
 from sizer.laws import make_law
 from sizer.mechanics import Drive
-from sizer.model import Load, Motor, Stage, Task, Transmission
+from sizer.model import Limits, Load, Motor, Stage, Task, Transmission
 from sizer.sizing.cycle import CycleCalculator
 from sizer.sizing.minimum_duration import rms_crossing
 from sizer.sizing.motors import MotorArrays
@@ -80,3 +80,19 @@ def test_the_crossing_is_where_the_reference_rms_check_binds(seed):
             assert 1.0 - value / limit < required
             checked += 1
     assert checked >= 1
+
+
+@pytest.mark.parametrize("spec", ["cycloidal", "modified_trapezoidal"])
+def test_a_crossing_from_a_model_built_for_more_candidates_is_the_same(spec):
+    """The first round of rms_crossing may take the model of a larger evaluation at the
+    same durations (minimum_duration builds it at the peak bound): the same crossings,
+    to the bit, as when the round evaluates the candidates again."""
+    calc = calculator_of(0.9, spec)
+    T = np.array([0.05, 0.08, 0.12, 0.2])
+    model = calc.evaluate(T, peaks=True, model=True).rms_model
+    limits = Limits(torque_margin=0.1)
+    index = np.array([3, 1, 2])
+    alone = rms_crossing(calc.take(index), limits, T[index])
+    reused = rms_crossing(calc.take(index), limits, T[index], (model, index))
+    assert np.isfinite(alone).all()
+    np.testing.assert_array_equal(reused, alone)

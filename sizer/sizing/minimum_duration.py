@@ -28,7 +28,7 @@ import numpy as np
 
 from sizer.model.domain import Limits
 from sizer.sizing.checks import TOLERANCE, CheckArrays, evaluate_checks, feasible, worst_slack
-from sizer.sizing.cycle import CycleCalculator, CycleMetrics
+from sizer.sizing.cycle import CycleCalculator, CycleMetrics, RmsCurve
 from sizer.sizing.golden import golden_step, interior_points
 from sizer.sizing.peak_duration import peak_duration
 from sizer.sizing.roots import illinois
@@ -50,8 +50,9 @@ class DurationSolution:
     method: str
 
 
-def evaluate(calculator: CycleCalculator, limits: Limits, T: np.ndarray, peaks: bool = True):
-    metrics = calculator.evaluate(T, peaks)
+def evaluate(calculator: CycleCalculator, limits: Limits, T: np.ndarray, peaks: bool = True,
+             model: bool = False):
+    metrics = calculator.evaluate(T, peaks, model=True) if model else calculator.evaluate(T, peaks)
     checks = evaluate_checks(metrics, calculator.motors, calculator.drive, limits,
                              calculator.task.linear)
     return metrics, checks
@@ -122,7 +123,9 @@ def _from_bound(calculator: CycleCalculator, limits: Limits,
     checks from there. inf bounds: no duration."""
     usable = np.isfinite(bound) & (bound > 0.0)
     probe = np.where(usable, bound, _largest_tried(calculator))
-    metrics, checks = evaluate(calculator, limits, probe)
+    # the RMS model at the bound too: the first round of the RMS crossing starts there
+    metrics, checks = evaluate(calculator, limits, probe, model=True)
+    at_bound = metrics.rms_model
     ok = usable & feasible(checks)
     method = "peak and speed bounds"
     rest = ~ok & np.isfinite(bound)
@@ -138,7 +141,8 @@ def _from_bound(calculator: CycleCalculator, limits: Limits,
         out = np.full(len(T), np.nan)
         index = np.flatnonzero(left & usable)
         if len(index):
-            found = rms_crossing(calculator.take(index), limits, bound[index])
+            first = None if at_bound is None else (at_bound, index)
+            found = rms_crossing(calculator.take(index), limits, bound[index], first)
             out[index] = np.where(found >= bound[index] * (1.0 - 1e-12), found, np.nan)
         return out
 
@@ -244,8 +248,8 @@ CONVERGED = 1e-6
 model it came from is exact to rounding that close to where it was built."""
 
 
-def rms_crossing(calculator: CycleCalculator, limits: Limits,
-                 start: np.ndarray) -> np.ndarray:
+def rms_crossing(calculator: CycleCalculator, limits: Limits, start: np.ndarray,
+                 first: tuple[RmsCurve, np.ndarray] | None = None) -> np.ndarray:
     """Per candidate the duration above ``start`` where the motor's RMS torque reaches the
     continuous limit at the thermal speed (margin applied); nan where none was found.
 
@@ -253,24 +257,30 @@ def rms_crossing(calculator: CycleCalculator, limits: Limits,
     (sizer.sizing.cycle.RmsModel: exact there, second-order near) and moves to the
     model's crossing: from the current point up (or down) by factors of 2 to a change of
     sign, then the project's root finder. The rounds converge like Newton's method; a
-    candidate is done when a round moves it by less than CONVERGED.
+    candidate is done when a round moves it by less than CONVERGED. ``first``: the model
+    already built at ``start`` (an evaluation of more candidates, and the rows of these
+    in it), which the first round uses instead of evaluating again.
     """
     grip = 1.0 - limits.torque_margin
     n = len(start)
     out = np.full(n, np.nan)
     T = np.asarray(start, dtype=float).copy()
     index = np.arange(n)
-    for _ in range(RMS_ROUNDS):
+    for number in range(RMS_ROUNDS):
         sub = calculator if len(index) == n else calculator.take(index)
-        model = sub.evaluate(T, peaks=False, model=True).rms_model
+        rows = None
+        if number == 0 and first is not None:
+            model, rows = first
+        else:
+            model = sub.evaluate(T, peaks=False, model=True).rms_model
         if model is None:  # a cycle with a free move that has boundary speeds: no model
             break
 
-        def excess(x: np.ndarray, sub=sub, model=model) -> np.ndarray:
+        def excess(x: np.ndarray, sub=sub, model=model, rows=rows) -> np.ndarray:
             at = np.exp(x)
             limit = sub.motors.continuous.limit_clipped(sub.thermal_speed(at))
             with np.errstate(divide="ignore"):
-                return np.log(model.rms(at)) - np.log(grip * limit)
+                return np.log(model.rms(at, rows)) - np.log(grip * limit)
 
         x0 = np.log(T)
         g0 = excess(x0)
