@@ -142,3 +142,99 @@ def test_the_peak_ratio_of_moves_past_the_region_equals_the_reference(monkeypatc
                     compared += 1
     assert compared >= 12
     assert sum(taken) > 0  # some ratios were taken by the exact path for such moves
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_leaving_out_dominated_queries_gives_the_same_bound(seed):
+    """peak_duration solves only the queries (function x region line x direction) whose
+    bracket may hold the candidate's largest bound: on all the motors of a random design
+    at once, per law and ratio, the bound equals the one from every query, to the bit."""
+    from sizer.mechanics import Drive
+    from sizer.model import Transmission
+    from sizer.sizing.motors import MotorArrays
+
+    design = minimize_design(seed)
+    motors = MotorArrays.of(list(design.motors), design.limits.envelope)
+    compared = 0
+    for spec in (*design.laws[:2], *LAWS[seed % len(LAWS):][:2]):
+        for ratio in design.ratio_choice.ratios[:3]:
+            stages = list(design.transmission.stages)
+            stages[design.ratio_choice.stage] = dataclasses.replace(stages[0], ratio=ratio)
+            calculator = CycleCalculator(None, design.task,
+                                         Drive(design.load, Transmission(tuple(stages))),
+                                         motors, design.limits.thermal_speed,
+                                         law=make_law(spec))
+            pruned = peak_duration(calculator, design.limits)
+            every = peak_duration(calculator, design.limits, prune=False)
+            if every is None:
+                assert pruned is None
+                continue
+            np.testing.assert_array_equal(pruned, every)
+            compared += int(np.isfinite(every).sum())
+    assert compared >= 10
+
+
+def competing_calculators():
+    """Motors whose moves end near the knee of a falling region (the flat line and the
+    falling lines give bounds within a few percent of each other), with friction, a
+    constant load, an efficiency and a return move, per law and ratio."""
+    from sizer.mechanics import Drive
+    from sizer.model import Load, Motor, Stage, Task, Transmission
+    from sizer.sizing.motors import MotorArrays
+
+    rng = np.random.default_rng(3)
+    motors = []
+    for i in range(60):
+        tau_p, v_n = rng.uniform(1.0, 20.0), rng.uniform(100.0, 400.0)
+        knee, fall = rng.uniform(0.3, 1.0), rng.uniform(0.3, 0.9)
+        motors.append(Motor(
+            f"m{i}", rng.uniform(1e-5, 1e-3), tau_p / 3.0, tau_p, v_n, max_speed=2.0 * v_n,
+            intermittent_curve=((0.0, tau_p), (knee * v_n, tau_p), (1.3 * v_n, fall * tau_p),
+                                (2.0 * v_n, 0.5 * fall * tau_p)),
+            continuous_curve=((0.0, tau_p / 3.0), (2.0 * v_n, tau_p / 6.0))))
+    arrays = MotorArrays.of(motors, "curves")
+    task = Task(1.2, None, dwell=0.1, return_move=True)
+    for spec in ("cycloidal", "poly5", "trapezoidal(alpha=1/3)", "modified_sinusoidal"):
+        for ratio in (2.0, 5.0, 12.0):
+            drive = Drive(Load(0.02, damping=0.01, friction=0.2, torque=0.3),
+                          Transmission((Stage("gearbox", ratio, 0.9, 1e-5),)))
+            yield CycleCalculator(None, task, drive, arrays, law=make_law(spec))
+
+
+COMPETING_LIMITS = dict(torque_margin=0.1, speed_margin=0.05)
+
+
+def test_leaving_out_queries_on_regions_whose_lines_compete():
+    from sizer.model import Limits
+
+    limits = Limits(**COMPETING_LIMITS)
+    compared = 0
+    for calculator in competing_calculators():
+        pruned = peak_duration(calculator, limits)
+        every = peak_duration(calculator, limits, prune=False)
+        np.testing.assert_array_equal(pruned, every)
+        compared += int(np.isfinite(every).sum())
+    assert compared >= 200
+
+
+def test_each_query_bound_lies_in_its_bracket():
+    """What the pruning rests on: every query's bound 1/u (Newton on the exact linear
+    peaks) lies between the closed-form ends of its bracket."""
+    from sizer.model import Limits
+    from sizer.sizing.peak_duration import _brackets, _largest_u, peak_queries
+
+    limits = Limits(**COMPETING_LIMITS)
+    checked = 0
+    for calculator in competing_calculators():
+        law = calculator.law
+        _, P, Q, D = peak_queries(calculator, limits)
+        c = law.coefficients
+        low, high = _brackets(P, Q, D, c.C_a, c.C_v)
+        u = _largest_u(law.linear_peaks, law, P, Q, D, c.C_a, c.C_v)
+        with np.errstate(divide="ignore"):
+            T = np.where(u > 0.0, 1.0 / u, np.inf)
+        finite = np.isfinite(T) & np.isfinite(high)
+        assert np.all(T[finite] >= low[finite] * (1.0 - 1e-12))
+        assert np.all(T[finite] <= high[finite] * (1.0 + 1e-12))
+        checked += int(finite.sum())
+    assert checked >= 1000

@@ -38,9 +38,11 @@ NEWTON_STEPS = 40
 """Newton steps at most (quadratic convergence: about 6 from the start used here)."""
 
 
-def peak_duration(calculator: CycleCalculator, limits: Limits) -> np.ndarray | None:
+def peak_duration(calculator: CycleCalculator, limits: Limits,
+                  prune: bool = True) -> np.ndarray | None:
     """A lower bound on T_min per candidate (inf where no duration passes a peak or speed
-    check; None where the law may move backwards, v_N < 0, and the bound does not hold)."""
+    check; None where the law may move backwards, v_N < 0, and the bound does not hold).
+    ``prune=False`` solves every query (the reference the pruned result equals)."""
     law = calculator.law
     peaks = law.linear_peaks
     if float(peaks.minimum(0.0, 1.0).value) < -1e-12:
@@ -52,6 +54,20 @@ def peak_duration(calculator: CycleCalculator, limits: Limits) -> np.ndarray | N
         return np.zeros(n)
     K = np.broadcast_to(drive.ratio, (n,))
     bounds = [_speed_bounds(calculator, limits, K)]
+    queries = peak_queries(calculator, limits)
+    if queries is not None:
+        who, P, Q, D = queries
+        bounds.append(_largest_duration(peaks, law, n, who, P, Q, D, c.C_a, c.C_v, prune))
+    return np.max(np.stack(bounds), axis=0)
+
+
+def peak_queries(calculator: CycleCalculator, limits: Limits):
+    """The peak conditions F(u) <= D of the module docs, one per candidate x torque
+    function x region line (or stage rating) x direction: (candidate, P, Q, D) arrays,
+    or None where there are none."""
+    motors, drive, h = calculator.motors, calculator.drive, calculator.h
+    n = len(motors)
+    K = np.broadcast_to(drive.ratio, (n,))
     grip = 1.0 - limits.torque_margin
     alpha, sigma, _ = motors.intermittent.lines()
     rows, cols = np.nonzero(np.isfinite(alpha))
@@ -73,16 +89,67 @@ def peak_duration(calculator: CycleCalculator, limits: Limits) -> np.ndarray | N
                 queries.append((rated, np.broadcast_to(A, (n,))[rated] * h,
                                 np.broadcast_to(B, (n,))[rated] * h,
                                 grip * rating - np.broadcast_to(C, (n,))[rated]))
-    if queries:
-        who = np.concatenate([q[0] for q in queries])
-        P, Q, D = (np.concatenate([q[i] for q in queries]) for i in (1, 2, 3))
-        u = _largest_u(peaks, law, P, Q, D, c.C_a, c.C_v)
-        with np.errstate(divide="ignore"):
-            T = np.where(u > 0.0, 1.0 / u, np.inf)
-        worst = np.zeros(n)
-        np.maximum.at(worst, who, T)
-        bounds.append(worst)
-    return np.max(np.stack(bounds), axis=0)
+    if not queries:
+        return None
+    who = np.concatenate([q[0] for q in queries])
+    P, Q, D = (np.concatenate([q[i] for q in queries]) for i in (1, 2, 3))
+    return who, P, Q, D
+
+
+PRUNE_MARGIN = 1e-9
+"""Relative gap by which a query's upper bracket must lie below another query's lower
+bracket to be left out (far above the rounding of either)."""
+
+
+def _largest_duration(peaks, law, n: int, who: np.ndarray, P: np.ndarray, Q: np.ndarray,
+                      D: np.ndarray, C_a: float, C_v: float, prune: bool) -> np.ndarray:
+    """Per candidate the largest of its queries' bounds 1/u (:func:`_largest_u`).
+
+    Only the largest counts, so a query is solved only where it may be the largest: each
+    query's bound lies in a bracket from closed forms (:func:`_brackets`), and a query
+    whose upper end is below the largest lower end of its candidate's queries is left
+    out. Where the solved queries do not reach that lower end after all (a Newton run
+    that never got to the right of u*), the candidate's other queries are solved too, so
+    the result is the largest over all queries, as without pruning."""
+    keep = np.ones(len(who), dtype=bool)
+    if prune:
+        low, high = _brackets(P, Q, D, C_a, C_v)
+        floor = np.zeros(n)
+        np.maximum.at(floor, who, low)
+        keep = ~(high * (1.0 + PRUNE_MARGIN) < floor[who] * (1.0 - PRUNE_MARGIN))
+    worst = np.zeros(n)
+    solved = np.zeros(len(who), dtype=bool)
+    for _ in range(2):
+        todo = keep & ~solved
+        if todo.any():
+            u = _largest_u(peaks, law, P[todo], Q[todo], D[todo], C_a, C_v)
+            with np.errstate(divide="ignore"):
+                np.maximum.at(worst, who[todo], np.where(u > 0.0, 1.0 / u, np.inf))
+            solved |= todo
+        if keep.all():
+            break
+        short = worst < floor * (1.0 - PRUNE_MARGIN)
+        keep |= short[who]
+    return worst
+
+
+def _brackets(P: np.ndarray, Q: np.ndarray, D: np.ndarray, C_a: float,
+              C_v: float) -> tuple[np.ndarray, np.ndarray]:
+    """Per query a lower and an upper end of its bound 1/u* (module docs: F(u) <= D).
+
+    Lower: 1/u at the start of :func:`_largest_u` (the Newton iterates stay at or below
+    it, so the bound computed is at least this). Upper: where P, Q >= 0, F(u) <= P C_a u^2
+    + Q C_v u (a_N <= C_a, 0 <= v_N <= C_v), so u* is at least that quadratic's root and
+    1/u* at most (Q C_v + sqrt((Q C_v)^2 + 4 P C_a D)) / (2 D); inf elsewhere (and where
+    D <= 0: no duration passes)."""
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        start = np.minimum(np.sqrt(D / (P * C_a)), D / (Q * C_v))
+        low = np.where((D > 0.0) & np.isfinite(start) & (start > 0.0), 1.0 / start, 0.0)
+        a, b = P * C_a, Q * C_v
+        high = (b + np.sqrt(b * b + 4.0 * a * D)) / (2.0 * D)
+    high = np.where((D > 0.0) & (P >= 0.0) & (Q >= 0.0) & np.isfinite(high), high, np.inf)
+    low = np.where(D > 0.0, low, np.inf)
+    return low, high
 
 
 def _speed_bounds(calculator: CycleCalculator, limits: Limits, K: np.ndarray) -> np.ndarray:
