@@ -243,6 +243,9 @@ def rms_unreachable(calculator: CycleCalculator, limits: Limits) -> np.ndarray:
 RMS_ROUNDS = 8
 """Rounds of the RMS crossing at most (each an evaluation and the model's root: the
 model's error is of second order, so three or four reach rounding)."""
+NEAR = 4.0
+"""After the first round, the first step of the bracket search is NEAR times the last
+move (in log T): the crossing moves by far less than that from one model to the next."""
 CONVERGED = 1e-6
 """A round that moves the duration by less than this (relative) gives the answer: the
 model it came from is exact to rounding that close to where it was built."""
@@ -266,6 +269,7 @@ def rms_crossing(calculator: CycleCalculator, limits: Limits, start: np.ndarray,
     out = np.full(n, np.nan)
     T = np.asarray(start, dtype=float).copy()
     index = np.arange(n)
+    moved: np.ndarray | None = None  # per candidate the last round's move in log T
     for number in range(RMS_ROUNDS):
         sub = calculator if len(index) == n else calculator.take(index)
         rows = None
@@ -285,7 +289,10 @@ def rms_crossing(calculator: CycleCalculator, limits: Limits, start: np.ndarray,
         x0 = np.log(T)
         g0 = excess(x0)
         step = np.where(g0 > 0.0, STEP, -STEP)
-        x_a, g_a, x_b = x0, g0, x0 + step
+        # after the first round the crossing lies within a small multiple of the last
+        # move (the model's error is of second order in it): the first step is that
+        first_step = step if moved is None else np.copysign(np.minimum(STEP, NEAR * moved), step)
+        x_a, g_a, x_b = x0, g0, x0 + first_step
         g_b = excess(x_b)
         for _ in range(EXPANSIONS // 2):
             same = (np.sign(g_b) == np.sign(g_a)) & np.isfinite(g_b)
@@ -299,13 +306,30 @@ def rms_crossing(calculator: CycleCalculator, limits: Limits, start: np.ndarray,
         g_lo, g_hi = np.where(x_a < x_b, g_a, g_b), np.where(x_a < x_b, g_b, g_a)
         x = np.where(found, 0.5 * (lo + hi), x0)
         if found.any():
-            x[found] = illinois(excess, lo, hi, g_lo, g_hi, xtol=1e-15)[found]
+            at_rows = np.flatnonzero(found)
+
+            def excess_of(x: np.ndarray, where: np.ndarray, sub=sub, model=model, rows=rows,
+                          template=T) -> np.ndarray:
+                """:func:`excess` of the candidates at ``where`` only (the root finder
+                works on the ones still open: each value is the same as in a whole call)."""
+                at = np.exp(x)
+                full = template.copy()
+                full[where] = at
+                speed = sub.thermal_speed(full)[where]
+                limit = sub.motors.continuous.take(where).limit_clipped(speed)
+                with np.errstate(divide="ignore"):
+                    return (np.log(model.rms(at, where if rows is None else rows[where]))
+                            - np.log(grip * limit))
+
+            x[found] = illinois(excess_of, lo[found], hi[found], g_lo[found], g_hi[found],
+                                xtol=1e-15, args=(at_rows,))
         new = np.exp(x)
         # the model's error grows with the square of the distance from where it was built
         # (about 1e-3 d^2 relative on the laws tried): a move below 1e-6 leaves 1e-15
         done = found & ((np.abs(new - T) <= CONVERGED * T) | (g0 == 0.0))
         out[index[done]] = new[done]
         keep = found & ~done
+        moved = np.maximum(np.abs(x[keep] - x0[keep]), 1e-13 * np.maximum(1.0, np.abs(x0[keep])))
         index, T = index[keep], new[keep]
         if len(index) == 0:
             break
