@@ -41,8 +41,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from sizer.envelope import RegionTable, continuous_region
 from sizer.model.domain import Design, Motor, ServoDrive
+from sizer.sizing.catalog_facts import catalog_facts
 from sizer.sizing.checks import CheckArrays
 from sizer.sizing.cycle import CycleCalculator, CycleMetrics
 
@@ -84,14 +84,9 @@ def without_power_figures() -> Iterator[None]:
         _POWER_FIGURES.reset(token)
 
 
-def _heated(motor: Motor) -> bool:
-    return motor.thermal_time_constant is not None \
-        and motor.max_winding_temperature_rise is not None
-
-
 def has_heat_check(motors: tuple[Motor, ...]) -> bool:
     """A heat check where some motor gives its thermal time constant and allowed rise."""
-    return any(_heated(m) for m in motors)
+    return catalog_facts(motors).heated
 
 
 def has_braking_check(design: Design, drives: tuple[ServoDrive, ...]) -> bool:
@@ -128,9 +123,7 @@ class EnergyChecks:
 
 
 def _motor_column(motors: tuple[Motor, ...], index: np.ndarray, name: str) -> np.ndarray:
-    values = np.array([np.nan if getattr(m, name) is None else float(getattr(m, name))
-                       for m in motors], dtype=float)
-    return values[index]
+    return catalog_facts(motors).column(name)[index]
 
 
 def _drive_column(drives: tuple[ServoDrive, ...], index: np.ndarray | None, n: int,
@@ -329,7 +322,7 @@ def _heat(design: Design, motors, samples, rows: np.ndarray, thermal: np.ndarray
     n = len(motors)
     tau_th = _motor_column(motors.catalog, motors.index, "thermal_time_constant")
     allowed = _motor_column(motors.catalog, motors.index, "max_winding_temperature_rise")
-    region = RegionTable([continuous_region(m, motors.envelope) for m in motors.catalog])
+    region = catalog_facts(motors.catalog).continuous(motors.envelope)
     thermal_speed = np.broadcast_to(metrics.thermal_speed, (n,))
     tau_c = region.take(motors.index).limit_clipped(thermal_speed)
     applies = np.isfinite(tau_th) & np.isfinite(allowed) & (tau_c > 0.0)
