@@ -10,6 +10,7 @@ import numpy as np
 
 from sizer.envelope import RegionTable, continuous_region, intermittent_region
 from sizer.model.domain import EnvelopeRule, Motor, ServoDrive
+from sizer.sizing.catalog_facts import catalog_facts
 from sizer.sizing.drives import CurrentCurves, clip_region, pairs
 
 
@@ -94,9 +95,7 @@ class MotorArrays:
     @property
     def brake_torque(self) -> np.ndarray:
         """Each candidate's holding-brake torque (N*m; NaN: the motor has no brake)."""
-        values = [np.nan if m.brake_holding_torque is None else m.brake_holding_torque
-                  for m in self.catalog]
-        return np.array(values, dtype=float)[self.index]
+        return catalog_facts(self.catalog).column("brake_holding_torque")[self.index]
 
     @property
     def motors(self) -> tuple[Motor, ...]:
