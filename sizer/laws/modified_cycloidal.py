@@ -22,14 +22,25 @@ MAX_KAPPA = 0.99
 
 
 def solve_tau_m(tau: np.ndarray, kappa: float) -> np.ndarray:
-    """Invert tau = tau_m - kappa*sin(2*pi*tau_m)/(2*pi) for tau_m (vectorized)."""
+    """Invert tau = tau_m - kappa*sin(2*pi*tau_m)/(2*pi) for tau_m (vectorized).
+
+    Safeguarded Newton (bisection where a step leaves the sign bracket), each step on the
+    points still moving: a point is done when its step falls to the rounding of f
+    amplified by 1/f' (f' = 1 - kappa cos >= 1 - |kappa|), so that near |kappa| = 1 the
+    iterates' wandering by a few ulps around the root does not keep every point going."""
     tau = np.asarray(tau, dtype=float)
+    shape = tau.shape
+    flat = tau.ravel()
     spread = abs(kappa) / TWO_PI
-    lo, hi = tau - spread, tau + spread
-    x = tau + kappa * np.sin(TWO_PI * tau) / TWO_PI  # one fixed-point step: inside [lo, hi]
+    lo, hi = flat - spread, flat + spread
+    x = flat + kappa * np.sin(TWO_PI * flat) / TWO_PI  # one fixed-point step: inside [lo, hi]
+    out = x.copy()
+    index = np.arange(flat.size)
+    target = flat
+    settle = 4e-16 / (1.0 - abs(kappa))
     for _ in range(100):
         theta = TWO_PI * x
-        f = x - kappa * np.sin(theta) / TWO_PI - tau
+        f = x - kappa * np.sin(theta) / TWO_PI - target
         lo = np.where(f < 0.0, x, lo)
         hi = np.where(f > 0.0, x, hi)
         step = f / (1.0 - kappa * np.cos(theta))
@@ -38,10 +49,12 @@ def solve_tau_m(tau: np.ndarray, kappa: float) -> np.ndarray:
         # (zero, or an ulp toward the root) must not be taken for a divergence
         outside = (new < lo) | (new > hi)
         new = np.where(outside, 0.5 * (lo + hi), new)
-        if np.all(np.abs(new - x) <= 4e-16 * np.maximum(1.0, np.abs(x))):
-            return new
-        x = new
-    return x
+        out[index] = new
+        moving = np.abs(new - x) > settle * np.maximum(1.0, np.abs(x))
+        if not moving.any():
+            break
+        index, x, lo, hi, target = (v[moving] for v in (index, new, lo, hi, target))
+    return out.reshape(shape)
 
 
 class ModifiedCycloidal(MotionLaw):
