@@ -410,11 +410,14 @@ class CycleCalculator:
             best = _largest_integral([tuple(np.broadcast_to(x, (n,))[run_cand] for x in f)
                                       for f in channel], run)
             mine = []
+            columns = np.arange(6)
             for k in range(len(channel)):
                 rows = best == k
-                mine.append(np.stack([
-                    np.bincount(run_cand[rows], weights=run[rows, j], minlength=n)
-                    for j in range(6)]))
+                # one bincount over (candidate, moment) bins: each bin's terms summed in
+                # the runs' order, as six bincounts of one column each would
+                bins = (run_cand[rows][:, None] * 6 + columns).ravel()
+                mine.append(np.bincount(bins, weights=run[rows].ravel(),
+                                        minlength=6 * n).reshape(n, 6).T.copy())
             sums.append(mine)
         return sums
 
