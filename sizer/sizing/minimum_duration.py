@@ -280,11 +280,24 @@ def rms_crossing(calculator: CycleCalculator, limits: Limits, start: np.ndarray,
         if model is None:  # a cycle with a free move that has boundary speeds: no model
             break
 
-        def excess(x: np.ndarray, sub=sub, model=model, rows=rows) -> np.ndarray:
+        def excess_of(x: np.ndarray, where: np.ndarray, sub=sub, model=model, rows=rows,
+                      template=T) -> np.ndarray:
+            """log(RMS / limit) of the model at log durations x of the candidates at
+            ``where`` (the root finder works on the ones still open; each value is the
+            same as in a call for all of them)."""
             at = np.exp(x)
-            limit = sub.motors.continuous.limit_clipped(sub.thermal_speed(at))
+            full = template.copy()
+            full[where] = at
+            speed = sub.thermal_speed(full)[where]
+            limit = sub.motors.continuous.take(where).limit_clipped(speed)
             with np.errstate(divide="ignore"):
-                return np.log(model.rms(at, rows)) - np.log(grip * limit)
+                return (np.log(model.rms(at, where if rows is None else rows[where]))
+                        - np.log(grip * limit))
+
+        every = np.arange(len(index))
+
+        def excess(x: np.ndarray, every=every, of=excess_of) -> np.ndarray:
+            return of(x, every)
 
         x0 = np.log(T)
         g0 = excess(x0)
@@ -306,23 +319,8 @@ def rms_crossing(calculator: CycleCalculator, limits: Limits, start: np.ndarray,
         g_lo, g_hi = np.where(x_a < x_b, g_a, g_b), np.where(x_a < x_b, g_b, g_a)
         x = np.where(found, 0.5 * (lo + hi), x0)
         if found.any():
-            at_rows = np.flatnonzero(found)
-
-            def excess_of(x: np.ndarray, where: np.ndarray, sub=sub, model=model, rows=rows,
-                          template=T) -> np.ndarray:
-                """:func:`excess` of the candidates at ``where`` only (the root finder
-                works on the ones still open: each value is the same as in a whole call)."""
-                at = np.exp(x)
-                full = template.copy()
-                full[where] = at
-                speed = sub.thermal_speed(full)[where]
-                limit = sub.motors.continuous.take(where).limit_clipped(speed)
-                with np.errstate(divide="ignore"):
-                    return (np.log(model.rms(at, where if rows is None else rows[where]))
-                            - np.log(grip * limit))
-
             x[found] = illinois(excess_of, lo[found], hi[found], g_lo[found], g_hi[found],
-                                xtol=1e-15, args=(at_rows,))
+                                xtol=1e-15, args=(np.flatnonzero(found),))
         new = np.exp(x)
         # the model's error grows with the square of the distance from where it was built
         # (about 1e-3 d^2 relative on the laws tried): a move below 1e-6 leaves 1e-15
