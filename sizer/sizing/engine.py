@@ -85,9 +85,12 @@ def evaluate_spec(design: Design, spec: str, motors: MotorArrays) -> CandidateTa
     if design.ratio_choice is None:
         candidates = Candidates.single(motors, design.load, design.transmission)
         return evaluate_law(design, spec, candidates)
+    from sizer.sizing.duration_floor import duration_floor, rms_fails_up_to
     from sizer.sizing.ratio_choice import choose_ratio
 
-    return choose_ratio(design, motors, lambda c: evaluate_law(design, spec, c))
+    return choose_ratio(design, motors, lambda c: evaluate_law(design, spec, c),
+                        floor=lambda c: duration_floor(design, spec, c),
+                        fails_up_to=lambda c, T: rms_fails_up_to(design, spec, c, T))
 
 
 def evaluate_law(design: Design, spec: str, candidates: Candidates) -> CandidateTable:

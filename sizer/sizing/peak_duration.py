@@ -39,10 +39,12 @@ NEWTON_STEPS = 40
 
 
 def peak_duration(calculator: CycleCalculator, limits: Limits,
-                  prune: bool = True) -> np.ndarray | None:
+                  prune: bool = True, closed_forms: bool = False) -> np.ndarray | None:
     """A lower bound on T_min per candidate (inf where no duration passes a peak or speed
     check; None where the law may move backwards, v_N < 0, and the bound does not hold).
-    ``prune=False`` solves every query (the reference the pruned result equals)."""
+    ``prune=False`` solves every query (the reference the pruned result equals);
+    ``closed_forms``: each peak query's lower bracket (:func:`_brackets`) instead of its
+    solution, a weaker bound without the Newton runs."""
     law = calculator.law
     peaks = law.linear_peaks
     if float(peaks.minimum(0.0, 1.0).value) < -1e-12:
@@ -57,7 +59,12 @@ def peak_duration(calculator: CycleCalculator, limits: Limits,
     queries = peak_queries(calculator, limits)
     if queries is not None:
         who, P, Q, D = queries
-        bounds.append(_largest_duration(peaks, law, n, who, P, Q, D, c.C_a, c.C_v, prune))
+        if closed_forms:
+            low = np.zeros(n)
+            np.maximum.at(low, who, _brackets(P, Q, D, c.C_a, c.C_v)[0])
+            bounds.append(low)
+        else:
+            bounds.append(_largest_duration(peaks, law, n, who, P, Q, D, c.C_a, c.C_v, prune))
     return np.max(np.stack(bounds), axis=0)
 
 

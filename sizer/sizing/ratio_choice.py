@@ -6,8 +6,15 @@ around each motor's best point down to 0.25 % steps. All options of a round are 
 candidate axis (motors x options, sizer.sizing.candidates) evaluated together. Per motor
 the best option is the feasible one with the shortest T_min (minimize mode) or the
 smallest RMS torque (duration given); when none is feasible, the one closest to feasible
-(the largest worst slack). Ties keep the first option found (gearboxes, then the listed
-ratios, then the lattice).
+(the largest worst slack). Ties keep the first option (gearboxes, then the listed ratios,
+then the lattice).
+
+In minimize mode the listed options (gearboxes and ratios) are evaluated in rounds, each
+motor's options in the order of their duration floors (sizer.sizing.duration_floor): an
+option whose floor lies above the motor's best feasible T_min so far cannot beat it and
+is not evaluated; after the first round, an option whose RMS check fails at every
+duration up to that T_min (sizer.sizing.duration_floor.rms_fails_up_to: one evaluation
+at it) neither. The choice is the one of evaluating every option.
 """
 
 from __future__ import annotations
@@ -31,6 +38,8 @@ LOG_STEP = 2.5e-3
 
 Evaluate = Callable[[Candidates], CandidateTable]
 """Evaluates one law (spec) for candidates; the table has one row per candidate."""
+Floor = Callable[[Candidates], "np.ndarray | None"]
+"""Per candidate a duration below which it is infeasible, or None (no floor known)."""
 
 
 def _score(table: CandidateTable) -> tuple[np.ndarray, np.ndarray]:
@@ -53,22 +62,33 @@ class _Best:
         self.value = np.full(motors, np.inf)
         self.found = np.zeros(motors, dtype=bool)
         self.stage_ratio = np.full(motors, np.nan)
+        self.rank = np.zeros(motors, dtype=np.intp)
+        self.seen = 0  # ranks given so far
 
-    def update(self, table: CandidateTable, motor: np.ndarray, stage_ratio: np.ndarray) -> None:
-        """Keep, per motor, the first strictly better candidate of ``table`` (rows for
-        motors ``motor``, in evaluation order)."""
+    def update(self, table: CandidateTable, motor: np.ndarray, stage_ratio: np.ndarray,
+               rank: np.ndarray | None = None) -> None:
+        """Keep, per motor, the best candidate of ``table`` (rows for motors ``motor``) if
+        it beats the one kept: smaller (infeasible, value), then smaller ``rank`` (the
+        option's place in the order options are listed; default: after every option
+        seen so far, in the table's order)."""
+        if rank is None:
+            rank = self.seen + np.arange(len(table))
+        self.seen = max(self.seen, int(np.max(rank, initial=-1)) + 1)
         infeasible, value = _score(table)
-        order = np.lexsort((np.arange(len(table)), value, infeasible, motor))
+        order = np.lexsort((rank, value, infeasible, motor))
         first = np.ones(len(order), dtype=bool)
         first[1:] = motor[order][1:] != motor[order][:-1]
         rows = order[first]
         m = motor[rows]
+        same = (infeasible[rows] == self.infeasible[m]) & (value[rows] == self.value[m])
         better = ~self.found[m] | (infeasible[rows] < self.infeasible[m]) | \
-            ((infeasible[rows] == self.infeasible[m]) & (value[rows] < self.value[m]))
+            ((infeasible[rows] == self.infeasible[m]) & (value[rows] < self.value[m])) | \
+            (same & (rank[rows] < self.rank[m]))
         rows, m = rows[better], m[better]
         self.tables.append(table)
         self.where[m] = np.column_stack((np.full(len(m), len(self.tables) - 1), rows))
         self.infeasible[m], self.value[m] = infeasible[rows], value[rows]
+        self.rank[m] = rank[rows]
         self.found[m] = True
         self.stage_ratio[m] = stage_ratio[rows]
 
@@ -80,20 +100,25 @@ class _Best:
         return dataclasses.replace(best, stage_ratio=self.stage_ratio.copy())
 
 
-def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate) -> CandidateTable:
-    """The best option for each motor (one row per motor, carrying ratio and gearbox)."""
+def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate,
+                 floor: Floor | None = None,
+                 fails_up_to: Callable[[Candidates, np.ndarray], np.ndarray] | None = None
+                 ) -> CandidateTable:
+    """The best option for each motor (one row per motor, carrying ratio and gearbox).
+    In minimize mode ``floor`` bounds the options' T_min from below and ``fails_up_to`` tells
+    the candidates infeasible at every duration up to a given one (module docs)."""
     choice = design.ratio_choice
     assert choice is not None
     base = design.transmission.stages[choice.stage]
     best = _Best(len(motors))
 
     def consider(transmissions: list[Transmission], gearboxes: list[str | None],
-                 motor: np.ndarray, option: np.ndarray) -> None:
+                 motor: np.ndarray, option: np.ndarray, rank: np.ndarray | None = None) -> None:
         candidates = Candidates.pairs(motors, design.load, transmissions, motor, option,
                                       gearboxes=tuple(gearboxes))
         table = evaluate(candidates)
         ratios = np.array([t.stages[choice.stage].ratio for t in transmissions])[option]
-        best.update(table, motor, ratios)
+        best.update(table, motor, ratios, rank)
 
     def with_ratio(ratio: float) -> Transmission:
         return design.transmission.with_stage(choice.stage, dataclasses.replace(base, ratio=ratio))
@@ -106,7 +131,19 @@ def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate) -> Can
     with without_power_figures() if energy else nullcontext():
         if listed:
             n, m = len(motors), len(listed)
-            consider(listed, names, np.repeat(np.arange(n), m), np.tile(np.arange(m), n))
+            motor, option = np.repeat(np.arange(n), m), np.tile(np.arange(m), n)
+            bounds = None
+            if floor is not None and m > 1:
+                bounds = floor(Candidates.pairs(motors, design.load, listed, motor, option))
+            if bounds is None:
+                consider(listed, names, motor, option, option)
+            else:
+                def fails_of(mo: np.ndarray, op: np.ndarray, T: np.ndarray) -> np.ndarray:
+                    assert fails_up_to is not None
+                    return fails_up_to(Candidates.pairs(motors, design.load, listed, mo, op), T)
+
+                _by_floor(bounds.reshape(n, m), lambda mo, op: consider(listed, names, mo, op, op),
+                          best, None if fails_up_to is None else fails_of)
         if choice.bounds is not None:
             _continuous(choice.bounds, with_ratio, consider, best, len(motors))
     chosen = best.table()
@@ -117,6 +154,55 @@ def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate) -> Can
                                       np.arange(len(motors)), chosen.option,
                                       gearboxes=chosen.gearboxes))
     return dataclasses.replace(again, stage_ratio=chosen.stage_ratio)
+
+
+FLOOR_MARGIN = 1e-12
+"""Relative gap by which an option's floor must exceed the best T_min to be left out
+(the floor and T_min are each exact to a few ulps)."""
+
+
+FailsUpTo = Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray]
+"""``fails_up_to(motor, option, T)``: per pair, is it infeasible at every duration up to T?"""
+
+
+def _by_floor(floors: np.ndarray, consider: Callable[[np.ndarray, np.ndarray], None],
+              best: _Best, fails_up_to: FailsUpTo | None = None) -> None:
+    """The listed options in rounds (minimize mode): per motor, its options in the order
+    of their floors (motors x options), one per round while the motor has a feasible
+    option, whose T_min the options with a higher floor cannot beat; every option left at
+    once where the motor has none yet after its first (the closest to feasible is chosen
+    from all of them). After the first round, ``fails_up_to`` rules out the options that
+    cannot beat the T_min found (a cheap test at that duration)."""
+    n, m = floors.shape
+    order = np.argsort(floors, axis=1, kind="stable")
+    done = np.zeros((n, m), dtype=bool)
+    rows = np.arange(n)
+    for number in range(m + 1):
+        if number == 1 and fails_up_to is not None:
+            feasible = best.found & ~best.infeasible
+            with np.errstate(invalid="ignore"):
+                test = feasible[:, None] & ~done & \
+                    ~(floors > best.value[:, None] * (1.0 + FLOOR_MARGIN))
+            motor, option = np.nonzero(test)
+            if len(motor):
+                done[motor, option] |= fails_up_to(motor, option, best.value[motor])
+        feasible = best.found & ~best.infeasible
+        with np.errstate(invalid="ignore"):
+            beaten = feasible[:, None] & (floors > best.value[:, None] * (1.0 + FLOOR_MARGIN))
+        open_ = ~done & ~beaten
+        # the next option per motor in floor order, or all those left (no feasible one yet)
+        ordered = np.take_along_axis(open_, order, axis=1)
+        has = ordered.any(axis=1)
+        if not has.any():
+            return
+        nxt = order[rows, np.argmax(ordered, axis=1)]
+        pick = np.zeros((n, m), dtype=bool)
+        one = has & (feasible | ~done.any(axis=1))
+        pick[rows[one], nxt[one]] = True
+        pick |= open_ & (has & ~one)[:, None]
+        motor, option = np.nonzero(pick)
+        done |= pick
+        consider(motor, option)
 
 
 def _continuous(bounds, with_ratio, consider, best: _Best, motors: int) -> None:

@@ -1,0 +1,111 @@
+"""Below which duration can no candidate be feasible? A floor under the T_min it reports.
+
+The peak and speed bound of sizer.sizing.peak_duration (book sec. 6.1.1, eq. 6.2 in the
+rectangular case) holds for the checks as they are decided, tolerance included, when
+every limit it reads is relaxed by the checks' tolerance: a check passes where value <=
+(1 - required + TOLERANCE) * limit (sizer.sizing.checks), so a torque margin m reads as
+m - TOLERANCE, a speed margin likewise, a load limit as (1 + TOLERANCE) times itself.
+Every duration a candidate reports as feasible passes those checks, so it is at least
+the floor; the searches that move T_min up afterwards (the residual vibration, braking
+and heat) keep it so. The ratio search (sizer.sizing.ratio_choice) leaves out an option
+whose floor lies above a motor's best T_min: it cannot beat it.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from sizer.laws import AUTO, make_law, resolve
+from sizer.laws.open_shaped import is_open_shaped
+from sizer.model.domain import Design, Limits
+from sizer.sizing.candidates import Candidates
+from sizer.sizing.checks import TOLERANCE
+from sizer.sizing.cycle import CycleCalculator
+from sizer.sizing.peak_duration import peak_duration
+
+CHUNK = 1 << 14
+"""Candidates bounded at once (the peak queries of each are a few dozen numbers)."""
+
+
+def relaxed(limits: Limits) -> Limits:
+    """The limits as the checks apply them at the edge of their tolerance."""
+    def wider(limit: float | None) -> float | None:
+        return None if limit is None else limit * (1.0 + TOLERANCE)
+
+    return dataclasses.replace(
+        limits, torque_margin=limits.torque_margin - TOLERANCE,
+        speed_margin=limits.speed_margin - TOLERANCE, max_speed=wider(limits.max_speed),
+        max_acceleration=wider(limits.max_acceleration), max_jerk=wider(limits.max_jerk))
+
+
+def duration_floor(design: Design, spec: str, candidates: Candidates) -> np.ndarray | None:
+    """Per candidate a duration below which the law ``spec`` is infeasible, in minimize
+    mode for the task shorthand (a move, its dwell and return) with a fixed law; None
+    where there is no such floor (a given duration, a cycle of segments, a linkage, a
+    law shaped per candidate, a law that moves backwards)."""
+    if design.cycle is not None or not design.task.minimize \
+            or design.transmission.linkage is not None or is_open_shaped(spec):
+        return None
+    _, values = resolve(spec)
+    if any(v == AUTO for v in values.values()):
+        return None
+    law, limits = make_law(spec), relaxed(design.limits)
+    parts = []
+    for start in range(0, len(candidates), CHUNK):
+        part = candidates.take(np.arange(start, min(start + CHUNK, len(candidates))))
+        calculator = CycleCalculator(None, design.task, part.drive, part.motors,
+                                     design.limits.thermal_speed, law=law)
+        bound = peak_duration(calculator, limits, closed_forms=True)
+        if bound is None:
+            return None
+        parts.append(bound)
+    return np.concatenate(parts) if parts else np.zeros(0)
+
+
+STEP = 1e-3
+"""Relative step in T at which the RMS model tells which way the RMS check moves."""
+FALL = 1e-5
+"""Relative fall of RMS / limit over STEP that counts as falling: far above the model's
+error there (second order: about 1e-3 STEP^2 on the laws tried) and rounding."""
+
+
+def rms_fails_up_to(design: Design, spec: str, candidates: Candidates,
+                    T: np.ndarray) -> np.ndarray:
+    """Per candidate: does the RMS check of ``spec`` fail at every duration up to its T?
+
+    True where it fails at T beyond the tolerance and RMS / limit (the continuous limit at
+    the thermal speed) falls as T grows there, by the cycle's RMS model (exact at T, its
+    slope too: sizer.sizing.cycle.RmsModel). That ratio falls with T and may rise again
+    past its minimum (friction and a constant load over a cycle with dwell), never the
+    other way (the search for T_min rests on the same: sizer.sizing.minimum_duration), so
+    it is higher still at every shorter duration."""
+    from sizer.sizing.engine import chunk_size  # the engine imports this module lazily
+
+    law = make_law(spec)
+    level = 1.0 - design.limits.torque_margin + TOLERANCE
+    size = chunk_size(law, 2 if design.task.return_move else 1)
+    out = np.zeros(len(candidates), dtype=bool)
+    for start in range(0, len(candidates), size):
+        rows = np.arange(start, min(start + size, len(candidates)))
+        part = candidates.take(rows)
+        calculator = CycleCalculator(None, design.task, part.drive, part.motors,
+                                     design.limits.thermal_speed, law=law)
+        here = T[rows]
+        metrics = calculator.evaluate(here, peaks=False, model=True)
+        if metrics.rms_model is None:
+            continue
+        later = here * (1.0 + STEP)
+
+        def ratio(rms: np.ndarray, at: np.ndarray, part=part,
+                  calculator=calculator) -> np.ndarray:
+            limit = part.motors.continuous.limit_clipped(calculator.thermal_speed(at))
+            with np.errstate(divide="ignore", invalid="ignore"):
+                return np.where(limit > 0.0, rms / limit, np.inf)
+
+        now = ratio(metrics.rms_torque, here)
+        after = ratio(metrics.rms_model.rms(later), later)
+        out[rows] = np.isfinite(now) & (now > level * (1.0 + 1e-9)) & \
+            (after < now * (1.0 - FALL))
+    return out
