@@ -23,6 +23,7 @@ from sizer.model.domain import Design, Limits
 from sizer.sizing.candidates import Candidates
 from sizer.sizing.checks import TOLERANCE
 from sizer.sizing.cycle import CycleCalculator
+from sizer.sizing.minimum_duration import is_purely_inertial
 from sizer.sizing.peak_duration import peak_duration
 
 CHUNK = 1 << 14
@@ -44,7 +45,8 @@ def duration_floor(design: Design, spec: str, candidates: Candidates) -> np.ndar
     """Per candidate a duration below which the law ``spec`` is infeasible, in minimize
     mode for the task shorthand (a move, its dwell and return) with a fixed law; None
     where there is no such floor (a given duration, a cycle of segments, a linkage, a
-    law shaped per candidate, a law that moves backwards)."""
+    law shaped per candidate, a law that moves backwards) or no need of one (the closed
+    form of eq. 6.2 sizes every option at the cost of one evaluation)."""
     if design.cycle is not None or not design.task.minimize \
             or design.transmission.linkage is not None or is_open_shaped(spec):
         return None
@@ -57,6 +59,8 @@ def duration_floor(design: Design, spec: str, candidates: Candidates) -> np.ndar
         part = candidates.take(np.arange(start, min(start + CHUNK, len(candidates))))
         calculator = CycleCalculator(None, design.task, part.drive, part.motors,
                                      design.limits.thermal_speed, law=law)
+        if is_purely_inertial(calculator):  # eq. (6.2): every option is cheap as it is
+            return None
         bound = peak_duration(calculator, limits, closed_forms=True)
         if bound is None:
             return None
