@@ -88,9 +88,25 @@ def evaluate_spec(design: Design, spec: str, motors: MotorArrays) -> CandidateTa
     from sizer.sizing.duration_floor import duration_floor, rms_fails_up_to
     from sizer.sizing.ratio_choice import choose_ratio
 
+    without_peaks = None
+    if _plain_given_duration(design, spec):
+        law = make_law(spec)
+        without_peaks = lambda c: evaluate_fixed_law(design, law, c, peaks=False)  # noqa: E731
     return choose_ratio(design, motors, lambda c: evaluate_law(design, spec, c),
                         floor=lambda c: duration_floor(design, spec, c),
-                        fails_up_to=lambda c, T: rms_fails_up_to(design, spec, c, T))
+                        fails_up_to=lambda c, T: rms_fails_up_to(design, spec, c, T),
+                        without_peaks=without_peaks)
+
+
+def _plain_given_duration(design: Design, spec: str) -> bool:
+    """A given duration, the task shorthand, a fixed law: every check but the peaks is
+    known from an evaluation without them, and leaving them out only passes them (the
+    ratio search evaluates the peaks of the options that can still win: sizer.sizing.
+    ratio_choice)."""
+    if design.task.minimize or design.cycle is not None or \
+            design.transmission.linkage is not None or is_open_shaped(spec):
+        return False
+    return not any(v == AUTO for v in resolve(spec)[1].values())
 
 
 def evaluate_law(design: Design, spec: str, candidates: Candidates) -> CandidateTable:
@@ -138,9 +154,11 @@ def chunk_size(law: MotionLaw, moves: int = 1) -> int:
     return max(MIN_CHUNK, CHUNK_SAMPLES // samples)
 
 
-def evaluate_fixed_law(design: Design, law: MotionLaw, candidates: Candidates) -> CandidateTable:
+def evaluate_fixed_law(design: Design, law: MotionLaw, candidates: Candidates,
+                       peaks: bool = True) -> CandidateTable:
     """The requirements, checks and verdicts of one law for every candidate, in chunks
-    of :func:`chunk_size` candidates."""
+    of :func:`chunk_size` candidates. Without ``peaks`` (a given duration only) the peak
+    torques and ratios are left at zero: their checks pass."""
     if design.transmission.linkage is not None:
         size = max(MIN_CHUNK, CHUNK_SAMPLES // LINKAGE_SAMPLES)
     elif design.cycle is not None:
@@ -149,16 +167,17 @@ def evaluate_fixed_law(design: Design, law: MotionLaw, candidates: Candidates) -
         calculator = CycleCalculator(None, design.task, candidates.drive, candidates.motors,
                                      design.limits.thermal_speed, law=law)
         if is_purely_inertial(calculator):  # closed forms: memory per candidate, no grid
-            return _evaluate_chunk(design, law, candidates)
+            return _evaluate_chunk(design, law, candidates, peaks)
         size = chunk_size(law)
     if len(candidates) <= size:
-        return _evaluate_chunk(design, law, candidates)
+        return _evaluate_chunk(design, law, candidates, peaks)
     starts = range(0, len(candidates), size)
     return concatenate([_evaluate_chunk(design, law, candidates.take(
-        np.arange(start, min(start + size, len(candidates))))) for start in starts])
+        np.arange(start, min(start + size, len(candidates)))), peaks) for start in starts])
 
 
-def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates) -> CandidateTable:
+def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates,
+                    peaks: bool = True) -> CandidateTable:
     if design.transmission.linkage is not None:
         return _evaluate_linkage_chunk(design, law, candidates)
     if design.cycle is not None:
@@ -172,7 +191,7 @@ def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates) -> C
         duration = solution.duration
     else:
         T = np.full(len(motors), design.task.duration)
-        metrics = calculator.evaluate(T)
+        metrics = calculator.evaluate(T, peaks)
         checks = evaluate_checks(metrics, motors, drive, design.limits, design.task.linear)
         feasible = all_pass(checks)
         duration = T

@@ -102,23 +102,31 @@ class _Best:
 
 def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate,
                  floor: Floor | None = None,
-                 fails_up_to: Callable[[Candidates, np.ndarray], np.ndarray] | None = None
-                 ) -> CandidateTable:
+                 fails_up_to: Callable[[Candidates, np.ndarray], np.ndarray] | None = None,
+                 without_peaks: Evaluate | None = None) -> CandidateTable:
     """The best option for each motor (one row per motor, carrying ratio and gearbox).
-    In minimize mode ``floor`` bounds the options' T_min from below and ``fails_up_to`` tells
-    the candidates infeasible at every duration up to a given one (module docs)."""
+    In minimize mode ``floor`` bounds the options' T_min from below and ``fails_up_to``
+    tells the candidates infeasible at every duration up to a given one; with a given
+    duration ``without_peaks`` evaluates all but the peaks (module docs)."""
     choice = design.ratio_choice
     assert choice is not None
     base = design.transmission.stages[choice.stage]
     best = _Best(len(motors))
+    energy = has_heat_check(motors.catalog) or has_braking_check(design, motors.drives)
+    lazy = without_peaks if not energy else None
 
     def consider(transmissions: list[Transmission], gearboxes: list[str | None],
                  motor: np.ndarray, option: np.ndarray, rank: np.ndarray | None = None) -> None:
         candidates = Candidates.pairs(motors, design.load, transmissions, motor, option,
                                       gearboxes=tuple(gearboxes))
-        table = evaluate(candidates)
         ratios = np.array([t.stages[choice.stage].ratio for t in transmissions])[option]
-        best.update(table, motor, ratios, rank)
+        if rank is None:
+            rank = best.seen + np.arange(len(candidates))
+        if lazy is None:
+            best.update(evaluate(candidates), motor, ratios, rank)
+            return
+        rows, table = _peaks_in_order(candidates, motor, rank, evaluate, lazy)
+        best.update(table, motor[rows], ratios[rows], rank[rows])
 
     def with_ratio(ratio: float) -> Transmission:
         return design.transmission.with_stage(choice.stage, dataclasses.replace(base, ratio=ratio))
@@ -127,7 +135,6 @@ def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate,
     names: list[str | None] = [g.gearbox for g in choice.gearboxes]
     listed += [with_ratio(r) for r in choice.ratios]
     names += [None] * len(choice.ratios)
-    energy = has_heat_check(motors.catalog) or has_braking_check(design, motors.drives)
     with without_power_figures() if energy else nullcontext():
         if listed:
             n, m = len(motors), len(listed)
@@ -154,6 +161,46 @@ def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate,
                                       np.arange(len(motors)), chosen.option,
                                       gearboxes=chosen.gearboxes))
     return dataclasses.replace(again, stage_ratio=chosen.stage_ratio)
+
+
+def _peaks_in_order(candidates: Candidates, motor: np.ndarray, rank: np.ndarray,
+                    evaluate: Evaluate, without_peaks: Evaluate
+                    ) -> tuple[np.ndarray, CandidateTable]:
+    """A given duration: the candidates whose peaks can decide the choice, evaluated in
+    full (rows of ``candidates`` and their table). All are evaluated without the peaks
+    first (the RMS torque and every other check; left out, the peak checks pass, so a
+    candidate infeasible there is infeasible); then, per motor, in rounds, its candidate
+    with the next smallest (RMS torque, rank) among those feasible so far, until one is
+    feasible with its peaks: no candidate after it can beat it. Where none is, every
+    candidate of the motor is evaluated (the closest to feasible is chosen)."""
+    rough = without_peaks(candidates)
+    infeasible, value = _score(rough)
+    order = np.lexsort((rank, value, infeasible, motor))
+    by_motor = motor[order]
+    start = np.flatnonzero(np.r_[True, by_motor[1:] != by_motor[:-1]])
+    place = np.arange(len(order)) - np.repeat(start, np.diff(np.r_[start, len(order)]))
+    motors = int(motor.max(initial=-1)) + 1
+    found = np.zeros(motors, dtype=bool)
+    evaluated = np.zeros(len(order), dtype=bool)
+    picked: list[np.ndarray] = []
+    tables: list[CandidateTable] = []
+
+    def full(rows: np.ndarray) -> None:
+        table = evaluate(candidates.take(rows))
+        found[motor[rows][table.feasible]] = True
+        evaluated[rows] = True
+        picked.append(rows)
+        tables.append(table)
+
+    for k in range(int(place.max(initial=-1)) + 1):
+        rows = order[(place == k) & ~infeasible[order] & ~found[by_motor]]
+        if len(rows) == 0:
+            break
+        full(rows)
+    rest = np.flatnonzero(~found[motor] & ~evaluated)
+    if len(rest):
+        full(rest)
+    return np.concatenate(picked), concatenate(tables)
 
 
 FLOOR_MARGIN = 1e-12

@@ -1,5 +1,10 @@
-"""The ratio search in minimize mode leaves out options that cannot win (issue 11):
-sizer.sizing.duration_floor and the rounds of sizer.sizing.ratio_choice.
+"""The ratio search leaves out options that cannot win (issue 11): in minimize mode by
+sizer.sizing.duration_floor and the rounds of sizer.sizing.ratio_choice, with a given
+duration by evaluating the peaks only of the options that can still win.
+
+- With a given duration, the choice from the peaks of a few options equals the choice
+  from every option evaluated in full (bitwise), for listed ratios, gearboxes (with a
+  tie) and a continuous range.
 
 - The choice with the options left out equals the choice from every option evaluated
   (bitwise: the same option, T_min, figures and slacks per motor), on random designs
@@ -22,7 +27,13 @@ import dataclasses
 import numpy as np
 import pytest
 from scalar_reference import Candidate, evaluate
-from test_engine_vs_scalar import RATIOS, candidate, minimize_design, random_motor
+from test_engine_vs_scalar import (
+    RATIOS,
+    candidate,
+    minimize_design,
+    random_design,
+    random_motor,
+)
 
 from sizer.laws import make_law
 from sizer.model import (
@@ -41,12 +52,15 @@ from sizer.sizing.duration_floor import duration_floor, rms_fails_up_to
 from sizer.sizing.engine import evaluate_law, evaluate_spec
 from sizer.sizing.motors import MotorArrays
 from sizer.sizing.ratio_choice import choose_ratio
+from sizer.sizing.table import Mode
 
 
-def wide_design(seed: int, gearboxes: bool = False):
+def wide_design(seed: int, gearboxes: bool = False, given: bool = False,
+                continuous: bool = False):
     """:func:`minimize_design` with 10 motors and all the ratios (or three catalog
-    gearboxes, two of them identical)."""
-    design = minimize_design(seed)
+    gearboxes, two of them identical, or a continuous range); ``given``: with the
+    duration of :func:`random_design`."""
+    design = random_design(seed) if given else minimize_design(seed)
     rng = np.random.default_rng(1000 + seed)
     motors = tuple(random_motor(rng, i) for i in range(10))
     if gearboxes:
@@ -55,6 +69,8 @@ def wide_design(seed: int, gearboxes: bool = False):
         options = (GearboxOption("small", dataclasses.replace(stage, ratio=4.0)), same,
                    GearboxOption("twin-b", dataclasses.replace(stage, ratio=8.0)))
         choice = RatioChoice(stage=0, gearboxes=options)
+    elif continuous:
+        choice = RatioChoice(stage=0, bounds=(2.0, 30.0))
     else:
         choice = RatioChoice(stage=0, ratios=RATIOS)
     return dataclasses.replace(design, motors=motors, ratio_choice=choice)
@@ -65,14 +81,18 @@ def same(a: np.ndarray, b: np.ndarray) -> bool:
 
 
 @pytest.mark.parametrize("seed", range(8))
-@pytest.mark.parametrize("gearboxes", [False, True])
-def test_the_pruned_choice_equals_evaluating_every_option(seed, gearboxes):
-    design = wide_design(seed, gearboxes)
+@pytest.mark.parametrize(("gearboxes", "given", "continuous"),
+                         [(False, False, False), (True, False, False), (False, True, False),
+                          (True, True, False), (False, True, True)])
+def test_the_pruned_choice_equals_evaluating_every_option(seed, gearboxes, given, continuous):
+    design = wide_design(seed, gearboxes, given, continuous)
     arrays = MotorArrays.of(design.motors, design.limits.envelope)
     twins = 0
     for spec in design.laws:
         pruned = evaluate_spec(design, spec, arrays)
         every = choose_ratio(design, arrays, lambda c, spec=spec: evaluate_law(design, spec, c))
+        if given:
+            assert pruned.mode is every.mode is Mode.DURATION
         chosen = [pruned.transmissions[k] for k in pruned.option]
         assert chosen == [every.transmissions[k] for k in every.option], spec
         names = [pruned.gearboxes[k] for k in pruned.option]
@@ -143,8 +163,10 @@ def test_rms_fails_up_to_means_failing_at_every_shorter_duration(seed):
     assert said[True] >= 3 and said[False] >= 3, said
 
 
-def test_options_are_left_out(monkeypatch):
-    """The rounds evaluate fewer candidates than motors x options (the pruning works)."""
+@pytest.mark.parametrize("given", [False, True])
+def test_options_are_left_out(monkeypatch, given):
+    """The rounds evaluate fewer candidates in full than motors x options (the pruning
+    works)."""
     import sizer.sizing.engine as engine
 
     evaluated = []
@@ -157,7 +179,7 @@ def test_options_are_left_out(monkeypatch):
     monkeypatch.setattr(engine, "evaluate_law", counting)
     total = 0
     for seed in range(4):
-        design = wide_design(seed)
+        design = wide_design(seed, given=given)
         arrays = MotorArrays.of(design.motors, design.limits.envelope)
         for spec in design.laws:
             evaluate_spec(design, spec, arrays)
