@@ -5,6 +5,8 @@ duration by evaluating the peaks only of the options that can still win.
 - With a given duration, the choice from the peaks of a few options equals the choice
   from every option evaluated in full (bitwise), for listed ratios, gearboxes (with a
   tie) and a continuous range.
+- The option tried first (another law's choice, :func:`listed_choice`) changes nothing
+  but the cost: random first options give the same choice.
 
 - The choice with the options left out equals the choice from every option evaluated
   (bitwise: the same option, T_min, figures and slacks per motor), on random designs
@@ -88,11 +90,18 @@ def test_the_pruned_choice_equals_evaluating_every_option(seed, gearboxes, given
     design = wide_design(seed, gearboxes, given, continuous)
     arrays = MotorArrays.of(design.motors, design.limits.envelope)
     twins = 0
+    options = len(design.ratio_choice.gearboxes) + len(design.ratio_choice.ratios)
+    hints = np.random.default_rng(seed).integers(-1, max(options, 1), len(design.motors))
     for spec in design.laws:
-        pruned = evaluate_spec(design, spec, arrays)
         every = choose_ratio(design, arrays, lambda c, spec=spec: evaluate_law(design, spec, c))
         if given:
-            assert pruned.mode is every.mode is Mode.DURATION
+            assert every.mode is Mode.DURATION
+        # any option tried first (another law's choice, or none: -1) gives the same choice
+        hinted = evaluate_spec(design, spec, arrays, hints)
+        pruned = evaluate_spec(design, spec, arrays)
+        for name, value in pruned.figures.items():
+            assert same(hinted.figures[name], value), (spec, name)
+        assert same(hinted.stage_ratio, pruned.stage_ratio)
         chosen = [pruned.transmissions[k] for k in pruned.option]
         assert chosen == [every.transmissions[k] for k in every.option], spec
         names = [pruned.gearboxes[k] for k in pruned.option]
@@ -207,3 +216,20 @@ def test_a_rising_rms_is_no_proof():
     fails = rms_fails_up_to(design, "cycloidal", pair.take(np.array([0, 0])),
                             np.array([short, long_]))
     assert list(fails) == [True, False]
+
+
+def test_listed_choice_names_the_listed_option_chosen():
+    from sizer.sizing.ratio_choice import listed_choice
+
+    for gearboxes in (False, True):
+        design = wide_design(3, gearboxes)
+        table = evaluate_spec(design, design.laws[0], MotorArrays.of(design.motors,
+                                                                     design.limits.envelope))
+        where = listed_choice(design, table)
+        choice = design.ratio_choice
+        ratios = [g.stage.ratio for g in choice.gearboxes] + list(choice.ratios)
+        assert np.all(where >= 0)
+        np.testing.assert_array_equal(np.array(ratios)[where], table.stage_ratio)
+        if gearboxes:
+            names = [g.gearbox for g in choice.gearboxes]
+            assert [names[k] for k in where] == [table.gearboxes[k] for k in table.option]

@@ -70,8 +70,13 @@ def size_design(design: Design, rank_by: str | None = None,
     tables: list[CandidateTable] = []
     if progress is not None:
         progress(0, len(specs))
+    first = None  # the options one law chose: the others try them first
     for done, spec in enumerate(specs, start=1):
-        tables.append(evaluate_spec(design, spec, arrays))
+        tables.append(evaluate_spec(design, spec, arrays, first))
+        if design.ratio_choice is not None:
+            from sizer.sizing.ratio_choice import listed_choice
+
+            first = listed_choice(design, tables[-1])
         if progress is not None:
             progress(done, len(specs))
     table = concatenate(tables)
@@ -80,8 +85,10 @@ def size_design(design: Design, rank_by: str | None = None,
                         notes=assumptions(design), table=table)
 
 
-def evaluate_spec(design: Design, spec: str, motors: MotorArrays) -> CandidateTable:
-    """One law spec for all motors (one row per motor), the free ratio chosen if any."""
+def evaluate_spec(design: Design, spec: str, motors: MotorArrays,
+                  first: np.ndarray | None = None) -> CandidateTable:
+    """One law spec for all motors (one row per motor), the free ratio chosen if any
+    (``first``: per motor the listed option to try first, sizer.sizing.ratio_choice)."""
     if design.ratio_choice is None:
         candidates = Candidates.single(motors, design.load, design.transmission)
         return evaluate_law(design, spec, candidates)
@@ -95,7 +102,7 @@ def evaluate_spec(design: Design, spec: str, motors: MotorArrays) -> CandidateTa
     return choose_ratio(design, motors, lambda c: evaluate_law(design, spec, c),
                         floor=lambda c: duration_floor(design, spec, c),
                         fails_up_to=lambda c, T: rms_fails_up_to(design, spec, c, T),
-                        without_peaks=without_peaks)
+                        without_peaks=without_peaks, first=first)
 
 
 def _plain_given_duration(design: Design, spec: str) -> bool:

@@ -103,11 +103,14 @@ class _Best:
 def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate,
                  floor: Floor | None = None,
                  fails_up_to: Callable[[Candidates, np.ndarray], np.ndarray] | None = None,
-                 without_peaks: Evaluate | None = None) -> CandidateTable:
+                 without_peaks: Evaluate | None = None,
+                 first: np.ndarray | None = None) -> CandidateTable:
     """The best option for each motor (one row per motor, carrying ratio and gearbox).
     In minimize mode ``floor`` bounds the options' T_min from below and ``fails_up_to``
-    tells the candidates infeasible at every duration up to a given one; with a given
-    duration ``without_peaks`` evaluates all but the peaks (module docs)."""
+    tells the candidates infeasible at every duration up to a given one, and ``first``
+    (per motor a listed option, or -1) is the option to try first (the choice of another
+    law: :func:`listed_choice`); with a given duration ``without_peaks`` evaluates all
+    but the peaks (module docs). None of these changes the choice, only its cost."""
     choice = design.ratio_choice
     assert choice is not None
     base = design.transmission.stages[choice.stage]
@@ -150,7 +153,7 @@ def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate,
                     return fails_up_to(Candidates.pairs(motors, design.load, listed, mo, op), T)
 
                 _by_floor(bounds.reshape(n, m), lambda mo, op: consider(listed, names, mo, op, op),
-                          best, None if fails_up_to is None else fails_of)
+                          best, None if fails_up_to is None else fails_of, first)
         if choice.bounds is not None:
             _continuous(choice.bounds, with_ratio, consider, best, len(motors))
     chosen = best.table()
@@ -161,6 +164,27 @@ def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate,
                                       np.arange(len(motors)), chosen.option,
                                       gearboxes=chosen.gearboxes))
     return dataclasses.replace(again, stage_ratio=chosen.stage_ratio)
+
+
+def listed_choice(design: Design, table: CandidateTable) -> np.ndarray | None:
+    """Per motor (row of a :func:`choose_ratio` table) the listed option it holds
+    (gearboxes, then ratios: the order of the search), -1 for a lattice point; None
+    without listed options."""
+    choice = design.ratio_choice
+    if choice is None:
+        return None
+    base = design.transmission.stages[choice.stage]
+    listed = [(design.transmission.with_stage(choice.stage, g.stage), g.gearbox)
+              for g in choice.gearboxes]
+    listed += [(design.transmission.with_stage(choice.stage,
+                                               dataclasses.replace(base, ratio=r)), None)
+               for r in choice.ratios]
+    if not listed:
+        return None
+    where = np.array([next((k for k, item in enumerate(listed) if item == (t, name)), -1)
+                      for t, name in zip(table.transmissions, table.gearboxes, strict=True)],
+                     dtype=np.intp)
+    return where[table.option]
 
 
 def _peaks_in_order(candidates: Candidates, motor: np.ndarray, rank: np.ndarray,
@@ -213,15 +237,20 @@ FailsUpTo = Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray]
 
 
 def _by_floor(floors: np.ndarray, consider: Callable[[np.ndarray, np.ndarray], None],
-              best: _Best, fails_up_to: FailsUpTo | None = None) -> None:
+              best: _Best, fails_up_to: FailsUpTo | None = None,
+              first: np.ndarray | None = None) -> None:
     """The listed options in rounds (minimize mode): per motor, its options in the order
     of their floors (motors x options), one per round while the motor has a feasible
     option, whose T_min the options with a higher floor cannot beat; every option left at
     once where the motor has none yet after its first (the closest to feasible is chosen
     from all of them). After the first round, ``fails_up_to`` rules out the options that
-    cannot beat the T_min found (a cheap test at that duration)."""
+    cannot beat the T_min found (a cheap test at that duration). ``first``: per motor the
+    option of the first round instead of the one with the lowest floor (-1: that one)."""
     n, m = floors.shape
-    order = np.argsort(floors, axis=1, kind="stable")
+    key = floors
+    if first is not None:
+        key = np.where(np.arange(m)[None, :] == np.asarray(first)[:, None], -np.inf, floors)
+    order = np.argsort(key, axis=1, kind="stable")
     done = np.zeros((n, m), dtype=bool)
     rows = np.arange(n)
     for number in range(m + 1):
