@@ -123,13 +123,24 @@ def _from_bound(calculator: CycleCalculator, limits: Limits,
     checks from there. inf bounds: no duration."""
     usable = np.isfinite(bound) & (bound > 0.0)
     probe = np.where(usable, bound, _largest_tried(calculator))
-    # the RMS model at the bound too: the first round of the RMS crossing starts there
-    metrics, checks = evaluate(calculator, limits, probe, model=True)
+    # the RMS model at the bound too: the first round of the RMS crossing starts there;
+    # the peaks only where every other check passes (elsewhere the candidate is searched
+    # on and evaluated again where it ends)
+    metrics, checks = evaluate(calculator, limits, probe, peaks=False, model=True)
     at_bound = metrics.rms_model
+    at = probe.copy()  # where each candidate's row of ``metrics`` was evaluated in full
+    others = feasible(checks)
+    at[~others] = np.nan
+    if others.any():
+        index = np.flatnonzero(others)
+        metrics = merge_metrics(metrics, index,
+                                evaluate(calculator.take(index), limits, probe[index])[0])
+        checks = evaluate_checks(metrics, calculator.motors, calculator.drive, limits,
+                                 calculator.task.linear)
     ok = usable & feasible(checks)
     method = "peak and speed bounds"
     rest = ~ok & np.isfinite(bound)
-    if not rest.any():
+    if not rest.any() and not np.isnan(at).any():
         return DurationSolution(np.where(ok, probe, np.nan), ok, metrics, checks, method)
     method += " and searches"
     if not calculator.segmented:  # no duration meets the RMS check: nothing to search
@@ -151,7 +162,6 @@ def _from_bound(calculator: CycleCalculator, limits: Limits,
                                           peaks=False),
              lambda left: bisect_duration(calculator, limits, guess=T, active=left))
     passed = ok.copy()
-    at = probe.copy()  # where each candidate's row of ``metrics`` was evaluated
     for number, step in enumerate(steps):
         left = rest & ~passed
         if number == 2:  # no duration passes the other checks: none passes them all
