@@ -168,23 +168,19 @@ def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate,
 
 def listed_choice(design: Design, table: CandidateTable) -> np.ndarray | None:
     """Per motor (row of a :func:`choose_ratio` table) the listed option it holds
-    (gearboxes, then ratios: the order of the search), -1 for a lattice point; None
-    without listed options."""
+    (gearboxes, then ratios: the order of the search), by gearbox name and ratio; -1 for
+    another ratio (a lattice point); None without listed options."""
     choice = design.ratio_choice
-    if choice is None:
+    if choice is None or not (choice.gearboxes or choice.ratios):
         return None
-    base = design.transmission.stages[choice.stage]
-    listed = [(design.transmission.with_stage(choice.stage, g.stage), g.gearbox)
-              for g in choice.gearboxes]
-    listed += [(design.transmission.with_stage(choice.stage,
-                                               dataclasses.replace(base, ratio=r)), None)
-               for r in choice.ratios]
-    if not listed:
-        return None
-    where = np.array([next((k for k, item in enumerate(listed) if item == (t, name)), -1)
-                      for t, name in zip(table.transmissions, table.gearboxes, strict=True)],
-                     dtype=np.intp)
-    return where[table.option]
+    keys = [(g.gearbox, g.stage.ratio) for g in choice.gearboxes]
+    keys += [(None, r) for r in choice.ratios]
+    place: dict[tuple[str | None, float], int] = {}
+    for k, key in enumerate(keys):
+        place.setdefault(key, k)
+    names = np.array([table.gearboxes[k] for k in range(len(table.gearboxes))], dtype=object)
+    return np.array([place.get((name, float(ratio)), -1) for name, ratio in
+                     zip(names[table.option], table.stage_ratio, strict=True)], dtype=np.intp)
 
 
 def _peaks_in_order(candidates: Candidates, motor: np.ndarray, rank: np.ndarray,
