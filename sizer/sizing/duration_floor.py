@@ -56,7 +56,8 @@ def duration_floor(design: Design, spec: str, candidates: Candidates) -> np.ndar
     law, limits = make_law(spec), relaxed(design.limits)
     parts = []
     for start in range(0, len(candidates), CHUNK):
-        part = candidates.take(np.arange(start, min(start + CHUNK, len(candidates))))
+        part = candidates if len(candidates) <= CHUNK else \
+            candidates.take(np.arange(start, min(start + CHUNK, len(candidates))))
         calculator = CycleCalculator(None, design.task, part.drive, part.motors,
                                      design.limits.thermal_speed, law=law)
         if is_purely_inertial(calculator):  # eq. (6.2): every option is cheap as it is

@@ -119,9 +119,13 @@ def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate,
     lazy = without_peaks if not energy else None
 
     def consider(transmissions: list[Transmission], gearboxes: list[str | None],
-                 motor: np.ndarray, option: np.ndarray, rank: np.ndarray | None = None) -> None:
-        candidates = Candidates.pairs(motors, design.load, transmissions, motor, option,
-                                      gearboxes=tuple(gearboxes))
+                 motor: np.ndarray, option: np.ndarray, rank: np.ndarray | None = None,
+                 candidates: Candidates | None = None) -> None:
+        """Evaluate the pairs (motor, option) and keep the best (``candidates``: those
+        pairs, when built already)."""
+        if candidates is None:
+            candidates = Candidates.pairs(motors, design.load, transmissions, motor, option,
+                                          gearboxes=tuple(gearboxes))
         ratios = np.array([t.stages[choice.stage].ratio for t in transmissions])[option]
         if rank is None:
             rank = best.seen + np.arange(len(candidates))
@@ -142,18 +146,21 @@ def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate,
         if listed:
             n, m = len(motors), len(listed)
             motor, option = np.repeat(np.arange(n), m), np.tile(np.arange(m), n)
-            bounds = None
-            if floor is not None and m > 1:
-                bounds = floor(Candidates.pairs(motors, design.load, listed, motor, option))
+            every = Candidates.pairs(motors, design.load, listed, motor, option,
+                                     gearboxes=tuple(names))
+            bounds = floor(every) if floor is not None and m > 1 else None
             if bounds is None:
-                consider(listed, names, motor, option, option)
+                consider(listed, names, motor, option, option, every)
             else:
                 def fails_of(mo: np.ndarray, op: np.ndarray, T: np.ndarray) -> np.ndarray:
                     assert fails_up_to is not None
-                    return fails_up_to(Candidates.pairs(motors, design.load, listed, mo, op), T)
+                    return fails_up_to(every.take(mo * m + op), T)
 
-                _by_floor(bounds.reshape(n, m), lambda mo, op: consider(listed, names, mo, op, op),
-                          best, None if fails_up_to is None else fails_of, first)
+                def round_of(mo: np.ndarray, op: np.ndarray) -> None:
+                    consider(listed, names, mo, op, op, every.take(mo * m + op))
+
+                _by_floor(bounds.reshape(n, m), round_of, best,
+                          None if fails_up_to is None else fails_of, first)
         if choice.bounds is not None:
             _continuous(choice.bounds, with_ratio, consider, best, len(motors))
     chosen = best.table()
