@@ -180,8 +180,10 @@ def listed_choice(design: Design, table: CandidateTable) -> np.ndarray | None:
     choice = design.ratio_choice
     if choice is None or not (choice.gearboxes or choice.ratios):
         return None
-    keys = [(g.gearbox, g.stage.ratio) for g in choice.gearboxes]
+    keys: list[tuple[str | None, float]] = [(g.gearbox, g.stage.ratio)
+                                            for g in choice.gearboxes]
     keys += [(None, r) for r in choice.ratios]
+    assert table.stage_ratio is not None  # a table of the ratio search
     place: dict[tuple[str | None, float], int] = {}
     for k, key in enumerate(keys):
         place.setdefault(key, k)
