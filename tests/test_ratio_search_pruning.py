@@ -234,3 +234,37 @@ def test_listed_choice_names_the_listed_option_chosen():
         if gearboxes:
             names = [g.gearbox for g in choice.gearboxes]
             assert [names[k] for k in where] == [table.gearboxes[k] for k in table.option]
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_one_model_per_motor_equals_one_per_option(seed):
+    """The RMS of every option of a motor from one evaluation (the stretches between
+    power-flow reversals shared: sizer.sizing.duration_floor._shared_models) equals each
+    option's own evaluation, and so do the test's answers."""
+    from sizer.sizing.cycle import CycleCalculator
+    from sizer.sizing.duration_floor import _shared_models
+
+    design = wide_design(seed)
+    pairs, motor, _ = all_pairs(design)
+    rng = np.random.default_rng(seed)
+    T = rng.uniform(0.03, 0.6, len(design.motors))[motor]  # one duration per motor
+    shared_somewhere = False
+    for spec in design.laws:
+        law = make_law(spec)
+        shared = _shared_models(design, law, pairs, T, motor)
+        if shared is not None:
+            shared_somewhere = True
+            _, model = shared
+            own = CycleCalculator(None, design.task, pairs.drive, pairs.motors,
+                                  design.limits.thermal_speed, law=law).evaluate(
+                T, peaks=False, model=True)
+            np.testing.assert_allclose(model.rms(T), own.rms_torque, rtol=1e-12)
+            later = T * 1.001
+            np.testing.assert_allclose(model.rms(later), own.rms_model.rms(later),
+                                       rtol=1e-12)
+        grouped = rms_fails_up_to(design, spec, pairs, T, motor)
+        alone = rms_fails_up_to(design, spec, pairs, T)
+        assert same(grouped, alone), spec
+    single_lossy = len(design.transmission.stages) == 1 and \
+        design.transmission.stages[0].efficiency < 1.0
+    assert shared_somewhere or not single_lossy

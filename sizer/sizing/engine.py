@@ -101,7 +101,7 @@ def evaluate_spec(design: Design, spec: str, motors: MotorArrays,
         without_peaks = lambda c: evaluate_fixed_law(design, law, c, peaks=False)  # noqa: E731
     return choose_ratio(design, motors, lambda c: evaluate_law(design, spec, c),
                         floor=lambda c: duration_floor(design, spec, c),
-                        fails_up_to=lambda c, T: rms_fails_up_to(design, spec, c, T),
+                        fails_up_to=lambda c, T, g: rms_fails_up_to(design, spec, c, T, g),
                         without_peaks=without_peaks, first=first)
 
 

@@ -102,7 +102,8 @@ class _Best:
 
 def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate,
                  floor: Floor | None = None,
-                 fails_up_to: Callable[[Candidates, np.ndarray], np.ndarray] | None = None,
+                 fails_up_to: Callable[[Candidates, np.ndarray, np.ndarray], np.ndarray]
+                 | None = None,
                  without_peaks: Evaluate | None = None,
                  first: np.ndarray | None = None) -> CandidateTable:
     """The best option for each motor (one row per motor, carrying ratio and gearbox).
@@ -154,7 +155,7 @@ def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate,
             else:
                 def fails_of(mo: np.ndarray, op: np.ndarray, T: np.ndarray) -> np.ndarray:
                     assert fails_up_to is not None
-                    return fails_up_to(every.take(mo * m + op), T)
+                    return fails_up_to(every.take(mo * m + op), T, mo)
 
                 def round_of(mo: np.ndarray, op: np.ndarray) -> None:
                     consider(listed, names, mo, op, op, every.take(mo * m + op))
