@@ -111,3 +111,26 @@ def test_minimize_rectangles_pure_inertia_matches_bisection(design):
     closed = closed_form_duration(calculator, pure.limits)
     bisected = bisect_duration(calculator, pure.limits)
     assert np.allclose(bisected, closed, rtol=1e-9)
+
+
+def test_a_continuous_rating_equal_to_the_held_load():
+    """The case hypothesis found: 0.2 N*m at the load through 2:1 is 0.1 N*m, the motor's
+    continuous torque, so the RMS approaches its limit from above as T grows and every
+    long enough move is within the checks' tolerance (1e-9). T_min is the shortest: by
+    hand, with J = 0.0078125 + 1/2^2 kg*m^2 at the motor, the cycloidal law's
+    C_a_rms = 2 pi / sqrt(2) and no cross term (int a dt = 0), RMS^2 = 0.1^2 +
+    (2 J h C_a_rms / T^2)^2, within tolerance from T^4 = (2 J C_a_rms)^2 /
+    (0.1^2 ((1 + 1e-9)^2 - 1)) on (not where rounding first puts the RMS at its limit,
+    tens of times longer)."""
+    design = Design(Task(1.0, None), Load(1.0, torque=0.2),
+                    Transmission((Stage("gearbox", 2.0, 1.0, 0.0),)), laws=("cycloidal",),
+                    motors=(Motor("m", inertia=0.0078125, continuous_torque=0.1,
+                                  peak_torque=3.0, rated_speed=50.0),),
+                    limits=Limits())
+    r = size_design(design).results[0]
+    J = 0.0078125 + 1.0 / 4.0
+    inertial = 2.0 * J * 2.0 * np.pi / np.sqrt(2.0)
+    expected = (inertial**2 / (0.1**2 * ((1.0 + 1e-9) ** 2 - 1.0))) ** 0.25
+    assert r.feasible
+    assert r.duration == pytest.approx(expected, rel=1e-6)
+    assert not at_duration(design, r.duration * (1 - 1e-6)).feasible

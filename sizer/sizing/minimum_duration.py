@@ -259,6 +259,11 @@ move (in log T): the crossing moves by far less than that from one model to the 
 CONVERGED = 1e-6
 """A round that moves the duration by less than this (relative) gives the answer: the
 model it came from is exact to rounding that close to where it was built."""
+FLAT_BAND = 1e-6
+"""A crossing is flat where the checks' tolerance spans more than this (relative) in T:
+|d log(RMS / limit) / d log T| < TOLERANCE / FLAT_BAND."""
+FLAT_STEP = 1e-4
+"""Step in log T of the slope's central difference on the model (exact to O(step^2))."""
 
 
 def rms_crossing(calculator: CycleCalculator, limits: Limits, start: np.ndarray,
@@ -335,6 +340,18 @@ def rms_crossing(calculator: CycleCalculator, limits: Limits, start: np.ndarray,
         # the model's error grows with the square of the distance from where it was built
         # (about 1e-3 d^2 relative on the laws tried): a move below 1e-6 leaves 1e-15
         done = found & ((np.abs(new - T) <= CONVERGED * T) | (g0 == 0.0))
+        # a crossing where the RMS barely moves with T (it approaches its limit from
+        # above as T grows, or touches it at its minimum) is no T_min: durations far
+        # shorter are within the checks' tolerance; those are left to the search on the
+        # worst slack, which finds the shortest of them
+        rows = np.flatnonzero(done)
+        if len(rows):
+            step = FLAT_STEP
+            slope = (excess_of(x[rows] + step, rows) - excess_of(x[rows] - step, rows)) \
+                / (2.0 * step)
+            flat = ~(np.abs(slope) >= TOLERANCE / FLAT_BAND)
+            done[rows[flat]] = False
+            found[rows[flat]] = False
         out[index[done]] = new[done]
         keep = found & ~done
         moved = np.maximum(np.abs(x[keep] - x0[keep]), 1e-13 * np.maximum(1.0, np.abs(x0[keep])))
