@@ -51,10 +51,11 @@ from sizer.model import (
     Transmission,
 )
 from sizer.sizing.candidates import Candidates
-from sizer.sizing.duration_floor import duration_floor, rms_fails_up_to
+from sizer.sizing.duration_floor import duration_floor
 from sizer.sizing.engine import evaluate_law, evaluate_spec
 from sizer.sizing.motors import MotorArrays
 from sizer.sizing.ratio_choice import choose_ratio
+from sizer.sizing.rms_fails_up_to import rms_fails_up_to
 from sizer.sizing.table import Mode
 
 
@@ -242,7 +243,7 @@ def test_one_model_per_motor_equals_one_per_option(seed):
     power-flow reversals shared: sizer.sizing.duration_floor._shared_models) equals each
     option's own evaluation, and so do the test's answers."""
     from sizer.sizing.cycle import CycleCalculator
-    from sizer.sizing.duration_floor import _shared_models
+    from sizer.sizing.rms_fails_up_to import _shared_models
 
     design = wide_design(seed)
     pairs, motor, _ = all_pairs(design)

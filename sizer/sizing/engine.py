@@ -92,8 +92,9 @@ def evaluate_spec(design: Design, spec: str, motors: MotorArrays,
     if design.ratio_choice is None:
         candidates = Candidates.single(motors, design.load, design.transmission)
         return evaluate_law(design, spec, candidates)
-    from sizer.sizing.duration_floor import duration_floor, rms_fails_up_to
+    from sizer.sizing.duration_floor import duration_floor
     from sizer.sizing.ratio_choice import choose_ratio
+    from sizer.sizing.rms_fails_up_to import rms_fails_up_to
 
     without_peaks = None
     if _plain_given_duration(design, spec):

@@ -346,9 +346,8 @@ def rms_crossing(calculator: CycleCalculator, limits: Limits, start: np.ndarray,
         # worst slack, which finds the shortest of them
         rows = np.flatnonzero(done)
         if len(rows):
-            step = FLAT_STEP
-            slope = (excess_of(x[rows] + step, rows) - excess_of(x[rows] - step, rows)) \
-                / (2.0 * step)
+            slope = (excess_of(x[rows] + FLAT_STEP, rows)
+                     - excess_of(x[rows] - FLAT_STEP, rows)) / (2.0 * FLAT_STEP)
             flat = ~(np.abs(slope) >= TOLERANCE / FLAT_BAND)
             done[rows[flat]] = False
             found[rows[flat]] = False

@@ -13,7 +13,7 @@ In minimize mode the listed options (gearboxes and ratios) are evaluated in roun
 motor's options in the order of their duration floors (sizer.sizing.duration_floor): an
 option whose floor lies above the motor's best feasible T_min so far cannot beat it and
 is not evaluated; after the first round, an option whose RMS check fails at every
-duration up to that T_min (sizer.sizing.duration_floor.rms_fails_up_to: one evaluation
+duration up to that T_min (sizer.sizing.rms_fails_up_to: one evaluation
 at it) neither. The choice is the one of evaluating every option.
 """
 
