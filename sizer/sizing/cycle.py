@@ -280,7 +280,7 @@ class CycleCalculator:
             if model is not None:
                 model.append(self._ideal_motor_terms(scales))
             return self._ideal_mean_squares(scales)
-        terms = self._channel_terms(scales)
+        terms = self.channel_terms(scales)
         sums = self._flow_sums(terms)
         if model is not None:
             model.append([(*piece, m) for piece, m in zip(terms[0], sums[0], strict=True)])
@@ -303,7 +303,7 @@ class CycleCalculator:
                  np.broadcast_to(np.asarray(const, dtype=float), (n,)),
                  np.broadcast_to(moments[:, None], (6, n)))]
 
-    def _channel_terms(self, scales: MoveScales) -> list[list[tuple[np.ndarray, ...]]]:
+    def channel_terms(self, scales: MoveScales) -> list[list[tuple[np.ndarray, ...]]]:
         """Per channel (the motor, then each stage's output) its linear functions of the
         normalized law, (P, Q, C) arrays over the candidates: value = max_k P a_N + Q v_N + C."""
         n = len(self.motors)
@@ -532,7 +532,7 @@ class CycleCalculator:
         the direction per row): each query elementwise, so the answers are those of one
         run per move, at the cost of one."""
         load = self.drive.load
-        terms = [self._channel_terms(scales) for scales in moves]
+        terms = [self.channel_terms(scales) for scales in moves]
         n = len(self.motors)
         joined = None
         if len(moves) > 1 and not (_inertial(terms[0][0]) and load.damping == 0.0
@@ -616,7 +616,7 @@ class CycleCalculator:
             return np.maximum(top, -bottom)
 
         places: list[tuple[np.ndarray, np.ndarray] | None] = []  # where each |peak| is
-        motor_terms, *stage_terms = self._channel_terms(scales) if terms is None else terms
+        motor_terms, *stage_terms = self.channel_terms(scales) if terms is None else terms
         load_terms = [(np.broadcast_to(drive.load.inertia * scales.acc, (n,)),
                        np.broadcast_to(drive.load.damping * scales.vel, (n,)),
                        np.full(n, drive.load.friction + scales.direction * drive.load.torque))]
@@ -1010,7 +1010,7 @@ def _inertial(coefficients) -> bool:
 
 
 def _stacked_terms(terms: list, n: int):
-    """The channels' linear functions of several moves (:meth:`CycleCalculator._channel_terms`
+    """The channels' linear functions of several moves (:meth:`CycleCalculator.channel_terms`
     each) stacked along the candidates, move after move; None where the moves' channels
     have different numbers of functions."""
     counts = [[len(channel) for channel in t] for t in terms]

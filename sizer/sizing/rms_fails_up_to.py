@@ -125,7 +125,7 @@ def _shared_models(design: Design, law, candidates: Candidates, T: np.ndarray,
     moves = []
     for direction, reference in zip(calculator.directions, model.moves, strict=True):
         scales = MoveScales(calculator.h / T / T, calculator.h / T, direction)
-        functions = calculator._channel_terms(scales)[0]
+        functions = calculator.channel_terms(scales)[0]
         if len(functions) != len(reference):
             return None
         moves.append([(P, Q, C, M[:, inverse]) for (P, Q, C), (*_, M)
