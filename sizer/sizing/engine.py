@@ -96,14 +96,14 @@ def evaluate_spec(design: Design, spec: str, motors: MotorArrays,
     from sizer.sizing.ratio_choice import choose_ratio
     from sizer.sizing.rms_fails_up_to import rms_fails_up_to
 
-    without_peaks = None
-    if _plain_given_duration(design, spec):
-        law = make_law(spec)
-        without_peaks = lambda c: evaluate_fixed_law(design, law, c, peaks=False)  # noqa: E731
+    def without_peaks(candidates: Candidates) -> CandidateTable:
+        return evaluate_fixed_law(design, make_law(spec), candidates, peaks=False)
+
     return choose_ratio(design, motors, lambda c: evaluate_law(design, spec, c),
                         floor=lambda c: duration_floor(design, spec, c),
                         fails_up_to=lambda c, T, g: rms_fails_up_to(design, spec, c, T, g),
-                        without_peaks=without_peaks, first=first)
+                        without_peaks=without_peaks if _plain_given_duration(design, spec)
+                        else None, first=first)
 
 
 def _plain_given_duration(design: Design, spec: str) -> bool:

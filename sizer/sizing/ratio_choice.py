@@ -40,6 +40,9 @@ Evaluate = Callable[[Candidates], CandidateTable]
 """Evaluates one law (spec) for candidates; the table has one row per candidate."""
 Floor = Callable[[Candidates], "np.ndarray | None"]
 """Per candidate a duration below which it is infeasible, or None (no floor known)."""
+FailsUpTo = Callable[[Candidates, np.ndarray, np.ndarray], np.ndarray]
+"""``fails_up_to(candidates, T, group)``: per candidate, is it infeasible at every duration
+up to its T? (``group``: the candidates sharing a T, each motor's options.)"""
 
 
 def _score(table: CandidateTable) -> tuple[np.ndarray, np.ndarray]:
@@ -102,8 +105,7 @@ class _Best:
 
 def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate,
                  floor: Floor | None = None,
-                 fails_up_to: Callable[[Candidates, np.ndarray, np.ndarray], np.ndarray]
-                 | None = None,
+                 fails_up_to: FailsUpTo | None = None,
                  without_peaks: Evaluate | None = None,
                  first: np.ndarray | None = None) -> CandidateTable:
     """The best option for each motor (one row per motor, carrying ratio and gearbox).
@@ -153,7 +155,7 @@ def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate,
             if bounds is None:
                 consider(listed, names, motor, option, option, every)
             else:
-                def fails_of(mo: np.ndarray, op: np.ndarray, T: np.ndarray) -> np.ndarray:
+                def rule_out(mo: np.ndarray, op: np.ndarray, T: np.ndarray) -> np.ndarray:
                     assert fails_up_to is not None
                     return fails_up_to(every.take(mo * m + op), T, mo)
 
@@ -161,7 +163,7 @@ def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate,
                     consider(listed, names, mo, op, op, every.take(mo * m + op))
 
                 _by_floor(bounds.reshape(n, m), round_of, best,
-                          None if fails_up_to is None else fails_of, first)
+                          None if fails_up_to is None else rule_out, first)
         if choice.bounds is not None:
             _continuous(choice.bounds, with_ratio, consider, best, len(motors))
     chosen = best.table()
@@ -188,9 +190,9 @@ def listed_choice(design: Design, table: CandidateTable) -> np.ndarray | None:
     place: dict[tuple[str | None, float], int] = {}
     for k, key in enumerate(keys):
         place.setdefault(key, k)
-    names = np.array([table.gearboxes[k] for k in range(len(table.gearboxes))], dtype=object)
+    names = np.array(table.gearboxes, dtype=object)[table.option]
     return np.array([place.get((name, float(ratio)), -1) for name, ratio in
-                     zip(names[table.option], table.stage_ratio, strict=True)], dtype=np.intp)
+                     zip(names, table.stage_ratio, strict=True)], dtype=np.intp)
 
 
 def _peaks_in_order(candidates: Candidates, motor: np.ndarray, rank: np.ndarray,
@@ -238,18 +240,18 @@ FLOOR_MARGIN = 1e-12
 (the floor and T_min are each exact to a few ulps)."""
 
 
-FailsUpTo = Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray]
-"""``fails_up_to(motor, option, T)``: per pair, is it infeasible at every duration up to T?"""
+RuleOut = Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray]
+"""``rule_out(motor, option, T)``: per pair, is it infeasible at every duration up to T?"""
 
 
 def _by_floor(floors: np.ndarray, consider: Callable[[np.ndarray, np.ndarray], None],
-              best: _Best, fails_up_to: FailsUpTo | None = None,
+              best: _Best, rule_out: RuleOut | None = None,
               first: np.ndarray | None = None) -> None:
     """The listed options in rounds (minimize mode): per motor, its options in the order
     of their floors (motors x options), one per round while the motor has a feasible
     option, whose T_min the options with a higher floor cannot beat; every option left at
     once where the motor has none yet after its first (the closest to feasible is chosen
-    from all of them). After the first round, ``fails_up_to`` rules out the options that
+    from all of them). After the first round, ``rule_out`` rules out the options that
     cannot beat the T_min found (a cheap test at that duration). ``first``: per motor the
     option of the first round instead of the one with the lowest floor (-1: that one)."""
     n, m = floors.shape
@@ -260,17 +262,13 @@ def _by_floor(floors: np.ndarray, consider: Callable[[np.ndarray, np.ndarray], N
     done = np.zeros((n, m), dtype=bool)
     rows = np.arange(n)
     for number in range(m + 1):
-        if number == 1 and fails_up_to is not None:
-            feasible = best.found & ~best.infeasible
-            with np.errstate(invalid="ignore"):
-                test = feasible[:, None] & ~done & \
-                    ~(floors > best.value[:, None] * (1.0 + FLOOR_MARGIN))
-            motor, option = np.nonzero(test)
-            if len(motor):
-                done[motor, option] |= fails_up_to(motor, option, best.value[motor])
         feasible = best.found & ~best.infeasible
         with np.errstate(invalid="ignore"):
             beaten = feasible[:, None] & (floors > best.value[:, None] * (1.0 + FLOOR_MARGIN))
+        if number == 1 and rule_out is not None:  # ``done``: evaluated or ruled out
+            motor, option = np.nonzero(feasible[:, None] & ~done & ~beaten)
+            if len(motor):
+                done[motor, option] |= rule_out(motor, option, best.value[motor])
         open_ = ~done & ~beaten
         # the next option per motor in floor order, or all those left (no feasible one yet)
         ordered = np.take_along_axis(open_, order, axis=1)
