@@ -6,7 +6,7 @@ import dataclasses
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from sizer.model import Design, Limits, Load, Motor, Stage, Task, Transmission
@@ -62,8 +62,19 @@ def test_t_min_is_feasible_and_a_shorter_move_is_not(design):
     assert not at_duration(design, r.duration * (1 - 1e-6)).feasible
 
 
+FLAT_AT_T_MIN = Design(
+    Task(1.25, None), Load(0.4375, torque=-0.3), Transmission((Stage("gearbox", 1.5),)),
+    laws=("cycloidal",), limits=Limits(torque_margin=0.0),
+    motors=(Motor("m", inertia=0.0078125, continuous_torque=0.2, peak_torque=3.0,
+                  rated_speed=50.0),))
+"""Found by hypothesis: the held load's torque at the motor equals the continuous rating,
+so the RMS falls toward its limit as T grows (T_min about 434 s); doubling the peak torque
+moved the search's start and its end by 1.5e-9 along the flat slack."""
+
+
 @settings(max_examples=20, deadline=None)
 @given(designs(), st.floats(1.0, 3.0), st.sampled_from(["peak", "continuous", "speed"]))
+@example(FLAT_AT_T_MIN, 2.0, "peak")
 def test_a_stronger_motor_never_lengthens_t_min(design, factor, what):
     base = size_design(design).results[0]
     motor = design.motors[0]
@@ -73,10 +84,16 @@ def test_a_stronger_motor_never_lengthens_t_min(design, factor, what):
             motor, continuous_torque=min(motor.continuous_torque * factor, motor.peak_torque)),
         "speed": dataclasses.replace(motor, rated_speed=motor.rated_speed * factor),
     }[what]
-    better = size_design(dataclasses.replace(design, motors=(stronger,))).results[0]
+    stronger_design = dataclasses.replace(design, motors=(stronger,))
+    better = size_design(stronger_design).results[0]
     if base.feasible:
         assert better.feasible
-        assert better.duration <= base.duration * (1 + 1e-9)
+        # where the RMS approaches its limit from above (an overhauling load held by the
+        # motor) the worst slack is flat at T_min, constant to rounding over a stretch
+        # of about 1e-9 in T: there T_min is known to that stretch only, and what holds
+        # is that every duration the weaker motor passes, the stronger passes too
+        assert better.duration <= base.duration * (1 + 1e-9) \
+            or at_duration(stronger_design, base.duration).feasible
 
 
 @settings(max_examples=30, deadline=None)
