@@ -15,9 +15,13 @@ its functions under one line of the region, alpha + sigma * omega with omega = K
 
 with c = 1 - torque margin. For a rest-to-rest law (v_N >= 0) F(u) = u g(u) with g a
 maximum of linear functions of u, nondecreasing from u = 0: F is convex and increasing,
-so the condition holds on [0, u*], and Newton's method from a point where F >= D
-decreases monotonically to u* (each step's F and F' from the law's exact linear peak,
-sizer.laws.linear_peaks, F' by the envelope theorem). Stopped anywhere, the iterate is
+so the condition holds on [0, u*]. From a point x where F(x) > D each step takes the
+quadratic of the maximizer there, q(u) = P a_N u^2 + Q v_N u at its tau (the law's exact
+linear peak, sizer.laws.linear_peaks): q <= F everywhere and q(x) = F(x), so the
+positive root of q = D lies in [u*, x); the iterates fall monotonically to u*, as
+Newton's method would, but faster, the step's quadratic being exact for a fixed tau
+(F - q is of second order in u - x, with the maximizer's drift as its only cause;
+Newton's step where rounding leaves q no root). Stopped anywhere, the iterate is
 >= u*, so 1/u is a valid bound. The condition is necessary where the line lies on or
 above the region at every speed the move may reach: true of every segment's line of a
 concave region (a flat part, then falling segments that fall faster and faster), and of
@@ -35,7 +39,7 @@ from sizer.model.domain import Limits
 from sizer.sizing.cycle import CycleCalculator
 
 NEWTON_STEPS = 40
-"""Newton steps at most (quadratic convergence: about 6 from the start used here)."""
+"""Steps at most (quadratic convergence: about 3 from the start used here)."""
 
 
 def peak_duration(calculator: CycleCalculator, limits: Limits,
@@ -188,7 +192,7 @@ def _speed_bounds(calculator: CycleCalculator, limits: Limits, K: np.ndarray) ->
 def _largest_u(peaks, law, P: np.ndarray, Q: np.ndarray, D: np.ndarray,
                C_a: float, C_v: float) -> np.ndarray:
     """Per query the largest u with max_tau (P a_N u^2 + Q v_N u) <= D (0 where D <= 0,
-    inf where nothing limits u): Newton from the right (see the module docs)."""
+    inf where nothing limits u): the maximizer's quadratic from the right (module docs)."""
     u = np.full(P.shape, np.inf)
     u[D <= 0.0] = 0.0
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -205,10 +209,14 @@ def _largest_u(peaks, law, P: np.ndarray, Q: np.ndarray, D: np.ndarray,
         peak = peaks.maximum(P * x * x, Q * x)
         v, a = piece_values(law, peak.tau, peak.piece, (1, 2))
         excess = peak.value - D
-        slope = 2.0 * P * a * x + Q * v
-        with np.errstate(divide="ignore", invalid="ignore"):
-            step = excess / slope
-        nxt = np.where((excess > 0.0) & (slope > 0.0), x - step, x)
+        # the maximizer's quadratic A u^2 + b u <= F(u), equal at x with the same slope:
+        # its positive root, in the stable form, lies in (u*, x) where F(x) > D
+        A, b = P * a, Q * v
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            root = 2.0 * D / (b + np.sqrt(b * b + 4.0 * A * D))
+            newton = x - excess / (2.0 * A * x + b)  # where rounding leaves no root
+        root = np.where((root > 0.0) & (root < x), root, newton)
+        nxt = np.where((excess > 0.0) & (root < x) & (root > 0.0), root, x)
         # a point where F >= D is on the right of u* (to rounding: F is exact to a few ulps)
         right = excess >= -1e-14 * np.abs(D)
         u[index] = np.minimum(u[index], np.where(right, x, u[index]))
