@@ -1,11 +1,11 @@
-"""The cubic Hermite model's root (sizer.laws.linear_peaks._hermite_root) against the
+"""The cubic Hermite model's root (sizer.numerics.hermite.hermite_root) against the
 roots of the same cubic from numpy.roots (its companion matrix), on random brackets."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from sizer.laws.linear_peaks import _hermite_root
+from sizer.numerics.hermite import hermite_root
 
 
 def test_the_root_is_a_root_of_the_cubic_inside_the_bracket():
@@ -14,7 +14,7 @@ def test_the_root_is_a_root_of_the_cubic_inside_the_bracket():
     g0 = rng.standard_normal(n)
     g1 = -np.sign(g0) * np.abs(rng.standard_normal(n))
     d0, d1 = 3.0 * rng.standard_normal(n), 3.0 * rng.standard_normal(n)
-    s = _hermite_root(g0, g1, d0, d1)
+    s = hermite_root(g0, g1, d0, d1)
     c2 = 3.0 * (g1 - g0) - 2.0 * d0 - d1
     c3 = 2.0 * (g0 - g1) + d0 + d1
     for k in range(n):
@@ -27,6 +27,6 @@ def test_the_root_is_a_root_of_the_cubic_inside_the_bracket():
 
 def test_shapes_broadcast_and_are_kept():
     g0 = np.full((2, 3), -1.0)
-    s = _hermite_root(g0, 1.0, 2.0, 2.0)  # the line -1 + 2 s: root 1/2
+    s = hermite_root(g0, 1.0, 2.0, 2.0)  # the line -1 + 2 s: root 1/2
     assert s.shape == (2, 3)
     np.testing.assert_allclose(s, 0.5, rtol=1e-15)

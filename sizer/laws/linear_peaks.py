@@ -59,16 +59,13 @@ import numpy as np
 
 from sizer.laws.base import MotionLaw
 from sizer.laws.coefficients import scan_grid
+from sizer.numerics.hermite import hermite_root
 
 SAMPLES_PER_PIECE = 1024
 """Uniform sample intervals per piece (plus the graded points of ``scan_grid``)."""
 
 GRADED_PER_DECADE = 16
 """Samples per decade of the geometric grading toward piece ends and fine points."""
-
-NEWTON_STEPS = 6
-"""Safeguarded Newton steps on the cubic model of the derivative (from the secant
-estimate three reach rounding; the rest are margin)."""
 
 DINKELBACH_STEPS = 20
 """Dinkelbach iterations at most for a peak ratio (superlinear: 3 to 5 reach rounding)."""
@@ -167,44 +164,6 @@ def _piece_samples(law: MotionLaw, index: int) -> tuple[np.ndarray, ...]:
 def _next(x: np.ndarray) -> np.ndarray:
     """x[i + 1] at i, cyclically (np.roll(x, -1) without its overhead)."""
     return np.concatenate((x[1:], x[:1]))
-
-
-def _hermite_root(g0: np.ndarray, g1: np.ndarray, d0: np.ndarray,
-                  d1: np.ndarray) -> np.ndarray:
-    """s in [0, 1] where the cubic H(s) = g0 + d0 s + c2 s^2 + c3 s^3 with H(0) = g0,
-    H(1) = g1 (of opposite signs) and slopes d0, d1 vanishes: safeguarded Newton steps
-    from the secant point, bisection where a step would leave the sign bracket."""
-    shape = np.broadcast_shapes(np.shape(g0), np.shape(g1), np.shape(d0), np.shape(d1))
-    g0, g1, d0, d1 = (np.ravel(np.broadcast_to(np.asarray(x, dtype=float), shape))
-                      for x in (g0, g1, d0, d1))
-    c2 = 3.0 * (g1 - g0) - 2.0 * d0 - d1
-    c3 = 2.0 * (g0 - g1) + d0 + d1
-    low, high = np.zeros_like(g0), np.ones_like(g0)
-    rising = g0 < 0.0
-    with np.errstate(divide="ignore", invalid="ignore"):
-        s = g0 / (g0 - g1)
-    out = s.copy()
-    index = np.arange(s.size)
-    for _ in range(NEWTON_STEPS):
-        h = g0 + s * (d0 + s * (c2 + s * c3))
-        before = (h < 0.0) == rising  # the root lies above s
-        low, high = np.where(before, s, low), np.where(before, high, s)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            step = s - h / (d0 + s * (2.0 * c2 + 3.0 * s * c3))
-        # a row at its fixed point (a zero of the model, or a step that returns s) keeps
-        # it in every later step: it is done, the steps go on with the others
-        moving = ~((h == 0.0) | (step == s))
-        if not moving.all():
-            index, g0, d0, c2, c3, rising, low, high, s, h, step = (
-                v[moving] for v in (index, g0, d0, c2, c3, rising, low, high, s, h, step))
-            if not len(index):
-                break
-        # a step inside the bracket, or one at rounding level (converged), is taken;
-        # else bisect
-        take = ((step >= low) & (step <= high)) | (np.abs(step - s) <= 1e-15)
-        s = np.where(take, step, 0.5 * (low + high))
-        out[index] = s
-    return np.clip(out, 0.0, 1.0).reshape(shape)
 
 
 def _convex_hull(x: np.ndarray, y: np.ndarray) -> np.ndarray:
@@ -429,7 +388,7 @@ class _SpeedOrder:
         lo, row, col = np.concatenate(los), np.concatenate(rows), np.concatenate(cols)
         u = bound[row]
         width = t.tau[lo + 1] - t.tau[lo]
-        root = t.tau[lo] + _hermite_root(t.v[lo] - u, t.v[lo + 1] - u, t.a[lo] * width,
+        root = t.tau[lo] + hermite_root(t.v[lo] - u, t.v[lo + 1] - u, t.a[lo] * width,
                                          t.a[lo + 1] * width) * width
         at = t.piece[lo]
         v0, a0 = piece_values(law, root, at, (1, 2))
@@ -694,7 +653,7 @@ class LinearPeaks:
         g1 = P * t.j[hi] + Q * t.a[hi]
         d0 = (P * t.snap[lo] + Q * t.j[lo]) * width
         d1 = (P * t.snap[hi] + Q * t.j[hi]) * width
-        return t.tau[lo] + _hermite_root(g0, g1, d0, d1) * width
+        return t.tau[lo] + hermite_root(g0, g1, d0, d1) * width
 
     def _support_vertex(self, P: np.ndarray, Q: np.ndarray) -> np.ndarray:
         """Position in the hull of the vertex maximizing (Q, P).(v, a) (the support point)."""
