@@ -37,11 +37,17 @@ from sizer.laws.linear_peaks import LinearPeak, piece_values
 from sizer.laws.quadrature import gauss_legendre
 from sizer.mechanics import Drive
 from sizer.model.domain import Task, ThermalSpeedRule
+from sizer.numerics.hermite import hermite_root
 from sizer.sizing.golden import golden_step, interior_points
 from sizer.sizing.grid import LawGrid, PieceEvaluator, law_grid
 from sizer.sizing.motors import MotorArrays
 
 GOLDEN_STEPS = 40
+HERMITE_TRUSTED = 1e-7
+"""A power-flow root's first Newton step from the cubic Hermite model that ends the
+search (:meth:`CycleCalculator._flow_root`): the step after it would be of order its
+square times the torque's relative curvature over the interval, and the RMS moves with
+the square of a root's error (the two reflections agree at the root)."""
 REFINED = 6
 """Local maxima of the samples refined per candidate (the largest ones)."""
 REFINE_SHARE = 0.5
@@ -431,7 +437,10 @@ class CycleCalculator:
         kept inside the shrinking sign bracket (bisection where a step would leave it),
         from the regula falsi point; each step evaluates only the roots still open, the
         points sorted by piece once so that a subset needs no regrouping. Stops at a step
-        of 1e-10 (the root is then far below that: quadratic convergence).
+        of 1e-10 (the root is then far below that: quadratic convergence). Where the
+        torque is one linear function its cubic Hermite model on the interval (values and
+        slopes at the ends, from the grid) starts the steps instead, and a first step
+        below HERMITE_TRUSTED ends them: one evaluation of the law per root.
         """
         g, law = self.grid, self.law
         count = len(cand)
@@ -445,7 +454,16 @@ class CycleCalculator:
         sign_lo = np.sign(f_lo[by_piece])
         lo, hi = np.zeros(count), np.ones(count)
         f0, f1 = f_lo[by_piece], f_hi[by_piece]
-        z = np.clip(f0 / (f0 - f1), 0.0, 1.0)
+        trusted = 1e-10
+        if len(chosen) == 1:  # one function: its cubic Hermite model on the interval
+            (P, Q, _), = chosen
+            ends = interval[by_piece]
+            a, j = (x[ends] for x in (g.end_acceleration, g.end_jerk))
+            z = hermite_root(f0, f1, (P * j[:, 0] + Q * a[:, 0]) * width,
+                             (P * j[:, 1] + Q * a[:, 1]) * width)
+            trusted = HERMITE_TRUSTED
+        else:
+            z = np.clip(f0 / (f0 - f1), 0.0, 1.0)
         rows = np.arange(count)
         bounds_of = np.arange(len(law.pieces) + 1)
         for _ in range(60):
@@ -471,10 +489,11 @@ class CycleCalculator:
                 step = z[rows] - f / (slope * width[rows])
             inside = (step > lo[rows]) & (step < hi[rows])
             new = np.where(inside, step, 0.5 * (lo[rows] + hi[rows]))
-            done = (np.abs(new - z[rows]) <= 1e-10) | (f == 0.0) \
+            done = (np.abs(new - z[rows]) <= trusted) | (f == 0.0) \
                 | (hi[rows] - lo[rows] <= 1e-10)
             z[rows] = np.where(f == 0.0, z[rows], new)
             rows = rows[~done]
+            trusted = 1e-10
         out = np.empty(count)
         out[by_piece] = np.minimum(np.maximum(z, 0.0), 1.0)
         return out

@@ -42,7 +42,8 @@ nodes of a 3-4-5 law then misses its peak by 1.3e-3, 6.8e-4 with d + 1)."""
 
 @dataclass(frozen=True)
 class LawGrid:
-    """Base intervals of a law with nodes, weights and normalized v, a (arrays are (G, n))."""
+    """Base intervals of a law with nodes, weights and normalized v, a (arrays are (G, n));
+    v, a and j at both ends of each interval, one-sided on its piece ((G, 2))."""
 
     law: MotionLaw
     left: np.ndarray
@@ -54,6 +55,7 @@ class LawGrid:
     acceleration: np.ndarray
     end_velocity: np.ndarray
     end_acceleration: np.ndarray
+    end_jerk: np.ndarray
 
     @property
     def size(self) -> int:
@@ -75,21 +77,23 @@ def law_grid(law: MotionLaw) -> LawGrid:
     # may round onto the next piece's start, where law.derivative would switch pieces
     on_pieces = [_edge_and_node_values(law, part, tau)
                  for part, (tau, _) in zip(parts, rules, strict=True)]
-    end_v, end_a, velocity, acceleration = (np.concatenate(columns)
-                                            for columns in zip(*on_pieces, strict=True))
+    end_v, end_a, end_j, velocity, acceleration = (
+        np.concatenate(columns) for columns in zip(*on_pieces, strict=True))
     return LawGrid(law, left, right, piece, nodes, weights, velocity, acceleration,
-                   end_v, end_a)
+                   end_v, end_a, end_j)
 
 
 def _edge_and_node_values(law: MotionLaw, part: PieceIntervals, tau: np.ndarray
                           ) -> tuple[np.ndarray, ...]:
-    """v_N and a_N of one piece (one-sided at its ends) at its intervals' ends, (intervals,
-    2) arrays, and at their nodes ``tau``, (intervals, nodes): one evaluation per order."""
+    """v_N, a_N and j_N of one piece (one-sided at its ends) at its intervals' ends,
+    (intervals, 2) arrays, and v_N, a_N at their nodes ``tau``, (intervals, nodes)."""
     edges = len(part.edges)
     at = np.concatenate((part.edges, tau.ravel()))
     v, a = (law.piece_derivative(part.index, at, order) for order in (1, 2))
+    j = law.piece_derivative(part.index, part.edges, 3)
     return (np.stack((v[:edges - 1], v[1:edges]), axis=1),
             np.stack((a[:edges - 1], a[1:edges]), axis=1),
+            np.stack((j[:-1], j[1:]), axis=1),
             v[edges:].reshape(tau.shape), a[edges:].reshape(tau.shape))
 
 
