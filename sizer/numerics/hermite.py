@@ -14,10 +14,12 @@ rounding; the rest are margin)."""
 
 
 def hermite_root(g0: np.ndarray, g1: np.ndarray, d0: np.ndarray,
-                 d1: np.ndarray) -> np.ndarray:
+                 d1: np.ndarray, xtol: float = 0.0) -> np.ndarray:
     """s in [0, 1] where the cubic H(s) = g0 + d0 s + c2 s^2 + c3 s^3 with H(0) = g0,
     H(1) = g1 (of opposite signs) and slopes d0, d1 vanishes: safeguarded Newton steps
-    from the secant point, bisection where a step would leave the sign bracket."""
+    from the secant point, bisection where a step would leave the sign bracket. A row
+    stops at its fixed point, or with ``xtol`` > 0 after a Newton step of at most xtol
+    (the model is then to be polished on the function it stands for)."""
     shape = np.broadcast_shapes(np.shape(g0), np.shape(g1), np.shape(d0), np.shape(d1))
     g0, g1, d0, d1 = (np.ravel(np.broadcast_to(np.asarray(x, dtype=float), shape))
                       for x in (g0, g1, d0, d1))
@@ -46,6 +48,14 @@ def hermite_root(g0: np.ndarray, g1: np.ndarray, d0: np.ndarray,
         # a step inside the bracket, or one at rounding level (converged), is taken;
         # else bisect
         take = ((step >= low) & (step <= high)) | (np.abs(step - s) <= 1e-15)
-        s = np.where(take, step, 0.5 * (low + high))
-        out[index] = s
+        new = np.where(take, step, 0.5 * (low + high))
+        out[index] = new
+        if xtol > 0.0:
+            open_ = ~(take & (np.abs(step - s) <= xtol))
+            if not open_.all():
+                index, g0, d0, c2, c3, rising, low, high, new = (
+                    v[open_] for v in (index, g0, d0, c2, c3, rising, low, high, new))
+                if not len(index):
+                    break
+        s = new
     return np.clip(out, 0.0, 1.0).reshape(shape)

@@ -43,11 +43,12 @@ from sizer.sizing.grid import LawGrid, PieceEvaluator, law_grid
 from sizer.sizing.motors import MotorArrays
 
 GOLDEN_STEPS = 40
-HERMITE_TRUSTED = 1e-7
-"""A power-flow root's first Newton step from the cubic Hermite model that ends the
-search (:meth:`CycleCalculator._flow_root`): the step after it would be of order its
-square times the torque's relative curvature over the interval, and the RMS moves with
-the square of a root's error (the two reflections agree at the root)."""
+FLOW_ROOT_STEP = 1e-6
+"""A power-flow root's Newton step (in the grid interval's coordinate) that ends its
+search (:meth:`CycleCalculator._flow_root`): the root is then within about the step's
+square times the torque's relative curvature over the interval, and an integral moves
+with the square of a root's error (the two reflections agree at the root): far below
+rounding."""
 REFINED = 6
 """Local maxima of the samples refined per candidate (the largest ones)."""
 REFINE_SHARE = 0.5
@@ -436,11 +437,11 @@ class CycleCalculator:
         Newton's method on the function that is the torque (its derivative P j_N + Q a_N),
         kept inside the shrinking sign bracket (bisection where a step would leave it),
         from the regula falsi point; each step evaluates only the roots still open, the
-        points sorted by piece once so that a subset needs no regrouping. Stops at a step
-        of 1e-10 (the root is then far below that: quadratic convergence). Where the
-        torque is one linear function its cubic Hermite model on the interval (values and
-        slopes at the ends, from the grid) starts the steps instead, and a first step
-        below HERMITE_TRUSTED ends them: one evaluation of the law per root.
+        points sorted by piece once so that a subset needs no regrouping, until a step
+        is below FLOW_ROOT_STEP (or the bracket below 1e-10). Where the torque is one linear function
+        the root of its cubic Hermite model on the interval (values and slopes at the
+        ends, from the grid) starts the steps instead: one or two evaluations of the law
+        per root.
         """
         g, law = self.grid, self.law
         count = len(cand)
@@ -454,14 +455,12 @@ class CycleCalculator:
         sign_lo = np.sign(f_lo[by_piece])
         lo, hi = np.zeros(count), np.ones(count)
         f0, f1 = f_lo[by_piece], f_hi[by_piece]
-        trusted = 1e-10
         if len(chosen) == 1:  # one function: its cubic Hermite model on the interval
             (P, Q, _), = chosen
             ends = interval[by_piece]
             a, j = (x[ends] for x in (g.end_acceleration, g.end_jerk))
             z = hermite_root(f0, f1, (P * j[:, 0] + Q * a[:, 0]) * width,
-                             (P * j[:, 1] + Q * a[:, 1]) * width)
-            trusted = HERMITE_TRUSTED
+                             (P * j[:, 1] + Q * a[:, 1]) * width, xtol=0.1 * FLOW_ROOT_STEP)
         else:
             z = np.clip(f0 / (f0 - f1), 0.0, 1.0)
         rows = np.arange(count)
@@ -489,11 +488,10 @@ class CycleCalculator:
                 step = z[rows] - f / (slope * width[rows])
             inside = (step > lo[rows]) & (step < hi[rows])
             new = np.where(inside, step, 0.5 * (lo[rows] + hi[rows]))
-            done = (np.abs(new - z[rows]) <= trusted) | (f == 0.0) \
+            done = (np.abs(new - z[rows]) <= FLOW_ROOT_STEP) | (f == 0.0) \
                 | (hi[rows] - lo[rows] <= 1e-10)
             z[rows] = np.where(f == 0.0, z[rows], new)
             rows = rows[~done]
-            trusted = 1e-10
         out = np.empty(count)
         out[by_piece] = np.minimum(np.maximum(z, 0.0), 1.0)
         return out
