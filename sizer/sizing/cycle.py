@@ -438,10 +438,10 @@ class CycleCalculator:
         kept inside the shrinking sign bracket (bisection where a step would leave it),
         from the regula falsi point; each step evaluates only the roots still open, the
         points sorted by piece once so that a subset needs no regrouping, until a step
-        is below FLOW_ROOT_STEP (or the bracket below 1e-10). Where the torque is one linear function
-        the root of its cubic Hermite model on the interval (values and slopes at the
-        ends, from the grid) starts the steps instead: one or two evaluations of the law
-        per root.
+        is below FLOW_ROOT_STEP (or the bracket below 1e-10). Where the torque is one
+        linear function the root of its cubic Hermite model on the interval (values and
+        slopes at the ends, from the grid) starts the steps instead: one or two
+        evaluations of the law per root.
         """
         g, law = self.grid, self.law
         count = len(cand)
