@@ -16,7 +16,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 from functools import cached_property
 from types import MappingProxyType
-from typing import TYPE_CHECKING, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
@@ -252,6 +252,12 @@ class MotionLaw:
     def __hash__(self) -> int:
         return hash(self.spec)
 
+    def __reduce__(self) -> tuple[Any, tuple[str]]:
+        """Pickled as its spec, built again on loading (sizer.laws.make_law): the pieces
+        are closures, and a law is its spec (the worker processes of a sizing send
+        results that hold laws: sizer.sizing.law_processes)."""
+        return _law_of_spec, (self.spec,)
+
     def outside(self, order: int) -> tuple[float, float]:
         """q_N^(order) just before tau = 0 and just after tau = 1: at rest, at 0 and 1."""
         return 0.0, 1.0 if order == 0 else 0.0
@@ -332,3 +338,10 @@ class MotionLaw:
         from sizer.laws.linear_peaks import LinearPeaks
 
         return LinearPeaks(self)
+
+
+def _law_of_spec(spec: str) -> MotionLaw:
+    """The law of a spec (sizer.laws.make_law, imported here: it imports this module)."""
+    from sizer.laws.registry import make_law
+
+    return make_law(spec)
