@@ -137,7 +137,7 @@ def check_rank_by(rank_by: str | None) -> None:
 def size(design: DesignLike, *, catalogs: Iterable[CatalogRef] = (),
          rank_by: str | None = None, motors: Sequence[str] | Sequence[Motor] | None = None,
          laws: Sequence[str] | None = None, envelope: str | None = None,
-         progress: Progress | None = None) -> SizingResult:
+         progress: Progress | None = None, workers: int | None = 1) -> SizingResult:
     """Every motor x law (x transmission option) of ``design``, ranked feasible first
     (``sizer size``; the checks of sec. 6.1, T_min of eq. (6.2) with ``minimize``).
 
@@ -145,13 +145,16 @@ def size(design: DesignLike, *, catalogs: Iterable[CatalogRef] = (),
     :func:`override`; ``rank_by`` a ``--rank-by`` key (``size``, ``duration``,
     ``margin``, ``rms``, ``peak``, ``price``, ``mass``, alias ``power``; None: ``duration``
     with ``minimize``, else ``size``), checked before any work; ``progress(done, total)``
-    is called per law.
+    is called per law. ``workers``: processes that size the laws (None: every CPU for a
+    large design; the same result whatever their number). More than one starts worker
+    processes, which import the calling script again: keep its work under ``if __name__
+    == "__main__":`` (sizer.sizing.law_processes).
     """
     from sizer import sizing  # looked up when called: the engine stays replaceable
 
     check_rank_by(rank_by)
     sized = override(load(design, catalogs), motors=motors, laws=laws, envelope=envelope)
-    return sizing.size_design(sized, rank_by=rank_by, progress=progress)
+    return sizing.size_design(sized, rank_by=rank_by, progress=progress, workers=workers)
 
 
 def check(design: DesignLike, *, catalogs: Iterable[CatalogRef] = (),

@@ -74,6 +74,17 @@ class EnvelopeChoice(StrEnum):
     LINEAR_INTERMITTENT = "linear_intermittent"
 
 
+JobsOption = Annotated[
+    int | None,
+    typer.Option(
+        "--jobs", "-j", metavar="N", min=1, show_default=False,
+        help="Size the laws in N processes (the result is the same). Default: every CPU "
+             "for a large design (about 500,000 candidate x law evaluations or more), one "
+             "process otherwise.",
+    ),
+]
+
+
 EnvelopeOption = Annotated[
     EnvelopeChoice | None,
     typer.Option(

@@ -8,7 +8,13 @@ from typing import TYPE_CHECKING, Annotated
 import typer
 
 from sizer.cli.catalog_option import CatalogOption, DesignArgument, load_design_file
-from sizer.cli.options import EnvelopeOption, FormatOption, OutputOption, as_option
+from sizer.cli.options import (
+    EnvelopeOption,
+    FormatOption,
+    JobsOption,
+    OutputOption,
+    as_option,
+)
 from sizer.errors import UserError
 from sizer.report.formats import Format
 
@@ -45,6 +51,7 @@ def size(
     fmt: FormatOption = Format.TABLE,
     output: OutputOption = None,
     envelope: EnvelopeOption = None,
+    jobs: JobsOption = None,
 ) -> None:
     """Size a design: every motor with every motion law, feasible pairs ranked.
 
@@ -73,7 +80,7 @@ def size(
         _size_machine(design, catalog, motor, rank_by, top, show_all, fmt, output, envelope)
         return
     loaded, sizing = load_and_size(design, catalog, motor, rank_by, envelope=envelope,
-                                   outputs=() if output is None else (output,))
+                                   outputs=() if output is None else (output,), workers=jobs)
     document = SizingDocument(sizing, loaded, rank_by=rank_by, top=top,
                               include_infeasible=show_all)
     publish_sizing(document, fmt, output)
@@ -124,10 +131,12 @@ def _size_machine(path: Path, catalog: Sequence[str] | None, motor: Sequence[str
 
 def load_and_size(design: Path, catalog: Sequence[str] | None, motor: Sequence[str] | None,
                   rank_by: str | None, *, envelope: str | None = None,
-                  outputs: Sequence[Path] = ()) -> tuple[Design, SizingResult]:
+                  outputs: Sequence[Path] = (), workers: int | None = None
+                  ) -> tuple[Design, SizingResult]:
     """Load a design (plus --catalog), restrict it to the --motor ids, with --envelope, and
-    size it (sizer.api); UserErrors of the sizing name the design file. None of the
-    ``outputs`` may be a file the load read (checked before the sizing)."""
+    size it (sizer.api) in ``workers`` processes (None: every CPU for a large design);
+    UserErrors of the sizing name the design file. None of the ``outputs`` may be a file
+    the load read (checked before the sizing)."""
     from sizer import api
     from sizer.cli.output_guard import check_outputs
     from sizer.cli.progress import sizing_progress
@@ -139,7 +148,8 @@ def load_and_size(design: Path, catalog: Sequence[str] | None, motor: Sequence[s
         loaded = api.override(loaded, motors=motor or None, envelope=envelope or None)
     try:
         with sizing_progress(f"sizing {design.name}") as progress:
-            return loaded, api.size(loaded, rank_by=rank_by, progress=progress)
+            return loaded, api.size(loaded, rank_by=rank_by, progress=progress,
+                                    workers=workers)
     except UserError as error:
         raise error.located(file=str(design)) from None
 

@@ -38,6 +38,7 @@ from sizer.sizing.energy_check import (
     without_power_figures,
 )
 from sizer.sizing.grid import law_grid
+from sizer.sizing.law_processes import worker_count
 from sizer.sizing.minimum_duration import is_purely_inertial, merge_metrics, minimum_duration
 from sizer.sizing.motors import MotorArrays
 from sizer.sizing.ranking import rank_order
@@ -55,10 +56,12 @@ def mode_of(design: Design) -> Mode:
 
 def size_design(design: Design, rank_by: str | None = None,
                 motors: Sequence[Motor] | None = None,
-                progress: Progress | None = None) -> SizingResult:
+                progress: Progress | None = None, workers: int | None = 1) -> SizingResult:
     """Every motor x law (x transmission option) of the design, ranked (feasible first).
 
     ``progress``, if given, is called with (0, n) and then after each of the n laws.
+    ``workers``: processes sizing the laws (sizer.sizing.law_processes; None: every CPU
+    for a large design); the result is the same whatever their number.
     """
     design = plain_design(design)
     motors = tuple(motors if motors is not None else design.motors)
@@ -67,22 +70,38 @@ def size_design(design: Design, rank_by: str | None = None,
                         field="motors")
     specs = ranked_laws(design)
     arrays = MotorArrays.of(motors, design.limits.envelope, design.drives)
-    tables: list[CandidateTable] = []
     if progress is not None:
         progress(0, len(specs))
-    first = None  # the options one law chose: the others try them first
-    for done, spec in enumerate(specs, start=1):
-        tables.append(evaluate_spec(design, spec, arrays, first))
-        if design.ratio_choice is not None:
-            from sizer.sizing.ratio_choice import listed_choice
+    count = worker_count(workers, len(arrays) * _options(design), len(specs))
+    if count > 1:
+        from sizer.sizing.law_processes import tables_in_processes
 
-            first = listed_choice(design, tables[-1])
-        if progress is not None:
-            progress(done, len(specs))
+        tables = tables_in_processes(design, specs, arrays, count, None if progress is None
+                                     else lambda done: progress(done, len(specs)))
+    else:
+        tables = []
+        first = None  # the options one law chose: the others try them first
+        for done, spec in enumerate(specs, start=1):
+            tables.append(evaluate_spec(design, spec, arrays, first))
+            if design.ratio_choice is not None:
+                from sizer.sizing.ratio_choice import listed_choice
+
+                first = listed_choice(design, tables[-1])
+            if progress is not None:
+                progress(done, len(specs))
     table = concatenate(tables)
     order = rank_order(table, rank_by)
     return SizingResult(table.mode, Rows(table, order), design.name,
                         notes=assumptions(design), table=table)
+
+
+def _options(design: Design) -> int:
+    """Transmission options per motor: the listed ratios and gearboxes of a free stage (a
+    continuous range counts as one), else one."""
+    choice = design.ratio_choice
+    if choice is None:
+        return 1
+    return max(1, len(choice.ratios) + len(choice.gearboxes))
 
 
 def evaluate_spec(design: Design, spec: str, motors: MotorArrays,
