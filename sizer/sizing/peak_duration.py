@@ -41,6 +41,10 @@ from sizer.sizing.cycle import CycleCalculator
 NEWTON_STEPS = 40
 """Steps at most (quadratic convergence: about 3 from the start used here)."""
 
+SETTLED = 1e-8
+"""A relative step of :func:`_largest_u` that ends its row: the step after it would be
+of about its square times the maximizer's drift, below rounding."""
+
 
 def peak_duration(calculator: CycleCalculator, limits: Limits,
                   prune: bool = True, closed_forms: bool = False) -> np.ndarray | None:
@@ -220,7 +224,11 @@ def _largest_u(peaks, law, P: np.ndarray, Q: np.ndarray, D: np.ndarray,
         # a point where F >= D is on the right of u* (to rounding: F is exact to a few ulps)
         right = excess >= -1e-14 * np.abs(D)
         u[index] = np.minimum(u[index], np.where(right, x, u[index]))
-        moving = (nxt < x) & (x - nxt > 1e-15 * x)
+        # a step this small leaves the next of about its square: the step's end, right of
+        # u* by construction, is the answer without evaluating F there
+        settled = (nxt < x) & (x - nxt <= SETTLED * x)
+        u[index] = np.where(settled, np.minimum(u[index], nxt), u[index])
+        moving = (nxt < x) & (x - nxt > 1e-15 * x) & ~settled
         x = nxt
         index, x, P, Q, D = (z[moving] for z in (index, x, P, Q, D))
     return u
