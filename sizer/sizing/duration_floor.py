@@ -14,6 +14,8 @@ whose floor lies above a motor's best T_min: it cannot beat it.
 from __future__ import annotations
 
 import dataclasses
+import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -24,7 +26,7 @@ from sizer.sizing.candidates import Candidates
 from sizer.sizing.checks import TOLERANCE
 from sizer.sizing.cycle import CycleCalculator
 from sizer.sizing.minimum_duration import is_purely_inertial
-from sizer.sizing.peak_duration import peak_duration
+from sizer.sizing.peak_duration import peak_queries, speed_bounds
 
 CHUNK = 1 << 14
 """Candidates bounded at once (the peak queries of each are a few dozen numbers)."""
@@ -41,12 +43,50 @@ def relaxed(limits: Limits) -> Limits:
         max_acceleration=wider(limits.max_acceleration), max_jerk=wider(limits.max_jerk))
 
 
-def duration_floor(design: Design, spec: str, candidates: Candidates) -> np.ndarray | None:
+@dataclass(frozen=True)
+class PeakScales:
+    """What the floor's peak part takes from the candidates, for every law at once.
+
+    Each peak query F(u) <= D of sizer.sizing.peak_duration has its lower bracket 1/u =
+    max(sqrt(C_a P / D), C_v Q / D) where D > 0 and P, Q >= 0 (0 where P or Q < 0, no
+    duration where D <= 0): the law enters by C_a and C_v only, so a candidate's largest
+    bracket is max(sqrt(C_a) root, C_v ratio) with ``root`` its largest sqrt(P / D) and
+    ``ratio`` its largest Q / D, and ``blocked`` where some D <= 0."""
+
+    root: np.ndarray
+    ratio: np.ndarray
+    blocked: np.ndarray
+
+
+def peak_scales(design: Design, candidates: Candidates) -> PeakScales:
+    """The :class:`PeakScales` of the candidates, limits relaxed (module docs)."""
+    limits, n = relaxed(design.limits), len(candidates)
+    root, ratio, blocked = np.zeros(n), np.zeros(n), np.zeros(n, dtype=bool)
+    for start in range(0, n, CHUNK):
+        rows = np.arange(start, min(start + CHUNK, n))
+        part = candidates if n <= CHUNK else candidates.take(rows)
+        calculator = CycleCalculator(None, design.task, part.drive, part.motors,
+                                     design.limits.thermal_speed)
+        queries = peak_queries(calculator, limits)
+        if queries is None:
+            continue
+        who, P, Q, D = queries
+        usable = (D > 0.0) & (P >= 0.0) & (Q >= 0.0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            np.maximum.at(root, rows[who[usable]], np.sqrt(P[usable] / D[usable]))
+            np.maximum.at(ratio, rows[who[usable]], Q[usable] / D[usable])
+        blocked[rows[who[D <= 0.0]]] = True
+    return PeakScales(root, ratio, blocked)
+
+
+def duration_floor(design: Design, spec: str, candidates: Candidates,
+                   scales: PeakScales | None = None) -> np.ndarray | None:
     """Per candidate a duration below which the law ``spec`` is infeasible, in minimize
     mode for the task shorthand (a move, its dwell and return) with a fixed law; None
     where there is no such floor (a given duration, a cycle of segments, a linkage, a
     law shaped per candidate, a law that moves backwards) or no need of one (the closed
-    form of eq. 6.2 sizes every option at the cost of one evaluation)."""
+    form of eq. 6.2 sizes every option at the cost of one evaluation). ``scales``: the
+    candidates' :func:`peak_scales` where known (the same for every law)."""
     if design.cycle is not None or not design.task.minimize \
             or design.transmission.linkage is not None or is_open_shaped(spec):
         return None
@@ -54,16 +94,16 @@ def duration_floor(design: Design, spec: str, candidates: Candidates) -> np.ndar
     if any(v == AUTO for v in values.values()):
         return None
     law, limits = make_law(spec), relaxed(design.limits)
-    parts = []
-    for start in range(0, len(candidates), CHUNK):
-        part = candidates if len(candidates) <= CHUNK else \
-            candidates.take(np.arange(start, min(start + CHUNK, len(candidates))))
-        calculator = CycleCalculator(None, design.task, part.drive, part.motors,
-                                     design.limits.thermal_speed, law=law)
-        if is_purely_inertial(calculator):  # eq. (6.2): every option is cheap as it is
-            return None
-        bound = peak_duration(calculator, limits, closed_forms=True)
-        if bound is None:
-            return None
-        parts.append(bound)
-    return np.concatenate(parts) if parts else np.zeros(0)
+    calculator = CycleCalculator(None, design.task, candidates.drive, candidates.motors,
+                                 design.limits.thermal_speed, law=law)
+    if is_purely_inertial(calculator):  # eq. (6.2): every option is cheap as it is
+        return None
+    if float(law.linear_peaks.minimum(0.0, 1.0).value) < -1e-12:
+        return None  # it moves backwards: no peak bound (sizer.sizing.peak_duration)
+    if calculator.h == 0.0:
+        return np.zeros(len(candidates))
+    scales = peak_scales(design, candidates) if scales is None else scales
+    c = law.coefficients
+    peak = np.where(scales.blocked, np.inf,
+                    np.maximum(math.sqrt(c.C_a) * scales.root, c.C_v * scales.ratio))
+    return np.maximum(speed_bounds(calculator, limits), peak)

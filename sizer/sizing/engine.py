@@ -13,6 +13,8 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Callable, Sequence
+from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -44,6 +46,10 @@ from sizer.sizing.motors import MotorArrays
 from sizer.sizing.ranking import rank_order
 from sizer.sizing.results import CandidateResult, SizingResult
 from sizer.sizing.table import FIGURES, RESIDUAL, CandidateTable, Mode, Rows, concatenate
+
+if TYPE_CHECKING:
+    from sizer.sizing.duration_floor import PeakScales
+    from sizer.sizing.ratio_choice import ListedPairs
 
 Progress = Callable[[int, int], None]
 """Called as ``progress(done, total)``: laws sized so far, of all the laws."""
@@ -81,8 +87,9 @@ def size_design(design: Design, rank_by: str | None = None,
     else:
         tables = []
         first = None  # the options one law chose: the others try them first
+        shared = SharedByLaws(design, arrays)
         for done, spec in enumerate(specs, start=1):
-            tables.append(evaluate_spec(design, spec, arrays, first))
+            tables.append(evaluate_spec(design, spec, arrays, first, shared))
             if design.ratio_choice is not None:
                 from sizer.sizing.ratio_choice import listed_choice
 
@@ -104,10 +111,34 @@ def _options(design: Design) -> int:
     return max(1, len(choice.ratios) + len(choice.gearboxes))
 
 
+class SharedByLaws:
+    """What every law of one sizing of a free stage shares, each part built on first use:
+    every motor with every listed option (sizer.sizing.ratio_choice.listed_pairs) and
+    their peak scales (sizer.sizing.duration_floor.peak_scales)."""
+
+    def __init__(self, design: Design, motors: MotorArrays) -> None:
+        self.design, self.motors = design, motors
+
+    @cached_property
+    def pairs(self) -> ListedPairs:
+        from sizer.sizing.ratio_choice import listed_pairs
+
+        return listed_pairs(self.design, self.motors)
+
+    @cached_property
+    def scales(self) -> PeakScales:
+        from sizer.sizing.duration_floor import peak_scales
+
+        assert self.pairs.candidates is not None  # asked for the listed pairs' floors only
+        return peak_scales(self.design, self.pairs.candidates)
+
+
 def evaluate_spec(design: Design, spec: str, motors: MotorArrays,
-                  first: np.ndarray | None = None) -> CandidateTable:
+                  first: np.ndarray | None = None,
+                  shared: SharedByLaws | None = None) -> CandidateTable:
     """One law spec for all motors (one row per motor), the free ratio chosen if any
-    (``first``: per motor the listed option to try first, sizer.sizing.ratio_choice)."""
+    (``first``: per motor the listed option to try first, sizer.sizing.ratio_choice;
+    ``shared``: what the laws of the sizing share, built once for them all)."""
     if design.ratio_choice is None:
         candidates = Candidates.single(motors, design.load, design.transmission)
         return evaluate_law(design, spec, candidates)
@@ -115,14 +146,20 @@ def evaluate_spec(design: Design, spec: str, motors: MotorArrays,
     from sizer.sizing.ratio_choice import choose_ratio
     from sizer.sizing.rms_fails_up_to import rms_fails_up_to
 
+    common = SharedByLaws(design, motors) if shared is None else shared
+
     def without_peaks(candidates: Candidates) -> CandidateTable:
         return evaluate_fixed_law(design, make_law(spec), candidates, peaks=False)
 
+    def floor(candidates: Candidates) -> np.ndarray | None:
+        scales = common.scales if candidates is common.pairs.candidates else None
+        return duration_floor(design, spec, candidates, scales)
+
     return choose_ratio(design, motors, lambda c: evaluate_law(design, spec, c),
-                        floor=lambda c: duration_floor(design, spec, c),
+                        floor=floor,
                         fails_up_to=lambda c, T, g: rms_fails_up_to(design, spec, c, T, g),
                         without_peaks=without_peaks if _plain_given_duration(design, spec)
-                        else None, first=first)
+                        else None, first=first, pairs=common.pairs)
 
 
 def _plain_given_duration(design: Design, spec: str) -> bool:

@@ -51,21 +51,25 @@ def worker_count(workers: int | None, candidates: int, laws: int) -> int:
 
 
 _STATE: dict[str, object] = {}
-"""A worker's design and motor arrays, sent once when it starts."""
+"""A worker's design and motor arrays, sent once when it starts, and what its laws share."""
 
 
 def _start(design: Design, motors: MotorArrays) -> None:
+    from sizer.sizing.engine import SharedByLaws
+
     _STATE["design"], _STATE["motors"] = design, motors
+    _STATE["shared"] = SharedByLaws(design, motors)
 
 
 def _size_law(spec: str, first: np.ndarray | None) -> CandidateTable:
     """One law in a worker; the table goes back without its motors (the caller's own
     objects go in again: one copy of the catalog, shared by every table)."""
-    from sizer.sizing.engine import evaluate_spec
+    from sizer.sizing.engine import SharedByLaws, evaluate_spec
 
-    design, motors = _STATE["design"], _STATE["motors"]
+    design, motors, shared = _STATE["design"], _STATE["motors"], _STATE["shared"]
     assert isinstance(design, Design) and isinstance(motors, MotorArrays)
-    table = evaluate_spec(design, spec, motors, first)
+    assert isinstance(shared, SharedByLaws)
+    table = evaluate_spec(design, spec, motors, first, shared)
     return dataclasses.replace(table, motors=())
 
 

@@ -47,32 +47,23 @@ of about its square times the maximizer's drift, below rounding."""
 
 
 def peak_duration(calculator: CycleCalculator, limits: Limits,
-                  prune: bool = True, closed_forms: bool = False) -> np.ndarray | None:
+                  prune: bool = True) -> np.ndarray | None:
     """A lower bound on T_min per candidate (inf where no duration passes a peak or speed
     check; None where the law may move backwards, v_N < 0, and the bound does not hold).
-    ``prune=False`` solves every query (the reference the pruned result equals);
-    ``closed_forms``: each peak query's lower bracket (:func:`_brackets`) instead of its
-    solution, a weaker bound without the Newton runs."""
+    ``prune=False`` solves every query (the reference the pruned result equals)."""
     law = calculator.law
     peaks = law.linear_peaks
     if float(peaks.minimum(0.0, 1.0).value) < -1e-12:
         return None
     c = law.coefficients
-    motors, drive, h = calculator.motors, calculator.drive, calculator.h
-    n = len(motors)
+    n, h = len(calculator.motors), calculator.h
     if h == 0.0:  # no move: nothing bounds the duration
         return np.zeros(n)
-    K = np.broadcast_to(drive.ratio, (n,))
-    bounds = [_speed_bounds(calculator, limits, K)]
+    bounds = [speed_bounds(calculator, limits)]
     queries = peak_queries(calculator, limits)
     if queries is not None:
         who, P, Q, D = queries
-        if closed_forms:
-            low = np.zeros(n)
-            np.maximum.at(low, who, _brackets(P, Q, D, c.C_a, c.C_v)[0])
-            bounds.append(low)
-        else:
-            bounds.append(_largest_duration(peaks, law, n, who, P, Q, D, c.C_a, c.C_v, prune))
+        bounds.append(_largest_duration(peaks, law, n, who, P, Q, D, c.C_a, c.C_v, prune))
     return np.max(np.stack(bounds), axis=0)
 
 
@@ -167,10 +158,11 @@ def _brackets(P: np.ndarray, Q: np.ndarray, D: np.ndarray, C_a: float,
     return low, high
 
 
-def _speed_bounds(calculator: CycleCalculator, limits: Limits, K: np.ndarray) -> np.ndarray:
+def speed_bounds(calculator: CycleCalculator, limits: Limits) -> np.ndarray:
     """The durations below which the speed check or a load limit fails (closed forms)."""
     c = calculator.law.coefficients
     h, motors = calculator.h, calculator.motors
+    K = np.broadcast_to(calculator.drive.ratio, (len(motors),))
     with np.errstate(divide="ignore", invalid="ignore"):
         T = c.C_v * K * h / (motors.speed_limit * (1.0 - limits.speed_margin))
         T = np.where(np.isnan(T), np.inf, T)

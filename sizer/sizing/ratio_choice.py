@@ -23,6 +23,7 @@ import dataclasses
 import math
 from collections.abc import Callable
 from contextlib import nullcontext
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -103,17 +104,49 @@ class _Best:
         return dataclasses.replace(best, stage_ratio=self.stage_ratio.copy())
 
 
+@dataclass(frozen=True)
+class ListedPairs:
+    """Every motor with every listed option of the free stage (gearboxes, then ratios),
+    motor-major: the same for every law, so built once per sizing (:func:`listed_pairs`);
+    ``candidates`` None where nothing is listed (a continuous range only)."""
+
+    transmissions: list[Transmission]
+    names: list[str | None]
+    motor: np.ndarray
+    option: np.ndarray
+    candidates: Candidates | None
+
+
+def listed_pairs(design: Design, motors: MotorArrays) -> ListedPairs:
+    """The :class:`ListedPairs` of a design with a free stage, for these motors."""
+    choice = design.ratio_choice
+    assert choice is not None
+    base = design.transmission.stages[choice.stage]
+    listed = [design.transmission.with_stage(choice.stage, g.stage) for g in choice.gearboxes]
+    names: list[str | None] = [g.gearbox for g in choice.gearboxes]
+    listed += [design.transmission.with_stage(choice.stage, dataclasses.replace(base, ratio=r))
+               for r in choice.ratios]
+    names += [None] * len(choice.ratios)
+    n, m = len(motors), len(listed)
+    motor, option = np.repeat(np.arange(n), m), np.tile(np.arange(m), n)
+    every = Candidates.pairs(motors, design.load, listed, motor, option,
+                             gearboxes=tuple(names)) if listed else None
+    return ListedPairs(listed, names, motor, option, every)
+
+
 def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate,
                  floor: Floor | None = None,
                  fails_up_to: FailsUpTo | None = None,
                  without_peaks: Evaluate | None = None,
-                 first: np.ndarray | None = None) -> CandidateTable:
+                 first: np.ndarray | None = None,
+                 pairs: ListedPairs | None = None) -> CandidateTable:
     """The best option for each motor (one row per motor, carrying ratio and gearbox).
     In minimize mode ``floor`` bounds the options' T_min from below and ``fails_up_to``
     tells the candidates infeasible at every duration up to a given one, and ``first``
     (per motor a listed option, or -1) is the option to try first (the choice of another
     law: :func:`listed_choice`); with a given duration ``without_peaks`` evaluates all
-    but the peaks (module docs). None of these changes the choice, only its cost."""
+    but the peaks (module docs). None of these changes the choice, only its cost.
+    ``pairs``: the design's :func:`listed_pairs` for these motors, where built already."""
     choice = design.ratio_choice
     assert choice is not None
     base = design.transmission.stages[choice.stage]
@@ -141,16 +174,14 @@ def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate,
     def with_ratio(ratio: float) -> Transmission:
         return design.transmission.with_stage(choice.stage, dataclasses.replace(base, ratio=ratio))
 
-    listed = [design.transmission.with_stage(choice.stage, g.stage) for g in choice.gearboxes]
-    names: list[str | None] = [g.gearbox for g in choice.gearboxes]
-    listed += [with_ratio(r) for r in choice.ratios]
-    names += [None] * len(choice.ratios)
+    if pairs is None:
+        pairs = listed_pairs(design, motors)
+    listed, names = pairs.transmissions, pairs.names
     with without_power_figures() if energy else nullcontext():
         if listed:
             n, m = len(motors), len(listed)
-            motor, option = np.repeat(np.arange(n), m), np.tile(np.arange(m), n)
-            every = Candidates.pairs(motors, design.load, listed, motor, option,
-                                     gearboxes=tuple(names))
+            motor, option, every = pairs.motor, pairs.option, pairs.candidates
+            assert every is not None
             bounds = floor(every) if floor is not None and m > 1 else None
             if bounds is None:
                 consider(listed, names, motor, option, option, every)
