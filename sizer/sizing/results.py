@@ -49,7 +49,7 @@ def margin_percent(margin: float, decimals: int = 2, *, failed: bool = False,
     return text
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class Check:
     """One limit checked for a candidate. margin = 1 - value/limit (capability left unused).
 
@@ -104,7 +104,7 @@ class Check:
                 f"margin {margin}%{need} ({verdict})")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class CandidateResult:
     """A motor with a law: its duration, requirements at the motor shaft and checks.
 
