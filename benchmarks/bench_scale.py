@@ -35,6 +35,8 @@ HERE = Path(__file__).resolve().parent
 FULL = 10_000
 GOAL_SECONDS = 10.0
 GOAL_BYTES = 1 << 30
+POLL = 0.25
+"""Seconds between two readings of the worker processes (each a scan of /proc)."""
 
 
 class Descendants(threading.Thread):
@@ -49,7 +51,7 @@ class Descendants(threading.Thread):
         self._done = threading.Event()
 
     def run(self) -> None:
-        while not self._done.wait(0.05):
+        while not self._done.wait(POLL):
             self.read()
 
     def stop(self) -> None:
@@ -105,10 +107,12 @@ def child(motors: int, verbose: bool, workers: int | None) -> None:
 
     count = worker_count(workers, motors * len(RATIOS), len(SCALE_LAWS))
     watch = Descendants()
-    watch.start()
+    if count > 1:  # (a poll costs the sizing a little: not where there is nothing to see)
+        watch.start()
     result = size_design(design, progress=progress if verbose else None, workers=count)
     seconds = time.perf_counter() - start
-    watch.stop()
+    if count > 1:
+        watch.stop()
     cpu = time.process_time() - cpu
     results, feasible = len(result.results), sum(r.feasible for r in result.results)
     # this process's own peak with every result row built, as a report of them all would
