@@ -17,16 +17,18 @@ import the caller's main module again, which must keep its work under ``if __nam
 from __future__ import annotations
 
 import dataclasses
-import multiprocessing
 import os
 from collections.abc import Callable, Sequence
-from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from sizer.model.domain import Design
 from sizer.sizing.motors import MotorArrays
 from sizer.sizing.table import CandidateTable
+
+if TYPE_CHECKING:
+    from concurrent.futures import Future
 
 AUTO_WORK = 500_000
 """Candidate x law evaluations from which ``workers=None`` (auto) uses every CPU: about
@@ -78,6 +80,9 @@ def tables_in_processes(design: Design, specs: Sequence[str], motors: MotorArray
                         ) -> list[CandidateTable]:
     """The table of each law spec (sizer.sizing.engine.evaluate_spec), sized in
     ``workers`` processes; ``done(count)`` after each law with the count so far."""
+    import multiprocessing  # here: the start-up of a command sized in one process
+    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+
     from sizer.sizing.ratio_choice import listed_choice
 
     methods = multiprocessing.get_all_start_methods()
