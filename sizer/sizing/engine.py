@@ -13,8 +13,6 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Callable, Sequence
-from functools import cached_property
-from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -45,11 +43,8 @@ from sizer.sizing.minimum_duration import is_purely_inertial, merge_metrics, min
 from sizer.sizing.motors import MotorArrays
 from sizer.sizing.ranking import rank_order
 from sizer.sizing.results import CandidateResult, SizingResult
+from sizer.sizing.shared_by_laws import SharedByLaws
 from sizer.sizing.table import FIGURES, RESIDUAL, CandidateTable, Mode, Rows, concatenate
-
-if TYPE_CHECKING:
-    from sizer.sizing.duration_floor import PeakScales
-    from sizer.sizing.ratio_choice import ListedPairs
 
 Progress = Callable[[int, int], None]
 """Called as ``progress(done, total)``: laws sized so far, of all the laws."""
@@ -109,28 +104,6 @@ def _options(design: Design) -> int:
     if choice is None:
         return 1
     return max(1, len(choice.ratios) + len(choice.gearboxes))
-
-
-class SharedByLaws:
-    """What every law of one sizing of a free stage shares, each part built on first use:
-    every motor with every listed option (sizer.sizing.ratio_choice.listed_pairs) and
-    their peak scales (sizer.sizing.duration_floor.peak_scales)."""
-
-    def __init__(self, design: Design, motors: MotorArrays) -> None:
-        self.design, self.motors = design, motors
-
-    @cached_property
-    def pairs(self) -> ListedPairs:
-        from sizer.sizing.ratio_choice import listed_pairs
-
-        return listed_pairs(self.design, self.motors)
-
-    @cached_property
-    def scales(self) -> PeakScales:
-        from sizer.sizing.duration_floor import peak_scales
-
-        assert self.pairs.candidates is not None  # asked for the listed pairs' floors only
-        return peak_scales(self.design, self.pairs.candidates)
 
 
 def evaluate_spec(design: Design, spec: str, motors: MotorArrays,

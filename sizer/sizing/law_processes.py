@@ -25,6 +25,7 @@ import numpy as np
 
 from sizer.model.domain import Design
 from sizer.sizing.motors import MotorArrays
+from sizer.sizing.shared_by_laws import SharedByLaws
 from sizer.sizing.table import CandidateTable
 
 if TYPE_CHECKING:
@@ -57,8 +58,6 @@ _STATE: dict[str, object] = {}
 
 
 def _start(design: Design, motors: MotorArrays) -> None:
-    from sizer.sizing.engine import SharedByLaws
-
     _STATE["design"], _STATE["motors"] = design, motors
     _STATE["shared"] = SharedByLaws(design, motors)
 
@@ -66,7 +65,7 @@ def _start(design: Design, motors: MotorArrays) -> None:
 def _size_law(spec: str, first: np.ndarray | None) -> CandidateTable:
     """One law in a worker; the table goes back without its motors (the caller's own
     objects go in again: one copy of the catalog, shared by every table)."""
-    from sizer.sizing.engine import SharedByLaws, evaluate_spec
+    from sizer.sizing.engine import evaluate_spec
 
     design, motors, shared = _STATE["design"], _STATE["motors"], _STATE["shared"]
     assert isinstance(design, Design) and isinstance(motors, MotorArrays)
