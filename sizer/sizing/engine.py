@@ -176,11 +176,9 @@ def evaluate_law(design: Design, spec: str, candidates: Candidates) -> Candidate
     return joined.take(inverse)
 
 
-CHUNK_SAMPLES = 2**22
-"""Candidates x law samples evaluated at once (each array of that size is 32 MiB): larger
-candidate sets are evaluated in chunks, so memory stays bounded whatever the catalog.
-(bench_scale, 10,000 motors in two processes: 2**21 12.1-12.6 s, 2**22 9.2-9.9 s, 2**23
-10.0-11.1 s, the peak memory about 860 MiB in each.)"""
+CHUNK_SAMPLES = 2**21
+"""Candidates x law samples evaluated at once (each array of that size is 16 MiB): larger
+candidate sets are evaluated in chunks, so memory stays bounded whatever the catalog."""
 MIN_CHUNK = 64
 """The smallest chunk (the per-evaluation overhead stays small against the work)."""
 
