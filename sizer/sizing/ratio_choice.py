@@ -117,15 +117,21 @@ class ListedPairs:
     candidates: Candidates | None
 
 
+def with_ratio(design: Design, ratio: float) -> Transmission:
+    """The design's transmission with its free stage at ``ratio``."""
+    choice = design.ratio_choice
+    assert choice is not None
+    base = design.transmission.stages[choice.stage]
+    return design.transmission.with_stage(choice.stage, dataclasses.replace(base, ratio=ratio))
+
+
 def listed_pairs(design: Design, motors: MotorArrays) -> ListedPairs:
     """The :class:`ListedPairs` of a design with a free stage, for these motors."""
     choice = design.ratio_choice
     assert choice is not None
-    base = design.transmission.stages[choice.stage]
     listed = [design.transmission.with_stage(choice.stage, g.stage) for g in choice.gearboxes]
     names: list[str | None] = [g.gearbox for g in choice.gearboxes]
-    listed += [design.transmission.with_stage(choice.stage, dataclasses.replace(base, ratio=r))
-               for r in choice.ratios]
+    listed += [with_ratio(design, r) for r in choice.ratios]
     names += [None] * len(choice.ratios)
     n, m = len(motors), len(listed)
     motor, option = np.repeat(np.arange(n), m), np.tile(np.arange(m), n)
@@ -149,7 +155,6 @@ def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate,
     ``pairs``: the design's :func:`listed_pairs` for these motors, where built already."""
     choice = design.ratio_choice
     assert choice is not None
-    base = design.transmission.stages[choice.stage]
     best = _Best(len(motors))
     energy = has_heat_check(motors.catalog) or has_braking_check(design, motors.drives)
     lazy = without_peaks if not energy else None
@@ -170,9 +175,6 @@ def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate,
             return
         rows, table = _peaks_in_order(candidates, motor, rank, evaluate, lazy)
         best.update(table, motor[rows], ratios[rows], rank[rows])
-
-    def with_ratio(ratio: float) -> Transmission:
-        return design.transmission.with_stage(choice.stage, dataclasses.replace(base, ratio=ratio))
 
     if pairs is None:
         pairs = listed_pairs(design, motors)
@@ -196,7 +198,8 @@ def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate,
                 _by_floor(bounds.reshape(n, m), round_of, best,
                           None if fails_up_to is None else rule_out, first)
         if choice.bounds is not None:
-            _continuous(choice.bounds, with_ratio, consider, best, len(motors))
+            _continuous(choice.bounds, lambda ratio: with_ratio(design, ratio), consider, best,
+                        len(motors))
     chosen = best.table()
     if not energy:
         return chosen
