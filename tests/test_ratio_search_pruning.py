@@ -151,6 +151,42 @@ def test_the_floor_is_below_every_feasible_duration(seed):
     assert checked >= 10
 
 
+@pytest.mark.parametrize("rising", [False, True])
+@pytest.mark.parametrize("seed", range(6))
+def test_the_floors_scales_give_each_querys_own_bracket(seed, rising):
+    """The floor's peak part, factored into law-independent scales (PeakScales), equals
+    the largest lower bracket of the candidate's peak queries computed query by query
+    (sizer.sizing.peak_duration._brackets), with the speed bounds: for every law.
+    ``rising``: every intermittent region rises before it falls (concave still), so some
+    queries have Q < 0 and bound nothing."""
+    from sizer.sizing.cycle import CycleCalculator
+    from sizer.sizing.duration_floor import peak_scales, relaxed
+    from sizer.sizing.peak_duration import _brackets, peak_queries, speed_bounds
+
+    design = wide_design(seed)
+    if rising:
+        design = dataclasses.replace(design, motors=tuple(
+            dataclasses.replace(m, max_speed=2.0 * m.rated_speed, intermittent_curve=(
+                (0.0, 0.2 * m.peak_torque), (0.3 * m.rated_speed, m.peak_torque),
+                (2.0 * m.rated_speed, 0.4 * m.peak_torque))) for m in design.motors))
+    pairs, _, _ = all_pairs(design)
+    scales = peak_scales(design, pairs)
+    limits = relaxed(design.limits)
+    for spec in design.laws:
+        law = make_law(spec)
+        calculator = CycleCalculator(None, design.task, pairs.drive, pairs.motors,
+                                     design.limits.thermal_speed, law=law)
+        who, P, Q, D = peak_queries(calculator, limits)
+        assert rising == bool(np.any((Q < 0.0) & (D > 0.0)))
+        low = np.zeros(len(pairs))
+        np.maximum.at(low, who, _brackets(P, Q, D, law.coefficients.C_a,
+                                          law.coefficients.C_v)[0])
+        expected = np.maximum(speed_bounds(calculator, limits), low)
+        floor = duration_floor(design, spec, pairs, scales)
+        assert floor is not None
+        np.testing.assert_allclose(floor, expected, rtol=1e-14, err_msg=spec)
+
+
 @pytest.mark.parametrize("seed", range(6))
 def test_rms_fails_up_to_means_failing_at_every_shorter_duration(seed):
     design = wide_design(seed)
@@ -240,7 +276,7 @@ def test_listed_choice_names_the_listed_option_chosen():
 @pytest.mark.parametrize("seed", range(6))
 def test_one_model_per_motor_equals_one_per_option(seed):
     """The RMS of every option of a motor from one evaluation (the stretches between
-    power-flow reversals shared: sizer.sizing.duration_floor._shared_models) equals each
+    power-flow reversals shared: sizer.sizing.rms_fails_up_to._shared_models) equals each
     option's own evaluation, and so do the test's answers."""
     from sizer.sizing.cycle import CycleCalculator
     from sizer.sizing.rms_fails_up_to import _shared_models
