@@ -21,15 +21,16 @@ by one untimed run of each command first.
 from __future__ import annotations
 
 import argparse
-import os
 import resource
 import subprocess
 import sys
-import tempfile
 import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "benchmarks"))
+
+from bytecode_cache import bytecode_env  # noqa: E402
 
 
 def _children_cpu() -> float:
@@ -71,9 +72,7 @@ def main() -> int:
     parser.add_argument("--only", nargs="*", default=None,
                         help="time only the examples whose file name contains one of these")
     options = parser.parse_args()
-    with tempfile.TemporaryDirectory(prefix="sizer-bench-pyc-") as cache:
-        env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
-        env["PYTHONPYCACHEPREFIX"] = cache
+    with bytecode_env() as env:
         return _run(options, env)
 
 
