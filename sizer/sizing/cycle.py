@@ -28,7 +28,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 from typing import Protocol
 
 import numpy as np
@@ -116,18 +116,34 @@ class RmsModel:
     dwell: float
     hold: np.ndarray
 
-    def rms(self, T: np.ndarray, index: np.ndarray | None = None) -> np.ndarray:
-        """RMS torque at durations T (of the candidates at ``index``, default all)."""
-        pick = (lambda x: x) if index is None else (lambda x: x[index])
-        scale = pick(self.duration) / T
-        square = np.zeros_like(T)
+    @cached_property
+    def powers(self) -> np.ndarray:
+        """The summed integrals T int (P s^2 a_N + Q s v_N + C)^2 (s = T0/T, each function
+        over its moments M) as c_3/T^3 + c_2/T^2 + c_1/T + c_0 + c_(-1) T: rows (c_3, c_2,
+        c_1, c_0, c_(-1)) over the candidates, summed over the moves once, so that each
+        value of the model costs a polynomial in 1/T."""
+        T0 = self.duration
+        out = np.zeros((5, len(T0)))
         with np.errstate(over="ignore", invalid="ignore"):
             for move in self.moves:
                 for P, Q, C, M in move:
-                    square += T * _form(pick(P) * scale * scale, pick(Q) * scale, pick(C),
-                                        M if index is None else M[:, index])
-            n = len(self.moves)
-            mean = (square + n * self.dwell * np.square(pick(self.hold))) / (n * (T + self.dwell))
+                    p, q = P * T0 * T0, Q * T0  # the torque scales of a_N and v_N at T0
+                    out[0] += p * p * M[0]
+                    out[1] += 2.0 * p * q * M[3]
+                    out[2] += q * q * M[1] + 2.0 * p * C * M[4]
+                    out[3] += 2.0 * q * C * M[5]
+                    out[4] += C * C * M[2]
+        return out
+
+    def rms(self, T: np.ndarray, index: np.ndarray | None = None) -> np.ndarray:
+        """RMS torque at durations T (of the candidates at ``index``, default all)."""
+        c = self.powers if index is None else self.powers[:, index]
+        hold = self.hold if index is None else self.hold[index]
+        n = len(self.moves)
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            u = 1.0 / T
+            square = ((c[0] * u + c[1]) * u + c[2]) * u + c[3] + c[4] * T
+            mean = (square + n * self.dwell * np.square(hold)) / (n * (T + self.dwell))
         return np.sqrt(np.where(np.isnan(mean), np.inf, mean))
 
 
