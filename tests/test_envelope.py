@@ -266,3 +266,28 @@ def test_region_lookup_is_exact_at_corners_and_bounded_in_memory():
     inside = speed <= table.max_speed[:, None]
     assert np.all((s0 <= speed) | ~inside) and np.all((speed <= s1) | ~inside)
     assert np.all(limit[~inside] == 0.0)
+
+
+def test_a_held_segment_gives_the_limit_of_the_table_to_the_bit():
+    """HeldSegments (the root finders' lookup near a speed) against the table's own
+    limit_clipped of the same rows: equal to the bit at speeds on the held segment, off it
+    (the search again), exactly at corners, past the region's end and below zero speed;
+    curves of different lengths (padded rows) and rectangles together."""
+    from sizer.envelope.region import RegionTable
+
+    rng = np.random.default_rng(11)
+    curves = [((0.0, 2.0), (300.0, 2.0))]
+    for count in (2, 3, 5, 40):
+        for _ in range(20):
+            speeds = np.unique(np.concatenate(([0.0], rng.uniform(1.0, 600.0, count - 1))))
+            curves.append(tuple(zip(speeds, rng.uniform(0.1, 5.0, len(speeds)), strict=True)))
+    table = RegionTable(curves)
+    n = len(table)
+    start = rng.uniform(0.0, 1.1, n) * table.max_speed
+    held = table.held_at(start)
+    for factor in (1.0, 1.0 + 1e-9, 0.97, 1.3, 0.2, 3.0, -1.0):
+        rows = np.flatnonzero(rng.uniform(size=n) < 0.7)
+        speed = start[rows] * factor
+        speed[:3] = table.speeds[rows[:3], 1]  # exactly on a corner
+        np.testing.assert_array_equal(held.limit_clipped(speed, rows),
+                                      table.take(rows).limit_clipped(speed))

@@ -9,6 +9,7 @@ tau_c and the intermittent region tau_p, both up to the rated speed v_n; a compl
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -134,8 +135,48 @@ class RegionTable:
         alpha[~concave, 0] = t[~concave].max(axis=1)
         return alpha, sigma, concave
 
+    def held_at(self, speed: np.ndarray) -> HeldSegments:
+        """Each row's segment at one speed per row (clipped into the region), held for
+        :meth:`HeldSegments.limit_clipped` at nearby speeds."""
+        flat = np.minimum(np.abs(np.asarray(speed, dtype=float)), self.max_speed)
+        index = self._segment(flat[:, None])[:, 0]
+        rows = np.arange(len(index))
+        last = self.speeds.shape[1] - 2
+        s0, s1 = self.speeds[rows, index], self.speeds[rows, index + 1]
+        return HeldSegments(self, np.where(index > 0, s0, -np.inf),
+                            np.where(index < last, s1, np.inf), s0, s1,
+                            self.torques[rows, index], self.torques[rows, index + 1])
+
     def limit_clipped(self, speed: np.ndarray) -> np.ndarray:
         """Torque limit with the speed clipped into the region (speed is checked apart)."""
         speed = np.minimum(np.abs(np.asarray(speed, dtype=float)),
                            self.max_speed.reshape((-1,) + (1,) * (np.ndim(speed) - 1)))
         return self.limit(speed)
+
+
+@dataclass(frozen=True)
+class HeldSegments:
+    """A region's segment per row, found at one speed each (:meth:`RegionTable.held_at`):
+    speeds in [low, high) lie on it (the segment :meth:`RegionTable.limit` would pick),
+    so the limit there is its interpolation with no search; a root finder's iterates
+    near that speed stay on it."""
+
+    table: RegionTable
+    low: np.ndarray
+    high: np.ndarray
+    s0: np.ndarray
+    s1: np.ndarray
+    t0: np.ndarray
+    t1: np.ndarray
+
+    def limit_clipped(self, speed: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        """RegionTable.limit_clipped of the rows at ``rows`` at ``speed`` (one per row),
+        the same to the bit: the held segment's interpolation where the speed is on it,
+        the table's search elsewhere."""
+        flat = np.minimum(np.abs(np.asarray(speed, dtype=float)), self.table.max_speed[rows])
+        s0, s1, t0, t1 = self.s0[rows], self.s1[rows], self.t0[rows], self.t1[rows]
+        value = t0 + (t1 - t0) * (flat - s0) / (s1 - s0)
+        off = np.flatnonzero(~((flat >= self.low[rows]) & (flat < self.high[rows])))
+        if len(off):
+            value[off] = self.table.take(rows[off]).limit(flat[off])
+        return value

@@ -295,8 +295,10 @@ def rms_crossing(calculator: CycleCalculator, limits: Limits, start: np.ndarray,
         if model is None:  # a cycle with a free move that has boundary speeds: no model
             break
 
+        held = sub.motors.continuous.held_at(sub.thermal_speed(T))
+
         def excess_of(x: np.ndarray, where: np.ndarray, sub=sub, model=model, rows=rows,
-                      template=T) -> np.ndarray:
+                      template=T, held=held) -> np.ndarray:
             """log(RMS / limit) of the model at log durations x of the candidates at
             ``where`` (the root finder works on the ones still open; each value is the
             same as in a call for all of them)."""
@@ -304,7 +306,7 @@ def rms_crossing(calculator: CycleCalculator, limits: Limits, start: np.ndarray,
             full = template.copy()
             full[where] = at
             speed = sub.thermal_speed(full)[where]
-            limit = sub.motors.continuous.take(where).limit_clipped(speed)
+            limit = held.limit_clipped(speed, where)
             with np.errstate(divide="ignore"):
                 return (np.log(model.rms(at, where if rows is None else rows[where]))
                         - np.log(grip * limit))
