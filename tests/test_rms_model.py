@@ -6,7 +6,9 @@ sizer.sizing.minimum_duration.rms_crossing).
   and moving them changes the integral to second order only); with an ideal drive (no
   split points) it is exact at every duration.
 - rms_crossing lands where the plain scalar reference (tests/scalar_reference.py) finds
-  the RMS check exactly at its required margin, with the check failing just below.
+  the RMS check exactly at its required margin, with the check failing just below; the
+  RMS it gives with each crossing (its last model's) is the cycle's own RMS there, and
+  an evaluation given it skips only the power-flow integrals.
 """
 
 from __future__ import annotations
@@ -20,7 +22,7 @@ from sizer.laws import make_law
 from sizer.mechanics import Drive
 from sizer.model import Limits, Load, Motor, Stage, Task, Transmission
 from sizer.sizing.cycle import CycleCalculator
-from sizer.sizing.minimum_duration import rms_crossing
+from sizer.sizing.minimum_duration import rms_crossing, rms_crossing_with_rms
 from sizer.sizing.motors import MotorArrays
 
 
@@ -96,3 +98,42 @@ def test_a_crossing_from_a_model_built_for_more_candidates_is_the_same(spec):
     reused = rms_crossing(calc.take(index), limits, T[index], (model, index))
     assert np.isfinite(alone).all()
     np.testing.assert_array_equal(reused, alone)
+
+
+@pytest.mark.parametrize("spec", ["cycloidal", "trapezoidal(alpha=1/3)", "modified_trapezoidal",
+                                  "double_s(alpha=1/4, beta=1/3)"])
+def test_the_rms_given_with_a_crossing_is_the_cycles_own_there(spec):
+    """The RMS that rms_crossing_with_rms gives with each crossing (the value of its last
+    round's model, built within CONVERGED of it) against a full evaluation at that
+    duration: the same to rounding; and an evaluation given that RMS equals the full one
+    in every other figure, to the bit."""
+    calc = calculator_of(0.9, spec)
+    limits = Limits(torque_margin=0.1)
+    T, rms = rms_crossing_with_rms(calc, limits, np.array([0.05, 0.08, 0.12, 0.2]))
+    assert np.isfinite(T).all()
+    np.testing.assert_array_equal(T, rms_crossing(calc, limits, np.array([0.05, 0.08, 0.12,
+                                                                          0.2])))
+    full = calc.evaluate(T)
+    np.testing.assert_allclose(rms, full.rms_torque, rtol=1e-13)
+    given = calc.evaluate(T, rms=rms)
+    np.testing.assert_array_equal(given.rms_torque, rms)
+    for name in ("peak_torque", "peak_ratio", "max_speed", "thermal_speed", "load_torque"):
+        np.testing.assert_array_equal(getattr(given, name), getattr(full, name))
+
+
+def test_a_given_rms_is_not_used_where_a_stage_rms_is_checked():
+    """A stage with a rated output torque needs its own RMS: the evaluation then
+    integrates everything and the given value is ignored."""
+    motors = MotorArrays.of([Motor(f"m{i}", 1e-4 * (i + 1), 1.0 + i, 3.0 + 3 * i, 300.0)
+                             for i in range(2)], "book")
+    stage = Stage("gearbox", 8.0, 0.9, 2e-5, rated_output_torque=20.0)
+    drive = Drive(Load(0.05, damping=0.02, friction=0.3, torque=0.4),
+                  Transmission((stage,)))
+    calc = CycleCalculator(None, Task(1.5, None, dwell=0.2, return_move=True), drive, motors,
+                           law=make_law("cycloidal"))
+    T = np.array([0.2, 0.3])
+    full = calc.evaluate(T)
+    given = calc.evaluate(T, rms=np.array([1.0, 2.0]))
+    np.testing.assert_array_equal(given.rms_torque, full.rms_torque)
+    np.testing.assert_array_equal(given.stage_rms[0], full.stage_rms[0])
+    assert np.all(full.stage_rms[0] > 0.0)

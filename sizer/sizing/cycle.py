@@ -191,11 +191,17 @@ class CycleCalculator:
 
     # ------------------------------------------------------------------ public
     def evaluate(self, duration: np.ndarray, peaks: bool = True,
-                 model: bool = False) -> CycleMetrics:
+                 model: bool = False, rms: np.ndarray | None = None) -> CycleMetrics:
         """The requirements at the given durations. Without ``peaks`` the peak torques
         and ratios are left at zero (a search on the other checks, where the peaks are
         known to pass: sizer.sizing.minimum_duration); with ``model`` the metrics carry
-        the RMS model at these durations (:class:`RmsModel`)."""
+        the RMS model at these durations (:class:`RmsModel`). ``rms``: the motor's RMS
+        torque at these durations, known (an RMS model's value within CONVERGED of where
+        it was built: sizer.sizing.minimum_duration.rms_crossing); the power-flow
+        integrals are then not computed where no stage has an RMS rating to check (the
+        stages' RMS is then left at zero, as nothing reads it)."""
+        if rms is not None and (model or self.stage_checks or self.drive.is_ideal):
+            rms = None  # wanted, or as cheap as the known values
         T = np.broadcast_to(np.asarray(duration, dtype=float), (len(self.motors),)).copy()
         c = self.law.coefficients
         K, h = self.drive.ratio, self.h
@@ -217,10 +223,13 @@ class CycleCalculator:
             peak_torque = np.maximum(peak_torque, torque)
             peak_ratio = np.maximum(peak_ratio, ratio)
             load_torque = np.maximum(load_torque, load)
+            for i in range(n_stages):
+                stage_peak[i] = np.maximum(stage_peak[i], stages[i])
+            if rms is not None:
+                continue
             means = self._mean_squares(scales, parts)
             square += T * means[0]
             for i in range(n_stages):
-                stage_peak[i] = np.maximum(stage_peak[i], stages[i])
                 stage_square[i] += T * means[1 + i]
         dwell = self.task.dwell
         n = len(self.directions)
@@ -235,7 +244,8 @@ class CycleCalculator:
                 stage_peak[i] = np.maximum(stage_peak[i], stage_hold[i])
         cycle = n * (T + dwell)
         with np.errstate(over="ignore"):  # beyond the float range: inf, reported unbounded
-            rms = np.sqrt((square + n * dwell * np.square(np.float64(hold))) / cycle)
+            rms = (np.sqrt((square + n * dwell * np.square(np.float64(hold))) / cycle)
+                   if rms is None else np.asarray(rms, dtype=float).copy())
             stage_rms = [np.sqrt((stage_square[i] + n * dwell
                                   * np.square(np.float64(stage_hold[i]))) / cycle)
                          for i in range(n_stages)]

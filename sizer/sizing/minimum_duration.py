@@ -51,8 +51,15 @@ class DurationSolution:
 
 
 def evaluate(calculator: CycleCalculator, limits: Limits, T: np.ndarray, peaks: bool = True,
-             model: bool = False):
-    metrics = calculator.evaluate(T, peaks, model=True) if model else calculator.evaluate(T, peaks)
+             model: bool = False, rms: np.ndarray | None = None):
+    """The metrics and checks at T (CycleCalculator.evaluate; ``rms`` known there, for a
+    law's calculator only)."""
+    if model:
+        metrics = calculator.evaluate(T, peaks, model=True)
+    elif rms is not None and not calculator.segmented:
+        metrics = calculator.evaluate(T, peaks, rms=rms)
+    else:
+        metrics = calculator.evaluate(T, peaks)
     checks = evaluate_checks(metrics, calculator.motors, calculator.drive, limits,
                              calculator.task.linear)
     return metrics, checks
@@ -148,13 +155,18 @@ def _from_bound(calculator: CycleCalculator, limits: Limits,
     start = np.where(usable, bound, _initial_guess(calculator))
     T = np.where(ok, bound, np.inf)
 
+    known = np.full(len(T), np.nan)  # the RMS at the crossings found, from their models
+
     def from_rms(left: np.ndarray) -> np.ndarray:
         out = np.full(len(T), np.nan)
         index = np.flatnonzero(left & usable)
         if len(index):
             first = None if at_bound is None else (at_bound, index)
-            found = rms_crossing(calculator.take(index), limits, bound[index], first)
-            out[index] = np.where(found >= bound[index] * (1.0 - 1e-12), found, np.nan)
+            found, rms = rms_crossing_with_rms(calculator.take(index), limits, bound[index],
+                                               first)
+            keep = found >= bound[index] * (1.0 - 1e-12)
+            out[index] = np.where(keep, found, np.nan)
+            known[index] = np.where(keep, rms, np.nan)
         return out
 
     steps = (from_rms,
@@ -172,7 +184,10 @@ def _from_bound(calculator: CycleCalculator, limits: Limits,
         T[left] = np.where(np.isnan(found[left]), T[left], found[left])
         index = np.flatnonzero(left & np.isfinite(T))  # verified where they changed
         if len(index):
-            part, part_checks = evaluate(calculator.take(index), limits, T[index])
+            rms = known[index] if number == 0 else None
+            if rms is not None and not np.all(np.isfinite(rms)):
+                rms = None
+            part, part_checks = evaluate(calculator.take(index), limits, T[index], rms=rms)
             passed[index] = feasible(part_checks)
             metrics = merge_metrics(metrics, index, part)
             at[index] = T[index]
@@ -268,6 +283,13 @@ FLAT_STEP = 1e-4
 
 def rms_crossing(calculator: CycleCalculator, limits: Limits, start: np.ndarray,
                  first: tuple[RmsCurve, np.ndarray] | None = None) -> np.ndarray:
+    """The durations of :func:`rms_crossing_with_rms`."""
+    return rms_crossing_with_rms(calculator, limits, start, first)[0]
+
+
+def rms_crossing_with_rms(calculator: CycleCalculator, limits: Limits, start: np.ndarray,
+                          first: tuple[RmsCurve, np.ndarray] | None = None
+                          ) -> tuple[np.ndarray, np.ndarray]:
     """Per candidate the duration above ``start`` where the motor's RMS torque reaches the
     continuous limit at the thermal speed (margin applied); nan where none was found.
 
@@ -277,11 +299,14 @@ def rms_crossing(calculator: CycleCalculator, limits: Limits, start: np.ndarray,
     sign, then the project's root finder. The rounds converge like Newton's method; a
     candidate is done when a round moves it by less than CONVERGED. ``first``: the model
     already built at ``start`` (an evaluation of more candidates, and the rows of these
-    in it), which the first round uses instead of evaluating again.
+    in it), which the first round uses instead of evaluating again. With the durations,
+    the RMS torque there by the model of the last round (built within CONVERGED of it:
+    exact to rounding, the square of that move times the model's second-order error).
     """
     grip = 1.0 - limits.torque_margin
     n = len(start)
     out = np.full(n, np.nan)
+    out_rms = np.full(n, np.nan)
     T = np.asarray(start, dtype=float).copy()
     index = np.arange(n)
     moved: np.ndarray | None = None  # per candidate the last round's move in log T
@@ -294,6 +319,7 @@ def rms_crossing(calculator: CycleCalculator, limits: Limits, start: np.ndarray,
             model = sub.evaluate(T, peaks=False, model=True).rms_model
         if model is None:  # a cycle with a free move that has boundary speeds: no model
             break
+        model_rows = rows  # this round's candidates in the model (None: the same)
 
         held = sub.motors.continuous.held_at(sub.thermal_speed(T))
 
@@ -354,12 +380,16 @@ def rms_crossing(calculator: CycleCalculator, limits: Limits, start: np.ndarray,
             done[rows[flat]] = False
             found[rows[flat]] = False
         out[index[done]] = new[done]
+        rows = np.flatnonzero(done)
+        if len(rows):
+            out_rms[index[rows]] = model.rms(new[rows], rows if model_rows is None
+                                             else model_rows[rows])
         keep = found & ~done
         moved = np.maximum(np.abs(x[keep] - x0[keep]), 1e-13 * np.maximum(1.0, np.abs(x0[keep])))
         index, T = index[keep], new[keep]
         if len(index) == 0:
             break
-    return out
+    return out, out_rms
 
 
 def beyond_flat_part(calculator: CycleCalculator, limits: Limits, T: np.ndarray,
