@@ -18,3 +18,12 @@ def sorted_unique(values: np.ndarray) -> np.ndarray:
     keep[0] = True
     np.not_equal(x[1:], x[:-1], out=keep[1:])
     return x[keep]
+
+
+def spread(x: np.ndarray | float, n: int) -> np.ndarray:
+    """``x`` broadcast to shape (n,), to be read: ``x`` itself where it is an array of that
+    shape already (np.broadcast_to costs about 2 us a call, and the engine makes thousands
+    of such calls per sizing on arrays that already have it)."""
+    if isinstance(x, np.ndarray) and x.shape == (n,):
+        return x
+    return np.broadcast_to(x, (n,))

@@ -37,6 +37,7 @@ from sizer.laws.linear_peaks import LinearPeak, piece_values
 from sizer.laws.quadrature import gauss_legendre
 from sizer.mechanics import Drive
 from sizer.model.domain import Task, ThermalSpeedRule
+from sizer.numerics.arrays import spread
 from sizer.numerics.hermite import hermite_root
 from sizer.sizing.golden import golden_step, interior_points
 from sizer.sizing.grid import LawGrid, PieceEvaluator, law_grid
@@ -331,9 +332,9 @@ class CycleCalculator:
         K = self.drive.ratio
         a_part, v_part, const = self.drive.linear_chain(scales.direction)
         moments = np.array([c.C_a_rms**2, c.C_v_rms**2, 1.0, 0.0, 0.0, 1.0])
-        return [(np.broadcast_to((self.motors.inertia * K + a_part) * scales.acc, (n,)),
-                 np.broadcast_to((self.motors.damping * K + v_part) * scales.vel, (n,)),
-                 np.broadcast_to(np.asarray(const, dtype=float), (n,)),
+        return [(spread((self.motors.inertia * K + a_part) * scales.acc, n),
+                 spread((self.motors.damping * K + v_part) * scales.vel, n),
+                 spread(np.asarray(const, dtype=float), n),
                  np.broadcast_to(moments[:, None], (6, n)))]
 
     def channel_terms(self, scales: MoveScales) -> list[list[tuple[np.ndarray, ...]]]:
@@ -345,9 +346,9 @@ class CycleCalculator:
         rotor = (self.motors.inertia * K, self.motors.damping * K)
 
         def scaled(pieces, with_rotor):
-            return [(np.broadcast_to((A + rotor[0] if with_rotor else A) * scales.acc, (n,)),
-                     np.broadcast_to((B + rotor[1] if with_rotor else B) * scales.vel, (n,)),
-                     np.broadcast_to(np.asarray(C, dtype=float), (n,)))
+            return [(spread((A + rotor[0] if with_rotor else A) * scales.acc, n),
+                     spread((B + rotor[1] if with_rotor else B) * scales.vel, n),
+                     spread(np.asarray(C, dtype=float), n))
                     for A, B, C in pieces]
 
         return [scaled(shaft, True)] + [scaled(pieces, False) for pieces in outputs]
@@ -440,7 +441,7 @@ class CycleCalculator:
             if len(channel) == 1:
                 sums.append([np.repeat(table[-1][:, None], n, axis=1)])
                 continue
-            best = _largest_integral([tuple(np.broadcast_to(x, (n,))[run_cand] for x in f)
+            best = _largest_integral([tuple(spread(x, n)[run_cand] for x in f)
                                       for f in channel], run)
             mine = []
             columns = np.arange(6)
@@ -476,7 +477,7 @@ class CycleCalculator:
         lo_edge = g.left[interval][by_piece]
         width = g.right[interval][by_piece] - lo_edge
         n = len(self.motors)
-        chosen = [tuple(np.broadcast_to(x, (n,))[cand[by_piece]] for x in part)
+        chosen = [tuple(spread(x, n)[cand[by_piece]] for x in part)
                   for part in pieces]
         sign_lo = np.sign(f_lo[by_piece])
         lo, hi = np.zeros(count), np.ones(count)
@@ -586,7 +587,7 @@ class CycleCalculator:
             return [self._exact_peaks(scales, t) for scales, t in zip(moves, terms, strict=True)]
 
         def stack(values):
-            return np.concatenate([np.broadcast_to(x, (n,)) for x in values])
+            return np.concatenate([spread(x, n) for x in values])
 
         scales = MoveScales(stack([s.acc for s in moves]), stack([s.vel for s in moves]),
                             np.repeat([s.direction for s in moves], n))
@@ -660,16 +661,16 @@ class CycleCalculator:
 
         places: list[tuple[np.ndarray, np.ndarray] | None] = []  # where each |peak| is
         motor_terms, *stage_terms = self.channel_terms(scales) if terms is None else terms
-        load_terms = [(np.broadcast_to(drive.load.inertia * scales.acc, (n,)),
-                       np.broadcast_to(drive.load.damping * scales.vel, (n,)),
+        load_terms = [(spread(drive.load.inertia * scales.acc, n),
+                       spread(drive.load.damping * scales.vel, n),
                        np.full(n, drive.load.friction + scales.direction * drive.load.torque))]
         channels = [motor_terms, load_terms] + (stage_terms if self.stage_checks else [])
         # every function's highest and lowest point, all channels in one query
         functions = [f for co in channels if not inertial(co) for f in co]
         solved = peaks.maximum(
-            np.concatenate([sign * np.broadcast_to(P, (n,)) for sign in (1.0, -1.0)
+            np.concatenate([sign * spread(P, n) for sign in (1.0, -1.0)
                             for P, _, _ in functions]),
-            np.concatenate([sign * np.broadcast_to(Q, (n,)) for sign in (1.0, -1.0)
+            np.concatenate([sign * spread(Q, n) for sign in (1.0, -1.0)
                             for _, Q, _ in functions])) if functions else None
         results, start = [], 0
         for co in channels:
@@ -696,16 +697,16 @@ class CycleCalculator:
         ratio = _safe_ratio(peak, motors.intermittent.torques[:, 0])
         exact = certified & flat
         curved = np.flatnonzero(certified & ~flat)
-        speed_scale = np.broadcast_to(K * scales.vel, (n,))
+        speed_scale = spread(K * scales.vel, n)
         if len(curved):
             exact[curved] = self._curve_ratio(motor_terms, curved, speed_scale[curved], c.C_v,
                                               ratio)
-        beyond = np.flatnonzero(certified & ~exact & (np.broadcast_to(speed, (n,))
+        beyond = np.flatnonzero(certified & ~exact & (spread(speed, n)
                                                       > motors.speed_limit))
         if len(beyond) and peak_place is not None:
             exact[beyond] = self._beyond_ratio(peak, peak_place, beyond, speed_scale[beyond],
                                                ratio)
-        leaving = np.flatnonzero(certified & ~exact & (np.broadcast_to(speed, (n,))
+        leaving = np.flatnonzero(certified & ~exact & (spread(speed, n)
                                                        > motors.speed_limit))
         if len(leaving):
             exact[leaving] = self._leaving_ratio(motor_terms, leaving, speed_scale[leaving],
@@ -756,7 +757,7 @@ class CycleCalculator:
         with np.errstate(divide="ignore", invalid="ignore"):
             bound = region.max_speed / speed_scale
         n = len(self.motors)
-        parts = [tuple(np.broadcast_to(x, (n,))[rows] for x in part) for part in terms]
+        parts = [tuple(spread(x, n)[rows] for x in part) for part in terms]
         count = len(parts)
 
         def certify(sel, k, solved_tau, solved_piece):
@@ -871,7 +872,7 @@ class CycleCalculator:
         ok = concave & (peak_speed <= region.max_speed)
         ok &= np.all(~used | (alpha + sigma * peak_speed[:, None] > 0.0), axis=1)
         n = len(self.motors)
-        parts = [tuple(np.broadcast_to(x, (n,))[rows] for x in part) for part in terms]
+        parts = [tuple(spread(x, n)[rows] for x in part) for part in terms]
         # every (line, function, side) problem in one Dinkelbach run: blocks per line of
         # the functions' +L_k, then their -L_k, over the candidates that reach the line
         blocks, queries, floors = [], [], []
@@ -1061,7 +1062,7 @@ def _stacked_terms(terms: list, n: int):
         return None
 
     def stack(values):
-        return np.concatenate([np.broadcast_to(x, (n,)) for x in values])
+        return np.concatenate([spread(x, n) for x in values])
 
     return [[tuple(stack([t[c][k][i] for t in terms]) for i in range(3))
              for k in range(len(terms[0][c]))] for c in range(len(terms[0]))]
