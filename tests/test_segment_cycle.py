@@ -423,3 +423,26 @@ def test_a_cycle_no_scale_passes_is_infeasible_with_boundary_speeds_and_no_warni
         solution = minimum_duration(calc, limits)
     assert np.isinf(bound[0])
     assert not solution.feasible[0]
+
+
+@pytest.mark.parametrize(("rule", "limit"), [("max", 300.0), ("mean", 600.0), ("rms", 600.0)])
+def test_the_peak_bound_reads_the_thermal_speed_only_by_the_max_rule(rule, limit):
+    """A cycloid through 5:1 (C_v = 2) on a motor whose continuous curve ends at 300 rad/s
+    and intermittent curve at 600 rad/s, nothing else binding: T_min = C_v K h / limit,
+    with limit the continuous end where the thermal speed is the peak speed ("max") and
+    the intermittent end otherwise (the mean or RMS speed over the cycle stays far below
+    300). The cycle (move, dwell split in two, return, dwell) lasts 2 (T_min + 0.5 s); its
+    peak bound once read the continuous end whatever the rule."""
+    motor = Motor("m", 2e-5, 1.0, 3.0, 300.0, max_speed=600.0,
+                  intermittent_curve=((0.0, 3.0), (600.0, 2.0)),
+                  continuous_curve=((0.0, 1.0), (300.0, 0.8)))
+    design = Design(Task(1.0, None, dwell=0.5, return_move=True), Load(1e-5),
+                    Transmission((Stage("gearbox", 5.0, 1.0, 0.0),)), laws=("cycloidal",),
+                    motors=(motor,), limits=Limits(thermal_speed=rule))
+    cycle = Cycle((Move(1.0, None), Dwell(0.1), Dwell(0.4), Move(-1.0, None), Dwell(0.5)))
+    T_min = 2.0 * 5.0 * 1.0 / limit
+    task, = size_design(design).results
+    cycled, = size_design(replace(design, cycle=cycle)).results
+    assert task.feasible and cycled.feasible
+    assert task.duration == pytest.approx(T_min, rel=1e-12)
+    assert cycled.duration == pytest.approx(2.0 * (T_min + 0.5), rel=1e-12)

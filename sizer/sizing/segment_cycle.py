@@ -204,8 +204,10 @@ class SegmentCycle:
                 boundary.append(i)
                 continue
             task = Task(segment.displacement, None, linear=self.cycle.linear)
-            found = peak_duration(CycleCalculator(None, task, drive, self.motors, "max",
-                                                  law=law), limits)
+            # the thermal speed is this move's peak speed only by the "max" rule (then
+            # the cycle's is the largest of its moves'): another rule reads no bound here
+            found = peak_duration(CycleCalculator(None, task, drive, self.motors,
+                                                  self.thermal_rule, law=law), limits)
             if found is None:
                 return None
             bound = np.maximum(bound, found / w)
