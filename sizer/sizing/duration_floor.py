@@ -83,17 +83,20 @@ def duration_floor(design: Design, spec: str, candidates: Candidates,
                    scales: PeakScales | None = None) -> np.ndarray | None:
     """Per candidate a duration below which the law ``spec`` is infeasible, in minimize
     mode for the task shorthand (a move, its dwell and return) with a fixed law; None
-    where there is no such floor (a given duration, a cycle of segments, a linkage, a
-    law shaped per candidate, a law that moves backwards) or no need of one (the closed
-    form of eq. 6.2 sizes every option at the cost of one evaluation). ``scales``: the
-    candidates' :func:`peak_scales` where known (the same for every law)."""
-    if design.cycle is not None or not design.task.minimize \
-            or design.transmission.linkage is not None or is_open_shaped(spec):
+    where there is no such floor (a given duration, a linkage, a law shaped per
+    candidate, a law that moves backwards) or no need of one (the closed form of eq. 6.2
+    sizes every option at the cost of one evaluation). ``scales``: the candidates'
+    :func:`peak_scales` where known (the same for every law). A cycle of segments has
+    its own floor: :func:`_cycle_floor`."""
+    minimize = design.task.minimize if design.cycle is None else design.cycle.minimize
+    if not minimize or design.transmission.linkage is not None or is_open_shaped(spec):
         return None
     _, values = resolve(spec)
     if any(v == AUTO for v in values.values()):
         return None
     law, limits = make_law(spec), relaxed(design.limits)
+    if design.cycle is not None:
+        return _cycle_floor(design, law, candidates, limits)
     calculator = CycleCalculator(None, design.task, candidates.drive, candidates.motors,
                                  design.limits.thermal_speed, law=law)
     if is_purely_inertial(calculator):  # eq. (6.2): every option is cheap as it is
@@ -107,3 +110,27 @@ def duration_floor(design: Design, spec: str, candidates: Candidates,
     peak = np.where(scales.blocked, np.inf,
                     np.maximum(math.sqrt(c.C_a) * scales.root, c.C_v * scales.ratio))
     return np.maximum(speed_bounds(calculator, limits), peak)
+
+
+def _cycle_floor(design: Design, law, candidates: Candidates,
+                 limits: Limits) -> np.ndarray | None:
+    """The floor of a cycle of segments in minimize mode: its time at the lower bound on
+    the scale of its free durations from the free moves' peak checks (SegmentCycle.
+    peak_bound, the limits relaxed), below which no scale passes them; the cycle time
+    grows with the scale. None where a law moves backwards (no bound)."""
+    from sizer.sizing.segment_cycle import SegmentCycle  # only designs with a cycle need it
+
+    cycle = design.cycle
+    assert cycle is not None
+    n = len(candidates)
+    out = np.zeros(n)
+    for start in range(0, n, CHUNK):
+        rows = np.arange(start, min(start + CHUNK, n))
+        part = candidates if n <= CHUNK else candidates.take(rows)
+        calculator = SegmentCycle(cycle, law, part.drive, part.motors,
+                                  design.limits.thermal_speed)
+        bound = calculator.peak_bound(limits)
+        if bound is None:
+            return None
+        out[rows] = calculator.cycle_time(bound)
+    return out

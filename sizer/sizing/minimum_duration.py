@@ -150,8 +150,7 @@ def _from_bound(calculator: CycleCalculator, limits: Limits,
     if not rest.any() and not np.isnan(at).any():
         return DurationSolution(np.where(ok, probe, np.nan), ok, metrics, checks, method)
     method += " and searches"
-    if not calculator.segmented:  # no duration meets the RMS check: nothing to search
-        rest &= ~rms_unreachable(calculator, limits)
+    rest &= ~rms_unreachable(calculator, limits)  # no duration meets the RMS check
     start = np.where(usable, bound, _initial_guess(calculator))
     T = np.where(ok, bound, np.inf)
 
@@ -226,6 +225,7 @@ def merge_metrics(metrics: CycleMetrics, index: np.ndarray, part: CycleMetrics) 
 def rms_lower_bound(calculator: CycleCalculator) -> np.ndarray | None:
     """Per candidate a torque the motor's RMS over the cycle exceeds at every duration
     (book sec. 6.1.1); None where a damping term is negative (the bound needs them >= 0).
+    A cycle of segments gives its own (SegmentCycle.rms_lower_bound).
 
     Over a rest-to-rest move int a dt = 0 and int v dt = h, and the motor torque is at
     least each of its linear functions P a + Q v + C (Drive.linear_pieces, the rotor
@@ -235,6 +235,8 @@ def rms_lower_bound(calculator: CycleCalculator) -> np.ndarray | None:
     (n (T + t_d)), S the sum of (C+)^2 over the moves: a weighted mean of S/n and hold^2,
     so RMS >= sqrt(min(S/n, hold^2)) at every T (sqrt(S/n) without a dwell).
     """
+    if calculator.segmented:  # a cycle of segments: its own, segment by segment
+        return calculator.rms_lower_bound()  # type: ignore[attr-defined]
     drive, motors = calculator.drive, calculator.motors
     n = len(motors)
     total = np.zeros(n)

@@ -2,7 +2,8 @@
 
 The ratio search (sizer.sizing.ratio_choice) asks it of a motor's other options at the
 best T_min found: one evaluation without peaks, and for options that share the stretches
-between power-flow reversals one evaluation per motor.
+between power-flow reversals one evaluation per motor; for a cycle of segments one
+evaluation of the cycle at the scale of that cycle time.
 """
 
 from __future__ import annotations
@@ -41,6 +42,8 @@ def rms_fails_up_to(design: Design, spec: str, candidates: Candidates,
     from sizer.sizing.engine import chunk_size  # the engine imports this module lazily
 
     law = make_law(spec)
+    if design.cycle is not None:
+        return _cycle_fails_up_to(design, law, candidates, T)
     size = chunk_size(law, 2 if design.task.return_move else 1)
     out = np.zeros(len(candidates), dtype=bool)
     if group is not None and len(candidates):
@@ -68,6 +71,34 @@ def rms_fails_up_to(design: Design, spec: str, candidates: Candidates,
         if metrics.rms_model is None:
             continue
         out[rows] = _falls_failing(design, part, calculator, metrics.rms_model, here,
+                                   metrics.rms_torque)
+    return out
+
+
+def _cycle_fails_up_to(design: Design, law, candidates: Candidates,
+                       T: np.ndarray) -> np.ndarray:
+    """The test for a cycle of segments: on the cycle's RMS model (SegmentCycle, with the
+    free moves' models) at the scale of the free durations whose cycle time is T. The
+    cycle's RMS has the single law's form in that scale (each free move's integral a
+    Laurent polynomial in it, the fixed segments constant), so the same reading holds.
+    False where the cycle has no model (a free move with boundary speeds)."""
+    from sizer.sizing.engine import chunk_size
+    from sizer.sizing.segment_cycle import SegmentCycle  # only designs with a cycle need it
+
+    cycle = design.cycle
+    assert cycle is not None
+    size = chunk_size(law, max(len(cycle.moves), 1))
+    out = np.zeros(len(candidates), dtype=bool)
+    for start in range(0, len(candidates), size):
+        rows = np.arange(start, min(start + size, len(candidates)))
+        part = candidates.take(rows)
+        calculator = SegmentCycle(cycle, law, part.drive, part.motors,
+                                  design.limits.thermal_speed)
+        scale = calculator.scale_of(T[rows])
+        metrics = calculator.evaluate(scale, peaks=False, model=True)
+        if metrics.rms_model is None:
+            return out
+        out[rows] = _falls_failing(design, part, calculator, metrics.rms_model, scale,
                                    metrics.rms_torque)
     return out
 

@@ -159,6 +159,12 @@ class SegmentCycle:
     def cycle_time(self, s: np.ndarray) -> np.ndarray:
         return sum(self.durations(np.asarray(s, dtype=float)), np.zeros_like(s))
 
+    def scale_of(self, cycle_time: np.ndarray) -> np.ndarray:
+        """The scale s of the free durations at which the cycle lasts ``cycle_time``
+        (the inverse of :meth:`cycle_time`: fixed durations plus weights times s)."""
+        fixed = float(np.sum(self.fixed[np.isfinite(self.fixed)]))
+        return (np.asarray(cycle_time, dtype=float) - fixed) / float(np.sum(self.weights))
+
     def take(self, index: np.ndarray) -> SegmentCycle:
         out = object.__new__(SegmentCycle)
         out.__dict__.update(self.__dict__)
@@ -216,6 +222,48 @@ class SegmentCycle:
             for i in boundary:
                 bound = np.maximum(bound, self._boundary_bound(i, limits, start))
         return bound
+
+    def rms_lower_bound(self) -> np.ndarray | None:
+        """Per candidate a torque the motor's RMS over the cycle exceeds at every scale;
+        None where a rest-to-rest move has none (a negative damping term).
+
+        Segment by segment a lower bound on the mean square of the motor torque over it:
+        a rest-to-rest move's (sizer.sizing.minimum_duration.rms_lower_bound, squared: the
+        square of its largest positive constant torque), a dwell's holding torque and a
+        run's constant torque squared (exact), 0 for a move with boundary speeds. The
+        cycle's mean square is then at least (a + b s)/(F + W s): F, a the fixed
+        segments' time and bound integral, W, b the free segments' weights and theirs;
+        monotone in s, so never below its smaller limit (s -> 0 or s -> inf)."""
+        from sizer.sizing.minimum_duration import rms_lower_bound
+
+        n = len(self.motors)
+        ones = np.ones(n)
+        fixed_time, fixed_sum = 0.0, np.zeros(n)
+        free_weight, free_sum = 0.0, np.zeros(n)
+        for segment, law, drive, fixed, w in zip(self.cycle.segments, self.laws, self.drives,
+                                                 self.fixed, self.weights, strict=True):
+            if isinstance(segment, Move):
+                if not segment.rest_to_rest or law is None:
+                    rate = np.zeros(n)
+                else:
+                    task = Task(segment.displacement, None, linear=self.cycle.linear)
+                    bound = rms_lower_bound(CycleCalculator(None, task, drive, self.motors,
+                                                            "max", law=law))
+                    if bound is None:
+                        return None
+                    rate = np.square(bound)
+            elif isinstance(segment, Run):
+                rate = self._run(segment, drive, ones).torque_square
+            else:
+                rate = self._dwell(drive, ones).torque_square
+            if np.isfinite(fixed):
+                fixed_time, fixed_sum = fixed_time + fixed, fixed_sum + rate * fixed
+            else:
+                free_weight, free_sum = free_weight + w, free_sum + rate * w
+        limits = [x / t for x, t in ((fixed_sum, fixed_time), (free_sum, free_weight)) if t > 0.0]
+        if not limits:
+            return None
+        return np.sqrt(np.minimum.reduce(limits))
 
     def _boundary_slack(self, i: int, limits: Limits, s: np.ndarray,
                         rows: np.ndarray) -> np.ndarray:
