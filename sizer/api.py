@@ -197,11 +197,11 @@ def load_machine(machine: MachineLike, *, base: str | PathLike[str] | None = Non
 
 def size_machine(machine: MachineLike, *, rank_by: str | None = None,
                  envelope: str | None = None,
-                 progress: Progress | None = None) -> MachineResult:
+                 progress: Progress | None = None, workers: int | None = 1) -> MachineResult:
     """Every axis of a machine at its master speed, the slowest axis setting it with
     ``master_speed: minimize`` (book sec. 5.3), and the DC bus of the axes' choices
-    (``sizer size`` of a machine file). ``rank_by`` and ``envelope`` as in :func:`size`,
-    for every axis."""
+    (``sizer size`` of a machine file). ``rank_by``, ``envelope`` and ``workers`` as in
+    :func:`size`, for every axis."""
     from sizer.sizing.machine import size_machine as run
 
     check_rank_by(rank_by)
@@ -210,4 +210,4 @@ def size_machine(machine: MachineLike, *, rank_by: str | None = None,
         axes = tuple(replace(a, design=override(a.design, envelope=envelope))
                      for a in loaded.axes)
         loaded = replace(loaded, axes=axes)
-    return run(loaded, rank_by, progress)
+    return run(loaded, rank_by, progress, workers)

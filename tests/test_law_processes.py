@@ -89,3 +89,24 @@ def test_a_law_pickles_as_its_spec(spec):
     assert again == law and again.spec == law.spec
     tau = np.linspace(0.0, 1.0, 7)
     assert np.array_equal(again.derivative(tau, 2), law.derivative(tau, 2))
+
+
+def test_the_jobs_option_sizes_a_machines_axes_in_processes(monkeypatch, tmp_path):
+    """``sizer size MACHINE --jobs 2``: each axis's sizing in worker processes, the output
+    the one process gives (a given master speed: one sizing per axis)."""
+    import sizer.sizing.law_processes as processes
+
+    text = (ROOT / "examples" / "machines" / "two-axis-packer.yaml").read_text()
+    text = text.replace("master_speed: minimize", "master_speed: 30 rpm")
+    text = text.replace("../catalogs/", str(ROOT / "examples" / "catalogs") + "/")
+    machine = tmp_path / "packer.yaml"
+    machine.write_text(text)
+    alone = run_cli("size", str(machine), "--all", "--format", "json", "--jobs", "1")
+    pools = []
+    original = processes.tables_in_processes
+    monkeypatch.setattr(processes, "tables_in_processes",
+                        lambda *a, **k: pools.append(a[3]) or original(*a, **k))
+    spread = run_cli("size", str(machine), "--all", "--format", "json", "--jobs", "2")
+    assert alone.returncode == spread.returncode == 0, spread.stderr
+    assert alone.stdout == spread.stdout
+    assert pools == [2, 2]  # both axes, two processes each

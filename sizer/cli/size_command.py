@@ -77,7 +77,8 @@ def size(
     check_rank_key(rank_by)
     check_output(output, [design, *(catalog or ())])
     if _is_machine(design):
-        _size_machine(design, catalog, motor, rank_by, top, show_all, fmt, output, envelope)
+        _size_machine(design, catalog, motor, rank_by, top, show_all, fmt, output, envelope,
+                      jobs)
         return
     loaded, sizing = load_and_size(design, catalog, motor, rank_by, envelope=envelope,
                                    outputs=() if output is None else (output,), workers=jobs)
@@ -108,8 +109,9 @@ def refuse_motor_options(catalog: Sequence[str] | None,
 
 def _size_machine(path: Path, catalog: Sequence[str] | None, motor: Sequence[str] | None,
                   rank_by: str | None, top: int | None, show_all: bool, fmt: Format,
-                  output: Path | None, envelope: str | None) -> None:
-    """``sizer size`` of a machine file: every axis at the master speed, and the bus."""
+                  output: Path | None, envelope: str | None, jobs: int | None) -> None:
+    """``sizer size`` of a machine file: every axis at the master speed, and the bus
+    (each axis's sizings in ``jobs`` processes, as a design's)."""
     from sizer import api
     from sizer.cli.output_guard import check_outputs
     from sizer.cli.progress import sizing_progress
@@ -121,7 +123,7 @@ def _size_machine(path: Path, catalog: Sequence[str] | None, motor: Sequence[str
     try:
         with sizing_progress(f"sizing {path.name}") as progress:
             result = api.size_machine(machine, rank_by=rank_by, envelope=envelope or None,
-                                      progress=progress)
+                                      progress=progress, workers=jobs)
     except UserError as error:
         raise error.located(file=str(path)) from None
     document = MachineDocument(result, machine, rank_by=rank_by, top=top,

@@ -67,9 +67,11 @@ class MachineResult:
 
 
 def size_machine(machine: Machine, rank_by: str | None = None,
-                 progress: Progress | None = None) -> MachineResult:
+                 progress: Progress | None = None, workers: int | None = 1) -> MachineResult:
     """Every axis of ``machine`` at its master speed (module docstring); ``rank_by`` ranks
-    each axis's candidates (sizer.sizing.ranking), its first feasible one is its choice."""
+    each axis's candidates (sizer.sizing.ranking), its first feasible one is its choice.
+    ``workers``: the processes of each axis's sizings (size_design; None: every CPU for a
+    large axis)."""
     steps = len(machine.axes) * (2 if machine.minimize else 1)
     done = 0
 
@@ -85,7 +87,7 @@ def size_machine(machine: Machine, rank_by: str | None = None,
     limiting: str | None = None
     reason = ""
     if machine.minimize:
-        speeds, slowest = machine_cycle_time(machine)
+        speeds, slowest = machine_cycle_time(machine, workers)
         for _ in speeds:
             step()
         fastest = [s.cycle_time for s in speeds]
@@ -106,7 +108,7 @@ def size_machine(machine: Machine, rank_by: str | None = None,
         else:
             design, share = axis.at(cycle_time, machine.cycle_angle), \
                 cycle_time / machine.cycle_angle
-        sizing = size_design(design, rank_by)
+        sizing = size_design(design, rank_by, workers=workers)
         step()
         chosen = sizing.feasible[0] if sizing.feasible else None
         if chosen is None and not reason:

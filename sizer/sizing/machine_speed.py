@@ -45,18 +45,19 @@ class AxisSpeed:
     sizings: int
 
 
-def best_duration(axis: MachineAxis, dwell_time: float) -> float:
+def best_duration(axis: MachineAxis, dwell_time: float, workers: int | None = 1) -> float:
     """min over the axis's candidates of T_min with each dwell ``dwell_time`` (s); inf
-    when none is feasible at any duration."""
+    when none is feasible at any duration (sized in ``workers`` processes: size_design)."""
     with without_power_figures():  # only the durations count here
-        table = size_design(axis.minimizing(dwell_time)).table
+        table = size_design(axis.minimizing(dwell_time), workers=workers).table
     assert table is not None
     durations = np.asarray(table.figures["duration"], dtype=float)[table.feasible]
     durations = durations[np.isfinite(durations)]
     return float(durations.min()) if durations.size else math.inf
 
 
-def axis_cycle_time(axis: MachineAxis, cycle_angle: float) -> AxisSpeed:
+def axis_cycle_time(axis: MachineAxis, cycle_angle: float,
+                    workers: int | None = 1) -> AxisSpeed:
     """The smallest machine cycle time at which ``axis`` has a feasible candidate."""
     f, g = axis.move / cycle_angle, axis.dwell / cycle_angle
     calls = 0
@@ -64,7 +65,7 @@ def axis_cycle_time(axis: MachineAxis, cycle_angle: float) -> AxisSpeed:
     def H(cycle_time: float) -> float:
         nonlocal calls
         calls += 1
-        return best_duration(axis, g * cycle_time) / f
+        return best_duration(axis, g * cycle_time, workers) / f
 
     first = H(0.0)
     if not math.isfinite(first):
@@ -99,10 +100,11 @@ def axis_cycle_time(axis: MachineAxis, cycle_angle: float) -> AxisSpeed:
     return AxisSpeed(float(top[0]), calls)
 
 
-def machine_cycle_time(machine: Machine) -> tuple[list[AxisSpeed], int | None]:
+def machine_cycle_time(machine: Machine, workers: int | None = 1
+                       ) -> tuple[list[AxisSpeed], int | None]:
     """Each axis's smallest cycle time and the index of the slowest axis (None when an
-    axis is feasible at no master speed)."""
-    speeds = [axis_cycle_time(axis, machine.cycle_angle) for axis in machine.axes]
+    axis is feasible at no master speed); each sizing in ``workers`` processes."""
+    speeds = [axis_cycle_time(axis, machine.cycle_angle, workers) for axis in machine.axes]
     times = [s.cycle_time for s in speeds]
     if any(t is None for t in times):
         return speeds, None
