@@ -192,7 +192,8 @@ class Drive:
         """The inertia ratio's numerator: ``driven`` (vendors' definition) or ``load``."""
         return self.driven_inertia if of == "driven" else self.reflected_load_inertia
 
-    def load_torque(self, a_l: np.ndarray, v_l: np.ndarray, direction: float) -> np.ndarray:
+    def load_torque(self, a_l: np.ndarray, v_l: np.ndarray,
+                    direction: float | np.ndarray) -> np.ndarray:
         """u = J_l a + B_l v + F + direction*tau_ext: the load's torque along the motion."""
         load = self.load
         return load.inertia * a_l + load.damping * v_l + load.friction + direction * load.torque
@@ -218,7 +219,7 @@ class Drive:
                  shaped(s.preload_torque), shaped(k_in))
                 for s, k_in in zip(self.stages, self.input_ratios, strict=True)]
 
-    def chain(self, a_l: np.ndarray, v_l: np.ndarray, direction: float,
+    def chain(self, a_l: np.ndarray, v_l: np.ndarray, direction: float | np.ndarray,
               index: np.ndarray | None = None) -> tuple[np.ndarray, list[np.ndarray]]:
         """Torque the transmission needs at the motor shaft, and each stage's output torque.
 
@@ -239,7 +240,7 @@ class Drive:
         outputs.pop()  # the last one is the shaft torque, not a stage output
         return x, outputs[::-1]
 
-    def _steady_load_chain(self, a_l, v_l, direction: float, values):
+    def _steady_load_chain(self, a_l, v_l, direction: float | np.ndarray, values):
         """``chain`` with the efficiencies on the steady torque only (Yaskawa)."""
         load = self.load
         inertial = load.inertia * a_l

@@ -330,7 +330,7 @@ class CycleCalculator:
         n = len(self.motors)
         c = self.law.coefficients
         K = self.drive.ratio
-        a_part, v_part, const = self.drive.linear_chain(scales.direction)
+        a_part, v_part, const = self.drive.linear_chain(float(scales.direction))
         moments = np.array([c.C_a_rms**2, c.C_v_rms**2, 1.0, 0.0, 0.0, 1.0])
         return [(spread((self.motors.inertia * K + a_part) * scales.acc, n),
                  spread((self.motors.damping * K + v_part) * scales.vel, n),
@@ -341,7 +341,7 @@ class CycleCalculator:
         """Per channel (the motor, then each stage's output) its linear functions of the
         normalized law, (P, Q, C) arrays over the candidates: value = max_k P a_N + Q v_N + C."""
         n = len(self.motors)
-        shaft, outputs = self.drive.linear_pieces(scales.direction)
+        shaft, outputs = self.drive.linear_pieces(float(scales.direction))
         K = self.drive.ratio
         rotor = (self.motors.inertia * K, self.motors.damping * K)
 
@@ -357,7 +357,7 @@ class CycleCalculator:
         """Closed forms: int a_N = 0, int a_N v_N = 0, int v_N = 1 over a rest-to-rest move."""
         c = self.law.coefficients
         K = self.drive.ratio
-        a_part, v_part, const = self.drive.linear_chain(scales.direction)
+        a_part, v_part, const = self.drive.linear_chain(float(scales.direction))
         p = (self.motors.inertia * K + a_part) * scales.acc
         q = (self.motors.damping * K + v_part) * scales.vel
         out = [_square_mean(p, q, const, c.C_a_rms, c.C_v_rms)]
@@ -682,6 +682,7 @@ class CycleCalculator:
             low_at = [slice((len(functions) + start + i) * n,
                             (len(functions) + start + i + 1) * n) for i in range(size)]
             start += size
+            assert solved is not None  # a channel that is not inertial has functions
             highs = [LinearPeak(solved.value[t], solved.tau[t], solved.piece[t]) for t in at]
             lows = [LinearPeak(-solved.value[t], solved.tau[t], solved.piece[t])
                     for t in low_at]
@@ -822,9 +823,11 @@ class CycleCalculator:
                         floors.append(found[at])
             if blocks:
                 # each query starts at the ratio found so far: most stop after one step
-                solved = peaks.ratio_maximum_within(
-                    *(np.concatenate([q[i] for q in queries]) for i in range(5)),
-                    band.take(np.concatenate(band_rows)), floor=np.concatenate(floors))
+                num_a, num_v, num_c, den_c, den_v = (
+                    np.concatenate([query[i] for query in queries]) for i in range(5))
+                solved = peaks.ratio_maximum_within(num_a, num_v, num_c, den_c, den_v,
+                                                    band.take(np.concatenate(band_rows)),
+                                                    floor=np.concatenate(floors))
                 start = 0
                 for at in blocks:
                     size = len(at)
@@ -893,9 +896,10 @@ class CycleCalculator:
             return ok
         # each query starts at the ratio known already (peak over the standstill torque):
         # where the line cannot beat it, one step
-        solved = self.law.linear_peaks.ratio_maximum(
-            *(np.concatenate([q[i] for q in queries]) for i in range(5)),
-            floor=np.concatenate(floors))
+        num_a, num_v, num_c, den_c, den_v = (
+            np.concatenate([query[i] for query in queries]) for i in range(5))
+        solved = self.law.linear_peaks.ratio_maximum(num_a, num_v, num_c, den_c, den_v,
+                                                     floor=np.concatenate(floors))
         start, count = 0, len(parts)
         for sel in blocks:
             m = len(sel)
@@ -1076,6 +1080,7 @@ def _linear_maximum(pieces, a_n: np.ndarray, v_n: np.ndarray) -> np.ndarray:
     for P, Q, C in pieces:
         value = np.reshape(P, shape) * a_n + np.reshape(Q, shape) * v_n + np.reshape(C, shape)
         out = value if out is None else np.maximum(out, value)
+    assert out is not None  # at least one function
     return out
 
 

@@ -8,6 +8,8 @@ evaluation of the cycle at the scale of that cycle time.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from sizer.laws import make_law
@@ -15,6 +17,9 @@ from sizer.model.domain import Design
 from sizer.sizing.candidates import Candidates
 from sizer.sizing.checks import TOLERANCE
 from sizer.sizing.cycle import CycleCalculator, MoveScales, RmsModel
+
+if TYPE_CHECKING:
+    from sizer.sizing.segment_cycle import SegmentCycle
 
 STEP = 1e-3
 """Relative step in T at which the RMS model tells which way the RMS check moves."""
@@ -103,8 +108,9 @@ def _cycle_fails_up_to(design: Design, law, candidates: Candidates,
     return out
 
 
-def _falls_failing(design: Design, candidates: Candidates, calculator: CycleCalculator,
-                   model, T: np.ndarray, rms: np.ndarray) -> np.ndarray:
+def _falls_failing(design: Design, candidates: Candidates,
+                   calculator: CycleCalculator | SegmentCycle, model, T: np.ndarray,
+                   rms: np.ndarray) -> np.ndarray:
     """The test of :func:`rms_fails_up_to` from the RMS at T and the model built there."""
     level = 1.0 - design.limits.torque_margin + TOLERANCE
     later = T * (1.0 + STEP)
