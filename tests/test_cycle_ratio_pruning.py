@@ -20,14 +20,19 @@ import dataclasses
 
 import numpy as np
 import pytest
-from test_ratio_search_pruning import all_pairs, same, wide_design
+from test_ratio_search_pruning import (
+    all_pairs,
+    evaluated_in_full,
+    floor_below_feasible,
+    same,
+    wide_design,
+)
 
 from sizer.laws import make_law
 from sizer.model.cycle import Cycle, Dwell, Move, Run, SegmentLoad
 from sizer.model.domain import Limits, Load, Motor, Stage, Transmission
 from sizer.sizing.candidates import Candidates
 from sizer.sizing.checks import TOLERANCE, evaluate_checks, feasible
-from sizer.sizing.duration_floor import duration_floor
 from sizer.sizing.engine import evaluate_law, evaluate_spec
 from sizer.sizing.motors import MotorArrays
 from sizer.sizing.ratio_choice import choose_ratio
@@ -67,24 +72,9 @@ def test_the_pruned_choice_equals_evaluating_every_option(seed):
 
 
 def test_options_are_left_out(monkeypatch):
-    import sizer.sizing.engine as engine
-
-    evaluated = []
-    original = engine.evaluate_law
-
-    def counting(design, spec, candidates):
-        evaluated.append(len(candidates))
-        return original(design, spec, candidates)
-
-    monkeypatch.setattr(engine, "evaluate_law", counting)
-    total = 0
-    for seed in range(4):
-        design = as_cycle(wide_design(seed))
-        arrays = MotorArrays.of(design.motors, design.limits.envelope)
-        for spec in design.laws:
-            evaluate_spec(design, spec, arrays)
-            total += len(design.motors) * len(design.ratio_choice.ratios)
-    assert sum(evaluated) < 0.6 * total, (sum(evaluated), total)
+    evaluated, total = evaluated_in_full(
+        monkeypatch, [as_cycle(wide_design(seed)) for seed in range(4)])
+    assert evaluated < 0.6 * total, (evaluated, total)
 
 
 @pytest.mark.parametrize("seed", range(6))
@@ -93,11 +83,7 @@ def test_the_floor_is_below_every_feasible_cycle_time(seed):
     pairs, _, _ = all_pairs(design)
     checked = 0
     for spec in design.laws:
-        floor = duration_floor(design, spec, pairs)
-        assert floor is not None
-        table = evaluate_law(design, spec, pairs)
-        T = table.figures["duration"]
-        assert np.all(~table.feasible | (floor <= T)), spec
+        floor = floor_below_feasible(design, spec, pairs)
         calc = calculator_of(design, spec, pairs)
         rows = np.flatnonzero(np.isfinite(floor) & (floor > calc.cycle_time(np.zeros(1))))
         if not len(rows):

@@ -129,17 +129,23 @@ def all_pairs(design):
     return Candidates.pairs(arrays, design.load, transmissions, motor, option), motor, option
 
 
+def floor_below_feasible(design, spec, pairs) -> np.ndarray:
+    """The floor of every pair, asserted to exist and to lie below every feasible T_min
+    the engine finds."""
+    floor = duration_floor(design, spec, pairs)
+    assert floor is not None
+    table = evaluate_law(design, spec, pairs)
+    assert np.all(~table.feasible | (floor <= table.figures["duration"])), spec
+    return floor
+
+
 @pytest.mark.parametrize("seed", range(6))
 def test_the_floor_is_below_every_feasible_duration(seed):
     design = wide_design(seed)
     pairs, motor, option = all_pairs(design)
     checked = 0
     for spec in design.laws:
-        floor = duration_floor(design, spec, pairs)
-        assert floor is not None
-        table = evaluate_law(design, spec, pairs)
-        T = table.figures["duration"]
-        assert np.all(~table.feasible | (floor <= T)), spec
+        floor = floor_below_feasible(design, spec, pairs)
         for k in range(0, len(floor), 3):
             if not np.isfinite(floor[k]) or floor[k] <= 0.0:
                 continue
@@ -210,10 +216,9 @@ def test_rms_fails_up_to_means_failing_at_every_shorter_duration(seed):
     assert said[True] >= 3 and said[False] >= 3, said
 
 
-@pytest.mark.parametrize("given", [False, True])
-def test_options_are_left_out(monkeypatch, given):
-    """The rounds evaluate fewer candidates in full than motors x options (the pruning
-    works)."""
+def evaluated_in_full(monkeypatch, designs) -> tuple[int, int]:
+    """(candidates the ratio search evaluates in full, motors x options) over every law
+    of ``designs``."""
     import sizer.sizing.engine as engine
 
     evaluated = []
@@ -225,13 +230,21 @@ def test_options_are_left_out(monkeypatch, given):
 
     monkeypatch.setattr(engine, "evaluate_law", counting)
     total = 0
-    for seed in range(4):
-        design = wide_design(seed, given=given)
+    for design in designs:
         arrays = MotorArrays.of(design.motors, design.limits.envelope)
         for spec in design.laws:
             evaluate_spec(design, spec, arrays)
             total += len(design.motors) * len(design.ratio_choice.ratios)
-    assert sum(evaluated) < 0.6 * total, (sum(evaluated), total)
+    return sum(evaluated), total
+
+
+@pytest.mark.parametrize("given", [False, True])
+def test_options_are_left_out(monkeypatch, given):
+    """The rounds evaluate fewer candidates in full than motors x options (the pruning
+    works)."""
+    evaluated, total = evaluated_in_full(
+        monkeypatch, [wide_design(seed, given=given) for seed in range(4)])
+    assert evaluated < 0.6 * total, (evaluated, total)
 
 
 def test_a_rising_rms_is_no_proof():
