@@ -198,7 +198,7 @@ class CycleCalculator:
         known to pass: sizer.sizing.minimum_duration); with ``model`` the metrics carry
         the RMS model at these durations (:class:`RmsModel`). ``rms``: the motor's RMS
         torque at these durations, known (an RMS model's value within CONVERGED of where
-        it was built: sizer.sizing.minimum_duration.rms_crossing); the power-flow
+        it was built: sizer.sizing.minimum_duration.rms_crossing_with_rms); the power-flow
         integrals are then not computed where no stage has an RMS rating to check (the
         stages' RMS is then left at zero, as nothing reads it)."""
         if rms is not None and (model or self.stage_checks or self.drive.is_ideal):
