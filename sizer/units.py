@@ -99,7 +99,7 @@ def registry() -> Any:
     """The shared pint UnitRegistry, created on first use (pint is slow to import)."""
     import pint
 
-    ureg = pint.UnitRegistry()
+    ureg: Any = pint.UnitRegistry()
     ureg.define("rev = revolution")
     return ureg
 

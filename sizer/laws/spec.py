@@ -57,6 +57,7 @@ def _tokens(text: str) -> list[tuple[str, str]]:
             raise UserError(f"cannot read law spec {_short(text)} at "
                             f"{rest if len(rest) <= 30 else rest[:27] + '...'!r}")
         kind = match.lastgroup
+        assert kind is not None  # every alternative of the pattern is a named group
         tokens.append((kind, match.group(kind)))
         pos = match.end()
     return tokens

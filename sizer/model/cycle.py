@@ -174,6 +174,7 @@ class Cycle:
             elif self.share is ShareRule.EQUAL:
                 out.append(1.0)
             elif self.share is ShareRule.WEIGHTS:
+                assert not isinstance(s, Run)  # a run has its duration: never free
                 out.append(s.weight)
             elif isinstance(s, Dwell):
                 raise ValueError("a free dwell needs the `weights` share rule")

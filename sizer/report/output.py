@@ -64,7 +64,7 @@ def _process_exists(pid: int) -> bool:
 def remove_stale_temporaries(target: Path) -> list[Path]:
     """Remove the leftovers of killed writes of ``target`` (see the module docstring)."""
     pattern = _temporary_pattern(target.name)
-    removed = []
+    removed: list[Path] = []
     try:
         names = os.listdir(target.parent)
     except OSError:

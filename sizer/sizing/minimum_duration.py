@@ -315,6 +315,7 @@ def rms_crossing_with_rms(calculator: CycleCalculator, limits: Limits, start: np
     for number in range(RMS_ROUNDS):
         sub = calculator if len(index) == n else calculator.take(index)
         rows = None
+        model: RmsCurve | None
         if number == 0 and first is not None:
             model, rows = first
         else:

@@ -153,7 +153,7 @@ class _Channels:
         """The channel on each sub-piece as one polynomial of u (n, M, d): of its linear
         functions the one with the largest integral there, s (A a + B v) + C."""
         up = kin.sigma > 0.0
-        chosen = None
+        chosen: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
         best = None
         for A1, B1, C1, A2, B2, C2 in functions:
             A = np.where(up, A1[:, None], A2[:, None])
@@ -163,10 +163,13 @@ class _Channels:
             if best is None:
                 best, chosen = integral, (A, B, C)
             else:
+                assert chosen is not None
                 better = integral > best
                 best = np.where(better, integral, best)
-                chosen = tuple(np.where(better, new, old)
-                               for new, old in zip((A, B, C), chosen, strict=True))
+                A, B, C = (np.where(better, new, old)
+                           for new, old in zip((A, B, C), chosen, strict=True))
+                chosen = (A, B, C)
+        assert chosen is not None  # at least one combination
         A, B, C = chosen
         out = kin.sigma[..., None] * (A[..., None] * kin.A_full + B[..., None] * kin.V)
         out[..., 0] += C

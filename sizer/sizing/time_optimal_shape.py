@@ -313,5 +313,5 @@ def bound_scales(calculator, limits) -> BoundScales:
     raw = duration_bounds(calculator, limits)
     scales = (raw.speed, raw.torque, raw.rms, raw.jerk)
     feasible = np.all(np.isfinite(np.stack(scales)), axis=0)
-    return BoundScales(*(np.where(feasible, s, 0.0) for s in scales), dwell=raw.dwell,
-                       feasible=feasible)
+    speed, torque, rms, jerk = (np.where(feasible, s, 0.0) for s in scales)
+    return BoundScales(speed, torque, rms, jerk, dwell=raw.dwell, feasible=feasible)

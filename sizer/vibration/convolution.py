@@ -198,7 +198,7 @@ def grouped(s: np.ndarray, width: int) -> list[tuple[np.ndarray, float]]:
     """Row indices of s sharing a grid (:func:`s_cap_of`), cut into chunks of bounded
     memory for ``width`` columns a row, each with its grid's s_cap."""
     caps = s_cap_of(np.abs(s))
-    out = []
+    out: list[tuple[np.ndarray, float]] = []
     for cap in np.unique(caps):
         rows = np.flatnonzero(caps == cap)
         size = max(1, CHUNK // max(1, width))
