@@ -25,6 +25,7 @@ from sizer.errors import UserError
 if TYPE_CHECKING:
     from sizer.laws.coefficients import LawCoefficients
     from sizer.laws.linear_peaks import LinearPeaks
+    from sizer.laws.piece_table import PieceTable
     from sizer.laws.quadrature import QuadratureRule
 
 PieceFunction = Callable[[np.ndarray, int], np.ndarray]
@@ -40,13 +41,16 @@ class Piece:
 
     ``degree`` is the degree of q_N on the piece when it is a polynomial (the trapezoid,
     double S and polynomial laws), None otherwise; quadrature is then exact with a node
-    count chosen from it.
+    count chosen from it. ``intervals``, when set, is the most uniform sub-intervals a
+    scan or a grid of this piece needs (a law of many short polynomial pieces, a cam
+    table, shares a fixed budget among them: sizer.laws.data_law); None: the caller's.
     """
 
     start: float
     end: float
     evaluate: PieceFunction
     degree: int | None = None
+    intervals: int | None = None
 
     def clamp(self, tau: np.ndarray) -> np.ndarray:
         """tau moved into [start, end]: a point one ulp outside reads the end's value."""
@@ -72,7 +76,7 @@ def mirrored(pieces: Sequence[Piece]) -> list[Piece]:
                 return 1.0 - value
             return -((-1.0) ** order) * value
 
-        return Piece(start, end, evaluate, piece.degree)
+        return Piece(start, end, evaluate, piece.degree, piece.intervals)
 
     return list(pieces) + [reflect(p) for p in reversed(pieces)]
 
@@ -263,6 +267,11 @@ class MotionLaw:
         return 0.0, 1.0 if order == 0 else 0.0
 
     # ------------------------------------------------------------- evaluation
+    def piece_table(self) -> PieceTable | None:
+        """The pieces as one table evaluated all at once (sizer.laws.piece_table), for a
+        law of many polynomial pieces; None: evaluate piece by piece."""
+        return None
+
     def derivative(self, tau: np.ndarray | float, order: int = 0) -> np.ndarray:
         """The order-th derivative of q_N at tau (vectorized); rest outside [0, 1].
 
@@ -279,6 +288,10 @@ class MotionLaw:
         if not inside.any():
             return out
         index = np.searchsorted(self._starts, tau, side="right") - 1
+        table = self.piece_table()
+        if table is not None:
+            out[inside] = table.evaluate(np.maximum(index[inside], 0), tau[inside], order)
+            return out
         for i, piece in enumerate(self.pieces):
             mask = inside & (index == i)
             if mask.any():

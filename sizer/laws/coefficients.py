@@ -21,6 +21,7 @@ from functools import cache
 import numpy as np
 
 from sizer.laws.base import MotionLaw, Piece
+from sizer.laws.piece_table import PieceTable
 from sizer.numerics.arrays import sorted_unique
 from sizer.numerics.roots import illinois
 
@@ -88,10 +89,48 @@ def peak(law: MotionLaw, order: int) -> tuple[float, float]:
     evaluated: a peak exactly on a grid point or a piece end is a candidate itself,
     whatever the rounding of the next derivative there.
     """
+    table = law.piece_table()
+    if table is not None:
+        return _table_peak(law, table, order)
     best_value, best_tau = -1.0, 0.0
     for index in range(len(law.pieces)):
         taus = _peak_candidates(law, index, order)
         values = np.abs(law.piece_derivative(index, taus, order))
+        k = int(np.argmax(values))
+        if values[k] > best_value:
+            best_value, best_tau = float(values[k]), float(taus[k])
+    return best_value, best_tau
+
+
+TABLE_CHUNK = 1 << 18
+"""Scan points of a piece table evaluated at once (bounds the memory of a peak search)."""
+
+
+def _table_peak(law: MotionLaw, table: PieceTable, order: int) -> tuple[float, float]:
+    """:func:`peak` of a law of polynomial pieces (a piece table), every piece at once:
+    the candidates are each piece's uniform scan points (``piece.intervals`` of them, at
+    least 8: a polynomial of degree d has at most d - 1 extrema) and the roots of the
+    next derivative in every sign change between them; in chunks of pieces."""
+    if order >= law.max_order:
+        raise ValueError(f"{law.law_id}: the peak of order {order} needs the derivative of "
+                         f"order {order + 1}, above the law's {law.max_order}")
+    intervals = max(8, min(GRID_PER_PIECE, law.pieces[0].intervals or GRID_PER_PIECE))
+    steps = np.linspace(0.0, 1.0, intervals + 1)
+    per_chunk = max(1, TABLE_CHUNK // (intervals + 1))
+    best_value, best_tau = -1.0, 0.0
+    for first in range(0, table.count, per_chunk):
+        pieces = np.arange(first, min(first + per_chunk, table.count))
+        start, end = table.starts[pieces, None], table.ends[pieces, None]
+        tau = np.minimum(start + (end - start) * steps, end)
+        owner = np.broadcast_to(pieces[:, None], tau.shape)
+        slope = table.evaluate(owner, tau, order + 1)
+        row, col = np.nonzero(slope[:, :-1] * slope[:, 1:] < 0.0)
+        at = pieces[row]
+        roots = illinois(lambda x, p: table.evaluate(p, x, order + 1), tau[row, col],
+                         tau[row, col + 1], slope[row, col], slope[row, col + 1],
+                         args=(at,))
+        taus = np.concatenate((tau.ravel(), roots))
+        values = np.abs(table.evaluate(np.concatenate((owner.ravel(), at)), taus, order))
         k = int(np.argmax(values))
         if values[k] > best_value:
             best_value, best_tau = float(values[k]), float(taus[k])
@@ -133,16 +172,23 @@ def _stationary_points(law: MotionLaw, index: int, order: int,
 def scan_grid(piece: Piece, uniform: int = GRID_PER_PIECE, toward: Sequence[float] = (),
               per_decade: int = 4) -> np.ndarray:
     """Uniform points over a piece plus points graded geometrically toward both ends and
-    toward each of the ``toward`` points that lie in the piece (from both sides)."""
+    toward each of the ``toward`` points that lie in the piece (from both sides).
+
+    A piece that needs fewer intervals than ``uniform`` (``piece.intervals``: a short
+    polynomial piece among many, a cam table's) gets that many, without the grading
+    toward its ends (a polynomial has no steep end)."""
     width = piece.end - piece.start
     graded = width * _decades(per_decade)
-    parts = [np.linspace(piece.start, piece.end, uniform + 1), piece.start + graded,
-             piece.end - graded]
+    if piece.intervals is not None and piece.intervals < uniform:
+        parts = [np.linspace(piece.start, piece.end, piece.intervals + 1)]
+    else:
+        parts = [np.linspace(piece.start, piece.end, uniform + 1), piece.start + graded,
+                 piece.end - graded]
     for point in toward:
         if piece.start <= point <= piece.end:
             parts += [np.array([point]), point - graded, point + graded]
     grid = np.concatenate(parts)
-    if len(parts) > 3:  # points graded toward a fine point may leave the piece
+    if len(toward) > 0:  # points graded toward a fine point may leave the piece
         grid = grid[(grid >= piece.start) & (grid <= piece.end)]
     return sorted_unique(grid)
 
@@ -172,8 +218,14 @@ def one_sided_limits(law: MotionLaw, order: int) -> list[tuple[float, float, flo
     pieces = law.pieces
     # each piece's one-sided values at its start and at the next piece's start (its end)
     stops = [p.start for p in pieces[1:]] + [pieces[-1].end]
-    ends = [law.piece_derivative(i, np.array([piece.start, stop]), order).tolist()
-            for i, (piece, stop) in enumerate(zip(pieces, stops, strict=True))]
+    table = law.piece_table()
+    if table is not None:
+        index = np.arange(table.count)
+        ends = np.stack((table.evaluate(index, table.starts, order),
+                         table.evaluate(index, table.ends, order)), axis=1).tolist()
+    else:
+        ends = [law.piece_derivative(i, np.array([piece.start, stop]), order).tolist()
+                for i, (piece, stop) in enumerate(zip(pieces, stops, strict=True))]
     before, after = law.outside(order)
     rows = [(pieces[0].start, before, ends[0][0])]
     for i in range(1, len(pieces)):

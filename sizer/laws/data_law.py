@@ -17,6 +17,7 @@ period's wrap).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any, ClassVar
@@ -24,8 +25,10 @@ from typing import Any, ClassVar
 import numpy as np
 
 from sizer.errors import UserError
+from sizer.input_limits import MAX_DATA_LAW_EXCURSION
 from sizer.laws.base import MotionLaw, Piece
 from sizer.laws.multipoint import Curve
+from sizer.laws.piece_table import PieceTable
 
 REST_TOLERANCE = 1e-9
 """|v_N| at an end below which the law starts or ends at rest; also the relative size of
@@ -33,6 +36,76 @@ a jump that counts as a discontinuity in the continuity class."""
 
 RETURN_TOLERANCE = 1e-12
 """|q_n - q_0| over the curve's excursion below which the curve returns to its start."""
+
+INTERVAL_BUDGET = 16_384
+"""Uniform intervals shared among the polynomial pieces of a law for every scan and grid
+of it (Piece.intervals): a spline of a few pieces keeps the callers' own counts (up to
+1024 a piece), a cam table of 100,000 rows gets 2 a piece, so that the work of every
+command grows with the rows, not with the rows times a fixed count per piece."""
+
+MIN_PIECE_INTERVALS = 2
+"""Fewest uniform intervals of a piece in a scan (its ends and middle)."""
+
+
+def pieces_intervals(pieces: int) -> int:
+    """The uniform intervals a piece of a law of ``pieces`` polynomial pieces needs."""
+    return max(MIN_PIECE_INTERVALS, INTERVAL_BUDGET // max(pieces, 1))
+
+
+def data_overflow(spec: str, what: str = "its coefficients") -> UserError:
+    """The error for data whose law is not finite in double precision (an overflow)."""
+    return UserError(f"the law these data make is not finite in double precision "
+                     f"({what} overflow): the values are too large, or the times too "
+                     f"close for their positions", field=_largest_field(spec))
+
+
+HUGE_DATA = 1e100
+"""A data value of this magnitude or more (or a nonzero one this small): an error of the
+fit is read as an overflow of the data."""
+
+
+def _extreme(spec: str) -> bool:
+    """True when a number of a data-law spec text has a magnitude of HUGE_DATA or more,
+    or a nonzero one of 1 / HUGE_DATA or less."""
+    import re
+
+    found = [abs(float(m)) for m in re.findall(r"\d[\d.]*(?:e[-+]?\d+)?", spec,
+                                                flags=re.IGNORECASE)]
+    return any(v >= HUGE_DATA or 0.0 < v <= 1.0 / HUGE_DATA for v in found)
+
+
+def _largest_field(spec: str) -> str | None:
+    """The data field, e.g. ``positions[2]``, of the number of largest magnitude in a
+    data-law spec (the likely cause of an overflow), or None."""
+    from sizer.laws.data_spec import read_data_spec
+
+    best: tuple[float, str] | None = None
+
+    def walk(value: Any, path: str) -> None:
+        nonlocal best
+        if isinstance(value, dict):
+            for key, item in value.items():
+                walk(item, f"{path}.{key}" if path else str(key))
+        elif isinstance(value, list | tuple):
+            for i, item in enumerate(value):
+                walk(item, f"{path}[{i}]")
+        elif isinstance(value, int | float) and not isinstance(value, bool):
+            size = abs(float(value))
+            data = "[" in path or "." in path  # a list or a condition, not order: 4
+            if data and (best is None or size > best[0]):
+                best = (size, path)
+
+    try:
+        fields = read_data_spec(spec)
+    except UserError:
+        return None
+    walk({k: v for k, v in fields.items() if k not in ("kind", "units", "name")}, "")
+    if best is None:
+        return None
+    path = best[1]
+    # points[i][j] is reported as points[i], the pair the user wrote
+    return path[:path.rindex("[")] if path.startswith("points[") and path.count("[") > 1 \
+        else path
 
 
 @dataclass(frozen=True)
@@ -68,42 +141,67 @@ class DataLaw(MotionLaw):
         self._size = self._normalizer()
         self.breakpoints = np.append(self._starts, 1.0)
         self.continuity = self._measured_continuity()
+        self._check_finite()
 
     @cached_property
     def spec(self) -> str:
         return self._spec_text
+
+    def piece_table(self) -> PieceTable | None:
+        """The polynomial pieces as one table (a PPoly curve), None for a NURBS."""
+        rows = getattr(self, "_rows", None)
+        if rows is None:
+            return None
+        return PieceTable(self._starts, np.append(self._starts[1:], 1.0), tuple(rows),
+                          self._q0, self._size)
 
     # ------------------------------------------------------------ the curve
     def _build(self) -> tuple[list[Piece], float]:
         x = np.asarray(self.curve.x, dtype=float)
         taus = (x - self._t0) / self._span
         taus[0], taus[-1] = 0.0, 1.0
-        coefficients = getattr(self.curve, "c", None)
-        pieces = []
-        for i in range(len(x) - 1):
-            if coefficients is not None:
-                pieces.append(self._polynomial_piece(taus[i], taus[i + 1], i))
-            else:
-                pieces.append(self._curve_piece(taus[i], taus[i + 1], x[i], x[i + 1]))
+        if getattr(self.curve, "c", None) is not None:
+            return self._polynomial_pieces(taus), 0.0
+        pieces = [self._curve_piece(taus[i], taus[i + 1], x[i], x[i + 1])
+                  for i in range(len(x) - 1)]
         return pieces, 0.0  # continuity measured once the normalizer is known
 
-    def _polynomial_piece(self, start: float, end: float, index: int) -> Piece:
-        """Piece ``index`` of a PPoly from its own coefficients, in tau: its one-sided
-        values at both ends are exact."""
-        c = np.asarray(self.curve.c, dtype=float)[:, index]  # type: ignore[attr-defined]
-        nonzero = np.flatnonzero(c != 0.0)
-        c = c[nonzero[0]:] if nonzero.size else c[-1:]
-        # in u = tau - start: q(t) = sum c_j (D u)^(m - j)
-        powers = self._span ** np.arange(len(c) - 1, -1, -1, dtype=float)
-        local = np.polynomial.Polynomial((c * powers)[::-1])
-        derivatives = [local.deriv(k) for k in range(self.max_order + 1)]
-        offset = self._q0
+    def _polynomial_pieces(self, taus: np.ndarray) -> list[Piece]:
+        """The pieces of a PPoly from its own coefficients, in tau: their one-sided
+        values at both ends are exact. The Taylor coefficients of every derivative of
+        every piece are computed at once (arrays (pieces, terms)); each piece evaluates
+        its row by Horner's scheme."""
+        c = np.asarray(self.curve.c, dtype=float)  # type: ignore[attr-defined]
+        m = c.shape[0] - 1
+        # in u = tau - start: q(t) = sum_p local[:, p] u^p, local = c[m - p] D^p
+        with np.errstate(over="ignore", invalid="ignore"):
+            local = (c[::-1] * self._span ** np.arange(m + 1.0)[:, None]).T
+        if not np.all(np.isfinite(local)):
+            raise data_overflow(self._spec_text)
+        nonzero = local != 0.0
+        degree = np.where(nonzero.any(axis=1), m - np.argmax(nonzero[:, ::-1], axis=1), 0)
+        rows = [local]
+        for _ in range(self.max_order):
+            last = rows[-1]
+            rows.append(last[:, 1:] * np.arange(1.0, last.shape[1]) if last.shape[1] > 1
+                        else np.zeros_like(last))
+        self._rows = rows
+        intervals = pieces_intervals(len(taus) - 1)
+        return [Piece(float(taus[i]), float(taus[i + 1]), self._row_evaluator(i, float(taus[i])),
+                      int(degree[i]), intervals) for i in range(len(taus) - 1)]
+
+    def _row_evaluator(self, index: int, start: float) -> Any:
+        rows = self._rows
 
         def evaluate(tau: np.ndarray, order: int) -> np.ndarray:
-            value = derivatives[order](tau - start)
-            return ((value - offset) if order == 0 else value) / self._size
+            coef = rows[order][index].tolist()  # Python floats: Horner on small arrays
+            u = tau - start
+            out = coef[-1] + u * 0.0
+            for value in coef[-2::-1]:
+                out = value + out * u
+            return ((out - self._q0) if order == 0 else out) / self._size
 
-        return Piece(float(start), float(end), evaluate, len(c) - 1)
+        return evaluate
 
     def _curve_piece(self, start: float, end: float, left: float, right: float) -> Piece:
         """A piece of a general curve (a NURBS): evaluated inside [left, right], a point
@@ -123,12 +221,27 @@ class DataLaw(MotionLaw):
 
         end = float(self.piece_derivative(len(self.pieces) - 1, 1.0, 0))
         excursion = peak(self, 0)[0]
+        if not (math.isfinite(end) and math.isfinite(excursion)):
+            raise data_overflow(self._spec_text, "its positions")
         if excursion <= 0.0:
             raise UserError("the curve does not move: every point has the same position",
                             field="points")
         if abs(end) > RETURN_TOLERANCE * excursion:
+            if excursion > MAX_DATA_LAW_EXCURSION * abs(end):
+                raise UserError(f"the curve swings {excursion / abs(end):.3g} times its "
+                                f"displacement {end:.6g} away from its start: the limit is "
+                                f"{MAX_DATA_LAW_EXCURSION:.0e} (MAX_DATA_LAW_EXCURSION); "
+                                f"check the data's magnitudes",
+                                field=_largest_field(self._spec_text))
             return end
         return excursion
+
+    def _check_finite(self) -> None:
+        """UserError unless every coefficient of the normalized law is finite."""
+        values = self.coefficients.as_dict()
+        bad = [name for name, value in values.items() if not math.isfinite(value)]
+        if bad:
+            raise data_overflow(self._spec_text, ", ".join(bad))
 
     # ----------------------------------------------------------- the shape
     @cached_property
@@ -206,7 +319,6 @@ def build_data_law(text: str) -> DataLaw:
     curve is normalized, and the units (field ``units``, or those the data carry) give
     its absolute size. UserError (with the field) for bad data."""
     from sizer.laws.data_spec import DATA_LAW_KINDS, read_data_spec
-    from sizer.laws.multipoint import FittedCurve
 
     fields = read_data_spec(text)
     kind = DATA_LAW_KINDS[fields["kind"]]
@@ -214,7 +326,22 @@ def build_data_law(text: str) -> DataLaw:
     name = fields.pop("name", None)
     if name is not None and not isinstance(name, str):
         raise UserError(f"must be a text, got {name!r}", field="name")
-    built = kind.build()(fields)
+    # data near the float range overflow inside the fits and the law's measures: the
+    # results are checked (finite coefficients, a finite law), the warnings not shown
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore", under="ignore"):
+        return _built_law(text, kind, fields, units, name)
+
+
+def _built_law(text: str, kind: Any, fields: dict[str, Any],
+               units: tuple[str | None, str | None], name: str | None) -> DataLaw:
+    from sizer.laws.multipoint import FittedCurve
+
+    try:
+        built = kind.build()(fields)
+    except (ValueError, ZeroDivisionError, OverflowError, np.linalg.LinAlgError):
+        if not _extreme(text):
+            raise
+        raise data_overflow(text, "the fit's numbers") from None
     exact = getattr(built, "law", None)
     if isinstance(exact, MotionLaw) and units == (None, None) and name is None:
         return exact  # type: ignore[return-value]  # a law of its own (a shaped law)
@@ -245,12 +372,23 @@ def _scale(law: DataLaw, units: tuple[str | None, str | None]) -> LawScale | Non
     time_unit, position_unit = units
     if time_unit is None or position_unit is None:
         return None
-    size, linear = parse_displacement(f"1 {position_unit}", field="units.position")
+    try:
+        size, linear = parse_displacement(f"1 {position_unit}", field="units.position")
+    except UserError as error:
+        raise _at_unit(error, position_unit) from None
     master = is_angle_unit(time_unit)
     try:
         span = to_si(f"1 {time_unit}", "angle" if master else "time", field="units.time")
     except UserError:
-        raise UserError(f"expected a time unit like 's' or 'ms', or a master angle unit "
-                        f"like 'deg', got {time_unit!r}", field="units.time") from None
+        raise _at_unit(UserError(f"expected a time unit like 's' or 'ms', or a master angle "
+                                 f"unit like 'deg', got {time_unit!r}", field="units.time"),
+                       time_unit) from None
     return LawScale(displacement=law._size * size, linear=linear,
                     span=law._span * span, master=master)
+
+
+def _at_unit(error: UserError, unit: str) -> UserError:
+    """The error at the place its unit is written when the unit knows it (a cam table's
+    header cell: sizer.io.cam_table_law.HeaderUnit), else as raised."""
+    where = getattr(unit, "where", None)
+    return error if where is None else UserError(error.message, **where)

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from sizer.errors import UserError
-from sizer.input_limits import MAX_DATA_LAW_CHARS
+from sizer.input_limits import MAX_DATA_LAW_CHARS, MAX_DESIGN_NODES, MAX_YAML_DEPTH
 
 
 @dataclass(frozen=True)
@@ -82,6 +82,10 @@ def data_spec_text(fields: Mapping[str, Any]) -> str:
         raise UserError(f"unknown kind {kind!r}; kinds of laws defined by data: "
                         f"{', '.join(DATA_LAW_KINDS)}", field="kind")
     rest = {str(k): v for k, v in fields.items() if k != "kind"}
+    size = _expanded_size(fields, {}, set())
+    if size > MAX_DATA_LAW_CHARS:  # shared values (YAML aliases) repeat in the text
+        raise UserError(f"a law of at least {size:,} characters once its YAML aliases are "
+                        f"expanded: the limit is {MAX_DATA_LAW_CHARS:,}")
     text = _flow({"kind": kind, **dict(sorted(rest.items()))})
     if len(text) > MAX_DATA_LAW_CHARS:
         raise UserError(f"a law of {len(text):,} characters: the limit is "
@@ -94,12 +98,19 @@ def read_data_spec(text: str) -> dict[str, Any]:
     """The mapping of a data-law spec text (the inverse of :func:`data_spec_text`)."""
     import yaml
 
+    from sizer.bounded_yaml import load_bounded
+
     if len(text) > MAX_DATA_LAW_CHARS:
         raise UserError(f"a law spec of {len(text):,} characters: the limit is "
                         f"{MAX_DATA_LAW_CHARS:,}")
-    loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
     try:
-        fields = yaml.load(text, Loader=loader)
+        if "&" in text or text.count("[") + text.count("{") > MAX_YAML_DEPTH:
+            # maybe aliases (an anchor: a bomb?) or deep nesting: composed under the limits
+            fields = load_bounded(text, max_nodes=MAX_DESIGN_NODES)
+        else:  # no alias: the nodes are bounded by the length (libyaml alone, fast)
+            fields = yaml.load(text, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
+    except UserError as error:
+        raise UserError(f"cannot read the law {text[:60]!r}: {error.message}") from None
     except yaml.YAMLError as error:
         mark = getattr(error, "problem_mark", None)
         where = f" at character {mark.index + 1}" if mark is not None else ""
@@ -114,6 +125,26 @@ def read_data_spec(text: str) -> dict[str, Any]:
 def canonical_data_spec(text: str) -> str:
     """The canonical text of a data-law spec text as the user wrote it."""
     return data_spec_text(read_data_spec(text))
+
+
+def _expanded_size(value: Any, sizes: dict[int, int], open_ids: set[int]) -> int:
+    """At least the characters of ``_flow(value)``, counted once per shared value (an
+    alias bomb costs its nodes, not its expansion); UserError for a value that holds
+    itself (``&a [*a]``)."""
+    if not isinstance(value, Mapping | list | tuple):
+        return len(str(value))
+    known = sizes.get(id(value))
+    if known is not None:
+        return known
+    if id(value) in open_ids:
+        raise UserError("recursive YAML alias (a collection that contains itself)")
+    open_ids.add(id(value))
+    items = ([(str(k), v) for k, v in value.items()] if isinstance(value, Mapping)
+             else [("", v) for v in value])
+    total = 2 + sum(len(k) + 2 + _expanded_size(v, sizes, open_ids) for k, v in items)
+    open_ids.discard(id(value))
+    sizes[id(value)] = total
+    return total
 
 
 def _flow(value: Any) -> str:

@@ -169,7 +169,10 @@ def piece_intervals(law: MotionLaw, index: int,
     """The intervals of one piece and the nodes on each (the rules of the module doc)."""
     piece = law.pieces[index]
     if piece.degree is not None:
-        edges = np.linspace(piece.start, piece.end, resolution.polynomial_intervals + 1)
+        count = resolution.polynomial_intervals
+        if piece.intervals is not None:
+            count = max(1, min(count, piece.intervals))
+        edges = np.linspace(piece.start, piece.end, count + 1)
         return PieceIntervals(index, edges, exact_nodes(piece.degree, resolution.lowest_order))
     return PieceIntervals(index, _refined(law, index, base_edges(law, piece,
                                                                  resolution.smooth_intervals)),

@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from sizer.errors import UserError
+from sizer.input_limits import MAX_VIA_POINTS
 
 ORDER_NAMES: dict[str, int] = {"position": 0, "velocity": 1, "acceleration": 2, "jerk": 3,
                                "snap": 4}
@@ -84,12 +85,22 @@ def numbers(fields: Mapping[str, Any], key: str, *, minimum: int = 1,
     value = fields[key]
     if not isinstance(value, list | tuple):
         raise UserError(f"must be a list of numbers, got {value!r}", field=key)
+    too_many(len(value), key)
     out = np.array([as_number(v, f"{key}[{i}]") for i, v in enumerate(value)], dtype=float)
     if length is not None and len(out) != length:
         raise UserError(f"must have {length} numbers, got {len(out)}", field=key)
     if len(out) < minimum:
         raise UserError(f"needs at least {minimum} numbers, got {len(out)}", field=key)
     return out
+
+
+def too_many(count: int, field: str) -> None:
+    """UserError when a list of a law's data is longer than MAX_VIA_POINTS (the splines'
+    dense systems cost the cube of it); a longer table belongs in a cam_table file."""
+    if count > MAX_VIA_POINTS:
+        raise UserError(f"{count:,} values: the limit is {MAX_VIA_POINTS:,} "
+                        f"(MAX_VIA_POINTS); for more samples use a cam_table file",
+                        field=field)
 
 
 def increasing(values: np.ndarray, field: str, *, strict: bool = True) -> np.ndarray:
@@ -120,6 +131,7 @@ def points(fields: Mapping[str, Any], *, minimum: int = 2,
                 isinstance(p, list | tuple) and len(p) == 2 for p in raw):
             raise UserError("must be a list of [t, q] pairs, e.g. [[0, 0], [0.5, 0.3], "
                             "[1, 1]]", field="points")
+        too_many(len(raw), "points")
         t = np.array([as_number(p[0], f"points[{i}]") for i, p in enumerate(raw)])
         q = np.array([as_number(p[1], f"points[{i}]") for i, p in enumerate(raw)])
         if len(t) < minimum:

@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 
 from sizer.errors import UserError
+from sizer.input_limits import MAX_AUTO_TIMES_POINTS
 from sizer.laws.multipoint import cubic_splines as cs
 from sizer.laws.multipoint import fields as F
 
@@ -234,6 +235,11 @@ def via_points(fields: Mapping[str, Any], conditions: Mapping[str, Any]
         else:
             duration = F.number(fields, "duration", 1.0, positive=True)
         if word == "auto":
+            if len(q) > MAX_AUTO_TIMES_POINTS:
+                raise UserError(f"times: auto through {len(q):,} positions: the limit is "
+                                f"{MAX_AUTO_TIMES_POINTS} (MAX_AUTO_TIMES_POINTS, the "
+                                f"search costs the cube of the count); give the times or "
+                                f"a rule (equal, chord, centripetal)", field="positions")
             t = optimal_times(q, duration, minimize or "peak_acceleration", **conditions)
         else:
             if minimize in OBJECTIVES:

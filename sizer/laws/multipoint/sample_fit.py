@@ -44,10 +44,11 @@ derivative by about sigma / dx^k. The report estimates it in two steps:
    depends only on the abscissas and the method: var_k is computed by fitting a fixed set
    of 64 standard-normal sample vectors (seed 0) with the same method.
 
-For k = 1, 2, 3 the report gives the RMS over [x_0, x_n] and the peak of that standard
-deviation, sigma sqrt(var_k(x)), divided by the RMS of the fitted k-th derivative: the
-share of the fitted velocity, acceleration and jerk that is noise. Clean samples of a
-smooth law give nearly zero; the numbers grow in proportion to the noise.
+For k = 1, 2, 3 the report gives the RMS over [x_0, x_n] (over 2,048 evenly spread
+pieces of a longer table) and the peak of that standard deviation, sigma sqrt(var_k(x)),
+divided by the RMS of the fitted k-th derivative: the share of the fitted velocity,
+acceleration and jerk that is noise. Clean samples of a smooth law give nearly zero; the
+numbers grow in proportion to the noise.
 """
 
 from __future__ import annotations
@@ -61,6 +62,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from sizer.errors import UserError
+from sizer.input_limits import MAX_CAM_TABLE_ROWS
 from sizer.laws.multipoint.fields import boolean, integer, number
 
 if TYPE_CHECKING:
@@ -168,6 +170,10 @@ def _checked_samples(x: np.ndarray, q: np.ndarray, order: int, smoothing: float 
                         field="smoothing")
     x = np.asarray(x, dtype=float)
     q = np.asarray(q, dtype=float)
+    if len(x) > MAX_CAM_TABLE_ROWS:
+        raise UserError(f"a cam table of {len(x):,} rows: the limit is "
+                        f"{MAX_CAM_TABLE_ROWS:,} (MAX_CAM_TABLE_ROWS); resample the table "
+                        f"more coarsely", field="file")
     if x.ndim != 1 or q.shape != x.shape:
         raise UserError(f"x and q must be two lists of the same length, got shapes "
                         f"{x.shape} and {q.shape}", field="q")
@@ -290,18 +296,45 @@ def _derivative_noise(x: np.ndarray, spline: BSpline, curve: PPoly, order: int,
                 draws[-1] = draws[0]
             response = make_interp_spline(x, draws, k=k,
                                           bc_type="periodic" if periodic else None)
-    t, w = _gauss(curve.x, _GAUSS_NODES)
+    # on at most _NOISE_PIECES pieces spread evenly over the table (all of a shorter one)
+    count = len(curve.x) - 1
+    chosen = np.unique(np.linspace(0, count - 1, min(count, _NOISE_PIECES)).astype(int))
+    left, width = curve.x[chosen], curve.x[chosen + 1] - curve.x[chosen]
+    u, g = np.polynomial.legendre.leggauss(_GAUSS_NODES)
+    t = (left[:, None] + 0.5 * width[:, None] * (u + 1.0)).ravel()
+    w = (0.5 * width[:, None] * g).ravel()
     s = np.linspace(0.0, 1.0, _PEAK_POINTS)
-    dense = (curve.x[:-1, None] + np.diff(curve.x)[:, None] * s).ravel()
-    span = curve.x[-1] - curve.x[0]
+    dense = (left[:, None] + width[:, None] * s).ravel()
+    span = float(np.sum(width))
     noise_rms, noise_peak = [], []
     for nu, scale in zip((1, 2, 3), rms, strict=True):
         if scale == 0.0:
             noise_rms.append(0.0)
             noise_peak.append(0.0)
             continue
-        variance = np.mean(response(t, nu) ** 2, axis=1)
-        noise_rms.append(sigma * float(np.sqrt(np.sum(w * variance) / span)) / scale)
-        peak = np.sqrt(np.max(np.mean(response(dense, nu) ** 2, axis=1)))
+        integral = sum(float(np.sum(w[part] * _variance(response, t[part], nu)))
+                       for part in _chunks(len(t)))
+        noise_rms.append(sigma * float(np.sqrt(integral / span)) / scale)
+        peak = math.sqrt(max(float(np.max(_variance(response, dense[part], nu)))
+                             for part in _chunks(len(dense))))
         noise_peak.append(sigma * float(peak) / scale)
     return tuple(noise_rms), tuple(noise_peak)
+
+
+_NOISE_PIECES = 2_048
+"""Pieces of a long table on which the derivative noise is estimated (evenly spread; the
+noise of an evenly sampled table is about the same on every piece): the report's cost
+is bounded whatever the number of samples."""
+
+_NOISE_CHUNK = 16_384
+"""Points at which the noise response (64 draws each) is evaluated at once: the memory
+of the noise report stays bounded (16 MB) whatever the number of samples."""
+
+
+def _chunks(count: int) -> list[slice]:
+    return [slice(i, i + _NOISE_CHUNK) for i in range(0, count, _NOISE_CHUNK)]
+
+
+def _variance(response: BSpline, x: np.ndarray, nu: int) -> np.ndarray:
+    """The mean over the draws of the squared nu-th derivative of the response at x."""
+    return np.mean(response(x, nu) ** 2, axis=1)
