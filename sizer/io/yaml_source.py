@@ -24,6 +24,8 @@ from typing import Any
 
 import yaml
 
+from sizer.bounded_yaml import BoundedLoader as _BoundedLoader
+from sizer.bounded_yaml import format_path
 from sizer.errors import UserError
 from sizer.input_limits import (
     MAX_CATALOG_BYTES,
@@ -44,18 +46,6 @@ _FLOAT_MAX = 1.7976931348623157e308
 
 if getattr(yaml, "__with_libyaml__", False):
     from yaml._yaml import CParser
-
-    class _SafeLoader(yaml.composer.Composer, CParser, yaml.constructor.SafeConstructor,
-                      yaml.resolver.Resolver):
-        """libyaml's scanner and parser (7x faster) under PyYAML's composer, which counts."""
-
-        def __init__(self, text: str) -> None:
-            CParser.__init__(self, text)
-            yaml.constructor.SafeConstructor.__init__(self)
-            yaml.resolver.Resolver.__init__(self)
-            yaml.composer.Composer.__init__(self)
-else:  # pragma: no cover - PyYAML built without libyaml
-    _SafeLoader = yaml.SafeLoader  # type: ignore[misc,assignment]
 
 
 class _NotPlainError(Exception):
@@ -224,65 +214,6 @@ def _plain_events(parser: Any, file: str | None, max_nodes: int) -> YamlSource:
     if type(get()) is not yaml.DocumentEndEvent or type(get()) is not yaml.StreamEndEvent:
         raise _NotPlainError  # more than one document
     return source
-
-
-class _BoundedLoader(_SafeLoader):
-    """The safe loader with bounded work: nodes (aliases expanded), depth, scalar length."""
-
-    def __init__(self, text: str, file: str | None, max_nodes: int) -> None:
-        super().__init__(text)
-        self.file = file
-        self.max_nodes = max_nodes
-        self.depth = 0
-        self.expanded = 0  # nodes composed so far, an alias counting what it repeats
-        self.sizes: dict[int, int] = {}  # expanded size of each finished node
-
-    def _fail(self, message: str, event: Any) -> UserError:
-        return UserError(message, file=self.file, line=event.start_mark.line + 1)
-
-    def _add(self, count: int, event: Any) -> None:
-        self.expanded += count
-        if self.expanded > self.max_nodes:
-            raise self._fail(f"too many YAML nodes: more than {self.max_nodes:,} values once "
-                             f"aliases are expanded (an alias bomb?)", event)
-
-    def compose_node(self, parent: Any, index: Any) -> Any:
-        event = self.peek_event()
-        if isinstance(event, yaml.AliasEvent):
-            node = super().compose_node(parent, index)
-            self._add(self.sizes.get(id(node), 1), event)  # unfinished: recursive, see _walk
-            return node
-        self.depth += 1
-        if self.depth > MAX_YAML_DEPTH:
-            raise self._fail(f"nested too deeply: more than {MAX_YAML_DEPTH} levels of "
-                             f"mappings and lists", event)
-        start = self.expanded
-        self._add(1, event)
-        node = super().compose_node(parent, index)
-        self.depth -= 1
-        self.sizes[id(node)] = self.expanded - start
-        return node
-
-    def compose_scalar_node(self, anchor: Any) -> Any:
-        event = self.peek_event()
-        if len(event.value) > MAX_SCALAR_CHARS:
-            raise self._fail(f"a value of {len(event.value):,} characters: the limit is "
-                             f"{MAX_SCALAR_CHARS:,}", event)
-        return super().compose_scalar_node(anchor)
-
-
-def format_path(path: Sequence[Any]) -> str:
-    """``('motors', 3, 'inertia')`` -> ``'motors[3].inertia'``."""
-    text = ""
-    for part in path:
-        if isinstance(part, int) and not isinstance(part, bool):
-            text += f"[{part}]"
-        elif isinstance(part, str) and part.isidentifier():
-            text += f".{part}" if text else part
-        else:  # an odd key, e.g. '12 kg' or 0: shown as in Python
-            shown = repr(part)
-            text += f"[{shown if len(shown) <= 40 else shown[:37] + '...'}]"
-    return text
 
 
 @dataclass
