@@ -105,10 +105,33 @@ def registry() -> Any:
 
 
 _NUMBER_AND_UNIT = re.compile(
-    r"^\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|[+-]?\.?nan|[+-]?\.?inf(?:inity)?)"
-    r"(?![A-Za-z])\s*(.*?)\s*$",
+    r"^\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?(?![\d.])"
+    r"|[+-]?\.?(?:nan|inf(?:inity)?)(?![A-Za-z]))\s*(.*?)\s*$",
     re.IGNORECASE | re.ASCII,
 )
+"""A number and the unit after it, with or without a space: '0.5 s', '0.5s', '1e-3s',
+'2e3rpm' (an exponent binds to the number: '1e5' alone is a number), '10%'."""
+
+_SPACE = r"[ \t\n\r\f\v]"
+_NUMBER_FORM = r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?"
+_UNIT_FORM = r"(?:{s}*[^ \t\n\r\f\v0-9.,+\-*/^][^\r\n]*|{s}+[0-9]+{s}*/[^\r\n]*)"
+
+
+def quantity_pattern(*, slash: bool = False) -> str:
+    """The form of a quantity written as text, for the JSON Schemas (``sizer schema``) and
+    :func:`to_si` alike: a finite number, then optionally a unit, glued or after spaces,
+    that starts with a letter, ``%``, ``(``... or is ``1/...`` after a space (``50 1/min``);
+    ``slash``: also a unit that starts with ``/`` (``50 /min``, a cycle rate). The unit
+    itself, its kind and the range are checked by the loader only."""
+    unit = _UNIT_FORM.format(s=_SPACE)
+    if slash:
+        unit = f"(?:{unit}|{_SPACE}*/[^\r\n]*)"
+    return f"^{_SPACE}*{_NUMBER_FORM}{unit}?{_SPACE}*$"
+
+
+QUANTITY_PATTERN = quantity_pattern()
+"""See :func:`quantity_pattern`."""
+_QUANTITY_FORM = re.compile(QUANTITY_PATTERN)
 _FLOAT_MAX = 1.7976931348623157e308
 _POWER = re.compile(r"\*\*\s*(\(\s*)?([+-]?\s*\d+(?:\.\d+)?(?:\s*/\s*\d+)?)(?(1)\s*\))")
 _FACTOR = re.compile(r"(?<![A-Za-z_\d.])\d[\d.]*(?:[eE][+-]?\d+)?", re.ASCII)
@@ -310,13 +333,17 @@ def _parse_text(text: str, spec: Kind, field: str | None, *, reference: bool = F
     number, unit = _split(text.replace("%", " percent"))
     if not number:
         raise _expected(spec, text, field)
-    number = number.replace(".", "") if number[-1:].isalpha() else number  # .inf, .nan
+    finite_form = not number[-1:].isalpha()
+    number = number if finite_form else number.replace(".", "")  # .inf, .nan
     if not unit:
         return float(number)
     if not reference:
         known = _BY_TEXT.get((spec.name, unit))
         if known is not None:
             return known.apply(float(number))
+    if finite_form and _QUANTITY_FORM.fullmatch(text) is None:  # the schema's pattern
+        _check_unit_text(_normalize(unit, spec.name), text, spec, field)  # a limit first
+        raise _expected(spec, text, field)
     if spec.name == "fraction":
         if unit not in ("percent", "pct"):
             raise _expected(spec, text, field)

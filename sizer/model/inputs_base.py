@@ -26,8 +26,9 @@ from pydantic.json_schema import JsonSchemaValue
 from pydantic_core import core_schema
 
 from sizer.errors import UserError
+from sizer.input_limits import MAX_QUANTITY_CHARS
 from sizer.model.ranges import RANGES, Range, check_range, number_text
-from sizer.units import KINDS, to_si
+from sizer.units import KINDS, quantity_pattern, to_si
 
 # ---------------------------------------------------------------- quantities
 
@@ -142,6 +143,19 @@ _UNIT_NOTES = {
 """What the JSON Schema says about the datasheet spellings of a kind (sizer.units)."""
 
 
+def quantity_text(*words: str, slash: bool = False) -> dict[str, Any]:
+    """The JSON Schema of a quantity written as text ('0.5 s', '0.5s', '3000rpm'): the
+    form :func:`sizer.units.to_si` reads (:func:`sizer.units.quantity_pattern`), or one of
+    ``words`` ('free', 'minimize': any case, spaces around)."""
+    text = {"type": "string", "pattern": quantity_pattern(slash=slash),
+            "maxLength": MAX_QUANTITY_CHARS}
+    if not words:
+        return text
+    spelled = "|".join("".join(f"[{c.lower()}{c.upper()}]" for c in w) for w in words)
+    return {"anyOf": [text, {"type": "string",
+                             "pattern": f"^[ \\t\\n\\r\\f\\v]*(?:{spelled})[ \\t\\n\\r\\f\\v]*$"}]}
+
+
 def _quantity_schema(kind: str, note: str = "") -> dict[str, Any]:
     spec = KINDS[kind]
     name = kind.replace("_", " ")
@@ -149,7 +163,7 @@ def _quantity_schema(kind: str, note: str = "") -> dict[str, Any]:
     if spec.si_unit != "1":
         text += f"; a bare number is in {spec.si_unit}"
     text += _UNIT_NOTES.get(kind, "")
-    return {"anyOf": [{"type": "number"}, {"type": "string"}],
+    return {"anyOf": [{"type": "number"}, quantity_text()],
             "description": f"{text}{'; ' + note if note else ''}"}
 
 
@@ -173,14 +187,14 @@ class RangeRef:
     name: str
 
 
-def range_schema(allowed: Range, note: str = "") -> dict[str, Any]:
+def range_schema(allowed: Range, note: str = "", *, slash: bool = False) -> dict[str, Any]:
     """The JSON Schema of a ranged quantity: a number within the range's span (SI), or a
-    text with a unit; the exact rule in the description."""
+    text with a unit (``slash``: also '50 /min'); the exact rule in the description."""
     low, high = allowed.span
     text = _quantity_schema(allowed.kind)["description"]
     extra = f"; must be {allowed.text()} (SI)" + (f"; {note}" if note else "")
     return {"anyOf": [{"type": "number", "minimum": low, "maximum": high},
-                      {"type": "string"}], "description": text + extra}
+                      quantity_text(slash=slash)], "description": text + extra}
 
 
 def Ranged(name: str, *, note: str = "") -> Any:
@@ -219,7 +233,7 @@ def RawQuantity(examples: str, *, rotary: str | None = None,
         return value
 
     names = [n for n in (rotary, linear) if n is not None]
-    schema: dict[str, Any] = {"anyOf": [{"type": "number"}, {"type": "string"}]}
+    schema: dict[str, Any] = {"anyOf": [{"type": "number"}, quantity_text()]}
     if names:
         low = min(RANGES[n].span[0] for n in names)
         high = max(RANGES[n].span[1] for n in names)
