@@ -18,6 +18,7 @@ import pytest
 import yaml
 
 from sizer.catalog_tools import validate_catalogs
+from sizer.errors import UserError
 from sizer.io import (
     NOT_DEFAULT_CATALOGS,
     bundled_catalogs,
@@ -348,7 +349,10 @@ def test_the_default_set_is_opt_in_and_yields_to_named_catalogs(tmp_path):
     assert load_design(path).motors == ()  # without default_motors, as before
     only = load_design(path, extra_catalogs=["siemens-1ft7"], default_motors=True)
     assert [m.id for m in only.motors] == ["1FT7044-AK7"]
-    path.write_text(ROTARY_TABLE + "motors: []\n")
-    assert load_design(path, default_motors=True).motors == ()
+    path.write_text(ROTARY_TABLE + "motors: []\n")  # no bundled motors in its place:
+    with pytest.raises(UserError, match="no motors to size") as refused:  # refused at its line
+        load_design(path, default_motors=True)
+    assert refused.value.line == ROTARY_TABLE.count("\n") + 1
+    assert refused.value.field == "motors"
     path.write_text(ROTARY_TABLE + "motors: teco-jsma-p\n")
     assert len(load_design(path, default_motors=True).motors) == 9

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from sizer.bounded_yaml import format_path
 from sizer.errors import UserError
 from sizer.io.yaml_source import YamlSource
 from sizer.mechanics.linkages.of_stage import linkage_of, linkages_of
@@ -41,8 +42,8 @@ def linkage_stage(item: SliderCrankInput | FourBarInput, source: YamlSource,
     return stage
 
 
-def linkage_task(task: Any, stage: LinkageStage, cycle: Any,
-                 source: YamlSource) -> tuple[Any, Any, bool]:
+def linkage_task(task: Any, stage: LinkageStage, cycle: Any, source: YamlSource,
+                 start_at: tuple[Any, ...] = ()) -> tuple[Any, Any, bool]:
     """The task (and cycle) of a design whose transmission ends in a linkage, and its
     axis: the linkage's output (a slider is linear, a rocker rotary).
 
@@ -50,7 +51,8 @@ def linkage_task(task: Any, stage: LinkageStage, cycle: Any,
     ``law_on: output`` the output's travels, of the output's kind. A run, or a move with
     boundary speeds, needs the law on a crank turned by the motor and a fixed duration
     (:func:`_check_moving`); a task's return move goes back from where the way out
-    stopped.
+    stopped. ``start_at``: the path of the stage's ``start_angle`` (blamed when the first
+    move would fit the stroke from another start).
     """
     from dataclasses import replace
 
@@ -83,7 +85,7 @@ def linkage_task(task: Any, stage: LinkageStage, cycle: Any,
                            f"{turn}, an angle like '180 deg'", where)
     if stage.law_on == "output" and linear != stage.output_linear:
         raise source.error(f"with law_on: output a displacement is {output}", where)
-    _check_strokes(stage, moves, source)
+    _check_strokes(stage, moves, source, start_at)
     task = replace(task, linear=stage.output_linear)
     if cycle is not None:
         cycle = replace(cycle, linear=stage.output_linear)
@@ -111,9 +113,10 @@ def _check_moving(stage: LinkageStage, segment: Any, free: bool, source: YamlSou
 
 
 def _check_strokes(stage: LinkageStage, moves: list[tuple[float, tuple[Any, ...]]],
-                   source: YamlSource) -> None:
+                   source: YamlSource, start_at: tuple[Any, ...] = ()) -> None:
     """Each move of the law's coordinate (the output's, or a driven rocker's), from where
-    the last one ended, stays within its range (a crank's turn has none)."""
+    the last one ended, stays within its range (a crank's turn has none). A first move no
+    longer than the stroke that leaves it is blamed on the start (``start_at``)."""
     import numpy as np
 
     views = linkages_of(stage)
@@ -121,23 +124,30 @@ def _check_strokes(stage: LinkageStage, moves: list[tuple[float, tuple[Any, ...]
     if not given.dead_points().size:
         return
     position = float(given.output(np.array([stage.start_angle]))[0])
-    for h, at in moves:
+    low, high = given.output_range()
+    for k, (h, at) in enumerate(moves):
+        if k == 0 and start_at and abs(h) <= (high - low) * (1 + 1e-9):
+            _check_stroke(given, position, h, source, start_at,
+                          f"{format_path(at)} from start_angle "
+                          f"{float(np.degrees(stage.start_angle)):.6g} deg: ",
+                          "; change start_angle (where the move starts) or the displacement")
         _check_stroke(given, position, h, source, at)
         position += h
 
 
 def _check_stroke(given: Any, start: float, h: float, source: YamlSource,
-                  at: tuple[Any, ...]) -> None:
-    """The move from ``start`` by ``h`` stays within the coordinate's range."""
+                  at: tuple[Any, ...], head: str = "", tail: str = "") -> None:
+    """The move from ``start`` by ``h`` stays within the coordinate's range (else an error
+    at ``at``, its message between ``head`` and ``tail``)."""
     low, high = given.output_range()
     end = start + h
     tolerance = 1e-9 * (high - low)
     if not low - tolerance <= end <= high + tolerance:
         unit = "m" if given.output_linear else "rad"
         name = "output" if getattr(given, "coordinate", "") != "rocker_angle" else "rocker"
-        raise source.error(f"the {name} would move from {start:.6g} {unit} to {end:.6g} "
-                           f"{unit}, beyond its range [{low:.6g}, {high:.6g}] {unit} (the "
-                           f"stroke between the dead points)", at)
+        raise source.error(f"{head}the {name} would move from {start:.6g} {unit} to "
+                           f"{end:.6g} {unit}, beyond its range [{low:.6g}, {high:.6g}] "
+                           f"{unit} (the stroke between the dead points){tail}", at)
 
 
 def output_linear(items: Any, linear: bool) -> bool:
@@ -152,3 +162,18 @@ def output_linear(items: Any, linear: bool) -> bool:
         if kind not in (None, "direct"):
             break
     return linear
+
+
+def check_linkage_design(model: Any, source: YamlSource) -> None:
+    """Refuse what a design through a linkage states and sizing would not check: the
+    residual vibration of the load's mode (its output does not follow the law, the ratio
+    varies: sizer.sizing.vibration_check.refusal), at the limit, else at the mode."""
+    load, limits = model.load, model.limits
+    why = ("the residual vibration is not computed through a linkage (its output does "
+           "not follow the law: the ratio varies)")
+    if limits is not None and limits.residual_vibration is not None:
+        raise source.error(f"{why}; remove limits.residual_vibration and the load's mode",
+                           ("limits", "residual_vibration"))
+    if load is not None and load.natural_frequency is not None:
+        raise source.error(f"{why}; remove load.natural_frequency", ("load",
+                                                                     "natural_frequency"))

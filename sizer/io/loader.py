@@ -34,7 +34,7 @@ from sizer.io.data_law_rules import (
     scale_warnings,
 )
 from sizer.io.data_laws import canonical_data_laws
-from sizer.io.linkage import linkage_task, output_linear
+from sizer.io.linkage import check_linkage_design, linkage_task, output_linear
 from sizer.io.motor_rules import (
     MotorProblem,
     impossibilities,
@@ -321,16 +321,22 @@ def _design_drives(model: DesignFile, source: YamlSource, folder: Path,
                    from_catalogs: list[_LocatedDrive], motors: Sequence[Motor],
                    files: list[Path]) -> tuple[ServoDrive, ...]:
     """The drives of a design (its ``drives:`` catalogs, then those of its motor catalogs),
-    each checked against the loaded motors: an id it names must be loaded, and a motor it
-    names must give its torque constant."""
+    each checked against the loaded motors: an id it names must be loaded (a bundled
+    catalog's drive naming motors that are not loaded is simply not paired with them), and
+    a motor it names must give its torque constant."""
     located: list[_LocatedDrive] = []
     read: set[Path] = set()
+    bundled = {p.resolve() for p in bundled_drive_catalogs().values()}
+    shipped: set[int] = set()  # ids of the YamlSources of bundled catalogs
     for index, reference in enumerate(model.drives or ()):
         path = resolve_drive_catalog(reference.strip(), folder, source, ("drives", index))
         if path.resolve() not in read:
             read.add(path.resolve())
             files.append(path)
-            located.extend(read_drive_catalog(path))
+            items = read_drive_catalog(path)
+            if path.resolve() in bundled:
+                shipped.update(id(item.source) for item in items)
+            located.extend(items)
     located.extend(from_catalogs)
     first: dict[str, _LocatedDrive] = {}
     ids = [m.id for m in motors]
@@ -343,6 +349,8 @@ def _design_drives(model: DesignFile, source: YamlSource, folder: Path,
         for k, pattern in enumerate(item.drive.motors or ()):
             matched = fnmatch.filter(ids, pattern)
             at = (*item.at, "motors", k)
+            if not matched and id(item.source) in shipped:
+                continue
             if not matched:
                 shown = ", ".join(ids[:12]) + (", ..." if len(ids) > 12 else "") or "none"
                 raise item.source.error(f"drive {item.drive.id!r}: no loaded motor is "
@@ -354,6 +362,17 @@ def _design_drives(model: DesignFile, source: YamlSource, folder: Path,
                     "torque_constant: the drive's currents become torques through it "
                     "(give the motor's torque_constant, N*m/A)", at)
     return tuple(item.drive for item in located)
+
+
+def _linkage_start_at(model: DesignFile, source: YamlSource) -> tuple[Any, ...]:
+    """The path of the ``start_angle`` of the design's linkage stage (a slider_crank or a
+    four_bar: sizer.io.transmission allows one, the last moving stage)."""
+    items = model.transmission or []
+    if isinstance(source.data, dict) and isinstance(source.data.get("transmission"), list):
+        index = max(i for i, item in enumerate(items)
+                    if getattr(item, "type", None) in ("slider_crank", "four_bar"))
+        return ("transmission", index, "start_angle")
+    return ("transmission", "start_angle")
 
 
 def _check_unique(motors: Iterable[_Located]) -> None:
@@ -426,7 +445,9 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
     transmission, ratio_choice = build_transmission(model.transmission, source, folder,
                                                     linear)
     if transmission.linkage is not None:
-        task, cycle, linear = linkage_task(task, transmission.linkage, cycle, source)
+        task, cycle, linear = linkage_task(task, transmission.linkage, cycle, source,
+                                           _linkage_start_at(model, source))
+        check_linkage_design(model, source)
     extra = list(extra_catalogs)
     if default_motors and model.motors is None and not extra:
         extra = list(default_catalogs().values())
@@ -633,6 +654,9 @@ def _design_motors(model: DesignFile, source: YamlSource, folder: Path,
             located.append(_Located(motor, source, at))
     for reference in extra_catalogs:
         add_catalog(resolve_catalog(reference, Path.cwd()))
+    if not located and model.motors is not None:  # `motors: []` and no --catalog
+        raise source.error("no motors to size: the list is empty (name a catalog or a motor, "
+                           "or omit `motors:` and give --catalog)", ("motors",))
     _check_unique(located)
     return tuple(m.motor for m in located)
 

@@ -21,7 +21,7 @@ from sizer.input_limits import MAX_DESIGN_BYTES, MAX_DESIGN_NODES
 from sizer.io.file_kind import is_machine_data, is_machine_file
 from sizer.io.validation import validate
 from sizer.io.yaml_source import YamlSource, format_path, parse_yaml, read_yaml
-from sizer.model.machine import Bus, Machine, MachineAxis
+from sizer.model.machine import Bus, Machine, MachineAxis, bus_level_fault
 from sizer.model.machine_inputs import MINIMIZE, AxisInput, MachineFile
 
 __all__ = ["is_machine_data", "is_machine_file", "load_machine", "load_machine_data",
@@ -71,9 +71,9 @@ def _machine_of(source: YamlSource, folder: Path, name: str, files: list[Path]) 
     if model.bus is not None:
         bus = Bus(model.bus.capacitance, model.bus.voltage, model.bus.braking_threshold,
                   model.bus.braking_resistor_power)
-        if (bus.voltage is not None and bus.braking_threshold is not None
-                and bus.braking_threshold <= bus.voltage):
-            raise source.error("must be above the bus voltage", ("bus", "braking_threshold"))
+        fault = bus_level_fault(bus.voltage, bus.braking_threshold)
+        if fault is not None:
+            raise source.error(fault[1], ("bus", fault[0]))
     return Machine(axes=tuple(axes), cycle_angle=cycle,
                    master_speed=None if speed == MINIMIZE else float(speed),  # type: ignore[arg-type]
                    bus=bus, name=model.name if model.name is not None else name,

@@ -158,6 +158,10 @@ def _message(kind: str, item: Any, value: Any, ctx: dict[str, Any],
     if kind == "too_short":
         count = ctx.get("min_length", 1)
         return f"needs at least {count} item{'s' * (count != 1)}"
+    if kind == "too_long":
+        count = ctx.get("max_length", 0)
+        got = f", got {ctx['actual_length']}" if ctx.get("actual_length") is not None else ""
+        return f"at most {count} item{'s' * (count != 1)}{got}"
     return _strip_prefix(str(item.get("msg", "invalid value")).splitlines()[0])
 
 

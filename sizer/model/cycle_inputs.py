@@ -17,6 +17,7 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BeforeValidator, ConfigDict, Field, StrictBool, WithJsonSchema, model_validator
 
+from sizer.input_limits import MAX_CYCLE_SEGMENTS
 from sizer.model.inputs_base import (
     Identifier,
     Ranged,
@@ -26,6 +27,7 @@ from sizer.model.inputs_base import (
     convert,
     convert_in,
     not_null,
+    quantity_text,
     range_schema,
     show_value,
 )
@@ -50,7 +52,7 @@ FreeDuration = Annotated[
     BeforeValidator(_free_duration),
     WithJsonSchema({"anyOf": [{"type": "number", "minimum": RANGES["duration"].low,
                                "maximum": RANGES["duration"].high},
-                              {"type": "string"}],
+                              quantity_text("free")],
                     "description": "time like '0.3 s', or 'free' (scaled with the other "
                                    "free segments, sec. 5.2); must be "
                                    f"{RANGES['duration'].text()} (SI)"}),
@@ -84,7 +86,8 @@ Rate = Annotated[
     float,
     BeforeValidator(_rate),
     WithJsonSchema(range_schema(RANGES["cycle_rate"],
-                                "cycles per time, e.g. '50 /min' (a cycle time of 1.2 s)")),
+                                "cycles per time, e.g. '50 /min' (a cycle time of 1.2 s)",
+                                slash=True)),
     RangeRef("cycle_rate"),
 ]
 
@@ -230,6 +233,14 @@ _EXAMPLES = {"move": "{move: {displacement: 90 deg, duration: 0.3 s}}",
              "dwell": "{dwell: {duration: 0.2 s}}"}
 
 
+def _few_segments(value: Any) -> Any:
+    """At most MAX_CYCLE_SEGMENTS segments, refused before any segment is read."""
+    if isinstance(value, list) and len(value) > MAX_CYCLE_SEGMENTS:
+        raise ValueError(f"a cycle of {len(value)} segments: the limit is "
+                         f"{MAX_CYCLE_SEGMENTS} (sizer.input_limits.MAX_CYCLE_SEGMENTS)")
+    return value
+
+
 class CycleInput(Strict):
     """A machine cycle: its segments, in order, repeated; how free durations share time."""
 
@@ -247,4 +258,6 @@ class CycleInput(Strict):
     closed: StrictBool = Field(
         False, description="the cycle ends where it starts: net displacement 0, and the "
                            "last end speed equals the first start speed")
-    segments: list[SegmentInput] = Field(min_length=1, description="the segments, in order")
+    segments: Annotated[list[SegmentInput], BeforeValidator(_few_segments)] = Field(
+        min_length=1, max_length=MAX_CYCLE_SEGMENTS,
+        description=f"the segments, in order (1 to {MAX_CYCLE_SEGMENTS})")

@@ -43,6 +43,7 @@ from sizer.model.inputs_base import (
     convert_in,
     given,
     not_null,
+    quantity_text,
     show_value,
 )
 from sizer.model.law_schema import LAW_SPEC_SCHEMA
@@ -244,17 +245,17 @@ class DriveInput(_Strict):
 
     @model_validator(mode="after")
     def _levels(self) -> DriveInput:
-        """Peak current >= continuous; braking threshold <= the trip level."""
+        """Peak current >= continuous; the bus levels consistent (bus_level_fault)."""
+        from sizer.model.machine import bus_level_fault
+
         if self.peak_current < self.continuous_current:
             raise PydanticCustomError(
                 "peak_below_continuous", f"peak current {self.peak_current:g} A is below the "
                 f"continuous current {self.continuous_current:g} A", {"at": ("peak_current",)})
-        if (self.braking_threshold is not None and self.max_bus_voltage is not None
-                and self.braking_threshold > self.max_bus_voltage):
-            raise PydanticCustomError(
-                "braking_above_trip", f"braking threshold {self.braking_threshold:g} V is "
-                f"above the maximum bus voltage {self.max_bus_voltage:g} V",
-                {"at": ("braking_threshold",)})
+        fault = bus_level_fault(self.dc_bus_voltage, self.braking_threshold,
+                                self.max_bus_voltage, voltage_name="dc_bus_voltage")
+        if fault is not None:
+            raise PydanticCustomError("bus_levels", fault[1], {"at": (fault[0],)})
         return self
 
 
@@ -316,7 +317,7 @@ class TaskInput(_Strict):
         BeforeValidator(_duration),
         WithJsonSchema({"anyOf": [{"type": "number", "minimum": RANGES["duration"].low,
                                    "maximum": RANGES["duration"].high},
-                                  {"type": "string"}],
+                                  quantity_text("minimize")],
                         "description": "T, time like '0.25 s', or 'minimize'; must be "
                                        f"{RANGES['duration'].text()} (SI)"}),
         RangeRef("duration"),
@@ -484,8 +485,9 @@ class DesignFile(_Strict):
         None, description="catalog paths (relative to this file), bundled catalog names "
                           "or inline motors")
     drives: Annotated[list[Text] | None, OneOrList("string")] = Field(
-        None, description="drive catalogs (paths relative to this file, or bundled names): "
-                          "each motor is paired with each compatible drive")
+        None, min_length=1,
+        description="drive catalogs (paths relative to this file, or bundled names): "
+                    "each motor is paired with each compatible drive")
     check: CheckInput | None = None
     limits: LimitsInput = Field(default_factory=LimitsInput)
     efficiency_applies_to: Annotated[

@@ -49,6 +49,25 @@ class Bus:
     braking_resistor_power: float | None = None
 
 
+def bus_level_fault(voltage: float | None, braking_threshold: float | None,
+                    max_voltage: float | None = None, *,
+                    voltage_name: str = "voltage") -> tuple[str, str] | None:
+    """The first inconsistent DC-link level, as (field, message), or None: the braking
+    chopper switches on above the nominal bus voltage, and the overvoltage trip level
+    (``max_voltage``) is above both (a drive's or a machine's bus; volts)."""
+    if voltage is not None and max_voltage is not None and max_voltage <= voltage:
+        return "max_bus_voltage", (f"max_bus_voltage {max_voltage:g} V must be above the bus "
+                                   f"voltage {voltage_name} {voltage:g} V")
+    if voltage is not None and braking_threshold is not None and braking_threshold <= voltage:
+        return "braking_threshold", (f"braking_threshold {braking_threshold:g} V must be above "
+                                     f"the bus voltage {voltage_name} {voltage:g} V")
+    if (braking_threshold is not None and max_voltage is not None
+            and braking_threshold > max_voltage):
+        return "braking_threshold", (f"braking_threshold {braking_threshold:g} V is above "
+                                     f"the maximum bus voltage {max_voltage:g} V")
+    return None
+
+
 @dataclass(frozen=True)
 class Machine:
     """Axes on one master: ``master_speed`` rad/s (None: as fast as the slowest axis

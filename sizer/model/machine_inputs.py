@@ -21,8 +21,10 @@ from pydantic import (
 )
 from pydantic_core import PydanticCustomError
 
+from sizer.input_limits import MAX_MACHINE_AXES
 from sizer.model.inputs import DesignFile
 from sizer.model.inputs_base import (
+    Identifier,
     Ranged,
     RangeRef,
     RawQuantity,
@@ -31,6 +33,7 @@ from sizer.model.inputs_base import (
     convert_in,
     given,
     not_null,
+    quantity_text,
 )
 from sizer.model.ranges import RANGES
 
@@ -66,7 +69,8 @@ class AxisInput(DesignFile):
 
     model_config = ConfigDict(json_schema_extra=lambda schema, _: _no_cycle(schema))
 
-    name: Text = Field(description="the axis's name, unique in the machine")  # type: ignore[assignment]
+    name: Identifier = Field(  # type: ignore[assignment]
+        description="the axis's name, unique in the machine, not empty")
     task: Annotated[AxisTaskInput, BeforeValidator(given)] = Field(  # type: ignore[assignment]
         description="the move on the master, its dwell and an optional return")
     cycle: None = Field(None, description="not in an axis (a design file's cycle of "  # type: ignore[assignment]
@@ -110,7 +114,7 @@ class MachineInput(Strict):
         WithJsonSchema({"anyOf": [{"type": "number",
                                    "minimum": RANGES["master_speed"].low,
                                    "maximum": RANGES["master_speed"].high},
-                                  {"type": "string"}],
+                                  quantity_text("minimize")],
                         "description": "the master's constant speed ('120 rpm', "
                                        "'720 deg/s') or 'minimize': as fast as the slowest "
                                        "axis allows"}),
@@ -145,6 +149,14 @@ class BusInput(Strict):
                                         "checked against the axes' summed braking") | None = None
 
 
+def _few_axes(value: Any) -> Any:
+    """At most MAX_MACHINE_AXES axes, refused before any axis is read."""
+    if isinstance(value, list) and len(value) > MAX_MACHINE_AXES:
+        raise ValueError(f"a machine of {len(value)} axes: the limit is {MAX_MACHINE_AXES} "
+                         f"(sizer.input_limits.MAX_MACHINE_AXES)")
+    return value
+
+
 class MachineFile(Strict):
     """A machine file: the master, two or more axes on it, and their DC bus."""
 
@@ -152,8 +164,9 @@ class MachineFile(Strict):
 
     name: Text | None = None
     machine: Annotated[MachineInput, BeforeValidator(given)]
-    axes: list[AxisInput] = Field(min_length=1, max_length=8,
-                                  description="the axes on the master (1 to 8)")
+    axes: Annotated[list[AxisInput], BeforeValidator(_few_axes)] = Field(
+        min_length=1, max_length=MAX_MACHINE_AXES,
+        description=f"the axes on the master (1 to {MAX_MACHINE_AXES})")
     bus: Annotated[BusInput | None, BeforeValidator(given)] = Field(
         None, description="the DC bus the axes share; omitted: the bus figures use the "
                           "drives' data")

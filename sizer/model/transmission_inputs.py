@@ -12,7 +12,15 @@ from typing import Annotated, Any, Literal
 from pydantic import BeforeValidator, Field, WithJsonSchema
 
 from sizer.mechanics.stages import STEEL_DENSITY
-from sizer.model.inputs_base import Ranged, RangeRef, Strict, Text, convert_in, show_value
+from sizer.model.inputs_base import (
+    Ranged,
+    RangeRef,
+    Strict,
+    Text,
+    convert_in,
+    quantity_text,
+    show_value,
+)
 from sizer.model.ranges import RANGES
 
 DEFAULT_RATIO_BOUNDS = (1.0, 100.0)
@@ -57,7 +65,7 @@ def _ratio_of(name: str) -> Any:
 def _ratio_schema(name: str, optimize: bool) -> dict[str, Any]:
     allowed = RANGES[name]
     number = {"type": "number", "minimum": allowed.low, "maximum": allowed.high}
-    item = {"anyOf": [number, {"type": "string"}]}
+    item = {"anyOf": [number, quantity_text()]}
     branches: list[dict[str, Any]] = [
         number, {"type": "array", "minItems": 1, "maxItems": MAX_RATIO_OPTIONS,
                  "items": item}]
@@ -154,6 +162,17 @@ LinkMass = Ranged("link_mass", note="a point mass at the joint")
 LawOn = Literal["crank", "output"]
 
 
+def _no_bool(value: Any) -> Any:
+    """A YAML true/false is not the number 1/0 (pydantic would take True for 1)."""
+    if isinstance(value, bool):
+        raise ValueError(f"expected 1 or -1, got {value}")
+    return value
+
+
+Branch = Annotated[Literal[1, -1], BeforeValidator(_no_bool)]
+"""A four-bar's assembly: 1 (open) or -1 (crossed), a number, not a boolean."""
+
+
 class _LinkageInput(Strict):
     """What every linkage stage has (seed 003): where the motion law is given, the crank's
     start and turning direction, the crank's inertia and the connecting link as two point
@@ -202,7 +221,7 @@ class FourBarInput(_LinkageInput):
     coupler: Length  # type: ignore[valid-type]
     rocker: Length  # type: ignore[valid-type]
     ground: Length  # type: ignore[valid-type]
-    branch: Literal[1, -1] = Field(1, description="the assembly: 1 open, -1 crossed")
+    branch: Branch = Field(1, description="the assembly: 1 open, -1 crossed")
     coupler_mass_at_crank: LinkMass = 0.0  # type: ignore[valid-type]
     coupler_mass_at_rocker: LinkMass = 0.0  # type: ignore[valid-type]
 
