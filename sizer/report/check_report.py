@@ -16,7 +16,7 @@ from sizer.report.candidate_row import RPM_PER_RAD_S, check_line, check_passed, 
 from sizer.report.cycle_summary import duration_name
 from sizer.report.design_summary import design_summary
 from sizer.report.json_text import render_json
-from sizer.report.numbers import short
+from sizer.report.numbers import short, short_or_na
 from sizer.report.segment_table import SegmentDocument, breakdown_json, indented_text
 from sizer.report.sizing_table import RESULT_UNITS
 
@@ -50,12 +50,10 @@ class CheckDocument:
         if r.duration is None:
             return "no feasible duration"
         parts = [f"{duration_name(self.design)} = {short(r.duration * 1000.0)} ms"]
-        if r.peak_torque is not None:
-            parts.append(f"peak torque {short(r.peak_torque)} N*m")
-        if r.rms_torque is not None:
-            parts.append(f"rms torque {short(r.rms_torque)} N*m")
+        parts.append(f"peak torque {short_or_na(r.peak_torque, unit='N*m')}")
+        parts.append(f"rms torque {short_or_na(r.rms_torque, unit='N*m')}")
         if r.max_speed is not None:
-            parts.append(f"max speed {short(r.max_speed * RPM_PER_RAD_S)} rpm")
+            parts.append(f"max speed {short_or_na(r.max_speed, RPM_PER_RAD_S, 'rpm')}")
         return ", ".join(parts) + " (at the motor shaft)"
 
     def text(self) -> str:

@@ -26,7 +26,7 @@ from sizer.report.candidate_row import RPM_PER_RAD_S, check_line, percent
 from sizer.report.cycle_summary import duration_name
 from sizer.report.laws_table import LawsDocument
 from sizer.report.markdown_table import render_markdown_table
-from sizer.report.numbers import short
+from sizer.report.numbers import short, short_or_na
 from sizer.report.output import write_text_atomically
 from sizer.report.sizing_table import SizingDocument
 from sizer.report.table import Column, make_table
@@ -458,12 +458,10 @@ class DesignReport:
             return "No feasible duration"
         label = duration_name(self.design)
         parts = [f"{label} = {short(r.duration * 1000.0)} ms"]
-        if r.peak_torque is not None:
-            parts.append(f"peak torque {short(r.peak_torque)} N*m")
-        if r.rms_torque is not None:
-            parts.append(f"RMS torque {short(r.rms_torque)} N*m")
+        parts.append(f"peak torque {short_or_na(r.peak_torque, unit='N*m')}")
+        parts.append(f"RMS torque {short_or_na(r.rms_torque, unit='N*m')}")
         if r.max_speed is not None:
-            parts.append(f"max speed {short(r.max_speed * RPM_PER_RAD_S)} rpm")
+            parts.append(f"max speed {short_or_na(r.max_speed, RPM_PER_RAD_S, 'rpm')}")
         if r.drive is not None:
             parts.append(f"drive {r.drive}")
         for value, text in ((r.peak_power, "W peak motoring power"),

@@ -75,7 +75,8 @@ class MachineDocument(Rendered):
             head += ", no master speed suits every axis"
         else:
             speed = f"{short(r.master_speed * RPM)} rpm (cycle {_ms(r.cycle_time)})"  # type: ignore[operator]
-            head += (f", as fast as the slowest axis allows: {speed}, set by {r.limiting_axis}"
+            by = f", set by {r.limiting_axis}" if r.limiting_axis is not None else ""
+            head += (f", as fast as the slowest axis allows: {speed}{by}"
                      if r.minimize else f" at {speed}")
         out = [head]
         for axis, given in zip(r.axes, self.machine.axes, strict=True):

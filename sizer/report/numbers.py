@@ -23,6 +23,19 @@ def short(value: float, digits: int = SIGNIFICANT_DIGITS) -> str:
     return f"{value:.{digits}g}"
 
 
+NOT_A_NUMBER = "n/a"
+"""How a table shows a figure that is not a number (none, or not finite: a law that breaks
+a linkage's dead-point rule has no peak torque; its failed check says why)."""
+
+
+def short_or_na(value: float | None, scale: float = 1.0, unit: str = "") -> str:
+    """:func:`short` of ``value * scale`` with its unit, or :data:`NOT_A_NUMBER` (no
+    unit) for None, inf or NaN."""
+    if value is None or not math.isfinite(float(value) * scale):
+        return NOT_A_NUMBER
+    return short(float(value) * scale) + (f" {unit}" if unit else "")
+
+
 NOISE = 1e-12
 """Relative size, against the largest value of a column, below which a value is rounding."""
 

@@ -21,6 +21,7 @@ m/s^2 on a linear axis).
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -31,7 +32,7 @@ from sizer.report.design_summary import design_summary, finite_or_none
 from sizer.report.formats import Format, Rendered
 from sizer.report.json_text import render_json
 from sizer.report.markdown_table import render_markdown_table
-from sizer.report.numbers import full, short
+from sizer.report.numbers import full, short, short_or_na
 from sizer.report.output import emit, stdout_is_terminal
 from sizer.report.table import Column, Table, make_table
 from sizer.report.text_table import render_text_table
@@ -131,8 +132,25 @@ def breakdown_for(design: Design, result: CandidateResult) -> SegmentBreakdown:
         raise UserError(f"{result.motor} with {law_label(result.spec)} has no feasible duration "
                         f"({result.reason}): no segments to show")
     law = result.law_object if result.law_object is not None else result.spec
-    return segment_breakdown(design, motor_of(design, result), law, result.duration,
-                             transmission_for(design, result))
+    breakdown = segment_breakdown(design, motor_of(design, result), law, result.duration,
+                                  transmission_for(design, result))
+    if any(c.name == DEAD_POINT and not c.passed for c in result.checks):
+        return _unbounded(breakdown)
+    return breakdown
+
+
+DEAD_POINT = "dead_point"
+"""The check of a linkage's dead points (sizer.sizing.linkage_sizing): where a law fails it,
+the torques are unbounded (the crank's acceleration is infinite there)."""
+
+
+def _unbounded(breakdown: SegmentBreakdown) -> SegmentBreakdown:
+    """The breakdown of a law that fails the dead-point check: no torque, share or energy
+    is a number (the samples at the dead point were read as 0), so none is shown."""
+    nan = math.nan
+    rows = tuple(replace(row, peak_torque=nan, rms_torque=nan, rms_share=nan, energy=nan)
+                 for row in breakdown.rows)
+    return replace(breakdown, rms_torque=nan, rows=rows)
 
 
 class SegmentDocument(Rendered):
@@ -174,9 +192,9 @@ class SegmentDocument(Rendered):
     def summary(self) -> list[str]:
         """The cycle time and the cycle's RMS torque, and what a jerk impulse means."""
         b = self.breakdown
-        lines = [f"cycle time {_short(b.cycle_time, 1000.0)} ms, cycle rms torque "
-                 f"{_short(b.rms_torque)} N*m (at the motor shaft); the shares are of the "
-                 f"cycle's integral of tau^2"]
+        rms = short_or_na(b.rms_torque, unit="N*m")
+        lines = [f"cycle time {_short(b.cycle_time, 1000.0)} ms, cycle rms torque {rms} (at "
+                 f"the motor shaft); the shares are of the cycle's integral of tau^2"]
         if any(row.acceleration_step != 0.0 for row in b.rows):
             lines.append(f"{JERK_IMPULSE}: the acceleration steps at the segment's start (at "
                          f"the load), so the jerk is an impulse there")
@@ -186,7 +204,11 @@ class SegmentDocument(Rendered):
         """The lines under a human-readable table: the summary, then the notes."""
         b = self.breakdown
         lines = self.summary()
-        if self.feasible is False:
+        if math.isnan(b.rms_torque):
+            lines.append(f"note: {b.motor} with {law_label(b.law)}: the torques are unbounded "
+                         f"(the law breaks the linkage's dead-point rule: sizer check says "
+                         f"where); none is shown")
+        elif self.feasible is False:
             lines.append(f"note: {b.motor} with {law_label(b.law)} does not meet every "
                          f"limit (sizer check or sizer size --all say which)")
         lines += [f"note: {note}" for note in self.notes]

@@ -221,7 +221,11 @@ def evaluate_linkage_cycle(design: Design, law: MotionLaw, motors: MotorArrays,
     from sizer.sizing.checks import evaluate_checks
     from sizer.sizing.checks import feasible as all_pass
     from sizer.sizing.cycle_shape import given_scale
-    from sizer.sizing.linkage_sizing import dead_point_check, unbounded
+    from sizer.sizing.linkage_sizing import (
+        dead_point_check,
+        singular_metrics,
+        unbounded_checks,
+    )
     from sizer.sizing.minimum_duration import minimum_duration
 
     cycle: Cycle | None = design.cycle
@@ -237,12 +241,11 @@ def evaluate_linkage_cycle(design: Design, law: MotionLaw, motors: MotorArrays,
     s = calculator.initial_guess() if cycle.minimize else np.full(n, given_scale(cycle))
     metrics = calculator.evaluate(s)
     if issues:
-        metrics = replace(metrics, peak_torque=np.full(n, np.inf),
-                          peak_ratio=np.full(n, np.inf), rms_torque=np.full(n, np.inf))
+        metrics = singular_metrics(metrics)
     checks = [point, *evaluate_checks(metrics, motors, calculator.drive, design.limits,
                                       cycle.linear)]
     if issues:
-        checks = [unbounded(c) if c.name in ("peak", "rms") else c for c in checks]
+        checks = unbounded_checks(checks)
     feasible = all_pass(checks)
     duration = np.where(feasible, metrics.duration, np.nan) if cycle.minimize \
         else metrics.duration

@@ -418,6 +418,25 @@ def unbounded(check: CheckArrays) -> CheckArrays:
                    notes=np.full(n, UNBOUNDED_NOTE, dtype=object))
 
 
+UNBOUNDED_CHECKS = ("peak", "rms", "drive_peak_current", "drive_rms_current")
+"""The checks of the peak and RMS torques (and the drive's currents they need): unbounded
+where a law breaks the dead-point rule."""
+
+
+def unbounded_checks(checks: list[CheckArrays]) -> list[CheckArrays]:
+    """``checks`` with those of the torques unbounded (:func:`unbounded`)."""
+    return [unbounded(c) if c.name in UNBOUNDED_CHECKS else c for c in checks]
+
+
+def singular_metrics(metrics: CycleMetrics) -> CycleMetrics:
+    """The metrics of a law that breaks the dead-point rule: its peak and RMS torques are
+    not numbers (NaN, so results hold None and reports a verdict, never inf); the peak
+    ratio is unbounded (its check fails, :func:`unbounded`)."""
+    n = len(metrics.peak_torque)
+    return replace(metrics, peak_torque=np.full(n, np.nan), peak_ratio=np.full(n, np.inf),
+                   rms_torque=np.full(n, np.nan))
+
+
 def refined_max(values: np.ndarray, u: np.ndarray) -> np.ndarray:
     """The largest value of each row of samples at the increasing points u, refined by
     the parabola through the largest sample and its two neighbours (a smooth peak between
@@ -493,13 +512,12 @@ def evaluate_linkage(design: Design, law: MotionLaw, motors: MotorArrays, drive:
     if design.task.minimize:  # the law is infeasible at any duration: show one
         T = calculator.initial_guess()
     metrics = calculator.evaluate(T)
-    if profile.issues:  # the crank's motion is singular: no finite torque to report
-        metrics = replace(metrics, peak_torque=np.full(n, np.inf),
-                          peak_ratio=np.full(n, np.inf), rms_torque=np.full(n, np.inf))
+    if profile.issues:  # the crank's motion is singular: no torque to report
+        metrics = singular_metrics(metrics)
     checks = [point, *evaluate_checks(metrics, motors, drive, design.limits,
                                       design.task.linear)]
     if profile.issues:
-        checks = [unbounded(c) if c.name in ("peak", "rms") else c for c in checks]
+        checks = unbounded_checks(checks)
     feasible = all_pass(checks)
     duration = np.where(feasible, T, np.nan) if design.task.minimize else T
     return duration, metrics, checks, feasible

@@ -123,7 +123,7 @@ class CandidateTable:
 
         def figure(name: str) -> float | None:
             value = float(self.figures[name][i])
-            return value if known and not np.isnan(value) else None
+            return value if known and np.isfinite(value) else None  # never inf in a result
 
         extra = {} if self.stage_ratio is None else {"stage_ratio": float(self.stage_ratio[i])}
         transmission = self.transmissions[option]
