@@ -97,14 +97,14 @@ def test_a_header_but_no_rows(tmp_path: Path) -> None:
     path = _write(tmp_path / "empty.csv", "t [s],q [rad]\n\n")
     error = _error(path)
     assert "empty.csv has a header but no rows" in error.message
-    assert (error.file, error.line, error.field) == (str(path), 1, "file")
+    assert (error.file, error.line, error.field) == (str(path), 1, None)
 
 
 def test_a_non_number_cell_names_row_and_column(tmp_path: Path) -> None:
     path = _write(tmp_path / "bad.csv", "t [s],q [rad]\n0,0\n0.1,0.5\n0.2,1..0\n")
     error = _error(path)
-    assert "column 1 (q [rad])" in error.message and "'1..0' is not a number" in error.message
-    assert (error.file, error.line, error.field) == (str(path), 4, "file")
+    assert "'1..0' is not a number" in error.message
+    assert (error.file, error.line, error.field) == (str(path), 4, "column 1 (q [rad])")
     path = _write(tmp_path / "nan.csv", "0,0\n1,nan\n")
     error = _error(path)
     assert "not a finite number" in error.message and error.line == 2
@@ -120,22 +120,24 @@ def test_fewer_than_two_rows(tmp_path: Path) -> None:
     error = _error(_write(tmp_path / "one.csv", "t,q\n0,0\n"))
     assert "needs at least 2 samples" in error.message and error.line == 2
     error = _error(_write(tmp_path / "none.csv", "\n# nothing\n"))
-    assert "has no rows" in error.message and error.field == "file"
+    assert "has no rows" in error.message and error.field is None
 
 
 def test_missing_file_and_not_a_csv(tmp_path: Path) -> None:
-    error = _error(tmp_path / "absent.csv")
-    assert "not found" in error.message and error.file == str(tmp_path / "absent.csv")
+    error = _error(tmp_path / "absent.csv")  # the mapping's field, located by the caller
+    assert "not found" in error.message and str(tmp_path / "absent.csv") in error.message
+    assert (error.file, error.field) == (None, "file")
     binary = tmp_path / "cam.xlsx"
     binary.write_bytes(b"PK\x03\x04\x00\x00\xff\xfe\x00")
     error = _error(binary)
-    assert "is not a CSV file" in error.message and error.field == "file"
+    assert "is not a CSV file" in error.message and error.file == str(binary)
 
 
 def test_missing_column_name(law_csv: Path, tmp_path: Path) -> None:
     error = _error(law_csv, columns=["angle", "q"])
     assert "no column 'angle'" in error.message and "t [s], q [rad]" in error.message
-    assert (error.line, error.field) == (1, "columns[0]")
+    assert (error.file, error.field) == (None, "columns[0]")  # the mapping's field
+    assert "cycloidal.csv" in error.message and "(line 1)" in error.message
     error = _error(law_csv, columns=[0, 7])
     assert "out of range" in error.message and error.field == "columns[1]"
     headerless = _write(tmp_path / "h.csv", "0,0\n1,1\n")
@@ -160,13 +162,14 @@ def test_build_x_not_increasing_names_the_line(tmp_path: Path) -> None:
     rows = "".join(f"{t},{t * t}\n" for t in (0, 1, 2, 3, 3, 5, 6, 7))
     error = _build_error(tmp_path, "angle [deg],lift [mm]\n" + rows)
     assert "angle must increase strictly: 3 follows 3" in error.message
-    assert (error.file, error.line, error.field) == (str(tmp_path / "cam.csv"), 6, "file")
+    assert (error.file, error.line, error.field) == (str(tmp_path / "cam.csv"), 6,
+                                                     "column 0 (angle [deg])")
 
 
 def test_build_too_few_rows_for_the_order(tmp_path: Path) -> None:
     error = _build_error(tmp_path, "t,q\n0,0\n1,1\n2,4\n3,9\n", order=6)
     assert "order 6 needs at least 6 samples, got 4" in error.message
-    assert (error.file, error.field) == (str(tmp_path / "cam.csv"), "order")
+    assert (error.file, error.field) == (None, "order")  # the mapping's field
     fit = build_cam_table({"file": "cam.csv", "order": 4}, tmp_path)
     assert fit.max_residual < 1e-12
 
@@ -181,4 +184,4 @@ def test_build_fields(tmp_path: Path) -> None:
     assert caught.value.field == "file"
     with pytest.raises(UserError, match="not found") as caught:
         build_cam_table({"file": "elsewhere.csv"}, tmp_path)
-    assert caught.value.file == str(tmp_path / "elsewhere.csv")
+    assert caught.value.field == "file" and str(tmp_path / "elsewhere.csv") in str(caught.value)

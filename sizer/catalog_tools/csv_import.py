@@ -16,9 +16,6 @@ as a CatalogImportError, each located at the CSV file and line.
 
 from __future__ import annotations
 
-import csv
-import io
-import re
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -29,6 +26,7 @@ from pydantic import ValidationError
 from sizer.catalog_tools.catalog_yaml import render_catalog
 from sizer.errors import UserError
 from sizer.input_limits import MAX_CATALOG_BYTES
+from sizer.io.csv_rows import NUMBER, csv_delimiter, csv_records, decimal_point
 from sizer.io.files import decode_text, read_user_bytes
 from sizer.io.motor_rules import check_motor
 from sizer.io.validation import all_problems
@@ -55,11 +53,6 @@ FIELD_KINDS: dict[str, str | None] = {
 (None: text). Speed-torque curves are not imported (one row, one motor)."""
 
 REQUIRED_FIELDS = ("id", "inertia", "continuous_torque", "peak_torque", "rated_speed")
-
-DELIMITERS = ",;\t|"
-"""Delimiters recognized in the header line when none is given."""
-
-_NUMBER = re.compile(r"^[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?$")
 
 
 @dataclass(frozen=True)
@@ -207,20 +200,11 @@ def _read_rows(path: Path, encoding: str, delimiter: str | None) -> list[tuple[i
                         f"--encoding, e.g. cp1252)", file=error.file, line=error.line) from None
     if not text.strip():
         raise UserError("the file is empty", file=str(path))
-    if delimiter is None:
-        first = text.lstrip("\r\n").splitlines()[0]
-        counts = {d: first.count(d) for d in DELIMITERS}
-        delimiter = max(DELIMITERS, key=lambda d: counts[d]) if any(counts.values()) else ","
-    reader = csv.reader(io.StringIO(text, newline=""), delimiter=delimiter, strict=True)
+    delimiter = csv_delimiter(text, delimiter)
     rows: list[tuple[int, list[str]]] = []
-    start = 1
-    try:
-        for cells in reader:
-            if cells or rows:  # blank lines before the header are skipped
-                rows.append((start, cells))
-            start = reader.line_num + 1
-    except csv.Error as error:
-        raise UserError(f"invalid CSV: {error}", file=str(path), line=reader.line_num) from None
+    for start, cells in csv_records(text, str(path), delimiter):
+        if cells or rows:  # blank lines before the header are skipped
+            rows.append((start, cells))
     while rows and not any(c.strip() for c in rows[0][1]):
         rows.pop(0)
     if not rows:
@@ -263,11 +247,11 @@ def _row(path: Path, line: int, cells: list[str], maps: Sequence[ColumnMap],
             continue
         kind = FIELD_KINDS[item.field]
         if kind is not None and decimal_comma:
-            cell = _decimal_point(cell)
+            cell = decimal_point(cell)
         if item.unit is not None:
-            if not _NUMBER.match(cell):
+            if not NUMBER.match(cell):
                 hint = (" (a decimal comma? give --decimal-comma)"
-                        if not decimal_comma and _NUMBER.match(_decimal_point(cell)) else "")
+                        if not decimal_comma and NUMBER.match(decimal_point(cell)) else "")
                 problems.append(UserError(
                     f"expected a number (the unit {item.unit} comes from --map), got "
                     f"{cell!r}{hint}", file=str(path), line=line,
@@ -277,13 +261,6 @@ def _row(path: Path, line: int, cells: list[str], maps: Sequence[ColumnMap],
         values[item.field] = cell
     ordered = {name: values[name] for name in FIELD_KINDS if name in values}
     return ordered, problems
-
-
-def _decimal_point(cell: str) -> str:
-    """'0,38' -> '0.38' (the number part only; '1.234,5' -> '1234.5')."""
-    number, _, rest = cell.partition(" ")
-    number = number.replace(".", "").replace(",", ".") if "," in number else number
-    return f"{number} {rest}".strip()
 
 
 def _validate(path: Path, line: int, motor: dict[str, str], maps: Sequence[ColumnMap],

@@ -58,6 +58,7 @@ def law(
         raise UserError(f"must be between 2 and {MAX_SAMPLES}, got {samples}", field="--samples")
     with blame_option("SPEC"):
         law_object = make_law(spec)
+    check_output(output)  # again: not over a file the law read (a cam table)
     scale = getattr(law_object, "scale", None)
     if displacement is not None:
         h, linear = parse_displacement(displacement, field="--displacement")

@@ -43,6 +43,7 @@ def laws(
     specs = law or list(DEFAULT_LAW_SPECS)
     with blame_option("--law"):
         laws = [make_law(spec) for spec in specs]
+    check_output(output)  # again: not over a file a law read (a cam table)
     publish(LawsDocument(laws), fmt, output)
 
 

@@ -3,7 +3,11 @@
 Every command with ``-o`` calls :func:`check_output` with the inputs it knows from its
 arguments (the design file, ``--catalog`` files, the CSV it imports) before reading
 anything, and again with the files a design load read (``Design.files``: the catalogs
-and gearbox catalogs the design names) before computing. Nothing is written then.
+and gearbox catalogs the design names) before computing. Both also refuse any file this
+process has read (:mod:`sizer.files_read`: a cam table a law read, the axis files of a
+machine...), so a command that builds its laws calls :func:`check_output` once more, after
+building them and before computing. Nothing is written then; and the writer itself
+(sizer.report.output.write_bytes_atomically) refuses a file read, whatever was checked.
 """
 
 from __future__ import annotations

@@ -8,15 +8,24 @@ The file is what ``sizer law ... --format csv`` prints, or any table like it::
 
 A header row is optional; its cells are names with an optional unit in brackets
 (``angle [deg]``, ``position [mm]``). Blank lines and lines starting with ``#`` are
-skipped. The numbers are returned as written: the units are the caller's business
-(:class:`CamTableData` carries their texts).
+skipped. Cells are separated by ``,`` ``;`` a tab or ``|`` (sniffed, sizer.io.csv_rows);
+with a separator other than ``,`` a decimal comma is read too (``0,5;1,25``). The file is
+read by the bounded reader (a regular file of at most MAX_CAM_TABLE_BYTES), its rows
+counted as they are read (at most MAX_CAM_TABLE_ROWS). The numbers
+are returned as written: the units are the caller's business (:class:`CamTableData`
+carries their texts).
+
+Messages: a mistake in the file names the file, its line and the column; a mistake in the
+mapping's fields (``file`` not found, ``columns``, ``order``...) names the field only, for
+the design loader to put at its line (or the command line at its option).
 """
 
 from __future__ import annotations
 
-import csv
+import itertools
 import math
 import re
+from array import array
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -25,6 +34,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from sizer.errors import UserError
+from sizer.input_limits import MAX_CAM_TABLE_BYTES, MAX_CAM_TABLE_ROWS
+from sizer.io.csv_rows import NUMBER, comma_is_decimal, csv_delimiter, csv_records
+from sizer.io.files import decode_text, read_user_bytes
 
 if TYPE_CHECKING:
     from sizer.laws.multipoint.sample_fit import SampleFit
@@ -32,6 +44,8 @@ if TYPE_CHECKING:
 CAM_TABLE_FIELDS = ("file", "columns")
 """The YAML fields that locate the samples; the fitting fields are sample_fit.FIT_FIELDS."""
 
+_NON_FINITE = ("nan", "inf", "infinity")
+_SEPARATORS = {",": "','", ";": "';'", "\t": "tabs", "|": "'|'"}
 _HEADER_CELL = re.compile(r"^\s*(?P<name>[^\[\]]*?)\s*(?:\[(?P<unit>[^\[\]]*)\])?\s*$")
 
 
@@ -41,7 +55,7 @@ class CamTableData:
 
     ``names`` and ``units`` come from the header (None without a header, or a unit None
     when the header cell has no brackets); ``lines`` is each row's line number in the
-    file (1-based), for messages.
+    file (1-based) and ``header_line`` the header's, for messages.
     """
 
     path: Path
@@ -51,43 +65,68 @@ class CamTableData:
     units: tuple[str | None, str | None]
     lines: np.ndarray
     columns: tuple[int, int]
+    header_line: int | None = None
+
+    def column_name(self, i: int) -> str:
+        """How messages name the x (``i`` = 0) or q (1) column: ``column 0 (t [s])``."""
+        column = self.columns[i]
+        name = self.names[i]
+        unit = self.units[i]
+        if name is None:
+            return f"column {column}"
+        return f"column {column} ({name}" + (f" [{unit}]" if unit is not None else "") + ")"
 
 
 def read_cam_table(path: Path, *, columns: Sequence[str | int] | None = None
                    ) -> CamTableData:
     """Read the samples of ``path``: columns ``columns`` = [x, q] chosen by header name
     (with or without its unit, e.g. ``t`` or ``t [s]``) or 0-based index; default the
-    first two. UserError with the file, the line and the field on every mistake."""
+    first two. A mistake in the file is a UserError at its file, line and column; a
+    ``columns`` that does not fit the file names the field ``columns[i]`` (the caller
+    locates it where ``columns`` is written)."""
     file = str(path)
-    rows = _rows(path)
-    if not rows:
-        raise UserError("has no rows: a cam table needs at least 2 samples", file=file,
-                        field="file")
+    text = _text(path)
+    delimiter = csv_delimiter(text, comment="#")
+    decimal_comma = comma_is_decimal(delimiter)
+    records = ((line, [c.strip() for c in cells])
+               for line, cells in csv_records(text, file, delimiter, comment="#")
+               if any(c.strip() for c in cells))
+    first = next(records, None)
+    if first is None:
+        raise UserError("has no rows: a cam table needs at least 2 samples", file=file)
     header = None
-    if not any(_is_number(cell) for cell in rows[0][1]):  # a data row with a typo has
-        header = rows.pop(0)                                # numbers too: _cell reports it
-        if not rows:
+    if not any(_number(cell, decimal_comma) is not None for cell in first[1]):
+        header, first = first, next(records, None)  # a data row with a typo has numbers
+        if first is None:                            # too: _cell reports it
             raise UserError(f"{path.name} has a header but no rows", file=file,
-                            line=header[0], field="file")
-    chosen = _columns(columns, header, rows, file)
-    x, q = [], []
-    for line, cells in rows:
+                            line=header[0])
+    chosen = _columns(columns, header, first, path)
+    x, q, lines = array("d"), array("d"), array("q")
+    for line, cells in itertools.chain((first,), records):
         if len(cells) <= max(chosen):
-            raise UserError(f"row has {len(cells)} cells, column {max(chosen)} is needed",
-                            file=file, line=line, field="file")
-        x.append(_cell(cells, chosen[0], line, header, file))
-        q.append(_cell(cells, chosen[1], line, header, file))
-    if len(rows) < 2:
-        raise UserError(f"has {len(rows)} row: a cam table needs at least 2 samples",
-                        file=file, line=rows[0][0], field="file")
+            raise UserError(f"the row has {len(cells)} cells, column {max(chosen)} is needed "
+                            f"(cells separated by {_SEPARATORS.get(delimiter, delimiter)})",
+                            file=file, line=line, field=_column_name(max(chosen), header))
+        if len(x) == MAX_CAM_TABLE_ROWS:
+            raise UserError(f"more than {MAX_CAM_TABLE_ROWS:,} rows: the limit is "
+                            f"{MAX_CAM_TABLE_ROWS:,} (MAX_CAM_TABLE_ROWS); resample the "
+                            f"table more coarsely", file=file, line=line)
+        x.append(_cell(cells, chosen[0], line, header, file, decimal_comma))
+        q.append(_cell(cells, chosen[1], line, header, file, decimal_comma))
+        lines.append(line)
+    if len(x) < 2:
+        raise UserError(f"has {len(x)} row: a cam table needs at least 2 samples",
+                        file=file, line=lines[0])
     names: list[str | None] = [None, None]
     units: list[str | None] = [None, None]
     if header is not None:
         for i, column in enumerate(chosen):
             names[i], units[i] = _name_unit(header[1][column])
-    return CamTableData(path=path, x=np.array(x), q=np.array(q), names=tuple(names),
-                        units=tuple(units), lines=np.array([r[0] for r in rows]),
-                        columns=(chosen[0], chosen[1]))
+    return CamTableData(path=path, x=np.array(x, dtype=float),
+                        q=np.array(q, dtype=float), names=(names[0], names[1]),
+                        units=(units[0], units[1]), lines=np.array(lines, dtype=np.int64),
+                        columns=(chosen[0], chosen[1]), header_line=(
+                            header[0] if header is not None else None))
 
 
 def build_cam_table(fields: Mapping[str, Any], base_dir: Path) -> SampleFit:
@@ -119,49 +158,37 @@ def load_cam_table(fields: Mapping[str, Any], base_dir: Path
         path = base_dir / path
     table = read_cam_table(path, columns=columns)
     _increasing(table)
-    try:
-        return table, build_cam_table_samples(fields, table.x, table.q)
-    except UserError as exc:
-        raise exc.located(file=str(path)) from None
+    # the fitting fields (order, smoothing, periodic) are the mapping's: their errors stay
+    # unlocated, for the design loader (its line) or the command line (its option)
+    return table, build_cam_table_samples(fields, table.x, table.q)
 
 
-def _rows(path: Path) -> list[tuple[int, list[str]]]:
-    """(line number, cells) of the non-blank, non-comment rows."""
+def _text(path: Path) -> str:
+    """The text of a cam table file: regular, at most MAX_CAM_TABLE_BYTES, UTF-8."""
     file = str(path)
     try:
-        text = path.read_text(encoding="utf-8-sig")
-    except FileNotFoundError:
-        raise UserError("cam table file not found", file=file, field="file") from None
-    except IsADirectoryError:
-        raise UserError("is a directory, not a CSV file", file=file, field="file") from None
-    except UnicodeDecodeError:
-        raise UserError("is not a CSV file (not UTF-8 text)", file=file,
-                        field="file") from None
-    except OSError as exc:
-        raise UserError(f"cannot be read: {exc.strerror}", file=file, field="file") from None
-    if "\x00" in text:
-        raise UserError("is not a CSV file (binary content)", file=file, field="file")
-    rows = []
-    reader = csv.reader(text.splitlines())
+        missing = not path.exists()
+        folder = path.is_dir()
+    except (OSError, ValueError):
+        missing = folder = False  # a name too long...: read_user_bytes says what
+    if missing or folder:  # the mapping's field is wrong, not a file: located there
+        raise UserError(f"cam table file {'not found' if missing else 'is a folder'}: "
+                        f"{file}", field="file")
+    raw = read_user_bytes(path, limit=MAX_CAM_TABLE_BYTES, what="CSV")
     try:
-        for cells in reader:
-            line = reader.line_num
-            if not cells or all(not c.strip() for c in cells) or cells[0].lstrip(
-                    ).startswith("#"):
-                continue
-            rows.append((line, [c.strip() for c in cells]))
-    except csv.Error as exc:
-        raise UserError(f"is not a CSV file: {exc}", file=file, line=reader.line_num,
-                        field="file") from None
-    return rows
+        return decode_text(raw, file)
+    except UserError as error:
+        raise UserError(f"is not a CSV file ({error.message})", file=file,
+                        line=error.line) from None
 
 
-def _is_number(cell: str) -> bool:
-    try:
-        float(cell)
-    except ValueError:
-        return False
-    return True
+def _number(cell: str, decimal_comma: bool) -> float | None:
+    """The number a cell writes (``0,5`` too where the comma is decimal), else None."""
+    if decimal_comma and "," in cell and "." not in cell and cell.count(",") == 1:
+        cell = cell.replace(",", ".")
+    if not NUMBER.match(cell):
+        return None
+    return float(cell)
 
 
 def _name_unit(cell: str) -> tuple[str, str | None]:
@@ -172,52 +199,54 @@ def _name_unit(cell: str) -> tuple[str, str | None]:
     return match.group("name"), unit.strip() if unit is not None else None
 
 
+def _column_name(column: int, header: tuple[int, list[str]] | None) -> str:
+    name = header[1][column] if header is not None and column < len(header[1]) else None
+    return f"column {column}" + (f" ({name})" if name else "")
+
+
 def _columns(columns: Sequence[str | int] | None, header: tuple[int, list[str]] | None,
-             rows: list[tuple[int, list[str]]], file: str) -> tuple[int, int]:
-    width = len(header[1]) if header is not None else len(rows[0][1])
+             first: tuple[int, list[str]], path: Path) -> tuple[int, int]:
+    """The 0-based [x, q] columns: the first two, or those ``columns`` names."""
+    width = len(header[1]) if header is not None else len(first[1])
     if columns is None:
         if width < 2:
-            raise UserError("has one column: a cam table needs two (x and q)", file=file,
-                            line=(header or rows[0])[0], field="columns")
+            raise UserError("has one column: a cam table needs two (x and q), separated by "
+                            "',', ';', a tab or '|'", file=str(path),
+                            line=(header or first)[0])
         return 0, 1
     chosen = []
     for i, column in enumerate(columns):
         if isinstance(column, int):
             if not 0 <= column < width:
-                raise UserError(f"column index {column} is out of range: the table has "
-                                f"{width} columns (0 to {width - 1})", file=file,
-                                field=f"columns[{i}]")
+                raise UserError(f"column index {column} is out of range: {path.name} has "
+                                f"{width} columns (0 to {width - 1})", field=f"columns[{i}]")
             chosen.append(column)
             continue
         if header is None:
-            raise UserError(f"the table has no header: choose column {column!r} by its "
-                            f"0-based index", file=file, field=f"columns[{i}]")
+            raise UserError(f"{path.name} has no header: choose column {column!r} by its "
+                            f"0-based index", field=f"columns[{i}]")
         cells = header[1]
         found = [j for j, cell in enumerate(cells)
                  if cell == column.strip() or _name_unit(cell)[0] == column.strip()]
         if not found:
-            raise UserError(f"no column {column!r}; the header has: {', '.join(cells)}",
-                            file=file, line=header[0], field=f"columns[{i}]")
+            raise UserError(f"no column {column!r} in {path.name}; its header (line "
+                            f"{header[0]}) has: {', '.join(cells)}", field=f"columns[{i}]")
         chosen.append(found[0])
     if chosen[0] == chosen[1]:
-        raise UserError("x and q must be two different columns", file=file,
-                        field="columns")
+        raise UserError("x and q must be two different columns", field="columns")
     return chosen[0], chosen[1]
 
 
 def _cell(cells: list[str], column: int, line: int, header: tuple[int, list[str]] | None,
-          file: str) -> float:
+          file: str, decimal_comma: bool) -> float:
     text = cells[column]
-    name = header[1][column] if header is not None and column < len(header[1]) else None
-    where = f"column {column}" + (f" ({name})" if name else "")
-    try:
-        value = float(text)
-    except ValueError:
-        raise UserError(f"{where}: {text!r} is not a number", file=file, line=line,
-                        field="file") from None
-    if not math.isfinite(value):
-        raise UserError(f"{where}: {text!r} is not a finite number", file=file, line=line,
-                        field="file")
+    value = _number(text, decimal_comma)
+    if value is None and text.strip().lstrip("+-").lower() not in _NON_FINITE:
+        raise UserError(f"{text!r} is not a number", file=file, line=line,
+                        field=_column_name(column, header))
+    if value is None or not math.isfinite(value):
+        raise UserError(f"{text!r} is not a finite number", file=file, line=line,
+                        field=_column_name(column, header))
     return value
 
 
@@ -229,4 +258,4 @@ def _increasing(table: CamTableData) -> None:
         name = table.names[0] or f"column {table.columns[0]}"
         raise UserError(f"{name} must increase strictly: {table.x[i]:g} follows "
                         f"{table.x[i - 1]:g}", file=str(table.path),
-                        line=int(table.lines[i]), field="file")
+                        line=int(table.lines[i]), field=table.column_name(0))

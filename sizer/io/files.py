@@ -5,6 +5,10 @@ regular file (a FIFO, a device like /dev/zero, a directory, a socket), reads at 
 ``limit + 1`` bytes, and decodes UTF-8 (a BOM is accepted). Every refusal is a UserError
 naming the file: too big (its size and the limit), not UTF-8 (the line), NUL bytes (binary or
 UTF-16), missing, unreadable, a name too long.
+
+Every file opened is remembered by its identity (``st_dev``, ``st_ino``) for the rest of
+the process (:mod:`sizer.files_read`), so that no output is written over an input
+(sizer.report.output.write_bytes_atomically refuses it).
 """
 
 from __future__ import annotations
@@ -15,6 +19,7 @@ import stat
 from pathlib import Path
 
 from sizer.errors import UserError
+from sizer.files_read import record_file_read
 from sizer.input_limits import MAX_CATALOG_BYTES, MIB
 
 _KINDS = (
@@ -77,6 +82,7 @@ def read_user_bytes(path: str | Path, *, limit: int = MAX_CATALOG_BYTES,
     try:
         info = os.fstat(fd)  # the file opened may not be the one stat()ed
         _refuse(info.st_mode, file, what)
+        record_file_read(info, file)
         if info.st_size > limit:
             raise _too_big(file, info.st_size, limit)
         chunks, total = [], 0

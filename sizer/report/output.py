@@ -16,8 +16,10 @@ Writing a file (:func:`write_bytes_atomically`):
   process of the same pid), is removed. A temporary of a live process of another pid is
   left alone (it may be a concurrent writer).
 
-Inputs are protected by :func:`check_output_not_input`: the output names one of the
-command's input files (also through a hard link or a symbolic link) -> UserError.
+Inputs are protected twice: :func:`check_output_not_input` (before any work) refuses an
+output that names one of the command's input files, and :func:`write_bytes_atomically`
+refuses a target that is a file this process read (:mod:`sizer.files_read`: the same
+inode, whatever the spelling, symbolic or hard link). Nothing is written then.
 """
 
 from __future__ import annotations
@@ -31,6 +33,7 @@ from collections.abc import Iterable
 from pathlib import Path
 
 from sizer.errors import UserError
+from sizer.files_read import file_read_as
 from sizer.report.printable import printable
 
 TEMPORARY_SUFFIX = ".tmp"
@@ -121,6 +124,7 @@ def write_bytes_atomically(path: Path | str, data: bytes, field: str = "--output
     replaced. UserError when the target cannot be written (nothing changed then)."""
     path = Path(path)
     target = real_target(path, field)
+    refuse_file_read(path, field)
     remove_stale_temporaries(target)
     temporary = target.parent / temporary_name(target.name, os.getpid())
     mode = _file_mode(target)
@@ -190,19 +194,30 @@ def same_file(a: Path | str, b: Path | str) -> bool:
         return False
 
 
+def _input_error(output: Path | str, given: Path | str, field: str) -> UserError:
+    which = ("is an input" if str(output) == str(given) else
+             f"is the same file as the input {given}")
+    return UserError(f"{which} of this command; a command never writes over its inputs: "
+                     f"name another output file", file=str(output), field=field)
+
+
+def refuse_file_read(output: Path | str, field: str = "--output") -> None:
+    """UserError when ``output`` names a file this process read (sizer.io.files)."""
+    given = file_read_as(output)
+    if given is not None:
+        raise _input_error(output, given, field)
+
+
 def check_output_not_input(output: Path | str | None, inputs: Iterable[Path | str],
                            field: str = "--output") -> None:
-    """UserError when ``output`` is one of the ``inputs`` (or a link to one): a command
-    never writes over a file it reads."""
+    """UserError when ``output`` is one of the ``inputs`` (or a link to one) or a file
+    this process has read: a command never writes over a file it reads."""
     if output is None:
         return
     for given in inputs:
         if same_file(output, given):
-            which = ("is an input" if str(output) == str(given) else
-                     f"is the same file as the input {given}")
-            raise UserError(f"{which} of this command; a command never writes over its "
-                            f"inputs: name another output file", file=str(output),
-                            field=field)
+            raise _input_error(output, given, field)
+    refuse_file_read(output, field)
 
 
 def emit(text: str, output: Path | None, *, escape: bool = False) -> None:
