@@ -10,14 +10,17 @@ from typing import Annotated
 
 import typer
 
-from sizer.cli.options import FormatOption, OutputOption, blame_option
+from sizer.cli.options import FormatOption, OutputOption, as_option, blame_option
 from sizer.errors import UserError
+from sizer.input_limits import MAX_SPECTRUM_CURVE_POINTS, MAX_SPECTRUM_LINES
 from sizer.report.formats import Format
 
 MAX_FT = 1000.0
 """Largest normalized frequency f T."""
 
-MAX_POINTS = 100_000
+MAX_POINTS = MAX_SPECTRUM_LINES
+"""Most frequencies (sizer.input_limits)."""
+
 MAX_WORK = 2_000_000.0
 """Largest points x max f T (the numerical transform's cost grows with both)."""
 
@@ -111,7 +114,8 @@ def spectrum(
         raise UserError(f"must be a number in (0, {MAX_FT:g}], got {max_ft:g}",
                         field="--max-ft")
     if not 2 <= points <= MAX_POINTS:
-        raise UserError(f"must be between 2 and {MAX_POINTS}, got {points}", field="--points")
+        raise UserError(f"must be between 2 and {MAX_POINTS:,} (MAX_SPECTRUM_LINES), got "
+                        f"{points}", field="--points")
     if points * max(max_ft, 1.0) > MAX_WORK:
         raise UserError(f"--points x --max-ft must be at most {MAX_WORK:g}, got "
                         f"{points} x {max_ft:g}", field="--points")
@@ -119,6 +123,7 @@ def spectrum(
         raise UserError(f"expected 1 (velocity), 2 (acceleration) or 3 (jerk), got {order}",
                         field="--order")
     move = _move(displacement, duration)
+    _check_scaled(move, max_ft)
     ratio = _period_ratio(period, move)
     if with_return and ratio is None:
         raise UserError("--return describes the repeated cycle: give --period too",
@@ -128,6 +133,8 @@ def spectrum(
                         "leave --order out", field="--order")
     with blame_option("SPEC"):
         laws = [make_law(spec) for spec in dict.fromkeys(specs)]
+    check_output(output)  # again: not over a file a law read (a cam table)
+    check_output(plot, field="--plot")
     if ratio is None:
         document = _spectrum_document(laws, max_ft, points, order, scale, move)
         envelopes: list = []
@@ -163,6 +170,22 @@ def _move(displacement: str | None, duration: str | None) -> Move:
     if h == 0.0:
         raise UserError("must not be zero", field="--displacement")
     return h, T, linear
+
+
+def _check_scaled(move: Move, max_ft: float) -> None:
+    """The scaled frequencies (max f T / T) and amplitudes (|h| / T^k, k = 0, 1, 2) within
+    the float range, else a UserError naming --duration."""
+    if move is None:
+        return
+    h, T, _ = move
+    try:
+        values = [max_ft / T, 1.0 / T] + [abs(h) / T**k for k in (0, 1, 2)]
+    except (OverflowError, ZeroDivisionError):
+        values = [math.inf]
+    if not all(math.isfinite(v) and v > 0.0 for v in values):
+        raise UserError(f"h = {h:g} and T = {T:g} s put the scaled spectrum (f up to "
+                        f"--max-ft / T, amplitudes h / T^k) outside the float range",
+                        field="--duration")
 
 
 def _period_ratio(period: str | None, move: Move) -> float | None:
@@ -249,7 +272,7 @@ def _harmonics_document(laws, max_ft: float, ratio: float, with_return: bool, mo
 
     with blame_option("--period"):
         ratio = check_period_ratio(ratio, with_return, field="--period")
-    with blame_option("--max-ft"):
+    with as_option("max_ft", "--max-ft"):
         k = harmonic_numbers(max_ft, ratio)
     if k.size == 0:
         raise UserError(f"no harmonic up to f*T = {max_ft:g}: the first is at "
@@ -262,7 +285,8 @@ def _harmonics_document(laws, max_ft: float, ratio: float, with_return: bool, mo
     fT = contents[0].fT
     envelopes = []
     if not with_return:  # v_k samples 2 (T/T_c) |A_N| at fT = k T/T_c
-        grid = np.linspace(0.0, float(fT[-1]), max(201, 40 * k.size))
+        grid = np.linspace(0.0, float(fT[-1]),
+                           min(max(201, 40 * k.size), MAX_SPECTRUM_CURVE_POINTS))
         envelopes = [(grid if move is None else grid / move[1],
                       factor * 2.0 / ratio * acceleration_spectrum(law, grid))
                      for law in laws]

@@ -10,6 +10,7 @@ import typer
 from sizer.cli.catalog_option import CatalogOption, DesignArgument, load_design_file
 from sizer.cli.options import FormatOption, OutputOption, blame_option, check_law_specs
 from sizer.errors import UserError
+from sizer.input_limits import MAX_VIBRATION_POINTS
 from sizer.report.formats import Format
 
 if TYPE_CHECKING:
@@ -18,8 +19,8 @@ if TYPE_CHECKING:
 POINTS = 201
 """Durations in the sweep by default."""
 
-MAX_POINTS = 100_000
-"""The most durations one sweep evaluates."""
+MAX_POINTS = MAX_VIBRATION_POINTS
+"""The most durations one sweep evaluates (sizer.input_limits)."""
 
 
 def vibration(
@@ -72,7 +73,8 @@ def vibration(
 
     check_law_specs(law or [], "--law")
     if not 2 <= points <= MAX_POINTS:
-        raise UserError(f"must be in [2, {MAX_POINTS:,}], got {points}", field="--points")
+        raise UserError(f"must be in [2, {MAX_POINTS:,}] (MAX_VIBRATION_POINTS), got "
+                        f"{points}", field="--points")
     check_output(output, [design, *(catalog or ())])
     check_output(plot, [design, *(catalog or ())], field="--plot")
     if plot is not None:
@@ -80,7 +82,8 @@ def vibration(
 
         figure_format(plot, "--plot")
     loaded = load_design_file(design, catalog)
-    check_outputs([p for p in (output, plot) if p is not None], loaded.files)
+    check_outputs([output] if output is not None else [], loaded.files)
+    check_outputs([plot] if plot is not None else [], loaded.files, field="--plot")
     if loaded.load.elastic is None:
         raise UserError("the design gives no mode of the load: add load.natural_frequency "
                         "(and damping_ratio)", file=str(design), field="load.natural_frequency")
@@ -96,6 +99,8 @@ def vibration(
                             "residual is zero by construction; give f_T to sweep one "
                             "shaping", field="--law" if law else "laws")
     laws = tuple(make_law(spec) for spec in specs)
+    check_output(output)  # again: not over a file a law read (a cam table)
+    check_output(plot, field="--plot")
     try:
         low, high = _range(loaded, start, stop)
         import numpy as np

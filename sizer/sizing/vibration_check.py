@@ -112,11 +112,11 @@ class CycleVibration:
         r = (None if move.start_acceleration == 0.0 and move.end_acceleration == 0.0 else
              (move.start_acceleration * flat**2 / h, move.end_acceleration * flat**2 / h))
 
-        def acceleration(u: np.ndarray) -> np.ndarray:
-            s0, s1 = move.start_speed * flat / h, move.end_speed * flat / h
+        def acceleration(u: np.ndarray, rows: np.ndarray) -> np.ndarray:
+            s0, s1 = move.start_speed * flat[rows] / h, move.end_speed * flat[rows] / h
             if r is None:
                 return basis.derivative(u, 2, s0, s1)
-            return basis.derivative(u, 2, s0, s1, r0=r[0], r1=r[1])
+            return basis.derivative(u, 2, s0, s1, r0=r[0][rows], r1=r[1][rows])
 
         return polynomial_increment(acceleration, basis.breaks, flat, self.load).reshape(
             T.shape)

@@ -22,12 +22,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from sizer.errors import UserError
+from sizer.input_limits import MAX_SPECTRUM_LINES
 from sizer.laws.base import MotionLaw
 from sizer.laws.registry import make_law
 from sizer.vibration.spectrum import acceleration_transform
 
-MAX_HARMONICS = 1_000_000
-"""Most harmonics computed at once."""
+MAX_HARMONICS = MAX_SPECTRUM_LINES
+"""Most harmonics computed at once (sizer.input_limits.MAX_SPECTRUM_LINES)."""
 
 
 @dataclass(frozen=True)
@@ -83,13 +84,16 @@ def check_period_ratio(period_ratio: float, with_return: bool = False,
 
 def harmonic_numbers(max_ft: float, period_ratio: float) -> np.ndarray:
     """k = 1, 2, ... up to the last harmonic with k T/T_c <= max_ft."""
-    span = float(max_ft) * float(period_ratio)
-    if not (math.isfinite(span) and span >= 0.0):
+    top = float(max_ft)
+    if not (math.isfinite(top) and top >= 0.0):
         raise UserError(f"must be a finite number >= 0, got {max_ft!r}", field="max_ft")
+    span = top * float(period_ratio)
+    if not span <= MAX_HARMONICS:  # inf and nan too
+        raise UserError(f"f T up to {top:g} with T_c/T = {float(period_ratio):g} is "
+                        f"{span:.4g} harmonics, more than {MAX_HARMONICS:,} "
+                        f"(MAX_SPECTRUM_LINES): lower the largest f T or the period",
+                        field="max_ft")
     count = math.floor(span * (1.0 + 1e-12))
-    if count > MAX_HARMONICS:
-        raise UserError(f"{count} harmonics is more than {MAX_HARMONICS}: lower the "
-                        f"frequency range", field="max_ft")
     return np.arange(1, max(count, 0) + 1)
 
 

@@ -19,8 +19,11 @@ import itertools
 
 import numpy as np
 
+from sizer.errors import UserError
 from sizer.laws.base import MotionLaw
 from sizer.laws.quadrature import gauss_legendre
+from sizer.vibration import convolution as cv
+from sizer.vibration import far_field as far
 from sizer.vibration.elastic_load import ElasticLoad
 
 
@@ -55,17 +58,53 @@ NODES = 20
 PHASE_STEP = 6.0
 """Largest |lambda T| * width of a part [rad] (as sizer.vibration.transform)."""
 
+GAUSS_S_MAX = float(2 ** 20)
+"""Largest |lambda T| integrated by Gauss-Legendre (its nodes grow with it)."""
+
 
 def polynomial_increment(acceleration, breaks: np.ndarray, duration: np.ndarray,
                          load: ElasticLoad) -> np.ndarray:
     """The H a move of unit displacement leaves from rest, for moves whose normalized
     acceleration differs per candidate (a move between boundary speeds: its shape depends
-    on v T / h): (1 / T) int_0^1 a_N(u) exp(lambda T (1 - u)) du. ``acceleration(u)`` gives
-    a_N at the nodes u for every candidate, (n, len(u)); ``breaks`` are its pieces' ends.
-    Composite Gauss-Legendre on the pieces, cut so that a part's phase stays below
-    PHASE_STEP (exact to rounding for polynomial pieces times the exponential)."""
+    on v T / h): (1 / T) int_0^1 a_N(u) exp(lambda T (1 - u)) du. ``acceleration(u, rows)``
+    gives a_N at the nodes u for those candidates, (len(rows), len(u)); ``breaks`` are its
+    pieces' ends. For |lambda T| >= far_field.FAR_MIN the end series (exact for polynomial
+    pieces, cost free of lambda T); else composite Gauss-Legendre on the pieces, cut so
+    that a part's phase stays below PHASE_STEP (exact to rounding for polynomial pieces
+    times the exponential), the candidates in groups of like |lambda T| and bounded
+    memory."""
     T = np.asarray(duration, dtype=float)
-    s = eigenvalue(load) * T
+    s = (eigenvalue(load) * T).ravel()
+    out = np.zeros(s.shape, dtype=complex)
+    rows = max(1, far.CHUNK // (far.POINTS * max(1, len(breaks))))
+    done = np.zeros(s.shape, dtype=bool)
+    for i in range(0, s.size, rows):  # fast modes: the end series, cost free of |s|
+        part = slice(i, i + rows)
+        big = np.flatnonzero(np.abs(s[part]) >= far.FAR_MIN)
+        if big.size:
+            index = np.arange(s.size)[part][big]
+            def of_rows(u: np.ndarray, _i: np.ndarray = index) -> np.ndarray:
+                return acceleration(u, _i)
+
+            value, ok = far.polynomial_end_values(of_rows, breaks, s[index])
+            out[index[ok]] = value[ok]
+            done[index[ok]] = True
+    if np.any(~done & (np.abs(s) > GAUSS_S_MAX)):
+        raise UserError(f"f_n T up to {float(np.max(np.abs(s[~done]))) / (2 * np.pi):.4g} is "
+                        f"beyond the {GAUSS_S_MAX / (2 * np.pi):.4g} a move between boundary "
+                        "speeds is integrated to here: lower the natural frequency or the "
+                        "duration", field="load.natural_frequency")
+    for group, _cap in cv.grouped(s, 1):  # the rest: Gauss, by size of |s|
+        group = group[~done[group]]
+        if group.size:
+            out[group] = _gauss_increment(
+                lambda u, rows, _g=group: acceleration(u, _g[rows]), breaks, s[group])
+    return out.reshape(T.shape) / T
+
+
+def _gauss_increment(acceleration, breaks: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """int_0^1 a_N(u) e^{s (1 - u)} du by composite Gauss-Legendre, rows in blocks of
+    bounded memory."""
     s_max = float(np.max(np.abs(s), initial=0.0))
     edges = [np.asarray(breaks, dtype=float)[:1]]
     for start, end in itertools.pairwise(breaks):
@@ -76,6 +115,10 @@ def polynomial_increment(acceleration, breaks: np.ndarray, duration: np.ndarray,
     half = 0.5 * np.diff(fine)
     u = ((0.5 * (fine[:-1] + fine[1:]))[:, None] + half[:, None] * x).ravel()
     weight = (half[:, None] * w).ravel()
-    values = acceleration(u)  # (n, nodes)
-    kernel = np.exp(s.reshape(-1, 1) * (1.0 - u))  # decays: Re(lambda) <= 0
-    return ((values * kernel) @ weight).reshape(s.shape) / T
+    out = np.empty(s.shape, dtype=complex)
+    rows = max(1, cv.CHUNK // u.size)
+    for i in range(0, s.size, rows):
+        values = acceleration(u, np.arange(i, min(i + rows, s.size)))  # (rows, nodes)
+        kernel = np.exp(s[i:i + rows, None] * (1.0 - u))  # decays: Re(lambda) <= 0
+        out[i:i + rows] = (values * kernel) @ weight
+    return out

@@ -28,6 +28,7 @@ from sizer.errors import UserError
 from sizer.laws.base import MotionLaw
 from sizer.laws.registry import make_law
 from sizer.vibration import convolution as cv
+from sizer.vibration import far_field as far
 from sizer.vibration.elastic_load import ElasticLoad
 
 if TYPE_CHECKING:
@@ -77,12 +78,38 @@ def _law(law: MotionLaw | str) -> MotionLaw:
     return law if isinstance(law, MotionLaw) else make_law(law)
 
 
+GRID_S_MAX = float(2 ** 20)
+"""Largest |s| = 2 pi f_n T of the grids (their cost grows with it: 2^20 is ~0.4 GB at
+most); beyond it the end series of sizer.vibration.far_field, whose cost does not grow."""
+
+TRACK_GRID_S_MAX = float(2 ** 16)
+"""Largest |s| of the tracking error's grid (16 samples a period); beyond, the end series."""
+
+
+def _far_rows(law: MotionLaw, s: np.ndarray, grid_max: float) -> np.ndarray:
+    """Where the end series is used: above its s_min, and above grid_max in any case
+    (a UserError where the law's acceleration cannot be interpolated there)."""
+    size = np.abs(s)
+    series = far.end_series(law)
+    if not math.isfinite(series.s_min) and np.any(size > grid_max):
+        raise UserError(f"f_n T up to {float(np.max(size)) / (2.0 * math.pi):.4g} is beyond "
+                        f"the {grid_max / (2.0 * math.pi):.4g} that {law.spec}'s vibration "
+                        f"is sampled to (its acceleration has no polynomial interpolation "
+                        f"to rounding): lower the natural frequency or the duration",
+                        field="load.natural_frequency")
+    return (size >= series.s_min) | (size > grid_max)
+
+
 def forced_end(law: MotionLaw, s: np.ndarray) -> np.ndarray:
-    """w(1) = int_0^1 q_N''(u) e^{s (1 - u)} du for every s (1-D complex), grouped by |s|."""
+    """w(1) = int_0^1 q_N''(u) e^{s (1 - u)} du for every s (1-D complex), grouped by |s|:
+    the grids for small |s|, the end series (cost free of |s|) for large."""
     out = np.empty(s.shape, dtype=complex)
+    is_far = _far_rows(law, s, GRID_S_MAX)
+    if is_far.any():
+        out[is_far] = far.end_values(law, s[is_far])
     caps = cv.s_cap_of(np.abs(s))
-    for cap in np.unique(caps):
-        rows = np.flatnonzero(caps == cap)
+    for cap in np.unique(caps[~is_far]):
+        rows = np.flatnonzero((caps == cap) & ~is_far)
         grid = cv.law_grid(law, float(cap), RESIDUAL_STEP)
         size = max(1, cv.CHUNK // (grid.edges.size + grid.xi.size))
         for i in range(0, rows.size, size):
@@ -187,9 +214,13 @@ def tracking_error(law: MotionLaw | str, fT: np.ndarray | float, damping_ratio: 
     the_law = _law(law)
     s, omega_d = _mode(values.ravel(), delta)
     out = np.empty(s.shape)
+    is_far = _far_rows(the_law, s, TRACK_GRID_S_MAX)
+    for i in range(0, int(np.count_nonzero(is_far)), cv.CHUNK // far.SAMPLES):
+        part = np.flatnonzero(is_far)[i:i + cv.CHUNK // far.SAMPLES]
+        out[part] = far.peak_error(the_law, s[part]) / omega_d[part]
     caps = cv.s_cap_of(np.abs(s))
-    for cap in np.unique(caps):
-        rows = np.flatnonzero(caps == cap)
+    for cap in np.unique(caps[~is_far]):
+        rows = np.flatnonzero((caps == cap) & ~is_far)
         grid = cv.law_grid(the_law, float(cap), TRACK_STEP, int(samples))
         size = max(1, cv.CHUNK // (grid.edges.size + CANDIDATES * grid.xi.size) // 2)
         for i in range(0, rows.size, size):

@@ -29,6 +29,10 @@ PHASE_STEP = 6.0
 CHUNK = 1 << 22
 """Largest s x nodes block evaluated at once (bounded memory)."""
 
+FAR_MIN = 256.0
+"""Smallest |s| = 2 pi f T at which a spectrum takes the end series of
+sizer.vibration.far_field (cost free of f T) where its terms allow."""
+
 
 def transform_nodes(law: MotionLaw, order: int, s_max: float
                     ) -> tuple[np.ndarray, np.ndarray]:
@@ -69,8 +73,25 @@ def law_transform(law: MotionLaw, s: np.ndarray | complex, order: int = 2) -> np
     Only the move itself, tau in [0, 1], is integrated (the law is at rest outside it;
     for order 0 the caller adds the rest position after the move where it needs it).
     """
+    from sizer.vibration import far_field as far
+
     s = np.asarray(s, dtype=complex)
     flat = s.ravel()
+    out = np.empty(flat.shape, dtype=complex)
+    # fast phases on the imaginary axis (a spectrum): the end series, cost free of |s|
+    series = far.end_series(law, order)
+    is_far = (np.abs(flat) >= max(series.s_low, FAR_MIN)) & (flat.real == 0.0)
+    if is_far.any():
+        out[is_far] = np.exp(-flat[is_far]) * far.end_values(law, flat[is_far], order)
+    caps = 2.0 ** np.ceil(np.log2(np.maximum(np.abs(flat), 1.0)))
+    for cap in np.unique(caps[~is_far]):  # nodes for the |s| of each group only
+        near = np.flatnonzero((caps == cap) & ~is_far)
+        out[near] = _gauss_transform(law, flat[near], order)
+    return out.reshape(s.shape)
+
+
+def _gauss_transform(law: MotionLaw, flat: np.ndarray, order: int) -> np.ndarray:
+    """F(s) by composite Gauss-Legendre (nodes grow with the largest |s|), in blocks."""
     s_max = float(np.max(np.abs(flat), initial=0.0))
     tau, term = transform_nodes(law, order, s_max)
     out = np.empty(flat.shape, dtype=complex)
@@ -78,4 +99,4 @@ def law_transform(law: MotionLaw, s: np.ndarray | complex, order: int = 2) -> np
     for start in range(0, flat.size, rows):
         block = flat[start:start + rows]
         out[start:start + rows] = np.exp(-np.multiply.outer(block, tau)) @ term
-    return out.reshape(s.shape)
+    return out
