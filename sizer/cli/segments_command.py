@@ -7,7 +7,13 @@ from typing import TYPE_CHECKING, Annotated
 import typer
 
 from sizer.cli.catalog_option import CatalogOption, DesignArgument, load_design_file
-from sizer.cli.options import EnvelopeOption, FormatOption, OutputOption, check_law_specs
+from sizer.cli.options import (
+    EnvelopeOption,
+    FormatOption,
+    OutputOption,
+    as_option,
+    check_law_specs,
+)
 from sizer.errors import UserError
 from sizer.report.formats import Format
 
@@ -52,12 +58,13 @@ def segments(
     from sizer.cli.output_guard import check_output, check_outputs
     from sizer.report.segment_table import SegmentDocument, breakdown_for, publish_segments
 
-    check_law_specs([law] if law else [], "--law")
+    check_law_specs([] if law is None else [law], "--law")  # '' is refused too
     check_output(output, [design, *(catalog or ())])
     loaded = api.override(load_design_file(design, catalog), envelope=envelope or None)
     check_outputs(() if output is None else (output,), loaded.files)
     try:
-        result = segments_pair(loaded, motor, law)
+        with as_option("laws", "--law"):  # the sizing's word on --law names the option
+            result = segments_pair(loaded, motor, law)
         breakdown = breakdown_for(loaded, result)
     except UserError as error:
         if (error.field or "").startswith("--"):  # an option's mistake, not the file's

@@ -87,9 +87,7 @@ def size_machine(machine: Machine, rank_by: str | None = None,
     limiting: str | None = None
     reason = ""
     if machine.minimize:
-        speeds, slowest = machine_cycle_time(machine, workers)
-        for _ in speeds:
-            step()
+        speeds, slowest = machine_cycle_time(machine, workers, on_axis=step)
         fastest = [s.cycle_time for s in speeds]
         known = [t for t in fastest if t is not None]
         blocked = [a.name for a, t in zip(machine.axes, fastest, strict=True) if t is None]

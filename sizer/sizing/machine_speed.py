@@ -20,6 +20,7 @@ the axes' (the slowest axis), its master speed Theta / T_c.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -100,11 +101,17 @@ def axis_cycle_time(axis: MachineAxis, cycle_angle: float,
     return AxisSpeed(float(top[0]), calls)
 
 
-def machine_cycle_time(machine: Machine, workers: int | None = 1
+def machine_cycle_time(machine: Machine, workers: int | None = 1,
+                       on_axis: Callable[[], None] | None = None
                        ) -> tuple[list[AxisSpeed], int | None]:
     """Each axis's smallest cycle time and the index of the slowest axis (None when an
-    axis is feasible at no master speed); each sizing in ``workers`` processes."""
-    speeds = [axis_cycle_time(axis, machine.cycle_angle, workers) for axis in machine.axes]
+    axis is feasible at no master speed); each sizing in ``workers`` processes;
+    ``on_axis()`` called after each axis (for progress)."""
+    speeds = []
+    for axis in machine.axes:
+        speeds.append(axis_cycle_time(axis, machine.cycle_angle, workers))
+        if on_axis is not None:
+            on_axis()
     times = [s.cycle_time for s in speeds]
     if any(t is None for t in times):
         return speeds, None
