@@ -20,3 +20,17 @@ def test_chunks_change_nothing(monkeypatch):
     chunked = sizer.size(design).to_records()
     assert len(design.motors) > 4
     assert chunked == whole
+
+
+def test_a_chunk_of_candidates_never_holds_more_than_the_sample_cap():
+    # issue 32: a 400-move linkage cycle took MIN_CHUNK or 256 candidates a chunk whatever
+    # its moves (57 x 800,600 samples: a MemoryError under 2 GiB)
+    for samples in (1, 100, engine.CHUNK_SAMPLES // 64, engine.CHUNK_SAMPLES // 8,
+                    engine.CHUNK_SAMPLES, engine.LINKAGE_SAMPLES * 400,
+                    engine.MAX_CHUNK_SAMPLES * 3):
+        size = engine.candidates_per_chunk(samples)
+        assert size >= 1
+        assert size * samples <= engine.MAX_CHUNK_SAMPLES or size == 1
+        assert size >= min(engine.MIN_CHUNK, engine.MAX_CHUNK_SAMPLES // samples)
+    assert engine.candidates_per_chunk(engine.LINKAGE_SAMPLES * 400) == 5  # 8 x 2^21 // 3.3e6
+    assert engine.candidates_per_chunk(100) == engine.CHUNK_SAMPLES // 100

@@ -180,15 +180,25 @@ CHUNK_SAMPLES = 2**21
 """Candidates x law samples evaluated at once (each array of that size is 16 MiB): larger
 candidate sets are evaluated in chunks, so memory stays bounded whatever the catalog."""
 MIN_CHUNK = 64
-"""The smallest chunk (the per-evaluation overhead stays small against the work)."""
+"""The smallest chunk (the per-evaluation overhead stays small against the work) while
+its samples stay within MAX_CHUNK_SAMPLES."""
+MAX_CHUNK_SAMPLES = 8 * CHUNK_SAMPLES
+"""Candidates x samples never exceeded by a chunk: a cycle of many moves (each candidate
+already holds millions of samples) is evaluated a few candidates, or one, at a time."""
+
+
+def candidates_per_chunk(samples: int) -> int:
+    """How many candidates of ``samples`` samples each one evaluation takes: CHUNK_SAMPLES
+    worth, at least MIN_CHUNK, at most MAX_CHUNK_SAMPLES worth, at least one."""
+    samples = max(samples, 1)
+    return max(1, min(max(MIN_CHUNK, CHUNK_SAMPLES // samples), MAX_CHUNK_SAMPLES // samples))
 
 
 def chunk_size(law: MotionLaw, moves: int = 1) -> int:
     """How many candidates one evaluation of ``law`` takes (its grid's samples each, for
     each of ``moves`` moves evaluated together)."""
     grid = law_grid(law)
-    samples = (grid.nodes.size + 2 * grid.size) * max(moves, 1)
-    return max(MIN_CHUNK, CHUNK_SAMPLES // samples)
+    return candidates_per_chunk((grid.nodes.size + 2 * grid.size) * max(moves, 1))
 
 
 def evaluate_fixed_law(design: Design, law: MotionLaw, candidates: Candidates,
@@ -197,7 +207,8 @@ def evaluate_fixed_law(design: Design, law: MotionLaw, candidates: Candidates,
     of :func:`chunk_size` candidates. Without ``peaks`` (a given duration only) the peak
     torques and ratios are left at zero: their checks pass."""
     if design.transmission.linkage is not None:
-        size = max(MIN_CHUNK, CHUNK_SAMPLES // LINKAGE_SAMPLES)
+        moves = len(design.cycle.moves) if design.cycle is not None else 1
+        size = candidates_per_chunk(LINKAGE_SAMPLES * moves)
     elif design.cycle is not None:
         size = chunk_size(law, len(design.cycle.moves))
     else:
