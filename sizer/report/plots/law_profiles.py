@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -115,8 +115,7 @@ def law_profiles_figure(laws: Sequence[MotionLaw], *, displacement: float | None
                     label=law_label(law.spec) if order == 0 else None)
             if order == 3:
                 jerk_extent = max(jerk_extent, float(np.max(np.abs(y))))
-    impulses = [(index, law, jump) for index, law in enumerate(laws)
-                for jump in law.coefficients.acceleration_jumps]
+    impulses, left_out = drawn_impulses(laws)
     _draw_impulses(axes[3], impulses, move, jerk_extent)
 
     for ax, order in zip(axes, ORDERS, strict=True):
@@ -127,8 +126,10 @@ def law_profiles_figure(laws: Sequence[MotionLaw], *, displacement: float | None
     axes[3].set_xlabel("tau = t/T [-]" if move.normalized else "time t [s]")
     axes[3].set_xlim(-REST_PAD * move.T, (1.0 + REST_PAD) * move.T)
     if impulses:
+        more = (f"; the {MAX_DRAWN_IMPULSES} largest of each law, {left_out} smaller not "
+                f"drawn" if left_out else "")
         axes[3].set_title("arrows: jerk impulses where the acceleration jumps "
-                          "(not to scale; labelled with the jump)", fontsize="x-small")
+                          f"(not to scale; labelled with the jump{more})", fontsize="x-small")
     if move.normalized:
         heading = "Motion laws, normalized (h = 1, T = 1)"
     else:
@@ -136,6 +137,27 @@ def law_profiles_figure(laws: Sequence[MotionLaw], *, displacement: float | None
         heading = f"Motion laws, h = {short(move.h)} {unit}, T = {short(move.T * 1000.0)} ms"
     figure.suptitle(heading, fontsize="medium")
     return figure
+
+
+MAX_DRAWN_IMPULSES = 12
+"""Jerk impulses drawn (and labelled) per law: a cam table or a spline of many knots jumps
+at each of thousands of them, which a figure cannot show (and matplotlib takes minutes to
+lay out); the largest are drawn and the title counts the others."""
+
+
+def drawn_impulses(laws: Sequence[MotionLaw]) -> tuple[list[tuple[int, MotionLaw, Any]], int]:
+    """(law index, law, jump) of the impulses to draw, at most MAX_DRAWN_IMPULSES per law
+    (the largest |jump|, in the order of tau), and how many were left out."""
+    impulses: list[tuple[int, MotionLaw, Any]] = []
+    left_out = 0
+    for index, law in enumerate(laws):
+        jumps = list(law.coefficients.acceleration_jumps)
+        if len(jumps) > MAX_DRAWN_IMPULSES:
+            left_out += len(jumps) - MAX_DRAWN_IMPULSES
+            largest = sorted(jumps, key=lambda jump: abs(jump.jump), reverse=True)
+            jumps = sorted(largest[:MAX_DRAWN_IMPULSES], key=lambda jump: jump.tau)
+        impulses += [(index, law, jump) for jump in jumps]
+    return impulses, left_out
 
 
 def _draw_impulses(ax, impulses, move: Move, jerk_extent: float) -> None:
