@@ -16,10 +16,17 @@ from sizer.report.formats import Format
 
 @contextmanager
 def blame_option(field: str) -> Iterator[None]:
-    """A UserError raised inside names the option ``field`` (unless it names a field)."""
+    """A UserError raised inside names the option ``field``: before the field it names
+    inside the option's value (``--law: start.velocity: ...``), unless it is located in a
+    file (a cam table's line)."""
     try:
         yield
     except UserError as error:
+        if error.file is not None:
+            raise
+        if error.field and not error.field.startswith(field):
+            raise UserError(error.message, line=error.line,
+                            field=f"{field}: {error.field}") from None
         raise error.located(field=field) from None
 
 

@@ -197,7 +197,7 @@ def plot_pairs(design: Design, motor: str | None = None, laws: Sequence[str] = (
     from sizer import api
     from sizer.sizing.ranking import rank
 
-    field = "--motor"
+    field, given_laws = "--motor", bool(laws)
     if motor is None and not laws and design.chosen_motor and design.chosen_law:
         motor, laws, field = design.chosen_motor, (design.chosen_law,), "check.motor"
     elif motor is None and laws and design.chosen_motor:
@@ -208,7 +208,9 @@ def plot_pairs(design: Design, motor: str | None = None, laws: Sequence[str] = (
     laws = tuple(dict.fromkeys(laws))
     if not laws:
         return [best_of(api.size(design, rank_by=rank_by).results)]
-    per_law = [api.size(design, laws=[spec], rank_by=rank_by) for spec in laws]
+    with as_option("laws", "--law" if given_laws else "check.law"):  # the sizing's word on
+        per_law = [api.size(design, laws=[spec], rank_by=rank_by)  # a law names its source
+                   for spec in laws]
     if motor is None:
         pooled = [r for sizing in per_law for r in sizing.results]
         motor = best_of(rank(pooled, rank_by, per_law[0].mode)).motor
@@ -277,6 +279,7 @@ def plot_law(
             raise UserError("must not be zero", field="--displacement")
     with blame_option("SPEC"):
         laws = [make_law(spec) for spec in dict.fromkeys(specs)]
+    check_output(output)  # again: not over a file a law read (a cam table)
     figure = law_profiles_figure(laws, displacement=h, duration=T, linear=linear,
                                  samples=samples, size=figure_size, dpi=dpi)
     save_figure(figure, output, dpi=dpi)
