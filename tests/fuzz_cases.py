@@ -70,6 +70,16 @@ class Base:
     """For a catalog base sized through a design: the example design (relative to examples/)."""
     edit: Any = None
     """A function making the parsed example fast (e.g. removing its ``auto`` laws)."""
+    design_edit: Any = None
+    """For a base sized through a design: the function making that design (default: the
+    indexing table's, or the gearbox catalog's)."""
+    extra_files: tuple[tuple[str, Path], ...] = ()
+    """Unmutated files the case folder also needs: (relative path, source)."""
+
+    @property
+    def is_csv(self) -> bool:
+        """A CSV base is mutated as text, row by row (it is not YAML)."""
+        return self.target.endswith(".csv")
 
 
 _SIZE = ("size", "{tmp}/design.yaml")
@@ -128,6 +138,75 @@ def _bases() -> list[Base]:
 BASES = _bases()
 
 
+# --- the bases of the input kinds of issues 12-31 (issue 32) ---------------------------------
+
+def _commands(design: str, motor: str | None,
+              *more: tuple[str, ...]) -> tuple[tuple[str, ...], ...]:
+    """size (table, json, csv to a file), check and ``more`` over ``design``, one motor."""
+    one = ("--motor", motor) if motor else ()
+    size = ("size", design, *one)
+    return (size, (*size, "--format", "json"),
+            (*size, "--format", "csv", "--output", "{tmp}/out.csv"),
+            ("check", design, *one, "--format", "json"), *more)
+
+
+def _one_law(data: Any) -> Any:
+    """A design made fast: its first law only (the law lists are what cost)."""
+    if isinstance(data, dict) and isinstance(data.get("laws"), list) and data["laws"]:
+        data["laws"] = data["laws"][:1]
+    return data
+
+
+def _with_drives(data: Any) -> Any:
+    """Book example 6.3 on the Siemens 1FT7 motors with their drive catalog."""
+    data["motors"] = ["siemens-1ft7"]
+    data["drives"] = ["drives.yaml"]
+    data.pop("check", None)  # it names the book's motor
+    return data
+
+
+def _new_kind_bases() -> list[Base]:
+    design = "{tmp}/design.yaml"
+    segments = ("segments", design, "--format", "json")
+    cases = (  # example, one motor, the commands beyond size and check
+        ("pick-and-place.yaml", "SGM7J-02A", (*segments, "--motor", "SGM7J-02A")),
+        ("flying-saw.yaml", "SGM7A-15A", (*segments, "--motor", "SGM7A-15A")),
+        ("indexing-duty-cycle.yaml", "HG-KN43J", (*segments, "--motor", "HG-KN43J")),
+        ("press-slider-crank.yaml", "HG-KN43J", (*segments, "--motor", "HG-KN43J")),
+        ("press-slider-crank-cycle.yaml", "HG-KN43J", (*segments, "--motor", "HG-KN43J")),
+        ("four-bar-coupler.yaml", "HG-KN43J", None),
+        ("four-bar-rocker-driven.yaml", "HG-KN43J", None),
+        ("pusher-via-points.yaml", "SGM7J-02A", (*segments, "--motor", "SGM7J-02A")),
+        ("rotary-knife.yaml", "HG-KN43J", (*segments, "--motor", "HG-KN43J")),
+        ("indexing-table-vibration.yaml", "HG-KN43J",
+         ("vibration", design, "--points", "5", "--format", "json")),
+    )
+    knife = (("cams/rotary-knife.csv", EXAMPLES / "cams" / "rotary-knife.csv"),)
+    # flying-saw's first law cannot join its boundary speeds: it keeps its four laws
+    bases = [Base(name if name == "flying-saw.yaml" else f"{name} (first law)", EXAMPLES / name,
+                  "design.yaml", _commands(design, motor, *((more,) if more else ())),
+                  edit=None if name == "flying-saw.yaml" else _one_law,
+                  extra_files=knife if name == "rotary-knife.yaml" else ())
+             for name, motor, more in cases]
+    packer = EXAMPLES / "machines" / "two-axis-packer.yaml"
+    bases.append(Base("machine two-axis-packer.yaml", packer, "machines/machine.yaml",
+                      (("size", "{tmp}/machines/machine.yaml"),
+                       ("size", "{tmp}/machines/machine.yaml", "--format", "json"))))
+    bases.append(Base("drive catalog siemens-s120.yaml", BUNDLED / "drives" / "siemens-s120.yaml",
+                      "drives.yaml", _commands(design, None), design="book/ex6_3-vmax4.yaml",
+                      design_edit=_with_drives))
+    bases.append(Base("cam table rotary-knife.csv", EXAMPLES / "cams" / "rotary-knife.csv",
+                      "cams/rotary-knife.csv",
+                      (*_commands(design, "HG-KN43J"),
+                       ("law", "{kind: cam_table, file: '{tmp}/cams/rotary-knife.csv'}",
+                        "--duration", "0.5 s", "--format", "json")),
+                      design="rotary-knife.yaml", design_edit=_one_law))
+    return bases
+
+
+NEW_KIND_BASES = _new_kind_bases()
+
+
 @cache
 def _parsed(path: Path) -> Any:
     return yaml.safe_load(path.read_text(encoding="utf-8"))
@@ -139,7 +218,9 @@ def _companion_design(base: Base) -> str | None:
     if base.design is None:
         return None
     data = copy.deepcopy(_parsed(EXAMPLES / base.design))
-    if base.name.startswith("gearbox"):
+    if base.design_edit is not None:
+        data = base.design_edit(data)
+    elif base.name.startswith("gearbox"):
         data = _gearbox_catalog_table(data)
     else:
         data = _fast_indexing_table(data)
@@ -378,10 +459,62 @@ def text_mutated(draw: st.DrawFn, text: str) -> tuple[str, list[str]]:
     return out, [note]
 
 
+CSV_CELLS = (*EXTREME_NUMBERS, "", " ", "x", "1,5", "0;1", "1e", "--1", "1 m", "\x00",
+             "deg", "[deg]", "t [parsecs]", "q [", "\ufeff1", '"1"', '"', "#")
+
+
+@st.composite
+def csv_mutated(draw: st.DrawFn, text: str) -> tuple[str, list[str]]:
+    """A cam table's text with 1 to 3 edits: a cell replaced (an extreme number, a wrong unit
+    in the header, garbage), a row deleted, duplicated, swapped with the next, cut short or
+    given an extra cell, the separator changed, or the text truncated."""
+    lines = text.splitlines(keepends=True)
+    done: list[str] = []
+    for _ in range(draw(st.sampled_from([1, 1, 2, 3]))):
+        if not lines:
+            break
+        index = draw(st.integers(0, len(lines) - 1))
+        action = draw(st.sampled_from(["cell", "cell", "cell", "delete", "duplicate", "swap",
+                                       "short", "long", "separator", "truncate"]))
+        row = lines[index].rstrip("\r\n").split(",")
+        if action == "cell":
+            column = draw(st.integers(0, len(row) - 1))
+            row[column] = draw(st.one_of(st.sampled_from(CSV_CELLS), st.text(max_size=6)))
+            lines[index] = ",".join(row) + "\n"
+            done.append(f"line {index + 1} column {column} = {row[column]!r}")
+        elif action == "delete":
+            del lines[index]
+            done.append(f"line {index + 1} deleted")
+        elif action == "duplicate":
+            lines.insert(index, lines[index])
+            done.append(f"line {index + 1} duplicated")
+        elif action == "swap" and index + 1 < len(lines):
+            lines[index], lines[index + 1] = lines[index + 1], lines[index]
+            done.append(f"lines {index + 1} and {index + 2} swapped")
+        elif action == "short":
+            lines[index] = row[0] + "\n"
+            done.append(f"line {index + 1} cut to one cell")
+        elif action == "long":
+            lines[index] = ",".join([*row, "1"]) + "\n"
+            done.append(f"line {index + 1} given a third cell")
+        elif action == "separator":
+            separator = draw(st.sampled_from([";", "\t", " ", "|"]))
+            lines = [line.replace(",", separator) for line in lines]
+            done.append(f"separator {separator!r}")
+        elif action == "truncate":
+            keep = draw(st.integers(0, len(lines) - 1))
+            del lines[keep:]
+            done.append(f"truncated to {keep} line(s)")
+    return "".join(lines), done
+
+
 @st.composite
 def fuzz_inputs(draw: st.DrawFn, bases: list[Base] | None = None) -> FuzzInput:
     """A mutated example and one command over it (the strategy of the CLI fuzz)."""
     base = draw(st.sampled_from(bases or BASES))
+    if base.is_csv:
+        text, changes = draw(csv_mutated(base.source.read_text(encoding="utf-8")))
+        return base_input(base, draw(st.sampled_from(base.commands)), text, tuple(changes))
     data = base_data(base)
     mutations: list[str] = []
     if draw(st.integers(0, 9)) < 8:
@@ -402,13 +535,62 @@ def base_data(base: Base) -> Any:
 def base_input(base: Base, args: tuple[str, ...], text: str | None = None,
                mutations: tuple[str, ...] = ()) -> FuzzInput:
     """A case of ``base`` with ``text`` as its file (default: the example unmutated)."""
-    files = {base.target: _dump(base_data(base)) if text is None else text}
+    if text is None:
+        text = base.source.read_text(encoding="utf-8") if base.is_csv else _dump(base_data(base))
+    files = {base.target: text}
+    for name, source in base.extra_files:
+        files[name] = source.read_text(encoding="utf-8")
     if "{tmp}/good.yaml" in args:
         files["good.yaml"] = _dump(base_data(base))
     companion = _companion_design(base)
     if companion is not None:
         files["design.yaml"] = companion
     return FuzzInput(base.name, mutations, files, args)
+
+
+# --- the commands over laws alone: their options mutated -----------------------------------
+
+OPTION_COMMANDS: tuple[tuple[str, ...], ...] = (
+    ("spectrum", "cycloidal", "poly5", "--max-ft", "8", "--points", "50", "--format", "json"),
+    ("spectrum", "trapezoidal(alpha=1/3)", "--displacement", "90 deg", "--duration", "0.25 s",
+     "--max-ft", "4", "--points", "20", "--format", "csv"),
+    ("spectrum", "cycloidal", "--period", "2", "--max-ft", "6"),
+    ("spectrum", "poly7", "--order", "3", "--max-ft", "6", "--points", "30"),
+    ("law", "double_s(alpha=1/3, beta=1/4)", "--displacement", "90 deg", "--duration",
+     "0.25 s", "--samples", "40", "--start-position", "10 deg", "--format", "json"),
+    ("law", "{kind: cubic_spline, times: auto, positions: [0, 0.3, 0.8, 1]}", "--displacement",
+     "20 mm", "--duration", "1 s", "--samples", "30", "--format", "csv"),
+    ("laws", "--law", "modified_trapezoidal", "--law",
+     "{kind: bspline, degree: 3, points: [[0, 0], [0.3, 0.1], [0.7, 0.9], [1, 1]], "
+     "start: {velocity: 0}, end: {velocity: 0}}", "--format", "json"),
+)
+"""Commands whose inputs are all on the command line: the option values are mutated."""
+
+
+@st.composite
+def option_inputs(draw: st.DrawFn) -> FuzzInput:
+    """A command over laws alone with one or two of its values replaced: an extreme number
+    (unit kept), a wrong or glued unit, a nasty text, a spec with an extreme parameter."""
+    args = list(draw(st.sampled_from(OPTION_COMMANDS)))
+    values = [i for i, a in enumerate(args) if i > 0 and not a.startswith("--")]
+    done = []
+    for _ in range(draw(st.sampled_from([1, 1, 2]))):
+        index = draw(st.sampled_from(values))
+        how = draw(st.sampled_from(["extreme", "extreme", "unit", "glued", "text"]))
+        value = args[index]
+        if how == "extreme":
+            new = _extreme_in_text(draw, value) or draw(st.sampled_from(EXTREME_NUMBERS))
+        elif how == "unit":
+            new = str(_wrong_unit(draw, value))
+        elif how == "glued":
+            new = value.replace(" ", "")
+        else:
+            new = draw(st.one_of(st.sampled_from(NASTY_TEXTS), st.text(max_size=8)))
+        if _is_slow(new) or new.startswith("-"):  # an option name is typer's business
+            continue
+        args[index] = new
+        done.append(f"{how} {args[0]} argument {index} = {new!r}"[:200])
+    return FuzzInput(f"{args[0]} options", tuple(done), {}, tuple(args))
 
 
 # --- running a case and checking the invariants --------------------------------------------
@@ -564,7 +746,7 @@ def _names_input(line: str, case: FuzzInput) -> bool:
     names = {Path(name).name for name in case.files}
     names |= {p.name for p in (EXAMPLES / "catalogs").glob("*.yaml")}
     names |= {p.name for p in BUNDLED.glob("*.yaml")} | {p.stem for p in BUNDLED.glob("*.yaml")}
-    return any(name in line for name in names) or "--" in line
+    return any(name in line for name in names) or "--" in line or "SPEC" in line
 
 
 @cache

@@ -12,7 +12,15 @@ import tempfile
 from pathlib import Path
 
 import pytest
-from fuzz_cases import BASES, FuzzInput, base_input, fuzz_inputs, run_input
+from fuzz_cases import (
+    BASES,
+    NEW_KIND_BASES,
+    FuzzInput,
+    base_input,
+    fuzz_inputs,
+    option_inputs,
+    run_input,
+)
 from hypothesis import HealthCheck, Phase, given, settings
 
 COUNT = int(os.environ.get("SIZER_FUZZ_EXAMPLES", "0")) or None
@@ -33,7 +41,7 @@ def _assert_clean(case: FuzzInput) -> None:
         f"stderr:\n{outcome.stderr[-3000:]}\nfiles:\n{case.files}")
 
 
-@pytest.mark.parametrize("base", BASES, ids=lambda b: b.name)
+@pytest.mark.parametrize("base", BASES + NEW_KIND_BASES, ids=lambda b: b.name)
 def test_the_unmutated_bases_answer_cleanly(base):
     """The generator starts from valid inputs: each base's first two commands, unmutated
     (their speed is measured by tools/fuzz_inputs.py, not asserted here)."""
@@ -53,4 +61,20 @@ def test_mutated_designs_answer_cleanly(case):
 @settings(max_examples=COUNT or 50, **FUZZ)
 @given(fuzz_inputs(CATALOGS))
 def test_mutated_catalogs_answer_cleanly(case):
+    _assert_clean(case)
+
+
+@settings(max_examples=COUNT or 60, **FUZZ)
+@given(fuzz_inputs(NEW_KIND_BASES))
+def test_mutated_cycles_linkages_data_laws_machines_and_drives_answer_cleanly(case):
+    """The input kinds of issues 12-31 (issue 32): cycles, linkages, data laws and cam
+    tables, vibration limits, machines and drive catalogs, through size, check, segments,
+    vibration and law."""
+    _assert_clean(case)
+
+
+@settings(max_examples=COUNT or 40, **FUZZ)
+@given(option_inputs())
+def test_mutated_options_of_the_law_commands_answer_cleanly(case):
+    """spectrum, law and laws with extreme, mis-united, glued or nasty option values."""
     _assert_clean(case)
