@@ -183,3 +183,11 @@ LINKAGE_READINGS = [
                   ("load.mass", "rotary", "takes 'inertia'"),
                   ("transmission[slider_crank].output",)),
 ]
+
+
+def assert_well_formed(cases: list[Case]) -> None:
+    """Case ids unique, and every field a case names a field of the input models."""
+    from sizer.model.fields import input_fields
+
+    assert len({c.id for c in cases}) == len(cases)
+    assert {f for c in cases for f in c.fields} <= set(input_fields())

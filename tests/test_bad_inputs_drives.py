@@ -16,7 +16,7 @@ from typing import Any
 
 import pytest
 import yaml
-from bad_input_cases import Case, edited, run_case
+from bad_input_cases import Case, assert_well_formed, edited, run_case
 from bad_input_lines import at
 from test_bad_inputs_catalogs import DRIVE, MOTOR_KT
 
@@ -155,7 +155,4 @@ def test_bad_drive_levels_and_empty_drives(case: Case, tmp_path: Path) -> None:
 
 
 def test_case_ids_are_unique_and_fields_are_the_models() -> None:
-    from sizer.model.fields import input_fields
-
-    assert len({c.id for c in CASES}) == len(CASES)
-    assert {f for c in CASES for f in c.fields} <= set(input_fields())
+    assert_well_formed(CASES)

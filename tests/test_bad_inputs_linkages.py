@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from bad_input_cases import Case, edited, run_case
+from bad_input_cases import Case, assert_well_formed, edited, run_case
 from bad_input_lines import at
 
 PRESS = "press-slider-crank.yaml"
@@ -133,10 +133,7 @@ def test_bad_linkage_field(case: Case, tmp_path: Path) -> None:
 
 
 def test_case_ids_are_unique_and_fields_are_the_models() -> None:
-    from sizer.model.fields import input_fields
-
-    assert len({c.id for c in CASES}) == len(CASES)
-    assert {f for c in CASES for f in c.fields} <= set(input_fields())
+    assert_well_formed(CASES)
 
 
 def test_a_branch_of_one_as_a_number_is_still_read() -> None:

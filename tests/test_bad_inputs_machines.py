@@ -18,7 +18,7 @@ from typing import Any
 
 import pytest
 import yaml
-from bad_input_cases import EXAMPLES, Case, edited, run_case
+from bad_input_cases import EXAMPLES, Case, assert_well_formed, edited, run_case
 from bad_input_lines import at
 
 from sizer.input_limits import MAX_MACHINE_AXES
@@ -139,10 +139,7 @@ def test_bad_machine_field(case: Case, tmp_path: Path) -> None:
 
 
 def test_case_ids_are_unique_and_fields_are_the_models() -> None:
-    from sizer.model.fields import input_fields
-
-    assert len({c.id for c in CASES}) == len(CASES)
-    assert {f for c in CASES for f in c.fields} <= set(input_fields())
+    assert_well_formed(CASES)
 
 
 # ------------------------------------------------------------ the largest accepted machine
