@@ -263,3 +263,16 @@ def test_the_writer_refuses_any_file_read_in_this_process(tmp_path: Path) -> Non
     other.write_bytes(b"old")  # never read: replaced as usual
     write_bytes_atomically(other, b"new")
     assert other.read_bytes() == b"new"
+
+
+def test_a_new_file_on_the_inode_of_one_read_and_deleted_is_not_an_input(
+        tmp_path: Path) -> None:
+    """A long-lived process deletes files and makes new ones; a new file may reuse the
+    inode of one read before (forced here with os.utime: same inode, another time)."""
+    read = tmp_path / "read.csv"
+    read.write_bytes(b"0,0\n1,1\n")
+    read_user_bytes(read)
+    assert file_read_as(read) == str(read)
+    info = os.stat(read)
+    os.utime(read, ns=(info.st_atime_ns, info.st_mtime_ns + 10**9))
+    assert file_read_as(read) is None
