@@ -18,6 +18,7 @@ period's wrap).
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any, ClassVar
@@ -64,14 +65,31 @@ HUGE_DATA = 1e100
 fit is read as an overflow of the data."""
 
 
-def _extreme(spec: str) -> bool:
-    """True when a number of a data-law spec text has a magnitude of HUGE_DATA or more,
-    or a nonzero one of 1 / HUGE_DATA or less."""
-    import re
+def _data_numbers(fields: Mapping[str, Any]) -> list[tuple[float, str]]:
+    """(|value|, field) of every number of a data law's lists and conditions, e.g.
+    (8e299, 'positions[2]'); a pair of ``points`` is named as the user wrote it."""
+    found: list[tuple[float, str]] = []
 
-    found = [abs(float(m)) for m in re.findall(r"\d[\d.]*(?:e[-+]?\d+)?", spec,
-                                                flags=re.IGNORECASE)]
-    return any(v >= HUGE_DATA or 0.0 < v <= 1.0 / HUGE_DATA for v in found)
+    def walk(value: Any, path: str) -> None:
+        if isinstance(value, Mapping):
+            for key, item in value.items():
+                walk(item, f"{path}.{key}" if path else str(key))
+        elif isinstance(value, list | tuple):
+            for i, item in enumerate(value):
+                walk(item, f"{path}[{i}]")
+        elif (isinstance(value, int | float) and not isinstance(value, bool)
+              and ("[" in path or "." in path)):  # a list or a condition, not order: 4
+            found.append((abs(float(value)), path))
+
+    walk({k: v for k, v in fields.items() if k not in ("kind", "units", "name")}, "")
+    return [(size, path[:path.index("]") + 1] if path.startswith("points[") else path)
+            for size, path in found]
+
+
+def _extreme(fields: Mapping[str, Any]) -> bool:
+    """True when a number of the data has a magnitude of HUGE_DATA or more, or a nonzero
+    one of 1 / HUGE_DATA or less."""
+    return any(v >= HUGE_DATA or 0.0 < v <= 1.0 / HUGE_DATA for v, _ in _data_numbers(fields))
 
 
 def _largest_field(spec: str) -> str | None:
@@ -79,33 +97,11 @@ def _largest_field(spec: str) -> str | None:
     data-law spec (the likely cause of an overflow), or None."""
     from sizer.laws.data_spec import read_data_spec
 
-    best: tuple[float, str] | None = None
-
-    def walk(value: Any, path: str) -> None:
-        nonlocal best
-        if isinstance(value, dict):
-            for key, item in value.items():
-                walk(item, f"{path}.{key}" if path else str(key))
-        elif isinstance(value, list | tuple):
-            for i, item in enumerate(value):
-                walk(item, f"{path}[{i}]")
-        elif isinstance(value, int | float) and not isinstance(value, bool):
-            size = abs(float(value))
-            data = "[" in path or "." in path  # a list or a condition, not order: 4
-            if data and (best is None or size > best[0]):
-                best = (size, path)
-
     try:
-        fields = read_data_spec(spec)
+        numbers = _data_numbers(read_data_spec(spec))
     except UserError:
         return None
-    walk({k: v for k, v in fields.items() if k not in ("kind", "units", "name")}, "")
-    if best is None:
-        return None
-    path = best[1]
-    # points[i][j] is reported as points[i], the pair the user wrote
-    return path[:path.rindex("[")] if path.startswith("points[") and path.count("[") > 1 \
-        else path
+    return max(numbers, key=lambda number: number[0])[1] if numbers else None
 
 
 @dataclass(frozen=True)
@@ -336,10 +332,11 @@ def _built_law(text: str, kind: Any, fields: dict[str, Any],
                units: tuple[str | None, str | None], name: str | None) -> DataLaw:
     from sizer.laws.multipoint import FittedCurve
 
+    extreme = _extreme(fields)  # before the builder reads (and may consume) the fields
     try:
         built = kind.build()(fields)
     except (ValueError, ZeroDivisionError, OverflowError, np.linalg.LinAlgError):
-        if not _extreme(text):
+        if not extreme:
             raise
         raise data_overflow(text, "the fit's numbers") from None
     exact = getattr(built, "law", None)
