@@ -215,8 +215,9 @@ def tracking_error(law: MotionLaw | str, fT: np.ndarray | float, damping_ratio: 
     s, omega_d = _mode(values.ravel(), delta)
     out = np.empty(s.shape)
     is_far = _far_rows(the_law, s, TRACK_GRID_S_MAX)
-    for i in range(0, int(np.count_nonzero(is_far)), cv.CHUNK // far.SAMPLES):
-        part = np.flatnonzero(is_far)[i:i + cv.CHUNK // far.SAMPLES]
+    far_rows, block = np.flatnonzero(is_far), cv.CHUNK // far.SAMPLES
+    for i in range(0, far_rows.size, block):
+        part = far_rows[i:i + block]
         out[part] = far.peak_error(the_law, s[part]) / omega_d[part]
     caps = cv.s_cap_of(np.abs(s))
     for cap in np.unique(caps[~is_far]):

@@ -19,6 +19,7 @@ import numpy as np
 
 from sizer.laws.base import MotionLaw
 from sizer.laws.quadrature import gauss, law_intervals
+from sizer.vibration import far_field as far
 
 NODES = 20
 """Gauss-Legendre nodes on each part."""
@@ -73,8 +74,6 @@ def law_transform(law: MotionLaw, s: np.ndarray | complex, order: int = 2) -> np
     Only the move itself, tau in [0, 1], is integrated (the law is at rest outside it;
     for order 0 the caller adds the rest position after the move where it needs it).
     """
-    from sizer.vibration import far_field as far
-
     s = np.asarray(s, dtype=complex)
     flat = s.ravel()
     out = np.empty(flat.shape, dtype=complex)
