@@ -7,7 +7,6 @@ import math
 import resource
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -26,8 +25,15 @@ def _limited() -> None:
     resource.setrlimit(resource.RLIMIT_AS, (2 * GIB, 2 * GIB))
 
 
-def run_limited(*args: str, timeout: float = 60.0) -> subprocess.CompletedProcess[str]:
-    """``sizer ARGS`` in a subprocess limited to 2 GiB of address space."""
+HANG = 120.0
+"""Seconds after which a run is a hang (subprocess.TimeoutExpired fails the test): far
+above any run, so that a loaded machine never fails a test for being slow; the speed of
+these runs is measured in benchmarks/README.md (issue 32), not asserted here."""
+
+
+def run_limited(*args: str, timeout: float = HANG) -> subprocess.CompletedProcess[str]:
+    """``sizer ARGS`` in a subprocess limited to 2 GiB of address space, a hang after
+    ``timeout`` seconds."""
     return subprocess.run([sys.executable, "-m", "sizer", *args], cwd=ROOT, text=True,
                           capture_output=True, timeout=timeout, preexec_fn=_limited,
                           check=False)
@@ -48,11 +54,9 @@ def long_design(tmp_path_factory: pytest.TempPathFactory) -> Path:
 def test_a_1e6_s_move_on_a_25_hz_mode_runs_in_2_gib(long_design: Path,
                                                      command: list[str]) -> None:
     # f_n T = 2.5e7: sampling it (16 points a period) took 24 GB before
-    start = time.monotonic()
     done = run_limited(command[0], str(long_design), *command[1:])
     assert done.returncode == 0, done.stderr
     assert "Traceback" not in done.stderr and "Warning" not in done.stderr
-    assert time.monotonic() - start < 30.0
 
 
 @pytest.mark.parametrize("fT", [2.5e7 + 0.5, 1e5 + 0.3, 1234.567])
@@ -99,25 +103,21 @@ def test_tracking_error_of_the_cycloid_is_quasi_static_at_high_f_T() -> None:
         2 * math.pi, rel=1e-6)
 
 
-def test_high_f_T_spectrum_matches_closed_forms_fast() -> None:
+def test_high_f_T_spectrum_matches_closed_forms() -> None:
     fT = np.linspace(1000.0, 1e5, 2001)
-    start = time.monotonic()
     for spec in ("cycloidal", "double_s(alpha=1/3, beta=1/4)", "gutman_1_3"):
         law = make_law(spec)
         exact = spectrum(law, fT)  # closed form
         numeric = numerical_spectrum(law, fT)
         scale = float(numerical_spectrum(law, np.array([0.5]))[0])
         assert np.max(np.abs(numeric - exact)) <= 1e-11 * scale
-    assert time.monotonic() - start < 5.0
 
 
-def test_many_harmonics_are_answered_fast() -> None:
-    start = time.monotonic()
+def test_many_harmonics_are_answered_in_2_gib() -> None:
     done = run_limited("spectrum", "cycloidal", "--max-ft", "1000", "--period", "20",
                        "--format", "csv")
     assert done.returncode == 0, done.stderr
     assert len(done.stdout.splitlines()) > 20_000
-    assert time.monotonic() - start < 30.0
 
 
 @pytest.mark.parametrize(("args", "field", "words"), [
@@ -130,12 +130,10 @@ def test_many_harmonics_are_answered_fast() -> None:
 ])
 def test_spectrum_refusals_are_immediate_and_located(args: list[str], field: str,
                                                      words: str) -> None:
-    start = time.monotonic()
     done = run_limited("spectrum", "cycloidal", *args)
     assert done.returncode == 2
     lines = done.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith(f"error: {field}:") and words in lines[0]
-    assert time.monotonic() - start < 10.0
 
 
 def test_vibration_points_limit_is_named(long_design: Path) -> None:
