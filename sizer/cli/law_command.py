@@ -48,6 +48,7 @@ def law(
     """
     from sizer.cli.output_guard import check_output
     from sizer.laws import ScaledMotion, make_law  # lazy: keeps --help fast
+    from sizer.laws.motion import scale_fault
     from sizer.report.document import publish
     from sizer.report.printable import printable
     from sizer.report.series_table import SeriesDocument, fit_text
@@ -78,6 +79,9 @@ def law(
                         field="--duration")
     if T <= 0.0:
         raise UserError(f"must be positive, got {duration!r}", field="--duration")
+    fault = scale_fault(h, T)
+    if fault is not None:
+        raise UserError(f"a move of {h:g} in {T:g} s: {fault}", field="--duration")
     t0 = to_si(start_time, "time", field="--start-time")
     q0 = to_si(start_position, "length" if linear else "angle", field="--start-position")
     motion = ScaledMotion(law_object, h, T, start_time=t0, start_position=q0)

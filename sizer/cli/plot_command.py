@@ -258,6 +258,7 @@ def plot_law(
     """
     from sizer.cli.output_guard import check_output
     from sizer.laws import make_law  # lazy: keeps --help fast
+    from sizer.laws.motion import scale_fault
     from sizer.report.plots import figure_format, law_profiles_figure, save_figure
     from sizer.units import parse_displacement, to_si
 
@@ -277,6 +278,9 @@ def plot_law(
             raise UserError(f"must be positive, got {duration!r}", field="--duration")
         if h == 0.0:
             raise UserError("must not be zero", field="--displacement")
+        fault = scale_fault(h, T)
+        if fault is not None:
+            raise UserError(f"a move of {h:g} in {T:g} s: {fault}", field="--duration")
     with blame_option("SPEC"):
         laws = [make_law(spec) for spec in dict.fromkeys(specs)]
     check_output(output)  # again: not over a file a law read (a cam table)

@@ -173,16 +173,20 @@ def _move(displacement: str | None, duration: str | None) -> Move:
 
 
 def _check_scaled(move: Move, max_ft: float) -> None:
-    """The scaled frequencies (max f T / T) and amplitudes (|h| / T^k, k = 0, 1, 2) within
-    the float range, else a UserError naming --duration."""
+    """The scaled frequencies (max f T / T) and amplitudes (|h| / T^k, k = 0, 1, 2:
+    sizer.laws.motion.scale_fault) within the float range, else a UserError naming
+    --duration."""
+    from sizer.laws.motion import scale_fault
+
     if move is None:
         return
     h, T, _ = move
     try:
-        values = [max_ft / T, 1.0 / T] + [abs(h) / T**k for k in (0, 1, 2)]
+        values = [max_ft / T, 1.0 / T]
     except (OverflowError, ZeroDivisionError):
         values = [math.inf]
-    if not all(math.isfinite(v) and v > 0.0 for v in values):
+    fault = scale_fault(h, T, orders=2)
+    if fault is not None or not all(math.isfinite(v) and v > 0.0 for v in values):
         raise UserError(f"h = {h:g} and T = {T:g} s put the scaled spectrum (f up to "
                         f"--max-ft / T, amplitudes h / T^k) outside the float range",
                         field="--duration")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -9,6 +10,33 @@ import numpy as np
 from sizer.laws.base import MotionLaw
 
 SERIES_NAMES = ("t", "q", "v", "a", "j")
+
+DERIVATIVE_NAMES = ("position", "velocity", "acceleration", "jerk")
+
+PEAK_HEADROOM = 1e6
+"""Room left above h / T^k for a law's own normalized peak |q_N^(k)| (C_v, C_a, C_j of the
+steepest laws stay far below it): the scale of a derivative order times this must be a
+float."""
+
+
+def scale_fault(h: float, T: float, orders: int = 3) -> str | None:
+    """Why a move of h in T cannot be written in double precision, or None: the first
+    derivative order k <= ``orders`` whose scale |h| / T^k (sec. 5.2: the k-th derivative
+    scales by h / T^k), times PEAK_HEADROOM, overflows, or whose T^k does (computed in
+    logarithms)."""
+    if h == 0.0 or not (math.isfinite(h) and math.isfinite(T) and T > 0.0):
+        return None
+    largest = math.log10(float(np.finfo(float).max))
+    limit = largest - math.log10(PEAK_HEADROOM)
+    for k in range(orders + 1):
+        exponent = math.log10(abs(h)) - k * math.log10(T)
+        if exponent > limit:
+            return (f"its {DERIVATIVE_NAMES[k]} scales as h / T^{k} = 1e{exponent:.0f}, "
+                    f"beyond the float range (about 1.8e308) with room for the law's peak")
+        if k * math.log10(T) > largest:
+            return (f"its {DERIVATIVE_NAMES[k]} divides by T^{k} = 1e"
+                    f"{k * math.log10(T):.0f}, beyond the float range (about 1.8e308)")
+    return None
 
 
 @dataclass(frozen=True)
