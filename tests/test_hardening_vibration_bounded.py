@@ -141,3 +141,16 @@ def test_vibration_points_limit_is_named(long_design: Path) -> None:
                        str(MAX_VIBRATION_POINTS + 1))
     assert done.returncode == 2
     assert "error: --points:" in done.stderr and "MAX_VIBRATION_POINTS" in done.stderr
+
+
+@pytest.mark.parametrize("spec", ["poly5", "poly7", "cycloidal", "trapezoidal(alpha=1/3)"])
+def test_the_spectrum_at_a_tiny_f_T_is_2_pi_f_T(spec: str) -> None:
+    # |A_N(fT)| = |int q_N'' e^{-i 2 pi fT tau}| = 2 pi fT |int q_N'| (1 + O(fT)) for a
+    # rest-to-rest law (by parts); scipy's spherical_jn gave nan at subnormal arguments
+    # (found by the options fuzz: --max-ft 1e-320)
+    law = make_law(spec)
+    for fT in (1e-200, 1e-90):
+        assert float(spectrum(law, np.array([fT]))[0]) == pytest.approx(2 * math.pi * fT,
+                                                                          rel=1e-9, abs=0.0)
+    tiny = float(spectrum(law, np.array([1e-320]))[0])  # subnormal: few significant bits
+    assert tiny == pytest.approx(2 * math.pi * 1e-320, rel=1e-2, abs=0.0)

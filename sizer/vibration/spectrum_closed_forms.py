@@ -90,7 +90,14 @@ def _sine_series(terms: tuple[tuple[int, float], ...], fT: np.ndarray) -> np.nda
     """|A_N| of q_N'' = sum_k b_k 2 pi k sin(2 pi k tau), for (k, b_k) in terms."""
     total = np.zeros(fT.shape)
     for k, b in terms:
-        total = total + b * k * k * (-1.0) ** (k + 1) * np.sinc(fT - k) / (k + fT)
+        near = np.abs(fT - k) < 0.5
+        # sinc(fT - k) = (-1)^k sin(pi fT) / (pi (fT - k)): sin(pi fT) keeps the small
+        # values of fT exact (sin(pi (fT - k)) rounds pi k: 2.4e-16 at fT = 1e-200);
+        # near fT = k, sinc itself (its 0/0 there)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            far = np.sin(PI * fT) / (PI * (k * k - fT * fT))
+        total = total + b * k * k * np.where(
+            near, (-1.0) ** (k + 1) * np.sinc(fT - k) / (k + fT), far)
     return 2.0 * PI * np.abs(total)
 
 
@@ -126,11 +133,24 @@ def polynomial(law: MotionLaw, fT: np.ndarray) -> np.ndarray:
 
     coefficients = polynomial_legendre(int(law.params["degree"]))
     x = PI * fT
+    tiny = x < SERIES_BELOW
     total = np.zeros(fT.shape, dtype=complex)
     for order, c in enumerate(coefficients):
         if c != 0.0:
-            total = total + c * (-1j) ** order * spherical_jn(order, x)
+            j = spherical_jn(order, np.where(tiny, 1.0, x))
+            # j_l(x) = x^l / (2l + 1)!! (1 + O(x^2)): scipy gives nan for subnormal x
+            j = np.where(tiny, x**order / _double_factorial(2 * order + 1), j)
+            total = total + c * (-1j) ** order * j
     return np.abs(total)
+
+
+SERIES_BELOW = 1e-100
+"""pi fT below which j_l(pi fT) is its leading term x^l / (2l + 1)!! (exact in double
+precision: the next term is x^2 smaller)."""
+
+
+def _double_factorial(n: int) -> float:
+    return float(math.prod(range(n, 0, -2)))
 
 
 CLOSED_FORMS: Mapping[str, ClosedForm] = {
