@@ -17,8 +17,9 @@ import numpy as np
 import pytest
 
 from sizer.errors import UserError
-from sizer.laws.base import MotionLaw, Piece
+from sizer.laws.base import MotionLaw
 from sizer.laws.data_spec import canonical_data_spec
+from sizer.laws.pieces import Piece
 from sizer.laws.registry import make_law
 from sizer.vibration.elastic_load import ElasticLoad
 from sizer.vibration.shaped_law import ShapedLaw, shaped_for_duration

@@ -13,7 +13,7 @@ from test_cubic_splines import assert_c2
 
 from sizer.errors import UserError
 from sizer.laws.multipoint import cubic_splines as cs
-from sizer.laws.multipoint import knot_times as kt
+from sizer.laws.multipoint import cubic_splines as kt
 
 Q_4_14 = np.array([0.0, 2, 12, 5, 12, -10, -11, -4, 6, 9])
 Q_4_15 = np.array([0.0, 2, 12, 5])

@@ -1,15 +1,15 @@
 """Motion-law library: normalized shapes, exact coefficients, spec parsing."""
 
-from sizer.laws.base import INFINITELY_SMOOTH, MotionLaw, Parameter, Piece
+from sizer.laws.base import INFINITELY_SMOOTH, MotionLaw, Parameter, law_of
 from sizer.laws.boundary_speeds import BoundaryBasis, boundary_form, has_boundary_form
 from sizer.laws.coefficients import AccelerationJump, LawCoefficients
 from sizer.laws.motion import ScaledMotion
+from sizer.laws.pieces import Piece
 from sizer.laws.registry import (
     ALIASES,
     DEFAULT_LAW_SPECS,
     LAW_FAMILIES,
     known_law_ids,
-    law_of,
     make_law,
     resolve,
 )

@@ -6,6 +6,9 @@ the law dispatches a vectorized tau to its pieces and is at rest outside [0, 1]
 (q_N = 0 before, q_N = 1 after, derivatives 0). Parameter ranges and the rules for
 ``auto``: see :class:`Parameter`.
 The real motion is q(t) = q0 + h*q_N((t - t0)/T); the k-th derivative scales by h/T^k.
+A law's analyses (coefficients, quadrature rule, linear peaks) are computed by their own
+modules from what a law is (sizer.laws.pieces.LawShape) and cached here, once per law
+object; the registry of families (sizer.laws.registry) is above them all.
 """
 
 from __future__ import annotations
@@ -14,71 +17,22 @@ import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from functools import cached_property
+from functools import cached_property, lru_cache
 from types import MappingProxyType
-from typing import TYPE_CHECKING, Any, ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 
+import sizer.laws.coefficients as law_coefficients
 from sizer.errors import UserError
-
-if TYPE_CHECKING:
-    from sizer.laws.coefficients import LawCoefficients
-    from sizer.laws.linear_peaks import LinearPeaks
-    from sizer.laws.piece_table import PieceTable
-    from sizer.laws.quadrature import QuadratureRule
-
-PieceFunction = Callable[[np.ndarray, int], np.ndarray]
-"""Evaluate the derivative of the given order of q_N at an array of tau in the piece."""
+from sizer.laws.coefficients import LawCoefficients
+from sizer.laws.linear_peaks import LinearPeaks
+from sizer.laws.piece_table import PieceTable
+from sizer.laws.pieces import Piece
+from sizer.laws.quadrature import QuadratureRule, quadrature_rule
 
 INFINITELY_SMOOTH = math.inf
 """Continuity class of a law whose position is C^infinity (e.g. the exponential law)."""
-
-
-@dataclass(frozen=True)
-class Piece:
-    """One smooth piece of a law: q_N restricted to [start, end].
-
-    ``degree`` is the degree of q_N on the piece when it is a polynomial (the trapezoid,
-    double S and polynomial laws), None otherwise; quadrature is then exact with a node
-    count chosen from it. ``intervals``, when set, is the most uniform sub-intervals a
-    scan or a grid of this piece needs (a law of many short polynomial pieces, a cam
-    table, shares a fixed budget among them: sizer.laws.data_law); None: the caller's.
-    """
-
-    start: float
-    end: float
-    evaluate: PieceFunction
-    degree: int | None = None
-    intervals: int | None = None
-
-    def clamp(self, tau: np.ndarray) -> np.ndarray:
-        """tau moved into [start, end]: a point one ulp outside reads the end's value."""
-        # np.minimum(np.maximum()) is np.clip's result without its ~10 us of overhead
-        return np.minimum(np.maximum(tau, self.start), self.end)
-
-
-def mirrored(pieces: Sequence[Piece]) -> list[Piece]:
-    """Complete the first half [0, 1/2] of a symmetric law: q_N(tau) = 1 - q_N(1 - tau).
-
-    The k-th derivative of 1 - f(1 - tau) is -(-1)^k f^(k)(1 - tau) (book sec. 5.1).
-    """
-
-    def reflect(piece: Piece) -> Piece:
-        start, end = 1.0 - piece.end, 1.0 - piece.start
-
-        def evaluate(tau: np.ndarray, order: int) -> np.ndarray:
-            # 1 - (1 - end) may differ from end by an ulp: the reflected piece's own ends
-            # map exactly onto the piece's ends, and every argument stays in the piece
-            u = np.where(tau <= start, piece.end, np.where(tau >= end, piece.start, 1.0 - tau))
-            value = piece.evaluate(piece.clamp(u), order)
-            if order == 0:
-                return 1.0 - value
-            return -((-1.0) ** order) * value
-
-        return Piece(start, end, evaluate, piece.degree, piece.intervals)
-
-    return list(pieces) + [reflect(p) for p in reversed(pieces)]
 
 
 @dataclass(frozen=True)
@@ -256,11 +210,12 @@ class MotionLaw:
     def __hash__(self) -> int:
         return hash(self.spec)
 
-    def __reduce__(self) -> tuple[Any, tuple[str]]:
-        """Pickled as its spec, built again on loading (sizer.laws.make_law): the pieces
-        are closures, and a law is its spec (the worker processes of a sizing send
-        results that hold laws: sizer.sizing.law_processes)."""
-        return _law_of_spec, (self.spec,)
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickled as its family and parameters, built again on loading through the cache
+        of :func:`law_of` (the object ``make_law`` of its spec gives): the pieces are
+        closures, and a law is its spec (the worker processes of a sizing send results
+        that hold laws: sizer.sizing.law_processes)."""
+        return law_of, (type(self), dict(self.params))
 
     def outside(self, order: int) -> tuple[float, float]:
         """q_N^(order) just before tau = 0 and just after tau = 1: at rest, at 0 and 1."""
@@ -327,34 +282,44 @@ class MotionLaw:
     @cached_property
     def coefficients(self) -> LawCoefficients:
         """C_v, C_a, C_j, C_v_rms, C_a_rms and the acceleration jumps (sec. 6.2)."""
-        from sizer.laws.coefficients import compute_coefficients
-
-        return compute_coefficients(self)
+        return law_coefficients.compute_coefficients(self)
 
     @cached_property
     def numerical_coefficients(self) -> LawCoefficients:
         """The coefficients computed numerically only (ignores closed forms): a cross-check."""
-        from sizer.laws.coefficients import compute_coefficients
-
-        return compute_coefficients(self, use_closed_form=False)
+        return law_coefficients.compute_coefficients(self, use_closed_form=False)
 
     @cached_property
     def quadrature(self) -> QuadratureRule:
         """The law's fixed Gauss-Legendre rule over its pieces (computed once per law)."""
-        from sizer.laws.quadrature import quadrature_rule
-
         return quadrature_rule(self)
 
     @cached_property
     def linear_peaks(self) -> LinearPeaks:
         """Sampled (v_N, a_N) curve and its convex hull, for exact peaks of p*a_N + q*v_N."""
-        from sizer.laws.linear_peaks import LinearPeaks
-
         return LinearPeaks(self)
 
 
-def _law_of_spec(spec: str) -> MotionLaw:
-    """The law of a spec (sizer.laws.make_law, imported here: it imports this module)."""
-    from sizer.laws.registry import make_law
+LAW_CACHE_SIZE = 4096
+"""Laws kept by canonical spec; past it the least recently used are rebuilt on demand."""
 
-    return make_law(spec)
+
+def law_of(family: type[MotionLaw], params: Mapping[str, float]) -> MotionLaw:
+    """The (cached) law of a family with these parameter values, defaults filled in.
+
+    The key is the canonical spec, so equal parameter values give the same object; use it
+    where laws are built from numbers (auto-shape searches) to share their computations.
+    """
+    values = family.canonical_params(params)
+    build: Callable[..., MotionLaw] = family  # hashable (see _law_of_spec)
+    return _law_of_spec(build, family.canonical_spec(values), tuple(values.items()))
+
+
+@lru_cache(maxsize=LAW_CACHE_SIZE)
+def _law_of_spec(family: Callable[..., MotionLaw], spec: str,
+                 values: tuple[tuple[str, float], ...]) -> MotionLaw:
+    """Keyed by the family and the canonical spec text (the values ride along to build
+    the law). ``family`` is a law class typed as its constructor: mypy takes the
+    ``__hash__`` of a class's instances for the class's own, and a ``type[MotionLaw]``
+    for an unhashable key."""
+    return family(**dict(values))

@@ -11,8 +11,8 @@ from __future__ import annotations
 
 import math
 
-from sizer.laws.base import MotionLaw, Parameter, mirrored
-from sizer.laws.pieces import trig_poly_piece
+from sizer.laws.base import MotionLaw, Parameter
+from sizer.laws.pieces import mirrored, trig_poly_piece
 from sizer.laws.seven_segments import SINE, SevenSegmentLaw, shares_parameters
 
 PI = math.pi

@@ -26,8 +26,8 @@ from fractions import Fraction
 
 import numpy as np
 
-from sizer.laws.base import MotionLaw, Parameter, Piece, mirrored
-from sizer.laws.pieces import trig_poly_piece
+from sizer.laws.base import MotionLaw, Parameter
+from sizer.laws.pieces import Piece, mirrored, trig_poly_piece
 from sizer.laws.piecewise_polynomial import MIN_FRACTION
 from sizer.laws.polynomial import Polynomial
 

@@ -42,7 +42,7 @@ from functools import lru_cache
 import numpy as np
 
 from sizer.errors import UserError
-from sizer.laws.base import MotionLaw, Parameter
+from sizer.laws.base import LAW_CACHE_SIZE, MotionLaw, Parameter
 from sizer.laws.piecewise_polynomial import (
     MIN_FRACTION,
     ConstantAcceleration,
@@ -50,7 +50,7 @@ from sizer.laws.piecewise_polynomial import (
     Trapezoidal,
 )
 from sizer.laws.polynomial import Polynomial
-from sizer.laws.registry import LAW_CACHE_SIZE, resolve
+from sizer.laws.registry import resolve
 from sizer.laws.spec import AUTO
 
 BOUNDARY_DEGREES = (3, 5, 7)
@@ -212,7 +212,9 @@ def boundary_form(spec: str | MotionLaw) -> BoundaryBasis | None:
             raise UserError(f"{family.law_id}: a move between boundary speeds needs its "
                             f"shape parameters as numbers, not 'auto'")
         params = _boundary_params(family, {k: float(v) for k, v in values.items()})
-    return _form(family, family.canonical_spec(params), tuple(params.items()))
+    if family not in (ConstantAcceleration, Trapezoidal, DoubleS, Polynomial):
+        return None
+    return _form(family.law_id, family.canonical_spec(params), tuple(params.items()))
 
 
 SUM_TOLERANCE = 1e-12
@@ -233,11 +235,11 @@ def _boundary_params(family: type[MotionLaw], given: dict[str, float]) -> dict[s
     wide = {k: _WIDE_SHARES[k].validate(family.law_id, v) for k, v in given.items()
             if k in _WIDE_SHARES}
     narrow = family.canonical_params({k: v for k, v in given.items() if k not in wide})
-    values = {name: wide.get(name, narrow.get(name)) for name in
-              (p.name for p in family.parameters)}
-    for dependent, source in _DECELERATION_OF.items():
-        if dependent in values and values[dependent] is None:
-            values[dependent] = values[source]
+    values: dict[str, float] = {}
+    for name in (p.name for p in family.parameters):  # a share before its deceleration's
+        value = wide.get(name, narrow.get(name))
+        # a deceleration share the symmetric law's canonical parameters leave out: its own
+        values[name] = values[_DECELERATION_OF[name]] if value is None else value
     total = values["alpha"] + values["alpha_d"]
     if total > 1.0 + SUM_TOLERANCE:
         raise UserError(f"{family.law_id}: alpha + alpha_d = {total:.6g} is more than 1: the "
@@ -248,23 +250,23 @@ def _boundary_params(family: type[MotionLaw], given: dict[str, float]) -> dict[s
     for dependent, source in _DECELERATION_OF.items():  # the symmetric law's spec
         if dependent in values and (dependent not in given or values[dependent] == values[source]):
             del values[dependent]
-    return values  # type: ignore[return-value]
+    return values
 
 
 @lru_cache(maxsize=LAW_CACHE_SIZE)
-def _form(family: type[MotionLaw], spec: str,
+def _form(law_id: str, spec: str,
           values: tuple[tuple[str, float], ...]) -> BoundaryBasis | None:
     """Keyed by the canonical spec (the values ride along to build the form)."""
     params = dict(values)
-    if family is ConstantAcceleration:
+    if law_id == ConstantAcceleration.law_id:
         return _trapezoid(spec, 0.5, 0.5)
-    if family is Trapezoidal:
+    if law_id == Trapezoidal.law_id:
         return _trapezoid(spec, params["alpha"], params.get("alpha_d", params["alpha"]))
-    if family is DoubleS:
+    if law_id == DoubleS.law_id:
         return _double_s(spec, params["alpha"], params["beta"],
                          params.get("alpha_d", params["alpha"]),
                          params.get("beta_d", params["beta"]))
-    if family is Polynomial and int(params["degree"]) in BOUNDARY_DEGREES:
+    if law_id == Polynomial.law_id and int(params["degree"]) in BOUNDARY_DEGREES:
         return _polynomial(spec, int(params["degree"]))
     return None
 

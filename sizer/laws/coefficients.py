@@ -17,11 +17,13 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cache
+from typing import Protocol
 
 import numpy as np
 
-from sizer.laws.base import MotionLaw, Piece
 from sizer.laws.piece_table import PieceTable
+from sizer.laws.pieces import LawShape, Piece
+from sizer.laws.quadrature import QuadratureRule
 from sizer.numerics.arrays import sorted_unique
 from sizer.numerics.roots import illinois
 
@@ -66,7 +68,15 @@ class LawCoefficients:
         return {name: getattr(self, name) for name in COEFFICIENT_NAMES}
 
 
-def compute_coefficients(law: MotionLaw, use_closed_form: bool = True) -> LawCoefficients:
+class MeasuredLaw(LawShape, Protocol):
+    """A law with its closed forms and its cached rule (sizer.laws.base.MotionLaw)."""
+
+    def closed_form_coefficients(self) -> dict[str, float]: ...
+    @property
+    def quadrature(self) -> QuadratureRule: ...
+
+
+def compute_coefficients(law: MeasuredLaw, use_closed_form: bool = True) -> LawCoefficients:
     """All coefficients of a law; closed forms where the law provides them."""
     known = law.closed_form_coefficients() if use_closed_form else {}
     values = {
@@ -80,7 +90,7 @@ def compute_coefficients(law: MotionLaw, use_closed_form: bool = True) -> LawCoe
     return LawCoefficients(**values, acceleration_jumps=tuple(jumps(law, 2)))
 
 
-def peak(law: MotionLaw, order: int) -> tuple[float, float]:
+def peak(law: LawShape, order: int) -> tuple[float, float]:
     """max |q_N^(order)| over the smooth pieces and the tau where it occurs.
 
     Each piece is evaluated on its own (one-sided values at both sides of every
@@ -106,7 +116,7 @@ TABLE_CHUNK = 1 << 18
 """Scan points of a piece table evaluated at once (bounds the memory of a peak search)."""
 
 
-def _table_peak(law: MotionLaw, table: PieceTable, order: int) -> tuple[float, float]:
+def _table_peak(law: LawShape, table: PieceTable, order: int) -> tuple[float, float]:
     """:func:`peak` of a law of polynomial pieces (a piece table), every piece at once:
     the candidates are each piece's uniform scan points (``piece.intervals`` of them, at
     least 8: a polynomial of degree d has at most d - 1 extrema) and the roots of the
@@ -137,7 +147,7 @@ def _table_peak(law: MotionLaw, table: PieceTable, order: int) -> tuple[float, f
     return best_value, best_tau
 
 
-def _peak_candidates(law: MotionLaw, index: int, order: int) -> np.ndarray:
+def _peak_candidates(law: LawShape, index: int, order: int) -> np.ndarray:
     """Points of a piece where |q_N^(order)| may peak (its grid points among them).
 
     On a polynomial piece whose derivative of this order is linear or constant the ends
@@ -156,7 +166,7 @@ def _peak_candidates(law: MotionLaw, index: int, order: int) -> np.ndarray:
     return np.concatenate((grid, _stationary_points(law, index, order, grid)))
 
 
-def _stationary_points(law: MotionLaw, index: int, order: int,
+def _stationary_points(law: LawShape, index: int, order: int,
                        grid: np.ndarray) -> np.ndarray:
     """The roots of q_N^(order + 1) in every sign change of its samples on ``grid``, all
     brackets of the piece at once (sizer.numerics.roots.illinois, to an ulp or so): the
@@ -203,13 +213,13 @@ def _decades(per_decade: int) -> np.ndarray:
     return factors
 
 
-def rms(law: MotionLaw, order: int) -> float:
+def rms(law: MeasuredLaw, order: int) -> float:
     """sqrt( integral over [0, 1] of (q_N^(order))^2 ), with the law's fixed rule."""
     rule = law.quadrature
     return math.sqrt(rule.integral(rule.values(law, order) ** 2))
 
 
-def one_sided_limits(law: MotionLaw, order: int) -> list[tuple[float, float, float]]:
+def one_sided_limits(law: LawShape, order: int) -> list[tuple[float, float, float]]:
     """(tau, left, right) limits of q_N^(order) at every breakpoint, ends included.
 
     Outside [0, 1] the law is at rest (0 on the left of tau = 0, 1 or 0 right of tau = 1)
@@ -234,7 +244,7 @@ def one_sided_limits(law: MotionLaw, order: int) -> list[tuple[float, float, flo
     return rows
 
 
-def jumps(law: MotionLaw, order: int) -> list[AccelerationJump]:
+def jumps(law: LawShape, order: int) -> list[AccelerationJump]:
     """Breakpoints where q_N^(order) jumps, with the size of the jump."""
     limits = one_sided_limits(law, order)
     scale = max(1.0, *(max(abs(left), abs(right)) for _, left, right in limits))
@@ -245,7 +255,7 @@ def jumps(law: MotionLaw, order: int) -> list[AccelerationJump]:
     ]
 
 
-def measured_continuity(law: MotionLaw) -> float:
+def measured_continuity(law: LawShape) -> float:
     """The largest k such that q_N is C^k across all breakpoints (up to law.max_order)."""
     for order in range(law.max_order + 1):
         if jumps(law, order):

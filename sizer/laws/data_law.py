@@ -20,16 +20,19 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cached_property, lru_cache
 from typing import Any, ClassVar
 
 import numpy as np
 
 from sizer.errors import UserError
 from sizer.input_limits import MAX_DATA_LAW_EXCURSION
-from sizer.laws.base import MotionLaw, Piece
-from sizer.laws.multipoint import Curve
+from sizer.laws.base import LAW_CACHE_SIZE, MotionLaw
+from sizer.laws.coefficients import measured_continuity, peak
+from sizer.laws.data_spec import DATA_LAW_KINDS, read_data_spec
+from sizer.laws.multipoint import Curve, FittedCurve
 from sizer.laws.piece_table import PieceTable
+from sizer.laws.pieces import Piece
 
 REST_TOLERANCE = 1e-9
 """|v_N| at an end below which the law starts or ends at rest; also the relative size of
@@ -95,8 +98,6 @@ def _extreme(fields: Mapping[str, Any]) -> bool:
 def _largest_field(spec: str) -> str | None:
     """The data field, e.g. ``positions[2]``, of the number of largest magnitude in a
     data-law spec (the likely cause of an overflow), or None."""
-    from sizer.laws.data_spec import read_data_spec
-
     try:
         numbers = _data_numbers(read_data_spec(spec))
     except UserError:
@@ -143,6 +144,10 @@ class DataLaw(MotionLaw):
     def spec(self) -> str:
         return self._spec_text
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickled as its spec, built again through :func:`data_law_of`'s cache."""
+        return data_law_of, (self.spec,)
+
     def piece_table(self) -> PieceTable | None:
         """The polynomial pieces as one table (a PPoly curve), None for a NURBS."""
         rows = getattr(self, "_rows", None)
@@ -156,18 +161,19 @@ class DataLaw(MotionLaw):
         x = np.asarray(self.curve.x, dtype=float)
         taus = (x - self._t0) / self._span
         taus[0], taus[-1] = 0.0, 1.0
-        if getattr(self.curve, "c", None) is not None:
-            return self._polynomial_pieces(taus), 0.0
+        coefficients = getattr(self.curve, "c", None)  # a PPoly's (a NURBS has none)
+        if coefficients is not None:
+            return self._polynomial_pieces(taus, coefficients), 0.0
         pieces = [self._curve_piece(taus[i], taus[i + 1], x[i], x[i + 1])
                   for i in range(len(x) - 1)]
         return pieces, 0.0  # continuity measured once the normalizer is known
 
-    def _polynomial_pieces(self, taus: np.ndarray) -> list[Piece]:
+    def _polynomial_pieces(self, taus: np.ndarray, coefficients: np.ndarray) -> list[Piece]:
         """The pieces of a PPoly from its own coefficients, in tau: their one-sided
         values at both ends are exact. The Taylor coefficients of every derivative of
         every piece are computed at once (arrays (pieces, terms)); each piece evaluates
         its row by Horner's scheme."""
-        c = np.asarray(self.curve.c, dtype=float)  # type: ignore[attr-defined]
+        c = np.asarray(coefficients, dtype=np.float64)
         m = c.shape[0] - 1
         # in u = tau - start: q(t) = sum_p local[:, p] u^p, local = c[m - p] D^p
         with np.errstate(over="ignore", invalid="ignore"):
@@ -213,8 +219,6 @@ class DataLaw(MotionLaw):
 
     def _normalizer(self) -> float:
         """S: the displacement, or the largest excursion of a curve that returns."""
-        from sizer.laws.coefficients import peak
-
         end = float(self.piece_derivative(len(self.pieces) - 1, 1.0, 0))
         excursion = peak(self, 0)[0]
         if not (math.isfinite(end) and math.isfinite(excursion)):
@@ -283,8 +287,6 @@ class DataLaw(MotionLaw):
 
     def _measured_continuity(self) -> float:
         """The largest k with q_N C^k at every join and at the ends (sec. 6.2)."""
-        from sizer.laws.coefficients import measured_continuity
-
         return float(measured_continuity(self))
 
     def derivative(self, tau: np.ndarray | float, order: int = 0) -> np.ndarray:
@@ -297,8 +299,6 @@ class DataLaw(MotionLaw):
 # ------------------------------------------------------------------ building
 def data_family(kind: str) -> type[DataLaw]:
     """The law class of a data kind (``law_id`` is the kind), one per kind."""
-    from sizer.laws.data_spec import DATA_LAW_KINDS
-
     if kind not in _FAMILIES:
         entry = DATA_LAW_KINDS[kind]
         _FAMILIES[kind] = type(f"DataLaw_{kind}", (DataLaw,),
@@ -310,12 +310,17 @@ def data_family(kind: str) -> type[DataLaw]:
 _FAMILIES: dict[str, type[DataLaw]] = {}
 
 
+@lru_cache(maxsize=LAW_CACHE_SIZE)
+def data_law_of(text: str) -> MotionLaw:
+    """The law of a canonical data-spec text, built once per process (the one
+    sizer.laws.make_law gives; a data law and a shaped law unpickle through it)."""
+    return build_data_law(text)
+
+
 def build_data_law(text: str) -> DataLaw:
     """The law of a canonical data-spec text: its kind's builder reads the fields, the
     curve is normalized, and the units (field ``units``, or those the data carry) give
     its absolute size. UserError (with the field) for bad data."""
-    from sizer.laws.data_spec import DATA_LAW_KINDS, read_data_spec
-
     fields = read_data_spec(text)
     kind = DATA_LAW_KINDS[fields["kind"]]
     units = _unit_texts(fields.pop("units", None))
@@ -330,8 +335,6 @@ def build_data_law(text: str) -> DataLaw:
 
 def _built_law(text: str, kind: Any, fields: dict[str, Any],
                units: tuple[str | None, str | None], name: str | None) -> DataLaw:
-    from sizer.laws.multipoint import FittedCurve
-
     extreme = _extreme(fields)  # before the builder reads (and may consume) the fields
     try:
         built = kind.build()(fields)

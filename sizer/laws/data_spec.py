@@ -15,7 +15,7 @@ import math
 import re
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, TypeGuard
 
 from sizer.errors import UserError
 from sizer.input_limits import MAX_DATA_LAW_CHARS, MAX_DESIGN_NODES, MAX_YAML_DEPTH
@@ -63,7 +63,7 @@ _BARE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 _YAML_WORDS = frozenset({"y", "n", "yes", "no", "on", "off", "true", "false", "null", "~"})
 
 
-def is_data_spec(text: object) -> bool:
+def is_data_spec(text: object) -> TypeGuard[str]:
     """True for a spec text written as a mapping (``{kind: ...}``)."""
     return isinstance(text, str) and text.lstrip().startswith("{")
 

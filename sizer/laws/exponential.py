@@ -11,7 +11,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.polynomial.legendre import leggauss
 
-from sizer.laws.base import INFINITELY_SMOOTH, MotionLaw, Parameter, Piece
+from sizer.laws.base import INFINITELY_SMOOTH, MotionLaw, Parameter
+from sizer.laws.pieces import Piece
 from sizer.numerics.arrays import sorted_unique
 
 PANELS = 64

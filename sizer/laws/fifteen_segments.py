@@ -10,8 +10,8 @@ Validity (3.44)-(3.47) is the ranges beta, gamma <= 1/2 and alpha <= 1/2.
 
 from __future__ import annotations
 
-from sizer.laws.base import MotionLaw, Parameter, mirrored
-from sizer.laws.pieces import trig_poly_piece
+from sizer.laws.base import MotionLaw, Parameter
+from sizer.laws.pieces import mirrored, trig_poly_piece
 from sizer.laws.piecewise_polynomial import MIN_FRACTION
 
 MIN_SHARE = 1e-3

@@ -54,11 +54,12 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 
-from sizer.laws.base import MotionLaw
 from sizer.laws.coefficients import scan_grid
+from sizer.laws.pieces import LawShape
 from sizer.numerics.hermite import hermite_root
 
 SAMPLES_PER_PIECE = 1024
@@ -123,7 +124,7 @@ class _Table:
     last: np.ndarray
 
 
-def piece_values(law: MotionLaw, tau: np.ndarray, piece: np.ndarray,
+def piece_values(law: LawShape, tau: np.ndarray, piece: np.ndarray,
                  order: int | Sequence[int]) -> np.ndarray | tuple[np.ndarray, ...]:
     """q_N^(order) at each (tau, piece index) pair: each piece evaluated once, on its
     points (one-sided values at its ends); tau and piece broadcast together. With a
@@ -147,7 +148,7 @@ def piece_values(law: MotionLaw, tau: np.ndarray, piece: np.ndarray,
     return shaped[0] if isinstance(order, int) else shaped
 
 
-def _piece_samples(law: MotionLaw, index: int) -> tuple[np.ndarray, ...]:
+def _piece_samples(law: LawShape, index: int) -> tuple[np.ndarray, ...]:
     """tau, piece index, v_N, a_N, j_N and q_N^(4) at the samples of one piece (its scan
     grid). A piece of constant acceleration (zero jerk at every sample: the trapezoid's)
     is a straight segment of the curve, whose hull is its two ends: only they are kept
@@ -359,7 +360,7 @@ class _SpeedOrder:
             beside[at_root] = tail
         return best, [before, after, beside]
 
-    def crossings(self, law: MotionLaw, bound: np.ndarray):
+    def crossings(self, law: LawShape, bound: np.ndarray):
         """Per bound and monotone run of v_N, the point where v_N crosses the bound between
         two samples of a piece: (tau, piece, v_N, a_N, ok) arrays (bounds x runs). The root
         of the cubic Hermite model of v_N - bound, polished by a Newton step on the law."""
@@ -371,18 +372,18 @@ class _SpeedOrder:
         a = np.zeros((count, runs))
         ok = np.zeros((count, runs), dtype=bool)
         los, cols, rows = [], [], []
-        for col, (start, end, direction) in enumerate(self.runs):
+        for run, (start, end, direction) in enumerate(self.runs):
             key = direction * t.v[start:end + 1]
             k = np.searchsorted(key, direction * bound, side="left")
             inside = (k >= 1) & (k <= end - start)
-            lo = start + np.clip(k - 1, 0, max(end - start - 1, 0))
-            inside &= (direction * (t.v[lo] - bound) < 0.0)
-            inside &= (direction * (t.v[lo + 1] - bound) > 0.0)
-            inside &= t.piece[lo] == t.piece[lo + 1]
+            first = start + np.clip(k - 1, 0, max(end - start - 1, 0))
+            inside &= (direction * (t.v[first] - bound) < 0.0)
+            inside &= (direction * (t.v[first + 1] - bound) > 0.0)
+            inside &= t.piece[first] == t.piece[first + 1]
             sel = np.flatnonzero(inside)
-            los.append(lo[sel])
+            los.append(first[sel])
             rows.append(sel)
-            cols.append(np.full(len(sel), col))
+            cols.append(np.full(len(sel), run))
         if not runs or not sum(len(r) for r in rows):
             return tau, piece, v, a, ok
         lo, row, col = np.concatenate(los), np.concatenate(rows), np.concatenate(cols)
@@ -409,7 +410,7 @@ class LinearPeaks:
     """A law's sampled (v_N, a_N) curve and its convex hull (built once per law: use
     ``law.linear_peaks``), answering max and min of p*a_N + q*v_N over tau in [0, 1]."""
 
-    def __init__(self, law: MotionLaw) -> None:
+    def __init__(self, law: LawShape) -> None:
         self.law = law
         columns = [_piece_samples(law, index) for index in range(len(law.pieces))]
         self.tau, self.piece, self.v, self.a, self.j, self.snap = (
@@ -543,9 +544,9 @@ class LinearPeaks:
             for use_upper in (True, False):
                 sel = np.flatnonzero((Pr >= 0.0) == use_upper)
                 if len(sel):
-                    chain, other = ((order.upper, order.lower) if use_upper
-                                    else (order.lower, order.upper))
-                    pos, near = order.support(chain, other, m[sel], band.side * Qr[sel],
+                    chain, opposite = ((order.upper, order.lower) if use_upper
+                                       else (order.lower, order.upper))
+                    pos, near = order.support(chain, opposite, m[sel], band.side * Qr[sel],
                                               Pr[sel])
                     found[sel] = pos
                     for mine, theirs in zip(nearby, near, strict=True):
@@ -707,11 +708,18 @@ class LinearPeaks:
         return value, tau, piece
 
 
-def maximum(law: MotionLaw, p: np.ndarray | float, q: np.ndarray | float) -> LinearPeak:
+class PeakedLaw(Protocol):
+    """A law that holds its :class:`LinearPeaks` (sizer.laws.base.MotionLaw)."""
+
+    @property
+    def linear_peaks(self) -> LinearPeaks: ...
+
+
+def maximum(law: PeakedLaw, p: np.ndarray | float, q: np.ndarray | float) -> LinearPeak:
     """max over tau in [0, 1] of p*a_N + q*v_N for arrays p, q (see the module docs)."""
     return law.linear_peaks.maximum(p, q)
 
 
-def minimum(law: MotionLaw, p: np.ndarray | float, q: np.ndarray | float) -> LinearPeak:
+def minimum(law: PeakedLaw, p: np.ndarray | float, q: np.ndarray | float) -> LinearPeak:
     """min over tau in [0, 1] of p*a_N + q*v_N for arrays p, q (see the module docs)."""
     return law.linear_peaks.minimum(p, q)

@@ -7,8 +7,8 @@ from __future__ import annotations
 
 import math
 
-from sizer.laws.base import MotionLaw, mirrored
-from sizer.laws.pieces import trig_poly_piece
+from sizer.laws.base import MotionLaw
+from sizer.laws.pieces import mirrored, trig_poly_piece
 
 PI = math.pi
 

@@ -13,7 +13,8 @@ import math
 
 import numpy as np
 
-from sizer.laws.base import MotionLaw, Parameter, Piece
+from sizer.laws.base import MotionLaw, Parameter
+from sizer.laws.pieces import Piece
 
 TWO_PI = 2.0 * math.pi
 WILDT_KAPPA = 1.0 - math.sqrt(3.0) / 2.0
@@ -53,7 +54,8 @@ def solve_tau_m(tau: np.ndarray, kappa: float) -> np.ndarray:
         moving = np.abs(new - x) > settle * np.maximum(1.0, np.abs(x))
         if not moving.any():
             break
-        index, x, lo, hi, target = (v[moving] for v in (index, new, lo, hi, target))
+        index, x, target = index[moving], new[moving], target[moving]
+        lo, hi = lo[moving], hi[moving]
     return out.reshape(shape)
 
 

@@ -1,14 +1,85 @@
-"""Exact piece types: a polynomial plus a sum of sines, evaluated to any derivative order."""
+"""The pieces of a law and what its analyses read of it; exact piece types: a polynomial
+plus a sum of sines, evaluated to any derivative order."""
 
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
-from dataclasses import replace
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
-from sizer.laws.base import Piece
+if TYPE_CHECKING:
+    from sizer.laws.piece_table import PieceTable
+
+PieceFunction = Callable[[np.ndarray, int], np.ndarray]
+"""Evaluate the derivative of the given order of q_N at an array of tau in the piece."""
+
+
+@dataclass(frozen=True)
+class Piece:
+    """One smooth piece of a law: q_N restricted to [start, end].
+
+    ``degree`` is the degree of q_N on the piece when it is a polynomial (the trapezoid,
+    double S and polynomial laws), None otherwise; quadrature is then exact with a node
+    count chosen from it. ``intervals``, when set, is the most uniform sub-intervals a
+    scan or a grid of this piece needs (a law of many short polynomial pieces, a cam
+    table, shares a fixed budget among them: sizer.laws.data_law); None: the caller's.
+    """
+
+    start: float
+    end: float
+    evaluate: PieceFunction
+    degree: int | None = None
+    intervals: int | None = None
+
+    def clamp(self, tau: np.ndarray) -> np.ndarray:
+        """tau moved into [start, end]: a point one ulp outside reads the end's value."""
+        # np.minimum(np.maximum()) is np.clip's result without its ~10 us of overhead
+        return np.minimum(np.maximum(tau, self.start), self.end)
+
+
+class LawShape(Protocol):
+    """What a law's analyses (sizer.laws.coefficients, quadrature, linear_peaks) read of
+    it: its pieces and their derivatives. sizer.laws.base.MotionLaw is one; the analyses
+    depend on this, not on the law class, which caches their results per law."""
+
+    @property
+    def law_id(self) -> str: ...
+    @property
+    def max_order(self) -> int: ...
+    @property
+    def steep_ends(self) -> bool: ...
+    @property
+    def pieces(self) -> tuple[Piece, ...]: ...
+    def fine_points(self) -> tuple[float, ...]: ...
+    def piece_table(self) -> PieceTable | None: ...
+    def piece_derivative(self, index: int, tau: np.ndarray | float, order: int) -> np.ndarray: ...
+    def outside(self, order: int) -> tuple[float, float]: ...
+
+
+def mirrored(pieces: Sequence[Piece]) -> list[Piece]:
+    """Complete the first half [0, 1/2] of a symmetric law: q_N(tau) = 1 - q_N(1 - tau).
+
+    The k-th derivative of 1 - f(1 - tau) is -(-1)^k f^(k)(1 - tau) (book sec. 5.1).
+    """
+
+    def reflect(piece: Piece) -> Piece:
+        start, end = 1.0 - piece.end, 1.0 - piece.start
+
+        def evaluate(tau: np.ndarray, order: int) -> np.ndarray:
+            # 1 - (1 - end) may differ from end by an ulp: the reflected piece's own ends
+            # map exactly onto the piece's ends, and every argument stays in the piece
+            u = np.where(tau <= start, piece.end, np.where(tau >= end, piece.start, 1.0 - tau))
+            value = piece.evaluate(piece.clamp(u), order)
+            if order == 0:
+                return 1.0 - value
+            return -((-1.0) ** order) * value
+
+        return Piece(start, end, evaluate, piece.degree, piece.intervals)
+
+    return list(pieces) + [reflect(p) for p in reversed(pieces)]
 
 
 def trig_poly_piece(

@@ -12,8 +12,8 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 
-from sizer.laws.base import MotionLaw, Parameter, Piece, mirrored
-from sizer.laws.pieces import constant_jerk_pieces
+from sizer.laws.base import MotionLaw, Parameter
+from sizer.laws.pieces import Piece, constant_jerk_pieces, mirrored
 
 MIN_FRACTION = 1e-6
 """Smallest alpha and beta: C_a = 1/(alpha (1 - alpha)(1 - beta)) and

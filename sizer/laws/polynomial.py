@@ -15,7 +15,8 @@ from fractions import Fraction
 
 import numpy as np
 
-from sizer.laws.base import MotionLaw, Parameter, Piece
+from sizer.laws.base import MotionLaw, Parameter
+from sizer.laws.pieces import Piece
 
 
 class Polynomial(MotionLaw):

@@ -30,7 +30,7 @@ from functools import cache
 import numpy as np
 from numpy.polynomial.legendre import leggauss
 
-from sizer.laws.base import MotionLaw, Piece
+from sizer.laws.pieces import LawShape, Piece
 from sizer.numerics.arrays import sorted_unique
 
 NODES = 12
@@ -93,7 +93,7 @@ class QuadratureRule:
     piece: np.ndarray
     bounds: np.ndarray
 
-    def values(self, law: MotionLaw, order: int) -> np.ndarray:
+    def values(self, law: LawShape, order: int) -> np.ndarray:
         """q_N^(order) at the nodes, each piece evaluated on its own nodes (one-sided)."""
         out = np.empty_like(self.tau)
         for index in range(len(law.pieces)):
@@ -106,7 +106,7 @@ class QuadratureRule:
         return float(values @ self.weight)
 
 
-def quadrature_rule(law: MotionLaw) -> QuadratureRule:
+def quadrature_rule(law: LawShape) -> QuadratureRule:
     """The fixed rule of a law (use ``law.quadrature``, which caches it)."""
     taus, weights = [], []
     for part in law_intervals(law, LAW_RESOLUTION):
@@ -119,7 +119,7 @@ def quadrature_rule(law: MotionLaw) -> QuadratureRule:
     return QuadratureRule(np.concatenate(taus), np.concatenate(weights), piece, bounds)
 
 
-def law_intervals(law: MotionLaw, resolution: Resolution = LAW_RESOLUTION
+def law_intervals(law: LawShape, resolution: Resolution = LAW_RESOLUTION
                   ) -> list[PieceIntervals]:
     """The intervals and node counts of every piece of a law, in order."""
     return [piece_intervals(law, index, resolution) for index in range(len(law.pieces))]
@@ -149,7 +149,7 @@ def gauss(edges: np.ndarray, nodes: int) -> tuple[np.ndarray, np.ndarray]:
     return mid[:, None] + half[:, None] * x, half[:, None] * w
 
 
-def base_edges(law: MotionLaw, piece: Piece, uniform: int = BASE_INTERVALS) -> np.ndarray:
+def base_edges(law: LawShape, piece: Piece, uniform: int = BASE_INTERVALS) -> np.ndarray:
     """Uniform edges over a piece, graded by decades toward the law's fine points in it
     (both sides) and toward the piece ends for laws with steep ends."""
     width = piece.end - piece.start
@@ -164,7 +164,7 @@ def base_edges(law: MotionLaw, piece: Piece, uniform: int = BASE_INTERVALS) -> n
     return sorted_unique(edges[(edges >= piece.start) & (edges <= piece.end)])
 
 
-def piece_intervals(law: MotionLaw, index: int,
+def piece_intervals(law: LawShape, index: int,
                     resolution: Resolution = LAW_RESOLUTION) -> PieceIntervals:
     """The intervals of one piece and the nodes on each (the rules of the module doc)."""
     piece = law.pieces[index]
@@ -179,7 +179,7 @@ def piece_intervals(law: MotionLaw, index: int,
                           NODES)
 
 
-def _refined(law: MotionLaw, index: int, base: np.ndarray) -> np.ndarray:
+def _refined(law: LawShape, index: int, base: np.ndarray) -> np.ndarray:
     """The base intervals of a smooth piece, each split into its own 2^k equal parts."""
     count = len(base) - 1
     width = np.diff(base)
@@ -209,7 +209,7 @@ def _refined(law: MotionLaw, index: int, base: np.ndarray) -> np.ndarray:
     return np.append(edges, base[-1])
 
 
-def _interval_sums(law: MotionLaw, index: int, base: np.ndarray, level: int) -> np.ndarray:
+def _interval_sums(law: LawShape, index: int, base: np.ndarray, level: int) -> np.ndarray:
     """Integrals of v_N^2 and a_N^2 over each base interval, cut into 2^level parts."""
     parts = 2**level
     steps = np.arange(parts + 1) / parts

@@ -7,11 +7,12 @@ from fractions import Fraction
 from functools import lru_cache
 
 from sizer.errors import UserError
-from sizer.laws.base import MotionLaw
+from sizer.laws.base import LAW_CACHE_SIZE, MotionLaw, law_of
 from sizer.laws.blended_constant import CycloidalBlendAcceleration, CycloidalBlends
 from sizer.laws.blended_linear import CircularBlends, PolynomialBlends
 from sizer.laws.cubic_blends import CubicBlendAcceleration
-from sizer.laws.data_spec import is_data_spec
+from sizer.laws.data_law import data_family, data_law_of
+from sizer.laws.data_spec import canonical_data_spec, is_data_spec, read_data_spec
 from sizer.laws.exponential import Exponential
 from sizer.laws.fifteen_segments import FifteenSegments
 from sizer.laws.fourier import Freudenstein13, Freudenstein135, Gutman13
@@ -68,19 +69,12 @@ def known_law_ids() -> list[str]:
     return sorted([*LAW_FAMILIES, *ALIASES])
 
 
-LAW_CACHE_SIZE = 4096
-"""Laws kept by canonical spec; past it the least recently used are rebuilt on demand."""
-
-
 def resolve(spec: LawSpec | str) -> tuple[type[MotionLaw], dict[str, Fraction | str]]:
     """The family of a spec and its arguments by parameter name (positional ones named).
 
     Parsed once per spec text (cached); the dictionary returned is the caller's copy.
     """
     if is_data_spec(spec):
-        from sizer.laws.data_law import data_family
-        from sizer.laws.data_spec import read_data_spec
-
         return data_family(read_data_spec(canonical_spec(spec))["kind"]), {}
     family, values = _resolved(spec)
     return family, dict(values)
@@ -125,7 +119,7 @@ def make_law(spec: LawSpec | str | MotionLaw) -> MotionLaw:
     if isinstance(spec, MotionLaw):
         return spec
     if is_data_spec(spec):
-        return _data_law(canonical_spec(spec))
+        return data_law_of(canonical_spec(spec))
     return _law_of_text(spec)
 
 
@@ -133,23 +127,13 @@ def canonical_spec(spec: LawSpec | str) -> str:
     """The canonical text of a law defined by data (``{kind: ...}``); a named spec's text
     as given (its canonical form is its law's ``spec``)."""
     if is_data_spec(spec):
-        return _canonical_data(spec)  # type: ignore[arg-type]
+        return _canonical_data(spec)
     return spec if isinstance(spec, str) else spec.name
 
 
 @lru_cache(maxsize=LAW_CACHE_SIZE)
 def _canonical_data(text: str) -> str:
-    from sizer.laws.data_spec import canonical_data_spec
-
     return canonical_data_spec(text)
-
-
-@lru_cache(maxsize=LAW_CACHE_SIZE)
-def _data_law(text: str) -> MotionLaw:
-    """The law of a canonical data spec, built once per process."""
-    from sizer.laws.data_law import build_data_law
-
-    return build_data_law(text)
 
 
 @lru_cache(maxsize=LAW_CACHE_SIZE)
@@ -160,19 +144,3 @@ def _law_of_text(spec: LawSpec | str) -> MotionLaw:
                         f"solver and need a design file; give a number here")
     return law_of(family, {k: float(v) for k, v in values})
 
-
-def law_of(family: type[MotionLaw], params: Mapping[str, float]) -> MotionLaw:
-    """The (cached) law of a family with these parameter values, defaults filled in.
-
-    The key is the canonical spec, so equal parameter values give the same object; use it
-    where laws are built from numbers (auto-shape searches) to share their computations.
-    """
-    values = family.canonical_params(params)
-    return _law_of_spec(family, family.canonical_spec(values), tuple(values.items()))
-
-
-@lru_cache(maxsize=LAW_CACHE_SIZE)
-def _law_of_spec(family: type[MotionLaw], spec: str,
-                 values: tuple[tuple[str, float], ...]) -> MotionLaw:
-    """Keyed by the canonical spec text (the values ride along to build the law)."""
-    return family(**dict(values))

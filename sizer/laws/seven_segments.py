@@ -19,8 +19,8 @@ from dataclasses import replace
 from functools import cached_property
 
 from sizer.errors import UserError
-from sizer.laws.base import MotionLaw, Parameter, Piece, format_parameter
-from sizer.laws.pieces import trig_poly_piece
+from sizer.laws.base import MotionLaw, Parameter, format_parameter
+from sizer.laws.pieces import Piece, trig_poly_piece
 
 PI = math.pi
 

@@ -7,8 +7,8 @@ from typing import ClassVar
 
 import numpy as np
 
-from sizer.laws.base import MotionLaw, Parameter, Piece
-from sizer.laws.pieces import trig_poly_piece
+from sizer.laws.base import MotionLaw, Parameter
+from sizer.laws.pieces import Piece, trig_poly_piece
 
 PI = math.pi
 

@@ -19,13 +19,13 @@ import numpy as np
 
 from sizer.errors import UserError
 from sizer.laws.base import MotionLaw
-from sizer.vibration import convolution as cv
 from sizer.vibration.response import (
-    TRACK_SAMPLES,
-    TRACK_STEP,
-    _law,
-    forced_end,
-    peak_output,
+    ModalModel,
+    MoveVibration,
+    Segment,
+    checked_move,
+    cycle_response,
+    modal_move,
 )
 
 
@@ -37,17 +37,6 @@ def _positive(values: Sequence[float], name: str, allow_zero: bool = False) -> n
         raise UserError(f"{name} must be a list of {kind} numbers, not {list(out.ravel())}",
                         field=f"load.{name}")
     return out
-
-
-@dataclass(frozen=True)
-class ChainModes:
-    """The eigen-decomposition of A: eigenvalues ``lam`` (2n,), input weights ``beta`` =
-    V^-1 B and output weights ``c`` = [1 .. 1, 0 .. 0] V."""
-
-    lam: np.ndarray
-    beta: np.ndarray
-    c: np.ndarray
-    vectors: np.ndarray
 
 
 @dataclass(frozen=True, eq=False)
@@ -93,9 +82,10 @@ class ChainLoad:
         return A, B
 
     @cached_property
-    def modes(self) -> ChainModes:
-        """Eigen-decomposition of A (UserError when A has no basis of eigenvectors, e.g. a
-        critically damped mode)."""
+    def modes(self) -> ModalModel:
+        """Eigen-decomposition of A: eigenvalues ``lam`` (2n,), input weights ``beta`` =
+        V^-1 B, output weights ``c`` = [1 .. 1, 0 .. 0] V, ``vectors`` V (UserError when A
+        has no basis of eigenvectors, e.g. a critically damped mode)."""
         A, B = self.state_matrices()
         lam, V = np.linalg.eig(A)
         if not np.all(np.isfinite(V)) or np.linalg.cond(V) > 1e10:
@@ -104,7 +94,7 @@ class ChainLoad:
         n = self.size
         beta = np.linalg.solve(V, B.astype(complex))
         out = np.concatenate([np.ones(n), np.zeros(n)])
-        return ChainModes(lam, beta, out @ V, V)
+        return ModalModel(lam, beta, out @ V, V)
 
     def natural_frequencies(self) -> np.ndarray:
         """|lambda| / 2 pi [Hz] of the under-damped modes, one a conjugate pair, ascending."""
@@ -121,80 +111,22 @@ class ChainLoad:
         return -pairs.real / np.abs(pairs)
 
 
-def _move(duration: float, displacement: float) -> tuple[float, float]:
-    T, h = float(duration), float(displacement)
-    if not (math.isfinite(T) and T > 0.0):
-        raise UserError(f"duration must be positive, not {T:g} s", field="duration")
-    if not math.isfinite(h):
-        raise UserError(f"displacement must be finite, not {h:g}", field="displacement")
-    return T, h
-
-
-def _initial(chain: ChainLoad, state: Sequence[float] | None) -> np.ndarray:
-    """Modal coordinates V^-1 x of a state [z, z'] (rest by default)."""
-    if state is None:
-        return np.zeros(2 * chain.size, dtype=complex)
-    x = np.asarray(state, dtype=float)
-    if x.shape != (2 * chain.size,) or not np.all(np.isfinite(x)):
-        raise UserError(f"initial state must be {2 * chain.size} finite numbers [z, z']",
-                        field="initial")
-    return np.linalg.solve(chain.modes.vectors, x.astype(complex))
-
-
 def chain_move_response(law: MotionLaw | str, duration: float, displacement: float,
                         chain: ChainLoad, times: np.ndarray,
                         initial: Sequence[float] | None = None) -> np.ndarray:
     """The state [z_1 .. z_n, z_1' .. z_n'] at the given times [s] of a move starting at
     t = 0, shape times.shape + (2n,): exact during the move, free vibration after it;
     times before 0 read the initial state (rest by default). x_n - y = z.sum(-1)[..., :n]."""
-    T, h = _move(duration, displacement)
-    the_law = _law(law)
-    modes = chain.modes
-    eta0 = _initial(chain, initial)
-    t = np.asarray(times, dtype=float).ravel()
-    tau = np.clip(t / T, 0.0, 1.0)
-    s = modes.lam * T
-    grid = cv.law_grid(the_law, float(cv.s_cap_of(np.array([np.max(np.abs(s))]))[0]),
-                       TRACK_STEP, TRACK_SAMPLES)
-    at_edges = cv.edge_values(grid, s)  # (modes, K + 1)
-    count = s.size
-    s_rows = np.tile(s, tau.size)
-    tau_rows = np.repeat(tau, count)
-    row = np.tile(np.arange(count), tau.size)
-    forced = cv.values_at(grid, s_rows, at_edges, tau_rows, row).reshape(tau.size, count)
-    eta = np.exp(np.multiply.outer(tau, s)) * eta0 + (h / T) * modes.beta * forced
-    after = t > T
-    eta[after] *= np.exp(np.multiply.outer(t[after] - T, modes.lam))
-    x = (eta @ modes.vectors.T).real
-    before = t < 0.0
-    x[before] = 0.0 if initial is None else np.asarray(initial, dtype=float)
-    return x.reshape((*np.shape(times), 2 * chain.size))
-
-
-@dataclass(frozen=True)
-class ChainVibration:
-    """One move of a chain load: ``residual`` = sum_j |C_j eta_j| at the move's end (the
-    sum of the modes' envelopes of x_n - y after it, a bound on |x_n - y| from then on;
-    for one mode, the 1-DOF residual amplitude); ``peak_error`` = max |x_n - y| during
-    the move; ``end_state`` = [z, z'] at the end."""
-
-    residual: float
-    peak_error: float
-    end_state: tuple[float, ...]
+    return modal_move(law, duration, displacement, chain.modes, times, initial)
 
 
 def chain_vibration(law: MotionLaw | str, duration: float, displacement: float,
                     chain: ChainLoad, initial: Sequence[float] | None = None
-                    ) -> ChainVibration:
-    """Residual and peak tracking error of the last mass through one move (sec. 7.2)."""
-    T, h = _move(duration, displacement)
-    the_law = _law(law)
-    modes = chain.modes
-    eta0 = _initial(chain, initial)
-    s = modes.lam * T
-    eta = np.exp(s) * eta0 + (h / T) * modes.beta * forced_end(the_law, s)
-    peak = peak_output(the_law, s[None, :], modes.c[None, :], eta0[None, :],
-                       ((h / T) * modes.beta)[None, :])[0]
-    state = (modes.vectors @ eta).real
-    return ChainVibration(float(np.sum(np.abs(modes.c * eta))), float(peak),
-                          tuple(float(v) for v in state))
+                    ) -> MoveVibration:
+    """Residual and peak tracking error of the last mass through one move (sec. 7.2):
+    ``residual`` = sum_j |C_j eta_j| at the move's end (the sum of the modes' envelopes
+    of x_n - y after it, a bound on |x_n - y| from then on; for one mode, the 1-DOF
+    residual amplitude), ``peak_error`` = max |x_n - y| during the move, ``end_state`` =
+    [z, z'] at the end."""
+    T, h = checked_move(duration, displacement)
+    return cycle_response([Segment(law, 0.0, T, h)], chain, initial=initial).moves[0]

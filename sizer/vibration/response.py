@@ -20,7 +20,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 import numpy as np
 
@@ -30,9 +30,6 @@ from sizer.laws.registry import make_law
 from sizer.vibration import convolution as cv
 from sizer.vibration import far_field as far
 from sizer.vibration.elastic_load import ElasticLoad
-
-if TYPE_CHECKING:
-    from sizer.vibration.chain_load import ChainLoad
 
 TRACK_STEP = 2.0 * math.pi / 16.0
 """Phase of one part of the tracking grid [rad]: 16 samples a period of the mode."""
@@ -234,15 +231,47 @@ def tracking_error(law: MotionLaw | str, fT: np.ndarray | float, damping_ratio: 
 
 
 # ------------------------------------------------------------------ one move, any times
-def _state(W: complex | np.ndarray, lam: complex, omega_d: float
-           ) -> tuple[np.ndarray, np.ndarray]:
-    W = np.asarray(W)
-    return -W.imag / omega_d, -(lam * W).imag / omega_d
-
-
 def _coordinate(z: float, z_dot: float, lam: complex, omega_d: float) -> complex:
     """The mode coordinate W of a state (z, z'): -Im W = omega_d z, -Im(lambda W) = omega_d z'."""
     return complex(-(z_dot - lam.real * z), -omega_d * z)
+
+
+def checked_move(duration: float, displacement: float) -> tuple[float, float]:
+    """(T, h) as floats; UserError unless T > 0 and h are finite."""
+    T, h = float(duration), float(displacement)
+    if not (math.isfinite(T) and T > 0.0):
+        raise UserError(f"duration must be positive, not {T:g} s", field="duration")
+    if not math.isfinite(h):
+        raise UserError(f"displacement must be finite, not {h:g}", field="displacement")
+    return T, h
+
+
+def modal_move(law: MotionLaw | str, duration: float, displacement: float,
+               model: ModalModel, times: np.ndarray,
+               initial: Sequence[float] | None = None) -> np.ndarray:
+    """The load's state at the given times [s] of a move starting at t = 0, shape
+    times.shape + (states,): exact during the move, free vibration after it; times
+    before 0 read the state ``initial`` the move starts from (rest by default)."""
+    T, h = checked_move(duration, displacement)
+    the_law = _law(law)
+    size = model.vectors.shape[0]
+    W0 = model.coordinates(np.zeros(size) if initial is None else initial)
+    t = np.asarray(times, dtype=float).ravel()
+    tau = np.clip(t / T, 0.0, 1.0)
+    s = model.lam * T
+    grid = cv.law_grid(the_law, float(cv.s_cap_of(np.array([np.max(np.abs(s))]))[0]),
+                       TRACK_STEP, TRACK_SAMPLES)
+    at_edges = cv.edge_values(grid, s)  # (modes, K + 1)
+    count = s.size
+    row = np.tile(np.arange(count), tau.size)
+    forced = cv.values_at(grid, np.tile(s, tau.size), at_edges, np.repeat(tau, count),
+                          row).reshape(tau.size, count)
+    W = np.exp(np.multiply.outer(tau, s)) * W0 + (h / T) * model.beta * forced
+    after = t > T
+    W[after] *= np.exp(np.multiply.outer(t[after] - T, model.lam))
+    x = (W @ model.vectors.T).real
+    x[t < 0.0] = 0.0 if initial is None else np.asarray(initial, dtype=float)
+    return x.reshape((*np.shape(times), size))
 
 
 def move_response(law: MotionLaw | str, duration: float, displacement: float,
@@ -255,31 +284,8 @@ def move_response(law: MotionLaw | str, duration: float, displacement: float,
     before 0 read that state); during the move the exact forced response, after it the
     exact free vibration (x = y + z, y = h q_N(t / T)).
     """
-    T = float(duration)
-    if not (math.isfinite(T) and T > 0.0):
-        raise UserError(f"duration must be positive, not {T:g} s", field="duration")
-    h = float(displacement)
-    if not math.isfinite(h):
-        raise UserError(f"displacement must be finite, not {h:g}", field="displacement")
-    the_law = _law(law)
-    t = np.asarray(times, dtype=float)
-    lam = load.omega_n * complex(-load.damping_ratio, math.sqrt(1.0 - load.damping_ratio**2))
-    W0 = _coordinate(*initial, lam, load.omega_d)
-    s = lam * T
-    flat = t.ravel()
-    tau = np.clip(flat / T, 0.0, 1.0)
-    grid = cv.law_grid(the_law, float(cv.s_cap_of(np.array([abs(s)]))[0]), TRACK_STEP,
-                       TRACK_SAMPLES)
-    at_edges = cv.edge_values(grid, np.array([s]))
-    forced = cv.values_at(grid, np.full(tau.size, s), np.broadcast_to(
-        at_edges, (tau.size, at_edges.shape[1])), tau)
-    W = np.exp(s * tau) * W0 + (h / T) * forced
-    after = flat > T
-    W[after] = W[after] * np.exp(lam * (flat[after] - T))
-    z, z_dot = _state(W, lam, load.omega_d)
-    before = flat < 0.0
-    z[before], z_dot[before] = initial
-    return z.reshape(t.shape), z_dot.reshape(t.shape)
+    x = modal_move(law, duration, displacement, ModalModel.of(load), times, initial)
+    return x[..., 0], x[..., 1]
 
 
 # ------------------------------------------------------------------ cycles of moves
@@ -350,7 +356,7 @@ class ModalModel:
     vectors: np.ndarray
 
     @classmethod
-    def of(cls, load: ElasticLoad | ChainLoad) -> ModalModel:
+    def of(cls, load: ElasticLoad | ModalLoad) -> ModalModel:
         """The 1-DOF load (z = -Im W / omega_d, z' = -Im(lambda W) / omega_d) or a chain."""
         if isinstance(load, ElasticLoad):
             lam = load.omega_n * complex(-load.damping_ratio,
@@ -358,10 +364,9 @@ class ModalModel:
             vectors = np.array([[1j], [1j * lam]]) / load.omega_d
             return cls(np.array([lam]), np.ones(1, dtype=complex),
                        np.array([1j / load.omega_d]), vectors)
-        modes = load.modes
-        return cls(modes.lam, modes.beta, modes.c, modes.vectors)
+        return load.modes
 
-    def coordinates(self, state: Sequence[float]) -> np.ndarray:
+    def coordinates(self, state: Sequence[float] | np.ndarray) -> np.ndarray:
         """W of a real state (for the 1-DOF load, (z, z'))."""
         x = np.asarray(state, dtype=float)
         if x.shape != (self.vectors.shape[0],) or not np.all(np.isfinite(x)):
@@ -376,7 +381,14 @@ class ModalModel:
         return tuple(float(v) for v in (self.vectors @ W).real)
 
 
-def cycle_response(segments: Sequence[Segment], load: ElasticLoad | ChainLoad,
+class ModalLoad(Protocol):
+    """A load known by its modes (the chain of sec. 7.1.2: sizer.vibration.chain_load)."""
+
+    @property
+    def modes(self) -> ModalModel: ...
+
+
+def cycle_response(segments: Sequence[Segment], load: ElasticLoad | ModalLoad,
                    period: float | None = None,
                    initial: Sequence[float] | None = None) -> CycleResponse:
     """The load through a cycle of moves with dwells between them, the state carried

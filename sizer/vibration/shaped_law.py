@@ -39,7 +39,9 @@ from typing import Any, ClassVar, Literal
 import numpy as np
 
 from sizer.errors import UserError
-from sizer.laws.base import MotionLaw, Piece
+from sizer.laws.base import MotionLaw
+from sizer.laws.data_law import data_law_of
+from sizer.laws.pieces import Piece
 from sizer.vibration.elastic_load import ElasticLoad
 from sizer.vibration.shapers import Shaper, kind_of_shaper, make_shaper
 
@@ -111,6 +113,11 @@ class ShapedLaw(MotionLaw):
         if self.vibration_limit is not None:
             fields["vibration_limit"] = self.vibration_limit
         return data_spec_text(fields)
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickled as its spec (a data spec of kind ``shaped``), built again through the
+        data laws' cache (sizer.laws.data_law.data_law_of)."""
+        return data_law_of, (self.spec,)
 
     # ------------------------------------------------------------------ shape
     @property

@@ -238,8 +238,8 @@ def build_bspline(fields: Mapping[str, Any]) -> PPoly:
 
     F.refuse_unknown(fields, BSPLINE_FIELDS, "bspline")
     if "control_points" in fields:
-        degree, knots, P = read_direct(fields, "bspline")
-        return ppoly_from_bspline(BSpline(knots, P, degree))
+        degree, given, P = read_direct(fields, "bspline")
+        return ppoly_from_bspline(BSpline(given, P, degree))
     degree = F.order_of(fields) - 1
     knots = read_knots(fields, degree)
     t, q = F.points(fields, minimum=2)

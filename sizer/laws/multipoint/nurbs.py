@@ -136,9 +136,9 @@ def build_nurbs(fields: Mapping[str, Any]) -> NURBS:
     """kind ``nurbs``: the bspline's fields plus ``weights`` (one per control point)."""
     F.refuse_unknown(fields, NURBS_FIELDS, "nurbs")
     if "control_points" in fields:
-        degree, knots, P = read_direct(fields, "nurbs")
-        weights = check_weights(F.numbers(fields, "weights"), knots, degree)
-        return NURBS(knots, P, weights, degree)
+        degree, given, P = read_direct(fields, "nurbs")
+        weights = check_weights(F.numbers(fields, "weights"), given, degree)
+        return NURBS(given, P, weights, degree)
     degree = F.order_of(fields) - 1
     knots = read_knots(fields, degree)
     t, q = F.points(fields, minimum=2)

@@ -148,7 +148,7 @@ def _singular(As: np.ndarray, labels: Sequence[Label], fallback: str) -> UserErr
         weak = s <= max(SINGULAR_RCOND * s[0], s[-1])
         weight = np.max(np.abs(U[:, weak]), axis=1)
         involved = np.flatnonzero(weight > 1e-6 * weight.max())
-        named = [labels[i] for i in involved if labels[i][0] is not None]
+        named = [labels[i] for i in involved.tolist() if labels[i][0] is not None]
     user = [lab for lab in named if lab[0] in USER_FIELDS]
     field = user[0][0] if user else fallback
     texts = [lab[1] for lab in user + [lab for lab in named if lab not in user]]

@@ -55,7 +55,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -64,6 +64,7 @@ import numpy as np
 from sizer.errors import UserError
 from sizer.input_limits import MAX_CAM_TABLE_ROWS
 from sizer.laws.multipoint.fields import boolean, integer, number
+from sizer.laws.quadrature import gauss
 
 if TYPE_CHECKING:
     from scipy.interpolate import BSpline, PPoly
@@ -264,17 +265,16 @@ def _noise_sigma(x: np.ndarray, q: np.ndarray) -> float:
     return float(np.sqrt(np.median(residuals ** 2) / _CHI2_MEDIAN))
 
 
-def _gauss(breaks: np.ndarray, nodes: int) -> tuple[np.ndarray, np.ndarray]:
-    """Gauss-Legendre points and weights on every piece between ``breaks``."""
-    u, w = np.polynomial.legendre.leggauss(nodes)
-    left, width = breaks[:-1, None], np.diff(breaks)[:, None]
-    return (left + 0.5 * width * (u + 1.0)).ravel(), (0.5 * width * w).ravel()
-
-
 def _derivative_rms(curve: PPoly) -> tuple[float, float, float]:
-    t, w = _gauss(curve.x, _GAUSS_NODES)
+    t, w = (a.ravel() for a in gauss(curve.x, _GAUSS_NODES))
     span = curve.x[-1] - curve.x[0]
-    return tuple(float(np.sqrt(np.sum(w * curve(t, nu) ** 2) / span)) for nu in (1, 2, 3))
+    return _three([float(np.sqrt(np.sum(w * curve(t, nu) ** 2) / span)) for nu in (1, 2, 3)])
+
+
+def _three(values: Sequence[float]) -> tuple[float, float, float]:
+    """The values of the orders 1, 2, 3 (velocity, acceleration, jerk) as a triple."""
+    velocity, acceleration, jerk = values
+    return velocity, acceleration, jerk
 
 
 def _derivative_noise(x: np.ndarray, spline: BSpline, curve: PPoly, order: int,
@@ -318,7 +318,7 @@ def _derivative_noise(x: np.ndarray, spline: BSpline, curve: PPoly, order: int,
         peak = math.sqrt(max(float(np.max(_variance(response, dense[part], nu)))
                              for part in _chunks(len(dense))))
         noise_peak.append(sigma * float(peak) / scale)
-    return tuple(noise_rms), tuple(noise_peak)
+    return _three(noise_rms), _three(noise_peak)
 
 
 _NOISE_PIECES = 2_048

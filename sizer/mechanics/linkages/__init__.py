@@ -22,8 +22,10 @@ MAX_ORDER = 4
 class Linkage(Protocol):
     """The geometry of a 1-DOF linkage from its input angle to its output."""
 
-    output_linear: bool
-    """True when the output is a length (a slider, m); False for an angle (rad)."""
+    @property
+    def output_linear(self) -> bool:
+        """True when the output is a length (a slider, m); False for an angle (rad)."""
+        ...
 
     def output(self, theta: np.ndarray, order: int = 0) -> np.ndarray:
         """d^order s / d theta^order at the input angles theta (order 0..MAX_ORDER)."""
@@ -42,3 +44,11 @@ class Linkage(Protocol):
     def output_range(self) -> tuple[float, float]:
         """The least and largest output over a turn of the input (the dead points')."""
         ...
+
+
+def outside_range(s: np.ndarray, low: float, high: float) -> float | None:
+    """The first output of ``s`` outside [low, high] by more than rounding (1e-12 of the
+    span), NaN included, or None when all are inside."""
+    span = high - low
+    bad = ~((s >= low - 1e-12 * span) & (s <= high + 1e-12 * span))
+    return float(s[bad].flat[0]) if np.any(bad) else None

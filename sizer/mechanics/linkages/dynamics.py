@@ -136,8 +136,8 @@ class LinkageDynamics:
             if r is None and self.masses.link_mass_at_crank > 0.0:
                 raise UserError("the crank radius is needed for the link's mass at the "
                                 "crank pin", field="crank_radius")
-            object.__setattr__(self, "crank_radius", 0.0 if r is None else float(r))
-        r = self.crank_radius
+            r = 0.0 if r is None else float(r)
+            object.__setattr__(self, "crank_radius", r)
         if not _finite(r) or r < 0.0:
             raise UserError(f"must be a finite length >= 0, got {r!r} m", field="crank_radius")
         if not self._joint.output_linear:
@@ -170,7 +170,8 @@ class LinkageDynamics:
     def crank_side_inertia(self) -> float:
         """J_0 = J_crank + m_pin r^2: what turns with the crank (kg*m^2)."""
         m = self.masses
-        return m.crank_inertia + m.link_mass_at_crank * self.crank_radius**2
+        radius = self.crank_radius or 0.0  # never None: __post_init__ fills it in
+        return m.crank_inertia + m.link_mass_at_crank * radius**2
 
     @property
     def output_side_inertia(self) -> float:

@@ -52,7 +52,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from sizer.errors import UserError
-from sizer.mechanics.linkages import MAX_ORDER
+from sizer.mechanics.linkages import MAX_ORDER, outside_range
 
 COORDINATES = ("rocker_angle", "coupler_angle", "crank_angle")
 """The output coordinates a four-bar gives (its ``coordinate`` field)."""
@@ -80,7 +80,7 @@ class FourBar:
         lengths = {name: getattr(self, name) for name in _LINKS}
         for name, value in lengths.items():
             if not (isinstance(value, numbers.Real) and not isinstance(value, bool)
-                    and math.isfinite(value) and value > 0.0):
+                    and math.isfinite(value) and float(value) > 0.0):
                 raise UserError(f"must be a positive length, got {value!r} m", field=name)
         if isinstance(self.branch, bool) or self.branch not in (1, -1):
             raise UserError(f"must be +1 (open) or -1 (crossed), got {self.branch!r}",
@@ -152,10 +152,8 @@ class FourBar:
         if self.coordinate == "crank_angle":
             return s.copy()
         low, high = self.output_range()
-        span = high - low
-        bad = ~((s >= low - 1e-12 * span) & (s <= high + 1e-12 * span))
-        if np.any(bad):
-            value = float(s[bad].flat[0])
+        value = outside_range(s, low, high)
+        if value is not None:
             name = self.coordinate.replace("_", " ")
             raise UserError(f"the {name} {value:g} rad is outside its swing "
                             f"[{low:g}, {high:g}] rad", field="output")

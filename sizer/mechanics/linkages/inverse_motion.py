@@ -37,7 +37,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from sizer.errors import UserError
-from sizer.mechanics.linkages import Linkage
+from sizer.mechanics.linkages import Linkage, outside_range
 
 DEAD_ZONE = 1e-3
 """Angular distance |f'/f''| (rad) to a dead point under which the limit forms replace
@@ -130,10 +130,8 @@ def _visits(linkage: Linkage, s: np.ndarray, s1: np.ndarray,
 
 def _check_range(linkage: Linkage, s: np.ndarray) -> None:
     low, high = linkage.output_range()
-    span = high - low
-    bad = (s < low - 1e-12 * span) | (s > high + 1e-12 * span)
-    if np.any(bad):
-        value = float(s[bad][0])
+    value = outside_range(s, low, high)
+    if value is not None:
         raise UserError(f"the motion needs the output at {value:g}, outside the "
                         f"linkage's range [{low:g}, {high:g}]", field="output")
 
@@ -337,10 +335,10 @@ def dead_point_crossings(linkage: Linkage, t: np.ndarray, s: np.ndarray, s1: np.
     _check_range(linkage, s)
     n = s.size
     given = left is not None and right is not None
-    lo_acc, lo_jerk = (np.asarray(left[0], float), np.asarray(left[1], float)) if given \
-        else (s2, s3)
-    hi_acc, hi_jerk = (np.asarray(right[0], float), np.asarray(right[1], float)) if given \
-        else (s2, s3)
+    lo_acc, lo_jerk = hi_acc, hi_jerk = s2, s3
+    if left is not None and right is not None:
+        lo_acc, lo_jerk = np.asarray(left[0], float), np.asarray(left[1], float)
+        hi_acc, hi_jerk = np.asarray(right[0], float), np.asarray(right[1], float)
     tol = ACC_TOL if given else SAMPLED_TOL
     scale_a = max(_scale(s2), 1e-300)
     scale_j = max(_scale(s3), 1e-300)

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from sizer.errors import UserError
-from sizer.mechanics.linkages import MAX_ORDER
+from sizer.mechanics.linkages import MAX_ORDER, outside_range
 
 COORDINATES = ("slider_position", "rod_angle")
 """The output coordinates a slider-crank gives (its ``coordinate`` field)."""
@@ -86,10 +86,8 @@ class SliderCrank:
         back (+1); for the rod angle, cos theta of the sign of ``half``."""
         s = np.asarray(s, dtype=float)
         low, high = self.output_range()
-        span = high - low
-        bad = (s < low - 1e-12 * span) | (s > high + 1e-12 * span)
-        if np.any(bad):
-            value = float(s[bad][0])
+        value = outside_range(s, low, high)
+        if value is not None:
             name, unit, swing = ("slider position", "m", "stroke") if self.output_linear \
                 else ("rod angle", "rad", "swing")
             raise UserError(f"the {name} {value:g} {unit} is outside the {swing} "
