@@ -30,7 +30,7 @@ if getattr(yaml, "__with_libyaml__", False):
             yaml.resolver.Resolver.__init__(self)
             yaml.composer.Composer.__init__(self)
 else:  # pragma: no cover - PyYAML built without libyaml
-    SafeLoader = yaml.SafeLoader  # type: ignore[misc,assignment]
+    SafeLoader = yaml.SafeLoader  # type: ignore[misc]  # PyYAML ships no stubs
 
 
 def format_path(path: Sequence[Any]) -> str:

@@ -187,7 +187,7 @@ LINKAGE_READINGS = [
 
 def assert_well_formed(cases: list[Case]) -> None:
     """Case ids unique, and every field a case names a field of the input models."""
-    from sizer.model.fields import input_fields
+    from sizer.io.schema.fields import input_fields
 
     assert len({c.id for c in cases}) == len(cases)
     assert {f for c in cases for f in c.fields} <= set(input_fields())

@@ -1,7 +1,7 @@
 """Bad values of every field of the design file: each answered by one located message that
 names the file, the field and what is allowed (the range in SI units, or the choices).
 
-The ranges are those of sizer/model/ranges.py (docs/input-ranges.md); the last test walks
+The ranges are those of sizer/io/schema/ranges.py (docs/input-ranges.md); the last test walks
 the models and fails when a field of the design, motor catalog, gearbox catalog or machine
 files has no case here, in tests/test_bad_inputs_catalogs.py or
 tests/test_bad_inputs_machine.py.
@@ -13,7 +13,7 @@ import pytest
 from bad_input_cases import LINKAGE_READINGS, Case, edited
 from bad_input_cases import run_case as run
 
-from sizer.model.fields import input_fields
+from sizer.io.schema.fields import input_fields
 
 ROTARY = "book/ex6_1-6_2.yaml"
 """A rotary axis, a direct drive, the book's motors (a mapping per section)."""

@@ -138,7 +138,7 @@ def test_case_ids_are_unique_and_fields_are_the_models() -> None:
 
 def test_a_branch_of_one_as_a_number_is_still_read() -> None:
     """1 and -1 (also written 1.0) stay valid: only a YAML boolean is refused."""
-    from sizer.model.transmission_inputs import FourBarInput
+    from sizer.io.schema.transmission_inputs import FourBarInput
 
     links = {"type": "four_bar", "crank": 0.075, "coupler": 0.175, "rocker": 0.1,
              "ground": 0.175}

@@ -19,6 +19,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from sizer.errors import UserError
+from sizer.io.schema.law_schema import check_law_spec
 from sizer.laws import make_law
 from sizer.laws.boundary_speeds import (
     BoundaryBasis,
@@ -26,7 +27,6 @@ from sizer.laws.boundary_speeds import (
     has_boundary_form,
     meets_accelerations,
 )
-from sizer.model.inputs import check_law_spec
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from sizer.catalog_tools import Finding, check_motor, validate_catalogs
-from sizer.model.inputs import MotorInput
+from sizer.io.schema.inputs import MotorInput
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -22,9 +22,9 @@ from pydantic import ValidationError
 from sizer.errors import UserError
 from sizer.io.cycle import BOUNDARY_SPEED_FAMILIES, has_boundary_form, meets_accelerations
 from sizer.io.loader import design_schema, load_design, load_design_data
+from sizer.io.schema.inputs import DesignFile
 from sizer.model.cycle import Dwell, Move, Run, SegmentLoad, ShareRule
 from sizer.model.domain import Task
-from sizer.model.inputs import DesignFile
 
 ROTARY: dict[str, Any] = {
     "name": "rotary cycle",
@@ -607,7 +607,7 @@ def test_case_ids_are_unique() -> None:
 
 
 def test_every_field_of_cycle_has_a_case() -> None:
-    from sizer.model.fields import input_fields
+    from sizer.io.schema.fields import input_fields
 
     fields = {f for f in input_fields() if f == "cycle" or f.startswith("cycle.")}
     named = {f for c in CASES for f in c.fields}

@@ -30,7 +30,7 @@ from sizer.io.loader import (
     read_drive_catalog,
     read_yaml,
 )
-from sizer.model.inputs import DriveCatalogFile
+from sizer.io.schema.inputs import DriveCatalogFile
 from sizer.sizing.drives import CurrentCurves
 from sizer.sizing.engine import size_design
 from sizer.sizing.motors import MotorArrays

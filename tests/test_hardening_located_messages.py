@@ -16,9 +16,9 @@ from pydantic import Field
 from test_bad_inputs_catalogs import DRIVE, MOTOR_KT
 
 from sizer.errors import UserError
+from sizer.io.schema.inputs_base import Strict
 from sizer.io.validation import validate
 from sizer.io.yaml_source import parse_yaml
-from sizer.model.inputs_base import Strict
 
 MOTORS = yaml.safe_dump({"motors": [MOTOR_KT]}, sort_keys=False)
 DRIVES = yaml.safe_dump({"catalog": "Acme drives", "drives": [DRIVE]}, sort_keys=False)

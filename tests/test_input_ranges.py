@@ -12,9 +12,9 @@ import pytest
 from cli_run import run_cli
 
 from sizer.io.loader import catalog_schema, design_schema, gearbox_catalog_schema
-from sizer.model.fields import fields_by_range as used
-from sizer.model.fields import input_fields
-from sizer.model.ranges import RANGES, Range, number_text, ranges_markdown
+from sizer.io.schema.fields import fields_by_range as used
+from sizer.io.schema.fields import input_fields
+from sizer.io.schema.ranges import RANGES, Range, number_text, ranges_markdown
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -19,11 +19,11 @@ from hypothesis import strategies as st
 from scipy import optimize
 
 from sizer.errors import UserError
+from sizer.io.schema.law_schema import check_law_spec
 from sizer.laws import LAW_FAMILIES, make_law
 from sizer.laws.coefficients import COEFFICIENT_NAMES, jumps
 from sizer.laws.seven_segments import MIN_SHARE, SHARE_NAMES, SevenSegmentLaw
 from sizer.laws.trigonometric import Elliptic
-from sizer.model.inputs import check_law_spec
 
 PI = math.pi
 

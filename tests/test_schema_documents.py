@@ -21,9 +21,9 @@ from pydantic import BaseModel, ValidationError
 
 from sizer.io.loader import catalog_schema, design_schema, gearbox_catalog_schema
 from sizer.io.machine_loader import machine_schema
-from sizer.model.inputs import CatalogFile, DesignFile
-from sizer.model.machine_inputs import MachineFile
-from sizer.model.transmission_inputs import GearboxCatalogFile
+from sizer.io.schema.inputs import CatalogFile, DesignFile
+from sizer.io.schema.machine_inputs import MachineFile
+from sizer.io.schema.transmission_inputs import GearboxCatalogFile
 
 ROOT = Path(__file__).resolve().parent.parent
 SCHEMAS = {"design": (design_schema, DesignFile), "catalog": (catalog_schema, CatalogFile),

@@ -31,7 +31,7 @@ from sizer.io.files import decode_text, read_user_bytes
 from sizer.io.motor_rules import check_motor
 from sizer.io.validation import all_problems
 from sizer.io.yaml_source import YamlSource
-from sizer.model.inputs import MotorInput
+from sizer.io.schema.inputs import MotorInput
 from sizer.units import KINDS, to_si
 
 FIELD_KINDS: dict[str, str | None] = {

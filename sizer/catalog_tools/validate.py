@@ -25,7 +25,7 @@ from sizer.io.loader import resolve_catalog
 from sizer.io.motor_rules import check_motor
 from sizer.io.validation import all_problems
 from sizer.io.yaml_source import YamlSource, format_path, read_yaml
-from sizer.model.inputs import CatalogFile, DriveCatalogFile, MotorInput
+from sizer.io.schema.inputs import CatalogFile, DriveCatalogFile, MotorInput
 
 
 @dataclass

@@ -1,4 +1,6 @@
-"""Reading the input files: YAML with line numbers, validation, SI domain objects."""
+"""Reading the input files in one pass: YAML with line numbers (yaml_source), validation
+against the file schema (sizer.io.schema, pydantic), then the SI domain objects of
+sizer.model, which knows nothing of the schema."""
 
 from sizer.io.loader import (
     NOT_DEFAULT_CATALOGS,

@@ -40,11 +40,10 @@ class HeaderUnit(str):
 
 def header_units(table: CamTableData) -> tuple[str | None, str | None]:
     """The units of the table's x and q columns, each located at the header's cell."""
-    return tuple(  # type: ignore[return-value]
-        None if unit is None else HeaderUnit(unit, {
-            "file": str(table.path), "line": table.header_line,
-            "field": table.column_name(i)})
+    x, q = (None if unit is None else HeaderUnit(unit, {
+        "file": str(table.path), "line": table.header_line, "field": table.column_name(i)})
         for i, unit in enumerate(table.units))
+    return x, q
 
 
 def build_cam_table_law(fields: Mapping[str, Any]) -> FittedCurve:

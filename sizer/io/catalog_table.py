@@ -5,9 +5,9 @@ goes, quantities that convert and lie in their ranges, curve points as ``[speed,
 torque]`` or ``{speed: .., torque: ..}``) is read without a pydantic model per motor:
 each quantity column is converted by :func:`sizer.units.column_to_si` (one unit
 conversion per distinct unit of the column, bit for bit :func:`sizer.units.to_si`) and
-checked against its range (:mod:`sizer.model.ranges`) as an array, and the domain motors
+checked against its range (:mod:`sizer.io.schema.ranges`) as an array, and the domain motors
 are built from the columns. They are the motors the validation of
-:class:`sizer.model.inputs.CatalogFile` gives (tests/test_catalog_load_columns.py).
+:class:`sizer.io.schema.inputs.CatalogFile` gives (tests/test_catalog_load_columns.py).
 
 Anything else gives None: the loader then validates the file field by field, which words
 its first problem with the file, the line and the field, exactly as before. So a value
@@ -26,10 +26,10 @@ import numpy as np
 from pydantic import BaseModel
 
 from sizer.io.motor_rules import CurveColumns, Figures, MotorColumns, is_idealized, line_to_line
+from sizer.io.schema.inputs import CatalogFile, CurvePointInput, MotorInput
+from sizer.io.schema.inputs_base import RangeRef, field_markers
+from sizer.io.schema.ranges import RANGES
 from sizer.model.domain import Motor
-from sizer.model.inputs import CatalogFile, CurvePointInput, MotorInput
-from sizer.model.inputs_base import RangeRef, field_markers
-from sizer.model.ranges import RANGES
 from sizer.units import column_to_si
 
 CURVES = ("continuous_curve", "intermittent_curve")
@@ -117,7 +117,7 @@ def read_table(data: Any) -> CatalogTable | None:
             return None
     try:
         catalog = {key: _texts([data.get(key)], nullable=True)[0] for key in fields.catalog_texts}
-        columns: dict[str, list[Any]] = {}
+        columns: dict[str, Any] = {}  # texts as lists, quantities as SI arrays
         for key in fields.texts:
             columns[key] = _texts(_column(rows, key, fields), nullable=key in fields.nullable)
         ids = [text.strip() for text in columns["id"]]
@@ -213,11 +213,11 @@ def _curve_column(rows: list[dict[str, Any]], key: str, fields: _Fields,
             raise _NotCommonError
         given[index], start[index], size[index] = True, len(speeds), len(points)
         for point in points:
-            kind = type(point)
-            if kind is list and len(point) == 2:
+            point_type = type(point)
+            if point_type is list and len(point) == 2:
                 speeds.append(point[0])
                 torques.append(point[1])
-            elif kind is dict and point.keys() == keys:
+            elif point_type is dict and point.keys() == keys:
                 speeds.append(point[first_key])
                 torques.append(point[second_key])
             else:
@@ -253,23 +253,25 @@ def _table(rows: list[dict[str, Any]], ids: list[str], columns: dict[str, Any],
     manufacturer, source = catalog.get("manufacturer"), catalog.get("source")
     makers = [m or manufacturer for m in columns["manufacturer"]]
     sources = [s or source for s in columns["source"]]
-    numbers = {key: _floats(columns[key]) for key in _fields().quantities}
+    fields = _fields()
+    # a field that takes no null is given, or defaulted, for every motor (_column)
+    given: dict[str, list[float]] = {key: columns[key].tolist() for key in fields.quantities
+                                     if key not in fields.nullable}
+    numbers = {key: _floats(columns[key]) for key in fields.quantities if key in fields.nullable}
     continuous, intermittent = (_curves_of(curves[key]) for key in CURVES)
     motors = [
-        Motor(id=ids[i], inertia=numbers["inertia"][i],  # type: ignore[arg-type]
-              continuous_torque=numbers["continuous_torque"][i],  # type: ignore[arg-type]
-              peak_torque=numbers["peak_torque"][i],  # type: ignore[arg-type]
-              rated_speed=numbers["rated_speed"][i],  # type: ignore[arg-type]
+        Motor(id=ids[i], inertia=given["inertia"][i],
+              continuous_torque=given["continuous_torque"][i],
+              peak_torque=given["peak_torque"][i], rated_speed=given["rated_speed"][i],
               max_speed=numbers["max_speed"][i], continuous_curve=continuous[i],
-              intermittent_curve=intermittent[i],
-              damping=numbers["damping"][i],  # type: ignore[arg-type]
+              intermittent_curve=intermittent[i], damping=given["damping"][i],
               source=sources[i], part_number=columns["part_number"][i],
               manufacturer=makers[i], price=numbers["price"][i], mass=numbers["mass"][i],
               torque_constant=numbers["torque_constant"][i],
               winding_resistance=line_to_line(numbers["winding_resistance"][i],
                                               numbers["phase_resistance"][i]),
               brake_holding_torque=numbers["brake_holding_torque"][i],
-              brake_inertia=numbers["brake_inertia"][i] or 0.0,  # type: ignore[arg-type]
+              brake_inertia=numbers["brake_inertia"][i] or 0.0,
               thermal_time_constant=numbers["thermal_time_constant"][i],
               max_winding_temperature_rise=numbers["max_winding_temperature_rise"][i],
               torque_current_curve=currents[i])

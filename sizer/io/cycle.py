@@ -9,8 +9,9 @@ form with boundary speeds, and boundary accelerations only with laws that meet t
 (polynomials of degree 5 and 7). Accelerations need not be continuous between segments:
 a step is a jerk impulse, which the reports mark.
 
-    build_cycle(given, source)   -> Cycle
-    summary_task(cycle)          -> Task (for code that reads ``Design.task``)
+    motion_of(task, cycle, laws, source) -> Task, Cycle | None, warnings
+    build_cycle(given, source)           -> Cycle
+    summary_task(cycle)                  -> Task (for code that reads ``Design.task``)
 """
 
 from __future__ import annotations
@@ -21,14 +22,22 @@ from typing import Any
 from pydantic import BaseModel
 
 from sizer.errors import UserError
-from sizer.io.data_law_rules import moving_ends
+from sizer.io.data_law_rules import (
+    LocatedLaw,
+    check_cycle_laws,
+    check_task_laws,
+    law_displacement,
+    master_duration,
+    moving_ends,
+    scale_warnings,
+)
+from sizer.io.schema.cycle_inputs import CycleInput, DwellInput, MoveInput, RunInput
+from sizer.io.schema.inputs import TaskInput
+from sizer.io.schema.inputs_base import axis_range, convert_in, given_text, show_value
+from sizer.io.schema.ranges import RANGES, check_range, number_text
 from sizer.io.yaml_source import YamlSource, format_path
 from sizer.model.cycle import Cycle, Dwell, Move, Run, Segment, SegmentLoad, ShareRule
-from sizer.model.cycle_inputs import CycleInput, DwellInput, MoveInput, RunInput
 from sizer.model.domain import Task
-from sizer.model.inputs import TaskInput
-from sizer.model.inputs_base import axis_range, convert_in, given_text, show_value
-from sizer.model.ranges import RANGES, check_range, number_text
 from sizer.units import parse_displacement, to_si
 
 SPEED_TOLERANCE = 1e-9
@@ -191,6 +200,39 @@ def summary_task(cycle: Cycle) -> Task:
         duration = cycle.cycle_time if cycle.cycle_time is not None else cycle.fixed_time
     return Task(displacement=cycle.moves[0].displacement, duration=duration, dwell=0.0,
                 return_move=False, linear=cycle.linear)
+
+
+def motion_of(task: TaskInput | None, cycle: CycleInput | None, laws: list[LocatedLaw],
+              source: YamlSource) -> tuple[Task, Cycle | None, list[str]]:
+    """A design's motion: its ``cycle:`` and the Task that summarizes it, or its ``task:``
+    shorthand; with the warnings of the task's laws whose own displacement it scales."""
+    if cycle is not None:
+        built = build_cycle(cycle, source)
+        check_cycle_laws(laws, source)
+        return summary_task(built), built, []
+    assert task is not None  # a task or a cycle (DesignFile)
+    shorthand, noted = _task_of(task, laws, source)
+    return shorthand, None, noted
+
+
+def _task_of(given: TaskInput, laws: list[LocatedLaw],
+             source: YamlSource) -> tuple[Task, list[str]]:
+    """The ``task:`` shorthand in SI (its displacement and duration may come from its laws
+    defined by data), and the warnings of laws whose own displacement it scales."""
+    noted: list[str] = []
+    if given.displacement is None:
+        h, linear = law_displacement(laws, source, ("task", "displacement"))
+    else:
+        h, linear = displacement_of(given.displacement, source, ("task", "displacement"),
+                                    zero_note="a negative displacement moves back first")
+        noted = scale_warnings(laws, h, linear, source)
+    duration = given.duration
+    if given.master_speed is not None:
+        duration = master_duration(laws, given.master_speed, source, ("task", "master_speed"))
+    task = Task(displacement=h, duration=duration, dwell=given.dwell,
+                return_move=given.return_move, linear=linear)
+    check_task_laws(laws, task, source)
+    return task, noted
 
 
 def _check_weight(weight: float | None, share: ShareRule, source: YamlSource,

@@ -11,7 +11,8 @@ master axis (``units: {time: deg}``) lasts its master angle at the task's
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 from sizer.errors import UserError
@@ -25,17 +26,29 @@ def _data_law(spec: str) -> Any:
     from sizer.laws.data_law import DataLaw
     from sizer.laws.open_shaped import is_open_shaped
 
-    if is_open_shaped(spec):
-        return None  # shaped at each move's duration: rest to rest, no units of its own
+    if not is_data_spec(spec) or is_open_shaped(spec):
+        return None  # an open shaped law is shaped at each move's duration: rest to rest
     law = make_law(spec)
     return law if isinstance(law, DataLaw) else None
 
 
-def moving_ends(spec: str) -> str | None:
-    """Why law ``spec`` is not rest-to-rest ("starts moving (v_N(0) = 1.2)"), or None."""
-    if not is_data_spec(spec):
-        return None
-    law = _data_law(spec)
+@dataclass(frozen=True)
+class LocatedLaw:
+    """A law of the design, where it is written, and its law defined by data (None for a
+    family's law or an open shaped one), built once for every rule of this module."""
+
+    spec: str
+    at: tuple[Any, ...]
+    data: Any = None
+
+
+def locate_laws(laws: Iterable[tuple[str, tuple[Any, ...]]]) -> list[LocatedLaw]:
+    """Each ``(spec, where)`` with its law defined by data."""
+    return [LocatedLaw(spec, at, _data_law(spec)) for spec, at in laws]
+
+
+def _moving(law: Any) -> str | None:
+    """Why a law defined by data is not rest-to-rest ("starts moving (v_N(0) = 1.2)")."""
     if law is None or law.rest_to_rest:
         return None
     start, end = law.end_speeds
@@ -44,51 +57,54 @@ def moving_ends(spec: str) -> str | None:
     return " and ".join(p for p in parts if p)
 
 
-def check_task_laws(laws: Sequence[tuple[str, tuple[Any, ...]]], task: Any,
-                    source: YamlSource) -> None:
+def moving_ends(spec: str) -> str | None:
+    """Why law ``spec`` is not rest-to-rest ("starts moving (v_N(0) = 1.2)"), or None."""
+    return _moving(_data_law(spec))
+
+
+def check_task_laws(laws: Sequence[LocatedLaw], task: Any, source: YamlSource) -> None:
     """A law whose ends move, in the task shorthand: one period, no dwell, no return."""
-    for spec, at in laws:
-        reason = moving_ends(spec)
+    for law in laws:
+        reason = _moving(law.data)
         if reason is None:
             continue
-        law = _data_law(spec)
-        name = law.law_id
+        name = law.data.law_id
         if task.dwell != 0.0 or task.return_move:
             raise source.error(f"the {name} {reason}: it is one period of a repeated motion "
                                f"(an electronic cam), so the task needs dwell 0 and no "
-                               f"return; or make the law start and end at rest", at)
-        if not law.periodic:
+                               f"return; or make the law start and end at rest", law.at)
+        if not law.data.periodic:
             raise source.error(f"the {name} {reason} and its ends do not join (speed "
-                               f"{law.end_speeds[0]:.6g} and {law.end_speeds[1]:.6g}, "
-                               f"normalized): a repeated motion must be periodic, e.g. a "
-                               f"cubic_spline with periodic: true", at)
+                               f"{law.data.end_speeds[0]:.6g} and "
+                               f"{law.data.end_speeds[1]:.6g}, normalized): a repeated "
+                               f"motion must be periodic, e.g. a cubic_spline with "
+                               f"periodic: true", law.at)
 
 
-def check_cycle_laws(laws: Sequence[tuple[str, tuple[Any, ...]]],
-                     source: YamlSource) -> None:
+def check_cycle_laws(laws: Sequence[LocatedLaw], source: YamlSource) -> None:
     """A law whose ends move cannot be one move of a cycle of segments."""
-    for spec, at in laws:
-        reason = moving_ends(spec)
+    for law in laws:
+        reason = _moving(law.data)
         if reason is not None:
-            raise source.error(f"the {_data_law(spec).law_id} {reason}: in a cycle of "
+            raise source.error(f"the {law.data.law_id} {reason}: in a cycle of "
                                f"segments a move's law must start and end at rest (its end "
                                f"speeds are the move's); size a periodic cam as a task with "
-                               f"dwell 0", at)
+                               f"dwell 0", law.at)
 
 
-def master_duration(laws: Sequence[tuple[str, tuple[Any, ...]]], master_speed: float,
-                    source: YamlSource, at: tuple[Any, ...]) -> float:
+def master_duration(laws: Sequence[LocatedLaw], master_speed: float, source: YamlSource,
+                    at: tuple[Any, ...]) -> float:
     """The duration of a move whose laws are cams on a master axis, at ``master_speed``:
     their master angle over the speed (every law must have the same master angle)."""
     spans: list[tuple[float, tuple[Any, ...]]] = []
-    for spec, where in laws:
-        law = _data_law(spec) if is_data_spec(spec) else None
-        scale = getattr(law, "scale", None)
+    for law in laws:
+        scale = getattr(law.data, "scale", None)
         if scale is None or not scale.master:
             raise source.error("master_speed needs laws on a master axis (a law defined by "
                                "data with units: {time: deg, ...}, or a cam table whose first "
-                               f"column is an angle); law {_short(spec)} is not one", where)
-        spans.append((scale.span, where))
+                               f"column is an angle); law {_short(law.spec)} is not one",
+                               law.at)
+        spans.append((scale.span, law.at))
     first = spans[0][0]
     for span, where in spans[1:]:
         if abs(span - first) > 1e-9 * first:
@@ -104,17 +120,13 @@ def _short(spec: str) -> str:
     return repr(spec if len(spec) <= 40 else spec[:37] + "...")
 
 
-def _scaled(laws: Sequence[tuple[str, tuple[Any, ...]]]) -> list[tuple[Any, tuple[Any, ...]]]:
+def _scaled(laws: Sequence[LocatedLaw]) -> list[tuple[Any, tuple[Any, ...]]]:
     """(scale, where) of every law defined by data with units of its own."""
-    out = []
-    for spec, where in laws:
-        law = _data_law(spec) if is_data_spec(spec) else None
-        if law is not None and law.scale is not None:
-            out.append((law.scale, where))
-    return out
+    return [(law.data.scale, law.at) for law in laws
+            if law.data is not None and law.data.scale is not None]
 
 
-def law_displacement(laws: Sequence[tuple[str, tuple[Any, ...]]], source: YamlSource,
+def law_displacement(laws: Sequence[LocatedLaw], source: YamlSource,
                      at: tuple[Any, ...]) -> tuple[float, bool]:
     """The task's displacement when it is not written: that of its laws defined by data
     with units (all of them, and all the same), in SI, and whether it is a length."""
@@ -133,7 +145,7 @@ def law_displacement(laws: Sequence[tuple[str, tuple[Any, ...]]], source: YamlSo
     return first.displacement, first.linear
 
 
-def scale_warnings(laws: Sequence[tuple[str, tuple[Any, ...]]], h: float, linear: bool,
+def scale_warnings(laws: Sequence[LocatedLaw], h: float, linear: bool,
                    source: YamlSource) -> list[str]:
     """A warning for each law with units whose own displacement is not the task's: the
     task's displacement scales the law's shape."""

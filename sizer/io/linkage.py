@@ -13,19 +13,19 @@ from typing import Any
 
 from sizer.bounded_yaml import format_path
 from sizer.errors import UserError
+from sizer.io.schema.transmission_inputs import FourBarInput, SliderCrankInput
 from sizer.io.yaml_source import YamlSource
 from sizer.mechanics.linkages.of_stage import linkage_of, linkages_of
 from sizer.model.domain import LinkageStage
-from sizer.model.transmission_inputs import FourBarInput, SliderCrankInput
 
 
 def linkage_stage(item: SliderCrankInput | FourBarInput, source: YamlSource,
                   at: tuple[Any, ...]) -> LinkageStage:
     """The LinkageStage of a ``slider_crank`` or ``four_bar`` item, its geometry built."""
-    common = {"law_on": item.law_on, "start_angle": item.start_angle,
-              "direction": 1 if item.direction == "positive" else -1,
-              "crank_inertia": item.crank_inertia, "name": item.name or "",
-              "output": item.output or ""}
+    common: dict[str, Any] = {
+        "law_on": item.law_on, "start_angle": item.start_angle,
+        "direction": 1 if item.direction == "positive" else -1,
+        "crank_inertia": item.crank_inertia, "name": item.name or "", "output": item.output or ""}
     if isinstance(item, SliderCrankInput):
         stage = LinkageStage("slider_crank", (item.crank_radius, item.rod_length, item.offset),
                              link_mass_at_crank=item.rod_mass_at_crank,
@@ -59,7 +59,8 @@ def linkage_task(task: Any, stage: LinkageStage, cycle: Any, source: YamlSource,
     from sizer.model.cycle import Move, Run
 
     if cycle is None:
-        moves = [(task.displacement, ("task", "displacement"))]
+        moves: list[tuple[float, tuple[Any, ...]]] = [(task.displacement,
+                                                        ("task", "displacement"))]
         if task.return_move:
             moves.append((-task.displacement, ("task", "return")))
         linear = task.linear
@@ -72,7 +73,7 @@ def linkage_task(task: Any, stage: LinkageStage, cycle: Any, source: YamlSource,
                 moving = not (isinstance(segment, Move) and segment.rest_to_rest)
                 if moving:
                     _check_moving(stage, segment, i in free, source, at)
-                where = (*at, "run") if isinstance(segment, Run) else \
+                where: tuple[Any, ...] = (*at, "run") if isinstance(segment, Run) else \
                     (*at, "move", "displacement")
                 moves.append((segment.displacement, where))
         linear = cycle.linear

@@ -25,14 +25,8 @@ from pydantic import BaseModel
 from sizer.errors import UserError
 from sizer.input_limits import MAX_DESIGN_BYTES, MAX_DESIGN_NODES
 from sizer.io.catalog_table import read_table
-from sizer.io.cycle import build_cycle, displacement_of, summary_task
-from sizer.io.data_law_rules import (
-    check_cycle_laws,
-    check_task_laws,
-    law_displacement,
-    master_duration,
-    scale_warnings,
-)
+from sizer.io.cycle import motion_of
+from sizer.io.data_law_rules import LocatedLaw, locate_laws
 from sizer.io.data_laws import canonical_data_laws
 from sizer.io.linkage import check_linkage_design, linkage_task, output_linear
 from sizer.io.motor_rules import (
@@ -42,23 +36,8 @@ from sizer.io.motor_rules import (
     maybe_impossible,
     motor_of,
 )
-from sizer.io.plausibility import (
-    bare_number_warnings,
-    cycle_bare_number_warnings,
-    motor_warnings,
-)
-from sizer.io.transmission import build_transmission
-from sizer.io.validation import validate
-from sizer.io.yaml_source import (
-    YamlSource,
-    format_path,
-    no_garbage_collection,
-    parse_yaml,
-    read_yaml,
-)
-from sizer.mechanics import linear_load
-from sizer.model.domain import Design, Limits, Load, Motor, ServoDrive, Task
-from sizer.model.inputs import (
+from sizer.io.plausibility import bare_number_warnings, motor_warnings
+from sizer.io.schema.inputs import (
     CatalogFile,
     DesignFile,
     DriveCatalogFile,
@@ -67,7 +46,19 @@ from sizer.model.inputs import (
     LoadInput,
     MotorInput,
 )
-from sizer.model.inputs_base import axis_range, convert_in
+from sizer.io.schema.inputs_base import axis_range, convert_in
+from sizer.io.schema.transmission_inputs import GearboxCatalogFile
+from sizer.io.transmission import build_transmission
+from sizer.io.validation import validate
+from sizer.io.yaml_source import (
+    YamlSource,
+    format_path,
+    no_garbage_collection,
+    parse_mapping,
+    read_yaml,
+)
+from sizer.mechanics import linear_load
+from sizer.model.domain import Design, Limits, Load, Motor, ServoDrive
 from sizer.vibration.elastic_load import ElasticLoad
 
 PathLike = str | Path
@@ -364,17 +355,6 @@ def _design_drives(model: DesignFile, source: YamlSource, folder: Path,
     return tuple(item.drive for item in located)
 
 
-def _linkage_start_at(model: DesignFile, source: YamlSource) -> tuple[Any, ...]:
-    """The path of the ``start_angle`` of the design's linkage stage (a slider_crank or a
-    four_bar: sizer.io.transmission allows one, the last moving stage)."""
-    items = model.transmission or []
-    if isinstance(source.data, dict) and isinstance(source.data.get("transmission"), list):
-        index = max(i for i, item in enumerate(items)
-                    if getattr(item, "type", None) in ("slider_crank", "four_bar"))
-        return ("transmission", index, "start_angle")
-    return ("transmission", "start_angle")
-
-
 def _check_unique(motors: Iterable[_Located]) -> None:
     first: dict[str, _Located] = {}
     for item in motors:
@@ -415,15 +395,7 @@ def load_design_data(data: Mapping[str, Any], extra_catalogs: Iterable[PathLike]
     """A design given as a mapping (the content of a design file, e.g. from Python or
     JSON): the same checks and messages as a file (``<design>`` for the file name, with
     the line of the mapping written out as YAML); catalog paths relative to ``base``."""
-    import yaml
-
-    try:
-        text = yaml.safe_dump(dict(data), sort_keys=False, allow_unicode=True)
-    except yaml.YAMLError as error:
-        raise UserError(f"the design mapping cannot be written as YAML: {error}") from None
-    if len(text.encode()) > MAX_DESIGN_BYTES:
-        raise UserError(f"the design mapping is larger than {MAX_DESIGN_BYTES} bytes")
-    source = parse_yaml(text, file="<design>", max_nodes=MAX_DESIGN_NODES)
+    source = parse_mapping(data, "design")
     return _design_of(source, base or Path.cwd(), name, [], extra_catalogs, default_motors)
 
 
@@ -432,27 +404,22 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
     """The Design of a parsed design document (``folder``: where relative paths start)."""
     canonical_data_laws(source, folder)
     model = validate(DesignFile, source)
-    warnings = bare_number_warnings(source)
-    cycle = build_cycle(model.cycle, source) if model.cycle is not None else None
     laws = _located_laws(model)
-    if cycle is not None:
-        check_cycle_laws(laws, source)
-    task = summary_task(cycle) if cycle is not None else _task(model, source, laws, warnings)
+    task, cycle, noted = motion_of(model.task, model.cycle, laws, source)
     linear = task.linear
-    if cycle is not None:
-        warnings += cycle_bare_number_warnings(source, linear)
+    warnings = [*bare_number_warnings(source, linear), *noted]
     load = _load(model, source, output_linear(model.transmission, linear))
-    transmission, ratio_choice = build_transmission(model.transmission, source, folder,
-                                                    linear)
+    files = list(files)
+    transmission, ratio_choice, linkage_at = build_transmission(
+        model.transmission, source, folder, linear, files)
     if transmission.linkage is not None:
         task, cycle, linear = linkage_task(task, transmission.linkage, cycle, source,
-                                           _linkage_start_at(model, source))
+                                           linkage_at)
         check_linkage_design(model, source)
     extra = list(extra_catalogs)
     if default_motors and model.motors is None and not extra:
         extra = list(default_catalogs().values())
     transmission = replace(transmission, efficiency_applies_to=model.efficiency_applies_to)
-    files = [*files, *_gearbox_catalog_files(model.transmission, folder)]
     catalog_drives: list[_LocatedDrive] = []
     motors = _design_motors(model, source, folder, extra, warnings, files, catalog_drives)
     drives = _design_drives(model, source, folder, catalog_drives, motors, files)
@@ -492,13 +459,6 @@ def design_of_source(source: YamlSource, folder: Path, name: str,
     return _design_of(source, folder, name, files, (), True)
 
 
-def _gearbox_catalog_files(items: Any, folder: Path) -> list[Path]:
-    """The gearbox catalog files the transmission's stages name (read while building it)."""
-    items = items if isinstance(items, list) else [items]
-    named = (getattr(item, "catalog", None) for item in items)
-    return [folder / name for name in named if isinstance(name, str)]
-
-
 def default_laws() -> tuple[str, ...]:
     """The laws of a design without ``laws:``: DEFAULT_LAW_SPECS minus the exponential."""
     from sizer.laws import DEFAULT_LAW_SPECS, resolve
@@ -514,34 +474,16 @@ def _quantity(source: YamlSource, at: tuple[Any, ...], value: Any, name: str) ->
         raise source.error(str(error), at) from None
 
 
-def _located_laws(model: DesignFile) -> list[tuple[str, tuple[Any, ...]]]:
+def _located_laws(model: DesignFile) -> list[LocatedLaw]:
     """The design's laws with where each is written (``laws`` when defaulted)."""
+    laws: list[tuple[str, tuple[Any, ...]]]
     if model.laws is None:
         laws = [(spec, ("laws",)) for spec in default_laws()]
     else:
         laws = [(spec, ("laws", i)) for i, spec in enumerate(model.laws)]
     if model.check is not None and model.check.law is not None:
         laws.append((model.check.law, ("check", "law")))
-    return laws
-
-
-def _task(model: DesignFile, source: YamlSource, laws: list[tuple[str, tuple[Any, ...]]],
-          warnings: list[str]) -> Task:
-    given = model.task
-    assert given is not None
-    if given.displacement is None:
-        h, linear = law_displacement(laws, source, ("task", "displacement"))
-    else:
-        h, linear = displacement_of(given.displacement, source, ("task", "displacement"),
-                                    zero_note="a negative displacement moves back first")
-        warnings += scale_warnings(laws, h, linear, source)
-    duration = given.duration
-    if given.master_speed is not None:
-        duration = master_duration(laws, given.master_speed, source, ("task", "master_speed"))
-    task = Task(displacement=h, duration=duration, dwell=given.dwell,
-                return_move=given.return_move, linear=linear)
-    check_task_laws(laws, task, source)
-    return task
+    return locate_laws(laws)
 
 
 def _load(model: DesignFile, source: YamlSource, linear: bool) -> Load:
@@ -703,8 +645,6 @@ def catalog_schema() -> dict[str, Any]:
 
 def gearbox_catalog_schema() -> dict[str, Any]:
     """JSON Schema of the gearbox catalog file (for ``sizer schema gearboxes``)."""
-    from sizer.model.transmission_inputs import GearboxCatalogFile
-
     return schema_document(GearboxCatalogFile, "gearboxes")
 
 

@@ -19,10 +19,10 @@ from typing import Any
 from sizer.errors import UserError
 from sizer.input_limits import MAX_DESIGN_BYTES, MAX_DESIGN_NODES
 from sizer.io.file_kind import is_machine_data, is_machine_file
+from sizer.io.schema.machine_inputs import MINIMIZE, AxisInput, MachineFile
 from sizer.io.validation import validate
-from sizer.io.yaml_source import YamlSource, format_path, parse_yaml, read_yaml
+from sizer.io.yaml_source import YamlSource, format_path, parse_mapping, read_yaml
 from sizer.model.machine import Bus, Machine, MachineAxis, bus_level_fault
-from sizer.model.machine_inputs import MINIMIZE, AxisInput, MachineFile
 
 __all__ = ["is_machine_data", "is_machine_file", "load_machine", "load_machine_data",
            "machine_schema"]
@@ -41,15 +41,7 @@ def load_machine(path: str | Path) -> Machine:
 def load_machine_data(data: Mapping[str, Any], *, base: Path | None = None,
                       name: str = "machine") -> Machine:
     """A machine given as a mapping (``<machine>`` for the file name in messages)."""
-    import yaml
-
-    try:
-        text = yaml.safe_dump(dict(data), sort_keys=False, allow_unicode=True)
-    except yaml.YAMLError as error:
-        raise UserError(f"the machine mapping cannot be written as YAML: {error}") from None
-    if len(text.encode()) > MAX_DESIGN_BYTES:
-        raise UserError(f"the machine mapping is larger than {MAX_DESIGN_BYTES} bytes")
-    source = parse_yaml(text, file="<machine>", max_nodes=MAX_DESIGN_NODES)
+    source = parse_mapping(data, "machine")
     return _machine_of(source, base or Path.cwd(), name, [])
 
 
@@ -67,6 +59,7 @@ def _machine_of(source: YamlSource, folder: Path, name: str, files: list[Path]) 
     speed = model.machine.master_speed
     if model.machine.cycle_time is not None:
         speed = cycle / model.machine.cycle_time
+    assert speed is not None  # master_speed or cycle_time: one of them (MachineInput._speed)
     bus = None
     if model.bus is not None:
         bus = Bus(model.bus.capacitance, model.bus.voltage, model.bus.braking_threshold,
@@ -75,7 +68,7 @@ def _machine_of(source: YamlSource, folder: Path, name: str, files: list[Path]) 
         if fault is not None:
             raise source.error(fault[1], ("bus", fault[0]))
     return Machine(axes=tuple(axes), cycle_angle=cycle,
-                   master_speed=None if speed == MINIMIZE else float(speed),  # type: ignore[arg-type]
+                   master_speed=None if speed == MINIMIZE else float(speed),
                    bus=bus, name=model.name if model.name is not None else name,
                    warnings=tuple(warnings), files=tuple(read))
 

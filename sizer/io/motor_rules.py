@@ -1,7 +1,7 @@
 """The sanity rules of a catalog motor, written once: a registry of rule objects.
 
-The schema (:class:`sizer.model.inputs.MotorInput` and the ranges of
-:mod:`sizer.model.ranges`) holds units, types and each field's range; the rules of
+The schema (:class:`sizer.io.schema.inputs.MotorInput` and the ranges of
+:mod:`sizer.io.schema.ranges`) holds units, types and each field's range; the rules of
 :data:`RULES` look at how a motor's figures fit together. Each rule has a name, what it
 checks, its kind and the function that finds its problems in one motor (with the
 message); the loader (:mod:`sizer.io.loader`), ``sizer catalog validate`` and the CSV
@@ -235,6 +235,11 @@ def _max_below_rated(f: Figures) -> Any:
     return f.max_speed < f.rated_speed * (1 - RELATIVE_TOLERANCE)
 
 
+def _max_below_rated_text(m: Motor) -> str:
+    assert m.max_speed is not None  # found only where given (a missing one is NaN: False)
+    return f"max speed {_rpm(m.max_speed)} is below the rated speed {_rpm(m.rated_speed)}"
+
+
 def _scalar_rule(name: str, checks: str, test: Callable[[Figures], Any], at: str,
                  message: Callable[[Motor], str]) -> MotorRule:
     """An impossible motor by its scalar figures: ``test`` on one motor or the columns."""
@@ -462,7 +467,7 @@ def _far_start(curve: str, rating: str) -> Finder:
         points, value = getattr(motor, curve), getattr(motor, rating)
         if not curve_usable(points):
             return []
-        first = points[0][1]  # type: ignore[index]
+        first = points[0][1]
         if abs(first - value) <= CURVE_START_TOLERANCE * value:
             return []
         return [((curve, 0), f"the curve starts at {_nm(first)}, more than "
@@ -554,9 +559,7 @@ RULES: tuple[MotorRule, ...] = (
                  lambda m: f"peak torque {_nm(m.peak_torque)} is below the continuous "
                            f"torque {_nm(m.continuous_torque)}"),
     _scalar_rule("max_speed_at_least_rated", "max speed >= rated speed",
-                 _max_below_rated, "max_speed",
-                 lambda m: f"max speed {_rpm(m.max_speed)} is below the rated speed "  # type: ignore[arg-type]
-                           f"{_rpm(m.rated_speed)}"),
+                 _max_below_rated, "max_speed", _max_below_rated_text),
     MotorRule("rotor_inertia", "a real motor has a rotor inertia > 0", "catalog",
               _no_rotor_inertia),
     MotorRule("source", "a source (the datasheet), on the motor or the catalog", "catalog",

@@ -54,51 +54,31 @@ def motor_warnings(source: YamlSource, at: Sequence[Any], given: Any,
     return out
 
 
-def bare_number_warnings(source: YamlSource) -> list[str]:
-    """Warnings for the bare numbers of a design file's task far from a plausible range."""
-    task = source.data.get("task") if isinstance(source.data, dict) else None
-    if not isinstance(task, dict):
-        return []
-    out = []
-    for key, limit in (("duration", LONG_MOVE), ("dwell", LONG_DWELL)):
-        number = _bare_float(task.get(key))
-        if number is not None and number > limit:
-            shown = f"{number:g}"
-            out.append(warning_text(source, ("task", key),
-                                    f"bare number {shown} read as {shown} s; write "
-                                    f"'{shown} ms' if that was meant"))
-    number = _bare_float(task.get("displacement"))
-    if number is not None and abs(number) > LARGE_ANGLE:
-        shown = f"{number:g}"
-        turns = abs(number) / (2 * math.pi)
-        out.append(warning_text(source, ("task", "displacement"),
-                                f"bare number {shown} read as {shown} rad ({turns:.3g} "
-                                f"turns); write '{shown} deg' if that was meant"))
-    return out
-
-
-def cycle_bare_number_warnings(source: YamlSource, linear: bool) -> list[str]:
-    """Warnings for the bare durations of a ``cycle:``'s segments and, on a rotary axis,
-    its bare displacements, far from a plausible range (as a task's)."""
-    cycle = source.data.get("cycle") if isinstance(source.data, dict) else None
+def bare_number_warnings(source: YamlSource, linear: bool) -> list[str]:
+    """Warnings for the bare numbers of a design's task or cycle far from a plausible
+    range: durations (a segment's as a task's), and on a rotary axis displacements."""
+    data = source.data if isinstance(source.data, dict) else {}
+    places: list[tuple[tuple[Any, ...], Mapping[str, Any], tuple[tuple[str, float], ...]]] = []
+    task, cycle = data.get("task"), data.get("cycle")
+    if isinstance(task, dict):
+        places.append((("task",), task, (("duration", LONG_MOVE), ("dwell", LONG_DWELL))))
     segments = cycle.get("segments") if isinstance(cycle, dict) else None
-    if not isinstance(segments, list):
-        return []
+    for index, item in enumerate(segments if isinstance(segments, list) else ()):
+        if isinstance(item, dict) and len(item) == 1:
+            kind, fields = next(iter(item.items()))
+            if isinstance(fields, dict):
+                limit = LONG_DWELL if kind == "dwell" else LONG_MOVE
+                places.append((("cycle", "segments", index, kind), fields,
+                               (("duration", limit),)))
     out = []
-    for index, item in enumerate(segments):
-        if not (isinstance(item, dict) and len(item) == 1):
-            continue
-        kind, fields = next(iter(item.items()))
-        if not isinstance(fields, dict):
-            continue
-        at = ("cycle", "segments", index, kind)
-        number = _bare_float(fields.get("duration"))
-        limit = LONG_DWELL if kind == "dwell" else LONG_MOVE
-        if number is not None and number > limit:
-            shown = f"{number:g}"
-            out.append(warning_text(source, (*at, "duration"),
-                                    f"bare number {shown} read as {shown} s; write "
-                                    f"'{shown} ms' if that was meant"))
+    for at, fields, durations in places:
+        for key, limit in durations:
+            number = _bare_float(fields.get(key))
+            if number is not None and number > limit:
+                shown = f"{number:g}"
+                out.append(warning_text(source, (*at, key),
+                                        f"bare number {shown} read as {shown} s; write "
+                                        f"'{shown} ms' if that was meant"))
         number = _bare_float(fields.get("displacement"))
         if not linear and number is not None and abs(number) > LARGE_ANGLE:
             shown = f"{number:g}"

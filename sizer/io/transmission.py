@@ -15,12 +15,8 @@ from pathlib import Path
 from typing import Any
 
 from sizer.io.linkage import linkage_stage
-from sizer.io.validation import validate
-from sizer.io.yaml_source import YamlSource, read_yaml
-from sizer.mechanics import ball_screw, belt, gearbox, rack_pinion
-from sizer.model.domain import GearboxOption, RatioChoice, Stage, Transmission
-from sizer.model.ranges import TOTAL_EFFICIENCY, TOTAL_RATIO, number_text
-from sizer.model.transmission_inputs import (
+from sizer.io.schema.ranges import TOTAL_EFFICIENCY, TOTAL_RATIO, number_text
+from sizer.io.schema.transmission_inputs import (
     LINEAR_OUTPUT_TYPES,
     BallScrewInput,
     BeltInput,
@@ -31,11 +27,17 @@ from sizer.model.transmission_inputs import (
     RackPinionInput,
     SliderCrankInput,
 )
+from sizer.io.validation import validate
+from sizer.io.yaml_source import YamlSource, read_yaml
+from sizer.mechanics import ball_screw, belt, gearbox, rack_pinion
+from sizer.model.domain import GearboxOption, RatioChoice, Stage, Transmission
 
 
 def build_transmission(items: Sequence[Any] | None, source: YamlSource, folder: Path,
-                       linear: bool) -> tuple[Transmission, RatioChoice | None]:
-    """The stages from motor to load, and the free ratio if a stage has one."""
+                       linear: bool, files: list[Path]
+                       ) -> tuple[Transmission, RatioChoice | None, tuple[Any, ...]]:
+    """The stages from motor to load, the free ratio if a stage has one, and where the
+    linkage stage's ``start_angle`` is written; the gearbox catalogs read go to ``files``."""
     items = list(items or ())
     as_list = isinstance(source.data, dict) and isinstance(source.data.get("transmission"),
                                                            list)
@@ -52,6 +54,7 @@ def build_transmission(items: Sequence[Any] | None, source: YamlSource, folder: 
     choice: RatioChoice | None = None
     choice_at: tuple[Any, ...] = ()
     linkage = None
+    linkage_at: tuple[Any, ...] = ()
     for index, item in enumerate(items):
         if isinstance(item, DirectInput):
             continue
@@ -60,12 +63,13 @@ def build_transmission(items: Sequence[Any] | None, source: YamlSource, folder: 
                 raise source.error(f"a {item.type} must be the last stage of the "
                                    f"transmission: its output is the load", at(index, "type"))
             linkage = linkage_stage(item, source, at(index))
+            linkage_at = at(index, "start_angle")
             continue
         last = index == moving[-1]
         if item.type in ("ball_screw", "rack_pinion") and not linear:
             raise source.error(f"a {item.type} moves a linear axis, but the displacement is an "
                                f"angle (give it as a length, e.g. '200 mm')", at(index, "type"))
-        stage, free = _stage(item, source, at, index, linear and last, folder)
+        stage, free = _stage(item, source, at, index, linear and last, folder, files)
         if free is not None:
             if choice is not None:
                 raise source.error(f"only one stage may have a free ratio (the one at line "
@@ -74,7 +78,7 @@ def build_transmission(items: Sequence[Any] | None, source: YamlSource, folder: 
             choice_at = at(index)
         stages.append(stage)
     _check_total_ratio(stages, choice, source, linear and linkage is None)
-    return Transmission(tuple(stages), linkage=linkage), choice
+    return Transmission(tuple(stages), linkage=linkage), choice, linkage_at
 
 
 def _check_total_ratio(stages: Sequence[Stage], choice: RatioChoice | None,
@@ -107,10 +111,10 @@ def _check_total_ratio(stages: Sequence[Stage], choice: RatioChoice | None,
 
 
 def _stage(item: Any, source: YamlSource, at, index: int, linear_output: bool,
-           folder: Path) -> tuple[Stage, RatioChoice | None]:
+           folder: Path, files: list[Path]) -> tuple[Stage, RatioChoice | None]:
     name = item.name or ""
     if isinstance(item, GearboxInput):
-        return _gearbox(item, source, at, index, folder)
+        return _gearbox(item, source, at, index, folder, files)
     if isinstance(item, BeltInput):
         ratio, free = _ratio(item.ratio)
         if linear_output:
@@ -142,7 +146,11 @@ def _stage(item: Any, source: YamlSource, at, index: int, linear_output: bool,
         if (item.pitch_radius is None) == (item.pitch_diameter is None):
             raise source.error("a rack and pinion needs pitch_radius or pitch_diameter "
                                "(one of them)", at(index))
-        radius = item.pitch_radius or item.pitch_diameter / 2.0
+        if item.pitch_radius is not None:
+            radius = item.pitch_radius
+        else:
+            assert item.pitch_diameter is not None  # one of the two, checked above
+            radius = item.pitch_diameter / 2.0
         return rack_pinion(radius, inertia=item.inertia, efficiency=item.efficiency,
                            name=name), None
     raise AssertionError(f"unknown stage {item!r}")
@@ -161,7 +169,7 @@ def _ratio(spec: tuple[str, tuple[float, ...]] | None) -> tuple[float | None, Ra
 
 
 def _gearbox(item: GearboxInput, source: YamlSource, at, index: int,
-             folder: Path) -> tuple[Stage, RatioChoice | None]:
+             folder: Path, files: list[Path]) -> tuple[Stage, RatioChoice | None]:
     if item.ratio is None and item.catalog is None:
         raise source.error("required field is missing: a gearbox needs a ratio (or a "
                            "gearbox catalog)", at(index, "ratio"))
@@ -175,8 +183,10 @@ def _gearbox(item: GearboxInput, source: YamlSource, at, index: int,
         if not path.exists() or path.is_dir():
             raise source.error(f"no gearbox catalog file {str(path)!r}", at(index, "catalog"))
         options = load_gearbox_catalog(path)
+        files.append(path)
         return options[0].stage, RatioChoice(gearboxes=options)
     ratio, free = _ratio(item.ratio)
+    assert ratio is not None  # no catalog: the ratio is given (checked above)
     return gearbox(ratio, item.efficiency, item.inertia, name=item.name or "", **limits), free
 
 

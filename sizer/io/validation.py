@@ -15,8 +15,8 @@ from typing import Any, TypeVar
 from pydantic import BaseModel, ValidationError
 
 from sizer.errors import UserError
+from sizer.io.schema.inputs import show_value as _show
 from sizer.io.yaml_source import YamlSource, format_path
-from sizer.model.inputs import show_value as _show
 
 ModelT = TypeVar("ModelT", bound=BaseModel)
 
@@ -137,8 +137,8 @@ def _message(kind: str, item: Any, value: Any, ctx: dict[str, Any],
         expected = str(ctx.get("expected_tags", "")).replace("'", "")
         return f"unknown type {ctx.get('tag')!r}; expected one of: {expected}"
     if kind == "union_tag_not_found":
-        expected = _tags_at(model, loc)
-        extra = f" (one of: {', '.join(expected)})" if expected else ""
+        tags = _tags_at(model, loc)
+        extra = f" (one of: {', '.join(tags)})" if tags else ""
         if not isinstance(value, dict):
             return f"expected a mapping with a 'type'{extra}, got {_show(value)}"
         return f"required field is missing{extra}"

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import gc
 import math
-from collections.abc import Hashable, Iterator, Sequence
+from collections.abc import Hashable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -30,6 +30,8 @@ from sizer.errors import UserError
 from sizer.input_limits import (
     MAX_CATALOG_BYTES,
     MAX_CATALOG_NODES,
+    MAX_DESIGN_BYTES,
+    MAX_DESIGN_NODES,
     MAX_INT_DIGITS,
     MAX_SCALAR_CHARS,
     MAX_YAML_DEPTH,
@@ -257,6 +259,19 @@ def read_yaml(path: str | Path, *, limit: int = MAX_CATALOG_BYTES,
     those of a catalog, :func:`sizer.io.loader.load_design` passes a design's.
     """
     return parse_yaml(read_user_text(path, limit=limit), str(path), max_nodes=max_nodes)
+
+
+def parse_mapping(data: Mapping[str, Any], what: str) -> YamlSource:
+    """A design or machine given as a mapping (from Python or JSON), written out as YAML
+    and parsed as a file of that kind (``<what>`` for its name), so that its messages
+    name the lines of the YAML text."""
+    try:
+        text = yaml.safe_dump(dict(data), sort_keys=False, allow_unicode=True)
+    except yaml.YAMLError as error:
+        raise UserError(f"the {what} mapping cannot be written as YAML: {error}") from None
+    if len(text.encode()) > MAX_DESIGN_BYTES:
+        raise UserError(f"the {what} mapping is larger than {MAX_DESIGN_BYTES} bytes")
+    return parse_yaml(text, file=f"<{what}>", max_nodes=MAX_DESIGN_NODES)
 
 
 def parse_yaml(text: str, file: str | None = None, *,

@@ -19,7 +19,28 @@ import enum
 import math
 from dataclasses import dataclass, field
 
-from sizer.model.domain import Task
+
+@dataclass(frozen=True)
+class Task:
+    """A rest-to-rest move of h in T (None = as fast as possible), then a dwell.
+
+    With ``return_move`` the machine cycle is: move, dwell, move back, dwell.
+    ``displacement`` is at the load: rad for a rotary axis, m for a linear one.
+    """
+
+    displacement: float
+    duration: float | None = None
+    dwell: float = 0.0
+    return_move: bool = False
+    linear: bool = False
+
+    @property
+    def minimize(self) -> bool:
+        return self.duration is None
+
+    @property
+    def moves_per_cycle(self) -> int:
+        return 2 if self.return_move else 1
 
 
 class ShareRule(enum.Enum):

@@ -9,12 +9,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Literal
+from typing import Literal
 
+from sizer.model.cycle import Cycle, Task, from_task
 from sizer.vibration.elastic_load import ElasticLoad
-
-if TYPE_CHECKING:
-    from sizer.model.cycle import Cycle
 
 ThermalSpeedRule = Literal["max", "rms", "mean"]
 """Speed at which the RMS torque is checked against the continuous region (sec. 6.1.1)."""
@@ -35,29 +33,6 @@ EnvelopeRule = Literal["book", "linear", "linear_intermittent"]
 
 Curve = tuple[tuple[float, float], ...]
 """(speed rad/s, torque N*m) points, speed strictly increasing, piecewise linear between."""
-
-
-@dataclass(frozen=True)
-class Task:
-    """A rest-to-rest move of h in T (None = as fast as possible), then a dwell.
-
-    With ``return_move`` the machine cycle is: move, dwell, move back, dwell.
-    ``displacement`` is at the load: rad for a rotary axis, m for a linear one.
-    """
-
-    displacement: float
-    duration: float | None = None
-    dwell: float = 0.0
-    return_move: bool = False
-    linear: bool = False
-
-    @property
-    def minimize(self) -> bool:
-        return self.duration is None
-
-    @property
-    def moves_per_cycle(self) -> int:
-        return 2 if self.return_move else 1
 
 
 @dataclass(frozen=True)
@@ -346,6 +321,4 @@ class Design:
     @property
     def machine_cycle(self) -> Cycle:
         """The cycle the design runs: ``cycle``, or the task shorthand expanded."""
-        from sizer.model.cycle import from_task
-
         return self.cycle if self.cycle is not None else from_task(self.task)

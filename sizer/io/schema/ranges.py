@@ -19,6 +19,7 @@ import sys
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
 from sizer.units import KINDS
 
@@ -62,7 +63,7 @@ class Range:
         """True if ``x`` (SI) is allowed."""
         return bool(self.contains_all(np.float64(x)))
 
-    def contains_all(self, x: np.ndarray) -> np.ndarray:
+    def contains_all(self, x: npt.NDArray[np.float64] | np.float64) -> npt.NDArray[np.bool_]:
         """:meth:`contains` of each value of an array (SI), as a boolean array."""
         size = np.abs(x) if self.signed else x
         inside = (self.low <= size) & (size <= self.high)

@@ -20,14 +20,13 @@ from pydantic import (
     ConfigDict,
     GetCoreSchemaHandler,
     GetJsonSchemaHandler,
-    WithJsonSchema,
 )
 from pydantic.json_schema import JsonSchemaValue
 from pydantic_core import core_schema
 
 from sizer.errors import UserError
 from sizer.input_limits import MAX_QUANTITY_CHARS
-from sizer.model.ranges import RANGES, Range, check_range, number_text
+from sizer.io.schema.ranges import RANGES, Range, check_range, number_text
 from sizer.units import KINDS, quantity_pattern, to_si
 
 # ---------------------------------------------------------------- quantities
@@ -51,25 +50,7 @@ def _a(name: str) -> str:
     return f"an {name}" if name[0] in "aeiou" else f"a {name}"
 
 
-def _bound_text(ge: float | None, gt: float | None, le: float | None,
-                lt: float | None) -> str:
-    def num(x: float) -> str:
-        return f"{x:g}"
-
-    if (ge is not None or gt is not None) and (le is not None or lt is not None):
-        left = f"[{num(ge)}" if ge is not None else f"({num(gt)}"  # type: ignore[arg-type]
-        right = f"{num(le)}]" if le is not None else f"{num(lt)})"  # type: ignore[arg-type]
-        return f"in {left}, {right}"
-    if gt is not None:
-        return f"> {num(gt)}"
-    if ge is not None:
-        return f">= {num(ge)}"
-    if lt is not None:
-        return f"< {num(lt)}"
-    return f"<= {num(le)}"  # type: ignore[arg-type]
-
-
-def _si(value: Any, kind: str) -> float:
+def convert(value: Any, kind: str) -> float:
     """``to_si`` of a number or a text, with ValueErrors for what is not one (a bool, a
     list, a long text, an integer too large for a float); -0.0 becomes 0.0."""
     if isinstance(value, bool) or not isinstance(value, str | int | float):
@@ -104,26 +85,12 @@ def given_text(value: Any, shown: str) -> str:
     return f" ({value.strip()})"
 
 
-def convert(value: Any, kind: str, *, gt: float | None = None, ge: float | None = None,
-            lt: float | None = None, le: float | None = None) -> float:
-    """``to_si`` plus a range check; raises ValueError with a one-line message."""
-    result = _si(value, kind)
-    ok = ((gt is None or result > gt) and (ge is None or result >= ge)
-          and (lt is None or result < lt) and (le is None or result <= le))
-    if not ok:
-        unit = KINDS[kind].si_unit
-        shown = f"{result:g}" if unit == "1" else f"{result:g} {unit}"
-        raise ValueError(f"must be {_bound_text(ge, gt, le, lt)}, got {shown}"
-                         f"{given_text(value, shown)}")
-    return result
-
-
 def convert_in(value: Any, name: str) -> float:
     """``to_si`` of a quantity and the check of its range ``RANGES[name]``; ValueError with
     the allowed range in SI units and the value given otherwise."""
     allowed = RANGES[name]
     try:
-        result = _si(value, allowed.kind)
+        result = convert(value, allowed.kind)
     except TooLargeError as error:
         raise ValueError(f"{error}; must be {allowed.text()}") from None
     try:
@@ -167,19 +134,6 @@ def _quantity_schema(kind: str, note: str = "") -> dict[str, Any]:
             "description": f"{text}{'; ' + note if note else ''}"}
 
 
-def Quantity(kind: str, *, gt: float | None = None, ge: float | None = None,
-             lt: float | None = None, le: float | None = None, note: str = "") -> Any:
-    """An annotated float: accepts a number (SI) or a text with a unit of ``kind``."""
-    bounds = ("" if all(b is None for b in (gt, ge, lt, le))
-              else f"must be {_bound_text(ge, gt, le, lt)} (SI)")
-    schema = _quantity_schema(kind, "; ".join(p for p in (bounds, note) if p))
-    return Annotated[
-        float,
-        BeforeValidator(lambda v: convert(v, kind, gt=gt, ge=ge, lt=lt, le=le)),
-        WithJsonSchema(schema),
-    ]
-
-
 @dataclass(frozen=True)
 class RangeRef:
     """Marks a field's annotation with the name of its range (for the docs and tests)."""
@@ -197,57 +151,65 @@ def range_schema(allowed: Range, note: str = "", *, slash: bool = False) -> dict
                       quantity_text(slash=slash)], "description": text + extra}
 
 
-def Ranged(name: str, *, note: str = "") -> Any:
-    """An annotated float within ``RANGES[name]``: a number (SI) or a text with a unit."""
-    return Annotated[
-        float,
-        BeforeValidator(lambda v: convert_in(v, name)),
-        WithJsonSchema(range_schema(RANGES[name], note)),
-        RangeRef(name),
-    ]
+@dataclass(frozen=True)
+class Ranged(RangeRef):
+    """A float within ``RANGES[name]``, written ``Annotated[float, Ranged(name)]``: a
+    number (SI) or a text with a unit; ``note`` is added to its JSON Schema."""
+
+    note: str = ""
+
+    def __get_pydantic_core_schema__(self, source: Any,
+                                     handler: GetCoreSchemaHandler) -> core_schema.CoreSchema:
+        return core_schema.no_info_before_validator_function(
+            lambda v: convert_in(v, self.name), handler(source))
+
+    def __get_pydantic_json_schema__(self, schema: core_schema.CoreSchema,
+                                     handler: GetJsonSchemaHandler) -> JsonSchemaValue:
+        return range_schema(RANGES[self.name], self.note)
+
+
+RawValue = str | float | int
+"""A quantity as written: its kind (torque or force...) is known once the axis is."""
 
 
 @dataclass(frozen=True)
-class AxisRanges:
-    """Marks a quantity whose kind depends on the axis with its range on each axis."""
-
-    rotary: str
-    linear: str
-
-
-def RawQuantity(examples: str, *, rotary: str | None = None,
-                linear: str | None = None) -> Any:
-    """A quantity kept as given: its kind (torque or force...) is known once the axis is.
+class RawQuantity:
+    """A quantity kept as given, written ``Annotated[RawValue, RawQuantity(...)]``.
 
     ``examples`` shows the accepted forms in messages, e.g. "'0.2 N*m' or '10 N'".
     ``rotary`` and ``linear`` name its range (``RANGES``) on each axis; a field of one
     axis only names one. The loader converts and checks it (:func:`axis_range`).
     """
 
-    def check(value: Any) -> Any:
+    examples: str
+    rotary: str | None = None
+    linear: str | None = None
+
+    def _check(self, value: Any) -> Any:
         if isinstance(value, bool) or not isinstance(value, str | int | float):
-            raise ValueError(f"expected a number or a quantity like {examples}, "
+            raise ValueError(f"expected a number or a quantity like {self.examples}, "
                              f"got {_show(value)}")
         if isinstance(value, float) and not math.isfinite(value):
             raise ValueError(f"{value!r} is not a finite number")
         return value
 
-    names = [n for n in (rotary, linear) if n is not None]
-    schema: dict[str, Any] = {"anyOf": [{"type": "number"}, quantity_text()]}
-    if names:
+    def __get_pydantic_core_schema__(self, source: Any,
+                                     handler: GetCoreSchemaHandler) -> core_schema.CoreSchema:
+        return core_schema.no_info_before_validator_function(self._check, handler(source))
+
+    def __get_pydantic_json_schema__(self, schema: core_schema.CoreSchema,
+                                     handler: GetJsonSchemaHandler) -> JsonSchemaValue:
+        names = [n for n in (self.rotary, self.linear) if n is not None]
+        if not names:
+            return {"anyOf": [{"type": "number"}, quantity_text()]}
         low = min(RANGES[n].span[0] for n in names)
         high = max(RANGES[n].span[1] for n in names)
-        schema["anyOf"][0] = {"type": "number", "minimum": low, "maximum": high}
-        axes = [f"{axis}: {RANGES[n].text()}" for axis, n in (("rotary", rotary),
-                                                               ("linear", linear))
+        axes = [f"{axis}: {RANGES[n].text()}" for axis, n in (("rotary", self.rotary),
+                                                               ("linear", self.linear))
                 if n is not None]
-        schema["description"] = f"must be ({'; '.join(axes)}) (SI)"
-    return Annotated[
-        str | float | int,
-        BeforeValidator(check),
-        WithJsonSchema(schema),
-        AxisRanges(rotary or "", linear or ""),
-    ]
+        return {"anyOf": [{"type": "number", "minimum": low, "maximum": high},
+                          quantity_text()],
+                "description": f"must be ({'; '.join(axes)}) (SI)"}
 
 
 def markers(annotation: Any) -> list[Any]:
@@ -272,7 +234,7 @@ def field_markers(model: type[BaseModel], field: str) -> list[Any]:
 def axis_range(model: type[BaseModel], field: str, linear: bool) -> str:
     """The range name of ``model``'s axis-dependent ``field`` on the given axis."""
     for marker in field_markers(model, field):
-        if isinstance(marker, AxisRanges):
+        if isinstance(marker, RawQuantity):
             name = marker.linear if linear else marker.rotary
             if name:
                 return name

@@ -11,8 +11,7 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BeforeValidator, Field, WithJsonSchema
 
-from sizer.mechanics.stages import STEEL_DENSITY
-from sizer.model.inputs_base import (
+from sizer.io.schema.inputs_base import (
     Ranged,
     RangeRef,
     Strict,
@@ -21,7 +20,8 @@ from sizer.model.inputs_base import (
     quantity_text,
     show_value,
 )
-from sizer.model.ranges import RANGES
+from sizer.io.schema.ranges import RANGES
+from sizer.mechanics.stages import STEEL_DENSITY
 
 DEFAULT_RATIO_BOUNDS = (1.0, 100.0)
 
@@ -81,37 +81,36 @@ def _ratio_schema(name: str, optimize: bool) -> dict[str, Any]:
                            f"{allowed.text()}"}
 
 
-def RatioField(name: str) -> Any:
-    """A stage's ratio field (fixed, list or optimize) with its ratios in ``RANGES[name]``."""
-    return Annotated[Any, BeforeValidator(_ratio_of(name)),
-                     WithJsonSchema(_ratio_schema(name, True)), RangeRef(name)]
 
 
 MAX_RATIO_OPTIONS = 1000
 """At most this many ratios in a list (each is a candidate for every motor and law)."""
 
-Ratio = RatioField("gear_ratio")
-BeltRatio = RatioField("belt_ratio")
-Efficiency = Ranged("efficiency")
-Inertia = Ranged("stage_inertia", note="reflected to the stage input")
-Speed = Ranged("stage_speed")
-Torque = Ranged("stage_torque")
+Ratio = Annotated[Any, BeforeValidator(_ratio_of("gear_ratio")),
+                  WithJsonSchema(_ratio_schema("gear_ratio", True)), RangeRef("gear_ratio")]
+"""A stage's ratio field (fixed, list or optimize) with its ratios in ``RANGES[name]``."""
+BeltRatio = Annotated[Any, BeforeValidator(_ratio_of("belt_ratio")),
+                      WithJsonSchema(_ratio_schema("belt_ratio", True)), RangeRef("belt_ratio")]
+Efficiency = Annotated[float, Ranged("efficiency")]
+Inertia = Annotated[float, Ranged("stage_inertia", note="reflected to the stage input")]
+Speed = Annotated[float, Ranged("stage_speed")]
+Torque = Annotated[float, Ranged("stage_torque")]
 
 
 class GearboxInput(Strict):
     """A gearbox: motor speed = ratio x output speed. Or the ratios of a gearbox catalog."""
 
     type: Literal["gearbox"]
-    ratio: Ratio | None = None  # type: ignore[valid-type]
+    ratio: Ratio | None = None
     catalog: Text | None = Field(
         None, description="a gearbox catalog file (relative to the design); its ratios are "
                           "the options, each with its own efficiency, inertia and limits")
-    efficiency: Efficiency = 1.0  # type: ignore[valid-type]
-    inertia: Inertia = 0.0  # type: ignore[valid-type]
-    max_input_speed: Speed | None = None  # type: ignore[valid-type]
-    rated_output_torque: Torque | None = None  # type: ignore[valid-type]
-    peak_output_torque: Torque | None = None  # type: ignore[valid-type]
-    backlash: Ranged("backlash", note="informative") | None = None  # type: ignore
+    efficiency: Efficiency = 1.0
+    inertia: Inertia = 0.0
+    max_input_speed: Speed | None = None
+    rated_output_torque: Torque | None = None
+    peak_output_torque: Torque | None = None
+    backlash: Annotated[float, Ranged("backlash", note="informative")] | None = None
     name: Text | None = None
 
 
@@ -119,13 +118,13 @@ class BeltInput(Strict):
     """A timing belt on two pulleys; as the last stage of a linear axis the load rides on it."""
 
     type: Literal["belt"]
-    ratio: BeltRatio | None = None  # type: ignore[valid-type]
-    driver_diameter: Ranged("pulley_diameter") | None = None  # type: ignore[valid-type]
-    driven_diameter: Ranged("pulley_diameter") | None = None  # type: ignore[valid-type]
-    driver_inertia: Inertia = 0.0  # type: ignore[valid-type]
-    driven_inertia: Inertia = 0.0  # type: ignore[valid-type]
-    belt_mass: Ranged("belt_mass") = 0.0  # type: ignore[valid-type]
-    efficiency: Efficiency = 1.0  # type: ignore[valid-type]
+    ratio: BeltRatio | None = None
+    driver_diameter: Annotated[float, Ranged("pulley_diameter")] | None = None
+    driven_diameter: Annotated[float, Ranged("pulley_diameter")] | None = None
+    driver_inertia: Inertia = 0.0
+    driven_inertia: Inertia = 0.0
+    belt_mass: Annotated[float, Ranged("belt_mass")] = 0.0
+    efficiency: Efficiency = 1.0
     name: Text | None = None
 
 
@@ -133,16 +132,16 @@ class BallScrewInput(Strict):
     """A ball screw: ratio 2 pi / lead (rad/m)."""
 
     type: Literal["ball_screw"]
-    lead: Ranged("screw_lead", note="travel per screw turn")  # type: ignore[valid-type]
-    efficiency: Efficiency = 0.9  # type: ignore[valid-type]
-    inertia: Inertia | None = None  # type: ignore[valid-type]
-    diameter: Ranged("screw_diameter") | None = None  # type: ignore[valid-type]
-    length: Ranged("screw_length") | None = None  # type: ignore[valid-type]
-    density: Ranged(  # type: ignore[valid-type]
+    lead: Annotated[float, Ranged("screw_lead", note="travel per screw turn")]
+    efficiency: Efficiency = 0.9
+    inertia: Inertia | None = None
+    diameter: Annotated[float, Ranged("screw_diameter")] | None = None
+    length: Annotated[float, Ranged("screw_length")] | None = None
+    density: Annotated[float, Ranged(
         "density", note="of a screw given by diameter and length; vendors use "
-                              "7.87e3 (Yaskawa) or 7.8e3 (Mitsubishi)") = STEEL_DENSITY
-    preload_torque: Ranged("preload_torque") = 0.0  # type: ignore[valid-type]
-    max_speed: Speed | None = None  # type: ignore[valid-type]
+                        "7.87e3 (Yaskawa) or 7.8e3 (Mitsubishi)")] = STEEL_DENSITY
+    preload_torque: Annotated[float, Ranged("preload_torque")] = 0.0
+    max_speed: Speed | None = None
     name: Text | None = None
 
 
@@ -150,15 +149,15 @@ class RackPinionInput(Strict):
     """A rack and pinion: ratio 1/r (rad/m)."""
 
     type: Literal["rack_pinion"]
-    pitch_radius: Ranged("pitch_radius") | None = None  # type: ignore[valid-type]
-    pitch_diameter: Ranged("pitch_diameter") | None = None  # type: ignore[valid-type]
-    inertia: Inertia = 0.0  # type: ignore[valid-type]
-    efficiency: Efficiency = 1.0  # type: ignore[valid-type]
+    pitch_radius: Annotated[float, Ranged("pitch_radius")] | None = None
+    pitch_diameter: Annotated[float, Ranged("pitch_diameter")] | None = None
+    inertia: Inertia = 0.0
+    efficiency: Efficiency = 1.0
     name: Text | None = None
 
 
-Length = Ranged("link_length")
-LinkMass = Ranged("link_mass", note="a point mass at the joint")
+Length = Annotated[float, Ranged("link_length")]
+LinkMass = Annotated[float, Ranged("link_mass", note="a point mass at the joint")]
 LawOn = Literal["crank", "output"]
 
 
@@ -181,10 +180,10 @@ class _LinkageInput(Strict):
     law_on: LawOn = Field("crank", description="crank: the law moves the crank by the task's "
                           "displacement (an angle); output: the law moves the output (the "
                           "slider or the rocker) and the crank follows by inverse kinematics")
-    start_angle: Ranged("crank_angle") = 0.0  # type: ignore[valid-type]
+    start_angle: Annotated[float, Ranged("crank_angle")] = 0.0
     direction: Literal["positive", "negative"] = Field(
         "positive", description="the crank's turning direction during the move")
-    crank_inertia: Inertia = 0.0  # type: ignore[valid-type]
+    crank_inertia: Inertia = 0.0
     name: Text | None = None
 
 
@@ -197,11 +196,11 @@ class SliderCrankInput(_LinkageInput):
         None, description="the load's coordinate: slider_position (default; the load is "
                           "linear) or rod_angle (the rod's angle to the slider's line, "
                           "rotary)")
-    crank_radius: Length  # type: ignore[valid-type]
-    rod_length: Length  # type: ignore[valid-type]
-    offset: Ranged("link_offset") = 0.0  # type: ignore[valid-type]
-    rod_mass_at_crank: LinkMass = 0.0  # type: ignore[valid-type]
-    rod_mass_at_slider: LinkMass = 0.0  # type: ignore[valid-type]
+    crank_radius: Length
+    rod_length: Length
+    offset: Annotated[float, Ranged("link_offset")] = 0.0
+    rod_mass_at_crank: LinkMass = 0.0
+    rod_mass_at_slider: LinkMass = 0.0
 
 
 class FourBarInput(_LinkageInput):
@@ -217,13 +216,13 @@ class FourBarInput(_LinkageInput):
         None, description="the load's coordinate: rocker_angle (default with the crank "
                           "driven) or coupler_angle; with the rocker driven crank_angle "
                           "(default) or coupler_angle")
-    crank: Length  # type: ignore[valid-type]
-    coupler: Length  # type: ignore[valid-type]
-    rocker: Length  # type: ignore[valid-type]
-    ground: Length  # type: ignore[valid-type]
+    crank: Length
+    coupler: Length
+    rocker: Length
+    ground: Length
     branch: Branch = Field(1, description="the assembly: 1 open, -1 crossed")
-    coupler_mass_at_crank: LinkMass = 0.0  # type: ignore[valid-type]
-    coupler_mass_at_rocker: LinkMass = 0.0  # type: ignore[valid-type]
+    coupler_mass_at_crank: LinkMass = 0.0
+    coupler_mass_at_rocker: LinkMass = 0.0
 
 
 class DirectInput(Strict):
@@ -251,23 +250,23 @@ LINKAGE_TYPES: tuple[str, ...] = ("slider_crank", "four_bar")
 class GearboxRatioInput(Strict):
     """One ratio of a gearbox series, with what differs per ratio."""
 
-    ratio: Ranged("gear_ratio")  # type: ignore[valid-type]
-    inertia: Inertia = 0.0  # type: ignore[valid-type]
-    efficiency: Efficiency | None = None  # type: ignore[valid-type]
-    max_input_speed: Speed | None = None  # type: ignore[valid-type]
-    rated_output_torque: Torque | None = None  # type: ignore[valid-type]
-    peak_output_torque: Torque | None = None  # type: ignore[valid-type]
+    ratio: Annotated[float, Ranged("gear_ratio")]
+    inertia: Inertia = 0.0
+    efficiency: Efficiency | None = None
+    max_input_speed: Speed | None = None
+    rated_output_torque: Torque | None = None
+    peak_output_torque: Torque | None = None
 
 
 class GearboxSeriesInput(Strict):
     """A gearbox series: shared figures, and its ratios."""
 
     id: Text = Field(description="series or part id, unique in the file")
-    efficiency: Efficiency = 1.0  # type: ignore[valid-type]
-    max_input_speed: Speed | None = None  # type: ignore[valid-type]
-    rated_output_torque: Torque | None = None  # type: ignore[valid-type]
-    peak_output_torque: Torque | None = None  # type: ignore[valid-type]
-    backlash: Ranged("backlash") | None = None  # type: ignore[valid-type]
+    efficiency: Efficiency = 1.0
+    max_input_speed: Speed | None = None
+    rated_output_torque: Torque | None = None
+    peak_output_torque: Torque | None = None
+    backlash: Annotated[float, Ranged("backlash")] | None = None
     source: Text | None = None
     notes: Text | None = None
     ratios: list[GearboxRatioInput] = Field(min_length=1)

@@ -22,12 +22,13 @@ from pydantic import (
 from pydantic_core import PydanticCustomError
 
 from sizer.input_limits import MAX_MACHINE_AXES
-from sizer.model.inputs import DesignFile
-from sizer.model.inputs_base import (
+from sizer.io.schema.inputs import DesignFile
+from sizer.io.schema.inputs_base import (
     Identifier,
     Ranged,
     RangeRef,
     RawQuantity,
+    RawValue,
     Strict,
     Text,
     convert_in,
@@ -35,7 +36,7 @@ from sizer.model.inputs_base import (
     not_null,
     quantity_text,
 )
-from sizer.model.ranges import RANGES
+from sizer.io.schema.ranges import RANGES
 
 MINIMIZE = "minimize"
 
@@ -43,16 +44,15 @@ MINIMIZE = "minimize"
 class AxisTaskInput(Strict):
     """An axis's move on the master: h while the master turns ``move``, a dwell, a return."""
 
-    displacement: RawQuantity("'90 deg' or '200 mm'",  # type: ignore[valid-type]
-                              rotary="angle_displacement",
-                              linear="length_displacement") = Field(
+    displacement: Annotated[RawValue, RawQuantity(
+        "'90 deg' or '200 mm'", rotary="angle_displacement", linear="length_displacement")] = Field(
         description="h at the load: an angle ('90 deg', rotary axis) or a length ('200 mm', "
                     "linear axis); negative moves back first")
-    move: Ranged("master_angle",  # type: ignore[valid-type]
-                 note="the master angle the move lasts, e.g. '120 deg'")
-    dwell: Ranged("master_dwell",  # type: ignore[valid-type]
-                  note="master angle of each rest; omitted: the rest of the machine cycle "
-                       "(split in two with a return)") | None = None
+    move: Annotated[float, Ranged(
+        "master_angle", note="the master angle the move lasts, e.g. '120 deg'")]
+    dwell: Annotated[float, Ranged(
+        "master_dwell", note="master angle of each rest; omitted: the rest of the machine cycle "
+                             "(split in two with a return)")] | None = None
     return_move: StrictBool = Field(False, alias="return",
                                     description="cycle = move, dwell, move back, dwell")
 
@@ -69,16 +69,16 @@ class AxisInput(DesignFile):
 
     model_config = ConfigDict(json_schema_extra=lambda schema, _: _no_cycle(schema))
 
-    name: Identifier = Field(  # type: ignore[assignment]
+    name: Identifier = Field(
         description="the axis's name, unique in the machine, not empty")
     task: Annotated[AxisTaskInput, BeforeValidator(given)] = Field(  # type: ignore[assignment]
         description="the move on the master, its dwell and an optional return")
-    cycle: None = Field(None, description="not in an axis (a design file's cycle of "  # type: ignore[assignment]
+    cycle: None = Field(None, description="not in an axis (a design file's cycle of "
                                           "segments)")
-    check: None = Field(None, description="not in an axis (a design file's check)")  # type: ignore[assignment]
-    start: Ranged("master_phase",  # type: ignore[valid-type]
-                  note="the master angle where the axis's move begins (its phase in the "
-                       "machine cycle)") = 0.0
+    check: None = Field(None, description="not in an axis (a design file's check)")
+    start: Annotated[float, Ranged(
+        "master_phase", note="the master angle where the axis's move begins (its phase in the "
+                             "machine cycle)")] = 0.0
 
     @model_validator(mode="before")
     @classmethod
@@ -106,8 +106,8 @@ def _master_speed(value: Any) -> float | str | None:
 class MachineInput(Strict):
     """The master: the angle of one machine cycle and its speed (or cycle time)."""
 
-    cycle: Ranged("master_angle",  # type: ignore[valid-type]
-                  note="master angle of one machine cycle") = 6.283185307179586
+    cycle: Annotated[float, Ranged(
+        "master_angle", note="master angle of one machine cycle")] = 6.283185307179586
     master_speed: Annotated[
         float | str | None,
         BeforeValidator(_master_speed),
@@ -120,8 +120,8 @@ class MachineInput(Strict):
                                        "axis allows"}),
         RangeRef("master_speed"),
     ] = None
-    cycle_time: Ranged("duration",  # type: ignore[valid-type]
-                       note="instead of master_speed: the time of one machine cycle") | None = None
+    cycle_time: Annotated[float, Ranged(
+        "duration", note="instead of master_speed: the time of one machine cycle")] | None = None
 
     @model_validator(mode="after")
     def _speed(self) -> MachineInput:
@@ -136,17 +136,17 @@ class MachineInput(Strict):
 class BusInput(Strict):
     """The DC bus the axes share (all optional: each fills what the drives leave out)."""
 
-    capacitance: Ranged("bus_capacitance",  # type: ignore[valid-type]
-                        note="the bus's whole capacitance; omitted: the sum of the chosen "
-                             "drives' bus_capacitance") | None = None
-    voltage: Ranged("bus_voltage",  # type: ignore[valid-type]
-                    note="nominal DC-link voltage; omitted: the drives'") | None = None
-    braking_threshold: Ranged("bus_voltage",  # type: ignore[valid-type]
-                              note="where the braking chopper switches on; omitted: the "
-                                   "drives'") | None = None
-    braking_resistor_power: Ranged("braking_power",  # type: ignore[valid-type]
-                                   note="W: the shared braking resistor's continuous power, "
-                                        "checked against the axes' summed braking") | None = None
+    capacitance: Annotated[float, Ranged(
+        "bus_capacitance", note="the bus's whole capacitance; omitted: the sum of the chosen "
+                                "drives' bus_capacitance")] | None = None
+    voltage: Annotated[float, Ranged(
+        "bus_voltage", note="nominal DC-link voltage; omitted: the drives'")] | None = None
+    braking_threshold: Annotated[float, Ranged(
+        "bus_voltage", note="where the braking chopper switches on; omitted: the "
+                            "drives'")] | None = None
+    braking_resistor_power: Annotated[float, Ranged(
+        "braking_power", note="W: the shared braking resistor's continuous power, "
+                              "checked against the axes' summed braking")] | None = None
 
 
 def _few_axes(value: Any) -> Any:

@@ -29,15 +29,15 @@ from pydantic import (
 )
 from pydantic_core import PydanticCustomError
 
-from sizer.errors import UserError
-from sizer.model.cycle_inputs import CycleInput
-from sizer.model.inputs_base import (
+from sizer.io.schema.cycle_inputs import CycleInput
+from sizer.io.schema.inputs_base import (
     Identifier,
     OneOrList,
     OrArray,
     Ranged,
     RangeRef,
     RawQuantity,
+    RawValue,
     Strict,
     Text,
     convert_in,
@@ -46,63 +46,13 @@ from sizer.model.inputs_base import (
     quantity_text,
     show_value,
 )
-from sizer.model.law_schema import LAW_SPEC_SCHEMA
-from sizer.model.ranges import RANGES
-from sizer.model.transmission_inputs import (
+from sizer.io.schema.law_schema import LawSpecText
+from sizer.io.schema.ranges import RANGES
+from sizer.io.schema.transmission_inputs import (
     TransmissionStageInput,
 )
 
 _show = show_value
-
-# ---------------------------------------------------------------- law specs
-
-
-def check_law_spec(text: Any) -> str:
-    """Validate a law spec (``auto`` shape parameters allowed); ValueError if invalid.
-
-    Beyond :func:`sizer.laws.resolve` it rejects unknown parameter names and numbers out
-    of a parameter's range, and builds the law when no parameter is ``auto``.
-    """
-    from sizer.laws import AUTO, make_law, resolve
-    from sizer.laws.data_spec import data_spec_text
-    from sizer.laws.open_shaped import is_open_shaped
-
-    if isinstance(text, dict):
-        # a law defined by data: the design loader has built it (its files are relative
-        # to the design's folder) and passes its text; a mapping here is only made text
-        try:
-            return data_spec_text(text)
-        except UserError as error:
-            raise ValueError(error.message) from None
-    if not isinstance(text, str):
-        raise ValueError(f"expected a law spec like 'cycloidal' or 'trapezoidal(alpha=1/3)', "
-                         f"got {_show(text)}")
-    try:
-        family, values = resolve(text)
-        names = {p.name: p for p in family.parameters}
-        unknown = sorted(set(values) - set(names))
-        if unknown:
-            raise UserError(f"{family.law_id}: unknown parameter(s) {', '.join(unknown)}; "
-                            f"parameters: {', '.join(names) or 'none'}")
-        for key, value in values.items():
-            if value != AUTO:
-                names[key].validate(family.law_id, value)  # type: ignore[arg-type]
-            elif (refusal := names[key].auto_refusal(family.law_id)) is not None:
-                raise UserError(refusal)
-        if AUTO not in values.values() and not is_open_shaped(text):
-            make_law(text)  # an open shaped law is built by its design (sizer.io.data_laws)
-    except UserError as error:
-        raise ValueError(error.message) from None
-    except (ArithmeticError, ValueError, TypeError) as error:  # huge numbers and the like
-        raise ValueError(f"invalid law spec {_show(text)}: {error}") from None
-    return text.strip()
-
-
-LawSpecText = Annotated[
-    str,
-    BeforeValidator(check_law_spec),
-    WithJsonSchema(LAW_SPEC_SCHEMA),
-]
 
 # ---------------------------------------------------------------- catalog
 
@@ -113,8 +63,8 @@ _Strict = Strict
 class CurvePointInput(_Strict):
     """A (speed, torque) point of a speed-torque curve."""
 
-    speed: Ranged("curve_speed")  # type: ignore[valid-type]
-    torque: Ranged("curve_torque")  # type: ignore[valid-type]
+    speed: Annotated[float, Ranged("curve_speed")]
+    torque: Annotated[float, Ranged("curve_torque")]
 
 
 CurvePoint = Annotated[CurvePointInput, OrArray(("speed", "torque"), "curve point")]
@@ -124,8 +74,8 @@ CurvePoint = Annotated[CurvePointInput, OrArray(("speed", "torque"), "curve poin
 class TorqueCurrentPointInput(_Strict):
     """A (current, torque) point of a motor's torque-current curve."""
 
-    current: Ranged("curve_current")  # type: ignore[valid-type]
-    torque: Ranged("curve_torque")  # type: ignore[valid-type]
+    current: Annotated[float, Ranged("curve_current")]
+    torque: Annotated[float, Ranged("curve_torque")]
 
 
 TorqueCurrentPoint = Annotated[TorqueCurrentPointInput,
@@ -151,19 +101,16 @@ class MotorInput(_Strict):
     """One motor of a catalog (or inline in a design file)."""
 
     id: Identifier = Field(description="unique among all loaded motors")
-    inertia: Ranged("motor_inertia",  # type: ignore[valid-type]
-                    note="rotor inertia J_m; 0 for idealized motors whose inertia is "
-                           "counted in the load (the book's examples)")
-    continuous_torque: Ranged("motor_torque",  # type: ignore[valid-type]
-                              note="tau_c, continuous (S1) torque up to rated speed")
-    peak_torque: Ranged("motor_torque",  # type: ignore[valid-type]
-                        note="tau_p, intermittent peak torque, >= continuous_torque")
-    rated_speed: Ranged("motor_speed",  # type: ignore[valid-type]
-                        note="v_n")
-    max_speed: Ranged("motor_speed",  # type: ignore[valid-type]
-                      note=">= rated_speed") | None = None
-    damping: Ranged("motor_damping",  # type: ignore[valid-type]
-                    note="viscous B_m") = 0.0
+    inertia: Annotated[float, Ranged(
+        "motor_inertia", note="rotor inertia J_m; 0 for idealized motors whose inertia is "
+                              "counted in the load (the book's examples)")]
+    continuous_torque: Annotated[float, Ranged(
+        "motor_torque", note="tau_c, continuous (S1) torque up to rated speed")]
+    peak_torque: Annotated[float, Ranged(
+        "motor_torque", note="tau_p, intermittent peak torque, >= continuous_torque")]
+    rated_speed: Annotated[float, Ranged("motor_speed", note="v_n")]
+    max_speed: Annotated[float, Ranged("motor_speed", note=">= rated_speed")] | None = None
+    damping: Annotated[float, Ranged("motor_damping", note="viscous B_m")] = 0.0
     continuous_curve: list[CurvePoint] | None = Field(
         None, description="continuous region boundary, speeds strictly increasing, >= 2 points")
     intermittent_curve: list[CurvePoint] | None = Field(
@@ -172,28 +119,28 @@ class MotorInput(_Strict):
     source: Text | None = None
     part_number: Text | None = None
     manufacturer: Text | None = None
-    price: Ranged("price") | None = None  # type: ignore[valid-type]
-    mass: Ranged("motor_mass") | None = None  # type: ignore[valid-type]
-    torque_constant: Ranged("torque_constant",  # type: ignore[valid-type]
-                            note="k_t, N*m per ampere RMS ('N*m/A', 'N*m/Arms'); needed "
-                                 "to pair the motor with a drive") | None = None
-    winding_resistance: Ranged("winding_resistance",  # type: ignore[valid-type]
-                               note="phase to phase (line to line, between two "
-                                    "terminals), ohm") | None = None
-    phase_resistance: Ranged("winding_resistance",  # type: ignore[valid-type]
-                             note="per phase of a star winding, as some vendors give it "
-                                  "(Siemens R_ph): read as winding_resistance = 2 x this; "
-                                  "give one of the two") | None = None
-    brake_holding_torque: Ranged("brake_holding_torque",  # type: ignore[valid-type]
-                                 note="a holding brake's static torque, e.g. '1.27 N*m': "
-                                      "the motor is the brake variant") | None = None
-    brake_inertia: Ranged("brake_inertia",  # type: ignore[valid-type]
-                          note="the brake's inertia, added to the rotor's (the datasheet's "
-                               "inertia with brake minus without)") | None = None
-    thermal_time_constant: Ranged("thermal_time_constant",  # type: ignore[valid-type]
-                                  note="'35 min' or '251 s'") | None = None
-    max_winding_temperature_rise: Ranged("winding_temperature_rise",  # type: ignore[valid-type]
-                                         note="over the ambient, e.g. '100 K'") | None = None
+    price: Annotated[float, Ranged("price")] | None = None
+    mass: Annotated[float, Ranged("motor_mass")] | None = None
+    torque_constant: Annotated[float, Ranged(
+        "torque_constant", note="k_t, N*m per ampere RMS ('N*m/A', 'N*m/Arms'); needed "
+                                "to pair the motor with a drive")] | None = None
+    winding_resistance: Annotated[float, Ranged(
+        "winding_resistance", note="phase to phase (line to line, between two "
+                                   "terminals), ohm")] | None = None
+    phase_resistance: Annotated[float, Ranged(
+        "winding_resistance", note="per phase of a star winding, as some vendors give it "
+                                   "(Siemens R_ph): read as winding_resistance = 2 x this; "
+                                   "give one of the two")] | None = None
+    brake_holding_torque: Annotated[float, Ranged(
+        "brake_holding_torque", note="a holding brake's static torque, e.g. '1.27 N*m': "
+                                     "the motor is the brake variant")] | None = None
+    brake_inertia: Annotated[float, Ranged(
+        "brake_inertia", note="the brake's inertia, added to the rotor's (the datasheet's "
+                              "inertia with brake minus without)")] | None = None
+    thermal_time_constant: Annotated[float, Ranged(
+        "thermal_time_constant", note="'35 min' or '251 s'")] | None = None
+    max_winding_temperature_rise: Annotated[float, Ranged(
+        "winding_temperature_rise", note="over the ambient, e.g. '100 K'")] | None = None
     torque_current_curve: list[TorqueCurrentPoint] | None = Field(
         None, description="torque vs current (saturation), [current, torque] points, both "
                           "strictly increasing; without it torque = k_t x current")
@@ -218,22 +165,22 @@ class DriveInput(_Strict):
     """One drive (servo amplifier) of a catalog."""
 
     id: Identifier = Field(description="unique among the loaded drives")
-    continuous_current: Ranged("drive_current",  # type: ignore[valid-type]
-                               note="rated (continuous) output current, A rms")
-    peak_current: Ranged("drive_current",  # type: ignore[valid-type]
-                         note="maximum (peak) output current, A rms, >= continuous_current")
-    dc_bus_voltage: Ranged("bus_voltage",  # type: ignore[valid-type]
-                           note="nominal DC-link voltage") | None = None
-    bus_capacitance: Ranged("bus_capacitance",  # type: ignore[valid-type]
-                            note="DC-link capacitance, e.g. '110 uF'") | None = None
-    max_bus_voltage: Ranged("bus_voltage",  # type: ignore[valid-type]
-                            note="DC-link overvoltage trip level") | None = None
-    braking_threshold: Ranged("bus_voltage",  # type: ignore[valid-type]
-                              note="DC-link voltage where braking starts") | None = None
-    braking_resistor_power: Ranged("braking_power",  # type: ignore[valid-type]
-                                   note="continuous power of the internal braking "
-                                        "resistor; 0 = none") | None = None
-    price: Ranged("price") | None = None  # type: ignore[valid-type]
+    continuous_current: Annotated[float, Ranged(
+        "drive_current", note="rated (continuous) output current, A rms")]
+    peak_current: Annotated[float, Ranged(
+        "drive_current", note="maximum (peak) output current, A rms, >= continuous_current")]
+    dc_bus_voltage: Annotated[float, Ranged(
+        "bus_voltage", note="nominal DC-link voltage")] | None = None
+    bus_capacitance: Annotated[float, Ranged(
+        "bus_capacitance", note="DC-link capacitance, e.g. '110 uF'")] | None = None
+    max_bus_voltage: Annotated[float, Ranged(
+        "bus_voltage", note="DC-link overvoltage trip level")] | None = None
+    braking_threshold: Annotated[float, Ranged(
+        "bus_voltage", note="DC-link voltage where braking starts")] | None = None
+    braking_resistor_power: Annotated[float, Ranged(
+        "braking_power", note="continuous power of the internal braking "
+                              "resistor; 0 = none")] | None = None
+    price: Annotated[float, Ranged("price")] | None = None
     motors: Annotated[list[Text] | None, OneOrList("string")] = Field(
         None, description="motor ids or patterns ('SGM7J-*') the drive suits; omitted: "
                           "matched by rule (continuous current >= the motor's, "
@@ -304,9 +251,9 @@ class TaskInput(_Strict):
 
     model_config = ConfigDict(json_schema_extra=lambda schema, _: _duration_or_master(schema))
 
-    displacement: RawQuantity("'90 deg' or '200 mm'",  # type: ignore[valid-type]
-                              rotary="angle_displacement",
-                              linear="length_displacement") | None = Field(  # type: ignore[valid-type]
+    displacement: Annotated[RawValue, RawQuantity(
+        "'90 deg' or '200 mm'", rotary="angle_displacement",
+        linear="length_displacement")] | None = Field(
         None,
         description="h at the load: an angle ('90 deg', rotary axis) or a length "
                     "('200 mm', linear axis); a bare number is rad; negative moves back "
@@ -322,13 +269,13 @@ class TaskInput(_Strict):
                                        f"{RANGES['duration'].text()} (SI)"}),
         RangeRef("duration"),
     ]
-    dwell: Ranged("dwell") = 0.0  # type: ignore[valid-type]
+    dwell: Annotated[float, Ranged("dwell")] = 0.0
     return_move: StrictBool = Field(False, alias="return",
                                     description="cycle = move, dwell, move back, dwell")
-    master_speed: Ranged("master_speed",  # type: ignore[valid-type]
-                         note="instead of the duration: the move lasts the master angle of "
-                              "its laws (a cam law on a master axis, units: {time: deg}) at "
-                              "this speed") | None = None
+    master_speed: Annotated[float, Ranged(
+        "master_speed", note="instead of the duration: the move lasts the master angle of "
+                             "its laws (a cam law on a master axis, units: {time: deg}) at "
+                             "this speed")] | None = None
 
     @model_validator(mode="before")
     @classmethod
@@ -345,32 +292,34 @@ class TaskInput(_Strict):
 class LoadInput(_Strict):
     """The load at the load side; rotary fields or linear ones, per the displacement."""
 
-    inertia: RawQuantity("'0.35 kg*m^2'", rotary="load_inertia") | None = Field(  # type: ignore[valid-type]
+    inertia: Annotated[RawValue, RawQuantity(
+        "'0.35 kg*m^2'", rotary="load_inertia")] | None = Field(
         None, description="rotary axis: J_l, e.g. '0.35 kg*m^2'")
-    mass: RawQuantity("'12 kg'", linear="load_mass") | None = Field(  # type: ignore[valid-type]
+    mass: Annotated[RawValue, RawQuantity("'12 kg'", linear="load_mass")] | None = Field(
         None, description="linear axis: moving mass, e.g. '12 kg'")
-    damping: RawQuantity(  # type: ignore[valid-type]
+    damping: Annotated[RawValue, RawQuantity(
         "'0.01 N*m*s/rad' or '5 N*s/m'", rotary="load_rotary_damping",
-        linear="load_linear_damping") | None = Field(
+        linear="load_linear_damping")] | None = Field(
         None, description="viscous B_l: 'N*m*s/rad' (rotary) or 'N*s/m' (linear)")
-    friction: RawQuantity("'0.2 N*m' or '10 N'", rotary="load_friction_torque",
-                          linear="load_friction_force") | None = Field(  # type: ignore[valid-type]
+    friction: Annotated[RawValue, RawQuantity(
+        "'0.2 N*m' or '10 N'", rotary="load_friction_torque",
+        linear="load_friction_force")] | None = Field(
         None, description="Coulomb friction magnitude: N*m (rotary) or N (linear)")
-    torque: RawQuantity("'0.5 N*m'", rotary="load_torque") | None = Field(  # type: ignore[valid-type]
+    torque: Annotated[RawValue, RawQuantity("'0.5 N*m'", rotary="load_torque")] | None = Field(
         None, description="rotary axis: constant external torque, positive opposes the move")
-    force: RawQuantity("'50 N'", linear="load_force") | None = Field(  # type: ignore[valid-type]
+    force: Annotated[RawValue, RawQuantity("'50 N'", linear="load_force")] | None = Field(
         None, description="linear axis: constant external force, positive opposes the move")
-    incline: Ranged("incline",  # type: ignore[valid-type]
-                    note="linear axis: angle from the horizontal, 90 deg = vertical; "
-                           "gravity opposes a positive move") | None = None
-    friction_coefficient: Ranged("friction_coefficient",  # type: ignore[valid-type]
-                                 note="linear axis: Coulomb mu, friction = mu m g "
-                                        "cos(incline), added to friction") | None = None
-    natural_frequency: Ranged("natural_frequency",  # type: ignore[valid-type]
-                              note="the load's mode (sec. 7.1.1), e.g. '25 Hz': sizer then "
-                                   "gives each move's residual vibration") | None = None
-    damping_ratio: Ranged("damping_ratio",  # type: ignore[valid-type]
-                          note="of that mode, delta in [0, 1); default 0") | None = None
+    incline: Annotated[float, Ranged(
+        "incline", note="linear axis: angle from the horizontal, 90 deg = vertical; "
+                        "gravity opposes a positive move")] | None = None
+    friction_coefficient: Annotated[float, Ranged(
+        "friction_coefficient", note="linear axis: Coulomb mu, friction = mu m g "
+                                     "cos(incline), added to friction")] | None = None
+    natural_frequency: Annotated[float, Ranged(
+        "natural_frequency", note="the load's mode (sec. 7.1.1), e.g. '25 Hz': sizer then "
+                                  "gives each move's residual vibration")] | None = None
+    damping_ratio: Annotated[float, Ranged(
+        "damping_ratio", note="of that mode, delta in [0, 1); default 0")] | None = None
 
 
 def _motor_ref_tag(value: Any) -> str:
@@ -394,28 +343,28 @@ class CheckInput(_Strict):
 class LimitsInput(_Strict):
     """Margins and user limits (all optional)."""
 
-    torque_margin: Ranged("margin",  # type: ignore[valid-type]
-                          note="fraction of torque capability left unused") = 0.0
-    speed_margin: Ranged("margin",  # type: ignore[valid-type]
-                         note="fraction of speed capability left unused") = 0.0
-    inertia_ratio: Ranged("inertia_ratio",  # type: ignore[valid-type]
-                          note="max J_load reflected / J_motor") | None = None
-    max_speed: RawQuantity(  # type: ignore[valid-type]
+    torque_margin: Annotated[float, Ranged(
+        "margin", note="fraction of torque capability left unused")] = 0.0
+    speed_margin: Annotated[float, Ranged(
+        "margin", note="fraction of speed capability left unused")] = 0.0
+    inertia_ratio: Annotated[float, Ranged(
+        "inertia_ratio", note="max J_load reflected / J_motor")] | None = None
+    max_speed: Annotated[RawValue, RawQuantity(
         "'300 rpm' or '2 m/s'", rotary="load_max_angular_speed",
-        linear="load_max_linear_speed") | None = Field(
+        linear="load_max_linear_speed")] | None = Field(
         None, description="at the load: rad/s or rpm (rotary), m/s or m/min (linear: a "
                           "belt's or a screw's maximum linear speed)")
-    max_acceleration: RawQuantity(  # type: ignore[valid-type]
+    max_acceleration: Annotated[RawValue, RawQuantity(
         "'500 rad/s^2' or '20 m/s^2'", rotary="load_max_angular_acceleration",
-        linear="load_max_linear_acceleration") | None = Field(
+        linear="load_max_linear_acceleration")] | None = Field(
         None, description="at the load: rad/s^2 (rotary) or m/s^2 (linear)")
-    max_jerk: RawQuantity(  # type: ignore[valid-type]
+    max_jerk: Annotated[RawValue, RawQuantity(
         "'1e5 rad/s^3' or '1000 m/s^3'", rotary="load_max_angular_jerk",
-        linear="load_max_linear_jerk") | None = Field(
+        linear="load_max_linear_jerk")] | None = Field(
         None, description="at the load: rad/s^3 (rotary) or m/s^3 (linear)")
-    residual_vibration: RawQuantity(  # type: ignore[valid-type]
+    residual_vibration: Annotated[RawValue, RawQuantity(
         "'0.05 mm' or '0.01 deg'", rotary="residual_angle",
-        linear="residual_length") | None = Field(
+        linear="residual_length")] | None = Field(
         None, description="at the load: the largest amplitude of the vibration a move may "
                           "leave (needs load.natural_frequency); m or mm (linear), rad or deg "
                           "(rotary)")
@@ -426,16 +375,16 @@ class LimitsInput(_Strict):
         "driven", description="numerator of inertia_ratio: 'driven' = everything the motor "
                               "drives (load, screws, gears, couplings) reflected to the motor, "
                               "as vendors define it; 'load' = the load alone")
-    drive_current_margin: Ranged("margin",  # type: ignore[valid-type]
-                                 note="fraction of a drive's currents left unused") = 0.0
-    braking_resistor_power: Ranged("braking_power",  # type: ignore[valid-type]
-                                   note="W: the largest continuous power of the braking "
-                                        "resistor (overrides the drives' "
-                                        "braking_resistor_power)") | None = None
-    winding_temperature_rise: Ranged("winding_temperature_rise",  # type: ignore[valid-type]
-                                     note="K over the ambient, e.g. '80 K': the largest "
-                                          "winding rise (overrides the motors' "
-                                          "max_winding_temperature_rise)") | None = None
+    drive_current_margin: Annotated[float, Ranged(
+        "margin", note="fraction of a drive's currents left unused")] = 0.0
+    braking_resistor_power: Annotated[float, Ranged(
+        "braking_power", note="W: the largest continuous power of the braking "
+                              "resistor (overrides the drives' "
+                              "braking_resistor_power)")] | None = None
+    winding_temperature_rise: Annotated[float, Ranged(
+        "winding_temperature_rise", note="K over the ambient, e.g. '80 K': the largest "
+                                         "winding rise (overrides the motors' "
+                                         "max_winding_temperature_rise)")] | None = None
     thermal_duty: Literal["repeated", "once"] = Field(
         "repeated", description="how the cycle heats the winding (motors with "
                                 "thermal_time_constant and max_winding_temperature_rise): "
@@ -489,7 +438,7 @@ class DesignFile(_Strict):
         description="drive catalogs (paths relative to this file, or bundled names): "
                     "each motor is paired with each compatible drive")
     check: CheckInput | None = None
-    limits: LimitsInput = Field(default_factory=LimitsInput)
+    limits: LimitsInput = Field(default_factory=lambda: LimitsInput.model_validate({}))
     efficiency_applies_to: Annotated[
         Literal["power_flow", "steady_load"],
         BeforeValidator(_efficiency_rule),

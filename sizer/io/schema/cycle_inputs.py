@@ -18,11 +18,12 @@ from typing import Annotated, Any, Literal
 from pydantic import BeforeValidator, ConfigDict, Field, StrictBool, WithJsonSchema, model_validator
 
 from sizer.input_limits import MAX_CYCLE_SEGMENTS
-from sizer.model.inputs_base import (
+from sizer.io.schema.inputs_base import (
     Identifier,
     Ranged,
     RangeRef,
     RawQuantity,
+    RawValue,
     Strict,
     convert,
     convert_in,
@@ -31,8 +32,8 @@ from sizer.model.inputs_base import (
     range_schema,
     show_value,
 )
-from sizer.model.law_schema import LAW_SPEC_SCHEMA
-from sizer.model.ranges import RANGES, check_range
+from sizer.io.schema.law_schema import LawSpecText
+from sizer.io.schema.ranges import RANGES, check_range
 
 SEGMENT_KINDS = ("move", "run", "dwell")
 """The keys of a segment's one-key mapping."""
@@ -92,39 +93,23 @@ Rate = Annotated[
 ]
 
 
-def _displacement() -> Any:
-    return RawQuantity("'90 deg' or '200 mm'", rotary="angle_displacement",
-                       linear="length_displacement")
+Displacement = Annotated[RawValue, RawQuantity(
+    "'90 deg' or '200 mm'", rotary="angle_displacement", linear="length_displacement")]
+Speed = Annotated[RawValue, RawQuantity(
+    "'30 rpm' or '0.5 m/s'", rotary="segment_angular_speed", linear="segment_linear_speed")]
+Acceleration = Annotated[RawValue, RawQuantity(
+    "'500 deg/s^2' or '2 m/s^2'", rotary="segment_angular_acceleration",
+    linear="segment_linear_acceleration")]
 
 
-def _speed() -> Any:
-    return RawQuantity("'30 rpm' or '0.5 m/s'", rotary="segment_angular_speed",
-                       linear="segment_linear_speed")
+LawSpec = LawSpecText
+"""A law spec, checked as ``laws:`` entries are (sizer.io.schema.law_schema.check_law_spec)."""
 
 
-def _acceleration() -> Any:
-    return RawQuantity("'500 deg/s^2' or '2 m/s^2'", rotary="segment_angular_acceleration",
-                       linear="segment_linear_acceleration")
-
-
-def _law(value: Any) -> str:
-    from sizer.model.inputs import check_law_spec  # inputs imports this module
-
-    return check_law_spec(value)
-
-
-LawSpec = Annotated[
-    str,
-    BeforeValidator(_law),
-    WithJsonSchema(LAW_SPEC_SCHEMA),
-]
-"""A law spec, checked as ``laws:`` entries are (sizer.model.inputs.check_law_spec)."""
-
-
-AddedInertia = RawQuantity("'0.1 kg*m^2'", rotary="added_inertia")
-AddedMass = RawQuantity("'2 kg'", linear="added_mass")
-AddedTorque = RawQuantity("'15 N*m'", rotary="load_torque")
-AddedForce = RawQuantity("'20 N'", linear="load_force")
+AddedInertia = Annotated[RawValue, RawQuantity("'0.1 kg*m^2'", rotary="added_inertia")]
+AddedMass = Annotated[RawValue, RawQuantity("'2 kg'", linear="added_mass")]
+AddedTorque = Annotated[RawValue, RawQuantity("'15 N*m'", rotary="load_torque")]
+AddedForce = Annotated[RawValue, RawQuantity("'20 N'", linear="load_force")]
 """What a segment adds to the design's load (sizer.model.cycle.SegmentLoad), per axis."""
 
 _INERTIA = "rotary axis: inertia added while the segment lasts"
@@ -138,7 +123,7 @@ class MoveInput(Strict):
     """A move of ``displacement`` by a motion law, from ``start_speed`` to ``end_speed``
     (and from ``start_acceleration`` to ``end_acceleration``)."""
 
-    displacement: _displacement() = Field(  # type: ignore[valid-type]
+    displacement: Displacement = Field(
         description="h of this move, signed: an angle (rotary axis) or a length (linear); "
                     "not zero")
     duration: FreeDuration = None
@@ -146,38 +131,38 @@ class MoveInput(Strict):
         None, description="this move's law; omitted = each of the design's laws in turn; "
                           "with start or end speeds not 0, a law with boundary speeds "
                           "(trapezoidal, double_s, polynomial, constant_acceleration)")
-    start_speed: _speed() | None = Field(  # type: ignore[valid-type]
+    start_speed: Speed | None = Field(
         None, description="signed speed at the start (at the load); 0 = from rest")
-    end_speed: _speed() | None = Field(  # type: ignore[valid-type]
+    end_speed: Speed | None = Field(
         None, description="signed speed at the end (at the load); 0 = to rest")
-    start_acceleration: _acceleration() | None = Field(  # type: ignore[valid-type]
+    start_acceleration: Acceleration | None = Field(
         None, description="signed acceleration at the start (at the load); 0 when omitted; "
                           "not 0 only with a law that meets it (poly5, poly7)")
-    end_acceleration: _acceleration() | None = Field(  # type: ignore[valid-type]
+    end_acceleration: Acceleration | None = Field(
         None, description="signed acceleration at the end (at the load); 0 when omitted; "
                           "not 0 only with a law that meets it (poly5, poly7)")
-    weight: Ranged("segment_weight",  # type: ignore[valid-type]
-                   note="its share of the free time with `share: weights`") | None = None
-    inertia: AddedInertia | None = Field(None, description=_INERTIA)  # type: ignore[valid-type]
-    mass: AddedMass | None = Field(None, description=_MASS)  # type: ignore[valid-type]
-    torque: AddedTorque | None = Field(None, description=_TORQUE)  # type: ignore[valid-type]
-    force: AddedForce | None = Field(None, description=_FORCE)  # type: ignore[valid-type]
+    weight: Annotated[float, Ranged(
+        "segment_weight", note="its share of the free time with `share: weights`")] | None = None
+    inertia: AddedInertia | None = Field(None, description=_INERTIA)
+    mass: AddedMass | None = Field(None, description=_MASS)
+    torque: AddedTorque | None = Field(None, description=_TORQUE)
+    force: AddedForce | None = Field(None, description=_FORCE)
     name: Identifier | None = None
 
 
 class RunInput(Strict):
     """A run at constant ``speed`` for a ``duration`` or over a ``displacement``."""
 
-    speed: _speed() = Field(  # type: ignore[valid-type]
+    speed: Speed = Field(
         description="signed constant speed at the load, not zero")
-    duration: Ranged("duration") | None = Field(  # type: ignore[valid-type]
+    duration: Annotated[float, Ranged("duration")] | None = Field(
         None, description="the run's time; or give its displacement")
-    displacement: _displacement() | None = Field(  # type: ignore[valid-type]
+    displacement: Displacement | None = Field(
         None, description="the run's displacement, of the speed's sign; or give its duration")
-    inertia: AddedInertia | None = Field(None, description=_INERTIA)  # type: ignore[valid-type]
-    mass: AddedMass | None = Field(None, description=_MASS)  # type: ignore[valid-type]
-    torque: AddedTorque | None = Field(None, description=_TORQUE)  # type: ignore[valid-type]
-    force: AddedForce | None = Field(None, description=_FORCE)  # type: ignore[valid-type]
+    inertia: AddedInertia | None = Field(None, description=_INERTIA)
+    mass: AddedMass | None = Field(None, description=_MASS)
+    torque: AddedTorque | None = Field(None, description=_TORQUE)
+    force: AddedForce | None = Field(None, description=_FORCE)
     name: Identifier | None = None
 
 
@@ -186,11 +171,11 @@ class DwellInput(Strict):
 
     duration: FreeDuration = Field(description="time like '0.2 s', or 'free' (needs "
                                                "`share: weights`)")
-    weight: Ranged("segment_weight",  # type: ignore[valid-type]
-                   note="its share of the free time with `share: weights`") | None = None
-    torque: AddedTorque | None = Field(  # type: ignore[valid-type]
+    weight: Annotated[float, Ranged(
+        "segment_weight", note="its share of the free time with `share: weights`")] | None = None
+    torque: AddedTorque | None = Field(
         None, description="rotary axis: external torque held while resting (pressing)")
-    force: AddedForce | None = Field(  # type: ignore[valid-type]
+    force: AddedForce | None = Field(
         None, description="linear axis: external force held while resting")
     name: Identifier | None = None
 
@@ -248,9 +233,9 @@ class CycleInput(Strict):
         "equal", description="how free durations share the time: equal, in proportion to "
                              "|h| (displacement) or sqrt(|h|) (sqrt_displacement), or by "
                              "each segment's weight (weights)")
-    cycle_time: Ranged("duration",  # type: ignore[valid-type]
-                       note="the target period of the cycle; omitted with free segments: "
-                            "the shortest") | None = None
+    cycle_time: Annotated[float, Ranged(
+        "duration", note="the target period of the cycle; omitted with free segments: "
+                         "the shortest")] | None = None
     rate: Rate | None = None
     minimize: Identifier | None = Field(
         None, description="the name of the one segment whose duration is minimized (every "

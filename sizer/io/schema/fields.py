@@ -19,10 +19,10 @@ from typing import Annotated, Any
 
 from pydantic import BaseModel
 
-from sizer.model.inputs import CatalogFile, DesignFile
-from sizer.model.inputs_base import AxisRanges, RangeRef, field_markers
-from sizer.model.machine_inputs import MachineFile
-from sizer.model.transmission_inputs import GearboxCatalogFile
+from sizer.io.schema.inputs import CatalogFile, DesignFile
+from sizer.io.schema.inputs_base import RangeRef, RawQuantity, field_markers
+from sizer.io.schema.machine_inputs import MachineFile
+from sizer.io.schema.transmission_inputs import GearboxCatalogFile
 
 FILES: dict[str, type[BaseModel]] = {"": DesignFile, "catalog:": CatalogFile,
                                      "gearboxes:": GearboxCatalogFile,
@@ -70,7 +70,7 @@ def _walk(model: type[BaseModel], prefix: str, out: dict[str, InputField]) -> No
         found = field_markers(model, name)
         names = [m.name for m in found if isinstance(m, RangeRef)]
         for marker in found:
-            if isinstance(marker, AxisRanges):
+            if isinstance(marker, RawQuantity):
                 names += [n for n in (marker.rotary, marker.linear) if n]
         members = _members(info.annotation)
         models = [m for m in members if _is_model(m)]

@@ -1,0 +1,78 @@
+"""A law entry of the input files: a spec text, or a mapping for a law defined by data;
+its check and its JSON schema."""
+
+from __future__ import annotations
+
+from typing import Annotated, Any
+
+from pydantic import BeforeValidator, WithJsonSchema
+
+from sizer.errors import UserError
+from sizer.io.schema.inputs_base import show_value as _show
+from sizer.laws.data_spec import DATA_LAW_KINDS
+
+
+def _data_law_schema() -> dict[str, Any]:
+    return {"type": "object", "required": ["kind"],
+            "properties": {"kind": {"enum": list(DATA_LAW_KINDS)},
+                           "units": {"type": "object",
+                                     "properties": {"time": {"type": "string"},
+                                                    "position": {"type": "string"}},
+                                     "additionalProperties": False}},
+            "description": "a law defined by data (docs/data-laws.md), e.g. {kind: "
+                           "cubic_spline, points: [[0, 0], [0.4, 0.3], [1, 1]]}"}
+
+
+LAW_SPEC_SCHEMA: dict[str, Any] = {"anyOf": [
+    {"type": "string",
+     "description": "a motion law spec like 'cycloidal', 'poly5', "
+                    "'trapezoidal(alpha=1/3)' or 'double_s(alpha=auto, beta=1/4)'"},
+    _data_law_schema()]}
+
+
+def check_law_spec(text: Any) -> str:
+    """Validate a law spec (``auto`` shape parameters allowed); ValueError if invalid.
+
+    Beyond :func:`sizer.laws.resolve` it rejects unknown parameter names and numbers out
+    of a parameter's range, and builds the law when no parameter is ``auto``.
+    """
+    from sizer.laws import AUTO, make_law, resolve
+    from sizer.laws.data_spec import data_spec_text
+    from sizer.laws.open_shaped import is_open_shaped
+
+    if isinstance(text, dict):
+        # a law defined by data: the design loader has built it (its files are relative
+        # to the design's folder) and passes its text; a mapping here is only made text
+        try:
+            return data_spec_text(text)
+        except UserError as error:
+            raise ValueError(error.message) from None
+    if not isinstance(text, str):
+        raise ValueError(f"expected a law spec like 'cycloidal' or 'trapezoidal(alpha=1/3)', "
+                         f"got {_show(text)}")
+    try:
+        family, values = resolve(text)
+        names = {p.name: p for p in family.parameters}
+        unknown = sorted(set(values) - set(names))
+        if unknown:
+            raise UserError(f"{family.law_id}: unknown parameter(s) {', '.join(unknown)}; "
+                            f"parameters: {', '.join(names) or 'none'}")
+        for key, value in values.items():
+            if value != AUTO:
+                names[key].validate(family.law_id, float(value))
+            elif (refusal := names[key].auto_refusal(family.law_id)) is not None:
+                raise UserError(refusal)
+        if AUTO not in values.values() and not is_open_shaped(text):
+            make_law(text)  # an open shaped law is built by its design (sizer.io.data_laws)
+    except UserError as error:
+        raise ValueError(error.message) from None
+    except (ArithmeticError, ValueError, TypeError) as error:  # huge numbers and the like
+        raise ValueError(f"invalid law spec {_show(text)}: {error}") from None
+    return text.strip()
+
+
+LawSpecText = Annotated[
+    str,
+    BeforeValidator(check_law_spec),
+    WithJsonSchema(LAW_SPEC_SCHEMA),
+]
