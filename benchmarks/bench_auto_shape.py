@@ -19,9 +19,8 @@ import time
 from sizer.laws import resolve
 from sizer.model import Design, Limits, Load, Motor, Stage, Task, Transmission
 from sizer.sizing import size_design
-from sizer.sizing.auto_shape import choose_shape
-from sizer.sizing.candidates import Candidates
-from sizer.sizing.motors import MotorArrays
+from sizer.sizing.candidates import Candidates, MotorArrays
+from sizer.sizing.choices import choose_shape
 
 FAMILIES = (("trapezoidal(alpha=auto)", "trapezoidal(alpha=1/3)"),
             ("double_s(alpha=auto, beta=auto)", "double_s(alpha=1/3, beta=1/4)"))

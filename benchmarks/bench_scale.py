@@ -103,7 +103,7 @@ def child(motors: int, verbose: bool, workers: int | None) -> None:
         print(f"  {done}/{total} laws, {time.perf_counter() - start:.1f} s", file=sys.stderr,
               flush=True)
 
-    from sizer.sizing.law_processes import worker_count
+    from sizer.sizing.engine import worker_count
 
     count = worker_count(workers, motors * len(RATIOS), len(SCALE_LAWS))
     watch = Descendants()

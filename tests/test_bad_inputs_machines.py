@@ -183,7 +183,7 @@ def test_a_minimized_machine_reports_progress_after_each_axis(monkeypatch) -> No
     callback comes after each axis's search, before the next one starts (not once every
     axis is done)."""
     from sizer.io.machine_loader import load_machine
-    from sizer.sizing import machine_speed
+    from sizer.sizing import machine as machine_speed
     from sizer.sizing.machine import size_machine
 
     machine = load_machine(EXAMPLES / BASE)

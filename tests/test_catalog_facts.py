@@ -8,7 +8,7 @@ import pytest
 
 from sizer.envelope import continuous_region
 from sizer.model import Motor
-from sizer.sizing.catalog_facts import KEPT, catalog_facts
+from sizer.sizing.candidates import KEPT, catalog_facts
 
 
 def catalog(offset: float = 0.0) -> tuple[Motor, ...]:

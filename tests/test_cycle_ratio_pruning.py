@@ -31,13 +31,11 @@ from test_ratio_search_pruning import (
 from sizer.laws import make_law
 from sizer.model.cycle import Cycle, Dwell, Move, Run, SegmentLoad
 from sizer.model.domain import Limits, Load, Motor, Stage, Transmission
-from sizer.sizing.candidates import Candidates
+from sizer.sizing.candidates import Candidates, MotorArrays
 from sizer.sizing.checks import TOLERANCE, evaluate_checks, feasible
-from sizer.sizing.engine import evaluate_law, evaluate_spec
-from sizer.sizing.motors import MotorArrays
-from sizer.sizing.ratio_choice import choose_ratio
-from sizer.sizing.rms_fails_up_to import rms_fails_up_to
-from sizer.sizing.segment_cycle import SegmentCycle
+from sizer.sizing.choices import choose_ratio
+from sizer.sizing.cycle import SegmentCycle
+from sizer.sizing.engine import evaluate_law, evaluate_spec, rms_fails_up_to
 
 
 def as_cycle(design):
@@ -149,7 +147,7 @@ def test_a_held_load_the_rating_cannot_carry_is_not_searched(monkeypatch):
     """Dwells holding 3 N*m at the load through 10:1 (0.3 N*m and more at the motor) for
     most of the cycle, a motor rated 0.1 N*m: no scale passes the RMS check, and the
     search is skipped (the candidate infeasible with the RMS check failing)."""
-    import sizer.sizing.minimum_duration as md
+    import sizer.sizing.shortest_duration as md
 
     calls = []
     original = md.bisect_duration

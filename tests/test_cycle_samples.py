@@ -10,10 +10,9 @@ from sizer.errors import UserError
 from sizer.io.loader import load_design_data
 from sizer.laws import make_law
 from sizer.mechanics import Drive
-from sizer.sizing.cycle import CycleCalculator
-from sizer.sizing.cycle_samples import cycle_samples
-from sizer.sizing.motors import MotorArrays
-from sizer.sizing.profile import task_curve
+from sizer.sizing.candidates import MotorArrays
+from sizer.sizing.move import CycleCalculator
+from sizer.sizing.samples import cycle_samples, task_curve
 
 MOTORS = [{"id": f"M{k}", "inertia": f"{k * 1e-3} kg*m^2", "continuous_torque": "8 N*m",
            "peak_torque": "20 N*m", "rated_speed": "300 rad/s", "damping": "0.01 N*m*s/rad"}

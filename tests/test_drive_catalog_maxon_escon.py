@@ -31,9 +31,8 @@ from sizer.io.loader import (
     read_yaml,
 )
 from sizer.io.schema.inputs import DriveCatalogFile
-from sizer.sizing.drives import CurrentCurves
+from sizer.sizing.candidates import CurrentCurves, MotorArrays
 from sizer.sizing.engine import size_design
-from sizer.sizing.motors import MotorArrays
 
 PRINTED = {"ESCON-Module-50-5": ("438725", 5.0, 15.0), "ESCON-50-5": ("409510", 5.0, 15.0)}
 """id: (part number, Icont A, Imax A), as printed (see the module docstring)."""

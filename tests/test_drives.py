@@ -19,10 +19,9 @@ import pytest
 from sizer.errors import UserError
 from sizer.io.loader import load_design_data
 from sizer.model.domain import Motor, ServoDrive
-from sizer.sizing.drives import clip_region
+from sizer.sizing.candidates import MotorArrays, clip_region
 from sizer.sizing.engine import size_design
-from sizer.sizing.motors import MotorArrays
-from sizer.sizing.records import record
+from sizer.sizing.results import record
 
 FT7_INERTIA = 5.43e-4
 """1FT7044-AK7 rotor inertia, kg*m^2 (its catalog)."""

@@ -16,7 +16,7 @@ import yaml
 from sizer.io.loader import load_design_data
 from sizer.sizing.energy_check import RMS_NOTE, THERMAL_NOTE
 from sizer.sizing.engine import size_design
-from sizer.sizing.records import record
+from sizer.sizing.results import record
 
 MOTOR = {"id": "M", "inertia": "0.002 kg*m^2", "continuous_torque": "8 N*m",
          "peak_torque": "40 N*m", "rated_speed": "300 rad/s", "torque_constant": "2 N*m/Arms"}

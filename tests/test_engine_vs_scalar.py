@@ -108,8 +108,8 @@ def minimize_design(seed: int) -> Design:
 def engine_calculator(design: Design, motor: Motor, spec: str, option: float):
     """The engine's cycle calculator of the same single candidate as :func:`candidate`."""
     from sizer.mechanics import Drive
-    from sizer.sizing.cycle import CycleCalculator
-    from sizer.sizing.motors import MotorArrays
+    from sizer.sizing.candidates import MotorArrays
+    from sizer.sizing.move import CycleCalculator
 
     stages = list(design.transmission.stages)
     stages[design.ratio_choice.stage] = dataclasses.replace(stages[0], ratio=option)

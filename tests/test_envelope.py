@@ -23,7 +23,7 @@ from sizer.envelope import (
 from sizer.io import bundled_catalogs, load_catalog
 from sizer.model.domain import Design, Limits, Load, Motor, Task
 from sizer.sizing import size_design
-from sizer.sizing.motors import MotorArrays
+from sizer.sizing.candidates import MotorArrays
 
 RPM = 2 * math.pi / 60
 RULES = tuple(ENVELOPE_RULES)
@@ -228,7 +228,7 @@ def test_region_table_of_completed_and_written_curves_together():
 
 
 def test_the_speed_torque_diagram_draws_the_completed_regions():
-    from sizer.sizing.profile import task_curve
+    from sizer.sizing.samples import task_curve
 
     curve = task_curve(_design("linear"), SGM7J_04A, "trapezoidal(alpha=1/3)", T_MOVE)
     assert curve.intermittent_region == ((0.0, 4.46), (3000 * RPM, 4.46), (6000 * RPM, 1.27))

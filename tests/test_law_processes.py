@@ -14,8 +14,8 @@ from sizer.errors import UserError
 from sizer.laws import DEFAULT_LAW_SPECS, make_law
 from sizer.laws.data_spec import data_spec_text
 from sizer.sizing import size_design
-from sizer.sizing.law_processes import AUTO_WORK, tables_in_processes, usable_cpus, worker_count
-from sizer.sizing.motors import MotorArrays
+from sizer.sizing.candidates import MotorArrays
+from sizer.sizing.engine import AUTO_WORK, tables_in_processes, usable_cpus, worker_count
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "benchmarks"))
@@ -94,7 +94,7 @@ def test_a_law_pickles_as_its_spec(spec):
 def test_the_jobs_option_sizes_a_machines_axes_in_processes(monkeypatch, tmp_path):
     """``sizer size MACHINE --jobs 2``: each axis's sizing in worker processes, the output
     the one process gives (a given master speed: one sizing per axis)."""
-    import sizer.sizing.law_processes as processes
+    import sizer.sizing.engine as processes
 
     text = (ROOT / "examples" / "machines" / "two-axis-packer.yaml").read_text()
     text = text.replace("master_speed: minimize", "master_speed: 30 rpm")

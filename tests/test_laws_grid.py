@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from sizer.laws import make_law
-from sizer.sizing.grid import PieceEvaluator, law_grid, piecewise
+from sizer.sizing.move import PieceEvaluator, law_grid, piecewise
 
 STEEP = [
     ("double_s(alpha=1/2, beta=0.0005)", 0.5, 0.0005),

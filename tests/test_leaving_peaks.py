@@ -21,8 +21,8 @@ from sizer.laws import make_law
 from sizer.laws.linear_peaks import piece_values
 from sizer.mechanics import Drive
 from sizer.model.domain import Load, Motor, Stage, Task, Transmission
-from sizer.sizing.cycle import CycleCalculator, MoveScales
-from sizer.sizing.motors import MotorArrays
+from sizer.sizing.candidates import MotorArrays
+from sizer.sizing.move import CycleCalculator, MoveScales
 
 LAWS = ("cycloidal", "poly5", "trapezoidal(alpha=1/3)", "modified_sinusoidal",
         "double_s(alpha=1/3, beta=1/4)")

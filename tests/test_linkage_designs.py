@@ -218,7 +218,7 @@ def test_energy_balance_of_a_move_through_the_linkage() -> None:
     # move is the change of kinetic energy (0: at rest at both ends) plus the losses,
     # 20 N x 2r, plus the work against the load, 30 N x (-2r)
     from sizer.io.loader import load_design_data
-    from sizer.sizing.segment_breakdown import segment_breakdown
+    from sizer.sizing.samples import segment_breakdown
 
     task = {"displacement": "180 deg", "duration": "0.25 s", "dwell": "0.1 s"}
     data = _design(task, {"law_on": "crank"}, load={"mass": f"{M} kg", "friction": "20 N",

@@ -18,7 +18,7 @@ from test_linkage_readings import angles
 
 from sizer.api import size
 from sizer.io.loader import load_design_data
-from sizer.sizing.segment_breakdown import segment_breakdown
+from sizer.sizing.samples import segment_breakdown
 
 ROOT = Path(__file__).resolve().parent.parent
 PAPER = (0.075, 0.175, 0.100, 0.175)

@@ -12,9 +12,10 @@ from test_engine_vs_scalar import minimize_design
 
 from sizer.laws import make_law
 from sizer.mechanics import Drive
-from sizer.sizing.cycle import CycleCalculator, CycleMetrics
-from sizer.sizing.minimum_duration import merge_metrics
-from sizer.sizing.motors import MotorArrays
+from sizer.sizing.candidates import MotorArrays
+from sizer.sizing.evaluation import CycleMetrics
+from sizer.sizing.move import CycleCalculator
+from sizer.sizing.shortest_duration import merge_metrics
 
 
 @pytest.mark.parametrize("seed", range(4))

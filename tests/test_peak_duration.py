@@ -21,8 +21,7 @@ from scalar_reference import evaluate
 from test_engine_vs_scalar import LAWS, candidate, engine_calculator, minimize_design, random_design
 
 from sizer.laws import make_law
-from sizer.sizing.cycle import CycleCalculator
-from sizer.sizing.peak_duration import peak_duration
+from sizer.sizing.move import CycleCalculator, peak_duration
 
 BRUTE = 400_001
 
@@ -151,7 +150,7 @@ def test_leaving_out_dominated_queries_gives_the_same_bound(seed):
     at once, per law and ratio, the bound equals the one from every query, to the bit."""
     from sizer.mechanics import Drive
     from sizer.model import Transmission
-    from sizer.sizing.motors import MotorArrays
+    from sizer.sizing.candidates import MotorArrays
 
     design = minimize_design(seed)
     motors = MotorArrays.of(list(design.motors), design.limits.envelope)
@@ -180,7 +179,7 @@ def competing_calculators():
     constant load, an efficiency and a return move, per law and ratio."""
     from sizer.mechanics import Drive
     from sizer.model import Load, Motor, Stage, Task, Transmission
-    from sizer.sizing.motors import MotorArrays
+    from sizer.sizing.candidates import MotorArrays
 
     rng = np.random.default_rng(3)
     motors = []
@@ -221,7 +220,7 @@ def test_each_query_bound_lies_in_its_bracket():
     """What the pruning rests on: every query's bound 1/u (Newton on the exact linear
     peaks) lies between the closed-form ends of its bracket."""
     from sizer.model import Limits
-    from sizer.sizing.peak_duration import _brackets, _largest_u, peak_queries
+    from sizer.sizing.move import _brackets, _largest_u, peak_queries
 
     limits = Limits(**COMPETING_LIMITS)
     checked = 0

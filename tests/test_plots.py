@@ -49,7 +49,7 @@ from sizer.report.plots.speed_torque import (
     region_outline,
 )
 from sizer.sizing import size_design
-from sizer.sizing.profile import task_curve
+from sizer.sizing.samples import task_curve
 
 RPM = 30.0 / math.pi
 SAMPLES = 41

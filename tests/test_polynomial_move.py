@@ -14,9 +14,8 @@ import pytest
 from sizer.laws import make_law
 from sizer.mechanics import Drive
 from sizer.model.domain import Load, Motor, Stage, Task, Transmission
-from sizer.sizing.cycle import CycleCalculator
-from sizer.sizing.motors import MotorArrays
-from sizer.sizing.polynomial_move import polynomial_move
+from sizer.sizing.candidates import MotorArrays
+from sizer.sizing.move import CycleCalculator, polynomial_move
 
 RPM = math.pi / 30.0
 RATED = 3000.0 * RPM

@@ -15,7 +15,7 @@ import pytest
 
 from sizer.laws import DEFAULT_LAW_SPECS, make_law
 from sizer.laws.quadrature import Resolution, law_intervals
-from sizer.sizing.grid import ENGINE_RESOLUTION, law_grid
+from sizer.sizing.move import ENGINE_RESOLUTION, law_grid
 
 SPECS = (*DEFAULT_LAW_SPECS, "elliptic(n=1000)", "polynomial(21)",
          "exponential(sigma=2, lam=0.61)", "double_s(alpha=1e-6, beta=1e-6)")

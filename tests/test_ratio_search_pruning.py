@@ -50,13 +50,11 @@ from sizer.model import (
     Task,
     Transmission,
 )
-from sizer.sizing.candidates import Candidates
-from sizer.sizing.duration_floor import duration_floor
-from sizer.sizing.engine import evaluate_law, evaluate_spec
-from sizer.sizing.motors import MotorArrays
-from sizer.sizing.ratio_choice import choose_ratio
-from sizer.sizing.rms_fails_up_to import rms_fails_up_to
-from sizer.sizing.table import Mode
+from sizer.sizing.candidates import Candidates, MotorArrays
+from sizer.sizing.choices import choose_ratio
+from sizer.sizing.engine import evaluate_law, evaluate_spec, rms_fails_up_to
+from sizer.sizing.results import Mode
+from sizer.sizing.shortest_duration import duration_floor
 
 
 def wide_design(seed: int, gearboxes: bool = False, given: bool = False,
@@ -165,9 +163,8 @@ def test_the_floors_scales_give_each_querys_own_bracket(seed, rising):
     (sizer.sizing.peak_duration._brackets), with the speed bounds: for every law.
     ``rising``: every intermittent region rises before it falls (concave still), so some
     queries have Q < 0 and bound nothing."""
-    from sizer.sizing.cycle import CycleCalculator
-    from sizer.sizing.duration_floor import peak_scales, relaxed
-    from sizer.sizing.peak_duration import _brackets, peak_queries, speed_bounds
+    from sizer.sizing.move import CycleCalculator, _brackets, peak_queries, speed_bounds
+    from sizer.sizing.shortest_duration import peak_scales, relaxed
 
     design = wide_design(seed)
     if rising:
@@ -270,7 +267,7 @@ def test_a_rising_rms_is_no_proof():
 
 
 def test_listed_choice_names_the_listed_option_chosen():
-    from sizer.sizing.ratio_choice import listed_choice
+    from sizer.sizing.choices import listed_choice
 
     for gearboxes in (False, True):
         design = wide_design(3, gearboxes)
@@ -291,8 +288,8 @@ def test_one_model_per_motor_equals_one_per_option(seed):
     """The RMS of every option of a motor from one evaluation (the stretches between
     power-flow reversals shared: sizer.sizing.rms_fails_up_to._shared_models) equals each
     option's own evaluation, and so do the test's answers."""
-    from sizer.sizing.cycle import CycleCalculator
-    from sizer.sizing.rms_fails_up_to import _shared_models
+    from sizer.sizing.engine import _shared_models
+    from sizer.sizing.move import CycleCalculator
 
     design = wide_design(seed)
     pairs, motor, _ = all_pairs(design)

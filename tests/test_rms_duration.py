@@ -5,7 +5,7 @@ T^4 + dwell T^3 - scale^2 (numpy.roots, the eigenvalues of its companion matrix)
 import numpy as np
 import pytest
 
-from sizer.sizing.minimum_duration import rms_duration
+from sizer.sizing.shortest_duration import rms_duration
 
 
 def _companion_root(scale: float, dwell: float) -> float:

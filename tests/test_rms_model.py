@@ -21,9 +21,9 @@ from test_engine_vs_scalar import candidate, engine_calculator, minimize_design
 from sizer.laws import make_law
 from sizer.mechanics import Drive
 from sizer.model import Limits, Load, Motor, Stage, Task, Transmission
-from sizer.sizing.cycle import CycleCalculator
-from sizer.sizing.minimum_duration import rms_crossing, rms_crossing_with_rms
-from sizer.sizing.motors import MotorArrays
+from sizer.sizing.candidates import MotorArrays
+from sizer.sizing.move import CycleCalculator
+from sizer.sizing.shortest_duration import rms_crossing, rms_crossing_with_rms
 
 
 def calculator_of(efficiency: float, spec: str = "cycloidal") -> CycleCalculator:

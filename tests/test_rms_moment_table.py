@@ -22,9 +22,8 @@ import pytest
 from sizer.laws import make_law
 from sizer.mechanics import Drive
 from sizer.model import Load, Motor, Stage, Task, Transmission
-from sizer.sizing.cycle import CycleCalculator, moment_table
-from sizer.sizing.grid import law_grid
-from sizer.sizing.motors import MotorArrays
+from sizer.sizing.candidates import MotorArrays
+from sizer.sizing.move import CycleCalculator, law_grid, moment_table
 
 H, DWELL = 1.5, 0.2
 LOAD = Load(0.05, damping=0.02, friction=0.3, torque=0.4)

@@ -16,7 +16,7 @@ from test_engine_vs_scalar import engine_calculator, minimize_design
 
 from sizer.laws import make_law
 from sizer.model import Design, Limits, Load, Motor, Stage, Task, Transmission
-from sizer.sizing.minimum_duration import rms_lower_bound, rms_unreachable
+from sizer.sizing.shortest_duration import rms_lower_bound, rms_unreachable
 
 DURATIONS = tuple(10.0**k for k in (-2.0, -1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 2.0, 3.0))
 
@@ -76,8 +76,8 @@ def test_feasible_candidate_not_screened() -> None:
 def engine_calculator_of(design: Design):
     """The engine's calculator of a one-motor design without a ratio choice."""
     from sizer.mechanics import Drive
-    from sizer.sizing.cycle import CycleCalculator
-    from sizer.sizing.motors import MotorArrays
+    from sizer.sizing.candidates import MotorArrays
+    from sizer.sizing.move import CycleCalculator
 
     return CycleCalculator(None, design.task, Drive(design.load, design.transmission),
                            MotorArrays.of(list(design.motors), design.limits.envelope),

@@ -44,7 +44,7 @@ def test_elementwise_mode_and_final_brackets():
 
 
 def test_the_engine_imports_the_same_root_finder():
-    from sizer.sizing.roots import illinois as engine_illinois
+    from sizer.numerics.roots import illinois as engine_illinois
 
     assert engine_illinois is illinois
 

@@ -24,10 +24,9 @@ from sizer.model.domain import (
     Transmission,
 )
 from sizer.sizing import size_design
-from sizer.sizing.cycle import CycleCalculator
-from sizer.sizing.cycle_shape import shorthand_task
-from sizer.sizing.motors import MotorArrays
-from sizer.sizing.segment_cycle import SegmentCycle
+from sizer.sizing.candidates import MotorArrays
+from sizer.sizing.cycle import SegmentCycle, shorthand_task
+from sizer.sizing.move import CycleCalculator
 
 RPM = math.pi / 30.0
 FIELDS = ("max_speed", "peak_torque", "peak_ratio", "rms_torque", "thermal_speed",
@@ -200,7 +199,7 @@ def test_the_breakdown_of_a_cycle_per_segment():
     the friction's, F |h| (the kinetic energy returns); shares of tau^2 sum to one; the
     times add up; the cycloidal law joins a dwell without an acceleration step, the
     trapezoid with one of its acceleration h C_a / T^2."""
-    from sizer.sizing.segment_breakdown import segment_breakdown
+    from sizer.sizing.samples import segment_breakdown
 
     motor = Motor("m", 1e-3, 5.0, 15.0, 300.0)
     design = Design(Task(1.0, None), Load(0.2, friction=0.5),
@@ -254,8 +253,7 @@ def test_the_flying_saw_meets_the_line_speed_and_its_t_min():
     at T_min and not 1e-7 below it."""
     from sizer.api import load
     from sizer.sizing.checks import evaluate_checks, worst_slack
-    from sizer.sizing.profile import task_curve
-    from sizer.sizing.segment_breakdown import scale_of
+    from sizer.sizing.samples import scale_of, task_curve
 
     design = load(FLYING_SAW)
     best = size_design(design).results[0]
@@ -285,8 +283,7 @@ def test_moves_meet_their_boundary_accelerations_and_joins_without_a_step():
     """Two poly5 moves joined at 60 deg/s and 200 deg/s^2: the curve reaches both at the
     join (to 1e-12 of the scale) and the breakdown marks no step there; the move back
     (cycloidal, from rest to rest) marks none either."""
-    from sizer.sizing.profile import task_curve
-    from sizer.sizing.segment_breakdown import segment_breakdown
+    from sizer.sizing.samples import segment_breakdown, task_curve
 
     deg = math.pi / 180
     cycle = Cycle((Move(90 * deg, 0.3, law="poly5", end_speed=60 * deg,
@@ -338,7 +335,7 @@ def test_the_bound_of_moves_with_boundary_speeds_is_the_closed_form_of_the_cubic
     the move leaving the run is its mirror. The segment engine's bound on the scale (the
     moves' duration) is that threshold (the rest-to-rest return, twice as long, binds
     less), and T_min is the bound."""
-    from sizer.sizing.minimum_duration import minimum_duration
+    from sizer.sizing.shortest_duration import minimum_duration
 
     h, v, K, J_m, J_l, tau_p = 0.2, 0.5, 10.0, 1e-3, 0.2, 15.0
     cycle = Cycle((Move(h, None, law="poly3", end_speed=v), Run(v, 0.2),
@@ -365,7 +362,7 @@ def test_the_bound_of_moves_with_boundary_speeds_is_the_closed_form_of_the_cubic
 def test_first_crossing_brackets_the_first_sign_change_to_its_width():
     """Rows of cubics: the returned end is where f >= 0, within 1e-13 of the root
     (closed forms), and of three sign changes in the bracket the first is kept."""
-    from sizer.sizing.segment_cycle import first_crossing
+    from sizer.sizing.cycle import first_crossing
 
     c = np.array([2.0, 3.0, 10.0])
 
@@ -406,7 +403,7 @@ def test_a_cycle_no_scale_passes_is_infeasible_with_boundary_speeds_and_no_warni
     evaluation at an infinite scale), and no scale is feasible."""
     import warnings
 
-    from sizer.sizing.minimum_duration import minimum_duration
+    from sizer.sizing.shortest_duration import minimum_duration
 
     cycle = Cycle((Move(0.2, None, law="poly3", end_speed=0.5), Run(0.5, 0.2),
                    Move(0.2, None, law="poly3", start_speed=0.5),

@@ -34,7 +34,7 @@ from sizer.report.segment_table import (
     csv_headers,
 )
 from sizer.sizing import check_design, size_design
-from sizer.sizing.segment_breakdown import segment_breakdown
+from sizer.sizing.samples import segment_breakdown
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = ROOT / "examples"

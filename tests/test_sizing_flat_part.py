@@ -19,9 +19,9 @@ from scipy.optimize import minimize_scalar
 from sizer.mechanics import Drive
 from sizer.model.domain import Design, Limits, Load, Motor, Task
 from sizer.sizing import size_design
-from sizer.sizing.cycle import CycleCalculator
-from sizer.sizing.minimum_duration import minimum_duration
-from sizer.sizing.motors import MotorArrays
+from sizer.sizing.candidates import MotorArrays
+from sizer.sizing.move import CycleCalculator
+from sizer.sizing.shortest_duration import minimum_duration
 
 PLAIN = Motor(id="plain", inertia=1e-4, continuous_torque=1.0, peak_torque=3.0,
               rated_speed=100.0, max_speed=200.0)

@@ -58,9 +58,9 @@ def test_minimize_stops_at_the_load_speed_limit(tmp_path, friction) -> None:
 def test_the_closed_form_has_the_load_speed_bound(tmp_path) -> None:
     from sizer.laws import make_law
     from sizer.mechanics import Drive
-    from sizer.sizing.cycle import CycleCalculator
-    from sizer.sizing.minimum_duration import closed_form_duration, is_purely_inertial
-    from sizer.sizing.motors import MotorArrays
+    from sizer.sizing.candidates import MotorArrays
+    from sizer.sizing.move import CycleCalculator
+    from sizer.sizing.shortest_duration import closed_form_duration, is_purely_inertial
 
     design = belt(tmp_path, "minimize", "1 m/s")
     calculator = CycleCalculator(None, design.task, Drive(design.load, design.transmission),

@@ -18,9 +18,9 @@ from sizer.laws import make_law
 from sizer.mechanics import Drive
 from sizer.model import Design, Limits, Load, Motor, Stage, Task, Transmission
 from sizer.sizing import size_design
+from sizer.sizing.candidates import MotorArrays
 from sizer.sizing.checks import evaluate_checks, feasible, worst_slack
-from sizer.sizing.cycle import CycleCalculator
-from sizer.sizing.motors import MotorArrays
+from sizer.sizing.move import CycleCalculator
 
 GRID = np.geomspace(1e-3, 1e3, 121)  # 1e-3 s to 1000 s, 20 points per decade
 

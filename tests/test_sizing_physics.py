@@ -173,7 +173,7 @@ def test_speed_torque_curve_limits_the_peak_at_speed():
 
 
 def test_task_curve_samples_the_cycle_of_example_6_1():
-    from sizer.sizing.profile import task_curve
+    from sizer.sizing.samples import task_curve
 
     motor = Motor("ex6_1", inertia=0.0, continuous_torque=8.0, peak_torque=20.0,
                   rated_speed=10.0)

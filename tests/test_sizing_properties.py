@@ -115,9 +115,9 @@ def test_time_scaling_of_chapter_5(mu, lam, law):
 def test_minimize_rectangles_pure_inertia_matches_bisection(design):
     """The closed form (eq. 6.2 with dwell) and the bracketing solver agree to 1e-9."""
     from sizer.mechanics import Drive
-    from sizer.sizing.cycle import CycleCalculator
-    from sizer.sizing.minimum_duration import bisect_duration, closed_form_duration
-    from sizer.sizing.motors import MotorArrays
+    from sizer.sizing.candidates import MotorArrays
+    from sizer.sizing.move import CycleCalculator
+    from sizer.sizing.shortest_duration import bisect_duration, closed_form_duration
 
     pure = dataclasses.replace(design, load=Load(design.load.inertia),
                                transmission=Transmission((Stage("gearbox", 3.0),)),

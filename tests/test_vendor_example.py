@@ -29,7 +29,7 @@ from reference_values import printed
 from sizer.io import load_design
 from sizer.mechanics import Drive
 from sizer.sizing import size_design
-from sizer.sizing.profile import task_curve
+from sizer.sizing.samples import task_curve
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "vendor-ballscrew.yaml"
 MOTOR = "SGM7J-02A"

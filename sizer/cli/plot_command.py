@@ -309,7 +309,7 @@ def _linkage_figure(design: Design, drawn: list[CandidateResult],
 
     from sizer.report.plots import linkage_figure
     from sizer.report.plots.task_curves import motor_of, transmission_for
-    from sizer.sizing.linkage_sizing import linkage_curve_of
+    from sizer.sizing.samples import linkage_curve_of
 
     if design.transmission.linkage is None:
         raise UserError("the design's transmission has no linkage (slider_crank or "

@@ -161,7 +161,7 @@ def _minimize(design: Design) -> bool:
 def _base_scale(design: Design) -> float:
     """The design's duration (scale), or in minimize mode the shortest T_min of its
     feasible pairs (a task) -- a cycle in minimize mode needs --from and --to."""
-    from sizer.sizing.cycle_shape import given_scale
+    from sizer.sizing.cycle import given_scale
 
     if design.cycle is not None:
         if design.cycle.minimize:

@@ -23,7 +23,7 @@ from sizer.report.sizing_table import RESULT_UNITS
 if TYPE_CHECKING:
     from sizer.model.domain import Design
     from sizer.sizing import CandidateResult
-    from sizer.sizing.segment_breakdown import SegmentBreakdown
+    from sizer.sizing.samples import SegmentBreakdown
 
 
 FORMAT = "sizer.check/1"

@@ -126,7 +126,7 @@ def sized_as_cycle(design: Design) -> bool:
     """True when the design's results have the cycle time as their duration (a cycle of
     segments that is not the task shorthand; sizer.sizing.segment_breakdown.scale_of),
     False when it is the move's duration T."""
-    from sizer.sizing.cycle_shape import plain_design
+    from sizer.sizing.cycle import plain_design
 
     return design.cycle is not None and plain_design(design).cycle is not None
 

@@ -29,7 +29,7 @@ from sizer.report.numbers import short
 from sizer.report.output import emit, stdout_is_terminal
 from sizer.report.sizing_table import SizingDocument, print_terminal_table
 from sizer.sizing.machine import MachineResult
-from sizer.sizing.machine_bus import BusResult
+from sizer.sizing.machine import BusResult
 
 FORMAT = "sizer.machine/1"
 RPM = 30.0 / math.pi

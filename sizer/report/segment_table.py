@@ -40,7 +40,7 @@ from sizer.report.text_table import render_text_table
 if TYPE_CHECKING:
     from sizer.model.domain import Design
     from sizer.sizing import CandidateResult
-    from sizer.sizing.segment_breakdown import SegmentBreakdown, SegmentRow
+    from sizer.sizing.samples import SegmentBreakdown, SegmentRow
 
 FORMAT = "sizer.segments/1"
 """The ``format`` of the JSON document: its name and version, bumped on incompatible changes."""
@@ -126,7 +126,7 @@ def breakdown_for(design: Design, result: CandidateResult) -> SegmentBreakdown:
     feasible duration has none: a UserError saying why."""
     from sizer.errors import UserError
     from sizer.report.plots.task_curves import motor_of, transmission_for
-    from sizer.sizing.segment_breakdown import segment_breakdown
+    from sizer.sizing.samples import segment_breakdown
 
     if result.duration is None:
         raise UserError(f"{result.motor} with {law_label(result.spec)} has no feasible duration "

@@ -8,6 +8,9 @@
   inertia, as vendors define it; ``inertia_ratio_of: load`` for the load alone), load
   speed, load acceleration and load jerk against the user's limits.
 
+Every check's name is listed once (:class:`CheckName`); the kinds evaluated here from a
+cycle model's metrics are :data:`CHECKS` and :data:`STAGE_CHECKS`, those evaluated by their
+own code (catalog figures, whole-cycle figures, a linkage's rules) are :data:`OWN_CHECKS`.
 Every verdict is decided here, with one tolerance: a check passes when
 margin >= required - TOLERANCE, i.e. value <= (1 - required + TOLERANCE) * limit. A
 requirement exactly equal to a rating (a motor run exactly at its rated speed) passes
@@ -18,17 +21,39 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from enum import StrEnum
 from functools import cached_property
 
 import numpy as np
 
 from sizer.mechanics import Drive
 from sizer.model.domain import Limits
-from sizer.sizing.cycle import CycleMetrics
-from sizer.sizing.motors import MotorArrays
+from sizer.sizing.candidates import MotorArrays
+from sizer.sizing.evaluation import CycleMetrics
 
 TOLERANCE = 1e-9
 """Relative tolerance of every check: value <= (1 - required + TOLERANCE) * limit passes."""
+
+
+class CheckName(StrEnum):
+    """The name of every check but the stages' (``<stage>_<suffix>``: :data:`STAGE_CHECKS`),
+    as results and reports show it."""
+
+    SPEED = "speed"
+    PEAK = "peak"
+    RMS = "rms"
+    THERMAL_SPEED = "thermal_speed"
+    INERTIA_RATIO = "inertia_ratio"
+    LOAD_SPEED = "load_speed"
+    ACCELERATION = "acceleration"
+    JERK = "jerk"
+    HOLDING_BRAKE = "holding_brake"
+    DRIVE_PEAK_CURRENT = "drive_peak_current"
+    DRIVE_RMS_CURRENT = "drive_rms_current"
+    RESIDUAL_VIBRATION = "residual_vibration"
+    BRAKING_RESISTOR_POWER = "braking_resistor_power"
+    WINDING_TEMPERATURE_RISE = "winding_temperature_rise"
+    DEAD_POINT = "dead_point"
 
 
 @dataclass(frozen=True, eq=False)
@@ -103,7 +128,7 @@ class CheckKind:
     inertia ratio bound); value and limit are arrays over the candidates.
     """
 
-    name: str
+    name: CheckName
     unit: Callable[[CheckInput], str]
     value: Callable[[CheckInput], np.ndarray]
     limit: Callable[[CheckInput], np.ndarray]
@@ -133,26 +158,27 @@ def _none(limits: Limits) -> float:
 
 
 CHECKS: tuple[CheckKind, ...] = (
-    CheckKind("speed", lambda x: "rad/s", lambda x: x.metrics.max_speed,
+    CheckKind(CheckName.SPEED, lambda x: "rad/s", lambda x: x.metrics.max_speed,
               lambda x: x.motors.speed_limit, _speed_margin),
-    CheckKind("peak", lambda x: "", lambda x: x.metrics.peak_ratio, lambda x: x.ones,
+    CheckKind(CheckName.PEAK, lambda x: "", lambda x: x.metrics.peak_ratio, lambda x: x.ones,
               _torque_margin),
-    CheckKind("rms", lambda x: "N*m", lambda x: x.metrics.rms_torque,
+    CheckKind(CheckName.RMS, lambda x: "N*m", lambda x: x.metrics.rms_torque,
               lambda x: x.motors.continuous.limit_clipped(x.metrics.thermal_speed),
               _torque_margin),
-    CheckKind("thermal_speed", lambda x: "rad/s", lambda x: x.metrics.thermal_speed,
+    CheckKind(CheckName.THERMAL_SPEED, lambda x: "rad/s", lambda x: x.metrics.thermal_speed,
               lambda x: x.motors.continuous.max_speed, _speed_margin),
-    CheckKind("inertia_ratio", lambda x: "", _inertia_ratio,
+    CheckKind(CheckName.INERTIA_RATIO, lambda x: "", _inertia_ratio,
               lambda x: x.limits.inertia_ratio * x.ones, _none,
               lambda limits: limits.inertia_ratio is not None),
-    CheckKind("load_speed", lambda x: f"{x.axis_unit}/s", lambda x: x.metrics.load_speed,
+    CheckKind(CheckName.LOAD_SPEED, lambda x: f"{x.axis_unit}/s",
+              lambda x: x.metrics.load_speed,
               lambda x: x.limits.max_speed * x.ones, _none,
               lambda limits: limits.max_speed is not None),
-    CheckKind("acceleration", lambda x: f"{x.axis_unit}/s^2",
+    CheckKind(CheckName.ACCELERATION, lambda x: f"{x.axis_unit}/s^2",
               lambda x: x.metrics.load_acceleration,
               lambda x: x.limits.max_acceleration * x.ones, _none,
               lambda limits: limits.max_acceleration is not None),
-    CheckKind("jerk", lambda x: f"{x.axis_unit}/s^3", lambda x: x.metrics.load_jerk,
+    CheckKind(CheckName.JERK, lambda x: f"{x.axis_unit}/s^3", lambda x: x.metrics.load_jerk,
               lambda x: x.limits.max_jerk * x.ones, _none,
               lambda limits: limits.max_jerk is not None),
 )
@@ -180,6 +206,41 @@ STAGE_CHECKS: tuple[StageCheckKind, ...] = (
 """Per stage: input speed, RMS and peak output torque against its ratings."""
 
 
+@dataclass(frozen=True)
+class OwnCheckKind:
+    """A kind of the registry whose value and limit its own code computes: its name and
+    unit (``linear_unit`` where a linear axis has another); :meth:`arrays` makes the
+    check of its value, limit and required margin, as every kind's (slack, verdict)."""
+
+    name: CheckName
+    unit: str
+    linear_unit: str | None = None
+
+    def arrays(self, value: np.ndarray, limit: np.ndarray, required: float,
+               applies: np.ndarray | None = None, notes: np.ndarray | None = None,
+               linear: bool = False) -> CheckArrays:
+        unit = self.linear_unit if linear and self.linear_unit is not None else self.unit
+        return CheckArrays(self.name, value, limit, unit, required, applies, notes)
+
+
+HOLDING_BRAKE = OwnCheckKind(CheckName.HOLDING_BRAKE, "N*m")
+"""A brake variant's holding torque (:func:`holding_brake_check`)."""
+DRIVE_PEAK_CURRENT = OwnCheckKind(CheckName.DRIVE_PEAK_CURRENT, "A")
+DRIVE_RMS_CURRENT = OwnCheckKind(CheckName.DRIVE_RMS_CURRENT, "A")
+"""A drive's peak and continuous currents (:func:`drive_checks`)."""
+RESIDUAL_VIBRATION = OwnCheckKind(CheckName.RESIDUAL_VIBRATION, "rad", "m")
+"""The worst residual vibration at the load (sizer.sizing.vibration_check)."""
+BRAKING_RESISTOR_POWER = OwnCheckKind(CheckName.BRAKING_RESISTOR_POWER, "W")
+"""The braking resistor's mean power (sizer.sizing.energy_check)."""
+WINDING_TEMPERATURE_RISE = OwnCheckKind(CheckName.WINDING_TEMPERATURE_RISE, "K")
+"""The winding's temperature rise (sizer.sizing.energy_check)."""
+DEAD_POINT = OwnCheckKind(CheckName.DEAD_POINT, "")
+"""A linkage's dead-point rules (sizer.sizing.linkage_move)."""
+OWN_CHECKS = (HOLDING_BRAKE, DRIVE_PEAK_CURRENT, DRIVE_RMS_CURRENT, RESIDUAL_VIBRATION,
+              BRAKING_RESISTOR_POWER, WINDING_TEMPERATURE_RISE, DEAD_POINT)
+"""The kinds evaluated by their own code, in the order results list them."""
+
+
 def evaluate_checks(metrics: CycleMetrics, motors: MotorArrays, drive: Drive,
                     limits: Limits, linear: bool = False) -> list[CheckArrays]:
     """All checks of the registry that the design has, for the candidates of ``metrics``."""
@@ -203,12 +264,12 @@ def holding_brake_check(x: CheckInput) -> CheckArrays | None:
     if not has.any() or x.drive.load.torque == 0.0:
         return None
     hold = np.broadcast_to(x.drive.holding_torque, x.ones.shape)
-    return CheckArrays("holding_brake", hold, np.where(has, brake, 1.0), "N*m",
-                       x.limits.torque_margin, None if has.all() else has.copy())
+    return HOLDING_BRAKE.arrays(hold, np.where(has, brake, 1.0), x.limits.torque_margin,
+                                None if has.all() else has.copy())
 
 
-DRIVE_CHECKS = ("drive_peak_current", "drive_rms_current")
-"""The checks of a candidate's drive (sizer.sizing.drives): the current its peak and its
+DRIVE_CHECKS = (CheckName.DRIVE_PEAK_CURRENT, CheckName.DRIVE_RMS_CURRENT)
+"""The checks of a candidate's drive (sizer.sizing.candidates): the current its peak and its
 RMS torque need (through the motor's k_t or torque-current curve) against the drive's peak
 and continuous currents, with the margin ``limits.drive_current_margin``."""
 
@@ -221,8 +282,8 @@ def drive_checks(x: CheckInput) -> list[CheckArrays]:
     required = x.limits.drive_current_margin
     peak = motors.currents.current(np.broadcast_to(x.metrics.peak_torque, x.ones.shape))
     rms = motors.currents.current(np.broadcast_to(x.metrics.rms_torque, x.ones.shape))
-    return [CheckArrays(DRIVE_CHECKS[0], peak, motors.peak_current, "A", required),
-            CheckArrays(DRIVE_CHECKS[1], rms, motors.continuous_current, "A", required)]
+    return [DRIVE_PEAK_CURRENT.arrays(peak, motors.peak_current, required),
+            DRIVE_RMS_CURRENT.arrays(rms, motors.continuous_current, required)]
 
 
 def stage_labels(drive: Drive) -> list[str]:

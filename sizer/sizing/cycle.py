@@ -1,1145 +1,759 @@
-"""The machine cycle of one law for many candidates at once (book sec. 6.1.1).
+"""The requirements of a machine cycle of several segments, for many candidates at once.
 
-For each candidate (a motor with its own duration T) the cycle is: move |h| in T, dwell,
-and with a return move the same back and a second dwell. Along each move the motor torque
-is
+A cycle (sizer.model.cycle) is a list of moves, constant-speed runs and dwells, each with
+its own load (the design's plus the segment's added inertia and external torque). For a
+scale s of the free durations (book sec. 5.2: T_i = w_i s, the fixed ones stay) every
+segment is evaluated exactly and the cycle's requirements combine them (DESIGN.md):
 
-    tau(t) = J_m K a(t) + B_m K v(t) + chain(a, v)
+- peaks (torque, ratio to the intermittent region, speeds, stage outputs) are the
+  maxima over the segments;
+- the RMS torque is the square root of the sum of the segments' integrals of tau^2 over
+  the cycle time (the same for each stage output and for the RMS speed).
 
-with a, v the load's acceleration and speed, K the total ratio and chain() the torque
-the transmission and the load need at the motor shaft, efficiencies applied in the
-direction of power flow (sizer.mechanics.drive). During a dwell the motor holds the
-constant external load. The RMS torque covers the whole cycle; so do the RMS torques at
-the outputs of transmission stages that have torque ratings.
+A rest-to-rest move is one move of the single-law engine (sizer.sizing.move); a move
+with boundary speeds is a piecewise polynomial of each candidate's duration
+(sizer.laws.boundary_speeds), evaluated exactly by sizer.sizing.move.polynomial_move. A run
+has a constant torque; a dwell holds its constant load (holding counts as driving, as
+in the single-law engine).
 
-Integrals are exact: quadratic forms of the law's moments (Gauss-Legendre on its grid,
-summed into a prefix-sum table once per law: :func:`moment_table`) over the stretches
-between the power-flow reversals of the stages, each reversal a root; with ideal stages
-the RMS is the closed form in C_v_rms, C_a_rms. Peaks are exact where they can be
-(:meth:`CycleCalculator._exact_peaks`: the law's linear peaks, and against a concave
-speed-torque region the linear-fractional peaks of Dinkelbach's method, restricted to the
-parts of the move below and above the region's top speed where the move leaves it);
-elsewhere they are found on the grid (piece ends and the ends of the move included) and
-the largest local maxima of the samples, in whatever interval or piece, are refined by
-golden-section search.
+What shape a machine cycle has, for the engine (issue 12): the task shorthand or not
+(:func:`shorthand_task`, :func:`plain_design`), the scale of its free durations
+(:func:`given_scale`), and the laws that are ranked over it (:func:`ranked_laws`).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from dataclasses import dataclass
-from functools import cached_property, lru_cache
-from typing import Protocol
+import math
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-from sizer.laws.linear_peaks import LinearPeak, piece_values
-from sizer.laws.quadrature import gauss_legendre
+from sizer.errors import UserError
+from sizer.laws import MotionLaw, make_law
 from sizer.mechanics import Drive
-from sizer.model.domain import Task, ThermalSpeedRule
-from sizer.numerics.arrays import spread
-from sizer.numerics.hermite import hermite_root
-from sizer.sizing.golden import golden_step, interior_points
-from sizer.sizing.grid import LawGrid, PieceEvaluator, law_grid
-from sizer.sizing.motors import MotorArrays
+from sizer.model.cycle import Cycle, Dwell, Move, Run, Segment
+from sizer.model.domain import Design, Limits, Load, Task, ThermalSpeedRule
+from sizer.sizing.candidates import MotorArrays
+from sizer.sizing.checks import TOLERANCE, evaluate_checks, worst_slack
+from sizer.sizing.evaluation import CycleMetrics
+from sizer.sizing.move import (
+    CycleCalculator,
+    MoveFigures,
+    MoveScales,
+    RmsModel,
+    _safe_ratio,
+    polynomial_move,
+    rule_speed,
+)
 
-GOLDEN_STEPS = 40
-FLOW_ROOT_STEP = 1e-6
-"""A power-flow root's Newton step (in the grid interval's coordinate) that ends its
-search (:meth:`CycleCalculator._flow_root`): the root is then within about the step's
-square times the torque's relative curvature over the interval, and an integral moves
-with the square of a root's error (the two reflections agree at the root): far below
-rounding."""
-REFINED = 6
-"""Local maxima of the samples refined per candidate (the largest ones)."""
-REFINE_SHARE = 0.5
-"""Samples below this share of the best sample are no candidate peaks."""
+
+def shorthand_task(cycle: Cycle) -> Task | None:
+    """The task whose expansion is ``cycle`` (sizer.model.cycle.from_task: move, dwell,
+    move back, dwell, equal durations, no load changes), else None."""
+    if cycle.shorthand is not None:
+        return cycle.shorthand
+    if cycle.minimize_segment is not None or cycle.cycle_time is not None:
+        return None
+    segments = cycle.segments
+    moves = [s for s in segments if isinstance(s, Move)]
+    dwells = [s for s in segments if isinstance(s, Dwell)]
+    if len(moves) + len(dwells) != len(segments) or not 1 <= len(moves) <= 2:
+        return None
+    if any(m.law is not None or not m.rest_to_rest or not m.load.is_zero for m in moves):
+        return None
+    if any(d.duration is None or not d.load.is_zero for d in dwells):
+        return None
+    first = moves[0]
+    if len(moves) == 2:
+        back = moves[1]
+        if back.displacement != -first.displacement or back.duration != first.duration:
+            return None
+        if first.duration is None and len(set(cycle.weights())) > 2:  # unequal free shares
+            return None
+        expected: list[type] = [Move, Dwell, Move, Dwell] if dwells else [Move, Move]
+    else:
+        expected = [Move, Dwell] if dwells else [Move]
+    if [type(s) for s in segments] != expected:
+        return None
+    dwell = dwells[0].duration if dwells else 0.0
+    if any(d.duration != dwell for d in dwells) or (dwells and not dwell):
+        return None
+    return Task(first.displacement, first.duration, dwell=dwell or 0.0,
+                return_move=len(moves) == 2, linear=cycle.linear)
+
+
+def plain_design(design: Design) -> Design:
+    """The design with a cycle that is the task shorthand (move, dwell, move back, dwell)
+    written as a task, so that it is sized by the single-law engine with identical
+    results (:func:`shorthand_task`); other designs unchanged."""
+    if design.cycle is None:
+        return design
+    task = shorthand_task(design.cycle)
+    return design if task is None else replace(design, task=task, cycle=None)
+
+
+def given_scale(cycle: Cycle) -> float:
+    """The scale s of the free durations when it is not minimized: from the cycle time
+    target (T_i = w_i s fill what the fixed durations leave), or 1 when nothing is free."""
+    weights = math.fsum(cycle.weights())
+    if cycle.cycle_time is None or weights == 0.0:
+        return 1.0
+    return (cycle.cycle_time - cycle.fixed_time) / weights
+
+
+def ranked_laws(design: Design) -> tuple[str, ...]:
+    """The law specs the ranking runs over: the design's laws (those that can meet the
+    boundary speeds of every move that names no law of its own); with a cycle whose every
+    move names its law, that cycle once, labelled by its first move's law."""
+    cycle = design.cycle
+    if cycle is None:
+        if not design.laws:
+            raise UserError("no motion laws to consider", field="laws")
+        return design.laws
+    open_moves = [m for m in cycle.moves if m.law is None]
+    if not open_moves:
+        return (cycle.moves[0].law,) if cycle.moves and cycle.moves[0].law else ("cycloidal",)
+    if not design.laws:
+        raise UserError("no motion laws to consider for the moves that name none",
+                        field="laws")
+    if all(m.rest_to_rest for m in open_moves):
+        return design.laws
+    from sizer.laws.boundary_speeds import boundary_form
+
+    accelerated = any(m.start_acceleration != 0.0 or m.end_acceleration != 0.0
+                      for m in open_moves)
+
+    def usable(spec: str) -> bool:
+        basis = boundary_form(spec) if not _has_auto(spec) else None
+        return basis is not None and (not accelerated or basis.meets_accelerations)
+
+    kept = tuple(spec for spec in design.laws if usable(spec))
+    if not kept:
+        raise UserError("none of the laws can start or end a move at a non-zero speed"
+                        + (" or acceleration (polynomials of degree 5 and 7 can)" if accelerated
+                           else " (those that can: trapezoidal, double_s, polynomial of "
+                                "degree 3, 5 or 7, constant_acceleration)")
+                        + "; name one in `laws:` or give the move its own `law:`",
+                        field="laws")
+    return kept
+
+
+def _has_auto(spec: str) -> bool:
+    from sizer.laws import AUTO, resolve
+
+    return any(v == AUTO for v in resolve(spec)[1].values())
+
+
+def left_out_laws(design: Design) -> tuple[str, ...]:
+    """The design's laws the ranking leaves out (no form with the moves' boundary speeds
+    or accelerations)."""
+    if design.cycle is None or not any(m.law is None for m in design.cycle.moves):
+        return ()
+    kept = set(ranked_laws(design))
+    return tuple(spec for spec in design.laws if spec not in kept)
 
 
 @dataclass(frozen=True)
-class CycleMetrics:
-    """Requirements of one law for each candidate (arrays over candidates, SI).
-
-    Motor side: max_speed, peak_torque, peak_ratio (worst |tau|/tau_int(|speed|)),
-    rms_torque, thermal_speed. Load side: load_speed, load_acceleration, load_jerk (peaks)
-    and load_torque (peak |u|). Per stage: stage_peak and stage_rms output torques and
-    stage_speed (peak input speed), lists over the stages.
-    """
+class SegmentFigures(MoveFigures):
+    """One segment's requirements per candidate (arrays, SI): a move's figures
+    (sizer.sizing.move.MoveFigures: the peaks and the integrals over the
+    segment of tau^2, each stage's output^2, omega^2, |omega|, tau*omega), its duration
+    and, for a rest-to-rest move when asked for, its RMS model
+    (sizer.sizing.move.RmsModel)."""
 
     duration: np.ndarray
-    max_speed: np.ndarray
-    peak_torque: np.ndarray
-    peak_ratio: np.ndarray
-    rms_torque: np.ndarray
-    thermal_speed: np.ndarray
-    load_speed: np.ndarray
-    load_acceleration: np.ndarray
-    load_jerk: np.ndarray
-    load_torque: np.ndarray
-    stage_peak: list[np.ndarray]
-    stage_rms: list[np.ndarray]
-    stage_speed: list[np.ndarray]
-    rms_model: RmsCurve | None = None
+    rms_model: RmsModel | None = None
+    end_accelerations: tuple[np.ndarray, np.ndarray] | None = None
+    """A move's load acceleration at its start and at its end (signed; None: 0, a run or a
+    dwell): where a join's two sides differ, the jerk there is an impulse."""
 
 
-def rule_speed(rule: str, peak: np.ndarray, square: np.ndarray, travel: np.ndarray,
-               cycle_time: np.ndarray) -> np.ndarray:
-    """The thermal speed of a cycle from its statistics (sec. 6.1.1): the peak speed (the
-    book's rule, ``max``), the RMS speed sqrt(int w^2 dt / T_c) or the mean speed
-    int |w| dt / T_c, from the peak, int w^2 dt, int |w| dt and the cycle time T_c."""
-    if rule == "max":
-        return peak
-    if rule == "rms":
-        return np.sqrt(square / cycle_time)
-    return travel / cycle_time
+BOUND_SPAN = 16
+"""The grid of scales a move with boundary speeds is first read at: 2 BOUND_SPAN + 1
+points, factors of sqrt 2 apart, centred on the search's start."""
 
-
-class RmsCurve(Protocol):
-    """The RMS torque as a function of the duration near where it was built: a law's
-    :class:`RmsModel`, or a cycle's (sizer.sizing.segment_cycle.CycleRmsModel)."""
-
-    def rms(self, T: np.ndarray, index: np.ndarray | None = None) -> np.ndarray: ...
+JOIN_TOLERANCE = 1e-9
+"""A step of the acceleration at a join counts when it exceeds this share of the cycle's
+acceleration scale (the largest |h|/T^2 of its moves)."""
 
 
 @dataclass(frozen=True)
-class RmsModel:
-    """The motor's RMS torque near the durations it was built at, T0, with the power
-    flow's split points held (book sec. 6.1.1; :meth:`CycleCalculator.evaluate` with
-    ``model``): per move the motor's linear functions at T0 and the law's moments where
-    each is the torque. At T the coefficient of a_N scales as (T0/T)^2, that of v_N as
-    T0/T. Exact at T0 (and for an ideal drive at every T); elsewhere off by O((T - T0)^2),
-    as the torque is continuous across a split point, so moving it changes the integral
-    to second order only.
-    """
+class CycleRmsModel:
+    """The cycle's RMS torque near the scales s0 it was built at: each free rest-to-rest
+    move's RMS model (exact at s0, second-order near: sizer.sizing.move.RmsModel), the
+    fixed segments' integrals (constant) and the free dwells' (linear in s). With it
+    sizer.sizing.shortest_duration.rms_crossing finds where the RMS check binds in a few
+    rounds, as for a single law."""
 
-    duration: np.ndarray
-    moves: list[list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]]
-    dwell: float
-    hold: np.ndarray
+    moves: tuple[tuple[RmsModel, float], ...]
+    constant: np.ndarray
+    hold_rate: np.ndarray
+    fixed_time: float
+    weight_sum: float
 
-    @cached_property
-    def powers(self) -> np.ndarray:
-        """The summed integrals T int (P s^2 a_N + Q s v_N + C)^2 (s = T0/T, each function
-        over its moments M) as c_3/T^3 + c_2/T^2 + c_1/T + c_0 + c_(-1) T: rows (c_3, c_2,
-        c_1, c_0, c_(-1)) over the candidates, summed over the moves once, so that each
-        value of the model costs a polynomial in 1/T."""
-        T0 = self.duration
-        out = np.zeros((5, len(T0)))
+    def rms(self, s: np.ndarray, index: np.ndarray | None = None) -> np.ndarray:
+        def pick(x):
+            return x if index is None else x[index]
+
+        square = pick(self.constant) + pick(self.hold_rate) * s
         with np.errstate(over="ignore", invalid="ignore"):
-            for move in self.moves:
-                for P, Q, C, M in move:
-                    p, q = P * T0 * T0, Q * T0  # the torque scales of a_N and v_N at T0
-                    out[0] += p * p * M[0]
-                    out[1] += 2.0 * p * q * M[3]
-                    out[2] += q * q * M[1] + 2.0 * p * C * M[4]
-                    out[3] += 2.0 * q * C * M[5]
-                    out[4] += C * C * M[2]
-        return out
-
-    def rms(self, T: np.ndarray, index: np.ndarray | None = None) -> np.ndarray:
-        """RMS torque at durations T (of the candidates at ``index``, default all)."""
-        c = self.powers if index is None else self.powers[:, index]
-        hold = self.hold if index is None else self.hold[index]
-        n = len(self.moves)
-        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            u = 1.0 / T
-            square = ((c[0] * u + c[1]) * u + c[2]) * u + c[3] + c[4] * T
-            mean = (square + n * self.dwell * np.square(hold)) / (n * (T + self.dwell))
+            for model, w in self.moves:
+                square = square + np.square(model.rms(w * s, index)) * (w * s)
+            mean = square / (self.fixed_time + self.weight_sum * s)
         return np.sqrt(np.where(np.isnan(mean), np.inf, mean))
 
 
-Objective = Callable[[np.ndarray, np.ndarray], np.ndarray]
-"""A channel's value at normalized (a_N, v_N) arrays of shape (candidates, k)."""
+def segment_load(base: Load, segment: Segment) -> Load:
+    """The design's load with the segment's added inertia (or mass) and torque (force)."""
+    if segment.load.is_zero:
+        return base
+    return replace(base, inertia=base.inertia + segment.load.inertia,
+                   torque=base.torque + segment.load.torque)
 
 
-@dataclass(frozen=True)
-class MoveScales:
-    """Per-candidate scales of one move: load a = acc*a_N, v = vel*v_N."""
+def normalized_move(basis, move: Move, T: np.ndarray) -> np.ndarray:
+    """The normalized shape q_N(u) of a move between boundary conditions for durations T,
+    as piece coefficients (n, P, d+1) (sizer.laws.boundary_speeds): s = v T / h and, where
+    the move gives boundary accelerations, r = a T^2 / h."""
+    h = move.displacement
+    T = np.asarray(T, dtype=float)
+    s0, s1 = move.start_speed * T / h, move.end_speed * T / h
+    if move.start_acceleration == 0.0 and move.end_acceleration == 0.0:
+        return basis.combine(s0, s1)
+    return basis.combine(s0, s1, r0=move.start_acceleration * T * T / h,
+                         r1=move.end_acceleration * T * T / h)
 
-    acc: np.ndarray
-    vel: np.ndarray
-    direction: float | np.ndarray
-    """+1 or -1 (per candidate where several moves are stacked: CycleCalculator._exact_moves)."""
+
+def cycle_laws(cycle: Cycle, law: MotionLaw | None) -> tuple[MotionLaw | None, ...]:
+    """The law of each segment: a move's own law, else ``law`` (the one being ranked)."""
+    return tuple((make_law(s.law) if s.law else law) if isinstance(s, Move) else None
+                 for s in cycle.segments)
 
 
-class CycleCalculator:
-    """Evaluates the cycle of one law for candidate motors at candidate durations."""
+class SegmentCycle:
+    """Evaluates a cycle of segments for candidate motors at candidate scales s.
 
-    segmented = False
-    """A cycle of segments (sizer.sizing.segment_cycle.SegmentCycle) says True: the T_min
-    search then varies the scale of its free durations, without the closed forms."""
+    Has the interface of :class:`sizer.sizing.move.CycleCalculator` that the checks and
+    the T_min search use (``evaluate``, ``take``, ``motors``, ``drive``, ``task``); the
+    duration the search varies is the scale s of the free durations.
+    """
 
-    def __init__(self, grid: LawGrid | None, task: Task, drive: Drive, motors: MotorArrays,
-                 thermal_speed: ThermalSpeedRule = "max", law=None) -> None:
-        self._grid = grid
-        self.law = grid.law if grid is not None else law
-        self.task = task
-        self.drive = drive
+    segmented = True
+
+    def __init__(self, cycle: Cycle, law: MotionLaw | None, drive: Drive,
+                 motors: MotorArrays, thermal_speed: ThermalSpeedRule = "max") -> None:
+        self.cycle = cycle
+        self.law = law
+        self.laws = cycle_laws(cycle, law)
         self.motors = motors
         self.thermal_rule = thermal_speed
-        self.h = abs(task.displacement)
-        sign = 1.0 if task.displacement >= 0 else -1.0
-        self.directions = (sign, -sign) if task.return_move else (sign,)
-        self.stage_checks = any(s.rated_output_torque is not None
-                                or s.peak_output_torque is not None for s in drive.stages)
-
-    @property
-    def grid(self) -> LawGrid:
-        """The law's sampling grid, built on first use (the closed forms need none)."""
-        if self._grid is None:
-            self._grid = law_grid(self.law)
-        return self._grid
+        self.weights = np.array(cycle.weights())
+        free = cycle.free
+        self.fixed = np.array([np.nan if s.duration is None or i in free else s.duration
+                               for i, s in enumerate(cycle.segments)], dtype=float)
+        self.drives = tuple(Drive(segment_load(drive.load, s), drive.transmissions, drive.option)
+                            if not s.load.is_zero else drive for s in cycle.segments)
+        heaviest = max(cycle.segments, key=lambda s: s.load.inertia)
+        self.drive = (Drive(segment_load(drive.load, heaviest), drive.transmissions,
+                            drive.option) if heaviest.load.inertia > 0.0 else drive)
+        """The drive the checks read (the inertia ratio): the largest load of the cycle."""
+        self.task = Task(cycle.moves[0].displacement if cycle.moves else 0.0, None,
+                         linear=cycle.linear)
+        self._base = drive
+        self._fixed: dict[tuple[int, bool], SegmentFigures] = {}
+        self._parent: tuple[SegmentCycle, np.ndarray] | None = None
 
     # ------------------------------------------------------------------ public
-    def evaluate(self, duration: np.ndarray, peaks: bool = True,
-                 model: bool = False, rms: np.ndarray | None = None) -> CycleMetrics:
-        """The requirements at the given durations. Without ``peaks`` the peak torques
-        and ratios are left at zero (a search on the other checks, where the peaks are
-        known to pass: sizer.sizing.minimum_duration); with ``model`` the metrics carry
-        the RMS model at these durations (:class:`RmsModel`). ``rms``: the motor's RMS
-        torque at these durations, known (an RMS model's value within CONVERGED of where
-        it was built: sizer.sizing.minimum_duration.rms_crossing_with_rms); the power-flow
-        integrals are then not computed where no stage has an RMS rating to check (the
-        stages' RMS is then left at zero, as nothing reads it)."""
-        if rms is not None and (model or self.stage_checks or self.drive.is_ideal):
-            rms = None  # wanted, or as cheap as the known values
-        T = np.broadcast_to(np.asarray(duration, dtype=float), (len(self.motors),)).copy()
-        c = self.law.coefficients
-        K, h = self.drive.ratio, self.h
-        n_stages = len(self.drive.stages)
-        load_speed = c.C_v * h / T
-        peak_torque = np.zeros_like(T)
-        peak_ratio = np.zeros_like(T)
-        load_torque = np.zeros_like(T)
-        square = np.zeros_like(T)
-        stage_peak = [np.zeros_like(T) for _ in range(n_stages)]
-        stage_square = [np.zeros_like(T) for _ in range(n_stages)]
-        # no T**2: T may be 1e300
-        moves = [MoveScales(h / T / T, h / T, d) for d in self.directions]
-        found = self._peaks(moves) if peaks else [
-            (np.zeros_like(T), np.zeros_like(T), np.zeros_like(T),
-             [np.zeros_like(T) for _ in range(n_stages)]) for _ in moves]
-        parts: list | None = [] if model else None
-        for scales, (torque, ratio, load, stages) in zip(moves, found, strict=True):
-            peak_torque = np.maximum(peak_torque, torque)
-            peak_ratio = np.maximum(peak_ratio, ratio)
-            load_torque = np.maximum(load_torque, load)
-            for i in range(n_stages):
-                stage_peak[i] = np.maximum(stage_peak[i], stages[i])
-            if rms is not None:
+    def durations(self, s: np.ndarray) -> list[np.ndarray]:
+        """Each segment's duration per candidate at scales s."""
+        return [np.full_like(s, fixed) if np.isfinite(fixed) else w * s
+                for fixed, w in zip(self.fixed, self.weights, strict=True)]
+
+    def cycle_time(self, s: np.ndarray) -> np.ndarray:
+        return sum(self.durations(np.asarray(s, dtype=float)), np.zeros_like(s))
+
+    def scale_of(self, cycle_time: np.ndarray) -> np.ndarray:
+        """The scale s of the free durations at which the cycle lasts ``cycle_time``
+        (the inverse of :meth:`cycle_time`: fixed durations plus weights times s)."""
+        fixed = float(np.sum(self.fixed[np.isfinite(self.fixed)]))
+        return (np.asarray(cycle_time, dtype=float) - fixed) / float(np.sum(self.weights))
+
+    def take(self, index: np.ndarray) -> SegmentCycle:
+        out = object.__new__(SegmentCycle)
+        out.__dict__.update(self.__dict__)
+        out.motors = self.motors.subset(index)
+        out.drives = tuple(d.take(index) for d in self.drives)
+        out.drive = self.drive.take(index)
+        out._base = self._base.take(index)
+        out._fixed = {}
+        out._parent = (self, np.asarray(index))
+        return out
+
+    def initial_guess(self) -> np.ndarray:
+        """A scale to start the search from: the free moves' speed and inertial bounds."""
+        n = len(self.motors)
+        guess = np.full(n, 1e-3)
+        tau_p = np.maximum(self.motors.intermittent.torques.max(axis=1), 1e-300)
+        for segment, law, drive, w in zip(self.cycle.segments, self.laws, self.drives,
+                                          self.weights, strict=True):
+            if not isinstance(segment, Move) or w == 0.0 or law is None:
                 continue
-            means = self._mean_squares(scales, parts)
-            square += T * means[0]
-            for i in range(n_stages):
-                stage_square[i] += T * means[1 + i]
-        dwell = self.task.dwell
-        n = len(self.directions)
-        hold, stage_hold = self.drive.holding_torques()
-        hold = np.broadcast_to(hold, T.shape)
-        if dwell > 0.0 and bool(np.any(hold > 0.0)):
-            peak_torque = np.maximum(peak_torque, hold)
-            hold_limit = self.motors.intermittent.limit(np.zeros_like(T))
-            peak_ratio = np.maximum(peak_ratio, _safe_ratio(hold, hold_limit))
-            load_torque = np.maximum(load_torque, abs(self.drive.load.torque))
-            for i in range(n_stages):
-                stage_peak[i] = np.maximum(stage_peak[i], stage_hold[i])
-        cycle = n * (T + dwell)
-        with np.errstate(over="ignore"):  # beyond the float range: inf, reported unbounded
-            rms = (np.sqrt((square + n * dwell * np.square(np.float64(hold))) / cycle)
-                   if rms is None else np.asarray(rms, dtype=float).copy())
-            stage_rms = [np.sqrt((stage_square[i] + n * dwell
-                                  * np.square(np.float64(stage_hold[i]))) / cycle)
-                         for i in range(n_stages)]
-        thermal = self.thermal_speed(T)
-        jerk = c.C_j * h / T / T / T if c.jerk_bounded else np.full_like(T, np.inf)
+            c, k, h = law.coefficients, drive.ratio, abs(segment.displacement)
+            J_t = self.motors.inertia + drive.transmission_inertia + drive.reflected_load_inertia
+            T = np.maximum(c.C_v * k * h / self.motors.speed_limit,
+                           np.sqrt(c.C_a * k * h * J_t / tau_p))
+            guess = np.maximum(guess, np.broadcast_to(T / w, (n,)))
+        return np.where(np.isfinite(guess) & (guess > 0.0), guess, 1.0)
+
+    def peak_bound(self, limits: Limits) -> np.ndarray | None:
+        """A lower bound on the minimized scale s: each free rest-to-rest move's bound on
+        its duration from its speed, load-limit and peak checks
+        (CycleCalculator.peak_bound), over its weight; the cycle's peaks are the maxima
+        over its segments, so below the largest of these no scale is feasible. None where
+        a law moves backwards (the bound does not hold)."""
+        bound = np.zeros(len(self.motors))
+        boundary = []
+        for i, (segment, law, drive, w) in enumerate(zip(
+                self.cycle.segments, self.laws, self.drives, self.weights, strict=True)):
+            if not isinstance(segment, Move) or w == 0.0:
+                continue
+            if not segment.rest_to_rest:
+                boundary.append(i)
+                continue
+            task = Task(segment.displacement, None, linear=self.cycle.linear)
+            # the thermal speed is this move's peak speed only by the "max" rule (then
+            # the cycle's is the largest of its moves'): another rule reads no bound here
+            found = CycleCalculator(None, task, drive, self.motors, self.thermal_rule,
+                                    law=law).peak_bound(limits)
+            if found is None:
+                return None
+            bound = np.maximum(bound, found / w)
+        if boundary:
+            start = np.where(bound > 0.0, bound, self.initial_guess())
+            for i in boundary:
+                bound = np.maximum(bound, self._boundary_bound(i, limits, start))
+        return bound
+
+    def rms_lower_bound(self) -> np.ndarray | None:
+        """Per candidate a torque the motor's RMS over the cycle exceeds at every scale;
+        None where a rest-to-rest move has none (a negative damping term).
+
+        Segment by segment a lower bound on the mean square of the motor torque over it:
+        a rest-to-rest move's (CycleCalculator.rms_lower_bound, squared: the
+        square of its largest positive constant torque), a dwell's holding torque and a
+        run's constant torque squared (exact), 0 for a move with boundary speeds. The
+        cycle's mean square is then at least (a + b s)/(F + W s): F, a the fixed
+        segments' time and bound integral, W, b the free segments' weights and theirs;
+        monotone in s, so never below its smaller limit (s -> 0 or s -> inf)."""
+        n = len(self.motors)
+        ones = np.ones(n)
+        fixed_time, fixed_sum = 0.0, np.zeros(n)
+        free_weight, free_sum = 0.0, np.zeros(n)
+        for segment, law, drive, fixed, w in zip(self.cycle.segments, self.laws, self.drives,
+                                                 self.fixed, self.weights, strict=True):
+            if isinstance(segment, Move):
+                if not segment.rest_to_rest or law is None:
+                    rate = np.zeros(n)
+                else:
+                    task = Task(segment.displacement, None, linear=self.cycle.linear)
+                    bound = CycleCalculator(None, task, drive, self.motors, "max",
+                                            law=law).rms_lower_bound()
+                    if bound is None:
+                        return None
+                    rate = np.square(bound)
+            elif isinstance(segment, Run):
+                rate = self._run(segment, drive, ones).torque_square
+            else:
+                rate = self._dwell(drive, ones).torque_square
+            if np.isfinite(fixed):
+                fixed_time, fixed_sum = fixed_time + fixed, fixed_sum + rate * fixed
+            else:
+                free_weight, free_sum = free_weight + w, free_sum + rate * w
+        limits = [x / t for x, t in ((fixed_sum, fixed_time), (free_sum, free_weight)) if t > 0.0]
+        if not limits:
+            return None
+        return np.sqrt(np.minimum.reduce(limits))
+
+    def _boundary_slack(self, i: int, limits: Limits, s: np.ndarray,
+                        rows: np.ndarray) -> np.ndarray:
+        """The worst slack of the peak checks of one free move with boundary speeds alone
+        (speed, peak ratio, load limits, stage speeds and peaks; the thermal speed where it
+        is the peak speed) at scales s for the candidates ``rows`` (repeats allowed): those
+        checks of the cycle that read only this move's peaks."""
+        sub = self.take(rows)
+        w = float(self.weights[i])
+        move = self.cycle.segments[i]
+        assert isinstance(move, Move)
+        f = sub._boundary_move(move, self.laws[i], sub.drives[i], w * s)
+        zero = np.zeros(len(rows))
+        metrics = CycleMetrics(
+            duration=w * s, max_speed=f.max_speed, peak_torque=f.peak_torque,
+            peak_ratio=f.peak_ratio, rms_torque=zero,
+            thermal_speed=f.max_speed if self.thermal_rule == "max" else zero,
+            load_speed=f.load_speed, load_acceleration=f.load_acceleration,
+            load_jerk=f.load_jerk, load_torque=f.load_torque, stage_peak=f.stage_peak,
+            stage_rms=[zero for _ in f.stage_peak], stage_speed=f.stage_speed)
+        checks = [c for c in evaluate_checks(metrics, sub.motors, sub.drive, limits,
+                                             self.cycle.linear)
+                  if c.name != "inertia_ratio"]
+        return worst_slack(checks)
+
+    def _boundary_bound(self, i: int, limits: Limits, start: np.ndarray) -> np.ndarray:
+        """A lower bound on the minimized scale from the free move with boundary speeds at
+        segment ``i``:
+        the smallest scale at which its peak checks pass (the cycle's peaks are maxima over
+        its segments, so no smaller scale is feasible).
+
+        The move's shape changes with its duration, so no closed form bounds it; its
+        figures are exact (sizer.sizing.move) and cost about as much for a few
+        rows as for many, so every candidate's slack is read at once on a log grid of
+        scales around ``start`` (factors of sqrt 2 over 2^-8 to 2^8), and the crossing
+        below its first feasible point is refined by the project's root finder to the
+        engine's width (1e-13 in log s, the feasible end kept). 0 (no bound) where the
+        grid's lowest point already passes or none does: the search of the whole cycle
+        then decides, as without the bound."""
+        out = np.zeros(len(self.motors))
+        where = np.flatnonzero(np.isfinite(start) & (start > 0.0))  # inf: already no scale
+        if not len(where):
+            return out
+        steps = np.arange(-BOUND_SPAN, BOUND_SPAN + 1) * (0.5 * np.log(2.0))
+        x = np.log(start[where])[:, None] + steps[None, :]  # (candidates, G)
+        rows = np.repeat(where, len(steps))
+        f = self._boundary_slack(i, limits, np.exp(x.ravel()), rows).reshape(x.shape)
+        good = f >= -TOLERANCE
+        first = np.argmax(good, axis=1)
+        found = np.flatnonzero(good.any(axis=1) & (first > 0))
+        if not len(found):
+            return out
+        index = where[found]
+        k = first[found]
+        x_lo, x_hi = x[found, k - 1], x[found, k]
+        f_lo, f_hi = f[found, k - 1], f[found, k]
+        offset = np.where(f_hi >= 0.0, 0.0, TOLERANCE)
+
+        def slack(z: np.ndarray, where: np.ndarray) -> np.ndarray:
+            return self._boundary_slack(i, limits, np.exp(z), index[where]) \
+                + offset[where]
+
+        hi = first_crossing(slack, x_lo, x_hi, f_lo + offset, f_hi + offset, xtol=1e-13)
+        out[index] = np.exp(hi)
+        return out
+
+    def figures(self, s: np.ndarray, peaks: bool = True,
+                model: bool = False) -> list[SegmentFigures]:
+        """Each segment's requirements at scales s (with ``model``, the rest-to-rest
+        moves' RMS models)."""
+        s = np.broadcast_to(np.asarray(s, dtype=float), (len(self.motors),)).copy()
+        out = []
+        for i, (segment, law, drive, T) in enumerate(zip(
+                self.cycle.segments, self.laws, self.drives, self.durations(s), strict=True)):
+            if np.isfinite(self.fixed[i]):
+                out.append(self._fixed_figures(i, segment, law, drive, T, peaks))
+            elif isinstance(segment, Move):
+                out.append(self._move(segment, law, drive, T, peaks, model))
+            elif isinstance(segment, Run):
+                out.append(self._run(segment, drive, T))
+            else:
+                out.append(self._dwell(drive, T))
+        return out
+
+    def _fixed_figures(self, i: int, segment: Segment, law: MotionLaw | None, drive: Drive,
+                       T: np.ndarray, peaks: bool) -> SegmentFigures:
+        """A segment of fixed duration: its figures do not depend on the scale, so they
+        are evaluated once per set of candidates (and ``peaks``) and kept; a subset made
+        by :meth:`take` reads its parent's. Without an RMS model (a fixed segment enters
+        the cycle's model as a constant)."""
+        key = (i, peaks)
+        found = self._fixed_lookup(key)
+        if found is None:
+            if isinstance(segment, Move):
+                found = self._move(segment, law, drive, T, peaks, False)
+            elif isinstance(segment, Run):
+                found = self._run(segment, drive, T)
+            else:
+                found = self._dwell(drive, T)
+        self._fixed[key] = found
+        return found
+
+    def _fixed_lookup(self, key: tuple[int, bool]) -> SegmentFigures | None:
+        """The kept figures of a fixed segment, here or (subset) in a parent's."""
+        found = self._fixed.get(key)
+        if found is None and self._parent is not None:
+            parent, index = self._parent
+            kept = parent._fixed_lookup(key)
+            if kept is not None:
+                found = self._fixed[key] = _take_figures(kept, index)
+        return found
+
+    def thermal_speed(self, s: np.ndarray) -> np.ndarray:
+        """The speed the continuous region is read at (the thermal rule) at scales s, in
+        closed form over rest-to-rest moves, runs and dwells (a move with boundary speeds
+        is evaluated)."""
+        s = np.asarray(s, dtype=float)
+        T = self.durations(s)
+        cycle_time = sum(T, np.zeros_like(s))
+        peak, square, travel = np.zeros_like(s), np.zeros_like(s), np.zeros_like(s)
+        for segment, law, drive, t in zip(self.cycle.segments, self.laws, self.drives, T,
+                                          strict=True):
+            if isinstance(segment, Move) and not segment.rest_to_rest:
+                return self.evaluate(s, peaks=False).thermal_speed
+            K = drive.ratio
+            if isinstance(segment, Move):
+                assert law is not None
+                c, h = law.coefficients, abs(segment.displacement)
+                with np.errstate(divide="ignore", over="ignore"):
+                    peak = np.maximum(peak, K * h * c.C_v / t)
+                    square = square + np.square(K * h * c.C_v_rms) / t
+                travel = travel + K * h
+            elif isinstance(segment, Run):
+                speed = K * abs(segment.speed)
+                peak = np.maximum(peak, speed)
+                square = square + speed * speed * t
+                travel = travel + speed * t
+        return rule_speed(self.thermal_rule, peak, square, travel, cycle_time)
+
+    def evaluate(self, duration: np.ndarray, peaks: bool = True, model: bool = False,
+                 rms: np.ndarray | None = None) -> CycleMetrics:
+        """The cycle's requirements at scales s = ``duration``; with ``model`` the RMS
+        model of the cycle (:class:`CycleRmsModel`; None with a free move that has
+        boundary speeds). ``rms`` (a known RMS torque) is not used: each segment computes
+        its own."""
+        parts = self.figures(duration, peaks, model)
+        T = parts[0].duration * 0.0 + self.cycle_time(np.broadcast_to(
+            np.asarray(duration, dtype=float), (len(self.motors),)))
+        n_stages = len(self._base.stages)
+
+        def most(name: str) -> np.ndarray:
+            return np.max(np.stack([getattr(p, name) for p in parts]), axis=0)
+
+        def total(name: str) -> np.ndarray:
+            return np.sum(np.stack([getattr(p, name) for p in parts]), axis=0)
+
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            rms = np.sqrt(total("torque_square") / T)
+            stage_rms = [np.sqrt(np.sum(np.stack([p.stage_square[i] for p in parts]), axis=0)
+                                 / T) for i in range(n_stages)]
+            thermal = rule_speed(self.thermal_rule, most("max_speed"), total("speed_square"),
+                                 total("speed_abs"), T)
         return CycleMetrics(
-            duration=T, max_speed=K * load_speed, peak_torque=peak_torque,
-            peak_ratio=peak_ratio, rms_torque=rms, thermal_speed=thermal,
-            load_speed=load_speed, load_acceleration=c.C_a * h / T / T, load_jerk=jerk,
-            load_torque=load_torque, stage_peak=stage_peak, stage_rms=stage_rms,
-            stage_speed=[k * load_speed for k in self.drive.input_ratios],
-            rms_model=None if parts is None else RmsModel(T, parts, dwell, hold),
+            duration=T, max_speed=most("max_speed"), peak_torque=most("peak_torque"),
+            peak_ratio=most("peak_ratio"), rms_torque=_finite_or_inf(rms),
+            thermal_speed=_finite_or_inf(thermal), load_speed=most("load_speed"),
+            load_acceleration=most("load_acceleration"),
+            load_jerk=np.where(self._join_steps(parts), np.inf, most("load_jerk")),
+            load_torque=most("load_torque"),
+            stage_peak=[np.max(np.stack([p.stage_peak[i] for p in parts]), axis=0)
+                        for i in range(n_stages)],
+            stage_rms=[_finite_or_inf(x) for x in stage_rms],
+            stage_speed=[np.max(np.stack([p.stage_speed[i] for p in parts]), axis=0)
+                         for i in range(n_stages)],
+            rms_model=self._rms_model(parts) if model else None,
         )
 
-    def thermal_speed(self, T: np.ndarray) -> np.ndarray:
-        """The speed the continuous region is read at (the thermal rule): the peak speed
-        as in the book, or the RMS or mean speed over the cycle."""
-        c = self.law.coefficients
-        K, h, dwell = self.drive.ratio, self.h, self.task.dwell
-        n = len(self.directions)
-        cycle = n * (T + dwell)
-        if self.thermal_rule == "max":
-            return K * c.C_v * h / T
-        if self.thermal_rule == "rms":
-            return K * h * c.C_v_rms * np.sqrt(n * T / cycle) / T
-        return n * K * h / cycle
+    def _join_steps(self, parts: list[SegmentFigures]) -> np.ndarray:
+        """Per candidate: does the acceleration step at a join (the cycle repeats, so the
+        last segment joins the first)? A jerk impulse: no jerk limit is met there."""
+        n = len(self.motors)
+        zero = np.zeros(n)
+        ends = [p.end_accelerations or (zero, zero) for p in parts]
+        reference = np.zeros(n)
+        for segment, p in zip(self.cycle.segments, parts, strict=True):
+            if isinstance(segment, Move):
+                with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+                    reference = np.fmax(reference, abs(segment.displacement) / p.duration ** 2)
+        steps = np.zeros(n, dtype=bool)
+        for before, after in zip(ends[-1:] + ends[:-1], ends, strict=True):
+            steps |= np.abs(after[0] - before[1]) > JOIN_TOLERANCE * reference
+        return steps
 
-    # ---------------------------------------------------------------- torques
-    def channels(self, a_n: np.ndarray, v_n: np.ndarray, scales: MoveScales,
-                  index: np.ndarray | None = None) -> tuple[np.ndarray, list[np.ndarray]]:
-        """Motor torque and stage output torques at normalized a_N, v_N.
+    def _rms_model(self, parts: list[SegmentFigures]):
+        moves, n = [], len(self.motors)
+        constant, hold_rate = np.zeros(n), np.zeros(n)
+        for segment, w, f in zip(self.cycle.segments, self.weights, parts, strict=True):
+            if w == 0.0:
+                constant = constant + f.torque_square
+            elif isinstance(segment, Move):
+                if f.rms_model is None:
+                    return None
+                moves.append((f.rms_model, float(w)))
+            else:  # a free dwell: hold^2 * w * s
+                hold = f.peak_torque
+                hold_rate = hold_rate + hold * hold * w
+        return CycleRmsModel(tuple(moves), constant, hold_rate, self.cycle.fixed_time,
+                             float(np.sum(self.weights)))
 
-        Arrays are candidate-major; ``index`` selects the candidates of the rows.
-        """
-        acc, vel = scales.acc, scales.vel
-        rotor, damping = self.motors.inertia, self.motors.damping
-        if index is not None:
-            acc, vel, rotor, damping = acc[index], vel[index], rotor[index], damping[index]
-        shape = (-1,) + (1,) * (np.ndim(a_n) - 1)
-        acc, vel, rotor, damping = (np.reshape(x, shape) for x in (acc, vel, rotor, damping))
-        a_l, v_l = acc * a_n, vel * v_n
-        shaft, outputs = self.drive.chain(a_l, v_l, scales.direction, index)
-        K = self.drive.ratio
-        if index is not None and len(K) > 1:
-            K = K[index]
-        K = np.reshape(K, (-1,) + (1,) * (np.ndim(a_l) - 1)) if np.ndim(a_l) > 1 else K
-        return rotor * K * a_l + damping * K * v_l + shaft, outputs
+    # ------------------------------------------------------------- segments
+    def _move(self, move: Move, law: MotionLaw | None, drive: Drive, T: np.ndarray,
+              peaks: bool, model: bool) -> SegmentFigures:
+        if move.rest_to_rest:
+            assert law is not None
+            return self._rest_move(move, law, drive, T, peaks, model)
+        return self._boundary_move(move, law, drive, T)
 
-    def _mean_squares(self, scales: MoveScales,
-                      model: list | None = None) -> list[np.ndarray]:
-        """(1/T) * integral of the squared motor torque (then of each stage output) per move.
-
-        Each torque is a maximum of linear functions L_k = P a_N + Q v_N + C of the law
-        (Drive.linear_pieces); on an interval of the law's grid where no stage's power flow
-        reverses one of them is the torque throughout (the one with the largest integral
-        there), so its integral is the quadratic form of (P, Q, C) with the law's moments
-        (int a_N^2, v_N^2, 1, a_N v_N, a_N, v_N) over the stretch: differences of the law's
-        prefix-sum moment table (:func:`moment_table`, once per law) between the power-flow
-        reversals (:meth:`_flow_sums`). With ``model`` the motor's functions and their
-        summed moments are appended to it (:class:`RmsModel`; moments as (6, candidates)
-        arrays, each moment's row contiguous).
-        """
-        drive = self.drive
-        if drive.is_ideal:
-            if model is not None:
-                model.append(self._ideal_motor_terms(scales))
-            return self._ideal_mean_squares(scales)
-        terms = self.channel_terms(scales)
-        sums = self._flow_sums(terms)
-        if model is not None:
-            model.append([(*piece, m) for piece, m in zip(terms[0], sums[0], strict=True)])
+    def _rest_move(self, move: Move, law: MotionLaw, drive: Drive, T: np.ndarray,
+                   peaks: bool, model: bool = False) -> SegmentFigures:
+        """A rest-to-rest move: the single-law engine for a one-move task."""
+        task = Task(move.displacement, None, linear=self.cycle.linear)
+        calc = CycleCalculator(None, task, drive, self.motors, "max", law=law)
+        m = calc.evaluate(T, peaks, model)
+        c, K, h = law.coefficients, np.broadcast_to(drive.ratio, T.shape), abs(move.displacement)
         with np.errstate(over="ignore", invalid="ignore"):
-            totals = [sum(_form(P, Q, C, m) for (P, Q, C), m in zip(channel, sum_k, strict=True))
-                      for channel, sum_k in zip(terms, sums, strict=True)]
-        return [np.where(np.isnan(total), np.inf, total) for total in totals]
+            rms_speed = K * h * c.C_v_rms / T
+            energy = self._rest_energy(calc, T)
+            return SegmentFigures(
+                duration=T, peak_torque=m.peak_torque, peak_ratio=m.peak_ratio,
+                load_torque=m.load_torque, max_speed=m.max_speed, load_speed=m.load_speed,
+                load_acceleration=m.load_acceleration, load_jerk=m.load_jerk,
+                stage_peak=m.stage_peak, stage_speed=m.stage_speed,
+                torque_square=np.square(m.rms_torque) * T,
+                stage_square=[np.square(x) * T for x in m.stage_rms],
+                speed_square=np.square(rms_speed) * T, speed_abs=K * h, energy=energy,
+                rms_model=m.rms_model if isinstance(m.rms_model, RmsModel) else None,
+                end_accelerations=(  # a law move's model is an RmsModel (or None)
+                    move.displacement * law.piece_derivative(0, 0.0, 2) / T / T,
+                    move.displacement * law.piece_derivative(len(law.pieces) - 1, 1.0, 2)
+                    / T / T))
 
-    def _ideal_motor_terms(self, scales: MoveScales):
-        """The motor's one linear function with an ideal drive, and the law's moments over
-        the move (int a_N^2 = C_a_rms^2, int v_N^2 = C_v_rms^2, int a_N = int a_N v_N = 0,
-        int v_N = 1)."""
-        n = len(self.motors)
-        c = self.law.coefficients
-        K = self.drive.ratio
-        a_part, v_part, const = self.drive.linear_chain(float(scales.direction))
-        moments = np.array([c.C_a_rms**2, c.C_v_rms**2, 1.0, 0.0, 0.0, 1.0])
-        return [(spread((self.motors.inertia * K + a_part) * scales.acc, n),
-                 spread((self.motors.damping * K + v_part) * scales.vel, n),
-                 spread(np.asarray(const, dtype=float), n),
-                 np.broadcast_to(moments[:, None], (6, n)))]
+    def _rest_energy(self, calc: CycleCalculator, T: np.ndarray) -> np.ndarray:
+        """Work at the motor shaft over the move, the integral of tau*omega (signed along
+        the move), by the law grid's Gauss-Legendre rule (exact for polynomial pieces of
+        an ideal drive; to the grid's accuracy where a stage's power flow reverses)."""
+        grid = calc.grid
+        sign = 1.0 if calc.task.displacement >= 0 else -1.0
+        scales = MoveScales(calc.h / T / T, calc.h / T, sign)
+        torque, _ = calc.channels(grid.acceleration[None], grid.velocity[None], scales)
+        K = np.broadcast_to(calc.drive.ratio, T.shape)
+        omega = (K * calc.h / T)[:, None, None] * grid.velocity[None]
+        return np.sum(grid.weights[None] * torque * omega, axis=(1, 2)) * T
 
-    def channel_terms(self, scales: MoveScales) -> list[list[tuple[np.ndarray, ...]]]:
-        """Per channel (the motor, then each stage's output) its linear functions of the
-        normalized law, (P, Q, C) arrays over the candidates: value = max_k P a_N + Q v_N + C."""
-        n = len(self.motors)
-        shaft, outputs = self.drive.linear_pieces(float(scales.direction))
-        K = self.drive.ratio
-        rotor = (self.motors.inertia * K, self.motors.damping * K)
+    def _boundary_move(self, move: Move, law: MotionLaw | None, drive: Drive,
+                       T: np.ndarray) -> SegmentFigures:
+        """A move with boundary speeds: each candidate's piecewise polynomial, exactly."""
+        from sizer.laws.boundary_speeds import boundary_form
 
-        def scaled(pieces, with_rotor):
-            return [(spread((A + rotor[0] if with_rotor else A) * scales.acc, n),
-                     spread((B + rotor[1] if with_rotor else B) * scales.vel, n),
-                     spread(np.asarray(C, dtype=float), n))
-                    for A, B, C in pieces]
+        spec = law.spec if law is not None else None
+        basis = boundary_form(spec) if spec is not None else None
+        if basis is None:
+            raise ValueError(f"{spec} has no form with boundary speeds")
+        h = move.displacement
+        with np.errstate(over="ignore", invalid="ignore"):
+            normalized = normalized_move(basis, move, T)  # (n, P, d+1) in u
+            powers = np.arange(normalized.shape[2])
+            coefficients = h * normalized / T[:, None, None] ** powers
+            breaks = T[:, None] * basis.breaks[None, :]
+        f = polynomial_move(breaks, coefficients, drive, self.motors,
+                            1.0 if h >= 0 else -1.0)
+        jerk = f.load_jerk if basis.jerk_bounded else np.full_like(T, np.inf)
+        width = basis.breaks[-1] - basis.breaks[-2]
+        k = powers[2:]
+        with np.errstate(over="ignore", invalid="ignore"):
+            first = 2.0 * normalized[:, 0, 2] * h / T / T
+            last = np.sum(normalized[:, -1, 2:] * k * (k - 1) * width ** (k - 2), axis=1) \
+                * h / T / T
+        return SegmentFigures(**{**vars(f), "load_jerk": jerk}, duration=T,
+                              end_accelerations=(first, last))
 
-        return [scaled(shaft, True)] + [scaled(pieces, False) for pieces in outputs]
+    def _run(self, run: Run, drive: Drive, T: np.ndarray) -> SegmentFigures:
+        """A constant-speed run: a = 0, the torque constant over T."""
+        n = len(T)
+        direction = 1.0 if run.speed > 0 else -1.0
+        v = np.full((n, 1), run.speed * direction)  # along the motion
+        shaft, outputs = drive.chain(np.zeros((n, 1)), v, direction)
+        K = np.broadcast_to(drive.ratio, (n,))
+        torque = (self.motors.damping * K * v[:, 0] + shaft[:, 0])
+        speed = K * abs(run.speed)
+        limit = self.motors.intermittent.limit(speed)
+        stage_out = [np.abs(x[:, 0]) for x in outputs]
+        u = np.abs(drive.load_torque(np.zeros(n), v[:, 0], direction))
+        return SegmentFigures(
+            duration=T, peak_torque=np.abs(torque), peak_ratio=_safe_ratio(np.abs(torque), limit),
+            load_torque=u, max_speed=speed, load_speed=np.full(n, abs(run.speed)),
+            load_acceleration=np.zeros(n), load_jerk=np.zeros(n), stage_peak=stage_out,
+            stage_speed=[np.broadcast_to(k * abs(run.speed), (n,)) for k in drive.input_ratios],
+            torque_square=np.square(torque) * T, stage_square=[x * x * T for x in stage_out],
+            speed_square=speed * speed * T, speed_abs=speed * T, energy=torque * speed * T)
 
-    def _ideal_mean_squares(self, scales: MoveScales) -> list[np.ndarray]:
-        """Closed forms: int a_N = 0, int a_N v_N = 0, int v_N = 1 over a rest-to-rest move."""
-        c = self.law.coefficients
-        K = self.drive.ratio
-        a_part, v_part, const = self.drive.linear_chain(float(scales.direction))
-        p = (self.motors.inertia * K + a_part) * scales.acc
-        q = (self.motors.damping * K + v_part) * scales.vel
-        out = [_square_mean(p, q, const, c.C_a_rms, c.C_v_rms)]
-        if self.stage_checks:
-            out += self._stage_ideal_mean_squares(scales)
-        else:
-            out += [np.zeros_like(p) for _ in self.drive.stages]
-        return out
-
-    def _stage_ideal_mean_squares(self, scales: MoveScales) -> list[np.ndarray]:
-        """Each stage output torque is linear too: its coefficients from the chain."""
-        c = self.law.coefficients
-        zero, one = np.zeros(1), np.ones(1)
-        _, out_a = self.drive.chain(one, zero, scales.direction)
-        _, out_v = self.drive.chain(zero, one, scales.direction)
-        _, out_0 = self.drive.chain(zero, zero, scales.direction)
-        result = []
-        for xa, xv, x0 in zip(out_a, out_v, out_0, strict=True):
-            a_coef, v_coef, const = xa - x0, xv - x0, x0
-            result.append(_square_mean(a_coef * scales.acc, v_coef * scales.vel, const,
-                                       c.C_a_rms, c.C_v_rms))
-        return result
-
-    def _flow_sums(self, terms) -> list[list[np.ndarray]]:
-        """Per channel and per function of it, the law's moments summed over the stretches
-        of the move where that function is the torque: (6, candidates) arrays.
-
-        Between two power-flow reversals of the stages every channel is one of its linear
-        functions (the reflections switch only where a stage's output torque is zero), so
-        a stretch's moments are a difference of the law's prefix-sum moment table
-        (:func:`moment_table`) and the work per candidate is per reversal, not per grid
-        interval. The reversals: a stage's output torque (a maximum of linear functions)
-        is read at the ends of every grid interval; where it changes sign inside an
-        interval the root is found (Illinois, in the interval's own coordinate, to 1e-9:
-        the two reflections agree at the root, so a root error dz changes an integral by
-        O(dz^2)) and the table read there by Gauss-Legendre on the part of the interval
-        before it; where its sign class changes across a grid edge (a jump of a_N) the
-        edge is a split. Each stretch's function is the one with the largest integral
-        over it (the torque is the maximum of the functions).
-        """
-        g, law = self.grid, self.law
-        n, size = len(self.motors), g.size
-        table = moment_table(law)
-        edge = np.zeros((n, max(size - 1, 0)), dtype=bool)
-        roots: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []  # (cand, interval, z)
-        for pieces in terms[1:]:  # each stage's output at the ends of every interval
-            x = _linear_maximum(pieces, g.end_acceleration, g.end_velocity)
-            lo, hi = x[..., 0], x[..., 1]
-            # sign classes as booleans (NaN, a move of 1e-200 s, counts as zero): an end
-            # at zero takes the class of the interval's other end
-            pos_lo, neg_lo, pos_hi, neg_hi = lo > 0.0, lo < 0.0, hi > 0.0, hi < 0.0
-            left_pos = pos_lo | (pos_hi & ~neg_lo)
-            left_neg = neg_lo | (neg_hi & ~pos_lo)
-            right_pos = pos_hi | (pos_lo & ~neg_hi)
-            right_neg = neg_hi | (neg_lo & ~pos_hi)
-            edge |= (right_pos[:, :-1] != left_pos[:, 1:]) | (right_neg[:, :-1] != left_neg[:, 1:])
-            cand, interval = np.nonzero((pos_lo & neg_hi) | (neg_lo & pos_hi))
-            if len(cand):
-                roots.append((cand, interval, self._flow_root(pieces, cand, interval,
-                                                              lo[cand, interval],
-                                                              hi[cand, interval])))
-        # every split point: (candidate, position along the grid, prefix moments there)
-        e_cand, e_index = np.nonzero(edge)
-        cands = [np.arange(n), np.arange(n), e_cand]
-        keys = [np.zeros(n), np.full(n, float(size)), (e_index + 1).astype(float)]
-        values = [np.zeros((n, 6)), np.broadcast_to(table[-1], (n, 6)), table[e_index + 1]]
-        for cand, interval, z in roots:
-            cands.append(cand)
-            keys.append(interval + z)
-            values.append(table[interval] + self._partial_moments(interval, z))
-        cand = np.concatenate(cands)
-        key = np.concatenate(keys)
-        value = np.concatenate(values)
-        order = np.lexsort((key, cand))
-        cand, value = cand[order], value[order]
-        same = cand[1:] == cand[:-1]
-        run_cand = cand[:-1][same]
-        run = (value[1:] - value[:-1])[same]
-        sums = []
-        for channel in terms:
-            if len(channel) == 1:
-                sums.append([np.repeat(table[-1][:, None], n, axis=1)])
-                continue
-            best = _largest_integral([tuple(spread(x, n)[run_cand] for x in f)
-                                      for f in channel], run)
-            mine = []
-            columns = np.arange(6)
-            for k in range(len(channel)):
-                rows = best == k
-                # one bincount over (candidate, moment) bins: each bin's terms summed in
-                # the runs' order, as six bincounts of one column each would
-                bins = (run_cand[rows][:, None] * 6 + columns).ravel()
-                mine.append(np.bincount(bins, weights=run[rows].ravel(),
-                                        minlength=6 * n).reshape(n, 6).T.copy())
-            sums.append(mine)
-        return sums
-
-    def _flow_root(self, pieces, cand: np.ndarray, interval: np.ndarray, f_lo: np.ndarray,
-                   f_hi: np.ndarray) -> np.ndarray:
-        """Where a stage's output torque (its linear ``pieces``) is zero inside the grid
-        intervals at ``interval`` of the candidates at ``cand``: the coordinate z in [0, 1]
-        of each interval (f_lo, f_hi: the torque at its ends, of opposite signs).
-
-        Newton's method on the function that is the torque (its derivative P j_N + Q a_N),
-        kept inside the shrinking sign bracket (bisection where a step would leave it),
-        from the regula falsi point; each step evaluates only the roots still open, the
-        points sorted by piece once so that a subset needs no regrouping, until a step
-        is below FLOW_ROOT_STEP (or the bracket below 1e-10). Where the torque is one
-        linear function the root of its cubic Hermite model on the interval (values and
-        slopes at the ends, from the grid) starts the steps instead: one or two
-        evaluations of the law per root.
-        """
-        g, law = self.grid, self.law
-        count = len(cand)
-        by_piece = np.argsort(g.piece[interval], kind="stable")
-        piece = g.piece[interval][by_piece]
-        lo_edge = g.left[interval][by_piece]
-        width = g.right[interval][by_piece] - lo_edge
-        n = len(self.motors)
-        chosen = [tuple(spread(x, n)[cand[by_piece]] for x in part)
-                  for part in pieces]
-        sign_lo = np.sign(f_lo[by_piece])
-        lo, hi = np.zeros(count), np.ones(count)
-        f0, f1 = f_lo[by_piece], f_hi[by_piece]
-        if len(chosen) == 1:  # one function: its cubic Hermite model on the interval
-            (P, Q, _), = chosen
-            ends = interval[by_piece]
-            a, j = (x[ends] for x in (g.end_acceleration, g.end_jerk))
-            z = hermite_root(f0, f1, (P * j[:, 0] + Q * a[:, 0]) * width,
-                             (P * j[:, 1] + Q * a[:, 1]) * width, xtol=0.1 * FLOW_ROOT_STEP)
-        else:
-            z = np.clip(f0 / (f0 - f1), 0.0, 1.0)
-        rows = np.arange(count)
-        bounds_of = np.arange(len(law.pieces) + 1)
-        for _ in range(60):
-            if not len(rows):
-                break
-            tau = lo_edge[rows] + z[rows] * width[rows]
-            mine = piece[rows]
-            bounds = np.searchsorted(mine, bounds_of)
-            v_n, a_n, j_n = (np.empty(len(rows)) for _ in range(3))
-            for index in np.flatnonzero(np.diff(bounds)):
-                part = slice(bounds[index], bounds[index + 1])
-                at = law.pieces[index].clamp(tau[part])
-                for out, order in ((v_n, 1), (a_n, 2), (j_n, 3)):
-                    out[part] = law.pieces[index].evaluate(at, order)
-            values = np.stack([P[rows] * a_n + Q[rows] * v_n + C[rows] for P, Q, C in chosen])
-            k = np.argmax(values, axis=0)
-            f = values[k, np.arange(len(rows))]
-            slope = np.choose(k, [P[rows] * j_n + Q[rows] * a_n for P, Q, _ in chosen])
-            below = np.sign(f) == sign_lo[rows]
-            lo[rows] = np.where(below, z[rows], lo[rows])
-            hi[rows] = np.where(below, hi[rows], z[rows])
-            with np.errstate(divide="ignore", invalid="ignore"):
-                step = z[rows] - f / (slope * width[rows])
-            inside = (step > lo[rows]) & (step < hi[rows])
-            new = np.where(inside, step, 0.5 * (lo[rows] + hi[rows]))
-            done = (np.abs(new - z[rows]) <= FLOW_ROOT_STEP) | (f == 0.0) \
-                | (hi[rows] - lo[rows] <= 1e-10)
-            z[rows] = np.where(f == 0.0, z[rows], new)
-            rows = rows[~done]
-        out = np.empty(count)
-        out[by_piece] = np.minimum(np.maximum(z, 0.0), 1.0)
-        return out
-
-    def _partial_moments(self, interval: np.ndarray, z: np.ndarray) -> np.ndarray:
-        """The law's moments over the first part [left, left + z width] of each grid
-        interval at ``interval`` (Gauss-Legendre with the grid's node count, on the
-        interval's piece): (len(interval), 6), columns as :func:`interval_moments`."""
-        g = self.grid
-        lo_edge = g.left[interval]
-        half = 0.5 * z * (g.right[interval] - lo_edge)
-        x, w = gauss_legendre(g.nodes.shape[1])
-        tau = (lo_edge + half)[:, None] + half[:, None] * x
-        on_pieces = PieceEvaluator(self.law, np.broadcast_to(g.piece[interval][:, None],
-                                                             tau.shape))
-        a_n, v_n = on_pieces.orders(tau, (2, 1))
-        weight = half[:, None] * w
-        return np.column_stack([(weight * a_n * a_n).sum(axis=1),
-                                (weight * v_n * v_n).sum(axis=1), weight.sum(axis=1),
-                                (weight * a_n * v_n).sum(axis=1), (weight * a_n).sum(axis=1),
-                                (weight * v_n).sum(axis=1)])
-
-    # ------------------------------------------------------------------ peaks
-    def _peaks(self, moves: list[MoveScales]):
-        """Per move: max |tau|, max |tau|/tau_int(|speed|), max |u| and stage output peaks.
-
-        Exact by the law's linear peaks (:meth:`_exact_peaks`) wherever their conditions
-        hold (moves that leave the region included: :meth:`_leaving_ratio`); the grid
-        search (:meth:`_sampled_peaks`) for the other candidates (a torque minimum or a
-        ratio that could not be certified, a region that is not concave, a law whose speed
-        changes sign).
-        """
-        out = []
-        for scales, found_exactly in zip(moves, self._exact_moves(moves), strict=True):
-            (peak, ratio, load, stages), exact, certified = found_exactly
-            if not exact.all():
-                index = np.flatnonzero(~exact)
-                sub = self.take(index)
-                move = MoveScales(scales.acc[index], scales.vel[index], scales.direction)
-                if bool(np.all(certified[index])):
-                    # only the ratio against a falling region is left to the grid search
-                    ratio[index] = sub._sampled_peaks([move], ratio_only=True)[0][1]
-                else:
-                    found = sub._sampled_peaks([move])[0]
-                    for mine, theirs in zip((peak, ratio, load, *stages),
-                                            (found[0], found[1], found[2], *found[3]),
-                                            strict=True):
-                        mine[index] = theirs
-            out.append((peak, ratio, load, stages))
-        return out
-
-    def _exact_moves(self, moves: list[MoveScales]):
-        """:meth:`_exact_peaks` of every move, the moves' candidates stacked into one run
-        (the same linear functions per candidate in every move, their coefficients and
-        the direction per row): each query elementwise, so the answers are those of one
-        run per move, at the cost of one."""
-        load = self.drive.load
-        terms = [self.channel_terms(scales) for scales in moves]
-        n = len(self.motors)
-        joined = None
-        if len(moves) > 1 and not (_inertial(terms[0][0]) and load.damping == 0.0
-                                   and load.friction == 0.0 and load.torque == 0.0):
-            joined = _stacked_terms(terms, n)
-        if joined is None:
-            # no linear-peak query to share (the book's inertial case), or a single move
-            return [self._exact_peaks(scales, t) for scales, t in zip(moves, terms, strict=True)]
-
-        def stack(values):
-            return np.concatenate([spread(x, n) for x in values])
-
-        scales = MoveScales(stack([s.acc for s in moves]), stack([s.vel for s in moves]),
-                            np.repeat([s.direction for s in moves], n))
-        big = self.take(np.tile(np.arange(n), len(moves)))
-        (peak, ratio, load, stages), exact, certified = big._exact_peaks(scales, joined)
-        parts = [slice(i * n, (i + 1) * n) for i in range(len(moves))]
-        return [((peak[at].copy(), ratio[at].copy(), load[at].copy(),
-                  [x[at].copy() for x in stages]), exact[at].copy(), certified[at].copy())
-                for at in parts]
-
-    def take(self, index: np.ndarray) -> CycleCalculator:
-        """The calculator of the candidates at ``index`` (same law and grid)."""
-        return CycleCalculator(self._grid, self.task, self.drive.take(index),
-                               self.motors.subset(index), self.thermal_rule, law=self.law)
-
-    def _exact_peaks(self, scales: MoveScales, terms=None):
-        """Exact peaks of a move from the law's linear peaks (sizer.laws.linear_peaks).
-
-        Every torque is a maximum of linear functions of the load's (a, v): the motor
-        torque and each stage's output torque (sizer.mechanics.drive.Drive.linear_pieces:
-        one function per choice of power-flow direction in the stages, their maximum
-        because each stage's reflection max(x/(k eta), x eta/k) is increasing in x). So
-        max tau = max_j max_t L_j: one support query per function. For min tau, the
-        largest of the functions' own minima is a lower bound, reached where that
-        function is the active one at its own minimizer (checked at that point): then it
-        is exact; elsewhere the candidate is left to the grid search. The peak ratio is
-        the peak over the intermittent torque at rest where the move's speed stays on the
-        flat part of the region. Returns the peaks, the mask of the exact candidates and that of
-        those whose torques are exact (their ratio may still need the grid search).
-        ``terms``: the channels' linear functions when the caller has them
-        (:meth:`_exact_moves`: several moves stacked; ``scales.direction`` per row).
-        """
-        n = len(self.motors)
-        c = self.law.coefficients
-        motors, drive = self.motors, self.drive
-        K = drive.ratio
-        peaks = self.law.linear_peaks
-        certified = np.ones(n, dtype=bool)
-
-        inertial = _inertial
-
-        def channel(coefficients, highs, lows):
-            """max |value| of a maximum of linear functions of (a_N, v_N), from each
-            function's linear peaks (``highs``) and lowest points (``lows``); clears
-            ``certified`` where the minimum could not be certified."""
-            if inertial(coefficients):
-                places.append(None)
-                return np.broadcast_to(np.abs(coefficients[0][0]) * c.C_a, (n,)).copy()
-            top = np.full(n, -np.inf)
-            top_tau, top_piece = np.zeros(n), np.zeros(n, dtype=np.intp)
-            for high, (_, _, C) in zip(highs, coefficients, strict=True):
-                value = high.value + C
-                better = value > top
-                top = np.where(better, value, top)
-                top_tau = np.where(better, high.tau, top_tau)
-                top_piece = np.where(better, high.piece, top_piece)
-            floors = np.stack([low.value + C for low, (_, _, C) in zip(lows, coefficients,
-                                                                       strict=True)])
-            best = np.argmax(floors, axis=0)
-            bottom = floors[best, np.arange(n)]
-            tau = np.choose(best, [low.tau for low in lows])
-            piece = np.choose(best, [low.piece for low in lows])
-            if len(coefficients) > 1:
-                v_n, a_n = piece_values(self.law, tau, piece, (1, 2))
-                values = np.stack([P * a_n + Q * v_n + C for P, Q, C in coefficients])
-                scale = np.max(np.abs(values), axis=0) + np.abs(bottom)
-                certified[:] &= values.max(axis=0) <= bottom + 1e-12 * scale
-            upper = top >= -bottom
-            places.append((np.where(upper, top_tau, tau), np.where(upper, top_piece, piece)))
-            return np.maximum(top, -bottom)
-
-        places: list[tuple[np.ndarray, np.ndarray] | None] = []  # where each |peak| is
-        motor_terms, *stage_terms = self.channel_terms(scales) if terms is None else terms
-        load_terms = [(spread(drive.load.inertia * scales.acc, n),
-                       spread(drive.load.damping * scales.vel, n),
-                       np.full(n, drive.load.friction + scales.direction * drive.load.torque))]
-        channels = [motor_terms, load_terms] + (stage_terms if self.stage_checks else [])
-        # every function's highest and lowest point, all channels in one query
-        functions = [f for co in channels if not inertial(co) for f in co]
-        solved = peaks.maximum(
-            np.concatenate([sign * spread(P, n) for sign in (1.0, -1.0)
-                            for P, _, _ in functions]),
-            np.concatenate([sign * spread(Q, n) for sign in (1.0, -1.0)
-                            for _, Q, _ in functions])) if functions else None
-        results, start = [], 0
-        for co in channels:
-            if inertial(co):
-                results.append(channel(co, [], []))
-                continue
-            size = len(co)
-            at = [slice((start + i) * n, (start + i + 1) * n) for i in range(size)]
-            low_at = [slice((len(functions) + start + i) * n,
-                            (len(functions) + start + i + 1) * n) for i in range(size)]
-            start += size
-            assert solved is not None  # a channel that is not inertial has functions
-            highs = [LinearPeak(solved.value[t], solved.tau[t], solved.piece[t]) for t in at]
-            lows = [LinearPeak(-solved.value[t], solved.tau[t], solved.piece[t])
-                    for t in low_at]
-            results.append(channel(co, highs, lows))
-        peak, load = results[0], results[1]
-        peak_place = places[0]
-        stages = results[2:] if self.stage_checks else [np.zeros(n) for _ in drive.stages]
-        speed = K * scales.vel * c.C_v
-        # speeds past the region are clipped into it for the ratio (the speed check covers
-        # them): a region flat to its end is flat at every speed
-        flat = np.broadcast_to((speed <= motors.flat_speed)
-                               | (motors.flat_speed >= motors.speed_limit), (n,))
-        ratio = _safe_ratio(peak, motors.intermittent.torques[:, 0])
-        exact = certified & flat
-        curved = np.flatnonzero(certified & ~flat)
-        speed_scale = spread(K * scales.vel, n)
-        if len(curved):
-            exact[curved] = self._curve_ratio(motor_terms, curved, speed_scale[curved], c.C_v,
-                                              ratio)
-        beyond = np.flatnonzero(certified & ~exact & (spread(speed, n)
-                                                      > motors.speed_limit))
-        if len(beyond) and peak_place is not None:
-            exact[beyond] = self._beyond_ratio(peak, peak_place, beyond, speed_scale[beyond],
-                                               ratio)
-        leaving = np.flatnonzero(certified & ~exact & (spread(speed, n)
-                                                       > motors.speed_limit))
-        if len(leaving):
-            exact[leaving] = self._leaving_ratio(motor_terms, leaving, speed_scale[leaving],
-                                                 ratio)
-        return (peak, ratio, load, stages), exact, certified
-
-    def _beyond_ratio(self, peak: np.ndarray, place, rows: np.ndarray,
-                      speed_scale: np.ndarray, ratio: np.ndarray) -> np.ndarray:
-        """The peak ratio of moves that leave the region (the speed check fails them),
-        where it is the torque peak over the region's lowest torque: past its end the
-        region is read at its end (clipped), so |tau|/limit <= peak/lowest everywhere, with
-        equality at the torque's peak when that lies past the end and the end is the
-        lowest point. Returns where that holds (written into ``ratio``)."""
-        region = self.motors.intermittent.take(rows)
-        tau, piece = place[0][rows], place[1][rows]
-        at_peak = speed_scale * piece_values(self.law, tau, piece, 1)
-        end = region.limit(region.max_speed)
-        done = (at_peak >= region.max_speed) & (end <= region.torques.min(axis=1))
-        ratio[rows[done]] = _safe_ratio(peak[rows[done]], end[done])
-        return done
-
-    def _leaving_ratio(self, terms, rows: np.ndarray, speed_scale: np.ndarray,
-                       ratio: np.ndarray) -> np.ndarray:
-        """The peak ratio |tau|/tau_int(min(|speed|, v_max)) of moves that leave a concave
-        region (the speed check fails them; the ratio is read with the speed clipped to
-        the region's end), exactly; returns where it was found (written into ``ratio``).
-
-        With u = v_max/(K vel) the move splits into the part above the top speed, v_N >= u,
-        where the limit is the region's end torque e: there the ratio is max |tau| / e,
-        from linear peaks restricted to that part (LinearPeaks.maximum_within); and the
-        part below, v_N <= u, where the limit is the minimum of the segments' lines (all
-        positive there when e > 0), so the ratio is the largest over the lines of |tau|
-        over the line: linear-fractional peaks restricted to that part
-        (LinearPeaks.ratio_maximum_within). Both parts include their ends, the points where
-        v_N = u. For -tau = min_k(-L_k) the smallest of the -L_k peaks, exact where its
-        function is the torque at its maximizer (as in :meth:`_curve_ratio`). A flat
-        first segment (the standstill torque t0, the region falling from it) gives at most
-        peak/t0, which ``ratio`` holds already. Candidates whose region is not concave or
-        whose law's speed changes sign are left to the grid search.
-        """
-        peaks = self.law.linear_peaks
-        if not peaks.speeds_nonnegative:
-            return np.zeros(len(rows), dtype=bool)
-        region = self.motors.intermittent.take(rows)
-        alpha, sigma, concave = region.lines()
-        end = region.limit(region.max_speed)
-        ok = concave & (speed_scale > 0.0) & (region.max_speed > 0.0)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            bound = region.max_speed / speed_scale
-        n = len(self.motors)
-        parts = [tuple(spread(x, n)[rows] for x in part) for part in terms]
-        count = len(parts)
-
-        def certify(sel, k, solved_tau, solved_piece):
-            """Where the function k (per row) is the torque at the found points."""
-            v_n, a_n = piece_values(self.law, solved_tau, solved_piece, (1, 2))
-            torques = np.stack([P[sel] * a_n + Q[sel] * v_n + C[sel] for P, Q, C in parts])
-            mine = torques[k, np.arange(len(sel))]
-            scale = np.max(np.abs(torques), axis=0)
-            return mine >= torques.max(axis=0) - 1e-12 * scale
-
-        found = np.where(sigma[:, 0] == 0.0, ratio[rows], -np.inf)
-        # above the top speed: max |tau| over v_N >= u, against the end torque
-        sel = np.flatnonzero(ok)
-        m = len(sel)
-        below = None
-        if m:
-            below, band = peaks.bands(bound[sel])
-            tile = np.tile(np.arange(m), 2 * count)
-            solved = peaks.maximum_within(
-                np.concatenate([sign * P[sel] for sign in (1.0, -1.0) for P, _, _ in parts]),
-                np.concatenate([sign * Q[sel] for sign in (1.0, -1.0) for _, Q, _ in parts]),
-                band.take(tile))
-            take = [slice(i * m, (i + 1) * m) for i in range(2 * count)]
-            tops = np.stack([solved.value[t] + C[sel]
-                             for t, (_, _, C) in zip(take[:count], parts, strict=True)])
-            lows = np.stack([solved.value[t] - C[sel]
-                             for t, (_, _, C) in zip(take[count:], parts, strict=True)])
-            k = np.argmin(lows, axis=0)
-            bottom = lows[k, np.arange(m)]
-            if count > 1:
-                tau = np.choose(k, [solved.tau[t] for t in take[count:]])
-                piece = np.choose(k, [solved.piece[t] for t in take[count:]])
-                ok[sel] &= ~np.isfinite(bottom) | certify(sel, k, tau, piece)
-            top = np.maximum(tops.max(axis=0), bottom)
-            inside = np.isfinite(top)
-            found[sel[inside]] = np.maximum(found[sel[inside]],
-                                            _safe_ratio(np.maximum(top[inside], 0.0),
-                                                        end[sel][inside]))
-        banded = sel  # the rows of the bands (those below are among them)
-        # below the top speed: |tau| over each line of the region, where the lines are
-        # positive (e > 0; where e = 0 the part above gave inf, or the row is left)
-        positive = end > 0.0
-        ok &= positive | (found == np.inf)
-        sel = np.flatnonzero(ok & positive)
-        if len(sel) and below is not None:
-            band = below.take(np.searchsorted(banded, sel))
-            blocks, queries, band_rows, floors = [], [], [], []
-            for column in range(alpha.shape[1]):
-                use = np.isfinite(alpha[sel, column])
-                if column == 0:
-                    use &= sigma[sel, 0] != 0.0
-                mine = np.flatnonzero(use)
-                if not len(mine):
-                    continue
-                at = sel[mine]
-                blocks.append(at)
-                line = (alpha[at, column], sigma[at, column] * speed_scale[at])
-                for sign in (1.0, -1.0):
-                    for P, Q, C in parts:
-                        queries.append((sign * P[at], sign * Q[at], sign * C[at], *line))
-                        band_rows.append(mine)
-                        floors.append(found[at])
-            if blocks:
-                # each query starts at the ratio found so far: most stop after one step
-                num_a, num_v, num_c, den_c, den_v = (
-                    np.concatenate([query[i] for query in queries]) for i in range(5))
-                solved = peaks.ratio_maximum_within(num_a, num_v, num_c, den_c, den_v,
-                                                    band.take(np.concatenate(band_rows)),
-                                                    floor=np.concatenate(floors))
-                start = 0
-                for at in blocks:
-                    size = len(at)
-                    take = [slice(start + i * size, start + (i + 1) * size)
-                            for i in range(2 * count)]
-                    start += 2 * count * size
-                    tops = np.stack([solved.value[t] for t in take[:count]])
-                    lows = np.stack([solved.value[t] for t in take[count:]])
-                    k = np.argmin(lows, axis=0)
-                    bottom = lows[k, np.arange(size)]
-                    if count > 1:  # needed only where every -L_k beat the floor
-                        tau = np.choose(k, [solved.tau[t] for t in take[count:]])
-                        piece = np.choose(k, [solved.piece[t] for t in take[count:]])
-                        ok[at] &= (bottom <= found[at]) | certify(at, k, tau, piece)
-                    found[at] = np.maximum(found[at], np.maximum(tops.max(axis=0), bottom))
-        ok &= np.isfinite(found) | (found == np.inf)
-        ratio[rows[ok]] = found[ok]
-        return ok
-
-    def _curve_ratio(self, terms, rows: np.ndarray, speed_scale: np.ndarray, C_v: float,
-                     ratio: np.ndarray) -> np.ndarray:
-        """The peak ratio |tau|/tau_int(speed) of the candidates at ``rows`` against a
-        concave region, exactly; returns where it was found (written into ``ratio``).
-
-        A concave region is the minimum of its segments' lines (RegionTable.lines), so
-        the ratio is the largest over the lines the move reaches of |tau| over the line:
-        for the torque's functions L_k a linear-fractional peak each
-        (LinearPeaks.ratio_maximum); for -tau = min_k(-L_k) the smallest of the -L_k
-        peaks, exact where its function is the torque at its maximizer (as for the torque
-        minimum in :meth:`_exact_peaks`). The first line too where it is not flat (a
-        region falling from standstill, as a published speed-torque line); where it is
-        flat, the torque peak over it, which ``ratio`` holds. Candidates whose region is
-        not concave, whose move leaves the region or reaches a line's zero are left to
-        the grid search.
-        """
-        region = self.motors.intermittent.take(rows)
-        alpha, sigma, concave = region.lines()
-        rate = sigma * speed_scale[:, None]  # the line over v_N: alpha + sigma K vel v_N
-        peak_speed = speed_scale * C_v
-        starts = region.speeds[:, :-1]
-        used = (starts < peak_speed[:, None]) & np.isfinite(alpha)
-        # a flat first line gives the torque peak over the standstill torque (``ratio``
-        # holds it); a first line that is not flat is queried like the others
-        used[:, 0] = sigma[:, 0] != 0.0
-        ok = concave & (peak_speed <= region.max_speed)
-        ok &= np.all(~used | (alpha + sigma * peak_speed[:, None] > 0.0), axis=1)
-        n = len(self.motors)
-        parts = [tuple(spread(x, n)[rows] for x in part) for part in terms]
-        # every (line, function, side) problem in one Dinkelbach run: blocks per line of
-        # the functions' +L_k, then their -L_k, over the candidates that reach the line
-        blocks, queries, floors = [], [], []
-        # the peak over the standstill torque is reached where the region does not rise
-        # above it (its first line flat or falling); elsewhere no floor
-        found = np.where(sigma[:, 0] <= 0.0, ratio[rows], -np.inf)
-        for column in range(alpha.shape[1]):
-            sel = np.flatnonzero(ok & used[:, column])
-            if len(sel):
-                blocks.append(sel)
-                line = (alpha[sel, column], rate[sel, column])
-                for sign in (1.0, -1.0):
-                    queries += [(sign * P[sel], sign * Q[sel], sign * C[sel], *line)
-                                for P, Q, C in parts]
-                    floors += [found[sel]] * len(parts)
-        if not blocks:
-            ratio[rows[ok]] = found[ok]
-            return ok
-        # each query starts at the ratio known already (peak over the standstill torque):
-        # where the line cannot beat it, one step
-        num_a, num_v, num_c, den_c, den_v = (
-            np.concatenate([query[i] for query in queries]) for i in range(5))
-        solved = self.law.linear_peaks.ratio_maximum(num_a, num_v, num_c, den_c, den_v,
-                                                     floor=np.concatenate(floors))
-        start, count = 0, len(parts)
-        for sel in blocks:
-            m = len(sel)
-            take = [slice(start + i * m, start + (i + 1) * m) for i in range(2 * count)]
-            start += 2 * count * m
-            tops = np.stack([solved.value[t] for t in take[:count]])
-            lows = np.stack([solved.value[t] for t in take[count:]])
-            k = np.argmin(lows, axis=0)
-            bottom = lows[k, np.arange(m)]
-            if count > 1:  # -tau = min_k(-L_k): exact where L_k is the torque there
-                # (needed only where every -L_k beat the floor)
-                tau = np.choose(k, [solved.tau[t] for t in take[count:]])
-                piece = np.choose(k, [solved.piece[t] for t in take[count:]])
-                v_n, a_n = piece_values(self.law, tau, piece, (1, 2))
-                torques = np.stack([P[sel] * a_n + Q[sel] * v_n + C[sel] for P, Q, C in parts])
-                mine = torques[k, np.arange(m)]
-                scale = np.max(np.abs(torques), axis=0)
-                ok[sel] &= (bottom <= found[sel]) | (mine >= torques.max(axis=0) - 1e-12 * scale)
-            found[sel] = np.maximum(found[sel], np.maximum(tops.max(axis=0), bottom))
-        done = ok
-        ratio[rows[done]] = found[done]
-        return done
-
-    def _sampled_peaks(self, moves: list[MoveScales], ratio_only: bool = False):
-        """Peaks on the law's grid, the largest samples of every channel and move refined
-        together (:meth:`_refine`: one golden-section search for all of them). With
-        ``ratio_only`` only the peak ratio is searched (the torques known exactly)."""
-        g = self.grid
-        tau = np.concatenate((g.left[:, None], g.nodes, g.right[:, None]), axis=1)
-        a_n = np.concatenate((g.end_acceleration[:, :1], g.acceleration,
-                              g.end_acceleration[:, 1:]), axis=1)
-        v_n = np.concatenate((g.end_velocity[:, :1], g.velocity, g.end_velocity[:, 1:]), axis=1)
-        n_stages = len(self.drive.stages)
-        searches: list[tuple[np.ndarray, Objective]] = []
-        plans = []
-        for scales in moves:
-            motor, outputs = self.channels(a_n[None], v_n[None], scales)
-            speed_scale = self.drive.ratio * scales.vel
-
-            def channel(which, by_ratio=False, scales=scales, speed_scale=speed_scale):
-                def objective(a, v):
-                    motor_torque, stage_torques = self.channels(a, v, scales)
-                    torque = np.abs(motor_torque if which < 0 else stage_torques[which])
-                    if by_ratio:
-                        speed = np.reshape(speed_scale, (-1,) + (1,) * (np.ndim(v) - 1)) * v
-                        return _safe_ratio(torque, self.motors.intermittent.limit_clipped(speed))
-                    return torque
-                return objective
-
-            plan = {}
-            if not ratio_only or self.motors.all_rectangular:
-                plan["peak"] = len(searches)
-                searches.append((np.abs(motor), channel(-1)))
-            if not self.motors.all_rectangular:
-                speed = speed_scale[:, None, None] * v_n[None]
-                limit = self.motors.intermittent.limit_clipped(speed)
-                plan["ratio"] = len(searches)
-                searches.append((_safe_ratio(np.abs(motor), limit), channel(-1, True)))
-            if self.stage_checks and not ratio_only:
-                plan["stages"] = len(searches)
-                searches.extend((np.abs(outputs[i]), channel(i)) for i in range(n_stages))
-            # the load's torque is reported, not checked: its sampled peak (grid of 14
-            # points per interval) is enough
-            a_l = scales.acc[:, None, None] * a_n[None]
-            v_l = scales.vel[:, None, None] * v_n[None]
-            plan["load"] = np.abs(self.drive.load_torque(a_l, v_l, scales.direction)).max(
-                axis=(1, 2))
-            plans.append(plan)
-        found = self._refine(searches, tau)
-        out = []
-        for plan in plans:
-            peak = found[plan["peak"]] if "peak" in plan else np.full(len(self.motors), np.nan)
-            if "ratio" in plan:
-                ratio = found[plan["ratio"]]
-            else:  # flat limit: the ratio peaks with the torque
-                ratio = _safe_ratio(peak, self.motors.intermittent.torques[:, 0])
-            if "stages" in plan:
-                stages = found[plan["stages"]:plan["stages"] + n_stages]
-            else:
-                stages = [np.zeros_like(peak) for _ in range(n_stages)]
-            out.append((peak, ratio, plan["load"], stages))
-        return out
-
-    def _refine(self, searches: list[tuple[np.ndarray, Objective]],
-                tau: np.ndarray) -> list[np.ndarray]:
-        """The maximum over the move of each search: the best samples, refined by golden
-        section, all searches in one pass (the law is evaluated once per step).
-
-        Each search is (samples, objective): the samples (candidates, intervals, columns)
-        at ``tau`` (intervals, columns: each interval's left end, nodes, right end, so
-        breakpoints and the ends of the move are samples, one-sided) and the objective at
-        (a_N, v_N) of shape (candidates, k). Every sample that is a local maximum of the
-        samples of its piece and within REFINE_SHARE of the best is a candidate peak (the
-        REFINED largest of them); each is refined between its neighbours in its interval.
-        A peak on a sample is that sample; one between samples is found in whichever
-        interval or piece it lies, not only next to the best sample.
-        """
-        starts = [self._candidate_peaks(values, tau) for values, _ in searches]
-        shape = starts[0][0].shape  # (candidates, keep)
-        lo = np.concatenate([s[0] for s in starts], axis=1)
-        hi = np.concatenate([s[1] for s in starts], axis=1)
-        piece = np.concatenate([s[2] for s in starts], axis=1)
-        at = PieceEvaluator(self.law, piece)
-        width = shape[1]
-
-        def objective(x):
-            a, v = at.orders(x, (2, 1))
-            return np.concatenate([f(a[:, k * width:(k + 1) * width],
-                                     v[:, k * width:(k + 1) * width])
-                                   for k, (_, f) in enumerate(searches)], axis=1)
-
-        x1, x2 = interior_points(lo, hi)
-        bracket = (lo, hi, x1, x2, objective(x1), objective(x2))
-        for _ in range(GOLDEN_STEPS):
-            bracket = golden_step(objective, bracket, bracket[4] >= bracket[5])  # max in [lo, x2]
-        best = np.maximum(bracket[4], bracket[5])
-        out = []
-        for k, (valid, best_value) in enumerate((s[3], s[4]) for s in starts):
-            part = best[:, k * width:(k + 1) * width]
-            refined = np.where(valid, part, -np.inf).max(axis=1)
-            out.append(np.maximum(best_value, refined))
-        return out
-
-    def _candidate_peaks(self, values: np.ndarray, tau: np.ndarray):
-        """(lo, hi, piece, valid, best) of :meth:`_refine`'s candidate peaks of one search."""
-        g = self.grid
-        count, columns = len(values), tau.shape[1]
-        best_value = values.reshape(count, -1).max(axis=1)
-        # neighbours of each sample; at an interval's end, the sample across the end when
-        # the next interval is on the same piece (else none: a breakpoint or an end)
-        same = g.piece[1:] == g.piece[:-1]
-        before = np.where(same[None, :], values[:, :-1, -2], -np.inf)
-        after = np.where(same[None, :], values[:, 1:, 1], -np.inf)
-        edge = np.full((count, 1), -np.inf)
-        before = np.concatenate((edge, before), axis=1)[..., None]
-        after = np.concatenate((after, edge), axis=1)[..., None]
-        left = np.concatenate((before, values[..., :-1]), axis=2)
-        right = np.concatenate((values[..., 1:], after), axis=2)
-        floor = (REFINE_SHARE * best_value)[:, None, None]
-        local = (values >= left) & (values >= right) & (values >= floor)
-        score = np.where(local, values, -np.inf).reshape(count, -1)
-        keep = min(REFINED, score.shape[1])
-        chosen = np.argpartition(-score, keep - 1, axis=1)[:, :keep]  # (count, keep)
-        valid = np.isfinite(np.take_along_axis(score, chosen, axis=1))
-        interval, column = np.divmod(chosen, columns)
-        lo = tau[interval, np.maximum(column - 1, 0)]
-        hi = tau[interval, np.minimum(column + 1, columns - 1)]
-        return lo, hi, g.piece[interval], valid, best_value
+    def _dwell(self, drive: Drive, T: np.ndarray) -> SegmentFigures:
+        """A dwell holding the segment's constant load (counts as driving)."""
+        n = len(T)
+        hold, stage_hold = drive.holding_torques()
+        hold = np.broadcast_to(hold, (n,))
+        stage_hold = [np.broadcast_to(x, (n,)) for x in stage_hold]
+        held = hold > 0.0
+        ratio = np.where(held, _safe_ratio(hold, self.motors.intermittent.limit(np.zeros(n))),
+                         0.0)
+        zero = np.zeros(n)
+        return SegmentFigures(
+            duration=T, peak_torque=hold.copy(), peak_ratio=ratio,
+            load_torque=np.full(n, abs(drive.load.torque)), max_speed=zero, load_speed=zero,
+            load_acceleration=zero, load_jerk=zero,
+            stage_peak=[x.copy() for x in stage_hold],
+            stage_speed=[zero for _ in drive.stages], torque_square=hold * hold * T,
+            stage_square=[x * x * T for x in stage_hold], speed_square=zero, speed_abs=zero,
+            energy=zero)
 
 
-def _inertial(coefficients) -> bool:
-    """A channel proportional to the acceleration (the book's inertial case): its peak is
-    |P| C_a, no linear-peak query."""
-    return len(coefficients) == 1 and not np.any(coefficients[0][1]) \
-        and not np.any(coefficients[0][2])
+SECANT_OFFSETS = (1e-2, 1e-4, 1e-6, 1e-8)
+"""Where :func:`first_crossing` reads its points beside each round's secant point (shares
+of the bracket's width, on both sides)."""
+CROSSING_ROUNDS = 40
 
 
-def _stacked_terms(terms: list, n: int):
-    """The channels' linear functions of several moves (:meth:`CycleCalculator.channel_terms`
-    each) stacked along the candidates, move after move; None where the moves' channels
-    have different numbers of functions."""
-    counts = [[len(channel) for channel in t] for t in terms]
-    if any(c != counts[0] for c in counts):
-        return None
+def first_crossing(f, lo: np.ndarray, hi: np.ndarray, f_lo: np.ndarray, f_hi: np.ndarray,
+                   xtol: float = 1e-13, points: int = 7) -> np.ndarray:
+    """Per row the upper end of a bracket of width <= xtol (relative to max(1, |lo|)) of
+    the first sign change of f in [lo, hi], from f_lo < 0 <= f_hi: the end where f >= 0.
 
-    def stack(values):
-        return np.concatenate([spread(x, n) for x in values])
-
-    return [[tuple(stack([t[c][k][i] for t in terms]) for i in range(3))
-             for k in range(len(terms[0][c]))] for c in range(len(terms[0]))]
-
-
-def _linear_maximum(pieces, a_n: np.ndarray, v_n: np.ndarray) -> np.ndarray:
-    """max_k P_k a_N + Q_k v_N + C_k for (P, Q, C) arrays over candidates and a_N, v_N
-    arrays shared by all of them: shape (candidates, *a_n.shape)."""
-    shape = (-1,) + (1,) * np.ndim(a_n)
-    out = None
-    for P, Q, C in pieces:
-        value = np.reshape(P, shape) * a_n + np.reshape(Q, shape) * v_n + np.reshape(C, shape)
-        out = value if out is None else np.maximum(out, value)
-    assert out is not None  # at least one function
-    return out
-
-
-def _form(P, Q, C, m: np.ndarray) -> np.ndarray:
-    """int (P a + Q v + C)^2 from the moments m (6, rows: a^2, v^2, 1, a v, a, v)."""
-    return (P * P * m[0] + Q * Q * m[1] + C * C * m[2]
-            + 2.0 * (P * Q * m[3] + P * C * m[4] + Q * C * m[5]))
-
-
-def _largest_integral(pieces, moments: np.ndarray) -> np.ndarray:
-    """Per row the index of the function of ``pieces`` ((P, Q, C) arrays over rows, or
-    over rows x columns of ``moments`` (..., 6)) with the largest integral: where no flow
-    reverses, the one that is the torque."""
-    if len(pieces) == 1:
-        return np.zeros(moments.shape[:-1], dtype=np.intp)
-    shape = (-1,) + (1,) * (moments.ndim - 2)
-    return np.argmax(np.stack([np.reshape(P, shape) * moments[..., 4]
-                               + np.reshape(Q, shape) * moments[..., 5]
-                               + np.reshape(C, shape) * moments[..., 2]
-                               for P, Q, C in pieces]), axis=0)
-
-
-@lru_cache(maxsize=256)
-def interval_moments(law) -> np.ndarray:
-    """Per interval of the law's grid the Gauss-Legendre integrals of a_N^2, v_N^2, 1,
-    a_N v_N, a_N and v_N (columns in that order), shape (intervals, 6)."""
-    g = law_grid(law)
-    a, v, w = g.acceleration, g.velocity, g.weights
-    return np.column_stack([(w * a * a).sum(axis=1), (w * v * v).sum(axis=1), w.sum(axis=1),
-                            (w * a * v).sum(axis=1), (w * a).sum(axis=1), (w * v).sum(axis=1)])
-
-
-@lru_cache(maxsize=256)
-def moment_table(law) -> np.ndarray:
-    """The law's moments (columns as :func:`interval_moments`) integrated from 0 to each
-    edge of its grid: prefix sums, shape (intervals + 1, 6), first row zero. The moments
-    over a stretch of grid edges are a difference of two rows."""
-    moments = interval_moments(law)
-    table = np.zeros((len(moments) + 1, 6))
-    np.cumsum(moments, axis=0, out=table[1:])
-    table.setflags(write=False)
-    return table
-
-
-def _square_mean(p, q, const, c_a_rms: float, c_v_rms: float):
-    """int_0^1 (p a_N + q v_N + const)^2 d tau for a rest-to-rest law.
-
-    A torque beyond 1e154 N*m (a move of 1e-100 s) squares past the float range: the mean
-    is then inf, which the checks report as unbounded (Check.undefined_reason), never a
-    warning.
+    For functions whose evaluation costs about as much for a few rows as for many (an
+    exact polynomial move, sizer.sizing.move) several points per row are read
+    in one call ``f(x, rows)``: ``points`` evenly spaced across the bracket, the secant
+    point (regula falsi) and points beside it at SECANT_OFFSETS of the width. The new
+    bracket is the first adjacent pair whose signs differ, so the bracket always holds
+    the first sign change it held; where f is smooth the secant point is accurate to the
+    square of the width, which the offsets then bracket (about three rounds from a width
+    of 0.3 to 1e-13, where the project's root finder, sizer.numerics.roots.illinois, takes
+    one call per step and about ten).
     """
-    with np.errstate(over="ignore", invalid="ignore"):
-        const = np.float64(const)  # a Python float would raise OverflowError
-        mean = (p * c_a_rms) ** 2 + (q * c_v_rms) ** 2 + const**2 + 2.0 * q * const
-    return np.where(np.isnan(mean), np.inf, mean)
+    lo, hi, f_lo, f_hi = (np.array(x, dtype=float) for x in (lo, hi, f_lo, f_hi))
+    share = np.arange(1, points + 1) / (points + 1.0)
+    beside = np.concatenate((-np.array(SECANT_OFFSETS), [0.0], SECANT_OFFSETS))
+    for _ in range(CROSSING_ROUNDS):
+        width = hi - lo
+        open_ = width > np.maximum(xtol * np.maximum(1.0, np.abs(lo)),
+                                   2.0 * np.spacing(np.abs(hi)))
+        rows = np.flatnonzero(open_)
+        if not len(rows):
+            break
+        a, b, fa, fb, w = lo[rows], hi[rows], f_lo[rows], f_hi[rows], width[rows]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            secant = (a * fb - b * fa) / (fb - fa)
+        secant = np.where(np.isfinite(secant) & (secant > a) & (secant < b), secant,
+                          0.5 * (a + b))
+        x = np.concatenate((a[:, None] + w[:, None] * share[None, :],
+                            secant[:, None] + w[:, None] * beside[None, :]), axis=1)
+        x = np.sort(np.clip(x, a[:, None], b[:, None]), axis=1)
+        m = x.shape[1]
+        fx = f(x.ravel(), np.repeat(rows, m)).reshape(x.shape)
+        xs = np.concatenate((a[:, None], x, b[:, None]), axis=1)
+        fs = np.concatenate((fa[:, None], fx, fb[:, None]), axis=1)
+        k = np.argmax(fs >= 0.0, axis=1)  # the first point on f_hi's side (>= 1)
+        j = np.arange(len(rows))
+        lo[rows], f_lo[rows] = xs[j, k - 1], fs[j, k - 1]
+        hi[rows], f_hi[rows] = xs[j, k], fs[j, k]
+    return hi
 
 
-def _safe_ratio(torque: np.ndarray, limit: np.ndarray) -> np.ndarray:
-    """torque/limit, infinite where a positive torque meets a zero limit."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = torque / limit
-    return np.where(limit > 0.0, ratio, np.where(torque > 0.0, np.inf, 0.0))
+def _take_figures(f: SegmentFigures, index: np.ndarray) -> SegmentFigures:
+    """The figures of the candidates at ``index`` (without an RMS model)."""
+    def pick(x):
+        if x is None:
+            return None
+        if isinstance(x, list | tuple):
+            return type(x)(pick(y) for y in x)
+        return np.asarray(x)[index]
+
+    return SegmentFigures(**{k: pick(v) for k, v in vars(f).items() if k != "rms_model"})
+
+
+def _finite_or_inf(x: np.ndarray) -> np.ndarray:
+    return np.where(np.isnan(x), np.inf, x)

@@ -1,7 +1,7 @@
 """Energy and heat of the sized candidates (issue 16): the braking resistor's continuous
 power and the winding temperature rise, as checks and figures of the engine.
 
-On the samples of one machine cycle (sizer.sizing.cycle_samples) of each candidate at its
+On the samples of one machine cycle (sizer.sizing.samples) of each candidate at its
 duration:
 
 - ``braking_resistor_power``: the bus power (sizer.energy.axis_power: shaft power plus the
@@ -30,6 +30,19 @@ either check, for every candidate with a duration, the power at the shaft and th
 motoring shaft power's mean over the cycle, W), ``copper_loss`` (the mean copper loss, W)
 and ``cycle_energy`` (the net energy drawn from the bus per cycle, J: motoring minus
 regenerated, copper included); the last two NaN where the motor lacks k_t or R.
+
+The shortest move duration at which the energy and heat checks pass (minimize mode,
+:func:`energy_duration`).
+
+T_min is searched on the checks of the cycle (sizer.sizing.shortest_duration); where the
+winding temperature rise or the braking resistor's power
+fails there, a longer move is tried: both fall as the move slows (the torques fall as
+1/T^2, the speeds and the returned energy per cycle as 1/T, the cycle grows), so the
+first duration at which both pass is bracketed by doubling T from T_min and found by the
+project's root finder (sizer.numerics.roots.illinois) on the smaller of the two slacks.
+The heat check's slack may jump where the rule switches from the RMS-equivalent rise to
+the winding model (book sec. 6.1.1, footnote: the cycle against 1/10 of tau_th); the
+root finder keeps a passing end, so the duration returned passes.
 """
 
 from __future__ import annotations
@@ -42,9 +55,16 @@ from dataclasses import dataclass
 import numpy as np
 
 from sizer.model.domain import Design, Motor, ServoDrive
-from sizer.sizing.catalog_facts import catalog_facts
-from sizer.sizing.checks import CheckArrays
-from sizer.sizing.cycle import CycleCalculator, CycleMetrics
+from sizer.numerics.roots import illinois
+from sizer.sizing.candidates import catalog_facts
+from sizer.sizing.checks import (
+    BRAKING_RESISTOR_POWER,
+    TOLERANCE,
+    WINDING_TEMPERATURE_RISE,
+    CheckArrays,
+)
+from sizer.sizing.evaluation import CycleMetrics
+from sizer.sizing.move import CycleCalculator
 
 REGENERATED = "regenerated_energy"
 BRAKING_POWER = "braking_power"
@@ -58,9 +78,6 @@ BRAKING_PEAK = "braking_peak_power"
 ENERGY_FIGURES = (REGENERATED, BRAKING_POWER, WINDING_RISE, PEAK_POWER, MEAN_POWER,
                   COPPER_LOSS, CYCLE_ENERGY, STOP_ENERGY, BRAKING_PEAK)
 """The optional figures of this module, in the order results list them."""
-
-HEAT_CHECK = "winding_temperature_rise"
-BRAKING_CHECK = "braking_resistor_power"
 
 RMS_NOTE = "RMS-equivalent rise applied: the cycle is much shorter than the thermal time constant"
 THERMAL_NOTE = ("thermal model applied: the cycle is not much shorter than the thermal time "
@@ -249,17 +266,16 @@ def _braking(design: Design, motors, power, rows: np.ndarray, known: np.ndarray)
         stop[rows] = result.worst_stop_energy
         peak[rows] = result.resistor_peak_power
     value = np.where(known & applies, np.nan_to_num(resistor, nan=0.0), 0.0)
-    check = CheckArrays(BRAKING_CHECK, value, np.where(applies, limit, 1.0), "W", 0.0,
-                        None if applies.all() else applies)
+    check = BRAKING_RESISTOR_POWER.arrays(value, np.where(applies, limit, 1.0), 0.0,
+                                          None if applies.all() else applies)
     return check, *(np.where(known, x, np.nan) for x in (regenerated, resistor, stop, peak))
 
 
 def _kind(calculator) -> str:
-    """'segments' (sizer.sizing.segment_cycle: its 'duration' is the scale s), 'linkage'
-    (sizer.sizing.linkage_sizing or linkage_cycle) or 'task'."""
-    from sizer.sizing.linkage_cycle import LinkageCycle
-    from sizer.sizing.linkage_sizing import LinkageCalculator
-    from sizer.sizing.segment_cycle import SegmentCycle
+    """'segments' (sizer.sizing.cycle: its 'duration' is the scale s), 'linkage'
+    (sizer.sizing.linkage_move or linkage_cycle) or 'task'."""
+    from sizer.sizing.cycle import SegmentCycle
+    from sizer.sizing.linkage_move import LinkageCalculator, LinkageCycle
 
     if isinstance(calculator, SegmentCycle):
         return "segments"
@@ -270,18 +286,18 @@ def _kind(calculator) -> str:
 
 def _samples(design: Design, calculator, T: np.ndarray):
     """One machine cycle sampled per candidate: the task shorthand at move durations T,
-    a cycle of segments at scales T (sizer.sizing.segment_samples), a linkage at its
-    durations or scales (sizer.sizing.linkage_samples)."""
+    a cycle of segments at scales T (sizer.sizing.samples), a linkage at its
+    durations or scales (sizer.sizing.samples)."""
     kind = _kind(calculator)
     if kind == "segments":
-        from sizer.sizing.segment_samples import segment_samples
+        from sizer.sizing.samples import segment_samples
 
         return segment_samples(calculator, T)
     if kind == "linkage":
-        from sizer.sizing.linkage_samples import linkage_samples
+        from sizer.sizing.samples import linkage_samples
 
         return linkage_samples(calculator, T)
-    from sizer.sizing.cycle_samples import cycle_samples
+    from sizer.sizing.samples import cycle_samples
 
     return cycle_samples(design, calculator, T)
 
@@ -292,7 +308,7 @@ def _cycle_time(design: Design, calculator, T: np.ndarray) -> np.ndarray:
     if kind == "segments":
         return np.asarray(calculator.cycle_time(T), dtype=float)
     if kind == "linkage":
-        from sizer.sizing.linkage_samples import cycle_time
+        from sizer.sizing.linkage_move import linkage_cycle_time as cycle_time
 
         return cycle_time(calculator, T)
     task = design.task
@@ -344,7 +360,62 @@ def _heat(design: Design, motors, samples, rows: np.ndarray, thermal: np.ndarray
     value = np.where(known & applies, rise, 0.0)
     modelled_note = ONCE_NOTE if design.limits.thermal_duty == "once" else THERMAL_NOTE
     notes = np.where(by_rms, RMS_NOTE, modelled_note).astype(object)
-    check = CheckArrays(HEAT_CHECK, value, np.where(applies, limit, 1.0), "K",
-                        1.0 - (1.0 - margin) ** 2, None if applies.all() else applies,
-                        notes)
+    check = WINDING_TEMPERATURE_RISE.arrays(value, np.where(applies, limit, 1.0),
+                                            1.0 - (1.0 - margin) ** 2,
+                                            None if applies.all() else applies, notes)
     return check, np.where(known & applies, rise, np.nan)
+
+
+DOUBLINGS = 30
+"""How far past T_min a passing duration is looked for: T_min 2^30."""
+
+XTOL = 1e-12
+"""Relative width of the final bracket of the duration."""
+
+
+def energy_slack(design: Design, calculator: CycleCalculator, duration: np.ndarray,
+                 rows: np.ndarray) -> np.ndarray:
+    """The smallest slack of the energy and heat checks of the candidates at ``rows`` of
+    ``calculator``, each moving in its ``duration``; >= 0 where both pass (with the
+    checks' tolerance)."""
+    sub = calculator.take(rows)
+    T = np.asarray(duration, dtype=float)
+    metrics = sub.evaluate(T)
+    with without_power_figures():
+        energy = energy_checks(design, sub, T, metrics, np.ones(len(rows), dtype=bool),
+                               False)
+    if energy is None or not energy.checks:
+        return np.full(len(rows), np.inf)
+    return np.min([check.slack for check in energy.checks], axis=0) + TOLERANCE
+
+
+def energy_duration(design: Design, calculator: CycleCalculator, duration: np.ndarray,
+                    slack: np.ndarray | None = None) -> np.ndarray:
+    """Per candidate, the smallest duration >= ``duration`` at which the energy and heat
+    checks pass; inf where none does up to ``duration`` 2^DOUBLINGS. ``slack``: that of
+    :func:`energy_slack` at ``duration`` where the caller has it (else evaluated)."""
+    lo = np.array(duration, dtype=float)
+    n = len(lo)
+    f_lo = np.array(slack, dtype=float) if slack is not None \
+        else energy_slack(design, calculator, lo, np.arange(n))
+    out = np.where(f_lo >= 0.0, lo, np.inf)
+    hi, f_hi = np.full(n, np.nan), np.full(n, np.nan)
+    todo = np.flatnonzero(f_lo < 0.0)
+    for _ in range(DOUBLINGS):
+        if not todo.size:
+            break
+        trial = 2.0 * lo[todo]
+        slack = energy_slack(design, calculator, trial, todo)
+        passed = slack >= 0.0
+        hi[todo[passed]], f_hi[todo[passed]] = trial[passed], slack[passed]
+        lo[todo[~passed]], f_lo[todo[~passed]] = trial[~passed], slack[~passed]
+        todo = todo[~passed]
+    found = np.flatnonzero(np.isfinite(hi) & ~np.isfinite(out))
+    if found.size:
+        def f(x: np.ndarray, index: np.ndarray) -> np.ndarray:
+            return energy_slack(design, calculator, x, found[index])
+
+        _, top = illinois(f, lo[found], hi[found], f_lo[found], f_hi[found], XTOL,
+                          args=(np.arange(found.size),), bracket=True)
+        out[found] = top
+    return out

@@ -3,16 +3,37 @@
 ``size_design`` evaluates every candidate (motor x transmission option, one flat axis:
 sizer.sizing.candidates) for each law: with a given duration, the requirements and
 margins of each; with ``minimize``, T_min of each. Results stay arrays
-(sizer.sizing.table); rows are built for what a report reads. ``check_design`` verifies
+(sizer.sizing.results); rows are built for what a report reads. ``check_design`` verifies
 the one motor and law a design names. Laws with ``auto`` shape parameters have them
-chosen per candidate (sizer.sizing.auto_shape).
+chosen per candidate (sizer.sizing.choices).
+
+Which process sizes which law: each law sizes every candidate on its own
+(:func:`evaluate_spec`), so the laws of a large design are tasks, one law per task,
+handed to ``workers`` processes as they come free (:func:`tables_in_processes`); the
+tables come back in the laws' order and the result is the one a single process gives, bit
+for bit. The one thing a law takes from another is the option its ratio search tries
+first (the choice of the last law finished, sizer.sizing.choices.listed_choice),
+which changes the search's cost, never its answer. The workers are started clean
+(``forkserver``, or ``spawn`` where there is none), so no lock held by another thread of
+the caller is inherited; like every such pool they import the caller's main module
+again, which must keep its work under ``if __name__ == "__main__":``. That is why the
+library sizes in one process unless asked (``workers``), and the ``sizer`` command, whose
+entry points are guarded, asks.
+
+Is a candidate infeasible at every duration up to a given one, by its RMS check
+(:func:`rms_fails_up_to`)? The ratio search asks it of a motor's other options at the
+best T_min found: one evaluation without peaks, and for options that share the stretches
+between power-flow reversals one evaluation per motor; for a cycle of segments one
+evaluation of the cycle at the scale of that cycle time.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
+import os
 from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -22,14 +43,12 @@ from sizer.laws import AUTO, MotionLaw, make_law, resolve
 from sizer.laws.open_shaped import is_open_shaped
 from sizer.model.cycle import Dwell
 from sizer.model.domain import Design, Motor
-from sizer.sizing.auto_shape import choose_shape
-from sizer.sizing.candidates import Candidates
-from sizer.sizing.checks import TOLERANCE, evaluate_checks
+from sizer.sizing.candidates import Candidates, MotorArrays
+from sizer.sizing.checks import TOLERANCE, CheckName, evaluate_checks
 from sizer.sizing.checks import feasible as all_pass
-from sizer.sizing.cycle import CycleCalculator
-from sizer.sizing.cycle_shape import given_scale, left_out_laws, plain_design, ranked_laws
+from sizer.sizing.choices import SharedByLaws, choose_shape
+from sizer.sizing.cycle import given_scale, left_out_laws, plain_design, ranked_laws
 from sizer.sizing.energy_check import (
-    HEAT_CHECK,
     EnergyChecks,
     energy_checks,
     energy_notes,
@@ -37,14 +56,26 @@ from sizer.sizing.energy_check import (
     has_heat_check,
     without_power_figures,
 )
-from sizer.sizing.grid import law_grid
-from sizer.sizing.law_processes import worker_count
-from sizer.sizing.minimum_duration import is_purely_inertial, merge_metrics, minimum_duration
-from sizer.sizing.motors import MotorArrays
+from sizer.sizing.move import CycleCalculator, MoveScales, RmsModel, law_grid
 from sizer.sizing.ranking import rank_order
-from sizer.sizing.results import CandidateResult, SizingResult
-from sizer.sizing.shared_by_laws import SharedByLaws
-from sizer.sizing.table import FIGURES, RESIDUAL, CandidateTable, Mode, Rows, concatenate
+from sizer.sizing.results import (
+    FIGURES,
+    RESIDUAL,
+    CandidateResult,
+    CandidateTable,
+    Mode,
+    Rows,
+    SizingResult,
+    concatenate,
+    in_groups,
+)
+from sizer.sizing.shortest_duration import is_purely_inertial, merge_metrics, minimum_duration
+
+if TYPE_CHECKING:
+    from concurrent.futures import Future
+
+    from sizer.sizing.cycle import SegmentCycle
+
 
 Progress = Callable[[int, int], None]
 """Called as ``progress(done, total)``: laws sized so far, of all the laws."""
@@ -61,7 +92,7 @@ def size_design(design: Design, rank_by: str | None = None,
     """Every motor x law (x transmission option) of the design, ranked (feasible first).
 
     ``progress``, if given, is called with (0, n) and then after each of the n laws.
-    ``workers``: processes sizing the laws (sizer.sizing.law_processes; None: every CPU
+    ``workers``: processes sizing the laws (:func:`tables_in_processes`; None: every CPU
     for a large design); the result is the same whatever their number.
     """
     design = plain_design(design)
@@ -75,7 +106,6 @@ def size_design(design: Design, rank_by: str | None = None,
         progress(0, len(specs))
     count = worker_count(workers, len(arrays) * _options(design), len(specs))
     if count > 1:
-        from sizer.sizing.law_processes import tables_in_processes
 
         tables = tables_in_processes(design, specs, arrays, count, None if progress is None
                                      else lambda done: progress(done, len(specs)))
@@ -86,7 +116,7 @@ def size_design(design: Design, rank_by: str | None = None,
         for done, spec in enumerate(specs, start=1):
             tables.append(evaluate_spec(design, spec, arrays, first, shared))
             if design.ratio_choice is not None:
-                from sizer.sizing.ratio_choice import listed_choice
+                from sizer.sizing.choices import listed_choice
 
                 first = listed_choice(design, tables[-1])
             if progress is not None:
@@ -110,14 +140,13 @@ def evaluate_spec(design: Design, spec: str, motors: MotorArrays,
                   first: np.ndarray | None = None,
                   shared: SharedByLaws | None = None) -> CandidateTable:
     """One law spec for all motors (one row per motor), the free ratio chosen if any
-    (``first``: per motor the listed option to try first, sizer.sizing.ratio_choice;
+    (``first``: per motor the listed option to try first, sizer.sizing.choices;
     ``shared``: what the laws of the sizing share, built once for them all)."""
     if design.ratio_choice is None:
         candidates = Candidates.single(motors, design.load, design.transmission)
         return evaluate_law(design, spec, candidates)
-    from sizer.sizing.duration_floor import duration_floor
-    from sizer.sizing.ratio_choice import choose_ratio
-    from sizer.sizing.rms_fails_up_to import rms_fails_up_to
+    from sizer.sizing.choices import choose_ratio
+    from sizer.sizing.shortest_duration import duration_floor
 
     common = SharedByLaws(design, motors) if shared is None else shared
 
@@ -149,9 +178,9 @@ def _plain_given_duration(design: Design, spec: str) -> bool:
 def evaluate_law(design: Design, spec: str, candidates: Candidates) -> CandidateTable:
     """One law spec (fixed or with auto parameters) for all candidates, in their order."""
     if is_open_shaped(spec):  # shaped for the load's mode at each candidate's duration
-        from sizer.sizing.shaped_sizing import evaluate_shaped
+        from sizer.sizing.choices import evaluate_shaped
 
-        return evaluate_shaped(design, spec, candidates)
+        return evaluate_shaped(design, spec, candidates, evaluate_fixed_law)
     family, values = resolve(spec)
     if any(v == AUTO for v in values.values()):
         if design.cycle is not None:
@@ -165,15 +194,8 @@ def evaluate_law(design: Design, spec: str, candidates: Candidates) -> Candidate
     distinct = list(dict.fromkeys(laws))
     which = {law: k for k, law in enumerate(distinct)}
     group = np.array([which[law] for law in laws])
-    parts, positions = [], []
-    for k, law in enumerate(distinct):
-        index = np.flatnonzero(group == k)
-        parts.append(evaluate_fixed_law(design, law, candidates.take(index)))
-        positions.append(index)
-    joined = concatenate(parts)
-    inverse = np.empty(len(candidates), dtype=np.intp)
-    inverse[np.concatenate(positions)] = np.arange(len(candidates))
-    return joined.take(inverse)
+    return in_groups(group, lambda k, index: evaluate_fixed_law(
+        design, distinct[k], candidates.take(index)), len(distinct))
 
 
 CHUNK_SAMPLES = 2**21
@@ -288,7 +310,7 @@ def _with_energy(design: Design, calculator, duration: np.ndarray, metrics, chec
 def _once(checks, energy: EnergyChecks):
     """A one-off run (``thermal_duty: once``): where the winding model checks the motor,
     the RMS check is no criterion (it does not apply there); the verdicts again."""
-    heat = next((c for c in energy.checks if c.name == HEAT_CHECK), None)
+    heat = next((c for c in energy.checks if c.name == CheckName.WINDING_TEMPERATURE_RISE), None)
     if heat is None:
         return checks, energy.feasible
     modelled = np.ones(len(heat.value), dtype=bool) if heat.applies is None else heat.applies
@@ -310,12 +332,12 @@ def _energy_moved(design: Design, calculator, duration: np.ndarray, feasible: np
                   energy: EnergyChecks) -> tuple[np.ndarray, np.ndarray] | None:
     """Minimize mode: the candidates that pass every check but the energy and heat ones
     at T_min, and the first durations at which those pass too
-    (sizer.sizing.energy_duration); where none does, the candidate stays at T_min (its
+    (sizer.sizing.energy_check); where none does, the candidate stays at T_min (its
     energy check fails there and names the limit). None when no candidate moves."""
     late = np.asarray(feasible, dtype=bool) & ~energy.feasible & np.isfinite(duration)
     if not late.any():
         return None
-    from sizer.sizing.energy_duration import energy_duration
+    from sizer.sizing.energy_check import energy_duration
 
     rows = np.flatnonzero(late)
     slack = np.min([check.slack[rows] for check in energy.checks], axis=0) + TOLERANCE
@@ -365,10 +387,10 @@ def _vibration(design: Design, law: MotionLaw, calculator, scale: np.ndarray, me
 
 def _evaluate_cycle_chunk(design: Design, law: MotionLaw,
                           candidates: Candidates) -> CandidateTable:
-    """A cycle of segments (sizer.sizing.segment_cycle): minimize is the smallest scale
+    """A cycle of segments (sizer.sizing.cycle): minimize is the smallest scale
     of the free durations (time scaling, book sec. 5.2), searched per candidate; the
     duration reported is the cycle time."""
-    from sizer.sizing.segment_cycle import SegmentCycle  # only designs with a cycle need it
+    from sizer.sizing.cycle import SegmentCycle  # only designs with a cycle need it
 
     cycle = design.cycle
     assert cycle is not None
@@ -398,17 +420,17 @@ def _evaluate_cycle_chunk(design: Design, law: MotionLaw,
 
 
 LINKAGE_SAMPLES = 8192
-"""Samples of a move through a linkage per candidate (sizer.sizing.linkage_sizing)."""
+"""Samples of a move through a linkage per candidate (sizer.sizing.linkage_move)."""
 
 
 def _evaluate_linkage_chunk(design: Design, law: MotionLaw,
                             candidates: Candidates) -> CandidateTable:
-    """Through a linkage at the load (sizer.sizing.linkage_sizing): the profile of the
+    """Through a linkage at the load (sizer.sizing.linkage_move): the profile of the
     law computed once, the candidates at its samples; minimize by time scaling."""
-    from sizer.sizing.linkage_sizing import evaluate_linkage  # only linkage designs
+    from sizer.sizing.linkage_move import evaluate_linkage  # only linkage designs
 
     if design.cycle is not None:
-        from sizer.sizing.linkage_cycle import evaluate_linkage_cycle
+        from sizer.sizing.linkage_move import evaluate_linkage as evaluate_linkage_cycle
 
         evaluate = evaluate_linkage_cycle
     else:
@@ -418,7 +440,7 @@ def _evaluate_linkage_chunk(design: Design, law: MotionLaw,
     if not (has_heat_check(candidates.motors.catalog)
             or has_braking_check(design, candidates.motors.drives)):
         return _table(design, law, candidates, duration, metrics, checks, feasible)
-    from sizer.sizing.linkage_samples import linkage_calculator, scale_of_durations
+    from sizer.sizing.linkage_move import linkage_calculator, scale_of_durations
 
     calculator = linkage_calculator(design, law, candidates.motors, candidates.drive)
     cycle = design.cycle is not None or design.task.return_move
@@ -522,3 +544,241 @@ def assumptions(design: Design) -> tuple[str, ...]:
             notes.append("inertia ratio: everything the motor drives (load, screws, gears, "
                          "couplings) reflected to the motor, over the rotor inertia")
     return tuple(notes)
+
+
+AUTO_WORK = 500_000
+"""Candidate x law evaluations from which ``workers=None`` (auto) uses every CPU: about
+five seconds of work in one process, against about half a second to start a worker."""
+
+
+def usable_cpus() -> int:
+    """The CPUs this process may run on."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        return os.cpu_count() or 1
+
+
+def worker_count(workers: int | None, candidates: int, laws: int) -> int:
+    """How many processes size ``laws`` laws of ``candidates`` candidates each: ``workers``
+    as given (1: this process), or with None every usable CPU where the work is at least
+    AUTO_WORK evaluations; never more than the laws."""
+    if workers is None:
+        workers = usable_cpus() if candidates * laws >= AUTO_WORK else 1
+    return max(1, min(int(workers), laws))
+
+
+_STATE: dict[str, object] = {}
+"""A worker's design and motor arrays, sent once when it starts, and what its laws share."""
+
+
+def _start(design: Design, motors: MotorArrays) -> None:
+    _STATE["design"], _STATE["motors"] = design, motors
+    _STATE["shared"] = SharedByLaws(design, motors)
+
+
+def _size_law(spec: str, first: np.ndarray | None) -> CandidateTable:
+    """One law in a worker; the table goes back without its motors (the caller's own
+    objects go in again: one copy of the catalog, shared by every table)."""
+
+    design, motors, shared = _STATE["design"], _STATE["motors"], _STATE["shared"]
+    assert isinstance(design, Design) and isinstance(motors, MotorArrays)
+    assert isinstance(shared, SharedByLaws)
+    table = evaluate_spec(design, spec, motors, first, shared)
+    return dataclasses.replace(table, motors=())
+
+
+def tables_in_processes(design: Design, specs: Sequence[str], motors: MotorArrays,
+                        workers: int, done: Callable[[int], None] | None = None
+                        ) -> list[CandidateTable]:
+    """The table of each law spec (sizer.sizing.engine.evaluate_spec), sized in
+    ``workers`` processes; ``done(count)`` after each law with the count so far."""
+    import multiprocessing  # here: the start-up of a command sized in one process
+    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+
+    from sizer.sizing.choices import listed_choice
+
+    methods = multiprocessing.get_all_start_methods()
+    context = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
+    tables: list[CandidateTable | None] = [None] * len(specs)
+    hint: np.ndarray | None = None
+    with ProcessPoolExecutor(workers, mp_context=context, initializer=_start,
+                             initargs=(design, motors)) as pool:
+        pending: dict[Future[CandidateTable], int] = {}
+        queued = iter(range(len(specs)))
+
+        def submit() -> None:
+            k = next(queued, None)
+            if k is not None:
+                pending[pool.submit(_size_law, specs[k], hint)] = k
+
+        for _ in range(workers):
+            submit()
+        finished = 0
+        try:
+            while pending:
+                ready, _ = wait(pending, return_when=FIRST_COMPLETED)
+                for future in sorted(ready, key=pending.__getitem__):
+                    k = pending.pop(future)
+                    table = dataclasses.replace(future.result(), motors=motors.catalog)
+                    tables[k] = table
+                    if design.ratio_choice is not None:
+                        hint = listed_choice(design, table)
+                    finished += 1
+                    if done is not None:
+                        done(finished)
+                    submit()
+        except BaseException:  # a law's error (a UserError) is the sizing's: stop the rest
+            for future in pending:
+                future.cancel()
+            raise
+    assert all(t is not None for t in tables)
+    return [t for t in tables if t is not None]
+
+
+STEP = 1e-3
+"""Relative step in T at which the RMS model tells which way the RMS check moves."""
+FALL = 1e-5
+"""Relative fall of RMS / limit over STEP that counts as falling: far above the model's
+error there (second order: about 1e-3 STEP^2 on the laws tried) and rounding."""
+
+
+def rms_fails_up_to(design: Design, spec: str, candidates: Candidates,
+                    T: np.ndarray, group: np.ndarray | None = None) -> np.ndarray:
+    """Per candidate: does the RMS check of ``spec`` fail at every duration up to its T?
+
+    True where it fails at T beyond the tolerance and RMS / limit (the continuous limit at
+    the thermal speed) falls as T grows there, by the cycle's RMS model (exact at T, its
+    slope too: sizer.sizing.move.RmsModel). That ratio falls with T and may rise again
+    past its minimum (friction and a constant load over a cycle with dwell), never the
+    other way (the search for T_min rests on the same: sizer.sizing.shortest_duration), so
+    it is higher still at every shorter duration.
+
+    ``group`` (per candidate, e.g. its motor): candidates of a group share their T; where
+    the transmission options differ only upstream of every power-flow reversal (each
+    stage's output torque the same function for all: one stage, or the free ratio
+    nearest the motor), they share the stretches between reversals too, and one
+    evaluation per group gives every member's RMS model (:func:`_shared_models`)."""
+
+    law = make_law(spec)
+    if design.cycle is not None:
+        return _cycle_fails_up_to(design, law, candidates, T)
+    size = chunk_size(law, 2 if design.task.return_move else 1)
+    out = np.zeros(len(candidates), dtype=bool)
+    if group is not None and len(candidates):
+        groups = np.unique(group)
+        done = True
+        for start in range(0, len(groups), size):  # the groups' evaluations in chunks
+            rows = np.flatnonzero(np.isin(group, groups[start:start + size]))
+            part = candidates.take(rows)
+            shared = _shared_models(design, law, part, T[rows], group[rows])
+            if shared is None:
+                done = False
+                break
+            calculator, model = shared
+            out[rows] = _falls_failing(design, part, calculator, model, T[rows],
+                                       model.rms(T[rows]))
+        if done:
+            return out
+    for start in range(0, len(candidates), size):
+        rows = np.arange(start, min(start + size, len(candidates)))
+        part = candidates.take(rows)
+        calculator = CycleCalculator(None, design.task, part.drive, part.motors,
+                                     design.limits.thermal_speed, law=law)
+        here = T[rows]
+        metrics = calculator.evaluate(here, peaks=False, model=True)
+        if metrics.rms_model is None:
+            continue
+        out[rows] = _falls_failing(design, part, calculator, metrics.rms_model, here,
+                                   metrics.rms_torque)
+    return out
+
+
+def _cycle_fails_up_to(design: Design, law, candidates: Candidates,
+                       T: np.ndarray) -> np.ndarray:
+    """The test for a cycle of segments: on the cycle's RMS model (SegmentCycle, with the
+    free moves' models) at the scale of the free durations whose cycle time is T. The
+    cycle's RMS has the single law's form in that scale (each free move's integral a
+    Laurent polynomial in it, the fixed segments constant), so the same reading holds.
+    False where the cycle has no model (a free move with boundary speeds)."""
+    from sizer.sizing.cycle import SegmentCycle  # only designs with a cycle need it
+
+    cycle = design.cycle
+    assert cycle is not None
+    size = chunk_size(law, max(len(cycle.moves), 1))
+    out = np.zeros(len(candidates), dtype=bool)
+    for start in range(0, len(candidates), size):
+        rows = np.arange(start, min(start + size, len(candidates)))
+        part = candidates.take(rows)
+        calculator = SegmentCycle(cycle, law, part.drive, part.motors,
+                                  design.limits.thermal_speed)
+        scale = calculator.scale_of(T[rows])
+        metrics = calculator.evaluate(scale, peaks=False, model=True)
+        if metrics.rms_model is None:
+            return out
+        out[rows] = _falls_failing(design, part, calculator, metrics.rms_model, scale,
+                                   metrics.rms_torque)
+    return out
+
+
+def _falls_failing(design: Design, candidates: Candidates,
+                   calculator: CycleCalculator | SegmentCycle, model, T: np.ndarray,
+                   rms: np.ndarray) -> np.ndarray:
+    """The test of :func:`rms_fails_up_to` from the RMS at T and the model built there."""
+    level = 1.0 - design.limits.torque_margin + TOLERANCE
+    later = T * (1.0 + STEP)
+
+    def ratio(value: np.ndarray, at: np.ndarray) -> np.ndarray:
+        limit = candidates.motors.continuous.limit_clipped(calculator.thermal_speed(at))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(limit > 0.0, value / limit, np.inf)
+
+    now = ratio(rms, T)
+    after = ratio(model.rms(later), later)
+    return np.isfinite(now) & (now > level * (1.0 + 1e-9)) & (after < now * (1.0 - FALL))
+
+
+def _shared_models(design: Design, law, candidates: Candidates, T: np.ndarray,
+                   group: np.ndarray):
+    """Every candidate's RMS model at its T (sizer.sizing.move.RmsModel) from one
+    evaluation per group, or None where the stretches may differ within a group.
+
+    Between two power-flow reversals the motor torque is one of its linear functions,
+    the same one for every option (the reflections switch with the sign of a stage's
+    output torque; the rotor adds to all of them alike), so a candidate's RMS is the
+    quadratic form of its own functions with the law's moments summed over those
+    stretches: the moments of the group's first member, the functions of each. That
+    holds where every stage's output torque is one function for all candidates (the
+    options differ upstream of the reversals) and no stage is ideal (an ideal drive has
+    closed forms, no stretches)."""
+    drive = candidates.drive
+    if drive.is_ideal:
+        return None
+    n = len(candidates)
+    calculator = CycleCalculator(None, design.task, drive, candidates.motors,
+                                 design.limits.thermal_speed, law=law)
+    for direction in calculator.directions:
+        _, outputs = drive.linear_pieces(direction)
+        for pieces in outputs:
+            for part in pieces:
+                for x in part:
+                    x = np.broadcast_to(np.asarray(x, dtype=float), (n,))
+                    if not np.all(x == x[0]):
+                        return None
+    _, first, inverse = np.unique(group, return_index=True, return_inverse=True)
+    same = bool(np.all(T[first][inverse] == T))
+    if not same:
+        return None
+    model = calculator.take(first).evaluate(T[first], peaks=False, model=True).rms_model
+    if not isinstance(model, RmsModel):  # a law's model (a cycle's has other parts)
+        return None
+    moves = []
+    for direction, reference in zip(calculator.directions, model.moves, strict=True):
+        scales = MoveScales(calculator.h / T / T, calculator.h / T, direction)
+        functions = calculator.channel_terms(scales)[0]
+        if len(functions) != len(reference):
+            return None
+        moves.append([(P, Q, C, M[:, inverse]) for (P, Q, C), (*_, M)
+                      in zip(functions, reference, strict=True)])
+    hold = np.broadcast_to(drive.holding_torques()[0], (n,))
+    return calculator, RmsModel(T.copy(), moves, design.task.dwell, hold)

@@ -28,10 +28,10 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from sizer.errors import UserError
-from sizer.sizing.results import CandidateResult
+from sizer.sizing.results import CandidateResult, Mode
 
 if TYPE_CHECKING:
-    from sizer.sizing.table import CandidateTable
+    from sizer.sizing.results import CandidateTable
 
 
 class RankKey(StrEnum):
@@ -78,7 +78,7 @@ class Criterion:
 
 def _figure(name: str) -> Criterion:
     def columns(t: CandidateTable) -> list[np.ndarray]:
-        known = t.feasible | (t.mode != "minimize")
+        known = t.feasible | (t.mode is not Mode.MINIMIZE)
         return [np.where(known, _column(t.figures[name]), np.inf)]
     return Criterion(name, lambda r: _number(getattr(r, name)), columns)
 
@@ -168,12 +168,13 @@ RULES: dict[RankKey, RankRule] = {rule.key: rule for rule in (
 )}
 
 
-def default_rank_key(mode: str) -> RankKey:
-    """Duration in minimize mode, size (the smallest motor that passes) otherwise."""
-    return RankKey.DURATION if mode == "minimize" else RankKey.SIZE
+def default_rank_key(mode: Mode | str) -> RankKey:
+    """Duration in minimize mode, size (the smallest motor that passes) otherwise (the
+    mode's text accepted: a report reads it from a document)."""
+    return RankKey.DURATION if mode == Mode.MINIMIZE else RankKey.SIZE
 
 
-def rank_rule(rank_by: str | None, mode: str) -> RankRule:
+def rank_rule(rank_by: str | None, mode: Mode) -> RankRule:
     """The rule of a ``--rank-by`` key (None: the default of the mode); UserError if unknown."""
     if rank_by is None:
         return RULES[default_rank_key(mode)]
@@ -189,7 +190,7 @@ def rank_rule(rank_by: str | None, mode: str) -> RankRule:
 
 
 def rank(results: Iterable[CandidateResult], rank_by: str | None,
-         mode: str) -> list[CandidateResult]:
+         mode: Mode) -> list[CandidateResult]:
     """Feasible pairs first, then by the rule of ``rank_by`` (see the module docstring).
 
     What the rule's criteria leave tied is ordered by :data:`TIES` (motor id, law spec,

@@ -24,7 +24,7 @@ from sizer.errors import UserError
 from sizer.laws.base import MotionLaw
 from sizer.model.cycle import Cycle, Move, from_task
 from sizer.model.domain import Design
-from sizer.sizing.checks import CheckArrays
+from sizer.sizing.checks import RESIDUAL_VIBRATION, CheckArrays
 from sizer.vibration.elastic_load import ElasticLoad
 from sizer.vibration.modal_state import (
     amplitude,
@@ -141,7 +141,7 @@ def cycle_vibration(design: Design, law: MotionLaw, sweep: bool = False
     if why is not None:
         raise UserError(f"the residual vibration is not computed for {why}; remove "
                         "load.natural_frequency", field="load.natural_frequency")
-    from sizer.sizing.segment_cycle import cycle_laws
+    from sizer.sizing.cycle import cycle_laws
 
     cycle = design.machine_cycle
     if sweep and design.cycle is None:
@@ -155,8 +155,8 @@ def cycle_vibration(design: Design, law: MotionLaw, sweep: bool = False
 def residual_check(vibration: CycleVibration, s: np.ndarray, limit: float,
                    linear: bool) -> CheckArrays:
     """The check of the worst residual vibration against the design's limit."""
-    return CheckArrays("residual_vibration", vibration.worst(s), np.full(np.shape(s), limit),
-                       "m" if linear else "rad", 0.0)
+    return RESIDUAL_VIBRATION.arrays(vibration.worst(s), np.full(np.shape(s), limit), 0.0,
+                                     linear=linear)
 
 
 def admissible_scale(vibration: CycleVibration, s: np.ndarray, limit: float) -> np.ndarray:

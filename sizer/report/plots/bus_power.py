@@ -18,7 +18,7 @@ from sizer.report.plots.figure_files import new_figure
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-    from sizer.sizing.machine_bus import BusResult
+    from sizer.sizing.machine import BusResult
 
 DEFAULT_SIZE = (10.0, 4.5)
 GID_POWER = "bus-power"

@@ -29,7 +29,7 @@ if TYPE_CHECKING:
 
     from sizer.model.domain import Curve
     from sizer.sizing import CandidateResult
-    from sizer.sizing.profile import TaskCurve
+    from sizer.sizing.samples import TaskCurve
 
 SPEED_UNITS = {"rpm": RPM_PER_RAD_S, "rad/s": 1.0}
 """Display unit of speed -> factor from rad/s."""

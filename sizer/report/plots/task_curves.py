@@ -11,7 +11,7 @@ from sizer.laws.data_spec import law_label
 if TYPE_CHECKING:
     from sizer.model.domain import Design, Motor, Transmission
     from sizer.sizing import CandidateResult
-    from sizer.sizing.profile import TaskCurve
+    from sizer.sizing.samples import TaskCurve
 
 
 def transmission_for(design: Design, result: CandidateResult) -> Transmission:
@@ -34,7 +34,7 @@ def curve_for(design: Design, result: CandidateResult, samples: int = 401) -> Ta
     """One machine cycle of the result's motor and law at its duration (T_min in minimize
     mode), ``samples`` per move. A result without a feasible duration has no curve: a
     UserError saying why."""
-    from sizer.sizing.profile import task_curve
+    from sizer.sizing.samples import task_curve
 
     if result.duration is None:
         raise UserError(f"{result.motor} with {law_label(result.spec)} has no feasible duration "

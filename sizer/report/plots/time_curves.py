@@ -22,7 +22,7 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-    from sizer.sizing.profile import TaskCurve
+    from sizer.sizing.samples import TaskCurve
 
 DEFAULT_SIZE = (10.0, 6.0)
 SPAN_COLOR = "#deebf7"

@@ -1,10 +1,10 @@
-"""Minimum duration T_min of one law for each candidate motor (book eq. 6.2).
+"""The shortest duration at which every check passes: T_min per candidate (book eq. 6.2).
 
 With the book's rectangular regions and a purely inertial load (no damping, friction or
 constant load, efficiency 1) T_min is the closed form of eq. (6.2), extended to a cycle
 with dwell: the RMS bound T^3 (T + t_dwell) >= (J_t k h C_a_rms / tau_c)^2 is solved
 exactly. Otherwise T_min starts from a lower bound, the largest duration below which a
-peak or speed check fails (sizer.sizing.peak_duration): where the cycle is feasible
+peak or speed check fails (the model's peak_bound): where the cycle is feasible
 there it is T_min; where the RMS check fails there, T_min is where the RMS reaches its
 limit, by rounds on the cycle's RMS model (:func:`rms_crossing`). What these leave (and
 the designs whose laws move backwards, where the bound does not hold) is found by a
@@ -16,6 +16,17 @@ limit, to a relative width of 1e-13; each step evaluates only the candidates sti
 Feasible means what it means everywhere (sizer.sizing.checks.feasible: every slack
 >= -TOLERANCE). T_min is where the binding check is exactly at its limit; only where no
 duration reaches slack 0 but some are within the tolerance, it is the shortest of those.
+
+Below which duration can no candidate be feasible (:func:`duration_floor`)? The peak and
+speed bound of sizer.sizing.move.peak_duration (book sec. 6.1.1, eq. 6.2 in the
+rectangular case) holds for the checks as they are decided, tolerance included, when
+every limit it reads is relaxed by the checks' tolerance: a check passes where value <=
+(1 - required + TOLERANCE) * limit (sizer.sizing.checks), so a torque margin m reads as
+m - TOLERANCE, a speed margin likewise, a load limit as (1 + TOLERANCE) times itself.
+Every duration a candidate reports as feasible passes those checks, so it is at least
+the floor; the searches that move T_min up afterwards (the residual vibration, braking
+and heat) keep it so. The ratio search (sizer.sizing.choices) leaves out an option
+whose floor lies above a motor's best T_min: it cannot beat it.
 """
 
 from __future__ import annotations
@@ -23,15 +34,20 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass
+from functools import partial
+from typing import Any
 
 import numpy as np
 
-from sizer.model.domain import Limits
+from sizer.laws import AUTO, make_law, resolve
+from sizer.laws.open_shaped import is_open_shaped
+from sizer.model.domain import Design, Limits
+from sizer.numerics.golden import golden_step, interior_points
+from sizer.numerics.roots import illinois
+from sizer.sizing.candidates import Candidates
 from sizer.sizing.checks import TOLERANCE, CheckArrays, evaluate_checks, feasible, worst_slack
-from sizer.sizing.cycle import CycleCalculator, CycleMetrics, RmsCurve
-from sizer.sizing.golden import golden_step, interior_points
-from sizer.sizing.peak_duration import peak_duration
-from sizer.sizing.roots import illinois
+from sizer.sizing.evaluation import CycleMetrics, CycleModel, RmsCurve
+from sizer.sizing.move import CycleCalculator, peak_queries, speed_bounds
 
 EXPANSIONS = 80
 GOLDEN_STEPS = 80
@@ -50,22 +66,17 @@ class DurationSolution:
     method: str
 
 
-def evaluate(calculator: CycleCalculator, limits: Limits, T: np.ndarray, peaks: bool = True,
+def evaluate(calculator: CycleModel, limits: Limits, T: np.ndarray, peaks: bool = True,
              model: bool = False, rms: np.ndarray | None = None):
-    """The metrics and checks at T (CycleCalculator.evaluate; ``rms`` known there, for a
-    law's calculator only)."""
-    if model:
-        metrics = calculator.evaluate(T, peaks, model=True)
-    elif rms is not None and not calculator.segmented:
-        metrics = calculator.evaluate(T, peaks, rms=rms)
-    else:
-        metrics = calculator.evaluate(T, peaks)
+    """The metrics and checks at T (CycleModel.evaluate; ``rms`` known there)."""
+    metrics = calculator.evaluate(T, peaks, model=True) if model else \
+        calculator.evaluate(T, peaks, rms=rms)
     checks = evaluate_checks(metrics, calculator.motors, calculator.drive, limits,
                              calculator.task.linear)
     return metrics, checks
 
 
-def is_purely_inertial(calculator: CycleCalculator) -> bool:
+def is_purely_inertial(calculator: CycleModel) -> bool:
     """The case of eq. (6.2): inertial load, ideal transmission, plain stages.
 
     The motors' regions are read as their flat part (MotorArrays.flat_speed): exact for
@@ -80,19 +91,14 @@ def is_purely_inertial(calculator: CycleCalculator) -> bool:
             and drive.is_ideal and stages_plain and bool(np.all(motors.damping == 0.0)))
 
 
-def minimum_duration(calculator: CycleCalculator, limits: Limits) -> DurationSolution:
+def minimum_duration(calculator: CycleModel, limits: Limits) -> DurationSolution:
     """Shortest feasible duration of the calculator's law for each candidate.
 
     The closed form is checked like any duration; where it misses (a check it does not
     model, or rounding beyond the tolerance) the search starts from it.
     """
-    if calculator.segmented:  # a cycle of segments: time scaling
-        bound = calculator.peak_bound(limits)
-        if bound is not None:
-            return _from_bound(calculator, limits, bound)
-        T = bisect_duration(calculator, limits)
-        method = "search on the scale of the free durations"
-    elif is_purely_inertial(calculator):
+    if isinstance(calculator, CycleCalculator) and is_purely_inertial(calculator):
+        # a law move rest-to-rest: its closed form (only its law has the coefficients)
         T = closed_form_duration(calculator, limits)
         method = "closed form (eq. 6.2)"
         finite = np.isfinite(T)
@@ -103,16 +109,16 @@ def minimum_duration(calculator: CycleCalculator, limits: Limits) -> DurationSol
         if not (missed | beyond).any():  # the closed form is the answer: no search
             ok = finite & feasible(checks)
             return DurationSolution(np.where(ok, probe, np.nan), ok, metrics, checks, method)
-        start = np.where(missed & (T > 0.0), T, _initial_guess(calculator))
+        start = np.where(missed & (T > 0.0), T, calculator.initial_guess())
         searched = bisect_duration(calculator, limits, guess=start, active=missed | beyond)
         T = np.where(missed | beyond, searched, T)
     else:
-        bound = peak_duration(calculator, limits)
-        if bound is None:
-            T = bisect_duration(calculator, limits)
-            method = "bisection"
-        else:
+        bound = calculator.peak_bound(limits)
+        if bound is not None:
             return _from_bound(calculator, limits, bound)
+        T = bisect_duration(calculator, limits)
+        method = "search on the scale of the free durations" if calculator.segmented \
+            else "bisection"
     finite = np.isfinite(T)
     probe = np.where(finite, T, _largest_tried(calculator))
     metrics, checks = evaluate(calculator, limits, probe)
@@ -120,9 +126,9 @@ def minimum_duration(calculator: CycleCalculator, limits: Limits) -> DurationSol
     return DurationSolution(np.where(ok, probe, np.nan), ok, metrics, checks, method)
 
 
-def _from_bound(calculator: CycleCalculator, limits: Limits,
+def _from_bound(calculator: CycleModel, limits: Limits,
                 bound: np.ndarray) -> DurationSolution:
-    """T_min from a lower bound (sizer.sizing.peak_duration): the bound itself where the
+    """T_min from a lower bound (sizer.sizing.move): the bound itself where the
     cycle is feasible there. Elsewhere, in turn, each step for the candidates the last
     one left infeasible: where the motor's RMS check reaches its limit above the bound
     (:func:`rms_crossing`); a search from the bound on the checks other than the peaks
@@ -151,7 +157,7 @@ def _from_bound(calculator: CycleCalculator, limits: Limits,
         return DurationSolution(np.where(ok, probe, np.nan), ok, metrics, checks, method)
     method += " and searches"
     rest &= ~rms_unreachable(calculator, limits)  # no duration meets the RMS check
-    start = np.where(usable, bound, _initial_guess(calculator))
+    start = np.where(usable, bound, calculator.initial_guess())
     T = np.where(ok, bound, np.inf)
 
     known = np.full(len(T), np.nan)  # the RMS at the crossings found, from their models
@@ -212,7 +218,7 @@ def merge_metrics(metrics: CycleMetrics, index: np.ndarray, part: CycleMetrics) 
         out[index] = np.broadcast_to(rows, (len(index),))
         return out
 
-    fields = {}
+    fields: dict[str, Any] = {}
     for field in dataclasses.fields(CycleMetrics):
         if field.name == "rms_model":
             continue
@@ -222,40 +228,14 @@ def merge_metrics(metrics: CycleMetrics, index: np.ndarray, part: CycleMetrics) 
     return CycleMetrics(**fields)
 
 
-def rms_lower_bound(calculator: CycleCalculator) -> np.ndarray | None:
+def rms_lower_bound(calculator: CycleModel) -> np.ndarray | None:
     """Per candidate a torque the motor's RMS over the cycle exceeds at every duration
-    (book sec. 6.1.1); None where a damping term is negative (the bound needs them >= 0).
-    A cycle of segments gives its own (SegmentCycle.rms_lower_bound).
-
-    Over a rest-to-rest move int a dt = 0 and int v dt = h, and the motor torque is at
-    least each of its linear functions P a + Q v + C (Drive.linear_pieces, the rotor
-    added), so int tau dt >= (damping terms) h + C_k T >= C_k T. By Cauchy-Schwarz
-    int tau^2 dt >= (int tau dt)^2 / T >= (C+)^2 T, C+ the largest C_k if positive. With
-    n moves, dwells t_d and the holding torque: RMS^2 >= (S T + n t_d hold^2) /
-    (n (T + t_d)), S the sum of (C+)^2 over the moves: a weighted mean of S/n and hold^2,
-    so RMS >= sqrt(min(S/n, hold^2)) at every T (sqrt(S/n) without a dwell).
-    """
-    if calculator.segmented:  # a cycle of segments: its own, segment by segment
-        return calculator.rms_lower_bound()  # type: ignore[attr-defined]
-    drive, motors = calculator.drive, calculator.motors
-    n = len(motors)
-    total = np.zeros(n)
-    for direction in calculator.directions:
-        shaft, _ = drive.linear_pieces(direction)
-        for _, B, _ in shaft:
-            if bool(np.any(np.broadcast_to(B, (n,)) + motors.damping * drive.ratio < 0.0)):
-                return None
-        top = np.max([np.broadcast_to(np.asarray(C, dtype=float), (n,)) for _, _, C in shaft],
-                     axis=0)
-        total += np.square(np.maximum(top, 0.0))
-    least = total / len(calculator.directions)
-    if calculator.task.dwell > 0.0:
-        hold = np.broadcast_to(calculator.drive.holding_torques()[0], (n,))
-        least = np.minimum(least, np.square(hold))
-    return np.sqrt(least)
+    (book sec. 6.1.1), None where none holds: the model's own (CycleCalculator.
+    rms_lower_bound for a move rest-to-rest, SegmentCycle.rms_lower_bound for a cycle)."""
+    return calculator.rms_lower_bound()
 
 
-def rms_unreachable(calculator: CycleCalculator, limits: Limits) -> np.ndarray:
+def rms_unreachable(calculator: CycleModel, limits: Limits) -> np.ndarray:
     """Per candidate: does the RMS check fail at every duration? True only where
     :func:`rms_lower_bound` exceeds the largest torque of the continuous region (the
     limit at any speed) with the margin, by more than rounding: no search can find a
@@ -283,20 +263,20 @@ FLAT_STEP = 1e-4
 """Step in log T of the slope's central difference on the model (exact to O(step^2))."""
 
 
-def rms_crossing(calculator: CycleCalculator, limits: Limits, start: np.ndarray,
+def rms_crossing(calculator: CycleModel, limits: Limits, start: np.ndarray,
                  first: tuple[RmsCurve, np.ndarray] | None = None) -> np.ndarray:
     """The durations of :func:`rms_crossing_with_rms`."""
     return rms_crossing_with_rms(calculator, limits, start, first)[0]
 
 
-def rms_crossing_with_rms(calculator: CycleCalculator, limits: Limits, start: np.ndarray,
+def rms_crossing_with_rms(calculator: CycleModel, limits: Limits, start: np.ndarray,
                           first: tuple[RmsCurve, np.ndarray] | None = None
                           ) -> tuple[np.ndarray, np.ndarray]:
     """Per candidate the duration above ``start`` where the motor's RMS torque reaches the
     continuous limit at the thermal speed (margin applied); nan where none was found.
 
     Each round evaluates the cycle at the current durations with its RMS model
-    (sizer.sizing.cycle.RmsModel: exact there, second-order near) and moves to the
+    (sizer.sizing.move.RmsModel: exact there, second-order near) and moves to the
     model's crossing: from the current point up (or down) by factors of 2 to a change of
     sign, then the project's root finder. The rounds converge like Newton's method; a
     candidate is done when a round moves it by less than CONVERGED. ``first``: the model
@@ -408,8 +388,8 @@ def beyond_flat_part(calculator: CycleCalculator, limits: Limits, T: np.ndarray,
     return (motors.flat_speed < motors.speed_limit) & ~(at_flat_end * (1.0 + 1e-9) < T)
 
 
-def _largest_tried(calculator: CycleCalculator) -> np.ndarray:
-    return _initial_guess(calculator) * 2.0**EXPANSIONS
+def _largest_tried(calculator: CycleModel) -> np.ndarray:
+    return calculator.initial_guess() * 2.0**EXPANSIONS
 
 
 @dataclass(frozen=True)
@@ -507,20 +487,7 @@ MAX_NEWTON = 60
 """Newton steps of :func:`rms_duration` at most (it takes five or six)."""
 
 
-def _initial_guess(calculator: CycleCalculator) -> np.ndarray:
-    """A duration scale from the speed and inertial bounds (never zero)."""
-    if calculator.segmented:
-        return calculator.initial_guess()
-    c = calculator.law.coefficients
-    drive, motors = calculator.drive, calculator.motors
-    k, h = drive.ratio, calculator.h
-    J_t = motors.inertia + drive.transmission_inertia + drive.reflected_load_inertia
-    tau_p = np.maximum(motors.intermittent.torques.max(axis=1), 1e-300)
-    guess = np.maximum(c.C_v * k * h / motors.speed_limit, np.sqrt(c.C_a * k * h * J_t / tau_p))
-    return np.where(np.isfinite(guess) & (guess > 0.0), guess, 1.0)
-
-
-def bisect_duration(calculator: CycleCalculator, limits: Limits,
+def bisect_duration(calculator: CycleModel, limits: Limits,
                     guess: np.ndarray | None = None,
                     active: np.ndarray | None = None, peaks: bool = True) -> np.ndarray:
     """T_min per candidate by search on the worst slack; inf where no duration is feasible.
@@ -531,7 +498,7 @@ def bisect_duration(calculator: CycleCalculator, limits: Limits,
     (the others get inf); without ``peaks`` the peak checks are left out (they are
     known to pass).
     """
-    x0 = np.log(_initial_guess(calculator) if guess is None else np.asarray(guess, float))
+    x0 = np.log(calculator.initial_guess() if guess is None else np.asarray(guess, float))
     active = np.ones(len(x0), dtype=bool) if active is None else np.asarray(active, bool)
     if not active.all():  # the search works on the active candidates only
         out = np.full(len(x0), np.inf)
@@ -552,7 +519,7 @@ class _Slack:
     """The worst slack at log durations x, for all candidates or those at ``index`` (each
     step of a search evaluates only the candidates still searching)."""
 
-    calculator: CycleCalculator
+    calculator: CycleModel
     limits: Limits
     peaks: bool
 
@@ -684,7 +651,7 @@ def _golden_max(slack: _Slack, lo: np.ndarray, hi: np.ndarray, active: np.ndarra
             break
         left = f1 >= f2  # the maximum lies in [lo, x2]
         f_lo = np.where(left, f_lo, f1)
-        lo, hi, x1, x2, f1, f2 = golden_step(lambda x, index=index: slack(x, index),
+        lo, hi, x1, x2, f1, f2 = golden_step(partial(slack, index=index),
                                              (lo, hi, x1, x2, f1, f2), left)
     return hit, x_ok, f_ok, x_bad, f_bad
 
@@ -692,7 +659,7 @@ def _golden_max(slack: _Slack, lo: np.ndarray, hi: np.ndarray, active: np.ndarra
 def _crossing(slack: _Slack, x_lo, x_hi, f_lo, f_hi, active) -> np.ndarray:
     """log T where the worst slack reaches 0 between an infeasible x_lo and a feasible x_hi.
 
-    The project's root finder (sizer.sizing.roots) on g = f (or on f + TOLERANCE where
+    The project's root finder (sizer.numerics.roots) on g = f (or on f + TOLERANCE where
     x_hi reaches only the tolerance), to a relative width of 1e-13, each step on the
     candidates still open; the feasible end of the bracket is returned, so the answer is
     feasible.
@@ -706,4 +673,112 @@ def _crossing(slack: _Slack, x_lo, x_hi, f_lo, f_hi, active) -> np.ndarray:
                      f_lo[index] + offset, f_hi[index] + offset, xtol=1e-13,
                      args=(index, offset), bracket=True)
     out[index] = hi
+    return out
+
+
+CHUNK = 1 << 14
+"""Candidates bounded at once (the peak queries of each are a few dozen numbers)."""
+
+
+def relaxed(limits: Limits) -> Limits:
+    """The limits as the checks apply them at the edge of their tolerance."""
+    def wider(limit: float | None) -> float | None:
+        return None if limit is None else limit * (1.0 + TOLERANCE)
+
+    return dataclasses.replace(
+        limits, torque_margin=limits.torque_margin - TOLERANCE,
+        speed_margin=limits.speed_margin - TOLERANCE, max_speed=wider(limits.max_speed),
+        max_acceleration=wider(limits.max_acceleration), max_jerk=wider(limits.max_jerk))
+
+
+@dataclass(frozen=True)
+class PeakScales:
+    """What the floor's peak part takes from the candidates, for every law at once.
+
+    Each peak query F(u) <= D of sizer.sizing.move has its lower bracket 1/u =
+    max(sqrt(C_a P / D), C_v Q / D) where D > 0 and P, Q >= 0 (0 where P or Q < 0, no
+    duration where D <= 0): the law enters by C_a and C_v only, so a candidate's largest
+    bracket is max(sqrt(C_a) root, C_v ratio) with ``root`` its largest sqrt(P / D) and
+    ``ratio`` its largest Q / D, and ``blocked`` where some D <= 0."""
+
+    root: np.ndarray
+    ratio: np.ndarray
+    blocked: np.ndarray
+
+
+def peak_scales(design: Design, candidates: Candidates) -> PeakScales:
+    """The :class:`PeakScales` of the candidates, limits relaxed (module docs)."""
+    limits, n = relaxed(design.limits), len(candidates)
+    root, ratio, blocked = np.zeros(n), np.zeros(n), np.zeros(n, dtype=bool)
+    for start in range(0, n, CHUNK):
+        rows = np.arange(start, min(start + CHUNK, n))
+        part = candidates if n <= CHUNK else candidates.take(rows)
+        calculator = CycleCalculator(None, design.task, part.drive, part.motors,
+                                     design.limits.thermal_speed)
+        queries = peak_queries(calculator, limits)
+        if queries is None:
+            continue
+        who, P, Q, D = queries
+        usable = (D > 0.0) & (P >= 0.0) & (Q >= 0.0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            np.maximum.at(root, rows[who[usable]], np.sqrt(P[usable] / D[usable]))
+            np.maximum.at(ratio, rows[who[usable]], Q[usable] / D[usable])
+        blocked[rows[who[D <= 0.0]]] = True
+    return PeakScales(root, ratio, blocked)
+
+
+def duration_floor(design: Design, spec: str, candidates: Candidates,
+                   scales: PeakScales | None = None) -> np.ndarray | None:
+    """Per candidate a duration below which the law ``spec`` is infeasible, in minimize
+    mode for the task shorthand (a move, its dwell and return) with a fixed law; None
+    where there is no such floor (a given duration, a linkage, a law shaped per
+    candidate, a law that moves backwards) or no need of one (the closed form of eq. 6.2
+    sizes every option at the cost of one evaluation). ``scales``: the candidates'
+    :func:`peak_scales` where known (the same for every law). A cycle of segments has
+    its own floor: :func:`_cycle_floor`."""
+    minimize = design.task.minimize if design.cycle is None else design.cycle.minimize
+    if not minimize or design.transmission.linkage is not None or is_open_shaped(spec):
+        return None
+    _, values = resolve(spec)
+    if any(v == AUTO for v in values.values()):
+        return None
+    law, limits = make_law(spec), relaxed(design.limits)
+    if design.cycle is not None:
+        return _cycle_floor(design, law, candidates, limits)
+    calculator = CycleCalculator(None, design.task, candidates.drive, candidates.motors,
+                                 design.limits.thermal_speed, law=law)
+    if is_purely_inertial(calculator):  # eq. (6.2): every option is cheap as it is
+        return None
+    if float(law.linear_peaks.minimum(0.0, 1.0).value) < -1e-12:
+        return None  # it moves backwards: no peak bound (sizer.sizing.move)
+    if calculator.h == 0.0:
+        return np.zeros(len(candidates))
+    scales = peak_scales(design, candidates) if scales is None else scales
+    c = law.coefficients
+    peak = np.where(scales.blocked, np.inf,
+                    np.maximum(math.sqrt(c.C_a) * scales.root, c.C_v * scales.ratio))
+    return np.maximum(speed_bounds(calculator, limits), peak)
+
+
+def _cycle_floor(design: Design, law, candidates: Candidates,
+                 limits: Limits) -> np.ndarray | None:
+    """The floor of a cycle of segments in minimize mode: its time at the lower bound on
+    the scale of its free durations from the free moves' peak checks (SegmentCycle.
+    peak_bound, the limits relaxed), below which no scale passes them; the cycle time
+    grows with the scale. None where a law moves backwards (no bound)."""
+    from sizer.sizing.cycle import SegmentCycle  # only designs with a cycle need it
+
+    cycle = design.cycle
+    assert cycle is not None
+    n = len(candidates)
+    out = np.zeros(n)
+    for start in range(0, n, CHUNK):
+        rows = np.arange(start, min(start + CHUNK, n))
+        part = candidates if n <= CHUNK else candidates.take(rows)
+        calculator = SegmentCycle(cycle, law, part.drive, part.motors,
+                                  design.limits.thermal_speed)
+        bound = calculator.peak_bound(limits)
+        if bound is None:
+            return None
+        out[rows] = calculator.cycle_time(bound)
     return out

@@ -1,13 +1,14 @@
-"""Sizing through a linkage at the load (issue 14, seed 003): a position-dependent ratio.
+"""A move through a linkage at the load (issue 14, seed 003): a position-dependent ratio,
+alone with its dwell or in a cycle of segments (issue 12's cycles).
 
 The motion of the move has a fixed shape over normalized time u = t/T (book sec. 5.2):
 with the law on the crank, theta(u) = theta_0 + h q_N(u); with the law on the output,
 s(u) = s_0 + h q_N(u) and the crank follows by inverse kinematics, through the dead
 points by the paper's limits (sizer.mechanics.linkages.inverse_motion). The torque the
 crank needs is tau_c(u; T) = A(u)/T^2 + D(u)/T + B(u) by Lagrange, with the d(J_eq)/dq
-term (sizer.mechanics.linkages.dynamics). Computed once per law (:func:`linkage_profile`)
-on a fixed grid: composite Gauss-Legendre nodes for the integrals (RMS), a uniform grid
-of PEAK_POINTS points plus the law's breakpoints for the peaks.
+term (sizer.mechanics.linkages.dynamics). Computed once per law and start angle
+(:func:`profile_of`) on a fixed grid: composite Gauss-Legendre nodes for the integrals
+(RMS), a uniform grid of PEAK_POINTS points plus the law's breakpoints for the peaks.
 
 Per candidate (:class:`LinkageCalculator`), the gear stages between motor and crank
 (ratio N, efficiency eta in the direction of power flow, their inertia) give the motor's
@@ -15,6 +16,14 @@ speed N theta'(u)/T and torque (J_m + J_stages) N theta''(u)/T^2 + tau_c/(N eta^
 peaks and the speed-torque envelope over the samples, the RMS over the cycle with the
 dwell holding the output's static load. A law that breaks the paper's dead-point rule is
 infeasible for every candidate, with its reason (check ``dead_point``).
+
+In a cycle (:class:`LinkageCycle`) each move starts where the crank stopped, so it has its
+own profile; a dwell holds the output's static load at the crank angle reached. With the
+law on the crank a run turns the crank at its constant speed and a move may start and end
+at its neighbours' crank speeds (its shape, the law's boundary form, depends on its fixed
+duration: :class:`FixedShape`). The free durations scale with one factor s (book sec.
+5.2): peaks are the largest over the segments, the RMS torque sums the segments' exact
+squares over the cycle time.
 """
 
 from __future__ import annotations
@@ -22,6 +31,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 from functools import lru_cache
+from typing import Any
 
 import numpy as np
 
@@ -29,10 +39,14 @@ from sizer.errors import UserError
 from sizer.laws import MotionLaw
 from sizer.laws.quadrature import gauss_legendre
 from sizer.mechanics.drive import Drive
+from sizer.model.cycle import Move, Run, from_task
 from sizer.model.domain import Design, Limits, LinkageStage, Load, Task
-from sizer.sizing.checks import CheckArrays, evaluate_checks
-from sizer.sizing.cycle import CycleMetrics, rule_speed
-from sizer.sizing.motors import MotorArrays
+from sizer.sizing.candidates import MotorArrays
+from sizer.sizing.checks import CheckArrays, evaluate_checks, feasible
+from sizer.sizing.cycle import cycle_laws, given_scale, segment_load
+from sizer.sizing.evaluation import CycleMetrics
+from sizer.sizing.move import rule_speed
+from sizer.sizing.shortest_duration import minimum_duration
 
 PEAK_POINTS = 4001
 """Uniform samples of u in [0, 1] where the peaks are read (with the law's breakpoints):
@@ -119,22 +133,10 @@ class FixedShape:
         return basis
 
 
-def linkage_profile(design: Design, law: MotionLaw) -> LinkageProfile:
-    """The profile of ``law`` through the design's linkage (cached per law and design)."""
-    stage = design.transmission.linkage
-    assert stage is not None
-    return _profile(stage, design.load, design.task.displacement, design.task.duration, law)
-
-
+@lru_cache(maxsize=256)
 def profile_of(stage: LinkageStage, load: Load, h: float, duration: float | None,
                law: MotionLaw | FixedShape) -> LinkageProfile:
     """The profile of a move of ``h`` by ``law`` from the stage's start angle (cached)."""
-    return _profile(stage, load, h, duration, law)
-
-
-@lru_cache(maxsize=256)
-def _profile(stage: LinkageStage, load: Load, h: float, duration: float | None,
-             law: MotionLaw | FixedShape) -> LinkageProfile:
     from sizer.mechanics.linkages.dynamics import LinkageDynamics, LinkageMasses
     from sizer.mechanics.linkages.inverse_motion import input_motion, output_motion
     from sizer.mechanics.linkages.of_stage import linkages_of
@@ -151,9 +153,11 @@ def _profile(stage: LinkageStage, load: Load, h: float, duration: float | None,
     if not given.dead_points().size:  # the law is on the crank angle itself
         theta = x
     else:
+        # a run or a move with boundary speeds is on the crank (sizer.io.linkage says so)
+        assert isinstance(law, MotionLaw), "a fixed shape is on the crank, no dead point"
         issues = _issues(given, law, u, x, h, duration)
         with np.errstate(all="ignore"):
-            theta = list(input_motion(given, *x, start_theta=theta0,
+            theta = list(input_motion(given, x[0], x[1], x[2], x[3], start_theta=theta0,
                                       direction=stage.direction))
     with np.errstate(all="ignore"):
         s = x if given is views.output else list(output_motion(views.output, *theta))
@@ -269,7 +273,7 @@ def _rocker_issues(u: np.ndarray, g1: np.ndarray, parts: tuple, hold: float,
 
 
 def _one_sided(law: MotionLaw, u: np.ndarray, h: float, T: float
-               ) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+               ) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
     """The output's (acceleration, jerk) just before and just after every sample: where
     the law's pieces join they differ; outside [0, 1] the law is at rest."""
     starts = np.array([piece.start for piece in law.pieces])
@@ -289,7 +293,7 @@ def _one_sided(law: MotionLaw, u: np.ndarray, h: float, T: float
     for k, (outside_before, outside_after) in enumerate(law.outside(order) for order in (2, 3)):
         left[k][0] = h * outside_before / T ** (k + 2)
         right[k][-1] = h * outside_after / T ** (k + 2)
-    return {"left": (left[0], left[1]), "right": (right[0], right[1])}
+    return (left[0], left[1]), (right[0], right[1])
 
 
 def _issues(linkage, law: MotionLaw, u: np.ndarray, s: list,
@@ -301,8 +305,9 @@ def _issues(linkage, law: MotionLaw, u: np.ndarray, s: list,
 
     T = duration or 1.0
     scaled = [s[0], *(x / T**k for k, x in enumerate(s[1:], start=1))]
-    found = dead_point_crossings(linkage, u * T, *scaled, **_one_sided(law, u, h, T),
-                                 units="m" if linkage.output_linear else "rad")
+    left, right = _one_sided(law, u, h, T)
+    found = dead_point_crossings(linkage, u * T, scaled[0], scaled[1], scaled[2], scaled[3],
+                                 left, right, units="m" if linkage.output_linear else "rad")
     suffix = "" if duration else " (for a move of 1 s; the values scale with its duration)"
     return tuple(issue.message + suffix for issue in found)
 
@@ -316,12 +321,12 @@ def _finite(x: np.ndarray) -> np.ndarray:
 
 class LinkageCalculator:
     """The requirements of one law through a linkage for each candidate at durations T
-    (the interface of sizer.sizing.cycle.CycleCalculator that minimum_duration uses)."""
+    (a sizer.sizing.evaluation.CycleModel)."""
 
     segmented = True
 
     def __init__(self, profile: LinkageProfile, task: Task, drive: Drive,
-                 motors: MotorArrays, thermal_rule: str, law: MotionLaw) -> None:
+                 motors: MotorArrays, thermal_rule: str, law: MotionLaw | None) -> None:
         self.profile, self.task, self.drive, self.motors = profile, task, drive, motors
         self.thermal_rule, self.law = thermal_rule, law
 
@@ -331,6 +336,9 @@ class LinkageCalculator:
 
     def peak_bound(self, limits: Limits) -> None:
         return None
+
+    def rms_lower_bound(self) -> None:
+        return None  # none known through a linkage (sizer.sizing.evaluation.CycleModel)
 
     def initial_guess(self) -> np.ndarray:
         """A duration from the speed bound and the inertial bound at the peak torque."""
@@ -357,7 +365,8 @@ class LinkageCalculator:
                                                          crank * eta / N)
         return N * p.theta1 / T, torque, crank
 
-    def evaluate(self, duration: np.ndarray, peaks: bool = True) -> CycleMetrics:
+    def evaluate(self, duration: np.ndarray, peaks: bool = True, model: bool = False,
+                 rms: np.ndarray | None = None) -> CycleMetrics:  # no RMS model: not used
         p, motors, drive = self.profile, self.motors, self.drive
         T = np.broadcast_to(np.asarray(duration, dtype=float), (len(motors),))[:, None]
         N, eta = drive.ratio[:, None], drive.efficiency[:, None]
@@ -366,17 +375,14 @@ class LinkageCalculator:
         hold = abs(p.hold) / (N[:, 0] * eta[:, 0])
         cycle = T[:, 0] + dwell
         square = T[:, 0] * (torque**2 @ p.weights) + dwell * hold**2
-        with np.errstate(divide="ignore", invalid="ignore"):
-            limit = motors.intermittent.limit_clipped(speed)
-            ratio = np.where(limit > 0.0, np.abs(torque) / limit,
-                             np.where(torque == 0.0, 0.0, np.inf))
         load = p.load
         force = (p.output_mass * p.s2 / T**2 + load.damping * p.s1 / T + load.torque
                  + load.friction * np.sign(p.s1))
         stage_torque, stage_speed = self._stages(crank, T)
         return CycleMetrics(
             duration=T[:, 0], max_speed=refined_max(np.abs(speed), p.u),
-            peak_torque=refined_max(np.abs(torque), p.u), peak_ratio=np.max(ratio, axis=1),
+            peak_torque=refined_max(np.abs(torque), p.u),
+            peak_ratio=peak_ratio(motors, torque, speed),
             rms_torque=np.sqrt(square / cycle), thermal_speed=self.thermal_speed(T[:, 0]),
             load_speed=np.max(np.abs(p.s1)) / T[:, 0],
             load_acceleration=np.max(np.abs(p.s2)) / T[:, 0] ** 2,
@@ -405,6 +411,16 @@ class LinkageCalculator:
             torques.append(crank / after[:, None])
             speeds.append(into * peak / T[:, 0])
         return torques, speeds
+
+
+def peak_ratio(motors: MotorArrays, torque: np.ndarray, speed: np.ndarray) -> np.ndarray:
+    """The largest |tau| / tau_int(|speed|) over each candidate's samples (candidates,
+    samples): infinite where a torque meets a zero limit."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        limit = motors.intermittent.limit_clipped(speed)
+        ratio = np.where(limit > 0.0, np.abs(torque) / limit,
+                         np.where(torque == 0.0, 0.0, np.inf))
+    return np.max(ratio, axis=1)
 
 
 UNBOUNDED_NOTE = ("unbounded: the crank's acceleration is infinite at the dead point (see "
@@ -473,149 +489,68 @@ def crank_drive(design: Design, drive: Drive, profile: LinkageProfile) -> Drive:
     return Drive(load, drive.transmissions, drive.option)
 
 
-def shorthand_cycle(design: Design) -> Design:
-    """A task with a return move as the cycle it means (move, dwell, move back, dwell):
-    through a linkage the way back starts where the way out stopped."""
-    from sizer.model.cycle import from_task
-
-    return replace(design, cycle=from_task(design.task))
-
-
-def evaluate_linkage(design: Design, law: MotionLaw, motors: MotorArrays, drive: Drive):
-    """(duration, metrics, checks, feasible) of one law through the design's linkage."""
-    from sizer.sizing.checks import feasible as all_pass
-    from sizer.sizing.minimum_duration import minimum_duration
-
-    if design.task.return_move:  # the cycle it means; the task reports its moves' T
-        from sizer.sizing.linkage_cycle import evaluate_linkage_cycle
-
-        cyc = shorthand_cycle(design)
-        assert cyc.cycle is not None
-        cycle_time, metrics, checks, feasible = evaluate_linkage_cycle(cyc, law, motors, drive)
-        if design.task.minimize:  # both moves free, one scale: T = s
-            T = (cycle_time - cyc.cycle.fixed_time) / len(cyc.cycle.moves)
-        else:
-            T = np.full(len(motors), design.task.duration)
-        return T, metrics, checks, feasible
-
-    profile = linkage_profile(design, law)
-    drive = crank_drive(design, drive, profile)
-    calculator = LinkageCalculator(profile, design.task, drive, motors,
-                                   design.limits.thermal_speed, law)
-    n = len(motors)
-    point = dead_point_check(profile.issues, n)
-    if design.task.minimize and not profile.issues:
-        solution = minimum_duration(calculator, design.limits)
-        checks = [point, *solution.checks]
-        return solution.duration, solution.metrics, checks, solution.feasible
-    T = np.full(n, design.task.duration if design.task.duration is not None else np.nan)
-    if design.task.minimize:  # the law is infeasible at any duration: show one
-        T = calculator.initial_guess()
-    metrics = calculator.evaluate(T)
-    if profile.issues:  # the crank's motion is singular: no torque to report
-        metrics = singular_metrics(metrics)
-    checks = [point, *evaluate_checks(metrics, motors, drive, design.limits,
-                                      design.task.linear)]
-    if profile.issues:
-        checks = unbounded_checks(checks)
-    feasible = all_pass(checks)
-    duration = np.where(feasible, T, np.nan) if design.task.minimize else T
-    return duration, metrics, checks, feasible
+def linkage_calculator(design: Design, law: MotionLaw, motors: MotorArrays, drive: Drive
+                       ) -> LinkageCalculator | LinkageCycle:
+    """The calculator the engine sizes a linkage design with: one move and its dwell, or
+    the cycle (a task with a return is the cycle it means)."""
+    if design.cycle is not None or design.task.return_move:
+        # a task with a return move is the cycle it means: the way back starts where the
+        # way out stopped
+        cyc = design if design.cycle is not None else \
+            replace(design, cycle=from_task(design.task))
+        return LinkageCycle(cyc, law, drive, motors, design.limits.thermal_speed)
+    stage = design.transmission.linkage
+    assert stage is not None, "a linkage design"
+    profile = profile_of(stage, design.load, design.task.displacement, design.task.duration,
+                         law)
+    return LinkageCalculator(profile, design.task, crank_drive(design, drive, profile),
+                             motors, design.limits.thermal_speed, law)
 
 
 def result_calculator(design: Design, motor, law: MotionLaw, transmission=None
-                      ) -> tuple[LinkageProfile, Drive, LinkageCalculator]:
-    """The profile, drive and calculator of one result (a motor, a law, the result's
-    transmission) through the design's linkage."""
-    profile = linkage_profile(design, law)
-    drive = crank_drive(design, Drive(design.load, transmission or design.transmission),
-                        profile)
-    calculator = LinkageCalculator(profile, design.task, drive,
-                                   MotorArrays.of([motor], design.limits.envelope),
-                                   design.limits.thermal_speed, law)
-    return profile, drive, calculator
+                      ) -> LinkageCalculator | LinkageCycle:
+    """The calculator of one result (a motor, a law, the result's transmission)."""
+    return linkage_calculator(design, law, MotorArrays.of([motor], design.limits.envelope),
+                              Drive(design.load, transmission or design.transmission))
 
 
-def linkage_curve(design: Design, motor, law: MotionLaw, duration: float,
-                  transmission=None, samples: int = 401):
-    """The TaskCurve of one candidate through the linkage (for plots and reports): the
-    move at ``samples`` instants and the dwell holding the output."""
-    from sizer.sizing.profile import TaskCurve, continuous_region, intermittent_region
-
-    if design.cycle is not None or design.task.return_move:
-        cyc = design if design.cycle is not None else shorthand_cycle(design)
-        return _cycle_curve(cyc, motor, law, duration, transmission, samples)
-    profile, drive, calculator = result_calculator(design, motor, law, transmission)
-    T = np.array([duration])
-    metrics = calculator.evaluate(T)
-    speed, torque, _ = calculator.motor_samples(T)
-    pick = np.flatnonzero(profile.weights == 0.0)  # the uniform grid, in order
-    pick = pick[np.linspace(0, len(pick) - 1, samples).round().astype(int)]
-    u = profile.u[pick]
-    times, position = [duration * u], [profile.s[pick]]
-    load_speed, load_acceleration = [profile.s1[pick] / duration], \
-        [profile.s2[pick] / duration**2]
-    motor_speed, torques = [speed[0, pick]], [torque[0, pick]]
-    motor_acceleration = [float(drive.ratio[0]) * profile.theta2[pick] / duration**2]
-    if design.task.dwell > 0.0:
-        hold = profile.hold / float(drive.ratio[0] * drive.efficiency[0])
-        times.append(np.array([duration, duration + design.task.dwell]))
-        position.append(np.full(2, profile.s[pick][-1]))
-        for series in (load_speed, load_acceleration, motor_speed, motor_acceleration):
-            series.append(np.zeros(2))
-        torques.append(np.full(2, hold))
-    total = motor.inertia + float(drive.driven_inertia[0])
-    return TaskCurve(
-        motor=motor.id, law=law.spec, duration=duration, ratio=float(drive.ratio[0]),
-        time=np.concatenate(times), position=np.concatenate(position),
-        load_speed=np.concatenate(load_speed),
-        load_acceleration=np.concatenate(load_acceleration),
-        motor_speed=np.concatenate(motor_speed),
-        motor_acceleration=np.concatenate(motor_acceleration),
-        motor_torque=np.concatenate(torques), rms_torque=float(metrics.rms_torque[0]),
-        thermal_speed=float(metrics.thermal_speed[0]),
-        peak_torque=float(metrics.peak_torque[0]), max_speed=float(metrics.max_speed[0]),
-        continuous_region=continuous_region(motor, design.limits.envelope),
-        intermittent_region=intermittent_region(motor, design.limits.envelope),
-        total_inertia=total)
+def evaluate_linkage(design: Design, law: MotionLaw, motors: MotorArrays, drive: Drive):
+    """(duration, metrics, checks, feasible) of one law through the design's linkage: the
+    move's T alone, the cycle time of a cycle, each move's T of a task with a return."""
+    calculator = linkage_calculator(design, law, motors, drive)
+    given: float | None
+    if isinstance(calculator, LinkageCycle):
+        cycle = calculator.cycle
+        minimize, given = cycle.minimize, given_scale(cycle)
+        issues = calculator.issues()
+    else:
+        minimize, given = design.task.minimize, design.task.duration
+        issues = calculator.profile.issues
+    n = len(motors)
+    point = dead_point_check(issues, n)
+    if minimize and not issues:
+        solution = minimum_duration(calculator, design.limits)
+        metrics, checks, passed = solution.metrics, solution.checks, solution.feasible
+    else:  # a law infeasible at any duration shows one
+        s = calculator.initial_guess() if minimize else \
+            np.full(n, given if given is not None else np.nan)
+        metrics = calculator.evaluate(s)
+        if issues:  # the crank's motion is singular: no torque to report
+            metrics = singular_metrics(metrics)
+        checks = evaluate_checks(metrics, motors, calculator.drive, design.limits,
+                                 calculator.task.linear)
+        if issues:
+            checks = unbounded_checks(checks)
+        passed = feasible([point, *checks])
+    duration = np.where(passed, metrics.duration, np.nan) if minimize else metrics.duration
+    if design.cycle is None and design.task.return_move:  # the task reports its moves' T
+        T = (duration - cycle.fixed_time) / len(cycle.moves) if minimize else \
+            np.full(n, design.task.duration)
+        return T, metrics, [point, *checks], passed
+    return duration, metrics, [point, *checks], passed
 
 
-@dataclass(frozen=True)
-class LinkageCurve:
-    """One candidate through the linkage over the crank angle: the crank angle (rad,
-    increasing or decreasing as the crank turns), the ratio ds/dtheta and the motor
-    torque at the result's duration, and the linkage's dead points (name: angle)."""
-
-    theta: np.ndarray
-    ratio: np.ndarray
-    motor_torque: np.ndarray
-    dead_points: dict[str, float]
-    linear: bool
-
-
-def linkage_curve_of(design: Design, motor, law: MotionLaw, duration: float,
-                     transmission=None) -> LinkageCurve:
-    """The data of the ratio-and-torque plot of one result (sizer plot --linkage)."""
-
-    stage = design.transmission.linkage
-    assert stage is not None
-    if design.cycle is not None or design.task.return_move:
-        from sizer.sizing.linkage_cycle import cycle_samples
-
-        cyc = design if design.cycle is not None else shorthand_cycle(design)
-        parts = [p for p in cycle_samples(cyc, motor, law, duration, transmission)[0]
-                 if np.all(np.isfinite(p["ratio"]))]  # the moves
-        theta, ratio, torque = (np.concatenate([p[k] for p in parts])
-                                for k in ("theta", "ratio", "motor_torque"))
-        return LinkageCurve(theta, ratio, torque, _dead_points(stage), stage.output_linear)
-    profile, _, calculator = result_calculator(design, motor, law, transmission)
-    _, torque, _ = calculator.motor_samples(np.array([duration]))
-    pick = np.flatnonzero(profile.weights == 0.0)
-    return LinkageCurve(profile.theta[pick], profile.ratio[pick], torque[0, pick],
-                        _dead_points(stage), stage.output_linear)
-
-
-def _dead_points(stage: LinkageStage) -> dict[str, float]:
+def dead_points(stage: LinkageStage) -> dict[str, float]:
     """The linkage's dead points by name: crank angles (rad), the output's, and a driven
     rocker's (crank and coupler in line)."""
     from sizer.mechanics.linkages.of_stage import linkages_of, output_name
@@ -637,71 +572,228 @@ def _dead_points(stage: LinkageStage) -> dict[str, float]:
     return out
 
 
-def _cycle_curve(design: Design, motor, law: MotionLaw, duration: float, transmission,
-                 samples: int):
-    """The TaskCurve of a cycle through the linkage (the moves and the dwells)."""
-    from sizer.sizing.linkage_cycle import cycle_samples
-    from sizer.sizing.profile import TaskCurve, continuous_region, intermittent_region
-    parts, metrics, calculator = cycle_samples(design, motor, law, duration, transmission,
-                                               samples)
+@dataclass(frozen=True)
+class HeldDwell:
+    """A dwell on the linkage: its static crank torque (the output's load through the
+    ratio at the crank angle reached; 0 at a dead point)."""
 
-    def joined(key: str) -> np.ndarray:
-        return np.concatenate([p[key] for p in parts])
-
-    segments, start = [], 0.0
-    for segment, p in zip(design.cycle.segments, parts, strict=True):
-        end = float(p["time"][-1])
-        segments.append((segment.name or ("move" if p["ratio"].size > 2 or np.all(
-            np.isfinite(p["ratio"])) else "dwell"), start, end))
-        start = end
-    return TaskCurve(
-        motor=motor.id, law=law.spec, duration=duration,
-        ratio=float(calculator.drive.ratio[0]), time=joined("time"),
-        position=joined("position"), load_speed=joined("load_speed"),
-        load_acceleration=joined("load_acceleration"), motor_speed=joined("motor_speed"),
-        motor_acceleration=joined("motor_acceleration"), motor_torque=joined("motor_torque"),
-        rms_torque=float(metrics.rms_torque[0]), thermal_speed=float(metrics.thermal_speed[0]),
-        peak_torque=float(metrics.peak_torque[0]), max_speed=float(metrics.max_speed[0]),
-        continuous_region=continuous_region(motor, design.limits.envelope),
-        intermittent_region=intermittent_region(motor, design.limits.envelope),
-        total_inertia=motor.inertia + float(calculator.drive.driven_inertia[0]),
-        segments=tuple(segments))
+    hold: float
+    force: float
+    """The output's static load held (N or N*m)."""
 
 
-def linkage_breakdown(design: Design, motor, law: MotionLaw, duration: float,
-                      transmission=None):
-    """The move and the dwell of a task through a linkage, for one result, as the
-    segment table shows them (sizer.sizing.segment_breakdown's rows)."""
-    from sizer.sizing.segment_breakdown import SegmentBreakdown, SegmentRow
+class LinkageCycle:
+    """The requirements of a cycle through a linkage for each candidate at scales s (a
+    sizer.sizing.evaluation.CycleModel)."""
 
-    if design.cycle is not None or design.task.return_move:
-        from sizer.sizing.linkage_cycle import cycle_breakdown
+    segmented = True
 
-        cyc = design if design.cycle is not None else shorthand_cycle(design)
-        return cycle_breakdown(cyc, motor, law, duration, transmission)
-    profile, drive, calculator = result_calculator(design, motor, law, transmission)
-    T = np.array([duration])
-    metrics = calculator.evaluate(T)
-    speed, torque, _ = calculator.motor_samples(T)
-    move_square = duration * float(torque[0] ** 2 @ profile.weights)
-    dwell = design.task.dwell
-    hold = abs(profile.hold) / float(drive.ratio[0] * drive.efficiency[0])
-    total = move_square + dwell * hold**2
-    first = float(profile.s2[np.argmin(profile.u)]) / duration**2
-    last = float(profile.s2[np.argmax(profile.u)]) / duration**2
-    rows = [SegmentRow(
-        name="move", kind="move", law=law.spec, start=0.0, end=duration,
-        peak_torque=float(metrics.peak_torque[0]),
-        rms_torque=math.sqrt(move_square / duration),
-        rms_share=move_square / total if total > 0 else 0.0,
-        peak_speed=float(metrics.max_speed[0]),
-        energy=duration * float((torque[0] * speed[0]) @ profile.weights),
-        acceleration_step=first)]
-    if dwell > 0.0:
-        rows.append(SegmentRow(
-            name="dwell", kind="dwell", law=None, start=duration, end=duration + dwell,
-            peak_torque=hold, rms_torque=hold,
-            rms_share=dwell * hold**2 / total if total > 0 else 0.0, peak_speed=0.0,
-            energy=0.0, acceleration_step=-last))
-    return SegmentBreakdown(motor.id, law.spec, duration + dwell,
-                            float(metrics.rms_torque[0]), tuple(rows))
+    def __init__(self, design: Design, law: MotionLaw | None, drive: Drive,
+                 motors: MotorArrays, thermal_rule: str) -> None:
+        cycle = design.cycle
+        stage = design.transmission.linkage
+        assert cycle is not None and stage is not None
+        self.cycle, self.motors, self.thermal_rule = cycle, motors, thermal_rule
+        self.law = law
+        self.laws = cycle_laws(cycle, law)
+        self.weights = np.array(cycle.weights())
+        free = cycle.free
+        self.fixed = np.array([np.nan if s.duration is None or i in free else s.duration
+                               for i, s in enumerate(cycle.segments)], dtype=float)
+        self.parts: list[LinkageProfile | HeldDwell] = []
+        theta = stage.start_angle
+        for i, (segment, own) in enumerate(zip(cycle.segments, self.laws, strict=True)):
+            load = segment_load(design.load, segment)
+            if isinstance(segment, Move | Run):
+                duration = None if np.isnan(self.fixed[i]) else float(self.fixed[i])
+                shape = _shape(segment, own, duration)
+                profile = profile_of(replace(stage, start_angle=theta), load,
+                                     segment.displacement, duration, shape)
+                self.parts.append(profile)
+                theta = float(profile.theta[-1])
+            else:
+                self.parts.append(HeldDwell(static_torque(stage, load.torque, theta),
+                                            abs(load.torque)))
+        profiles = [p for p in self.parts if isinstance(p, LinkageProfile)]
+        heaviest = max(profiles, key=lambda p: p.max_inertia)
+        self.drive = crank_drive(design, drive, heaviest)
+        self.task = Task(cycle.moves[0].displacement, None, linear=cycle.linear)
+
+    def issues(self) -> tuple[str, ...]:
+        """The dead-point rule broken by any move, each named by its segment."""
+        out = []
+        for segment, part in zip(self.cycle.segments, self.parts, strict=True):
+            if isinstance(part, LinkageProfile):
+                name = segment.name or "move"
+                out += [f"{name}: {issue}" for issue in part.issues]
+            elif not np.isfinite(part.hold):
+                out.append(f"{segment.name or 'dwell'}: the motor on the rocker cannot hold "
+                           f"the output's load at a dead point (crank and coupler in line)")
+        return tuple(out)
+
+    def durations(self, s: np.ndarray) -> list[np.ndarray]:
+        return [np.full_like(s, fixed) if np.isfinite(fixed) else w * s
+                for fixed, w in zip(self.fixed, self.weights, strict=True)]
+
+    def take(self, index: np.ndarray) -> LinkageCycle:
+        out = object.__new__(LinkageCycle)
+        out.__dict__.update(self.__dict__)
+        out.motors = self.motors.subset(index)
+        out.drive = self.drive.take(index)
+        return out
+
+    def peak_bound(self, limits: Limits) -> None:
+        return None
+
+    def rms_lower_bound(self) -> None:
+        return None  # none known through a linkage (sizer.sizing.evaluation.CycleModel)
+
+    def thermal_speed(self, s: np.ndarray) -> np.ndarray:
+        """The thermal speed at scales s (sizer.sizing.evaluation.CycleModel)."""
+        return self.evaluate(s, peaks=False).thermal_speed
+
+    def initial_guess(self) -> np.ndarray:
+        """A scale from the free moves' speed and inertial bounds."""
+        guess = np.full(len(self.motors), 1e-3)
+        for part, w in zip(self.parts, self.weights, strict=True):
+            if isinstance(part, LinkageProfile) and w > 0.0:
+                guess = np.maximum(guess, move_calculator(self, part).initial_guess() / w)
+        return np.where(np.isfinite(guess) & (guess > 0.0), guess, 1.0)
+
+    def evaluate(self, duration: np.ndarray, peaks: bool = True, model: bool = False,
+                 rms: np.ndarray | None = None) -> CycleMetrics:  # no RMS model: not used
+        parts = linkage_figures(self, duration)
+        cycle = sum((p["duration"] for p in parts), np.zeros(len(self.motors)))
+
+        def most(name: str) -> np.ndarray:
+            return np.max([np.broadcast_to(p[name], cycle.shape) for p in parts], axis=0)
+
+        def total(name: str) -> np.ndarray:
+            return sum((p[name] for p in parts), np.zeros_like(cycle))
+
+        stages = len(self.drive.stages)
+        thermal = rule_speed(self.thermal_rule, most("max_speed"), total("speed_square"),
+                             total("turn"), cycle)
+        return CycleMetrics(
+            duration=cycle, max_speed=most("max_speed"), peak_torque=most("peak_torque"),
+            peak_ratio=most("peak_ratio"), rms_torque=np.sqrt(total("square") / cycle),
+            thermal_speed=thermal, load_speed=most("load_speed"),
+            load_acceleration=most("load_acceleration"), load_jerk=most("load_jerk"),
+            load_torque=most("load_torque"),
+            stage_peak=[np.max([p["stage_peak"][k] for p in parts], axis=0)
+                        for k in range(stages)],
+            stage_rms=[np.sqrt(sum(p["stage_square"][k] for p in parts) / cycle)
+                       for k in range(stages)],
+            stage_speed=[np.max([np.broadcast_to(p["stage_speed"][k], cycle.shape)
+                                 for p in parts], axis=0) for k in range(stages)])
+
+
+def linkage_figures(calculator: LinkageCalculator | LinkageCycle, s: np.ndarray
+                    ) -> list[dict[str, Any]]:
+    """Per part of the cycle and candidate: duration, peak torque, peak ratio, the
+    integral of tau^2 and of omega^2, peak speed, the crank's turn, the work at the motor
+    shaft, the load's peaks, the stages' figures and the load's acceleration at both ends."""
+    out = []
+    n = len(calculator.motors)
+    drive = calculator.drive
+    N, eta = drive.ratio, drive.efficiency
+    for part, T, calc in linkage_parts(calculator, np.asarray(s, dtype=float)):
+        if isinstance(part, HeldDwell):
+            hold = np.broadcast_to(abs(part.hold) / (N * eta), (n,))
+            zeros = np.zeros(n)
+            ratio = peak_ratio(calculator.motors, hold[:, None], zeros[:, None])
+            stages = len(drive.stages)
+            out.append({"duration": T, "peak_torque": hold, "peak_ratio": ratio,
+                        "square": T * hold**2, "speed_square": zeros, "max_speed": zeros,
+                        "turn": zeros, "energy": zeros, "load_speed": zeros,
+                        "load_acceleration": zeros, "load_jerk": zeros,
+                        "load_torque": np.full(n, part.force),
+                        "stage_peak": [zeros] * stages, "stage_square": [zeros] * stages,
+                        "stage_speed": [zeros] * stages, "start_acceleration": zeros,
+                        "end_acceleration": zeros})
+            continue
+        assert calc is not None
+        metrics = calc.evaluate(T)
+        speed, torque, _ = calc.motor_samples(T)
+        weights = part.weights
+        out.append({
+            "duration": T, "peak_torque": metrics.peak_torque,
+            "peak_ratio": metrics.peak_ratio, "square": T * (torque**2 @ weights),
+            "speed_square": T * (speed**2 @ weights), "max_speed": metrics.max_speed,
+            "turn": np.broadcast_to(N * abs(part.turn), (n,)),
+            "energy": T * ((torque * speed) @ weights),
+            "load_speed": metrics.load_speed,
+            "load_acceleration": metrics.load_acceleration,
+            "load_jerk": metrics.load_jerk, "load_torque": metrics.load_torque,
+            "stage_peak": metrics.stage_peak,
+            "stage_square": [T * r**2 for r in metrics.stage_rms],
+            "stage_speed": metrics.stage_speed,
+            "start_acceleration": np.full(n, part.s2[0]) / T**2,
+            "end_acceleration": np.full(n, part.s2[-1]) / T**2})
+    return out
+
+
+def move_calculator(calculator: LinkageCalculator | LinkageCycle,
+                    profile: LinkageProfile) -> LinkageCalculator:
+    """The calculator of one move of the cycle (no dwell): ``profile`` at its durations."""
+    return LinkageCalculator(profile, Task(0.0, None), calculator.drive, calculator.motors,
+                             calculator.thermal_rule, calculator.law)
+
+
+def linkage_parts(calculator: LinkageCalculator | LinkageCycle, s: np.ndarray
+                  ) -> list[tuple[LinkageProfile | HeldDwell, np.ndarray,
+                                  LinkageCalculator | None]]:
+    """Each part of the machine cycle at durations (one move) or scales s: (the move's
+    profile or the dwell, its durations, the move's calculator or None)."""
+    if isinstance(calculator, LinkageCycle):
+        return [(part, T, move_calculator(calculator, part)
+                 if isinstance(part, LinkageProfile) else None)
+                for part, T in zip(calculator.parts, calculator.durations(s), strict=True)]
+    profile = calculator.profile
+    parts: list[tuple[LinkageProfile | HeldDwell, np.ndarray, LinkageCalculator | None]] = [
+        (profile, s, move_calculator(calculator, profile))]
+    if calculator.task.dwell > 0.0:
+        parts.append((HeldDwell(profile.hold, abs(profile.load.torque)),
+                      np.full_like(s, calculator.task.dwell), None))
+    return parts
+
+
+def _shape(segment: Move | Run, law: MotionLaw | None,
+           duration: float | None) -> MotionLaw | FixedShape:
+    """The shape of a move or run over u = t/T: the law itself for a move from rest to
+    rest; for a run or a move with boundary speeds, at its fixed duration T."""
+    if isinstance(segment, Run):
+        return FixedShape()
+    assert law is not None
+    if segment.rest_to_rest:
+        return law
+    assert duration is not None  # sizer.io.linkage asks for it
+    h, T = segment.displacement, duration
+    return FixedShape(law.spec, segment.start_speed * T / h, segment.end_speed * T / h,
+                      segment.start_acceleration * T * T / h,
+                      segment.end_acceleration * T * T / h)
+
+
+def scale_of_durations(calculator: LinkageCalculator | LinkageCycle,
+                       duration: np.ndarray) -> np.ndarray:
+    """The calculator's scale at the engine's reported durations: T itself for one move;
+    for a cycle s = (cycle time - fixed time) / sum of the free weights (1 with none)."""
+    if isinstance(calculator, LinkageCalculator):
+        return np.asarray(duration, dtype=float)
+    fixed = float(np.nansum(calculator.fixed))
+    weights = math.fsum(w for w, f in zip(calculator.weights, calculator.fixed, strict=True)
+                        if not np.isfinite(f))
+    if weights == 0.0:
+        return np.ones_like(np.asarray(duration, dtype=float))
+    return (np.asarray(duration, dtype=float) - fixed) / weights
+
+
+def linkage_cycle_time(calculator: LinkageCalculator | LinkageCycle, scale: np.ndarray
+                       ) -> np.ndarray:
+    """The machine cycle's time at durations (one move: T + dwell) or scales s."""
+    s = np.asarray(scale, dtype=float)
+    if isinstance(calculator, LinkageCalculator):
+        return s + calculator.task.dwell
+    return sum(calculator.durations(s), np.zeros_like(s))
+
+

@@ -1,0 +1,1116 @@
+"""Which ratio and which shape each candidate takes: the choices of a design's axes.
+
+Which ratio of the free transmission stage suits each motor and law best
+(:func:`choose_ratio`)? The options are a list of ratios, catalog gearboxes (each ratio with
+its own efficiency, inertia and limits), or a continuous range searched on a logarithmic
+lattice refined around each motor's best point down to 0.25 % steps. All options of a round
+are one flat candidate axis (motors x options, sizer.sizing.candidates) evaluated together.
+Per motor the best option is the feasible one with the shortest T_min (minimize mode) or the
+smallest RMS torque (duration given); when none is feasible, the one closest to feasible
+(the largest worst slack). Ties keep the first option (gearboxes, then the listed ratios,
+then the lattice).
+
+In minimize mode the listed options (gearboxes and ratios) are evaluated in rounds, each
+motor's options in the order of their duration floors
+(sizer.sizing.shortest_duration.duration_floor): an option whose floor lies above the
+motor's best feasible T_min so far cannot beat it and is not evaluated; after the first
+round, an option whose RMS check fails at every duration up to that T_min
+(sizer.sizing.engine.rms_fails_up_to: one evaluation at it) neither. The choice is the one
+of evaluating every option.
+
+Shape parameters written ``auto`` are chosen per motor by the solver (:func:`choose_shape`).
+In minimize mode the parameters minimize T_min; with a given duration they maximize the
+smallest margin (ties broken by the next smallest). The trapezoid and the double S in the
+book's case (rectangular regions, purely inertial load, ideal transmission) have their time-
+optimal shape computed exactly (below, sec. 3.2-3.4 and 6.2); every other case is searched
+to tolerance (below). The chosen parameters are kept at full precision: the duration and
+margins reported are those of the law with exactly these parameters.
+
+A parameter is searched over its admissible range. The exact optimum approaches an open
+end to within OPEN_INSET of the range (the infimum is not attained there: T_min at the
+inset point is within about 1e-10 of it, e.g. beta -> 0 of a double S without a jerk
+limit); the search keeps SEARCH_INSET away. A parameter without a finite range cannot
+be searched.
+
+Searched to tolerance, for the cases without a closed form (:func:`search_shape`): Friction,
+damping, efficiency, curved envelopes, stage limits, a given duration (the largest smallest
+margin) or other families: the score of a shape (-T_min in minimize mode, else the slacks of
+all checks smallest first, compared lexicographically) is computed by the engine's own
+checks for each motor. One parameter: a coarse grid brackets each motor's best point, then
+golden section narrows the bracket to TOLERANCE[1] (T_min and the margins are max/min of
+quasi-convex/quasi-concave bounds, unimodal on the bracket), or until the scores across the
+bracket agree to FLAT. Two parameters: the same, nested (the inner search for each outer
+point), to TOLERANCE[2] per parameter (coarser: the cost is the product of the two
+searches). Integer parameters are enumerated. Motors at equal points are evaluated together
+(vectorized). In minimize mode each T_min starts from the motor's previous one
+(warm_duration), falling back to the full search of sizer.sizing.shortest_duration.
+
+Time-optimal trapezoid and double S in the book's case, exactly (sec. 3.2-3.4, 5.2, 6.2).
+With rectangular regions, a purely inertial load and an ideal transmission, T_min of a shape
+is the largest of the bounds of eq. (6.2), each a closed form in one coefficient:
+
+    speed   T_V = C_v S_V            S_V = max(K h / v_lim, h / v_load)
+    torque  T_A = sqrt(C_a S_A)      S_A = max(K h J_t / tau_p, h / a_max)
+    RMS     T_R: T^3 (T + dwell) = (C_a_rms S_R)^2,  S_R = K h J_t / tau_c
+    jerk    T_J = cbrt(C_j S_J)      S_J = h / j_max
+
+(margins applied to the limits as in sizer.sizing.shortest_duration). The trapezoid's
+coefficients are C_v = 1/(1-a), C_a = 1/(a(1-a)), C_a_rms = sqrt(2/a)/(1-a) (a = alpha,
+sec. 6.2.1); each bound is monotone or unimodal in a (T_V increasing, T_A decreasing, T_R
+smallest at a = 1/3) and the sign of every difference of two bounds changes at most once
+on (0, 1/2]. The optimum is therefore among: the ends, a = 1/3, and the crossings of two
+bounds, each found to machine precision by a bracketed root; all candidates are
+evaluated and the best kept, for all motors at once.
+
+The double S (a = alpha, b = beta) has C_a = 1/(a(1-a)(1-b)), C_j = 1/(a^2 b (1-a)(1-b)),
+C_a_rms = sqrt((6-8b)/(3a))/((1-a)(1-b)): in b, T_A and T_R increase and T_J decreases,
+so for a given a the best b is where max(T_A, T_R) meets T_J (a 1-D root), or an end of
+the range. What remains is a function of a alone, the largest of smooth pieces; its
+minimum (a minimum of one piece or a crossing of two) is bracketed on a dense sample
+that contains the special points and located by golden section to 1e-13 in a.
+
+A law shaped for the load's mode at each candidate's own duration (book sec. 7.4.2,
+:func:`evaluate_shaped`). ``{kind: shaped, law: L, shaper: zv}`` without ``f_T`` in a design
+with ``load.natural_frequency``: the shaper's impulses are set by the mode (their times are
+multiples of its damped period), so the normalized shaped law depends on the move's duration
+T through f_T = f_n T (sizer.vibration.shaped_law). The shaped move keeps the whole duration
+T, its base law taking T - t_n.
+
+- A given duration: one law, f_T = f_n T, sized like any other.
+- ``minimize``: the shortest T at which the law shaped for T is feasible, per candidate:
+  T = T_min(L(f_n T)), solved by a secant iteration from T_0 = T_min(base) + t_n (the
+  base move at its own T_min convolved with the shaper: its peaks are convex
+  combinations of the base's, sec. 7.4.2). Each step sizes every candidate with the law
+  shaped for its own T (one law per distinct T, as for ``auto`` shapes); the result is
+  the law shaped for the last T, sized in minimize mode, so its verdict and figures are
+  the engine's own.
+
+What the laws of one sizing share is built once, for every law (:class:`SharedByLaws`:
+sizer.sizing.engine, and each of its worker processes).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Callable
+from contextlib import nullcontext
+from dataclasses import dataclass, replace
+from fractions import Fraction
+from functools import cached_property
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from sizer.errors import UserError
+from sizer.laws import AUTO, MotionLaw, make_law
+from sizer.laws.base import Parameter
+from sizer.laws.data_spec import data_spec_text, read_data_spec
+from sizer.laws.piecewise_polynomial import DoubleS, Trapezoidal
+from sizer.model.domain import Design, Transmission
+from sizer.numerics.arrays import sorted_unique
+from sizer.numerics.golden import golden_step, interior_points
+from sizer.numerics.roots import illinois
+from sizer.sizing.candidates import Candidates, MotorArrays
+from sizer.sizing.checks import evaluate_checks, worst_slack
+from sizer.sizing.energy_check import has_braking_check, has_heat_check, without_power_figures
+from sizer.sizing.move import CycleCalculator
+from sizer.sizing.results import CandidateTable, Mode, concatenate, in_groups
+from sizer.sizing.shortest_duration import (
+    beyond_flat_part,
+    duration_bounds,
+    evaluate,
+    is_purely_inertial,
+    minimum_duration,
+)
+from sizer.vibration.elastic_load import ElasticLoad
+
+if TYPE_CHECKING:
+    from sizer.sizing.shortest_duration import PeakScales
+
+
+SAMPLES = 65
+GOLDEN_WIDTH = 1e-13
+HALF = 0.5
+
+
+@dataclass(frozen=True)
+class BoundScales:
+    """Per-motor scales of the bounds of eq. (6.2) (see the module docstring), SI.
+
+    A zero scale means no such limit; ``feasible`` is False where no shape can work
+    (e.g. a zero torque); checks that no shape changes (the inertia ratio) are left to
+    the verdict.
+    """
+
+    speed: np.ndarray
+    torque: np.ndarray
+    rms: np.ndarray
+    jerk: np.ndarray
+    dwell: float
+    feasible: np.ndarray
+
+
+@dataclass(frozen=True)
+class OptimalShape:
+    """The best parameters per motor and T_min there (inf where nothing is feasible)."""
+
+    params: dict[str, np.ndarray]
+    duration: np.ndarray
+
+
+# --------------------------------------------------------------------- coefficients
+def trapezoid_coefficients(a):
+    """C_v, C_a, C_a_rms of the trapezoid with alpha = a (sec. 3.2, 6.2.1), vectorized."""
+    return 1.0 / (1.0 - a), 1.0 / (a * (1.0 - a)), np.sqrt(2.0 / a) / (1.0 - a)
+
+
+def double_s_coefficients(a, b):
+    """C_v, C_a, C_a_rms, C_j of the double S (sec. 3.4, 6.2.1), vectorized."""
+    c_a = 1.0 / (a * (1.0 - a) * (1.0 - b))
+    c_a_rms = np.sqrt((6.0 - 8.0 * b) / (3.0 * a)) / ((1.0 - a) * (1.0 - b))
+    return 1.0 / (1.0 - a), c_a, c_a_rms, c_a / (a * b)
+
+
+# --------------------------------------------------------------------------- bounds
+def rms_time(x: np.ndarray, dwell: float) -> np.ndarray:
+    """The smallest T with T^3 (T + dwell) >= x^2 (x = C_a_rms S_R), vectorized.
+
+    Newton's method from an upper bound (the quartic is convex and increasing for T > 0,
+    so the iterates decrease monotonically to the root).
+    """
+    x = np.asarray(x, dtype=float)
+    target = x * x
+    if dwell == 0.0:
+        return np.sqrt(x)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        T = np.sqrt(x)
+        if dwell > 0.0:
+            T = np.minimum(T, np.cbrt(target / dwell))
+        for _ in range(60):
+            f = T**3 * (T + dwell) - target
+            step = f / (T * T * (4.0 * T + 3.0 * dwell))
+            step = np.where(np.isfinite(step) & (T > 0.0) & (step > 0.0), step, 0.0)
+            T = T - step
+            if not np.any(step > 1e-15 * T):  # quadratic convergence: one more is exact
+                f = T**3 * (T + dwell) - target
+                T = T - np.where(T > 0.0, f / (T * T * (4.0 * T + 3.0 * dwell)), 0.0)
+                break
+    return np.where(x > 0.0, T, np.where(np.isnan(x), np.nan, 0.0))
+
+
+def _scales_like(scales: BoundScales, shape: tuple[int, ...], rows=None):
+    """The four scales broadcast to ``shape`` (motor-major), or taken at flat ``rows``."""
+    out = []
+    for s in (scales.speed, scales.torque, scales.rms, scales.jerk):
+        full = np.broadcast_to(s.reshape((-1,) + (1,) * (len(shape) - 1)), shape)
+        out.append(full if rows is None else full.reshape(-1)[rows])
+    return out
+
+
+def _bounds(S, dwell: float, c_v, c_a, c_a_rms, c_j=None) -> list[np.ndarray]:
+    """T_V, T_A, T_R (and T_J) from coefficient arrays and scales S of the same shape."""
+    out = [c_v * S[0], np.sqrt(c_a * S[1]), rms_time(c_a_rms * S[2], dwell)]
+    if c_j is not None:
+        out.append(np.cbrt(c_j * S[3]))
+    return out
+
+
+def trapezoid_bounds(scales: BoundScales, a: np.ndarray) -> list[np.ndarray]:
+    """T_V, T_A, T_R of the trapezoid at alpha = a (array (motors, k))."""
+    return _bounds(_scales_like(scales, np.shape(a)), scales.dwell, *trapezoid_coefficients(a))
+
+
+def double_s_bounds(scales: BoundScales, a: np.ndarray, b: np.ndarray,
+                    rows=None) -> list[np.ndarray]:
+    """T_V, T_A, T_R, T_J of the double S at (a, b) (arrays (motors, k), or flat arrays
+    at the positions ``rows`` of such an array)."""
+    shape = np.shape(a) if rows is None else rows[1]
+    S = _scales_like(scales, shape, None if rows is None else rows[0])
+    return _bounds(S, scales.dwell, *double_s_coefficients(a, b))
+
+
+def trapezoid_duration(scales: BoundScales, a: np.ndarray) -> np.ndarray:
+    """T_min of the trapezoid at alpha = a (array (motors, k)): the largest bound."""
+    return np.max(np.stack(trapezoid_bounds(scales, a)), axis=0)
+
+
+def double_s_duration(scales: BoundScales, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """T_min of the double S at (a, b) (arrays (motors, k)): the largest bound."""
+    return np.max(np.stack(double_s_bounds(scales, a, b)), axis=0)
+
+
+# -------------------------------------------------------------------------- optima
+def optimal_trapezoid(scales: BoundScales, low: float, high: float = HALF) -> OptimalShape:
+    """alpha in [low, high] minimizing T_min, per motor: the candidates enumerated."""
+    n = len(scales.speed)
+    special = np.array([low, min(max(1.0 / 3.0, low), high), high])
+    candidates = [np.broadcast_to(special, (n, 3))]
+    for i, j in ((0, 1), (0, 2), (1, 2)):
+        def gap(a, i=i, j=j):
+            return _log_gap(trapezoid_bounds(scales, a), i, j)
+        candidates.append(_crossing(gap, n, low, high)[:, None])
+    a = np.concatenate(candidates, axis=1)
+    T = trapezoid_duration(scales, a)
+    best = np.argmin(np.where(np.isnan(T), np.inf, T), axis=1)
+    rows = np.arange(n)
+    return _finish(scales, {"alpha": a[rows, best]}, T[rows, best], {"alpha": 1.0 / 3.0})
+
+
+def optimal_double_s(scales: BoundScales, low_a: float, low_b: float,
+                     high_a: float = HALF, high_b: float = HALF) -> OptimalShape:
+    """(alpha, beta) minimizing T_min per motor: beta exact for each alpha, alpha by a
+    dense sample polished with golden section."""
+    n = len(scales.speed)
+
+    def reduced(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        b = best_beta(scales, a, low_b, high_b)
+        return double_s_duration(scales, a, b), b
+
+    grid = sorted_unique(np.concatenate((np.linspace(low_a, high_a, SAMPLES),
+                                     [min(max(1.0 / 3.0, low_a), high_a)])))
+    T_grid, _ = reduced(np.broadcast_to(grid, (n, len(grid))).copy())
+    best = np.argmin(np.where(np.isnan(T_grid), np.inf, T_grid), axis=1)
+    lo = grid[np.maximum(best - 1, 0)]
+    hi = grid[np.minimum(best + 1, len(grid) - 1)]
+    a = _golden(lambda x: reduced(x[:, None])[0][:, 0], lo, hi)
+    candidates = np.column_stack((a, grid[best]))
+    T, b = reduced(candidates)
+    pick = np.argmin(np.where(np.isnan(T), np.inf, T), axis=1)
+    rows = np.arange(n)
+    params = {"alpha": candidates[rows, pick], "beta": b[rows, pick]}
+    return _finish(scales, params, T[rows, pick], {"alpha": 1.0 / 3.0, "beta": 0.25})
+
+
+def best_beta(scales: BoundScales, a: np.ndarray, low: float, high: float = HALF) -> np.ndarray:
+    """For each alpha (array (motors, k)), the beta minimizing max(T_A, T_R, T_J).
+
+    T_A and T_R increase with beta, T_J decreases: the best beta is where the larger of
+    the first two meets T_J (the smaller of the two crossings), or an end of [low, high].
+    T_A = T_J is the quadratic b^2/(1-b) = S_J^2 P_j^2/(S_A^3 P^3) (P = 1/(a(1-a)),
+    P_j = P/a); T_R = T_J, i.e. T_J^3 (T_J + dwell) = (C_a_rms S_R)^2, is a 1-D root.
+    """
+    a = np.asarray(a, dtype=float)
+    _, S_A, S_R, S_J = _scales_like(scales, a.shape)
+    P = 1.0 / (a * (1.0 - a))
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        c = S_J**2 * (P / a) ** 2 / (S_A**3 * P**3)
+        b_aj = np.where(np.isinf(c), 1.0, 2.0 * c / (c + np.sqrt(c * c + 4.0 * c)))
+    beta = np.clip(b_aj, low, high)
+    if scales.rms.any():
+        def gap(b: np.ndarray, where: np.ndarray) -> np.ndarray:
+            aa, bb = a.reshape(-1)[where], b
+            _, _, c_a_rms, c_j = double_s_coefficients(aa, bb)
+            T_j = np.cbrt(c_j * S_J.reshape(-1)[where])
+            # T_R > T_J exactly where T_J^3 (T_J + dwell) < (C_a_rms S_R)^2
+            with np.errstate(divide="ignore"):
+                return (2.0 * np.log(c_a_rms * S_R.reshape(-1)[where])
+                        - np.log(T_j**3 * (T_j + scales.dwell)))
+
+        every = np.arange(a.size)
+        f_low = gap(np.full(a.size, low), every)
+        f_top = gap(beta.reshape(-1), every)
+        cross = (f_low < 0.0) & (f_top > 0.0)
+        flat = beta.reshape(-1).copy()
+        flat[f_low >= 0.0] = low
+        if cross.any():
+            where = np.flatnonzero(cross)
+            # in log(beta), where T_J ~ beta^(-1/3) makes the gap nearly linear
+            # in log(beta), where T_J ~ beta^(-1/3) makes the gap nearly linear
+            flat[where] = np.exp(log_gap_root(lambda u, i: gap(np.exp(u), where[i]),
+                                              np.full(len(where), math.log(low)),
+                                              np.log(flat[where]), f_low[where],
+                                              f_top[where]))
+        beta = flat.reshape(a.shape)
+    return np.where(S_J > 0.0, beta, low)
+
+
+# ------------------------------------------------------------------------- helpers
+def _log_gap(bounds: list[np.ndarray], i: int, j: int) -> np.ndarray:
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.log(bounds[i]) - np.log(bounds[j])
+
+
+def _crossing(gap, n: int, low: float, high: float) -> np.ndarray:
+    """Where gap(a) (arrays (n, 1) -> (n, 1)) changes sign in [low, high], else low."""
+    lo, hi = np.full(n, low), np.full(n, high)
+    f_lo, f_hi = gap(lo[:, None])[:, 0], gap(hi[:, None])[:, 0]
+    root = np.full(n, low)
+    sign_change = np.isfinite(f_lo) & np.isfinite(f_hi) & (np.sign(f_lo) * np.sign(f_hi) < 0)
+    if sign_change.any():
+        idx = np.nonzero(sign_change)[0]
+
+        def restricted(x: np.ndarray, i: np.ndarray) -> np.ndarray:
+            full = np.full(n, low)
+            full[idx[i]] = x
+            return gap(full[:, None])[idx[i], 0]
+
+        root[idx] = log_gap_root(restricted, lo[idx], hi[idx], f_lo[idx], f_hi[idx])
+    return root
+
+
+def log_gap_root(f, lo: np.ndarray, hi: np.ndarray, f_lo: np.ndarray, f_hi: np.ndarray,
+                 ftol: float = 1e-15) -> np.ndarray:
+    """Roots of a log-ratio of two bounds, f(x, i) for the elements i, bracketed by
+    [lo, hi] with f_lo, f_hi of opposite signs: Illinois steps on the unsettled elements
+    until |f| <= ftol (the bounds equal to 1e-15 relative) or the bracket is one ulp."""
+    lo, hi, f_lo, f_hi = (np.array(x, dtype=float) for x in (lo, hi, f_lo, f_hi))
+    root = 0.5 * (lo + hi)
+    side = np.zeros(lo.shape)
+    active = np.arange(len(lo))
+    for step in range(200):
+        if not len(active):
+            break
+        a, b, fa, fb = lo[active], hi[active], f_lo[active], f_hi[active]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            x = (a * fb - b * fa) / (fb - fa)
+        bad = ~np.isfinite(x) | (x <= a) | (x >= b) | (step % 8 == 7)
+        x = np.where(bad, 0.5 * (a + b), x)
+        fx = f(x, active)
+        done = (np.abs(fx) <= ftol) | (b - a <= 4e-16 * np.maximum(np.abs(a), np.abs(b)))
+        root[active] = x
+        same = np.sign(fx) == np.sign(fa)  # root in [x, b]: move lo
+        s = side[active]
+        fb = np.where(same & (s == -1), 0.5 * fb, fb)
+        fa = np.where(~same & (s == 1), 0.5 * fa, fa)
+        lo[active], f_lo[active] = np.where(same, x, a), np.where(same, fx, fa)
+        hi[active], f_hi[active] = np.where(same, b, x), np.where(same, fb, fx)
+        side[active] = np.where(same, -1, 1)
+        active = active[~done]
+    return root
+
+
+def _golden(f, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """Per-element golden-section minimum of f on [lo, hi] to a width of GOLDEN_WIDTH."""
+    lo, hi = lo.astype(float).copy(), hi.astype(float).copy()
+    x1, x2 = interior_points(lo, hi)
+    bracket = (lo, hi, x1, x2, f(x1), f(x2))
+    while np.any(bracket[1] - bracket[0] > GOLDEN_WIDTH):
+        bracket = golden_step(f, bracket, bracket[4] <= bracket[5])  # min in [lo, x2]
+    _, _, x1, x2, f1, f2 = bracket
+    return np.where(f1 <= f2, x1, x2)
+
+
+def _finish(scales: BoundScales, params: dict[str, np.ndarray], duration: np.ndarray,
+            default: dict[str, float]) -> OptimalShape:
+    """Infeasible motors keep the default shape (for reporting) and T = inf."""
+    ok = scales.feasible & np.isfinite(duration)
+    params = {k: np.where(ok, v, default[k]) for k, v in params.items()}
+    return OptimalShape(params, np.where(ok, duration, np.inf))
+
+
+# --------------------------------------------------------------------------- entry
+def bound_scales(calculator, limits) -> BoundScales:
+    """The scales of the bounds for the candidates of a CycleCalculator (law unused):
+    those of eq. (6.2) in sizer.sizing.shortest_duration, zeroed where one is infinite (no shape
+    can meet it: ``feasible`` False)."""
+    raw = duration_bounds(calculator, limits)
+    scales = (raw.speed, raw.torque, raw.rms, raw.jerk)
+    feasible = np.all(np.isfinite(np.stack(scales)), axis=0)
+    speed, torque, rms, jerk = (np.where(feasible, s, 0.0) for s in scales)
+    return BoundScales(speed, torque, rms, jerk, dwell=raw.dwell, feasible=feasible)
+
+
+GRID = {1: 13, 2: 7}
+TOLERANCE = {1: 1e-12, 2: 1e-4}
+"""Bracket width at which the golden section stops, per parameter. Two parameters cost
+the product of the two searches, each point a full T_min search in minimize mode (about
+0.1 s per motor with friction), so 1e-12 there would take hours; 1e-4 takes minutes."""
+FLAT = 1e-13
+TIE = 1e-14
+WARM = 1e-2
+INV_PHI = (math.sqrt(5.0) - 1.0) / 2.0
+
+Scores = np.ndarray
+"""(motors, m) rows compared lexicographically, higher is better."""
+
+
+def search_shape(family: type[MotionLaw], fixed: dict[str, float],
+                 ranges: dict[str, tuple[float, float]], design: Design,
+                 motors: Candidates) -> dict[str, np.ndarray]:
+    """The best value of each auto parameter per motor (arrays over the motors)."""
+    names = list(ranges)
+    params = {p.name: p for p in family.parameters}
+    n = len(motors)
+    dims = len(names)
+
+    guess = np.full(n, np.nan)  # the last T_min of each motor, to start the next one
+
+    def score(points: list[np.ndarray]) -> Scores:
+        scores = evaluate_points(family, fixed, names, points, design, motors, guess)
+        if design.task.minimize:
+            found = np.isfinite(scores[:, 0])
+            guess[found] = -scores[found, 0]
+        return scores
+
+    if dims == 1:
+        best, _ = search_1d(lambda x: score([x]), params[names[0]], ranges[names[0]], n, dims)
+        return {names[0]: best}
+    outer, inner = names
+    # the inner optimum of every outer point tried, to return the best pair at the end
+    tried: list[tuple[np.ndarray, np.ndarray, Scores]] = []
+
+    def outer_score(x: np.ndarray) -> Scores:
+        y, scores = search_1d(lambda y: score([x, y]), params[inner], ranges[inner], n, dims)
+        tried.append((x.copy(), y, scores))
+        return scores
+
+    search_1d(outer_score, params[outer], ranges[outer], n, dims)
+    best_x, best_y, best_s = tried[0]
+    for x, y, s in tried[1:]:
+        take = beats(s, best_s)
+        best_x, best_y = np.where(take, x, best_x), np.where(take, y, best_y)
+        best_s = np.where(take[:, None], s, best_s)
+    return {outer: best_x, inner: best_y}
+
+
+def search_1d(score: Callable[[np.ndarray], Scores], parameter, bounds: tuple[float, float],
+              n: int, dims: int) -> tuple[np.ndarray, Scores]:
+    """Best point per motor of a 1-D score, and its score (grid, then golden section).
+
+    A motor is settled when its bracket is narrower than TOLERANCE[dims] or when the
+    scores at the bracket's ends and inner points agree to FLAT (the optimum's value is
+    then known to that precision); settled motors are not evaluated again (their point
+    is passed as nan).
+    """
+    lo, hi = bounds
+    if parameter.integer:
+        grid = np.arange(math.ceil(lo), math.floor(hi) + 1, dtype=float)
+        if parameter.odd:
+            grid = grid[grid % 2 == 1]
+        best, best_s, _, _ = _best_on_grid(score, grid, n)
+        return best, best_s
+    grid = np.linspace(lo, hi, GRID[dims])
+    best, best_s, index, on_grid = _best_on_grid(score, grid, n)
+    rows = np.arange(n)
+    left_i, right_i = np.maximum(index - 1, 0), np.minimum(index + 1, len(grid) - 1)
+    a, b = grid[left_i], grid[right_i]
+    fa, fb = on_grid[left_i, rows], on_grid[right_i, rows]
+    x1, x2 = b - INV_PHI * (b - a), a + INV_PHI * (b - a)
+    f1, f2 = score(x1), score(x2)
+    active = np.ones(n, dtype=bool)
+    while True:
+        active &= (b - a > TOLERANCE[dims]) & ~_flat(fa, f1, f2, fb)
+        if not active.any():
+            break
+        left = ~beats(f2, f1)  # the best lies in [a, x2]
+        move_b, move_a = active & left, active & ~left
+        fb = np.where(move_b[:, None], f2, fb)
+        fa = np.where(move_a[:, None], f1, fa)
+        b, a = np.where(move_b, x2, b), np.where(move_a, x1, a)
+        new1 = np.where(left, b - INV_PHI * (b - a), x2)
+        new2 = np.where(left, x1, a + INV_PHI * (b - a))
+        f_new = score(np.where(active, np.where(left, new1, new2), np.nan))
+        f1, f2 = (np.where(move_b[:, None], f_new, np.where(move_a[:, None], f2, f1)),
+                  np.where(move_b[:, None], f1, np.where(move_a[:, None], f_new, f2)))
+        x1, x2 = np.where(active, new1, x1), np.where(active, new2, x2)
+    for x, s in ((x1, f1), (x2, f2)):
+        take = beats(s, best_s)
+        best, best_s = np.where(take, x, best), np.where(take[:, None], s, best_s)
+    return best, best_s
+
+
+def _flat(*scores: Scores) -> np.ndarray:
+    """Per row: all the score rows agree to FLAT (relative, or absolute near zero)."""
+    first = scores[0]
+    with np.errstate(invalid="ignore"):
+        same = [np.isclose(s, first, rtol=FLAT, atol=FLAT) | (s == first) for s in scores[1:]]
+    return np.all(np.stack(same), axis=(0, 2))
+
+
+def _best_on_grid(score, grid: np.ndarray,
+                  n: int) -> tuple[np.ndarray, Scores, np.ndarray, np.ndarray]:
+    """Best grid point per motor (first of equals), its score, its index, all scores."""
+    every = np.stack([score(np.full(n, x)) for x in grid])
+    index = np.zeros(n, dtype=int)
+    best_s = every[0]
+    for i in range(1, len(grid)):
+        take = beats(every[i], best_s)
+        index, best_s = np.where(take, i, index), np.where(take[:, None], every[i], best_s)
+    return grid[index], best_s, index, every
+
+
+def beats(new: Scores, old: Scores) -> np.ndarray:
+    """Per row: new is better than old at the first entry where they differ beyond
+    rounding (TIE relative: a check that does not depend on the shape ties,
+    and the next one decides); nan counts as worst."""
+    new = np.where(np.isnan(new), -np.inf, new)
+    old = np.where(np.isnan(old), -np.inf, old)
+    with np.errstate(invalid="ignore"):
+        differs = ~np.isclose(new, old, rtol=TIE, atol=1e-300) & (new != old)
+    first = np.argmax(differs, axis=1)
+    rows = np.arange(len(new))
+    return differs.any(axis=1) & (new[rows, first] > old[rows, first])
+
+
+def evaluate_points(family: type[MotionLaw], fixed: dict[str, float], names: list[str],
+                    points: list[np.ndarray], design: Design,
+                    motors: Candidates, guess: np.ndarray | None = None) -> Scores:
+    """The score of each motor at its own point (motors at equal points evaluated together)."""
+    n = len(motors)
+    stacked = np.column_stack(points)
+    wanted = np.nonzero(~np.isnan(stacked).any(axis=1))[0]
+    if not len(wanted):
+        return np.full((n, 1), -np.inf)
+    keys, inverse = np.unique(stacked[wanted], axis=0, return_inverse=True)
+    inverse = inverse.reshape(-1)
+    out: Scores | None = None
+    for k, key in enumerate(keys):
+        members = wanted[np.nonzero(inverse == k)[0]]
+        law = family(**fixed, **{name: float(v) for name, v in zip(names, key, strict=True)})
+        subset = motors if len(members) == n else motors.take(members)
+        rows = score_law(law, design, subset,
+                         None if guess is None else guess[members])
+        if out is None:
+            out = np.full((n, rows.shape[1]), -np.inf)
+        out[members] = rows
+    assert out is not None
+    return out
+
+
+def score_law(law: MotionLaw, design: Design, candidates: Candidates,
+              guess: np.ndarray | None = None) -> Scores:
+    """(-T_min,) in minimize mode (-inf if infeasible), else the sorted slacks."""
+    motors, drive = candidates.motors, candidates.drive
+    if design.transmission.linkage is not None:  # through the linkage (issue 14)
+        from sizer.sizing.linkage_move import evaluate_linkage
+
+        duration, _, checks, feasible = evaluate_linkage(design, law, motors, drive)
+        if design.task.minimize:
+            return -np.where(feasible, duration, np.inf)[:, None]
+        return np.sort(np.stack([c.slack for c in checks], axis=1), axis=1)
+    calculator = CycleCalculator(None, design.task, drive, motors,
+                                 design.limits.thermal_speed, law=law)
+    if design.task.minimize:
+        T = warm_duration(calculator, design, guess) if guess is not None else None
+        if T is None:
+            solution = minimum_duration(calculator, design.limits)
+            T = np.where(solution.feasible, solution.duration, np.inf)
+        return -T[:, None]
+    metrics = calculator.evaluate(np.full(len(motors), design.task.duration))
+    checks = evaluate_checks(metrics, motors, drive, design.limits, design.task.linear)
+    return np.sort(np.stack([c.slack for c in checks], axis=1), axis=1)
+
+
+def warm_duration(calculator: CycleCalculator, design: Design,
+                  guess: np.ndarray) -> np.ndarray | None:
+    """T_min near a previous one (a neighbouring shape's): the worst slack bracketed in
+    [guess (1 - WARM), guess (1 + WARM)], then the Illinois method on log T to 1e-14
+    (the feasible end returned). None when a motor has no guess or no bracket there:
+    the caller then uses the full search of sizer.sizing.shortest_duration."""
+    if not np.all(np.isfinite(guess)):
+        return None
+
+    def slack(T: np.ndarray) -> np.ndarray:
+        return worst_slack(evaluate(calculator, design.limits, T)[1])
+
+    lo, hi = guess * (1.0 - WARM), guess * (1.0 + WARM)
+    f_lo, f_hi = slack(lo), slack(hi)
+    if not (np.all(f_lo < 0.0) and np.all(f_hi >= 0.0)):
+        return None
+    root = illinois(lambda x: slack(np.exp(x)), np.log(lo), np.log(hi), f_lo, f_hi,
+                    xtol=1e-14)
+    T = np.exp(root)
+    for _ in range(8):  # the feasible side, as minimum_duration reports it
+        short = slack(T) < 0.0
+        if not short.any():
+            return T
+        T = np.where(short, T * (1.0 + 1e-14), T)
+    return None
+
+
+OPEN_INSET = 1e-10
+SEARCH_INSET = 1e-3
+"""The searched laws are built and sampled at each point; next to an open end their
+shapes get steep (e.g. kappa -> -1 of the modified cycloidal) and their numerics are
+not reliable there, so the search keeps 1e-3 of the range away from open ends."""
+
+
+def choose_shape(family: type[MotionLaw], values: dict[str, Fraction | str], design: Design,
+                 candidates: Candidates) -> list[MotionLaw]:
+    """The best law of the family for each candidate, its auto parameters optimized."""
+    motors = candidates.motors
+    free = [p for p in family.parameters if values.get(p.name) == AUTO]
+    fixed = {k: float(v) for k, v in values.items() if v != AUTO}
+    ranges = {p.name: search_range(family.law_id, p, OPEN_INSET) for p in free}
+    exact = exact_time_optimal(family, fixed, ranges, design, candidates)
+    params, search = (None, np.ones(len(motors), dtype=bool)) if exact is None else exact
+    if search.any():
+        ranges = {p.name: search_range(family.law_id, p, SEARCH_INSET) for p in free}
+        index = np.flatnonzero(search)
+        found = search_shape(family, fixed, ranges, design, candidates.take(index))
+        if params is None:
+            params = found
+        else:
+            for name, chosen in found.items():
+                params[name] = params[name].astype(float).copy()
+                params[name][index] = chosen
+    if params is None:  # no candidates: neither the exact shapes nor a search
+        return []
+    return [family(**fixed, **{name: float(v[i]) for name, v in params.items()})
+            for i in range(len(motors))]
+
+
+def search_range(law_id: str, p: Parameter, inset: float) -> tuple[float, float]:
+    """The closed interval searched for an auto parameter: its ``auto_range`` (sizer.laws),
+    open ends inset by ``inset`` times the range."""
+    refusal = p.auto_refusal(law_id)
+    if refusal is not None:
+        raise UserError(refusal)
+    low, high = p.auto_range  # type: ignore[misc]
+    span = high - low
+    return (low + (inset * span if p.low_open and low == p.low else 0.0),
+            high - (inset * span if p.high_open and high == p.high else 0.0))
+
+
+def exact_time_optimal(family: type[MotionLaw], fixed: dict[str, float],
+                       ranges: dict[str, tuple[float, float]], design: Design,
+                       candidates: Candidates) -> tuple[dict[str, np.ndarray], np.ndarray] | None:
+    """The exact optimum where it is known (minimize mode, book's case), else None.
+
+    With it, the mask of the motors left to the search: those whose region goes on past
+    the flat part the exact optimum sees, where the optimum reaches the end of it
+    (sizer.sizing.shortest_duration.beyond_flat_part).
+    """
+    if not design.task.minimize or family not in (Trapezoidal, DoubleS) \
+            or design.transmission.linkage is not None:  # the book's case has no linkage
+        return None
+    if "alpha_d" in fixed or "beta_d" in fixed:  # the closed form is the symmetric law's
+        return None
+    motors = candidates.motors
+    calculator = CycleCalculator(None, design.task, candidates.drive, motors,
+                                 design.limits.thermal_speed)
+    if not is_purely_inertial(calculator):
+        return None
+    scales = bound_scales(calculator, design.limits)
+    if family is Trapezoidal:
+        if design.limits.max_jerk is not None:  # infinite jerk: no alpha is feasible
+            return {"alpha": np.full(len(motors), 1.0 / 3.0)}, np.zeros(len(motors), bool)
+        solution = optimal_trapezoid(scales, *ranges["alpha"])
+    else:
+        given = {p.name: float(p.default) for p in family.parameters
+                 if p.default is not None} | fixed
+        a = ranges.get("alpha", (given["alpha"],) * 2)
+        b = ranges.get("beta", (given["beta"],) * 2)
+        solution = optimal_double_s(scales, a[0], b[0], a[1], b[1])
+    alpha = solution.params.get("alpha", np.full(len(motors), fixed.get("alpha", 0.0)))
+    # C_v = 1/(1 - alpha) for both families (sec. 3.2, 3.4)
+    beyond = beyond_flat_part(calculator, design.limits, solution.duration, 1.0 / (1.0 - alpha))
+    return {name: solution.params[name] for name in ranges}, beyond
+
+
+FixedLawSizing = Callable[[Design, MotionLaw, Candidates], CandidateTable]
+"""Sizes one fixed law for every candidate (sizer.sizing.engine.evaluate_fixed_law)."""
+
+ROUNDS = 12
+"""Most secant steps of the minimize iteration."""
+
+RTOL = 1e-9
+"""Relative change of T at which the iteration stops."""
+
+
+def _mode(design: Design, fields: dict[str, Any]) -> ElasticLoad:
+    elastic = design.load.elastic
+    if elastic is None:
+        raise UserError("a shaped law without f_T is shaped for the load's mode: give "
+                        "load.natural_frequency (or f_T)", field="laws")
+    return ElasticLoad(elastic.natural_frequency,
+                       float(fields.get("damping_ratio", elastic.damping_ratio)))
+
+
+def _shaped(fields: dict[str, Any], mode: ElasticLoad, T: float) -> MotionLaw:
+    return make_law(data_spec_text({**fields, "f_T": mode.natural_frequency * T,
+                                    "damping_ratio": mode.damping_ratio}))
+
+
+def evaluate_shaped(design: Design, spec: str, candidates: Candidates,
+                    evaluate_fixed_law: FixedLawSizing) -> CandidateTable:
+    """The open shaped law ``spec`` for every candidate, in their order, each law shaped
+    for it sized by ``evaluate_fixed_law`` (sizer.sizing.engine's)."""
+    from sizer.vibration.shapers import shaper_length
+
+    fields = dict(read_data_spec(spec))
+    mode = _mode(design, fields)
+    if design.cycle is not None:
+        raise UserError(f"{spec}: a shaped law without f_T is shaped for one duration, "
+                        "and the moves of a cycle have their own: give f_T",
+                        field="laws")
+    if not design.task.minimize:
+        assert design.task.duration is not None
+        return evaluate_fixed_law(design, _shaped(fields, mode, design.task.duration),
+                                  candidates)
+    # the rounds size the torques alone: the law shaped for T leaves no residual at T, a
+    # residual limit is checked once T is found (moving T inside the rounds would break the
+    # shaping's timing)
+    limit = design.limits.residual_vibration
+    plain = replace(design, limits=replace(design.limits, residual_vibration=None))
+    base = fields["law"] if isinstance(fields["law"], str) else data_spec_text(fields["law"])
+    start = evaluate_fixed_law(plain, make_law(base), candidates).figures["duration"]
+    t_n = shaper_length(fields["shaper"], mode, fields.get("vibration_limit"))
+    known = np.isfinite(start)
+    fallback = float(np.nanmax(start)) if known.any() else 4.0 * t_n
+    T = np.where(known, start, fallback) + t_n
+    table, h = _round(plain, fields, mode, T, candidates, evaluate_fixed_law)
+    previous_T, previous_h = T, h
+    for _ in range(ROUNDS):
+        moving = np.isfinite(h) & (np.abs(h) > RTOL * T)
+        if not moving.any():
+            break
+        slope = np.where(np.isfinite(previous_h) & (previous_T != T),
+                         (h - previous_h) / np.where(previous_T != T, T - previous_T, 1.0),
+                         0.0)
+        # the secant of h(T) = T_min(L(f_n T)) - T, whose slope is about -1 (a plain
+        # fixed-point step T + h where there is no slope yet or it is unusable)
+        usable = (slope < -0.05) & (slope > -20.0)
+        step = np.where(usable, -h / np.where(usable, slope, -1.0), h)
+        nxt = np.where(moving, np.maximum(T + step, t_n * (1.0 + 1e-6)), T)
+        previous_T, previous_h = T, h
+        T = nxt
+        table, h = _round(plain, fields, mode, T, candidates, evaluate_fixed_law)
+    if limit is None:
+        return table
+    return _round(design, fields, mode, T, candidates, evaluate_fixed_law)[0]
+
+
+def _round(design: Design, fields: dict[str, Any], mode: ElasticLoad, T: np.ndarray,
+           candidates: Candidates,
+           evaluate_fixed_law: FixedLawSizing) -> tuple[CandidateTable, np.ndarray]:
+    """Every candidate sized (minimize) with the law shaped for its own T; the table in
+    the candidates' order and h = T_min - T (nan where infeasible)."""
+    distinct, group = np.unique(np.round(T, 15), return_inverse=True)
+    table = in_groups(group, lambda k, index: evaluate_fixed_law(
+        design, _shaped(fields, mode, float(T[index[0]])), candidates.take(index)),
+        len(distinct))
+    return table, table.figures["duration"] - T
+
+
+COARSE = 9
+LOG_STEP = 2.5e-3
+"""Final spacing of the search in log(ratio): the chosen ratio is within ~0.25 %."""
+
+Evaluate = Callable[[Candidates], CandidateTable]
+"""Evaluates one law (spec) for candidates; the table has one row per candidate."""
+Floor = Callable[[Candidates], "np.ndarray | None"]
+"""Per candidate a duration below which it is infeasible, or None (no floor known)."""
+FailsUpTo = Callable[[Candidates, np.ndarray, np.ndarray], np.ndarray]
+"""``fails_up_to(candidates, T, group)``: per candidate, is it infeasible at every duration
+up to its T? (``group``: the candidates sharing a T, each motor's options.)"""
+
+
+def _score(table: CandidateTable) -> tuple[np.ndarray, np.ndarray]:
+    """(infeasible, value) per candidate, both smaller better."""
+    infeasible = ~table.feasible
+    name = "duration" if table.mode is Mode.MINIMIZE else "rms_torque"
+    value = table.figures[name]
+    worst = np.min(table.slacks, axis=1)
+    key = np.where(infeasible, -worst, value)
+    return infeasible, np.where(np.isnan(key), np.inf, key)
+
+
+class _Best:
+    """The best candidate so far per motor, over the tables of the rounds."""
+
+    def __init__(self, motors: int) -> None:
+        self.tables: list[CandidateTable] = []
+        self.where = np.full((motors, 2), -1, dtype=np.intp)  # (table, row)
+        self.infeasible = np.ones(motors, dtype=bool)
+        self.value = np.full(motors, np.inf)
+        self.found = np.zeros(motors, dtype=bool)
+        self.stage_ratio = np.full(motors, np.nan)
+        self.rank = np.zeros(motors, dtype=np.intp)
+        self.seen = 0  # ranks given so far
+
+    def update(self, table: CandidateTable, motor: np.ndarray, stage_ratio: np.ndarray,
+               rank: np.ndarray | None = None) -> None:
+        """Keep, per motor, the best candidate of ``table`` (rows for motors ``motor``) if
+        it beats the one kept: smaller (infeasible, value), then smaller ``rank`` (the
+        option's place in the order options are listed; default: after every option
+        seen so far, in the table's order)."""
+        if rank is None:
+            rank = self.seen + np.arange(len(table))
+        self.seen = max(self.seen, int(np.max(rank, initial=-1)) + 1)
+        infeasible, value = _score(table)
+        order = np.lexsort((rank, value, infeasible, motor))
+        first = np.ones(len(order), dtype=bool)
+        first[1:] = motor[order][1:] != motor[order][:-1]
+        rows = order[first]
+        m = motor[rows]
+        same = (infeasible[rows] == self.infeasible[m]) & (value[rows] == self.value[m])
+        better = ~self.found[m] | (infeasible[rows] < self.infeasible[m]) | \
+            ((infeasible[rows] == self.infeasible[m]) & (value[rows] < self.value[m])) | \
+            (same & (rank[rows] < self.rank[m]))
+        rows, m = rows[better], m[better]
+        self.tables.append(table)
+        self.where[m] = np.column_stack((np.full(len(m), len(self.tables) - 1), rows))
+        self.infeasible[m], self.value[m] = infeasible[rows], value[rows]
+        self.rank[m] = rank[rows]
+        self.found[m] = True
+        self.stage_ratio[m] = stage_ratio[rows]
+
+    def table(self) -> CandidateTable:
+        joined = concatenate(self.tables)
+        offsets = np.cumsum([0] + [len(t) for t in self.tables])
+        chosen = offsets[self.where[:, 0]] + self.where[:, 1]
+        best = joined.take(chosen)
+        return dataclasses.replace(best, stage_ratio=self.stage_ratio.copy())
+
+
+@dataclass(frozen=True)
+class ListedPairs:
+    """Every motor with every listed option of the free stage (gearboxes, then ratios),
+    motor-major: the same for every law, so built once per sizing (:func:`listed_pairs`);
+    ``candidates`` None where nothing is listed (a continuous range only)."""
+
+    transmissions: list[Transmission]
+    names: list[str | None]
+    motor: np.ndarray
+    option: np.ndarray
+    candidates: Candidates | None
+
+
+def with_ratio(design: Design, ratio: float) -> Transmission:
+    """The design's transmission with its free stage at ``ratio``."""
+    choice = design.ratio_choice
+    assert choice is not None
+    base = design.transmission.stages[choice.stage]
+    return design.transmission.with_stage(choice.stage, dataclasses.replace(base, ratio=ratio))
+
+
+def listed_pairs(design: Design, motors: MotorArrays) -> ListedPairs:
+    """The :class:`ListedPairs` of a design with a free stage, for these motors."""
+    choice = design.ratio_choice
+    assert choice is not None
+    listed = [design.transmission.with_stage(choice.stage, g.stage) for g in choice.gearboxes]
+    names: list[str | None] = [g.gearbox for g in choice.gearboxes]
+    listed += [with_ratio(design, r) for r in choice.ratios]
+    names += [None] * len(choice.ratios)
+    n, m = len(motors), len(listed)
+    motor, option = np.repeat(np.arange(n), m), np.tile(np.arange(m), n)
+    every = Candidates.pairs(motors, design.load, listed, motor, option,
+                             gearboxes=tuple(names)) if listed else None
+    return ListedPairs(listed, names, motor, option, every)
+
+
+def choose_ratio(design: Design, motors: MotorArrays, evaluate: Evaluate,
+                 floor: Floor | None = None,
+                 fails_up_to: FailsUpTo | None = None,
+                 without_peaks: Evaluate | None = None,
+                 first: np.ndarray | None = None,
+                 pairs: ListedPairs | None = None) -> CandidateTable:
+    """The best option for each motor (one row per motor, carrying ratio and gearbox).
+    In minimize mode ``floor`` bounds the options' T_min from below and ``fails_up_to``
+    tells the candidates infeasible at every duration up to a given one, and ``first``
+    (per motor a listed option, or -1) is the option to try first (the choice of another
+    law: :func:`listed_choice`); with a given duration ``without_peaks`` evaluates all
+    but the peaks (module docs). None of these changes the choice, only its cost.
+    ``pairs``: the design's :func:`listed_pairs` for these motors, where built already."""
+    choice = design.ratio_choice
+    assert choice is not None
+    best = _Best(len(motors))
+    energy = has_heat_check(motors.catalog) or has_braking_check(design, motors.drives)
+    lazy = without_peaks if not energy else None
+
+    def consider(transmissions: list[Transmission], gearboxes: list[str | None],
+                 motor: np.ndarray, option: np.ndarray, rank: np.ndarray | None = None,
+                 candidates: Candidates | None = None) -> None:
+        """Evaluate the pairs (motor, option) and keep the best (``candidates``: those
+        pairs, when built already)."""
+        if candidates is None:
+            candidates = Candidates.pairs(motors, design.load, transmissions, motor, option,
+                                          gearboxes=tuple(gearboxes))
+        ratios = np.array([t.stages[choice.stage].ratio for t in transmissions])[option]
+        if rank is None:
+            rank = best.seen + np.arange(len(candidates))
+        if lazy is None:
+            best.update(evaluate(candidates), motor, ratios, rank)
+            return
+        rows, table = _peaks_in_order(candidates, motor, rank, evaluate, lazy)
+        best.update(table, motor[rows], ratios[rows], rank[rows])
+
+    if pairs is None:
+        pairs = listed_pairs(design, motors)
+    listed, names = pairs.transmissions, pairs.names
+    with without_power_figures() if energy else nullcontext():
+        if listed:
+            n, m = len(motors), len(listed)
+            motor, option, every = pairs.motor, pairs.option, pairs.candidates
+            assert every is not None
+            bounds = floor(every) if floor is not None and m > 1 else None
+            if bounds is None:
+                consider(listed, names, motor, option, option, every)
+            else:
+                def rule_out(mo: np.ndarray, op: np.ndarray, T: np.ndarray) -> np.ndarray:
+                    assert fails_up_to is not None
+                    return fails_up_to(every.take(mo * m + op), T, mo)
+
+                def round_of(mo: np.ndarray, op: np.ndarray) -> None:
+                    consider(listed, names, mo, op, op, every.take(mo * m + op))
+
+                _by_floor(bounds.reshape(n, m), round_of, best,
+                          None if fails_up_to is None else rule_out, first)
+        if choice.bounds is not None:
+            _continuous(choice.bounds, lambda ratio: with_ratio(design, ratio), consider, best,
+                        len(motors))
+    chosen = best.table()
+    if not energy:
+        return chosen
+    # the chosen candidates once more, with the power figures the search left out
+    again = evaluate(Candidates.pairs(motors, design.load, list(chosen.transmissions),
+                                      np.arange(len(motors)), chosen.option,
+                                      gearboxes=chosen.gearboxes))
+    return dataclasses.replace(again, stage_ratio=chosen.stage_ratio)
+
+
+def listed_choice(design: Design, table: CandidateTable) -> np.ndarray | None:
+    """Per motor (row of a :func:`choose_ratio` table) the listed option it holds
+    (gearboxes, then ratios: the order of the search), by gearbox name and ratio; -1 for
+    another ratio (a lattice point); None without listed options."""
+    choice = design.ratio_choice
+    if choice is None or not (choice.gearboxes or choice.ratios):
+        return None
+    keys: list[tuple[str | None, float]] = [(g.gearbox, g.stage.ratio)
+                                            for g in choice.gearboxes]
+    keys += [(None, r) for r in choice.ratios]
+    assert table.stage_ratio is not None  # a table of the ratio search
+    place: dict[tuple[str | None, float], int] = {}
+    for k, key in enumerate(keys):
+        place.setdefault(key, k)
+    names = np.array(table.gearboxes, dtype=object)[table.option]
+    return np.array([place.get((name, float(ratio)), -1) for name, ratio in
+                     zip(names, table.stage_ratio, strict=True)], dtype=np.intp)
+
+
+def _peaks_in_order(candidates: Candidates, motor: np.ndarray, rank: np.ndarray,
+                    evaluate: Evaluate, without_peaks: Evaluate
+                    ) -> tuple[np.ndarray, CandidateTable]:
+    """A given duration: the candidates whose peaks can decide the choice, evaluated in
+    full (rows of ``candidates`` and their table). All are evaluated without the peaks
+    first (the RMS torque and every other check; left out, the peak checks pass, so a
+    candidate infeasible there is infeasible); then, per motor, in rounds, its candidate
+    with the next smallest (RMS torque, rank) among those feasible so far, until one is
+    feasible with its peaks: no candidate after it can beat it. Where none is, every
+    candidate of the motor is evaluated (the closest to feasible is chosen)."""
+    rough = without_peaks(candidates)
+    infeasible, value = _score(rough)
+    order = np.lexsort((rank, value, infeasible, motor))
+    by_motor = motor[order]
+    start = np.flatnonzero(np.r_[True, by_motor[1:] != by_motor[:-1]])
+    place = np.arange(len(order)) - np.repeat(start, np.diff(np.r_[start, len(order)]))
+    motors = int(motor.max(initial=-1)) + 1
+    found = np.zeros(motors, dtype=bool)
+    evaluated = np.zeros(len(order), dtype=bool)
+    picked: list[np.ndarray] = []
+    tables: list[CandidateTable] = []
+
+    def full(rows: np.ndarray) -> None:
+        table = evaluate(candidates.take(rows))
+        found[motor[rows][table.feasible]] = True
+        evaluated[rows] = True
+        picked.append(rows)
+        tables.append(table)
+
+    for k in range(int(place.max(initial=-1)) + 1):
+        rows = order[(place == k) & ~infeasible[order] & ~found[by_motor]]
+        if len(rows) == 0:
+            break
+        full(rows)
+    rest = np.flatnonzero(~found[motor] & ~evaluated)
+    if len(rest):
+        full(rest)
+    return np.concatenate(picked), concatenate(tables)
+
+
+FLOOR_MARGIN = 1e-12
+"""Relative gap by which an option's floor must exceed the best T_min to be left out
+(the floor and T_min are each exact to a few ulps)."""
+
+
+RuleOut = Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray]
+"""``rule_out(motor, option, T)``: per pair, is it infeasible at every duration up to T?"""
+
+
+def _by_floor(floors: np.ndarray, consider: Callable[[np.ndarray, np.ndarray], None],
+              best: _Best, rule_out: RuleOut | None = None,
+              first: np.ndarray | None = None) -> None:
+    """The listed options in rounds (minimize mode): per motor, its options in the order
+    of their floors (motors x options), one per round while the motor has a feasible
+    option, whose T_min the options with a higher floor cannot beat; every option left at
+    once where the motor has none yet after its first (the closest to feasible is chosen
+    from all of them). After the first round, ``rule_out`` rules out the options that
+    cannot beat the T_min found (a cheap test at that duration). ``first``: per motor the
+    option of the first round instead of the one with the lowest floor (-1: that one)."""
+    n, m = floors.shape
+    key = floors
+    if first is not None:
+        key = np.where(np.arange(m)[None, :] == np.asarray(first)[:, None], -np.inf, floors)
+    order = np.argsort(key, axis=1, kind="stable")
+    done = np.zeros((n, m), dtype=bool)
+    rows = np.arange(n)
+    for number in range(m + 1):
+        feasible = best.found & ~best.infeasible
+        with np.errstate(invalid="ignore"):
+            beaten = feasible[:, None] & (floors > best.value[:, None] * (1.0 + FLOOR_MARGIN))
+        if number == 1 and rule_out is not None:  # ``done``: evaluated or ruled out
+            motor, option = np.nonzero(feasible[:, None] & ~done & ~beaten)
+            if len(motor):
+                done[motor, option] |= rule_out(motor, option, best.value[motor])
+        open_ = ~done & ~beaten
+        # the next option per motor in floor order, or all those left (no feasible one yet)
+        ordered = np.take_along_axis(open_, order, axis=1)
+        has = ordered.any(axis=1)
+        if not has.any():
+            return
+        nxt = order[rows, np.argmax(ordered, axis=1)]
+        pick = np.zeros((n, m), dtype=bool)
+        one = has & (feasible | ~done.any(axis=1))
+        pick[rows[one], nxt[one]] = True
+        pick |= open_ & (has & ~one)[:, None]
+        motor, option = np.nonzero(pick)
+        done |= pick
+        consider(motor, option)
+
+
+def _continuous(bounds, with_ratio, consider, best: _Best, motors: int) -> None:
+    """Log-spaced lattice over the bounds, then halving steps around each motor's best.
+
+    All points lie on one lattice in log(ratio), so each round evaluates every needed
+    point once, for all the motors whose neighbourhood contains it.
+    """
+    lo, hi = math.log(bounds[0]), math.log(bounds[1])
+    step = (hi - lo) / (COARSE - 1)
+    points = [with_ratio(math.exp(x)) for x in np.linspace(lo, hi, COARSE)]
+    consider(points, [None] * COARSE, np.repeat(np.arange(motors), COARSE),
+             np.tile(np.arange(COARSE), motors))
+    last = COARSE - 1
+    offsets = np.array([-2, -1, 1, 2])
+    while step > LOG_STEP:
+        step /= 2.0
+        last *= 2
+        centre = np.rint((np.log(best.stage_ratio) - lo) / step).astype(np.intp)
+        keys = centre[:, None] + offsets[None, :]
+        valid = (keys >= 0) & (keys <= last)
+        motor = np.broadcast_to(np.arange(motors)[:, None], keys.shape)[valid]
+        unique, option = np.unique(keys[valid], return_inverse=True)
+        points = [with_ratio(math.exp(lo + int(k) * step)) for k in unique]
+        consider(points, [None] * len(points), motor, option.reshape(-1))
+
+
+class SharedByLaws:
+    """What every law of one sizing of a free stage shares, each part built on first use:
+    every motor with every listed option (sizer.sizing.choices.listed_pairs) and
+    their peak scales (sizer.sizing.shortest_duration.peak_scales)."""
+
+    def __init__(self, design: Design, motors: MotorArrays) -> None:
+        self.design, self.motors = design, motors
+
+    @cached_property
+    def pairs(self) -> ListedPairs:
+
+        return listed_pairs(self.design, self.motors)
+
+    @cached_property
+    def scales(self) -> PeakScales:
+        from sizer.sizing.shortest_duration import peak_scales
+
+        assert self.pairs.candidates is not None  # asked for the listed pairs' floors only
+        return peak_scales(self.design, self.pairs.candidates)

@@ -1,0 +1,106 @@
+"""What every cycle model answers, and the one evaluation it returns (book sec. 6.1.1).
+
+A cycle model is one law (or a cycle's laws) for many candidates at once: a single move
+rest-to-rest (sizer.sizing.move.CycleCalculator), a cycle of segments
+(sizer.sizing.cycle.SegmentCycle), a move or a cycle through a linkage
+(sizer.sizing.linkage_move.LinkageCalculator, sizer.sizing.linkage_move.LinkageCycle).
+Each satisfies :class:`CycleModel` structurally; the search for the shortest duration, the
+checks and the energy pass ask only what it declares. Each evaluation is one
+:class:`CycleMetrics`: arrays over candidates, SI.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Protocol, Self
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from sizer.mechanics import Drive
+    from sizer.model.domain import Limits, Task
+    from sizer.sizing.candidates import MotorArrays
+
+
+@dataclass(frozen=True)
+class CycleMetrics:
+    """Requirements of one law for each candidate (arrays over candidates, SI).
+
+    Motor side: max_speed, peak_torque, peak_ratio (worst |tau|/tau_int(|speed|)),
+    rms_torque, thermal_speed. Load side: load_speed, load_acceleration, load_jerk (peaks)
+    and load_torque (peak |u|). Per stage: stage_peak and stage_rms output torques and
+    stage_speed (peak input speed), lists over the stages.
+    """
+
+    duration: np.ndarray
+    max_speed: np.ndarray
+    peak_torque: np.ndarray
+    peak_ratio: np.ndarray
+    rms_torque: np.ndarray
+    thermal_speed: np.ndarray
+    load_speed: np.ndarray
+    load_acceleration: np.ndarray
+    load_jerk: np.ndarray
+    load_torque: np.ndarray
+    stage_peak: list[np.ndarray]
+    stage_rms: list[np.ndarray]
+    stage_speed: list[np.ndarray]
+    rms_model: RmsCurve | None = None
+
+
+class RmsCurve(Protocol):
+    """The RMS torque as a function of the duration near where it was built: a law's
+    :class:`RmsModel`, or a cycle's (sizer.sizing.cycle.CycleRmsModel)."""
+
+    def rms(self, T: np.ndarray, index: np.ndarray | None = None) -> np.ndarray: ...
+
+
+class CycleModel(Protocol):
+    """A cycle (or move) of one law evaluated for many candidates at a duration each: the
+    move's duration T, or for a cycle the scale s of its free durations."""
+
+    segmented: bool
+    """A cycle of segments (time-scaled by s) rather than one law move rest-to-rest."""
+
+    @property
+    def task(self) -> Task:
+        """The move (or the cycle's first move) as a task: displacement, linear or not."""
+        ...
+
+    @property
+    def drive(self) -> Drive:
+        """The drive the checks read (a cycle's: its heaviest segment's load)."""
+        ...
+
+    @property
+    def motors(self) -> MotorArrays:
+        """The candidates' motors."""
+        ...
+
+    def take(self, index: np.ndarray) -> Self:
+        """The same model for the candidates at ``index``."""
+        ...
+
+    def evaluate(self, duration: np.ndarray, peaks: bool = True, model: bool = False,
+                 rms: np.ndarray | None = None) -> CycleMetrics:
+        """The requirements at ``duration``; without ``peaks`` the peak torques and ratios
+        left at zero; with ``model`` the RMS model there where the model has one; ``rms``:
+        the motor's RMS torque there where known (a model may skip computing it)."""
+        ...
+
+    def thermal_speed(self, T: np.ndarray) -> np.ndarray:
+        """The speed at which the continuous torque limit is read (sec. 6.1.1)."""
+        ...
+
+    def peak_bound(self, limits: Limits) -> np.ndarray | None:
+        """The largest duration below which a peak or speed check fails, or None where no
+        such bound holds."""
+        ...
+
+    def initial_guess(self) -> np.ndarray:
+        """A duration scale to start a search from (never zero)."""
+        ...
+
+    def rms_lower_bound(self) -> np.ndarray | None:
+        """A torque the motor's RMS exceeds at every duration, or None where none holds."""
+        ...
