@@ -27,7 +27,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeAlias
 
 from sizer.errors import UserError
-from sizer.model.domain import Design, Motor
+from sizer.model.domain import Design, EnvelopeRule, Motor
 
 if TYPE_CHECKING:
     from sizer.model.machine import Machine
@@ -43,7 +43,7 @@ CatalogRef = str | PathLike[str]
 Progress = Callable[[int, int], None]
 """``progress(done, total)``: called with (0, n), then after each of the design's n laws."""
 
-ENVELOPES = ("book", "linear", "linear_intermittent")
+ENVELOPES: tuple[EnvelopeRule, ...] = ("book", "linear", "linear_intermittent")
 """The ``envelope`` rules (sizer.envelope.completion.ENVELOPE_RULES)."""
 
 
@@ -59,7 +59,7 @@ def load(design: DesignLike, catalogs: Iterable[CatalogRef] = (), *,
     """
     from sizer.io.loader import load_design, load_design_data
 
-    extra = tuple(catalogs)
+    extra = tuple(str(c) for c in catalogs)  # the loader reads each as str(reference)
     if isinstance(design, Design):
         if extra:
             raise TypeError("catalogs are read with a design file or mapping; a Design "
@@ -90,12 +90,11 @@ def override(design: Design, *, motors: Sequence[str] | Sequence[Motor] | None =
     if laws is not None:
         design = replace(design, laws=tuple(laws))
     if envelope is not None:
-        rule = str(envelope)
-        if rule not in ENVELOPES:
-            raise UserError(f"unknown rule {rule!r}; choose one of {', '.join(ENVELOPES)}",
-                            field="envelope")
-        limits = replace(design.limits, envelope=rule)  # type: ignore[arg-type]
-        design = replace(design, limits=limits)
+        rule = next((r for r in ENVELOPES if r == str(envelope)), None)
+        if rule is None:
+            raise UserError(f"unknown rule {str(envelope)!r}; choose one of "
+                            f"{', '.join(ENVELOPES)}", field="envelope")
+        design = replace(design, limits=replace(design.limits, envelope=rule))
     return design
 
 
@@ -104,10 +103,10 @@ def _motors(loaded: Sequence[Motor], chosen: Sequence[str] | Sequence[Motor]
     """The motors ``override`` sizes: ids selected from ``loaded``, or Motor objects."""
     if isinstance(chosen, str):
         raise TypeError("motors: a sequence of ids or Motor objects, not one string")
-    kinds = {isinstance(m, Motor) for m in chosen}
-    if kinds == {True}:
-        return tuple(chosen)  # type: ignore[arg-type]
-    if True in kinds:
+    objects = tuple(m for m in chosen if isinstance(m, Motor))
+    if objects and len(objects) == len(chosen):
+        return objects
+    if objects:
         raise TypeError("motors: all ids or all Motor objects, not both")
     ids = [str(i) for i in chosen]
     known = {m.id for m in loaded}
@@ -148,9 +147,9 @@ def size(design: DesignLike, *, catalogs: Iterable[CatalogRef] = (),
     is called per law. ``workers``: processes that size the laws (None: every CPU for a
     large design; the same result whatever their number). More than one starts worker
     processes, which import the calling script again: keep its work under ``if __name__
-    == "__main__":`` (sizer.sizing.law_processes).
+    == "__main__":`` (sizer.sizing.engine).
     """
-    from sizer import sizing  # looked up when called: the engine stays replaceable
+    import sizer.sizing as sizing  # looked up when called: the engine stays replaceable
 
     check_rank_by(rank_by)
     sized = override(load(design, catalogs), motors=motors, laws=laws, envelope=envelope)
@@ -161,7 +160,7 @@ def check(design: DesignLike, *, catalogs: Iterable[CatalogRef] = (),
           envelope: str | None = None) -> CandidateResult:
     """The result of the motor and law the design's ``check:`` names (``sizer check``):
     ``feasible`` is the verdict, ``checks`` every limit with its value and margin."""
-    from sizer import sizing
+    import sizer.sizing as sizing
 
     return sizing.check_design(override(load(design, catalogs), envelope=envelope))
 
@@ -170,7 +169,7 @@ def assumptions(design: Design) -> tuple[str, ...]:
     """What sizing ``design`` assumes, as the notes under a table say it (the envelope
     rule of motors without curves, the efficiency convention, the inertia ratio's
     definition...); the same as ``size(design).notes``."""
-    from sizer import sizing
+    import sizer.sizing as sizing
 
     return sizing.assumptions(design)
 

@@ -20,8 +20,9 @@ from sizer.report.candidate_row import (
     result_json,
 )
 from sizer.report.check_report import CheckDocument
-from sizer.report.design_summary import design_summary, finite_or_none
+from sizer.report.design_summary import design_summary
 from sizer.report.formats import Format
+from sizer.report.numbers import finite_or_none
 from sizer.report.sizing_table import NO_FEASIBLE, SizingDocument, publish_sizing
 from sizer.sizing import CandidateResult, Check, SizingResult
 

@@ -28,10 +28,10 @@ from sizer.errors import UserError
 from sizer.input_limits import MAX_CATALOG_BYTES
 from sizer.io.csv_rows import NUMBER, csv_delimiter, csv_records, decimal_point
 from sizer.io.files import decode_text, read_user_bytes
-from sizer.io.motor_rules import check_motor
+from sizer.io.motor_rules import check_motor, motor_of
+from sizer.io.schema.inputs import MotorInput
 from sizer.io.validation import all_problems
 from sizer.io.yaml_source import YamlSource
-from sizer.io.schema.inputs import MotorInput
 from sizer.units import KINDS, to_si
 
 FIELD_KINDS: dict[str, str | None] = {
@@ -276,7 +276,7 @@ def _validate(path: Path, line: int, motor: dict[str, str], maps: Sequence[Colum
     except ValidationError as error:
         return [_renamed(p, maps) for p in all_problems(error, MotorInput, where)], []
     found: dict[str, list[UserError]] = {"error": [], "warning": []}
-    for p in check_motor(item, manufacturer=manufacturer, source=source, given=motor):
+    for p in check_motor(motor_of(item), manufacturer=manufacturer, source=source, given=motor):
         found[p.severity].append(UserError(p.message, file=str(path), line=line,
                                            field=_field_text(str(p.path[0]), maps)))
     return found["error"], found["warning"]

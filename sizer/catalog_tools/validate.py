@@ -19,13 +19,13 @@ from typing import Any
 
 from pydantic import ValidationError
 
-from sizer.catalog_tools.findings import Finding
+from sizer.catalog_tools.findings import Finding, Severity
 from sizer.errors import UserError
 from sizer.io.loader import resolve_catalog
-from sizer.io.motor_rules import check_motor
+from sizer.io.motor_rules import check_motor, motor_of
+from sizer.io.schema.inputs import CatalogFile, DriveCatalogFile, MotorInput
 from sizer.io.validation import all_problems
 from sizer.io.yaml_source import YamlSource, format_path, read_yaml
-from sizer.io.schema.inputs import CatalogFile, DriveCatalogFile, MotorInput
 
 
 @dataclass
@@ -99,9 +99,9 @@ def _validate_source(source: YamlSource, ids: dict[str, _Seen],
     file = source.file or "?"
     findings: list[Finding] = []
 
-    def finding(path: tuple[Any, ...], message: str, severity: str = "error") -> None:
+    def finding(path: tuple[Any, ...], message: str, severity: Severity = "error") -> None:
         findings.append(Finding(file, source.line_of(path), format_path(path) or None,
-                                message, severity))  # type: ignore[arg-type]
+                                message, severity))
 
     data = source.data
     if isinstance(data, dict) and "drives" in data and "motors" not in data:
@@ -130,9 +130,9 @@ def _validate_source(source: YamlSource, ids: dict[str, _Seen],
             item = MotorInput.model_validate(raw)
         except (ValidationError, RecursionError):
             continue  # reported by the schema pass above
-        for problem in check_motor(item, manufacturer=manufacturer, source=default_source,
-                                   given=raw):
-            finding((*at, *problem.path), problem.message, problem.severity)
+        for rule_problem in check_motor(motor_of(item), manufacturer=manufacturer,
+                                        source=default_source, given=raw):
+            finding((*at, *rule_problem.path), rule_problem.message, rule_problem.severity)
     return findings
 
 

@@ -9,8 +9,7 @@ from __future__ import annotations
 import inspect
 import os
 import sys
-import traceback
-from collections.abc import Iterable, Sequence
+from collections.abc import Sequence
 from typing import Annotated, Any
 
 import typer
@@ -20,7 +19,7 @@ from typer import Abort, Exit
 try:  # typer >= 0.20 has its own copy of click; older ones use click itself
     from typer._click import exceptions as click_exceptions
 except ImportError:  # pragma: no cover
-    from click import exceptions as click_exceptions  # type: ignore[no-redef]
+    from click import exceptions as click_exceptions  # type: ignore[no-redef, import-not-found]
 
 from sizer import __version__
 from sizer.cli import (
@@ -37,6 +36,7 @@ from sizer.cli import (
     vibration_command,
 )
 from sizer.cli.exit_codes import ExitCode
+from sizer.cli.reporting import report_internal_error, report_user_error, set_debug
 from sizer.errors import UserError
 from sizer.report.printable import printable
 
@@ -81,10 +81,6 @@ def _show_help(context: typer.Context, value: bool) -> None:
         raise typer.Exit()
 
 
-_debug = False
-"""Set by ``--debug``: an internal error shows its traceback."""
-
-
 @app.callback()
 def _root(
     version: Annotated[bool, typer.Option(
@@ -99,51 +95,12 @@ def _root(
         help="Show this message and exit.")] = False,
 ) -> None:
     """Size servo motors and choose motion laws for automatic machines."""
-    global _debug
-    _debug = _debug or debug
+    if debug:
+        set_debug(True)
 
 
 for _module in COMMAND_MODULES:
     _module.register(app)
-
-
-def report_user_error(error: UserError) -> None:
-    """One line on stderr: 'error: file:line: field: message' (control characters
-    escaped)."""
-    text = " ".join(str(error).split("\n"))  # a CR or another control stays, escaped
-    sys.stderr.write(f"error: {printable(text)}\n")
-    sys.stderr.flush()
-
-
-def report_warnings(warnings: Iterable[str]) -> None:
-    """One 'warning: ...' line on stderr per warning; nothing when there are none."""
-    for warning in warnings:
-        sys.stderr.write(f"warning: {printable(' '.join(warning.split()))}\n")
-    sys.stderr.flush()
-
-
-def internal_error_line(error: BaseException, what: str = "") -> str:
-    """The one line that reports a bug: what failed (the command or file, and where in
-    sizer), the exception's type and message, how to report it."""
-    message = " ".join(str(error).split())
-    where = _where(error)
-    failed = " ".join(part for part in (what, where) if part)
-    return printable(f"internal error{' in ' + failed if failed else ''}: "
-                     f"{type(error).__name__}{': ' + message if message else ''} - this is a "
-                     f"bug in sizer {__version__}; please report it with the command and its "
-                     f"input files (run again with --debug for the traceback)")
-
-
-def _where(error: BaseException) -> str:
-    """'(at sizer/x.py:12 in f)': the innermost frame of the sizer package, if any."""
-    package = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    frames = [f for f in traceback.extract_tb(error.__traceback__)
-              if os.path.abspath(f.filename).startswith(package + os.sep)]
-    if not frames:
-        return ""
-    frame = frames[-1]
-    shown = os.path.relpath(os.path.abspath(frame.filename), os.path.dirname(package))
-    return f"(at {shown}:{frame.lineno} in {frame.name})"
 
 
 def _command_words(args: Sequence[str]) -> str:
@@ -152,20 +109,6 @@ def _command_words(args: Sequence[str]) -> str:
     if words and words[0] != "catalog":
         words = words[:1]
     return " ".join(["sizer", *words])
-
-
-def debug_enabled() -> bool:
-    """``--debug`` was given or SIZER_DEBUG is set (to anything but '', 0, false, no)."""
-    flag = os.environ.get("SIZER_DEBUG", "").strip().lower()
-    return _debug or flag not in ("", "0", "false", "no", "off")
-
-
-def report_internal_error(error: BaseException, what: str = "") -> None:
-    """The traceback (with --debug or SIZER_DEBUG=1), then the one internal-error line."""
-    if debug_enabled():
-        traceback.print_exception(error, file=sys.stderr)
-    sys.stderr.write(internal_error_line(error, what) + "\n")
-    sys.stderr.flush()
 
 
 def _usage_error_line(error: click_exceptions.ClickException) -> str:
@@ -203,8 +146,7 @@ def run(argv: Sequence[str] | None = None) -> int:
     error (one 'internal error:' line; the traceback with --debug or SIZER_DEBUG=1),
     130 interrupted, 141 stdout closed by its reader.
     """
-    global _debug
-    _debug = False
+    set_debug(False)
     args = sys.argv[1:] if argv is None else list(argv)
     command = typer.main.get_command(app)
     _whole_summaries(command)

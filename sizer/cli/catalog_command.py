@@ -230,7 +230,7 @@ def import_command(
             sys.stderr.write(printable(f"error: {problem}") + "\n")
         sys.stderr.flush()
         raise typer.Exit(ExitCode.USER_ERROR) from None
-    from sizer.cli.app import report_warnings
+    from sizer.cli.reporting import report_warnings
 
     report_warnings(catalog.warnings)
     emit(catalog.yaml(), output)

@@ -1,4 +1,5 @@
-"""The ``--catalog`` option of the commands that read a design file."""
+"""The ``--catalog`` option of the commands that read a design file, and the design or
+machine file they are given."""
 
 from __future__ import annotations
 
@@ -7,6 +8,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Annotated
 
 import typer
+
+from sizer.errors import UserError
 
 if TYPE_CHECKING:
     from sizer.model.domain import Design
@@ -46,26 +49,33 @@ def load_design_file(design: Path, catalogs: Sequence[str] | None) -> Design:
     """The design with its catalogs plus ``--catalog`` ones (sizer.api.load; a design that
     names no catalog, and no --catalog, gets the bundled motors); its warnings on stderr."""
     from sizer import api  # lazy: keeps --help fast
-    from sizer.cli.app import report_warnings
+    from sizer.cli.reporting import report_warnings
 
     check_catalog_references(catalogs or ())
-    _refuse_machine(design)
+    if is_machine(design):  # sizer size, check and report read machine files before here
+        raise UserError("a machine file (axes:): this command reads a design file; sizer "
+                        "size, check and report read machine files (or copy an axis into "
+                        "a design file of its own)", file=str(design))
     loaded = api.load(design, catalogs or ())
     report_warnings(loaded.warnings)
     return loaded
 
 
-def _refuse_machine(design: Path) -> None:
-    """A machine file given to a command that reads design files: say so (``sizer size``,
-    ``check`` and ``report`` read machine files before they get here)."""
-    from sizer.errors import UserError
+def is_machine(path: Path) -> bool:
+    """A machine file (``axes:``); anything unreadable goes the design's way, whose
+    loader says what is wrong."""
     from sizer.io.file_kind import is_machine_file
 
     try:
-        machine = design.is_file() and is_machine_file(design)
+        return path.is_file() and is_machine_file(path)
     except (UserError, OSError):
-        return  # the design loader says what is wrong with the file
-    if machine:
-        raise UserError("a machine file (axes:): this command reads a design file; sizer "
-                        "size, check and report read machine files (or copy an axis into "
-                        "a design file of its own)", file=str(design))
+        return False
+
+
+def refuse_motor_options(catalog: Sequence[str] | None,
+                         motor: Sequence[str] | None = None) -> None:
+    """--catalog and --motor are for design files: a machine's axes name their motors."""
+    for given, option in ((catalog, "--catalog"), (motor, "--motor")):
+        if given:
+            raise UserError("not for a machine file: each axis names its motors",
+                            field=option)

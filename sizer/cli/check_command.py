@@ -15,6 +15,7 @@ from sizer.errors import UserError
 
 if TYPE_CHECKING:
     from sizer.report.check_report import CheckDocument
+    from sizer.report.machine_report import MachineCheckDocument
 
 
 
@@ -56,12 +57,12 @@ def check(
 
         sizer check designs/*.yaml --format json
     """
-    from sizer.cli.app import report_internal_error, report_user_error
+    from sizer.cli.reporting import report_internal_error, report_user_error
     from sizer.report.json_text import render_json
     from sizer.report.output import emit
 
     check_catalog_references(catalog or ())  # an option's mistake: once, before any file
-    documents: list[CheckDocument] = []
+    documents: list[CheckDocument | MachineCheckDocument] = []
     invalid = internal = False
     for design in designs:
         try:
@@ -89,16 +90,16 @@ def check(
 
 
 def check_one(design: Path, catalogs: list[str] | tuple[str, ...],
-              envelope: str | None = None) -> CheckDocument:
+              envelope: str | None = None) -> CheckDocument | MachineCheckDocument:
     """Load a design (with --envelope) and check its chosen pair (sizer.api); UserErrors
     name the file."""
     from sizer import api
-    from sizer.cli.size_command import _is_machine
+    from sizer.cli.catalog_option import is_machine
     from sizer.report.check_report import CheckDocument
     from sizer.report.segment_table import breakdown_for
 
-    if _is_machine(design):
-        return _check_machine(design, catalogs, envelope)  # type: ignore[return-value]
+    if is_machine(design):
+        return _check_machine(design, catalogs, envelope)
     loaded = api.override(load_design_file(design, catalogs), envelope=envelope or None)
     try:
         result = api.check(loaded)
@@ -109,11 +110,11 @@ def check_one(design: Path, catalogs: list[str] | tuple[str, ...],
 
 
 def _check_machine(path: Path, catalogs: list[str] | tuple[str, ...],
-                   envelope: str | None):
+                   envelope: str | None) -> MachineCheckDocument:
     """A machine file: PASS when every axis has a feasible pair at the master speed (the
     slowest axis's with minimize) and the bus copes."""
     from sizer import api
-    from sizer.cli.size_command import refuse_motor_options
+    from sizer.cli.catalog_option import refuse_motor_options
     from sizer.report.machine_report import MachineCheckDocument
 
     refuse_motor_options(catalogs)

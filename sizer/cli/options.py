@@ -52,6 +52,28 @@ def check_law_specs(specs: list[str] | tuple[str, ...], field: str) -> None:
         with blame_option(field):
             resolve(spec)
 
+def scaled_move(displacement: str | None, duration: str | None, neither: str
+                ) -> tuple[float, float, bool] | None:
+    """(h, T, linear) of --displacement and --duration, None for ``neither``; a UserError
+    naming the option when only one is given, T is not positive or h is zero."""
+    from sizer.units import parse_displacement, to_si  # lazy: keeps --help fast
+
+    if (displacement is None) != (duration is None):
+        given = "--displacement" if displacement is not None else "--duration"
+        missing = "--duration" if displacement is not None else "--displacement"
+        raise UserError(f"{given} needs {missing} too (or neither, for {neither})",
+                        field=missing)
+    if displacement is None:
+        return None
+    h, linear = parse_displacement(displacement, field="--displacement")
+    T = to_si(duration, "time", field="--duration")  # finite, else a UserError
+    if not T > 0.0:
+        raise UserError(f"must be positive, got {duration!r}", field="--duration")
+    if h == 0.0:
+        raise UserError("must not be zero", field="--displacement")
+    return h, T, linear
+
+
 FormatOption = Annotated[
     Format,
     typer.Option(
@@ -79,6 +101,15 @@ class EnvelopeChoice(StrEnum):
     BOOK = "book"
     LINEAR = "linear"
     LINEAR_INTERMITTENT = "linear_intermittent"
+
+
+MotorsOption = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--motor", "-m", metavar="ID", show_default=False,
+        help="Size only this motor (an id among the loaded motors); repeat for more.",
+    ),
+]
 
 
 JobsOption = Annotated[

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Annotated
 import typer
 
 from sizer.cli.catalog_option import CatalogOption, DesignArgument, load_design_file
-from sizer.cli.options import as_option, blame_option, check_law_specs
+from sizer.cli.options import as_option, blame_option, check_law_specs, scaled_move
 from sizer.errors import UserError
 from sizer.report.printable import printable
 
@@ -260,24 +260,14 @@ def plot_law(
     from sizer.laws import make_law  # lazy: keeps --help fast
     from sizer.laws.motion import scale_fault
     from sizer.report.plots import figure_format, law_profiles_figure, save_figure
-    from sizer.units import parse_displacement, to_si
 
     figure_format(output)
     figure_size = parse_size(size)
     check_output(output)
-    if (displacement is None) != (duration is None):
-        given = "--displacement" if displacement is not None else "--duration"
-        missing = "--duration" if displacement is not None else "--displacement"
-        raise UserError(f"{given} needs {missing} too (or neither, for normalized laws)",
-                        field=missing)
     h, T, linear = None, None, False
-    if displacement is not None:
-        h, linear = parse_displacement(displacement, field="--displacement")
-        T = to_si(duration, "time", field="--duration")
-        if not T > 0.0:
-            raise UserError(f"must be positive, got {duration!r}", field="--duration")
-        if h == 0.0:
-            raise UserError("must not be zero", field="--displacement")
+    move = scaled_move(displacement, duration, "normalized laws")
+    if move is not None:
+        h, T, linear = move
         fault = scale_fault(h, T)
         if fault is not None:
             raise UserError(f"a move of {h:g} in {T:g} s: {fault}", field="--duration")
@@ -314,9 +304,12 @@ def _linkage_figure(design: Design, drawn: list[CandidateResult],
     if design.transmission.linkage is None:
         raise UserError("the design's transmission has no linkage (slider_crank or "
                         "four_bar)", field="--linkage")
-    curves = {f"{r.motor}, {_label(r.spec)}": linkage_curve_of(
-        design, motor_of(design, r), r.law_object or _law(r.spec), r.duration,
-        transmission_for(design, r)) for r in drawn}
+    curves = {}
+    for r in drawn:
+        assert r.duration is not None, "plot draws only results with a feasible duration"
+        curves[f"{r.motor}, {_label(r.spec)}"] = linkage_curve_of(
+            design, motor_of(design, r), r.law_object or _law(r.spec), r.duration,
+            transmission_for(design, r))
     first = next(iter(curves.values()))
     torques = {}
     for key, curve in curves.items():  # each law's samples read at the first one's angles

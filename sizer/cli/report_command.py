@@ -7,9 +7,9 @@ from typing import Annotated
 
 import typer
 
-from sizer.cli.catalog_option import CatalogOption, DesignArgument
+from sizer.cli.catalog_option import CatalogOption, DesignArgument, is_machine, refuse_motor_options
+from sizer.cli.options import MotorsOption
 from sizer.cli.plot_command import DpiOption
-from sizer.cli.size_command import _is_machine, refuse_motor_options
 from sizer.errors import UserError
 from sizer.report.printable import printable
 
@@ -21,10 +21,7 @@ def report(
         help="The folder for report.md and its figures (created if missing; files of "
              "the same names are replaced).", show_default=False)],
     catalog: CatalogOption = None,
-    motor: Annotated[list[str] | None, typer.Option(
-        "--motor", "-m", metavar="ID",
-        help="Size only this motor (an id among the loaded motors); repeat for more.",
-        show_default=False)] = None,
+    motor: MotorsOption = None,
     rank_by: Annotated[str | None, typer.Option(
         "--rank-by", "-r", metavar="KEY",
         help="Ranking as in 'sizer size': size (alias power), duration, margin, rms, "
@@ -69,7 +66,7 @@ def report(
     targets = [output / REPORT_FILE, output / LAWS_FIGURE, output / TIME_FIGURE,
                *(output / candidate_figure(rank) for rank in range(1, best + 1))]
     check_outputs(targets, [design, *(catalog or ())])
-    if _is_machine(design):
+    if is_machine(design):
         _machine_report(design, output, catalog, motor, rank_by, top, best, dpi, targets)
         return
     loaded, sizing = load_and_size(design, catalog, motor, rank_by, outputs=targets)

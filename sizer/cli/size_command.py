@@ -7,11 +7,18 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from sizer.cli.catalog_option import CatalogOption, DesignArgument, load_design_file
+from sizer.cli.catalog_option import (
+    CatalogOption,
+    DesignArgument,
+    is_machine,
+    load_design_file,
+    refuse_motor_options,
+)
 from sizer.cli.options import (
     EnvelopeOption,
     FormatOption,
     JobsOption,
+    MotorsOption,
     OutputOption,
     as_option,
 )
@@ -36,10 +43,7 @@ RANK_HELP = ("Rank the feasible pairs by size (alias power: the smallest motor f
 def size(
     design: DesignArgument,
     catalog: CatalogOption = None,
-    motor: Annotated[list[str] | None, typer.Option(
-        "--motor", "-m", metavar="ID",
-        help="Size only this motor (an id among the loaded motors); repeat for more.",
-        show_default=False)] = None,
+    motor: MotorsOption = None,
     rank_by: Annotated[str | None, typer.Option(
         "--rank-by", "-r", metavar="KEY", help=RANK_HELP, show_default=False)] = None,
     top: Annotated[int | None, typer.Option(
@@ -76,7 +80,7 @@ def size(
 
     check_rank_key(rank_by)
     check_output(output, [design, *(catalog or ())])
-    if _is_machine(design):
+    if is_machine(design):
         _size_machine(design, catalog, motor, rank_by, top, show_all, fmt, output, envelope,
                       jobs)
         return
@@ -85,26 +89,6 @@ def size(
     document = SizingDocument(sizing, loaded, rank_by=rank_by, top=top,
                               include_infeasible=show_all)
     publish_sizing(document, fmt, output)
-
-
-def _is_machine(path: Path) -> bool:
-    """A machine file (``axes:``); anything unreadable goes the design's way, whose
-    loader says what is wrong."""
-    from sizer.io.file_kind import is_machine_file
-
-    try:
-        return path.is_file() and is_machine_file(path)
-    except (UserError, OSError):
-        return False
-
-
-def refuse_motor_options(catalog: Sequence[str] | None,
-                         motor: Sequence[str] | None = None) -> None:
-    """--catalog and --motor are for design files: a machine's axes name their motors."""
-    for given, option in ((catalog, "--catalog"), (motor, "--motor")):
-        if given:
-            raise UserError("not for a machine file: each axis names its motors",
-                            field=option)
 
 
 def _size_machine(path: Path, catalog: Sequence[str] | None, motor: Sequence[str] | None,

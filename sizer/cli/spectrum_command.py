@@ -10,7 +10,7 @@ from typing import Annotated
 
 import typer
 
-from sizer.cli.options import FormatOption, OutputOption, as_option, blame_option
+from sizer.cli.options import FormatOption, OutputOption, as_option, blame_option, scaled_move
 from sizer.errors import UserError
 from sizer.input_limits import MAX_SPECTRUM_CURVE_POINTS, MAX_SPECTRUM_LINES
 from sizer.report.formats import Format
@@ -122,7 +122,7 @@ def spectrum(
     if order not in ORDER_NAMES:
         raise UserError(f"expected 1 (velocity), 2 (acceleration) or 3 (jerk), got {order}",
                         field="--order")
-    move = _move(displacement, duration)
+    move = scaled_move(displacement, duration, "the normalized spectrum")
     _check_scaled(move, max_ft)
     ratio = _period_ratio(period, move)
     if with_return and ratio is None:
@@ -151,25 +151,6 @@ def spectrum(
 
 Move = tuple[float, float, bool] | None
 """(h, T, linear) of a scaled spectrum, or None for normalized."""
-
-
-def _move(displacement: str | None, duration: str | None) -> Move:
-    from sizer.units import parse_displacement, to_si
-
-    if (displacement is None) != (duration is None):
-        given = "--displacement" if displacement is not None else "--duration"
-        missing = "--duration" if displacement is not None else "--displacement"
-        raise UserError(f"{given} needs {missing} too (or neither, for the normalized "
-                        f"spectrum)", field=missing)
-    if displacement is None:
-        return None
-    h, linear = parse_displacement(displacement, field="--displacement")
-    T = to_si(duration, "time", field="--duration")
-    if not (math.isfinite(T) and T > 0.0):
-        raise UserError(f"must be positive, got {duration!r}", field="--duration")
-    if h == 0.0:
-        raise UserError("must not be zero", field="--displacement")
-    return h, T, linear
 
 
 def _check_scaled(move: Move, max_ft: float) -> None:

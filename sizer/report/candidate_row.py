@@ -14,8 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 from sizer.laws.base import format_parameter
 from sizer.laws.data_spec import data_law_label, is_data_spec
-from sizer.report.design_summary import finite_or_none
-from sizer.report.numbers import full, short
+from sizer.report.numbers import finite_or_none, full_or_empty, short_or_na
 from sizer.sizing.checks import TOLERANCE
 from sizer.sizing.results import NOT_AVAILABLE, margin_percent
 
@@ -102,21 +101,17 @@ def result_json(result: CandidateResult) -> dict[str, Any]:
     }
 
 
-def _csv_number(value: float | None) -> str:
-    return "" if value is None or not math.isfinite(value) else full(value)
-
-
 def result_csv_cells(rank: int, result: CandidateResult, envelope: str = "") -> tuple[str, ...]:
     """CSV cells at full precision (SI), in the order of CSV_HEADERS."""
     return (
         str(rank), result.motor, result.law, result.spec,
         "true" if result.feasible else "false",
-        _csv_number(result.duration), _csv_number(result.peak_torque),
-        _csv_number(result.rms_torque), _csv_number(result.max_speed),
-        *(_csv_number(summary_margin(result, name)) for name in MARGINS),
+        full_or_empty(result.duration), full_or_empty(result.peak_torque),
+        full_or_empty(result.rms_torque), full_or_empty(result.max_speed),
+        *(full_or_empty(summary_margin(result, name)) for name in MARGINS),
         result.limiting or "", result.reason,
-        _csv_number(result.price), _csv_number(result.mass),
-        _csv_number(result.ratio), result.gearbox or "", envelope,
+        full_or_empty(result.price), full_or_empty(result.mass),
+        full_or_empty(result.ratio), result.gearbox or "", envelope,
     )
 
 
@@ -131,18 +126,9 @@ def percent(fraction: float | None) -> str:
     return margin_percent(fraction, 1, failed=fraction < -TOLERANCE)
 
 
-def _short(value: float | None, scale: float = 1.0) -> str:
-    if value is None:
-        return NOT_AVAILABLE
-    value = float(value) * scale
-    if not math.isfinite(value):
-        return NOT_AVAILABLE
-    return short(value)
-
-
 def ratio_text(result: CandidateResult) -> str:
     """The transmission ratio for a table, with the catalog gearbox if one was chosen."""
-    text = _short(result.ratio)
+    text = short_or_na(result.ratio)
     return f"{text} ({result.gearbox})" if result.gearbox else text
 
 
@@ -171,8 +157,8 @@ def result_display_cells(rank: int, result: CandidateResult, *,
     return (
         str(rank), result.motor, *drive, display_spec(result), *ratio,
         "yes" if result.feasible else "no",
-        _short(result.duration, 1000.0), _short(result.peak_torque),
-        _short(result.rms_torque), _short(result.max_speed, RPM_PER_RAD_S),
+        short_or_na(result.duration, 1000.0), short_or_na(result.peak_torque),
+        short_or_na(result.rms_torque), short_or_na(result.max_speed, RPM_PER_RAD_S),
         *(percent(summary_margin(result, name)) for name in MARGINS),
         result.limiting or "",
     )

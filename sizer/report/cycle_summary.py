@@ -7,25 +7,17 @@ summary (sizer.report.design_summary), byte for byte as before.
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 from sizer.model.cycle import Cycle, Dwell, Move, Run
 from sizer.model.domain import Design
-from sizer.report.numbers import short
+from sizer.report.numbers import finite_or_none, short
 from sizer.report.table import Column, Table, make_table
 
 
 def _kind(segment: Move | Run | Dwell) -> str:
     return "move" if isinstance(segment, Move) else "run" if isinstance(segment, Run) \
         else "dwell"
-
-
-def _optional(value: float | None) -> float | None:
-    if value is None:
-        return None
-    value = float(value)
-    return value if math.isfinite(value) else None
 
 
 def cycle_units(linear: bool) -> dict[str, str]:
@@ -41,13 +33,13 @@ def segment_json(segment: Move | Run | Dwell) -> dict[str, Any]:
     data: dict[str, Any] = {"name": segment.name or _kind(segment), "kind": _kind(segment),
                             "displacement": float(segment.displacement)}
     if isinstance(segment, Move):
-        data.update({"duration": _optional(segment.duration), "law": segment.law,
+        data.update({"duration": finite_or_none(segment.duration), "law": segment.law,
                      "start_speed": float(segment.start_speed),
                      "end_speed": float(segment.end_speed), "weight": float(segment.weight)})
     elif isinstance(segment, Run):
         data.update({"duration": float(segment.duration), "speed": float(segment.speed)})
     else:
-        data.update({"duration": _optional(segment.duration),
+        data.update({"duration": finite_or_none(segment.duration),
                      "weight": float(segment.weight)})
     data["added_inertia"] = float(segment.load.inertia)
     data["added_torque"] = float(segment.load.torque)
@@ -60,7 +52,7 @@ def cycle_json(cycle: Cycle) -> dict[str, Any]:
     return {
         "segments": [segment_json(s) for s in cycle.segments],
         "share": cycle.share.value,
-        "cycle_time": _optional(cycle.cycle_time),
+        "cycle_time": finite_or_none(cycle.cycle_time),
         "minimize": bool(cycle.minimize),
         "minimize_segment": cycle.minimize_segment,
         "closed": bool(cycle.closed),

@@ -21,6 +21,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from sizer import __version__
+from sizer.errors import UserError
 from sizer.laws.data_spec import law_label
 from sizer.report.candidate_row import RPM_PER_RAD_S, check_line, percent
 from sizer.report.cycle_summary import duration_name
@@ -174,6 +175,7 @@ class DesignReport:
                    f"{feasible} of {total} pairs feasible")
         if feasible:
             best = self.sizing.feasible[0]
+            assert best.duration is not None, "a feasible result has a duration"
             label = duration_name(self.design)
             summary += (f". Best, ranked by {self.rank_key}: {best.motor} with "
                         f"{law_label(best.spec)} "
@@ -196,7 +198,7 @@ class DesignReport:
         else:
             move = (f"{short(task.displacement)} rad "
                     f"({short(math.degrees(task.displacement))} deg)")
-        duration = ("minimized for each pair (T_min)" if task.minimize
+        duration = ("minimized for each pair (T_min)" if task.duration is None  # minimize
                     else f"{short(task.duration * 1000.0)} ms")
         cycle = ("move, dwell, move back, dwell" if task.return_move
                  else "move, dwell (then the next move)")
@@ -494,6 +496,17 @@ def _key_value_table(rows: Sequence[tuple[str, str]]) -> str:
 
 
 # --------------------------------------------------------------------- writing
+def report_directory(directory: Path | str) -> Path:
+    """``directory``, created if needed (a UserError saying why it cannot be)."""
+    directory = Path(directory)
+    try:
+        directory.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        raise UserError(f"cannot create the report directory: {error.strerror or error}",
+                        file=str(directory)) from error
+    return directory
+
+
 def write_report(design: Design, sizing: SizingResult, directory: Path | str, *,
                  top: int = DEFAULT_TOP, best: int = DEFAULT_BEST, rank_by: str | None = None,
                  source: str | None = None, dpi: float = 100.0,
@@ -502,7 +515,6 @@ def write_report(design: Design, sizing: SizingResult, directory: Path | str, *,
 
     Returns the paths written, report.md first.
     """
-    from sizer.errors import UserError
     from sizer.report.plots import (
         curve_for,
         law_profiles_figure,
@@ -511,13 +523,7 @@ def write_report(design: Design, sizing: SizingResult, directory: Path | str, *,
         time_figure,
     )
 
-    directory = Path(directory)
-    try:
-        directory.mkdir(parents=True, exist_ok=True)
-    except OSError as error:
-        reason = error.strerror or str(error)
-        raise UserError(f"cannot create the report directory: {reason}",
-                        file=str(directory)) from error
+    directory = report_directory(directory)
     report = DesignReport(design, sizing, top=top, best=best, rank_by=rank_by, source=source)
     written = []
     if report.laws:

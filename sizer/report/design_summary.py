@@ -6,18 +6,10 @@ task, load, transmission and limits its numbers belong to.
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 from sizer.model.domain import Design
-
-
-def finite_or_none(value: float | None) -> float | None:
-    """A float for JSON: None (null) for a missing or non-finite number."""
-    if value is None:
-        return None
-    value = float(value)
-    return value if math.isfinite(value) else None
+from sizer.report.numbers import finite_or_none
 
 
 def _units(linear: bool) -> dict[str, str]:

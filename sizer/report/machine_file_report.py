@@ -12,7 +12,7 @@ import re
 from pathlib import Path
 
 from sizer.model.machine import Machine
-from sizer.report.design_report import REPORT_FILE, write_report
+from sizer.report.design_report import REPORT_FILE, report_directory, write_report
 from sizer.report.machine_report import MachineDocument
 from sizer.report.output import write_text_atomically
 from sizer.sizing.machine import MachineResult
@@ -43,16 +43,10 @@ def write_machine_report(machine: Machine, result: MachineResult, directory: Pat
                          top: int, best: int, rank_by: str | None, dpi: float) -> list[Path]:
     """Write DIR/report.md, the bus figure and each axis's report; the paths written,
     report.md first."""
-    from sizer.errors import UserError
     from sizer.report.plots import save_figure
     from sizer.report.plots.bus_power import bus_figure
 
-    directory = Path(directory)
-    try:
-        directory.mkdir(parents=True, exist_ok=True)
-    except OSError as error:
-        raise UserError(f"cannot create the report directory: {error.strerror or error}",
-                        file=str(directory)) from error
+    directory = report_directory(directory)
     document = MachineDocument(result, machine, rank_by=rank_by, top=top)
     folders = [axis_folder(a.name, i) for i, a in enumerate(result.axes)]
     written: list[Path] = []

@@ -22,14 +22,12 @@ from typing import Any
 
 from sizer.model.machine import Machine
 from sizer.report.csv_text import render_csv
-from sizer.report.design_summary import finite_or_none
 from sizer.report.formats import Format, Rendered
 from sizer.report.json_text import render_json
-from sizer.report.numbers import short
+from sizer.report.numbers import finite_or_none, short
 from sizer.report.output import emit, stdout_is_terminal
 from sizer.report.sizing_table import SizingDocument, print_terminal_table
-from sizer.sizing.machine import MachineResult
-from sizer.sizing.machine import BusResult
+from sizer.sizing.machine import BusResult, MachineResult
 
 FORMAT = "sizer.machine/1"
 RPM = 30.0 / math.pi
@@ -71,10 +69,10 @@ class MachineDocument(Rendered):
         r = self.result
         head = (f"{r.name or 'machine'}: {len(r.axes)} axes on a "
                 f"{_deg(r.cycle_angle)} master cycle")
-        if r.cycle_time is None:
+        if r.cycle_time is None or r.master_speed is None:  # both None or neither
             head += ", no master speed suits every axis"
         else:
-            speed = f"{short(r.master_speed * RPM)} rpm (cycle {_ms(r.cycle_time)})"  # type: ignore[operator]
+            speed = f"{short(r.master_speed * RPM)} rpm (cycle {_ms(r.cycle_time)})"
             by = f", set by {r.limiting_axis}" if r.limiting_axis is not None else ""
             head += (f", as fast as the slowest axis allows: {speed}{by}"
                      if r.minimize else f" at {speed}")

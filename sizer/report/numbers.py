@@ -23,6 +23,19 @@ def short(value: float, digits: int = SIGNIFICANT_DIGITS) -> str:
     return f"{value:.{digits}g}"
 
 
+def finite_or_none(value: float | None) -> float | None:
+    """A float for JSON: None (null) for a missing or non-finite number."""
+    if value is None:
+        return None
+    value = float(value)
+    return value if math.isfinite(value) else None
+
+
+def full_or_empty(value: float | None) -> str:
+    """A CSV cell: :func:`full`, or empty for a missing or non-finite number."""
+    return "" if value is None or not math.isfinite(value) else full(value)
+
+
 NOT_A_NUMBER = "n/a"
 """How a table shows a figure that is not a number (none, or not finite: a law that breaks
 a linkage's dead-point rule has no peak torque; its failed check says why)."""

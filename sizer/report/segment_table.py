@@ -28,11 +28,11 @@ from typing import TYPE_CHECKING, Any
 from sizer.laws.data_spec import law_label
 from sizer.report.candidate_row import RPM_PER_RAD_S
 from sizer.report.csv_text import render_csv
-from sizer.report.design_summary import design_summary, finite_or_none
+from sizer.report.design_summary import design_summary
 from sizer.report.formats import Format, Rendered
 from sizer.report.json_text import render_json
 from sizer.report.markdown_table import render_markdown_table
-from sizer.report.numbers import full, short, short_or_na
+from sizer.report.numbers import finite_or_none, full_or_empty, short, short_or_na
 from sizer.report.output import emit, stdout_is_terminal
 from sizer.report.table import Column, Table, make_table
 from sizer.report.text_table import render_text_table
@@ -79,15 +79,6 @@ def csv_headers(linear: bool) -> tuple[str, ...]:
 
 def _join(row: SegmentRow) -> str:
     return JERK_IMPULSE if row.acceleration_step != 0.0 else ""
-
-
-def _number(value: float) -> str:
-    return "" if not math.isfinite(value) else full(value)
-
-
-def _short(value: float, scale: float = 1.0) -> str:
-    value = float(value) * scale
-    return short(value) if math.isfinite(value) else "n/a"
 
 
 def segment_row_json(row: SegmentRow) -> dict[str, Any]:
@@ -176,10 +167,11 @@ class SegmentDocument(Rendered):
                    Column("rms torque [N*m]"), Column(SHARE_HEADER),
                    Column("peak speed [rpm]"), Column("energy [J]"),
                    Column("join", "left"))
-        rows = [(row.name, row.kind, law_label(row.law or ""), _short(row.start, 1000.0),
-                 _short(row.end, 1000.0), _short(row.peak_torque), _short(row.rms_torque),
-                 _share(row.rms_share), _short(row.peak_speed, RPM_PER_RAD_S),
-                 _short(row.energy), self._join_text(row))
+        rows = [(row.name, row.kind, law_label(row.law or ""), short_or_na(row.start, 1000.0),
+                 short_or_na(row.end, 1000.0), short_or_na(row.peak_torque),
+                 short_or_na(row.rms_torque), _share(row.rms_share),
+                 short_or_na(row.peak_speed, RPM_PER_RAD_S), short_or_na(row.energy),
+                 self._join_text(row))
                 for row in self.breakdown.rows]
         return make_table(columns, rows, title=self.title)
 
@@ -193,7 +185,7 @@ class SegmentDocument(Rendered):
         """The cycle time and the cycle's RMS torque, and what a jerk impulse means."""
         b = self.breakdown
         rms = short_or_na(b.rms_torque, unit="N*m")
-        lines = [f"cycle time {_short(b.cycle_time, 1000.0)} ms, cycle rms torque {rms} (at "
+        lines = [f"cycle time {short_or_na(b.cycle_time, 1000.0)} ms, cycle rms torque {rms} (at "
                  f"the motor shaft); the shares are of the cycle's integral of tau^2"]
         if any(row.acceleration_step != 0.0 for row in b.rows):
             lines.append(f"{JERK_IMPULSE}: the acceleration steps at the segment's start (at "
@@ -215,10 +207,10 @@ class SegmentDocument(Rendered):
         return lines
 
     def csv(self) -> str:
-        rows = ((row.name, row.kind, row.law or "", _number(row.start), _number(row.end),
-                 _number(row.peak_torque), _number(row.rms_torque), _number(row.rms_share),
-                 _number(row.peak_speed), _number(row.energy),
-                 _number(row.acceleration_step), _join(row))
+        rows = ((row.name, row.kind, row.law or "",
+                 *map(full_or_empty, (row.start, row.end, row.peak_torque, row.rms_torque,
+                                      row.rms_share, row.peak_speed, row.energy,
+                                      row.acceleration_step)), _join(row))
                 for row in self.breakdown.rows)
         return render_csv(csv_headers(self.linear), rows)
 

@@ -107,7 +107,7 @@ class SizingDocument(Rendered):
             from sizer.mechanics.linkages.of_stage import output_name
 
             move = f"the {output_name(linkage).split('_')[0]} moves {move}"
-        move += (", shortest duration" if task.minimize
+        move += (", shortest duration" if task.duration is None  # minimize
                  else f" in T = {short(task.duration * 1000.0)} ms")
         if self.design.cycle is not None and sized_as_cycle(self.design):
             move = cycle_heading(self.design.cycle)

@@ -19,7 +19,7 @@ import numpy as np
 from sizer.report.numbers import short
 from sizer.report.plots.figure_files import new_figure
 from sizer.report.plots.speed_torque import CURVE_COLORS
-from sizer.report.plots.time_curves import JOIN_COLOR
+from sizer.report.plots.time_curves import JOIN_COLOR, finish_axes
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -77,9 +77,9 @@ def linkage_figure(theta: np.ndarray, ratio: np.ndarray,
                            gid=GID_DEAD_POINT)
             _label(ratio_axes, at, f"{name} {short(round(at, 1))}°")
     unit = "m/rad" if linear else "rad/rad"
-    _finish(ratio_axes, "", f"transmission ratio ds/dθ [{unit}]")
-    _finish(torque_axes, "crank angle [deg]", "motor torque [N*m]")
-    torque_axes.legend(loc="lower right", fontsize="x-small", framealpha=0.85)
+    finish_axes(ratio_axes, "", f"transmission ratio ds/dθ [{unit}]", zero_color=JOIN_COLOR,
+                legend=False)
+    finish_axes(torque_axes, "crank angle [deg]", "motor torque [N*m]", zero_color=JOIN_COLOR)
     torque_axes.set_xlim(low, high)
     heading = f"{title}: " if title else ""
     figure.suptitle(f"{heading}transmission ratio and motor torque over the crank angle",
@@ -101,13 +101,3 @@ def _label(ax: Axes, at: float, text: str) -> None:
     ax.text(at, 0.98, text, transform=transform, ha="center", va="top", fontsize="x-small",
             color=DEAD_POINT_COLOR, clip_on=True, gid=GID_DEAD_POINT_LABEL,
             bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.8, "pad": 1.0})
-
-
-def _finish(ax: Axes, xlabel: str, ylabel: str) -> None:
-    ax.axhline(0.0, color=JOIN_COLOR, lw=0.6, zorder=2)
-    ax.grid(True, color="0.85", lw=0.5)
-    ax.set_axisbelow(True)
-    if xlabel:
-        ax.set_xlabel(xlabel)
-    ax.set_ylabel(ylabel)
-    ax.margins(y=0.15)

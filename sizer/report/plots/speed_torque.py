@@ -79,11 +79,7 @@ def speed_torque_figure(curves: Sequence[TaskCurve],
     segment starts is marked on the first curve with the segment's name. Returns the
     Figure.
     """
-    if not curves:
-        raise ValueError("no task curve to draw")
-    motors = {c.motor for c in curves}
-    if len(motors) > 1:
-        raise ValueError(f"curves of several motors: {', '.join(sorted(motors))}")
+    check_one_motor(curves)
     if results is not None and len(results) != len(curves):
         raise ValueError("one result per curve")
     scale = SPEED_UNITS[speed_unit]
@@ -116,6 +112,14 @@ def speed_torque_figure(curves: Sequence[TaskCurve],
     return figure
 
 
+def check_one_motor(curves: Sequence[TaskCurve]) -> None:
+    """A ValueError unless ``curves`` are one or more task curves of one motor."""
+    if not curves:
+        raise ValueError("no task curve to draw")
+    motors = {c.motor for c in curves}
+    if len(motors) > 1:
+        raise ValueError(f"curves of several motors: {', '.join(sorted(motors))}")
+
 def _draw_acceleration_panel(ax: Axes, curves: Sequence[TaskCurve], both: bool,
                              scale: float, speed_unit: str, duration_name: str) -> None:
     first = curves[0]
@@ -142,8 +146,6 @@ def _draw_acceleration_panel(ax: Axes, curves: Sequence[TaskCurve], both: bool,
 
 def _mark_segment_starts(ax: Axes, curve: TaskCurve, scale: float) -> None:
     """A small square where each segment of the cycle starts, with its name."""
-    from sizer.report.plots.time_curves import segment_points
-
     points = segment_points(curve)
     if not points:
         return
@@ -154,6 +156,18 @@ def _mark_segment_starts(ax: Axes, curve: TaskCurve, scale: float) -> None:
                     textcoords="offset points", fontsize="x-small", color="0.2", zorder=6)
 
 
+def segment_points(curve: TaskCurve) -> list[tuple[str, float, float]]:
+    """(names, motor speed, motor torque) where segments start: the segment's first
+    sample (the last one at its start time: the previous segment ends at that time too).
+    Segments starting at the same point (at rest, say) share one, their names joined."""
+    points: dict[tuple[float, float], list[str]] = {}
+    for name, start, _ in curve.segments:
+        index = max(int(np.searchsorted(curve.time, start, side="right")) - 1, 0)
+        key = (float(curve.motor_speed[index]), float(curve.motor_torque[index]))
+        points.setdefault(key, []).append(name)
+    return [(", ".join(names), speed, torque) for (speed, torque), names in points.items()]
+
+
 def _draw_regions(ax: Axes, continuous: Curve, intermittent: Curve, both: bool,
                   scale: float) -> None:
     for region, style, gid, label, z in (
@@ -162,7 +176,8 @@ def _draw_regions(ax: Axes, continuous: Curve, intermittent: Curve, both: bool,
     ):
         outline = region_outline(region, both)
         (polygon,) = ax.fill(outline[:, 0] * scale, outline[:, 1], label=label, lw=1.2,
-                             zorder=z, **style)
+                             zorder=z, facecolor=style["facecolor"],
+                             edgecolor=style["edgecolor"])
         polygon.set_gid(gid)
 
 

@@ -12,11 +12,9 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
-import numpy as np
-
 from sizer.report.numbers import short
 from sizer.report.plots.figure_files import new_figure
-from sizer.report.plots.speed_torque import CURVE_COLORS, SPEED_UNITS
+from sizer.report.plots.speed_torque import CURVE_COLORS, SPEED_UNITS, check_one_motor
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -41,11 +39,7 @@ def time_figure(curves: Sequence[TaskCurve], *, speed_unit: str = "rpm",
                 title: str = "", duration_name: str = "T") -> Figure:
     """Motor torque and speed over one machine cycle for each law's task curve (one
     motor), with the segments of the first curve shaded and named."""
-    if not curves:
-        raise ValueError("no task curve to draw")
-    motors = {c.motor for c in curves}
-    if len(motors) > 1:
-        raise ValueError(f"curves of several motors: {', '.join(sorted(motors))}")
+    check_one_motor(curves)
     scale = SPEED_UNITS[speed_unit]
     figure = new_figure(size or DEFAULT_SIZE, dpi)
     torque_axes, speed_axes = figure.subplots(2, 1, sharex=True, squeeze=True)
@@ -61,8 +55,8 @@ def time_figure(curves: Sequence[TaskCurve], *, speed_unit: str = "rpm",
                             gid=GID_RMS_LINE, label=f"RMS torque {short(curve.rms_torque)} N*m")
         speed_axes.plot(curve.time * 1000.0, curve.motor_speed * scale, color=color, lw=1.5,
                         label=label, gid=GID_SPEED, zorder=4)
-    _finish(torque_axes, "", "motor torque [N*m]")
-    _finish(speed_axes, "time [ms]", f"motor speed [{speed_unit}]")
+    finish_axes(torque_axes, "", "motor torque [N*m]")
+    finish_axes(speed_axes, "time [ms]", f"motor speed [{speed_unit}]")
     end = max(float(c.time[-1]) for c in curves) * 1000.0
     speed_axes.set_xlim(0.0, end)
     heading = f"{title}: motor {first.motor}" if title else f"motor {first.motor}"
@@ -89,24 +83,16 @@ def mark_segments(ax: Axes, segments: Sequence[tuple[str, float, float]], *,
                     va="top", fontsize="x-small", color="0.25", clip_on=True)
 
 
-def _finish(ax: Axes, xlabel: str, ylabel: str) -> None:
-    ax.axhline(0.0, color="0.5", lw=0.6, zorder=2)
+def finish_axes(ax: Axes, xlabel: str, ylabel: str, *, zero_color: str = "0.5",
+                legend: bool = True) -> None:
+    """The zero line, the grid, the labels (no x label when empty) and the legend."""
+    ax.axhline(0.0, color=zero_color, lw=0.6, zorder=2)
     ax.grid(True, color="0.85", lw=0.5)
     ax.set_axisbelow(True)
     if xlabel:
         ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
-    ax.legend(loc="lower right", fontsize="x-small", framealpha=0.85)
+    if legend:
+        ax.legend(loc="lower right", fontsize="x-small", framealpha=0.85)
     ax.margins(y=0.15)
 
-
-def segment_points(curve: TaskCurve) -> list[tuple[str, float, float]]:
-    """(names, motor speed, motor torque) where segments start: the segment's first
-    sample (the last one at its start time: the previous segment ends at that time too).
-    Segments starting at the same point (at rest, say) share one, their names joined."""
-    points: dict[tuple[float, float], list[str]] = {}
-    for name, start, _ in curve.segments:
-        index = max(int(np.searchsorted(curve.time, start, side="right")) - 1, 0)
-        key = (float(curve.motor_speed[index]), float(curve.motor_torque[index]))
-        points.setdefault(key, []).append(name)
-    return [(", ".join(names), speed, torque) for (speed, torque), names in points.items()]
