@@ -155,7 +155,7 @@ def _range(design: Design, start: str | None, stop: str | None) -> tuple[float, 
 
 
 def _minimize(design: Design) -> bool:
-    return design.cycle.minimize if design.cycle is not None else design.task.minimize
+    return design.machine_cycle.minimize
 
 
 def _base_scale(design: Design) -> float:

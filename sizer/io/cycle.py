@@ -9,9 +9,8 @@ form with boundary speeds, and boundary accelerations only with laws that meet t
 (polynomials of degree 5 and 7). Accelerations need not be continuous between segments:
 a step is a jerk impulse, which the reports mark.
 
-    motion_of(task, cycle, laws, source) -> Task, Cycle | None, warnings
+    motion_of(task, cycle, laws, source) -> Cycle, warnings
     build_cycle(given, source)           -> Cycle
-    summary_task(cycle)                  -> Task (for code that reads ``Design.task``)
 """
 
 from __future__ import annotations
@@ -36,8 +35,19 @@ from sizer.io.schema.inputs import TaskInput
 from sizer.io.schema.inputs_base import axis_range, convert_in, given_text, show_value
 from sizer.io.schema.ranges import RANGES, check_range, number_text
 from sizer.io.yaml_source import YamlSource, format_path
-from sizer.model.cycle import Cycle, Dwell, Move, Run, Segment, SegmentLoad, ShareRule
-from sizer.model.domain import Task
+from sizer.model.cycle import (
+    Cycle,
+    Dwell,
+    Move,
+    Run,
+    Segment,
+    SegmentLoad,
+    ShareRule,
+    Task,
+    boundary_laws,
+    from_task,
+    shorthand_task,
+)
 from sizer.units import parse_displacement, to_si
 
 SPEED_TOLERANCE = 1e-9
@@ -192,27 +202,42 @@ def build_cycle(given: CycleInput, source: YamlSource) -> Cycle:
     return cycle
 
 
-def summary_task(cycle: Cycle) -> Task:
-    """The Task that summarizes a cycle for code that still reads ``Design.task``: its
-    first move's displacement; no duration when minimized, else the cycle time."""
-    duration = None
-    if not cycle.minimize:
-        duration = cycle.cycle_time if cycle.cycle_time is not None else cycle.fixed_time
-    return Task(displacement=cycle.moves[0].displacement, duration=duration, dwell=0.0,
-                return_move=False, linear=cycle.linear)
-
-
 def motion_of(task: TaskInput | None, cycle: CycleInput | None, laws: list[LocatedLaw],
-              source: YamlSource) -> tuple[Task, Cycle | None, list[str]]:
-    """A design's motion: its ``cycle:`` and the Task that summarizes it, or its ``task:``
-    shorthand; with the warnings of the task's laws whose own displacement it scales."""
+              source: YamlSource) -> tuple[Cycle, list[str]]:
+    """A design's motion, one Cycle: its ``cycle:``, or the cycle its ``task:`` shorthand
+    means (``shorthand`` set); with the warnings of the task's laws whose own displacement
+    it scales."""
     if cycle is not None:
         built = build_cycle(cycle, source)
         check_cycle_laws(laws, source)
-        return summary_task(built), built, []
+        _check_law_list(built, laws, source)
+        return built, []
     assert task is not None  # a task or a cycle (DesignFile)
     shorthand, noted = _task_of(task, laws, source)
-    return shorthand, None, noted
+    return from_task(shorthand), noted
+
+
+def _check_law_list(cycle: Cycle, laws: list[LocatedLaw], source: YamlSource) -> None:
+    """The ``laws:`` the moves that name none are sized with: laws shaped per duration
+    are chosen for the task shorthand only (a cycle's moves have durations of their own),
+    and some law must meet the moves' boundary speeds (and accelerations)."""
+    from sizer.laws.open_shaped import is_open_shaped
+
+    listed = [law for law in laws if law.at[0] == "laws"]
+    try:
+        boundary_laws(cycle, [law.spec for law in listed])
+    except ValueError as error:
+        raise source.error(str(error), ("laws",)) from None
+    open_moves = any(m.law is None for m in cycle.moves)
+    for law in listed if open_moves and shorthand_task(cycle) is None else ():
+        if _has_auto(law.spec):
+            raise source.error(f"{law.spec}: `auto` shape parameters are chosen for the task "
+                               "shorthand only, not yet for a cycle of segments; give the "
+                               "shape", law.at)
+        if is_open_shaped(law.spec):
+            raise source.error(f"{law.spec}: a shaped law without f_T is shaped for one "
+                               "duration, and the moves of a cycle have their own: give "
+                               "f_T", law.at)
 
 
 def _task_of(given: TaskInput, laws: list[LocatedLaw],

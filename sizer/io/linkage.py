@@ -16,6 +16,7 @@ from sizer.errors import UserError
 from sizer.io.schema.transmission_inputs import FourBarInput, SliderCrankInput
 from sizer.io.yaml_source import YamlSource
 from sizer.mechanics.linkages.of_stage import linkage_of, linkages_of
+from sizer.model.cycle import Cycle
 from sizer.model.domain import LinkageStage
 
 
@@ -42,9 +43,9 @@ def linkage_stage(item: SliderCrankInput | FourBarInput, source: YamlSource,
     return stage
 
 
-def linkage_task(task: Any, stage: LinkageStage, cycle: Any, source: YamlSource,
-                 start_at: tuple[Any, ...] = ()) -> tuple[Any, Any, bool]:
-    """The task (and cycle) of a design whose transmission ends in a linkage, and its
+def linkage_cycle(cycle: Cycle, stage: LinkageStage, source: YamlSource,
+                  start_at: tuple[Any, ...] = ()) -> Cycle:
+    """The cycle of a design whose transmission ends in a linkage, on its
     axis: the linkage's output (a slider is linear, a rocker rotary).
 
     With ``law_on: crank`` the displacements are the crank's turns, angles; with
@@ -58,12 +59,12 @@ def linkage_task(task: Any, stage: LinkageStage, cycle: Any, source: YamlSource,
 
     from sizer.model.cycle import Move, Run
 
-    if cycle is None:
+    task = cycle.shorthand
+    if task is not None:
         moves: list[tuple[float, tuple[Any, ...]]] = [(task.displacement,
                                                         ("task", "displacement"))]
         if task.return_move:
             moves.append((-task.displacement, ("task", "return")))
-        linear = task.linear
     else:
         moves = []
         free = cycle.free
@@ -76,7 +77,7 @@ def linkage_task(task: Any, stage: LinkageStage, cycle: Any, source: YamlSource,
                 where: tuple[Any, ...] = (*at, "run") if isinstance(segment, Run) else \
                     (*at, "move", "displacement")
                 moves.append((segment.displacement, where))
-        linear = cycle.linear
+    linear = cycle.linear
     output = "a length (the slider's travel)" if stage.output_linear else \
         "an angle (the output's swing)"
     where = moves[0][1]
@@ -87,10 +88,8 @@ def linkage_task(task: Any, stage: LinkageStage, cycle: Any, source: YamlSource,
     if stage.law_on == "output" and linear != stage.output_linear:
         raise source.error(f"with law_on: output a displacement is {output}", where)
     _check_strokes(stage, moves, source, start_at)
-    task = replace(task, linear=stage.output_linear)
-    if cycle is not None:
-        cycle = replace(cycle, linear=stage.output_linear)
-    return task, cycle, stage.output_linear
+    return replace(cycle, linear=stage.output_linear, shorthand=task and replace(
+        task, linear=stage.output_linear))
 
 
 def _check_moving(stage: LinkageStage, segment: Any, free: bool, source: YamlSource,

@@ -28,7 +28,7 @@ from sizer.io.catalog_table import read_table
 from sizer.io.cycle import motion_of
 from sizer.io.data_law_rules import LocatedLaw, locate_laws
 from sizer.io.data_laws import canonical_data_laws
-from sizer.io.linkage import check_linkage_design, linkage_task, output_linear
+from sizer.io.linkage import check_linkage_design, linkage_cycle, output_linear
 from sizer.io.motor_rules import (
     MotorProblem,
     impossibilities,
@@ -405,16 +405,16 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
     canonical_data_laws(source, folder)
     model = validate(DesignFile, source)
     laws = _located_laws(model)
-    task, cycle, noted = motion_of(model.task, model.cycle, laws, source)
-    linear = task.linear
+    cycle, noted = motion_of(model.task, model.cycle, laws, source)
+    linear = cycle.linear
     warnings = [*bare_number_warnings(source, linear), *noted]
     load = _load(model, source, output_linear(model.transmission, linear))
     files = list(files)
     transmission, ratio_choice, linkage_at = build_transmission(
         model.transmission, source, folder, linear, files)
     if transmission.linkage is not None:
-        task, cycle, linear = linkage_task(task, transmission.linkage, cycle, source,
-                                           linkage_at)
+        cycle = linkage_cycle(cycle, transmission.linkage, source, linkage_at)
+        linear = cycle.linear
         check_linkage_design(model, source)
     extra = list(extra_catalogs)
     if default_motors and model.motors is None and not extra:
@@ -424,8 +424,7 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
     motors = _design_motors(model, source, folder, extra, warnings, files, catalog_drives)
     drives = _design_drives(model, source, folder, catalog_drives, motors, files)
     limits = _limits(model, source, linear)
-    minimize = cycle.minimize if cycle is not None else task.minimize
-    if limits.thermal_duty == "once" and minimize:
+    if limits.thermal_duty == "once" and cycle.minimize:
         raise source.error("'once' is checked at given durations (with minimize the RMS "
                            "check bounds T_min); give the duration", ("limits", "thermal_duty"))
     by_id = {m.id: m for m in motors}
@@ -435,7 +434,6 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
         if chosen_motor is not None and chosen_motor not in by_id:
             raise source.error(_unknown_motor(chosen_motor, list(by_id)), ("check", "motor"))
     return Design(
-        task=task,
         load=load,
         transmission=transmission,
         ratio_choice=ratio_choice,
@@ -447,7 +445,7 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
         name=model.name if model.name is not None else name,
         warnings=tuple(warnings),
         files=tuple(files),
-        cycle=cycle,
+        machine_cycle=cycle,
         drives=drives,
     )
 

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import enum
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 
@@ -217,3 +218,65 @@ def from_task(task: Task) -> Cycle:
             segments.append(Dwell(task.dwell, name="dwell 2"))
     return Cycle(tuple(segments), linear=task.linear, closed=task.return_move,
                  shorthand=task)
+
+
+def boundary_laws(cycle: Cycle, laws: Sequence[str]) -> tuple[str, ...]:
+    """The laws that can size the cycle's moves that name none: every one where those
+    moves start and end at rest, else those with a form that meets their boundary speeds
+    and accelerations (sizer.laws.boundary_speeds); ValueError where none can."""
+    moving = [m for m in cycle.moves if m.law is None and not m.rest_to_rest]
+    if not moving:
+        return tuple(laws)
+    from sizer.laws import AUTO, resolve
+    from sizer.laws.boundary_speeds import boundary_form
+
+    accelerated = any(m.start_acceleration or m.end_acceleration for m in moving)
+
+    def usable(spec: str) -> bool:
+        basis = None if AUTO in resolve(spec)[1].values() else boundary_form(spec)
+        return basis is not None and (not accelerated or basis.meets_accelerations)
+
+    kept = tuple(spec for spec in laws if usable(spec))
+    if not kept:
+        raise ValueError("none of the laws can start or end a move at a non-zero speed" + (
+            " or acceleration (polynomials of degree 5 and 7 can)" if accelerated else
+            " (those that can: trapezoidal, double_s, polynomial of degree 3, 5 or 7, "
+            "constant_acceleration)") + "; name one in `laws:` or give the move its own "
+            "`law:`")
+    return kept
+
+
+def shorthand_task(cycle: Cycle) -> Task | None:
+    """The task whose expansion is ``cycle`` (:func:`from_task`: move, dwell, move back,
+    dwell, equal durations, no load changes), else None: the engine sizes it by its
+    closed-form single-law path (sizer.sizing.move.CycleCalculator)."""
+    if cycle.shorthand is not None:
+        return cycle.shorthand
+    if cycle.minimize_segment is not None or cycle.cycle_time is not None:
+        return None
+    segments = cycle.segments
+    moves = [s for s in segments if isinstance(s, Move)]
+    dwells = [s for s in segments if isinstance(s, Dwell)]
+    if len(moves) + len(dwells) != len(segments) or not 1 <= len(moves) <= 2:
+        return None
+    if any(m.law is not None or not m.rest_to_rest or not m.load.is_zero for m in moves):
+        return None
+    if any(d.duration is None or not d.load.is_zero for d in dwells):
+        return None
+    first = moves[0]
+    if len(moves) == 2:
+        back = moves[1]
+        if back.displacement != -first.displacement or back.duration != first.duration:
+            return None
+        if first.duration is None and len(set(cycle.weights())) > 2:  # unequal free shares
+            return None
+        expected: list[type] = [Move, Dwell, Move, Dwell] if dwells else [Move, Move]
+    else:
+        expected = [Move, Dwell] if dwells else [Move]
+    if [type(s) for s in segments] != expected:
+        return None
+    dwell = dwells[0].duration if dwells else 0.0
+    if any(d.duration != dwell for d in dwells) or (dwells and not dwell):
+        return None
+    return Task(first.displacement, first.duration, dwell=dwell or 0.0,
+                return_move=len(moves) == 2, linear=cycle.linear)

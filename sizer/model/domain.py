@@ -7,7 +7,7 @@ built from YAML by sizer.io (which checks units and ranges) or directly from Pyt
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, fields, replace
 from pathlib import Path
 from typing import Literal
 
@@ -291,34 +291,66 @@ class RatioChoice:
     gearboxes: tuple[GearboxOption, ...] = ()
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class Design:
-    """A complete sizing problem: task, load, transmission, laws, motors, limits."""
+    """A complete sizing problem: its machine cycle, load, transmission, laws, motors,
+    limits.
 
-    task: Task
+    The motion is one :class:`Cycle`, ``machine_cycle``, the only one the core reads.
+    ``Design(task, load, ...)`` takes the task shorthand and stores the cycle it means
+    (``from_task``: ``shorthand`` set, for the reports); ``cycle=`` a cycle of segments.
+    Of several given, ``cycle`` wins, then ``task`` (so ``replace(design, task=...)``).
+    """
+
+    machine_cycle: Cycle
     load: Load
-    transmission: Transmission = field(default_factory=Transmission)
-    laws: tuple[str, ...] = ()
-    motors: tuple[Motor, ...] = ()
-    limits: Limits = field(default_factory=Limits)
-    chosen_motor: str | None = None
-    chosen_law: str | None = None
-    name: str = ""
-    ratio_choice: RatioChoice | None = None
-    warnings: tuple[str, ...] = ()
+    transmission: Transmission
+    laws: tuple[str, ...]
+    motors: tuple[Motor, ...]
+    limits: Limits
+    chosen_motor: str | None
+    chosen_law: str | None
+    name: str
+    ratio_choice: RatioChoice | None
+    warnings: tuple[str, ...]
     """Located warnings from loading (``file:line: field: text``), e.g. a bare number far
     from its plausible range; they never change the sizing."""
-    files: tuple[Path, ...] = ()
+    files: tuple[Path, ...]
     """The files the loader read: the design file, the motor catalogs (named by the design
     or added), the gearbox catalogs. A command never writes its output over one of them."""
-    drives: tuple[ServoDrive, ...] = ()
+    drives: tuple[ServoDrive, ...]
     """The drives (amplifiers) to pair with the motors; empty: motors alone. With drives,
     a candidate is a motor with one of its compatible drives (sizer.sizing.drives)."""
-    cycle: Cycle | None = None
-    """The machine cycle of several segments (``cycle:``); None: the ``task`` shorthand.
-    With a cycle, ``task`` summarizes it (its first move, minimize or not, the axis)."""
+
+    def __init__(self, task: Task | None = None, load: Load | None = None,
+                 transmission: Transmission = Transmission(), laws: tuple[str, ...] = (),
+                 motors: tuple[Motor, ...] = (), limits: Limits = Limits(),
+                 chosen_motor: str | None = None, chosen_law: str | None = None,
+                 name: str = "", ratio_choice: RatioChoice | None = None,
+                 warnings: tuple[str, ...] = (), files: tuple[Path, ...] = (),
+                 drives: tuple[ServoDrive, ...] = (), cycle: Cycle | None = None,
+                 machine_cycle: Cycle | None = None) -> None:
+        given = dict(locals(), machine_cycle=cycle or (from_task(task) if task is not None
+                                                       else machine_cycle))
+        if given["machine_cycle"] is None or load is None:
+            raise TypeError("a Design needs a task or a cycle, and a load")
+        for f in fields(self):
+            object.__setattr__(self, f.name, given[f.name])
 
     @property
-    def machine_cycle(self) -> Cycle:
-        """The cycle the design runs: ``cycle``, or the task shorthand expanded."""
-        return self.cycle if self.cycle is not None else from_task(self.task)
+    def cycle(self) -> Cycle | None:
+        """The cycle of segments the design was written as; None for the task shorthand."""
+        return self.machine_cycle if self.machine_cycle.shorthand is None else None
+
+    @property
+    def task(self) -> Task:
+        """The task the design was written as; for a cycle, the task that summarizes it
+        (for the reports): its first move, unscaled, no dwell; no duration when
+        minimized, else the cycle time."""
+        cycle = self.machine_cycle
+        if cycle.shorthand is not None:
+            return cycle.shorthand
+        duration = None
+        if not cycle.minimize:
+            duration = cycle.cycle_time if cycle.cycle_time is not None else cycle.fixed_time
+        return Task(cycle.moves[0].displacement, duration, linear=cycle.linear)

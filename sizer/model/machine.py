@@ -13,6 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from pathlib import Path
 
+from sizer.model.cycle import from_task
 from sizer.model.domain import Design
 
 
@@ -31,12 +32,12 @@ class MachineAxis:
         share = cycle_time / cycle_angle
         task = replace(self.design.task, duration=self.move * share,
                        dwell=self.dwell * share)
-        return replace(self.design, task=task)
+        return replace(self.design, machine_cycle=from_task(task))
 
     def minimizing(self, dwell_time: float) -> Design:
         """The axis's design with ``duration: minimize`` and a dwell of ``dwell_time`` s."""
         task = replace(self.design.task, duration=None, dwell=dwell_time)
-        return replace(self.design, task=task)
+        return replace(self.design, machine_cycle=from_task(task))
 
 
 @dataclass(frozen=True)

@@ -118,15 +118,15 @@ def sized_as_cycle(design: Design) -> bool:
     """True when the design's results have the cycle time as their duration (a cycle of
     segments that is not the task shorthand; sizer.sizing.segment_breakdown.scale_of),
     False when it is the move's duration T."""
-    from sizer.sizing.cycle import plain_design
+    from sizer.model.cycle import shorthand_task
 
-    return design.cycle is not None and plain_design(design).cycle is not None
+    return shorthand_task(design.machine_cycle) is None
 
 
 def duration_name(design: Design) -> str:
     """What a result's duration is called: T or T_min for a task (the move), 'cycle time'
     or 'min cycle time' for a cycle of segments."""
-    minimize = design.cycle.minimize if design.cycle is not None else design.task.minimize
+    minimize = design.machine_cycle.minimize
     if sized_as_cycle(design):
         return "min cycle time" if minimize else "cycle time"
     return "T_min" if minimize else "T"

@@ -113,6 +113,7 @@ from sizer.numerics.golden import golden_step, interior_points
 from sizer.numerics.roots import illinois
 from sizer.sizing.candidates import Candidates, MotorArrays
 from sizer.sizing.checks import evaluate_checks, worst_slack
+from sizer.sizing.cycle import single_task
 from sizer.sizing.energy_check import has_braking_check, has_heat_check, without_power_figures
 from sizer.sizing.move import CycleCalculator
 from sizer.sizing.results import CandidateTable, Mode, concatenate, in_groups
@@ -438,7 +439,7 @@ def search_shape(family: type[MotionLaw], fixed: dict[str, float],
 
     def score(points: list[np.ndarray]) -> Scores:
         scores = evaluate_points(family, fixed, names, points, design, motors, guess)
-        if design.task.minimize:
+        if design.machine_cycle.minimize:
             found = np.isfinite(scores[:, 0])
             guess[found] = -scores[found, 0]
         return scores
@@ -576,19 +577,20 @@ def score_law(law: MotionLaw, design: Design, candidates: Candidates,
         from sizer.sizing.linkage_move import evaluate_linkage
 
         duration, _, checks, feasible = evaluate_linkage(design, law, motors, drive)
-        if design.task.minimize:
+        if design.machine_cycle.minimize:
             return -np.where(feasible, duration, np.inf)[:, None]
         return np.sort(np.stack([c.slack for c in checks], axis=1), axis=1)
-    calculator = CycleCalculator(None, design.task, drive, motors,
-                                 design.limits.thermal_speed, law=law)
-    if design.task.minimize:
+    task = single_task(design)
+    calculator = CycleCalculator(None, task, drive, motors, design.limits.thermal_speed,
+                                 law=law)
+    if task.minimize:
         T = warm_duration(calculator, design, guess) if guess is not None else None
         if T is None:
             solution = minimum_duration(calculator, design.limits)
             T = np.where(solution.feasible, solution.duration, np.inf)
         return -T[:, None]
-    metrics = calculator.evaluate(np.full(len(motors), design.task.duration))
-    checks = evaluate_checks(metrics, motors, drive, design.limits, design.task.linear)
+    metrics = calculator.evaluate(np.full(len(motors), task.duration))
+    checks = evaluate_checks(metrics, motors, drive, design.limits, task.linear)
     return np.sort(np.stack([c.slack for c in checks], axis=1), axis=1)
 
 
@@ -672,13 +674,13 @@ def exact_time_optimal(family: type[MotionLaw], fixed: dict[str, float],
     the flat part the exact optimum sees, where the optimum reaches the end of it
     (sizer.sizing.shortest_duration.beyond_flat_part).
     """
-    if not design.task.minimize or family not in (Trapezoidal, DoubleS) \
+    if not design.machine_cycle.minimize or family not in (Trapezoidal, DoubleS) \
             or design.transmission.linkage is not None:  # the book's case has no linkage
         return None
     if "alpha_d" in fixed or "beta_d" in fixed:  # the closed form is the symmetric law's
         return None
     motors = candidates.motors
-    calculator = CycleCalculator(None, design.task, candidates.drive, motors,
+    calculator = CycleCalculator(None, single_task(design), candidates.drive, motors,
                                  design.limits.thermal_speed)
     if not is_purely_inertial(calculator):
         return None
@@ -731,14 +733,9 @@ def evaluate_shaped(design: Design, spec: str, candidates: Candidates,
 
     fields = dict(read_data_spec(spec))
     mode = _mode(design, fields)
-    if design.cycle is not None:
-        raise UserError(f"{spec}: a shaped law without f_T is shaped for one duration, "
-                        "and the moves of a cycle have their own: give f_T",
-                        field="laws")
-    if not design.task.minimize:
-        assert design.task.duration is not None
-        return evaluate_fixed_law(design, _shaped(fields, mode, design.task.duration),
-                                  candidates)
+    task = single_task(design)
+    if task.duration is not None:
+        return evaluate_fixed_law(design, _shaped(fields, mode, task.duration), candidates)
     # the rounds size the torques alone: the law shaped for T leaves no residual at T, a
     # residual limit is checked once T is found (moving T inside the rounds would break the
     # shaping's timing)

@@ -63,8 +63,10 @@ from sizer.sizing.checks import (
     WINDING_TEMPERATURE_RISE,
     CheckArrays,
 )
+from sizer.sizing.cycle import shorthand_task
 from sizer.sizing.evaluation import CycleMetrics
 from sizer.sizing.move import CycleCalculator
+from sizer.sizing.samples import sampled
 
 REGENERATED = "regenerated_energy"
 BRAKING_POWER = "braking_power"
@@ -116,12 +118,12 @@ def energy_notes(design: Design) -> list[str]:
     """What the energy and heat checks left out, for reports (none without them)."""
     if not (has_heat_check(design.motors) or has_braking_check(design, design.drives)):
         return []
-    minimize = design.cycle.minimize if design.cycle is not None else design.task.minimize
+    minimize = design.machine_cycle.minimize
     if minimize and design.load.elastic is not None:
         return ["T_min is searched without winding_temperature_rise and "
                 "braking_resistor_power; they are checked at T_min"]
     if minimize:
-        what = "the free durations are" if design.cycle is not None else "the move is"
+        what = "the move is" if shorthand_task(design.machine_cycle) else "the free durations are"
         return ["where winding_temperature_rise or braking_resistor_power fails at the T_min "
                 f"of the other checks, {what} lengthened to the first duration that "
                 "passes them"]
@@ -165,7 +167,7 @@ def energy_checks(design: Design, calculator: CycleCalculator, duration: np.ndar
     n = len(motors)
     T = np.broadcast_to(np.asarray(duration, dtype=float), (n,))
     known = np.isfinite(T) & (T > 0.0)
-    cycle_time = _cycle_time(design, calculator, np.where(known, T, 1.0))
+    cycle_time = calculator.cycle_time(np.where(known, T, 1.0))
     thermal = np.zeros(n, dtype=bool)  # the winding model, where the cycle is not short
     once = design.limits.thermal_duty == "once"  # or always, for a one-off run
     if heat:
@@ -179,7 +181,7 @@ def energy_checks(design: Design, calculator: CycleCalculator, duration: np.ndar
         rows = np.flatnonzero(need & known)
     samples = power = None
     if rows.size:
-        samples = _samples(design, calculator.take(rows), T[rows])
+        samples = sampled(calculator.take(rows), T[rows])
         power, wound = _axis_power(motors, samples, rows)
     feasible = np.asarray(feasible, dtype=bool).copy()
     checks: list[CheckArrays] = []
@@ -269,50 +271,6 @@ def _braking(design: Design, motors, power, rows: np.ndarray, known: np.ndarray)
     check = BRAKING_RESISTOR_POWER.arrays(value, np.where(applies, limit, 1.0), 0.0,
                                           None if applies.all() else applies)
     return check, *(np.where(known, x, np.nan) for x in (regenerated, resistor, stop, peak))
-
-
-def _kind(calculator) -> str:
-    """'segments' (sizer.sizing.cycle: its 'duration' is the scale s), 'linkage'
-    (sizer.sizing.linkage_move or linkage_cycle) or 'task'."""
-    from sizer.sizing.cycle import SegmentCycle
-    from sizer.sizing.linkage_move import LinkageCalculator, LinkageCycle
-
-    if isinstance(calculator, SegmentCycle):
-        return "segments"
-    if isinstance(calculator, LinkageCalculator | LinkageCycle):
-        return "linkage"
-    return "task"
-
-
-def _samples(design: Design, calculator, T: np.ndarray):
-    """One machine cycle sampled per candidate: the task shorthand at move durations T,
-    a cycle of segments at scales T (sizer.sizing.samples), a linkage at its
-    durations or scales (sizer.sizing.samples)."""
-    kind = _kind(calculator)
-    if kind == "segments":
-        from sizer.sizing.samples import segment_samples
-
-        return segment_samples(calculator, T)
-    if kind == "linkage":
-        from sizer.sizing.samples import linkage_samples
-
-        return linkage_samples(calculator, T)
-    from sizer.sizing.samples import cycle_samples
-
-    return cycle_samples(design, calculator, T)
-
-
-def _cycle_time(design: Design, calculator, T: np.ndarray) -> np.ndarray:
-    """The machine cycle's time at move durations (or a cycle's scales) T."""
-    kind = _kind(calculator)
-    if kind == "segments":
-        return np.asarray(calculator.cycle_time(T), dtype=float)
-    if kind == "linkage":
-        from sizer.sizing.linkage_move import linkage_cycle_time as cycle_time
-
-        return cycle_time(calculator, T)
-    task = design.task
-    return task.moves_per_cycle * (T + task.dwell)
 
 
 def _thermal_model_applies(motors, cycle_time: np.ndarray, once: bool = False) -> np.ndarray:

@@ -47,7 +47,14 @@ from sizer.sizing.candidates import Candidates, MotorArrays
 from sizer.sizing.checks import TOLERANCE, CheckName, evaluate_checks
 from sizer.sizing.checks import feasible as all_pass
 from sizer.sizing.choices import SharedByLaws, choose_shape
-from sizer.sizing.cycle import given_scale, left_out_laws, plain_design, ranked_laws
+from sizer.sizing.cycle import (
+    SegmentCycle,
+    given_scale,
+    left_out_laws,
+    ranked_laws,
+    shorthand_task,
+    single_task,
+)
 from sizer.sizing.energy_check import (
     EnergyChecks,
     energy_checks,
@@ -74,16 +81,13 @@ from sizer.sizing.shortest_duration import is_purely_inertial, merge_metrics, mi
 if TYPE_CHECKING:
     from concurrent.futures import Future
 
-    from sizer.sizing.cycle import SegmentCycle
-
 
 Progress = Callable[[int, int], None]
 """Called as ``progress(done, total)``: laws sized so far, of all the laws."""
 
 
 def mode_of(design: Design) -> Mode:
-    minimize = design.cycle.minimize if design.cycle is not None else design.task.minimize
-    return Mode.MINIMIZE if minimize else Mode.DURATION
+    return Mode.MINIMIZE if design.machine_cycle.minimize else Mode.DURATION
 
 
 def size_design(design: Design, rank_by: str | None = None,
@@ -95,7 +99,6 @@ def size_design(design: Design, rank_by: str | None = None,
     ``workers``: processes sizing the laws (:func:`tables_in_processes`; None: every CPU
     for a large design); the result is the same whatever their number.
     """
-    design = plain_design(design)
     motors = tuple(motors if motors is not None else design.motors)
     if not motors:
         raise UserError("no motors to size: give a catalog in the design or with --catalog",
@@ -154,7 +157,8 @@ def evaluate_spec(design: Design, spec: str, motors: MotorArrays,
         return evaluate_fixed_law(design, make_law(spec), candidates, peaks=False)
 
     def floor(candidates: Candidates) -> np.ndarray | None:
-        scales = common.scales if candidates is common.pairs.candidates else None
+        scales = common.scales if candidates is common.pairs.candidates \
+            and shorthand_task(design.machine_cycle) else None
         return duration_floor(design, spec, candidates, scales)
 
     return choose_ratio(design, motors, lambda c: evaluate_law(design, spec, c),
@@ -169,7 +173,7 @@ def _plain_given_duration(design: Design, spec: str) -> bool:
     known from an evaluation without them, and leaving them out only passes them (the
     ratio search evaluates the peaks of the options that can still win: sizer.sizing.
     ratio_choice)."""
-    if design.task.minimize or design.cycle is not None or \
+    if design.machine_cycle.minimize or shorthand_task(design.machine_cycle) is None or \
             design.transmission.linkage is not None or is_open_shaped(spec):
         return False
     return not any(v == AUTO for v in resolve(spec)[1].values())
@@ -183,10 +187,7 @@ def evaluate_law(design: Design, spec: str, candidates: Candidates) -> Candidate
         return evaluate_shaped(design, spec, candidates, evaluate_fixed_law)
     family, values = resolve(spec)
     if any(v == AUTO for v in values.values()):
-        if design.cycle is not None:
-            raise UserError(f"{spec}: `auto` shape parameters are chosen for the task "
-                            "shorthand only, not yet for a cycle of segments; give the "
-                            "shape", field="laws")
+        single_task(design)  # chosen for the task shorthand only (sizer.io refuses others)
         with without_power_figures():  # verdicts only; the chosen laws get them below
             laws = choose_shape(family, values, design, candidates)
     else:
@@ -228,13 +229,14 @@ def evaluate_fixed_law(design: Design, law: MotionLaw, candidates: Candidates,
     """The requirements, checks and verdicts of one law for every candidate, in chunks
     of :func:`chunk_size` candidates. Without ``peaks`` (a given duration only) the peak
     torques and ratios are left at zero: their checks pass."""
+    task = shorthand_task(design.machine_cycle)
     if design.transmission.linkage is not None:
-        moves = len(design.cycle.moves) if design.cycle is not None else 1
+        moves = len(design.machine_cycle.moves) if task is None else 1
         size = candidates_per_chunk(LINKAGE_SAMPLES * moves)
-    elif design.cycle is not None:
-        size = chunk_size(law, len(design.cycle.moves))
+    elif task is None:
+        size = chunk_size(law, len(design.machine_cycle.moves))
     else:
-        calculator = CycleCalculator(None, design.task, candidates.drive, candidates.motors,
+        calculator = CycleCalculator(None, task, candidates.drive, candidates.motors,
                                      design.limits.thermal_speed, law=law)
         if is_purely_inertial(calculator):  # closed forms: memory per candidate, no grid
             return _evaluate_chunk(design, law, candidates, peaks)
@@ -248,32 +250,37 @@ def evaluate_fixed_law(design: Design, law: MotionLaw, candidates: Candidates,
 
 def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates,
                     peaks: bool = True) -> CandidateTable:
+    """One law for a chunk of candidates: the law move's closed forms where the cycle is
+    the task shorthand (the move's T reported), else the cycle of segments (sizer.sizing.
+    cycle: the scale of its free durations searched, time scaling of book sec. 5.2; the
+    cycle time reported)."""
     if design.transmission.linkage is not None:
         return _evaluate_linkage_chunk(design, law, candidates)
-    if design.cycle is not None:
-        return _evaluate_cycle_chunk(design, law, candidates)
-    motors, drive = candidates.motors, candidates.drive
-    calculator = CycleCalculator(None, design.task, drive, motors,
-                                 design.limits.thermal_speed, law=law)
-    if design.task.minimize:
+    cycle, motors, rule = design.machine_cycle, candidates.motors, design.limits.thermal_speed
+    task = shorthand_task(cycle)
+    calculator = SegmentCycle(cycle, law, candidates.drive, motors, rule) if task is None \
+        else CycleCalculator(None, task, candidates.drive, motors, rule, law=law)
+    if cycle.minimize:
         solution = minimum_duration(calculator, design.limits)
         metrics, checks, feasible = solution.metrics, solution.checks, solution.feasible
-        duration = solution.duration
+        scale = solution.duration
     else:
-        T = np.full(len(motors), design.task.duration)
-        metrics = calculator.evaluate(T, peaks)
-        checks = evaluate_checks(metrics, motors, drive, design.limits, design.task.linear)
+        scale = np.full(len(motors), given_scale(cycle) if task is None else task.duration)
+        metrics = calculator.evaluate(scale, peaks)
+        checks = evaluate_checks(metrics, motors, calculator.drive, design.limits, cycle.linear)
         feasible = all_pass(checks)
-        duration = T
-    vibration = _vibration(design, law, calculator, duration, metrics, checks, feasible,
-                           design.task.minimize, design.task.linear)
+    vibration = _vibration(design, law, calculator, scale, metrics, checks, feasible,
+                           cycle.minimize, cycle.linear)
     residual = None
     if vibration is not None:
-        duration, metrics, checks, feasible, residual = vibration
-    duration, metrics, checks, feasible, figures = _with_energy(
-        design, calculator, duration, metrics, checks, feasible, design.task.minimize,
-        residual is not None, design.task.linear)
-    return _table(design, law, candidates, duration, metrics, checks, feasible, residual,
+        scale, metrics, checks, feasible, residual = vibration
+    scale, metrics, checks, feasible, figures = _with_energy(
+        design, calculator, scale, metrics, checks, feasible, cycle.minimize,
+        residual is not None, cycle.linear)
+    if task is None:  # the cycle time
+        scale = np.where(feasible, metrics.duration, np.nan) if cycle.minimize \
+            else metrics.duration
+    return _table(design, law, candidates, scale, metrics, checks, feasible, residual,
                   figures)
 
 
@@ -385,40 +392,6 @@ def _vibration(design: Design, law: MotionLaw, calculator, scale: np.ndarray, me
     return scale, metrics, checks, feasible, residual
 
 
-def _evaluate_cycle_chunk(design: Design, law: MotionLaw,
-                          candidates: Candidates) -> CandidateTable:
-    """A cycle of segments (sizer.sizing.cycle): minimize is the smallest scale
-    of the free durations (time scaling, book sec. 5.2), searched per candidate; the
-    duration reported is the cycle time."""
-    from sizer.sizing.cycle import SegmentCycle  # only designs with a cycle need it
-
-    cycle = design.cycle
-    assert cycle is not None
-    motors = candidates.motors
-    calculator = SegmentCycle(cycle, law, candidates.drive, motors,
-                              design.limits.thermal_speed)
-    if cycle.minimize:
-        solution = minimum_duration(calculator, design.limits)
-        metrics, checks, feasible = solution.metrics, solution.checks, solution.feasible
-    else:
-        metrics = calculator.evaluate(np.full(len(motors), given_scale(cycle)))
-        checks = evaluate_checks(metrics, motors, calculator.drive, design.limits, cycle.linear)
-        feasible = all_pass(checks)
-    scale = solution.duration if cycle.minimize else np.full(len(motors), given_scale(cycle))
-    vibration = _vibration(design, law, calculator, scale, metrics, checks, feasible,
-                           cycle.minimize, cycle.linear)
-    residual = None
-    if vibration is not None:
-        scale, metrics, checks, feasible, residual = vibration
-    _, metrics, checks, feasible, figures = _with_energy(
-        design, calculator, scale, metrics, checks, feasible, cycle.minimize,
-        residual is not None, cycle.linear)
-    duration = np.where(feasible, metrics.duration, np.nan) if cycle.minimize \
-        else metrics.duration
-    return _table(design, law, candidates, duration, metrics, checks, feasible, residual,
-                  figures)
-
-
 LINKAGE_SAMPLES = 8192
 """Samples of a move through a linkage per candidate (sizer.sizing.linkage_move)."""
 
@@ -429,30 +402,25 @@ def _evaluate_linkage_chunk(design: Design, law: MotionLaw,
     law computed once, the candidates at its samples; minimize by time scaling."""
     from sizer.sizing.linkage_move import evaluate_linkage  # only linkage designs
 
-    if design.cycle is not None:
-        from sizer.sizing.linkage_move import evaluate_linkage as evaluate_linkage_cycle
-
-        evaluate = evaluate_linkage_cycle
-    else:
-        evaluate = evaluate_linkage
-    duration, metrics, checks, feasible = evaluate(design, law, candidates.motors,
-                                                   candidates.drive)
+    duration, metrics, checks, feasible = evaluate_linkage(design, law, candidates.motors,
+                                                           candidates.drive)
     if not (has_heat_check(candidates.motors.catalog)
             or has_braking_check(design, candidates.motors.drives)):
         return _table(design, law, candidates, duration, metrics, checks, feasible)
     from sizer.sizing.linkage_move import linkage_calculator, scale_of_durations
 
     calculator = linkage_calculator(design, law, candidates.motors, candidates.drive)
-    cycle = design.cycle is not None or design.task.return_move
+    task = shorthand_task(design.machine_cycle)
+    cycle = task is None or task.return_move
     scale = scale_of_durations(calculator, metrics.duration if cycle else duration)
     scale = np.where(np.isfinite(duration), scale, np.nan)
-    minimize = design.cycle.minimize if design.cycle is not None else design.task.minimize
+    minimize = design.machine_cycle.minimize
     moved, metrics, checks, feasible, figures = _with_energy(
         design, calculator, scale, metrics, checks, feasible, minimize, False,
-        design.cycle.linear if design.cycle is not None else design.task.linear)
+        design.machine_cycle.linear)
     if cycle:  # the cycle time, or for a task with a return each move's T
-        duration = metrics.duration if design.cycle is not None else \
-            (metrics.duration - 2.0 * design.task.dwell) / 2.0
+        duration = metrics.duration if task is None else \
+            (metrics.duration - 2.0 * task.dwell) / 2.0
         duration = np.where(feasible, duration, np.nan) if minimize else duration
     else:
         duration = moved
@@ -491,15 +459,14 @@ def check_design(design: Design) -> CandidateResult:
         known = ", ".join(m.id for m in design.motors) or "none"
         raise UserError(f"unknown motor {design.chosen_motor!r}; loaded motors: {known}",
                         field="check.motor")
-    table = evaluate_spec(plain_design(design), design.chosen_law,
+    table = evaluate_spec(design, design.chosen_law,
                           MotorArrays.of([motor], design.limits.envelope, design.drives))
     return table.row(0)
 
 
 def cycle_notes(design: Design) -> list[str]:
     """What sizing a cycle of segments assumed, for reports."""
-    cycle = design.cycle
-    assert cycle is not None
+    cycle = design.machine_cycle
     notes = [f"a cycle of {len(cycle.segments)} segments; durations are cycle times"]
     if cycle.minimize_segment is not None:
         notes.append(f"minimize: segment {cycle.minimize_segment!r}, the others fixed")
@@ -520,13 +487,13 @@ def assumptions(design: Design) -> tuple[str, ...]:
     notes = []
     if any(m.continuous_curve is None or m.intermittent_curve is None for m in design.motors):
         notes.append(envelope_note(design.limits.envelope))
-    cycle = plain_design(design).cycle
-    if cycle is not None:
+    task = shorthand_task(design.machine_cycle)
+    if task is None:
         notes.extend(cycle_notes(design))
         holds = any(isinstance(s, Dwell) and (design.load.torque + s.load.torque) != 0.0
-                    for s in cycle.segments)
+                    for s in design.machine_cycle.segments)
     else:
-        holds = bool(design.load.torque and design.task.dwell)
+        holds = bool(design.load.torque and task.dwell)
     if holds:
         notes.append("holding the constant load at rest counts as driving (torque / efficiency)")
     if not math.isclose(design.transmission.efficiency, 1.0):
@@ -535,7 +502,7 @@ def assumptions(design: Design) -> tuple[str, ...]:
                          "constant load); inertial torque without loss (Yaskawa's convention)")
         else:
             notes.append("efficiency applied in the direction of power flow")
-    notes.extend(energy_notes(plain_design(design)))
+    notes.extend(energy_notes(design))
     if design.limits.inertia_ratio is not None:
         if design.limits.inertia_ratio_of == "load":
             notes.append("inertia ratio: the load alone reflected to the motor, over the "
@@ -661,9 +628,10 @@ def rms_fails_up_to(design: Design, spec: str, candidates: Candidates,
     evaluation per group gives every member's RMS model (:func:`_shared_models`)."""
 
     law = make_law(spec)
-    if design.cycle is not None:
+    task = shorthand_task(design.machine_cycle)
+    if task is None:
         return _cycle_fails_up_to(design, law, candidates, T)
-    size = chunk_size(law, 2 if design.task.return_move else 1)
+    size = chunk_size(law, task.moves_per_cycle)
     out = np.zeros(len(candidates), dtype=bool)
     if group is not None and len(candidates):
         groups = np.unique(group)
@@ -683,7 +651,7 @@ def rms_fails_up_to(design: Design, spec: str, candidates: Candidates,
     for start in range(0, len(candidates), size):
         rows = np.arange(start, min(start + size, len(candidates)))
         part = candidates.take(rows)
-        calculator = CycleCalculator(None, design.task, part.drive, part.motors,
+        calculator = CycleCalculator(None, task, part.drive, part.motors,
                                      design.limits.thermal_speed, law=law)
         here = T[rows]
         metrics = calculator.evaluate(here, peaks=False, model=True)
@@ -701,10 +669,7 @@ def _cycle_fails_up_to(design: Design, law, candidates: Candidates,
     cycle's RMS has the single law's form in that scale (each free move's integral a
     Laurent polynomial in it, the fixed segments constant), so the same reading holds.
     False where the cycle has no model (a free move with boundary speeds)."""
-    from sizer.sizing.cycle import SegmentCycle  # only designs with a cycle need it
-
-    cycle = design.cycle
-    assert cycle is not None
+    cycle = design.machine_cycle
     size = chunk_size(law, max(len(cycle.moves), 1))
     out = np.zeros(len(candidates), dtype=bool)
     for start in range(0, len(candidates), size):
@@ -754,8 +719,8 @@ def _shared_models(design: Design, law, candidates: Candidates, T: np.ndarray,
     drive = candidates.drive
     if drive.is_ideal:
         return None
-    n = len(candidates)
-    calculator = CycleCalculator(None, design.task, drive, candidates.motors,
+    n, task = len(candidates), single_task(design)
+    calculator = CycleCalculator(None, task, drive, candidates.motors,
                                  design.limits.thermal_speed, law=law)
     for direction in calculator.directions:
         _, outputs = drive.linear_pieces(direction)
@@ -781,4 +746,4 @@ def _shared_models(design: Design, law, candidates: Candidates, T: np.ndarray,
         moves.append([(P, Q, C, M[:, inverse]) for (P, Q, C), (*_, M)
                       in zip(functions, reference, strict=True)])
     hold = np.broadcast_to(drive.holding_torques()[0], (n,))
-    return calculator, RmsModel(T.copy(), moves, design.task.dwell, hold)
+    return calculator, RmsModel(T.copy(), moves, task.dwell, hold)

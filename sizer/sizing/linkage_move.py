@@ -43,7 +43,7 @@ from sizer.model.cycle import Move, Run, from_task
 from sizer.model.domain import Design, Limits, LinkageStage, Load, Task
 from sizer.sizing.candidates import MotorArrays
 from sizer.sizing.checks import CheckArrays, evaluate_checks, feasible
-from sizer.sizing.cycle import cycle_laws, given_scale, segment_load
+from sizer.sizing.cycle import cycle_laws, given_scale, segment_load, shorthand_task
 from sizer.sizing.evaluation import CycleMetrics
 from sizer.sizing.move import rule_speed
 from sizer.sizing.shortest_duration import minimum_duration
@@ -330,6 +330,9 @@ class LinkageCalculator:
         self.profile, self.task, self.drive, self.motors = profile, task, drive, motors
         self.thermal_rule, self.law = thermal_rule, law
 
+    def cycle_time(self, T: np.ndarray) -> np.ndarray:
+        return np.asarray(T, dtype=float) + self.task.dwell
+
     def take(self, index: np.ndarray) -> LinkageCalculator:
         return LinkageCalculator(self.profile, self.task, self.drive.take(index),
                                  self.motors.subset(index), self.thermal_rule, self.law)
@@ -493,17 +496,16 @@ def linkage_calculator(design: Design, law: MotionLaw, motors: MotorArrays, driv
                        ) -> LinkageCalculator | LinkageCycle:
     """The calculator the engine sizes a linkage design with: one move and its dwell, or
     the cycle (a task with a return is the cycle it means)."""
-    if design.cycle is not None or design.task.return_move:
+    task = shorthand_task(design.machine_cycle)
+    if task is None or task.return_move:
         # a task with a return move is the cycle it means: the way back starts where the
         # way out stopped
-        cyc = design if design.cycle is not None else \
-            replace(design, cycle=from_task(design.task))
+        cyc = design if task is None else replace(design, machine_cycle=from_task(task))
         return LinkageCycle(cyc, law, drive, motors, design.limits.thermal_speed)
     stage = design.transmission.linkage
     assert stage is not None, "a linkage design"
-    profile = profile_of(stage, design.load, design.task.displacement, design.task.duration,
-                         law)
-    return LinkageCalculator(profile, design.task, crank_drive(design, drive, profile),
+    profile = profile_of(stage, design.load, task.displacement, task.duration, law)
+    return LinkageCalculator(profile, task, crank_drive(design, drive, profile),
                              motors, design.limits.thermal_speed, law)
 
 
@@ -524,7 +526,7 @@ def evaluate_linkage(design: Design, law: MotionLaw, motors: MotorArrays, drive:
         minimize, given = cycle.minimize, given_scale(cycle)
         issues = calculator.issues()
     else:
-        minimize, given = design.task.minimize, design.task.duration
+        minimize, given = calculator.task.minimize, calculator.task.duration
         issues = calculator.profile.issues
     n = len(motors)
     point = dead_point_check(issues, n)
@@ -543,9 +545,10 @@ def evaluate_linkage(design: Design, law: MotionLaw, motors: MotorArrays, drive:
             checks = unbounded_checks(checks)
         passed = feasible([point, *checks])
     duration = np.where(passed, metrics.duration, np.nan) if minimize else metrics.duration
-    if design.cycle is None and design.task.return_move:  # the task reports its moves' T
+    task = shorthand_task(design.machine_cycle)
+    if task is not None and task.return_move:  # the task reports its moves' T
         T = (duration - cycle.fixed_time) / len(cycle.moves) if minimize else \
-            np.full(n, design.task.duration)
+            np.full(n, task.duration)
         return T, metrics, [point, *checks], passed
     return duration, metrics, [point, *checks], passed
 
@@ -590,9 +593,9 @@ class LinkageCycle:
 
     def __init__(self, design: Design, law: MotionLaw | None, drive: Drive,
                  motors: MotorArrays, thermal_rule: str) -> None:
-        cycle = design.cycle
+        cycle = design.machine_cycle
         stage = design.transmission.linkage
-        assert cycle is not None and stage is not None
+        assert stage is not None
         self.cycle, self.motors, self.thermal_rule = cycle, motors, thermal_rule
         self.law = law
         self.laws = cycle_laws(cycle, law)
@@ -634,6 +637,10 @@ class LinkageCycle:
     def durations(self, s: np.ndarray) -> list[np.ndarray]:
         return [np.full_like(s, fixed) if np.isfinite(fixed) else w * s
                 for fixed, w in zip(self.fixed, self.weights, strict=True)]
+
+    def cycle_time(self, s: np.ndarray) -> np.ndarray:
+        s = np.asarray(s, dtype=float)
+        return sum(self.durations(s), np.zeros_like(s))
 
     def take(self, index: np.ndarray) -> LinkageCycle:
         out = object.__new__(LinkageCycle)
@@ -786,14 +793,5 @@ def scale_of_durations(calculator: LinkageCalculator | LinkageCycle,
     if weights == 0.0:
         return np.ones_like(np.asarray(duration, dtype=float))
     return (np.asarray(duration, dtype=float) - fixed) / weights
-
-
-def linkage_cycle_time(calculator: LinkageCalculator | LinkageCycle, scale: np.ndarray
-                       ) -> np.ndarray:
-    """The machine cycle's time at durations (one move: T + dwell) or scales s."""
-    s = np.asarray(scale, dtype=float)
-    if isinstance(calculator, LinkageCalculator):
-        return s + calculator.task.dwell
-    return sum(calculator.durations(s), np.zeros_like(s))
 
 

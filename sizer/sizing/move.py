@@ -1269,6 +1269,9 @@ class CycleCalculator:
                   [x[at].copy() for x in stages]), exact[at].copy(), certified[at].copy())
                 for at in parts]
 
+    def cycle_time(self, T: np.ndarray) -> np.ndarray:
+        return self.task.moves_per_cycle * (np.asarray(T, dtype=float) + self.task.dwell)
+
     def take(self, index: np.ndarray) -> CycleCalculator:
         """The calculator of the candidates at ``index`` (same law and grid)."""
         return CycleCalculator(self._grid, self.task, self.drive.take(index),

@@ -29,10 +29,10 @@ from sizer.envelope import continuous_region, intermittent_region
 from sizer.errors import UserError
 from sizer.laws import MotionLaw, make_law
 from sizer.mechanics import Drive
-from sizer.model.cycle import Cycle, Dwell, Move, Run, from_task
+from sizer.model.cycle import Dwell, Move, Run, from_task
 from sizer.model.domain import Curve, Design, Motor, Transmission
 from sizer.sizing.candidates import MotorArrays
-from sizer.sizing.cycle import JOIN_TOLERANCE, SegmentCycle, normalized_move, plain_design
+from sizer.sizing.cycle import JOIN_TOLERANCE, SegmentCycle, normalized_move, shorthand_task
 from sizer.sizing.evaluation import CycleMetrics
 from sizer.sizing.linkage_move import (
     HeldDwell,
@@ -40,7 +40,6 @@ from sizer.sizing.linkage_move import (
     LinkageCycle,
     LinkageProfile,
     dead_points,
-    linkage_cycle_time,
     linkage_figures,
     linkage_parts,
     result_calculator,
@@ -129,22 +128,21 @@ def _held(name: str, start: np.ndarray, T: np.ndarray, position: float,
                   zeros, zeros, zeros, zeros, np.repeat(np.asarray(torque)[:, None], 2, axis=1))
 
 
-def _task_pieces(design: Design, calc: CycleCalculator, T: np.ndarray,
-                 samples: int) -> list[_Piece]:
+def _task_pieces(calc: CycleCalculator, T: np.ndarray, samples: int) -> list[_Piece]:
     """The task shorthand (sizer.sizing.move.CycleCalculator) at move durations T."""
     n = len(calc.motors)
     u, q_n, v_n, a_n = law_samples(calc.law, samples)
     h, Tc = calc.h, T[:, None]
     K = np.broadcast_to(np.asarray(calc.drive.ratio, dtype=float), (n,))[:, None]
     hold = np.broadcast_to(np.asarray(calc.drive.holding_torque, dtype=float), (n,))
-    hold = hold * np.sign(design.load.torque)
+    hold = hold * np.sign(calc.drive.load.torque)
     directions = iter(calc.directions)
     out, start, position = [], np.zeros((n, 1)), 0.0
-    for segment in from_task(design.task).segments:  # named move, dwell, return, dwell 2
+    for segment in from_task(calc.task).segments:  # named move, dwell, return, dwell 2
         name = segment.name or ""
         if isinstance(segment, Dwell):
-            out.append(_held(name, start, np.full((n, 1), design.task.dwell), position, hold))
-            start = start + design.task.dwell
+            out.append(_held(name, start, np.full((n, 1), calc.task.dwell), position, hold))
+            start = start + calc.task.dwell
             continue
         direction = next(directions)
         torque, _ = calc.channels(a_n[None], v_n[None], MoveScales(h / T / T, h / T, direction))
@@ -267,7 +265,7 @@ def _samples(pieces: list[_Piece]) -> CycleSamples:
 def refuse_unsupported(design: Design) -> None:
     """A UserError for what :func:`cycle_samples` does not sample: a cycle of segments
     (:func:`segment_samples`), a linkage (:func:`linkage_samples`)."""
-    if design.cycle is not None:
+    if design.machine_cycle.shorthand is None:
         raise UserError("a cycle of segments is sampled by sizer.sizing.samples."
                         "segment_samples", field="cycle")
     if design.transmission.linkage is not None:
@@ -284,7 +282,18 @@ def cycle_samples(design: Design, calculator: CycleCalculator, duration: np.ndar
     if not np.all(np.isfinite(T) & (T > 0.0)):
         raise UserError("the cycle is sampled only at finite positive durations",
                         field="task.duration")
-    return _samples(_task_pieces(design, calculator, T, samples))
+    return sampled(calculator, T, samples)
+
+
+def sampled(calculator: CycleCalculator | SegmentCycle | LinkageCalculator | LinkageCycle,
+            T: np.ndarray, samples: int = SAMPLES) -> CycleSamples:
+    """One machine cycle per candidate of any calculator: a law move's task at move
+    durations T, a cycle of segments at scales T, a linkage at its durations or scales."""
+    if isinstance(calculator, SegmentCycle):
+        return segment_samples(calculator, T, samples)
+    if isinstance(calculator, LinkageCalculator | LinkageCycle):
+        return linkage_samples(calculator, T)
+    return _samples(_task_pieces(calculator, T, samples))
 
 
 def segment_samples(calculator: SegmentCycle, scale: np.ndarray,
@@ -337,16 +346,11 @@ class TaskCurve:
         return scaled(self.continuous_region), scaled(self.intermittent_region)
 
 
-def design_cycle(design: Design) -> Cycle:
-    """The design's cycle, the task shorthand expanded."""
-    return design.cycle if design.cycle is not None else from_task(design.task)
-
-
 def scale_of(design: Design, duration: float) -> float:
     """The scale s of the free durations of a result's ``duration`` (the move duration T
     for the task shorthand, the cycle time for a cycle)."""
-    cycle = design_cycle(design)
-    if plain_design(design).cycle is None:  # sized as the task: the duration is T
+    cycle = design.machine_cycle
+    if shorthand_task(cycle) is not None:  # sized as the task: the duration is T
         return duration
     weights = math.fsum(cycle.weights())
     return 1.0 if weights == 0.0 else (duration - cycle.fixed_time) / weights
@@ -361,10 +365,10 @@ def _result(design: Design, motor: Motor, law: MotionLaw,
         return result_calculator(design, motor, law, transmission)
     motors = MotorArrays.of([motor], design.limits.envelope)
     drive = Drive(design.load, transmission or design.transmission)
-    if plain_design(design).cycle is None and not segments:
-        return CycleCalculator(None, design.task, drive, motors, design.limits.thermal_speed,
-                               law=law)
-    return SegmentCycle(design_cycle(design), law, drive, motors, design.limits.thermal_speed)
+    task = shorthand_task(design.machine_cycle)
+    if task is not None and not segments:
+        return CycleCalculator(None, task, drive, motors, design.limits.thermal_speed, law=law)
+    return SegmentCycle(design.machine_cycle, law, drive, motors, design.limits.thermal_speed)
 
 
 def task_curve(design: Design, motor: Motor, law: MotionLaw | str, duration: float,
@@ -384,7 +388,7 @@ def task_curve(design: Design, motor: Motor, law: MotionLaw | str, duration: flo
             pieces[1:] = [_Piece(**{**vars(p), "torque": p.torque * np.sign(
                 calc.profile.hold)}) for p in pieces[1:]]
     elif isinstance(calc, CycleCalculator):
-        pieces = _task_pieces(design, calc, s, samples)
+        pieces = _task_pieces(calc, s, samples)
     else:
         pieces = _segment_pieces(calc, s, samples)
     segments = () if isinstance(calc, LinkageCalculator) else tuple(
@@ -510,7 +514,7 @@ def segment_breakdown(design: Design, motor: Motor, law: MotionLaw | str, durati
             acceleration_step=step if abs(step) > JOIN_TOLERANCE * reference else 0.0))
         start += T
         before = f["end_acceleration"]
-    cycle_time = linkage_cycle_time(calc, s) if isinstance(calc, LinkageCalculator) \
+    cycle_time = calc.cycle_time(s) if isinstance(calc, LinkageCalculator) \
         else metrics.duration
     return SegmentBreakdown(motor.id, law.spec, float(cycle_time[0]),
                             float(metrics.rms_torque[0]), tuple(rows))

@@ -46,6 +46,7 @@ from sizer.numerics.golden import golden_step, interior_points
 from sizer.numerics.roots import illinois
 from sizer.sizing.candidates import Candidates
 from sizer.sizing.checks import TOLERANCE, CheckArrays, evaluate_checks, feasible, worst_slack
+from sizer.sizing.cycle import shorthand_task, single_task
 from sizer.sizing.evaluation import CycleMetrics, CycleModel, RmsCurve
 from sizer.sizing.move import CycleCalculator, peak_queries, speed_bounds
 
@@ -713,7 +714,7 @@ def peak_scales(design: Design, candidates: Candidates) -> PeakScales:
     for start in range(0, n, CHUNK):
         rows = np.arange(start, min(start + CHUNK, n))
         part = candidates if n <= CHUNK else candidates.take(rows)
-        calculator = CycleCalculator(None, design.task, part.drive, part.motors,
+        calculator = CycleCalculator(None, single_task(design), part.drive, part.motors,
                                      design.limits.thermal_speed)
         queries = peak_queries(calculator, limits)
         if queries is None:
@@ -736,16 +737,17 @@ def duration_floor(design: Design, spec: str, candidates: Candidates,
     sizes every option at the cost of one evaluation). ``scales``: the candidates'
     :func:`peak_scales` where known (the same for every law). A cycle of segments has
     its own floor: :func:`_cycle_floor`."""
-    minimize = design.task.minimize if design.cycle is None else design.cycle.minimize
-    if not minimize or design.transmission.linkage is not None or is_open_shaped(spec):
+    if not design.machine_cycle.minimize or design.transmission.linkage is not None \
+            or is_open_shaped(spec):
         return None
     _, values = resolve(spec)
     if any(v == AUTO for v in values.values()):
         return None
     law, limits = make_law(spec), relaxed(design.limits)
-    if design.cycle is not None:
+    task = shorthand_task(design.machine_cycle)
+    if task is None:
         return _cycle_floor(design, law, candidates, limits)
-    calculator = CycleCalculator(None, design.task, candidates.drive, candidates.motors,
+    calculator = CycleCalculator(None, task, candidates.drive, candidates.motors,
                                  design.limits.thermal_speed, law=law)
     if is_purely_inertial(calculator):  # eq. (6.2): every option is cheap as it is
         return None
@@ -768,8 +770,7 @@ def _cycle_floor(design: Design, law, candidates: Candidates,
     grows with the scale. None where a law moves backwards (no bound)."""
     from sizer.sizing.cycle import SegmentCycle  # only designs with a cycle need it
 
-    cycle = design.cycle
-    assert cycle is not None
+    cycle = design.machine_cycle
     n = len(candidates)
     out = np.zeros(n)
     for start in range(0, n, CHUNK):

@@ -143,9 +143,9 @@ def cycle_vibration(design: Design, law: MotionLaw, sweep: bool = False
                         "load.natural_frequency", field="load.natural_frequency")
     from sizer.sizing.cycle import cycle_laws
 
-    cycle = design.machine_cycle
-    if sweep and design.cycle is None:
-        cycle = from_task(replace(design.task, duration=None))
+    cycle, task = design.machine_cycle, design.machine_cycle.shorthand
+    if sweep and task is not None:  # written as a task: its moves take the scale
+        cycle = from_task(replace(task, duration=None))
     elif sweep and not cycle.free:
         raise UserError("no segment of the cycle has a free duration to sweep",
                         field="cycle")
@@ -230,7 +230,7 @@ def vibration_sweep(design: Design, laws: tuple[MotionLaw, ...],
     from sizer.vibration.response import tracking_error
 
     scales = np.asarray(scales, dtype=float)
-    out, tracking = [], []
+    out, tracking, task = [], [], design.machine_cycle.shorthand
     for law in laws:
         vibration = cycle_vibration(design, law, sweep=True)
         if vibration is None:
@@ -238,9 +238,9 @@ def vibration_sweep(design: Design, laws: tuple[MotionLaw, ...],
                             "load.natural_frequency (and damping_ratio)",
                             field="load.natural_frequency")
         out.append(vibration.worst(scales))
-        if design.cycle is None:
+        if task is not None:
             mode = vibration.load
-            tracking.append(abs(design.task.displacement) * tracking_error(
+            tracking.append(abs(task.displacement) * tracking_error(
                 law, mode.natural_frequency * scales, mode.damping_ratio))
     return VibrationSweep(scales, laws, tuple(out), design.limits.residual_vibration,
-                          tuple(tracking) if design.cycle is None else None)
+                          tuple(tracking) if task is not None else None)
