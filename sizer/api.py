@@ -122,15 +122,11 @@ def _motors(loaded: Sequence[Motor], chosen: Sequence[str] | Sequence[Motor]
 def check_rank_by(rank_by: str | None) -> None:
     """A UserError (``field="rank_by"``) naming the choices when ``rank_by`` is not a
     ranking key (sizer.sizing.ranking.RankKey or an alias); None is the mode's default."""
-    from sizer.sizing.ranking import RANK_ALIASES, RankKey
+    from sizer.sizing.ranking import RANK_CHOICES, rank_key
 
-    if rank_by is None:
-        return
-    name = rank_by.strip().lower()
-    if name in RANK_ALIASES or name in {k.value for k in RankKey}:
-        return
-    choices = ", ".join([*(k.value for k in RankKey), *RANK_ALIASES])
-    raise UserError(f"unknown key {rank_by!r}; choose one of {choices}", field="rank_by")
+    if rank_by is not None and rank_key(rank_by) is None:
+        raise UserError(f"unknown key {rank_by!r}; choose one of {RANK_CHOICES}",
+                        field="rank_by")
 
 
 def size(design: DesignLike, *, catalogs: Iterable[CatalogRef] = (),

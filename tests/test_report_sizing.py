@@ -9,7 +9,8 @@ import math
 
 import pytest
 
-from sizer.model.domain import Design, Limits, Load, Task, Transmission
+from sizer.laws import make_law
+from sizer.model.domain import Design, Limits, Load, Motor, Stage, Task, Transmission
 from sizer.report.candidate_row import (
     CSV_HEADERS,
     check_line,
@@ -41,11 +42,11 @@ def candidate(motor: str, feasible: bool, *, duration: float | None = 0.5,
         checks.append(Check("jerk", math.inf, 100.0, "rad/s^3", -math.inf))
     known = duration is not None
     return CandidateResult(
-        motor=motor, law="cycloidal", spec="cycloidal", params={}, feasible=feasible,
+        motor_object=Motor(motor, 1e-4, 1.0, 3.0, 300.0, mass=1.5),
+        law_object=make_law("cycloidal"), feasible=feasible,
         duration=duration, peak_torque=12.5 if known else None,
         rms_torque=7.25 if known else None, max_speed=10.0 if known else None,
-        checks=tuple(checks), limiting="rms", reason="" if feasible else "rms: too much",
-        price=None, mass=1.5)
+        checks=tuple(checks), limiting="rms", reason="" if feasible else "rms: too much")
 
 
 def test_a_ratio_column_when_the_ratio_varies() -> None:
@@ -54,7 +55,8 @@ def test_a_ratio_column_when_the_ratio_varies() -> None:
     same = SizingDocument(sizing(candidate("a", True), candidate("b", True)), DESIGN)
     assert "ratio" not in same.table().headers
     free = SizingDocument(sizing(candidate("a", True),
-                                 replace(candidate("b", True), ratio=7.0, gearbox="GB-7")),
+                                 replace(candidate("b", True), gearbox="GB-7",
+                                         transmission=Transmission((Stage(ratio=7.0),)))),
                           DESIGN)
     table = free.table()
     assert table.headers[:5] == ("#", "motor", "law", "ratio", "feasible")

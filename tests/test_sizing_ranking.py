@@ -8,6 +8,8 @@ import pytest
 import yaml
 
 from sizer.errors import UserError
+from sizer.laws import make_law
+from sizer.model.domain import Motor
 from sizer.sizing import CandidateResult, Check
 from sizer.sizing.ranking import RANK_KEYS, RankKey, rank, rank_rule
 from sizer.units import to_si
@@ -21,11 +23,11 @@ def result(motor: str, *, power: float, torque: float = 1.0, slack: float = 0.2,
     """A pair whose checks leave ``slack`` (and 0.5) beyond the required margins."""
     checks = (Check("peak", 0.5 - slack, 1.0, "", 0.5 + slack, 0.0),
               Check("rms", 0.5, 1.0, "N*m", 0.5, 0.0))
-    return CandidateResult(motor=motor, law="cycloidal", spec="cycloidal", params={},
+    return CandidateResult(motor_object=Motor(motor, inertia, torque, 3.0 * torque,
+                                              power / torque, price=price),
+                           law_object=make_law("cycloidal"),
                            feasible=feasible, duration=duration, peak_torque=1.0,
-                           rms_torque=rms, max_speed=100.0, checks=checks, limiting="peak",
-                           price=price, rated_power=power, continuous_torque=torque,
-                           rotor_inertia=inertia)
+                           rms_torque=rms, max_speed=100.0, checks=checks, limiting="peak")
 
 
 def motors(ranked: list[CandidateResult]) -> list[str]:

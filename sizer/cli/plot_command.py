@@ -298,7 +298,6 @@ def _linkage_figure(design: Design, drawn: list[CandidateResult],
     import numpy as np
 
     from sizer.report.plots import linkage_figure
-    from sizer.report.plots.task_curves import motor_of, transmission_for
     from sizer.sizing.samples import linkage_curve_of
 
     if design.transmission.linkage is None:
@@ -308,8 +307,7 @@ def _linkage_figure(design: Design, drawn: list[CandidateResult],
     for r in drawn:
         assert r.duration is not None, "plot draws only results with a feasible duration"
         curves[f"{r.motor}, {_label(r.spec)}"] = linkage_curve_of(
-            design, motor_of(design, r), r.law_object or _law(r.spec), r.duration,
-            transmission_for(design, r))
+            design, r.motor_object, r.law_object, r.duration, r.transmission)
     first = next(iter(curves.values()))
     torques = {}
     for key, curve in curves.items():  # each law's samples read at the first one's angles
@@ -317,9 +315,3 @@ def _linkage_figure(design: Design, drawn: list[CandidateResult],
         torques[key] = np.interp(first.theta, curve.theta[order], curve.motor_torque[order])
     return linkage_figure(first.theta, first.ratio, torques, first.dead_points,
                           linear=first.linear, size=size, dpi=dpi, title=design.name)
-
-
-def _law(spec: str):
-    from sizer.laws import make_law  # lazy: keeps --help fast
-
-    return make_law(spec)

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any
 from sizer.laws.base import format_parameter
 from sizer.laws.data_spec import data_law_label, is_data_spec
 from sizer.report.numbers import finite_or_none, full_or_empty, short_or_na
-from sizer.sizing.checks import TOLERANCE
+from sizer.sizing.checks import TOLERANCE, CheckName
 from sizer.sizing.results import NOT_AVAILABLE, margin_percent
 
 if TYPE_CHECKING:
@@ -24,7 +24,7 @@ if TYPE_CHECKING:
 RPM_PER_RAD_S = 30.0 / math.pi
 """rev/min per rad/s, for display."""
 
-MARGINS = ("peak", "rms", "speed")
+MARGINS = (CheckName.PEAK, CheckName.RMS, CheckName.SPEED)
 """The margins every row shows, by check name."""
 
 CSV_HEADERS = (

@@ -31,6 +31,7 @@ from sizer.report.numbers import short, short_or_na
 from sizer.report.output import write_text_atomically
 from sizer.report.sizing_table import SizingDocument
 from sizer.report.table import Column, make_table
+from sizer.sizing.results import Mode
 
 if TYPE_CHECKING:
     from sizer.laws import MotionLaw
@@ -88,7 +89,7 @@ class DesignReport:
         from sizer.sizing.ranking import rank_rule
 
         self.rank_rule = rank_rule(rank_by, sizing.mode)
-        self.rank_key = self.rank_rule.key.value
+        self.rank_key = self.rank_rule.key
         self.source = source
         ranked = list(enumerate(sizing.results, start=1))
         feasible = [(rank, r) for rank, r in ranked if r.feasible]
@@ -105,7 +106,7 @@ class DesignReport:
     # ------------------------------------------------------------------ content
     @property
     def minimize(self) -> bool:
-        return self.sizing.mode == "minimize"
+        return self.sizing.mode is Mode.MINIMIZE
 
     @property
     def figures(self) -> list[str]:
@@ -131,7 +132,7 @@ class DesignReport:
         if any(chosen_per_pair(s) for s in self.design.laws):
             for result in self._shown_results():
                 if result.spec not in laws:
-                    laws[result.spec] = result.law_object or make_law(result.spec)
+                    laws[result.spec] = result.law_object
         return list(laws.values())
 
     def _ranking_document(self) -> SizingDocument:
@@ -411,10 +412,7 @@ class DesignReport:
     def _candidate(self, candidate: Candidate) -> str:
         r = candidate.result
         lines = [f"### {candidate.rank}. {md(r.motor)} with {md(law_label(r.spec))}", ""]
-        motor = r.motor_object or next((m for m in self.design.motors if m.id == r.motor),
-                                       None)
-        if motor is not None:
-            lines.append(f"- {md(_motor_text(motor))}")
+        lines.append(f"- {md(_motor_text(r.motor_object))}")
         lines.append(f"- {md(self._requirements(r))}")
         if r.ratio != 1.0 or r.gearbox:
             lines.append(f"- {md(self._transmission_of(r))}")
@@ -438,8 +436,7 @@ class DesignReport:
         """The pair's ratio and, when it was chosen, the stage it was computed with."""
         text = f"Transmission ratio K = {short(r.ratio)}"
         choice = self.design.ratio_choice
-        if choice is None or r.transmission is None \
-                or choice.stage >= len(r.transmission.stages):
+        if choice is None or choice.stage >= len(r.transmission.stages):
             return text + (f", gearbox {r.gearbox}" if r.gearbox else "")
         stage = r.transmission.stages[choice.stage]
         name = f"gearbox {r.gearbox} (from the catalog)" if r.gearbox else \

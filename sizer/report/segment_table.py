@@ -116,23 +116,17 @@ def breakdown_for(design: Design, result: CandidateResult) -> SegmentBreakdown:
     in minimize mode) and transmission (its chosen ratio or gearbox). A result without a
     feasible duration has none: a UserError saying why."""
     from sizer.errors import UserError
-    from sizer.report.plots.task_curves import motor_of, transmission_for
+    from sizer.sizing.checks import CheckName
     from sizer.sizing.samples import segment_breakdown
 
     if result.duration is None:
         raise UserError(f"{result.motor} with {law_label(result.spec)} has no feasible duration "
                         f"({result.reason}): no segments to show")
-    law = result.law_object if result.law_object is not None else result.spec
-    breakdown = segment_breakdown(design, motor_of(design, result), law, result.duration,
-                                  transmission_for(design, result))
-    if any(c.name == DEAD_POINT and not c.passed for c in result.checks):
-        return _unbounded(breakdown)
+    breakdown = segment_breakdown(design, result.motor_object, result.law_object,
+                                  result.duration, result.transmission)
+    if any(c.name == CheckName.DEAD_POINT and not c.passed for c in result.checks):
+        return _unbounded(breakdown)  # the crank's acceleration is infinite at a dead point
     return breakdown
-
-
-DEAD_POINT = "dead_point"
-"""The check of a linkage's dead points (sizer.sizing.linkage_sizing): where a law fails it,
-the torques are unbounded (the crank's acceleration is infinite there)."""
 
 
 def _unbounded(breakdown: SegmentBreakdown) -> SegmentBreakdown:

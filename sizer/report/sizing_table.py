@@ -32,12 +32,13 @@ from sizer.report.design_summary import design_summary
 from sizer.report.formats import Format, Rendered
 from sizer.report.json_text import render_json
 from sizer.report.markdown_table import render_markdown_table
-from sizer.report.numbers import full, short
+from sizer.report.numbers import full_or_empty, short
 from sizer.report.output import emit, stdout_is_terminal
 from sizer.report.printable import printable
 from sizer.report.rich_table import print_rich_table
 from sizer.report.table import Column, Table, make_table
 from sizer.report.text_table import render_text_table
+from sizer.sizing.results import Mode
 
 if TYPE_CHECKING:
     from sizer.model.domain import Design
@@ -66,13 +67,6 @@ FORMAT = "sizer.sizing/1"
 """The ``format`` of the JSON document: its name and version, bumped on incompatible changes."""
 
 
-def default_rank_key(mode: str) -> str:
-    """The ranking of ``sizer.sizing.size_design`` when none is given."""
-    from sizer.sizing.ranking import default_rank_key as default
-
-    return default(mode).value
-
-
 class SizingDocument(Rendered):
     """The ranked results of a design, filtered for display, in every format."""
 
@@ -83,7 +77,7 @@ class SizingDocument(Rendered):
         from sizer.sizing.ranking import rank_rule
 
         self.rank_rule = rank_rule(rank_by, sizing.mode)
-        self.rank_key = self.rank_rule.key.value
+        self.rank_key = self.rank_rule.key
         ranked = list(enumerate(sizing.results, start=1))
         shown = [(rank, r) for rank, r in ranked if include_infeasible or r.feasible]
         self.hidden_infeasible = len(ranked) - len(shown)
@@ -178,7 +172,7 @@ class SizingDocument(Rendered):
 
     def table(self, compact: bool = False) -> Table:
         """The display table; ``compact`` headers for a terminal (they wrap in rich)."""
-        duration = "T_min [ms]" if self.sizing.mode == "minimize" else "T [ms]"
+        duration = "T_min [ms]" if self.sizing.mode is Mode.MINIMIZE else "T [ms]"
         if sized_as_cycle(self.design):
             duration = f"{duration_name(self.design)} [ms]"
         with_ratio = self.ratio_varies
@@ -218,13 +212,12 @@ class SizingDocument(Rendered):
         if self.with_vibration:
             unit = "m" if self.design.task.linear else "rad"
             headers = (*headers, f"residual_vibration [{unit}]")
-            rows = [(*row, "" if r.residual_vibration is None else full(r.residual_vibration))
+            rows = [(*row, full_or_empty(r.residual_vibration))
                     for row, (_, r) in zip(rows, self.rows, strict=True)]
         energy = self.energy_figures
         if energy:  # energy and heat (issue 16), designs with those checks only
             headers = (*headers, *(f"{k} [{ENERGY_UNITS[k]}]" for k in energy))
-            rows = [(*row, *("" if getattr(r, k) is None else full(getattr(r, k))
-                             for k in energy))
+            rows = [(*row, *(full_or_empty(r.figures.get(k)) for k in energy))
                     for row, (_, r) in zip(rows, self.rows, strict=True)]
         if self.with_drives:  # the drive after the motor (issue 16)
             headers = (*headers[:2], "drive", *headers[2:])
@@ -284,10 +277,7 @@ from the bus per machine cycle, the largest stop's energy and the resistor's pea
 def _with_energy(fields: dict[str, Any], result: CandidateResult,
                  shown: tuple[str, ...]) -> dict[str, Any]:
     """The JSON of a result with the energy and heat figures the design has."""
-    for name in shown:
-        value = getattr(result, name)
-        fields[name] = None if value is None or not math.isfinite(value) else value
-    return fields
+    return fields | {name: result.figures.get(name) for name in shown}
 
 
 def _residual_cell(result: CandidateResult, factor: float) -> str:

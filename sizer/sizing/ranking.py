@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from sizer.errors import UserError
-from sizer.sizing.results import CandidateResult, Mode
+from sizer.sizing.results import RESIDUAL, CandidateResult, Mode
 
 if TYPE_CHECKING:
     from sizer.sizing.results import CandidateTable
@@ -163,7 +163,7 @@ RULES: dict[RankKey, RankRule] = {rule.key: rule for rule in (
              "cheapest motor first (unknown prices last)" + _THEN_TEXT),
     RankRule(RankKey.MASS, (_motor("mass", "mass"), *_THEN),
              "lightest motor first (unknown masses last)" + _THEN_TEXT),
-    RankRule(RankKey.VIBRATION, (_figure("residual_vibration"), *_THEN),
+    RankRule(RankKey.VIBRATION, (_figure(RESIDUAL), *_THEN),
              "smallest residual vibration first" + _THEN_TEXT),
 )}
 
@@ -174,18 +174,21 @@ def default_rank_key(mode: Mode | str) -> RankKey:
     return RankKey.DURATION if mode == Mode.MINIMIZE else RankKey.SIZE
 
 
+def rank_key(rank_by: str) -> RankKey | None:
+    """The key a ``--rank-by`` text names (or an alias of it); None: no key."""
+    name = rank_by.strip().lower()
+    return RANK_ALIASES.get(name, next((k for k in RankKey if k == name), None))
+
+
+RANK_CHOICES = ", ".join((*RANK_KEYS, *RANK_ALIASES))
+"""The keys and aliases, in words (the message of an unknown key)."""
+
+
 def rank_rule(rank_by: str | None, mode: Mode) -> RankRule:
     """The rule of a ``--rank-by`` key (None: the default of the mode); UserError if unknown."""
-    if rank_by is None:
-        return RULES[default_rank_key(mode)]
-    name = rank_by.strip().lower()
-    key = RANK_ALIASES.get(name)
+    key = default_rank_key(mode) if rank_by is None else rank_key(rank_by)
     if key is None:
-        try:
-            key = RankKey(name)
-        except ValueError:
-            known = ", ".join((*RANK_KEYS, *RANK_ALIASES))
-            raise UserError(f"cannot rank by {rank_by!r}; choose one of {known}") from None
+        raise UserError(f"cannot rank by {rank_by!r}; choose one of {RANK_CHOICES}")
     return RULES[key]
 
 
@@ -204,7 +207,7 @@ def rank(results: Iterable[CandidateResult], rank_by: str | None,
 def rank_order(table: CandidateTable, rank_by: str | None) -> np.ndarray:
     """The order of :func:`rank` for a whole table, by one lexsort over its arrays."""
     rule = rank_rule(rank_by, table.mode)
-    if rule.key is RankKey.VIBRATION and "residual_vibration" not in table.figures:
+    if rule.key is RankKey.VIBRATION and RESIDUAL not in table.figures:
         raise UserError("ranking by vibration needs the load's mode: give "
                         "load.natural_frequency (and damping_ratio)", field="load")
     keys: list[np.ndarray] = [~table.feasible]

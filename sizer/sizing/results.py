@@ -13,11 +13,11 @@ or inf), so that it serializes as JSON as it stands.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from enum import StrEnum
 from functools import cached_property
-from typing import TYPE_CHECKING, overload
+from typing import overload
 
 import numpy as np
 
@@ -25,12 +25,6 @@ from sizer.laws import MotionLaw
 from sizer.model.domain import Motor, ServoDrive, Transmission
 from sizer.sizing.checks import TOLERANCE, CheckArrays, limiting_index
 from sizer.sizing.energy_check import ENERGY_FIGURES
-
-if TYPE_CHECKING:
-    from collections.abc import Sequence
-
-    from sizer.laws import MotionLaw
-
 
 NOT_AVAILABLE = "n/a"
 """The text of a figure that does not exist (an unbounded requirement, no feasible
@@ -119,23 +113,34 @@ class Check:
                 f"margin {margin}%{need} ({verdict})")
 
 
+class CheckFigure:
+    """A figure of a design's checks, read from ``CandidateResult.figures`` by its name
+    (None where the design has no such check or the figure is unknown)."""
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.name = name
+
+    def __get__(self, result: CandidateResult, owner: type | None = None) -> float | None:
+        return result.figures.get(self.name)
+
+
 @dataclass(frozen=True, slots=True)
 class CandidateResult:
     """A motor with a law: its duration, requirements at the motor shaft and checks.
 
-    ``ratio`` is the total transmission ratio K (motor speed over load speed: rad/rad, or
-    rad/m on a linear axis), ``gearbox`` the catalog gearbox chosen if any; ``load_speed``
-    and ``load_torque`` are the peak speed and peak torque (force on a linear axis) at the
-    load. ``transmission`` is the one the result was computed with (the design's, or with
-    the chosen ratio or catalog gearbox in place). ``rated_power`` (tau_c*v_n, W),
-    ``continuous_torque`` (N*m) and ``rotor_inertia`` (kg*m^2) are the motor's, for ranking
-    by size.
+    The motor, the law (parsed once: its ``spec`` is the canonical text) and the drive
+    (where the design has drives) are the catalog's objects, so that no report looks one up
+    by id; their ids and the motor's figures are read from them. ``transmission`` is the
+    one the result was computed with (the design's, or with the chosen ratio or catalog
+    gearbox in place; ``ratio`` its total ratio K: rad/rad, or rad/m on a linear axis),
+    ``gearbox`` the catalog gearbox chosen if any; ``load_speed`` and ``load_torque`` are
+    the peak speed and peak torque (force on a linear axis) at the load. ``figures`` holds
+    the figures the design's checks add (:data:`OPTIONAL_FIGURES`) and the chosen free
+    stage's ``stage_ratio``.
     """
 
-    motor: str
-    law: str
-    spec: str
-    params: dict[str, float]
+    motor_object: Motor
+    law_object: MotionLaw
     feasible: bool
     duration: float | None
     peak_torque: float | None
@@ -144,51 +149,71 @@ class CandidateResult:
     checks: tuple[Check, ...]
     limiting: str | None
     reason: str = ""
-    price: float | None = None
-    mass: float | None = None
-    ratio: float = 1.0
+    transmission: Transmission = field(default_factory=Transmission)
     gearbox: str | None = None
     load_speed: float | None = None
     load_torque: float | None = None
-    residual_vibration: float | None = None
-    """The largest residual vibration of the moves at the load (m or rad), where the
-    design gives the load's mode (sizer.sizing.vibration_check); None otherwise."""
-    regenerated_energy: float | None = None
-    """J per machine cycle returned to the DC bus, where the design has a braking check
-    (sizer.sizing.energy_check); None otherwise."""
-    braking_power: float | None = None
-    """W: the braking resistor's continuous power, with the braking check; None otherwise."""
-    winding_rise: float | None = None
-    """K: the winding temperature rise of the heat check that applies (the thermal model's
-    periodic peak, or the RMS-equivalent rise); None where the motor has no heat check."""
-    peak_power: float | None = None
-    """W: the largest motoring power at the motor shaft (tau*omega > 0), where the design
-    has a braking or heat check; None otherwise. So are the next three."""
-    mean_power: float | None = None
-    """W: the motoring shaft power's mean over the machine cycle."""
-    copper_loss: float | None = None
-    """W: the mean copper loss, 3/2 R (tau/k_t)^2 (None where the motor lacks k_t or R)."""
-    cycle_energy: float | None = None
-    """J: the net energy drawn from the DC bus per machine cycle (motoring minus
-    regenerated, copper included; None where the motor lacks k_t or R)."""
-    stop_energy: float | None = None
-    """J: what the largest stop returns to the bus, with the braking check."""
-    braking_peak_power: float | None = None
-    """W: the braking resistor's peak power (0 when the capacitors take every stop), with
-    the braking check."""
-    transmission: Transmission | None = None
-    rated_power: float | None = None
-    continuous_torque: float | None = None
-    rotor_inertia: float | None = None
-    extra: dict[str, float] = field(default_factory=dict)
-    motor_object: Motor | None = field(default=None, compare=False, repr=False)
-    """The motor itself (the catalog's object), so that no report looks it up by id."""
-    law_object: MotionLaw | None = field(default=None, compare=False, repr=False)
-    """The law itself, parsed once (its ``spec`` is the canonical text)."""
-    drive: str | None = None
-    """The id of the candidate's drive (amplifier), where the design has drives."""
-    drive_object: ServoDrive | None = field(default=None, compare=False, repr=False)
-    """The drive itself (the catalog's object)."""
+    figures: dict[str, float] = field(default_factory=dict)
+    drive_object: ServoDrive | None = None
+
+    # the figures of the design's checks (sizer.sizing.energy_check, vibration_check)
+    residual_vibration = CheckFigure()  # m or rad: the moves' largest, at the load
+    regenerated_energy = CheckFigure()  # J per machine cycle returned to the DC bus
+    braking_power = CheckFigure()  # W: the braking resistor's continuous power
+    winding_rise = CheckFigure()  # K: the winding temperature rise of the heat check
+    peak_power = CheckFigure()  # W: the largest motoring power at the shaft (tau*omega > 0)
+    mean_power = CheckFigure()  # W: the motoring shaft power's mean over the machine cycle
+    copper_loss = CheckFigure()  # W: the mean copper loss, 3/2 R (tau/k_t)^2
+    cycle_energy = CheckFigure()  # J per machine cycle drawn from the DC bus (net)
+    stop_energy = CheckFigure()  # J: what the largest stop returns to the bus
+    braking_peak_power = CheckFigure()  # W: the braking resistor's peak power
+
+    @property
+    def motor(self) -> str:
+        return self.motor_object.id
+
+    @property
+    def law(self) -> str:
+        return self.law_object.law_id
+
+    @property
+    def spec(self) -> str:
+        return self.law_object.spec
+
+    @property
+    def params(self) -> Mapping[str, float]:
+        return self.law_object.params
+
+    @property
+    def ratio(self) -> float:
+        """The total transmission ratio K (motor speed over load speed)."""
+        return self.transmission.ratio
+
+    @property
+    def drive(self) -> str | None:
+        """The drive's id (amplifier), where the design has drives."""
+        return None if self.drive_object is None else self.drive_object.id
+
+    @property
+    def price(self) -> float | None:
+        return self.motor_object.price
+
+    @property
+    def mass(self) -> float | None:
+        return self.motor_object.mass
+
+    @property
+    def rated_power(self) -> float:
+        """tau_c*v_n (W): the motor's size, for ranking."""
+        return self.motor_object.continuous_torque * self.motor_object.rated_speed
+
+    @property
+    def continuous_torque(self) -> float:
+        return self.motor_object.continuous_torque
+
+    @property
+    def rotor_inertia(self) -> float:
+        return self.motor_object.inertia
 
     def check(self, name: str) -> Check | None:
         return next((c for c in self.checks if c.name == name), None)
@@ -255,6 +280,10 @@ RESIDUAL = "residual_vibration"
 """The optional figure of designs with a mode of the load: the largest residual vibration
 of the moves at the load (m or rad; sizer.sizing.vibration_check)."""
 
+OPTIONAL_FIGURES = (RESIDUAL, *ENERGY_FIGURES)
+"""The figures a design's checks add (NaN in a table where unknown, absent from a result's
+``figures``), each read as a :class:`CandidateResult` attribute."""
+
 
 @dataclass(frozen=True, eq=False)
 class CandidateTable:
@@ -312,8 +341,6 @@ class CandidateTable:
 
     def row(self, i: int) -> CandidateResult:
         """Candidate ``i`` as a result row."""
-        motor = self.motors[int(self.motor[i])]
-        law = self.laws[int(self.law[i])]
         option = int(self.option[i])
         rows = []
         binding_name = None
@@ -343,22 +370,17 @@ class CandidateTable:
             return value if known and np.isfinite(value) else None  # never inf in a result
 
         extra = {} if self.stage_ratio is None else {"stage_ratio": float(self.stage_ratio[i])}
-        transmission = self.transmissions[option]
-        drive = None if self.drive is None else self.drives[int(self.drive[i])]
         return CandidateResult(
-            motor=motor.id, law=law.law_id, spec=law.spec, params=dict(law.params),
-            feasible=ok, duration=figure("duration"), peak_torque=figure("peak_torque"),
+            motor_object=self.motors[int(self.motor[i])],
+            law_object=self.laws[int(self.law[i])], feasible=ok,
+            duration=figure("duration"), peak_torque=figure("peak_torque"),
             rms_torque=figure("rms_torque"), max_speed=figure("max_speed"),
             checks=tuple(rows), limiting=binding_name.name, reason=reason,
-            price=motor.price, mass=motor.mass, ratio=transmission.ratio,
-            gearbox=self.gearboxes[option], transmission=transmission,
+            transmission=self.transmissions[option], gearbox=self.gearboxes[option],
             load_speed=figure("load_speed"), load_torque=figure("load_torque"),
-            residual_vibration=figure(RESIDUAL) if RESIDUAL in self.figures else None,
-            **{k: figure(k) for k in ENERGY_FIGURES if k in self.figures},
-            rated_power=motor.continuous_torque * motor.rated_speed,
-            continuous_torque=motor.continuous_torque, rotor_inertia=motor.inertia,
-            extra=extra, motor_object=motor, law_object=law,
-            drive=None if drive is None else drive.id, drive_object=drive)
+            figures={**{k: v for k in OPTIONAL_FIGURES if k in self.figures
+                        and (v := figure(k)) is not None}, **extra},
+            drive_object=None if self.drive is None else self.drives[int(self.drive[i])])
 
 
 def in_groups(group: np.ndarray, size: Callable[[int, np.ndarray], CandidateTable],
@@ -492,16 +514,13 @@ def check_record(check: Check) -> dict[str, object]:
 
 def record(result: CandidateResult) -> dict[str, object]:
     """One candidate: its fields, shape parameters and checks."""
-    out = {name: _plain(getattr(result, name)) for name in FIELDS}
-    if result.drive is not None:  # designs with drives (issue 16): the pair's drive
-        out = {**dict(list(out.items())[:1]), "drive": result.drive,
-               **dict(list(out.items())[1:])}
-    for name in ENERGY_FIGURES:  # designs with braking or heat checks: their figures
-        value = getattr(result, name)
-        if value is not None:
-            out[name] = _plain(float(value))
+    # designs with drives (issue 16): the pair's drive after its motor
+    names = FIELDS if result.drive is None else (FIELDS[0], "drive", *FIELDS[1:])
+    out = {name: _plain(getattr(result, name)) for name in names}
+    # designs with braking or heat checks: their figures
+    out.update({k: result.figures[k] for k in ENERGY_FIGURES if k in result.figures})
     out["params"] = {k: float(v) for k, v in result.params.items()}
-    if "stage_ratio" in result.extra:
-        out["stage_ratio"] = _plain(result.extra["stage_ratio"])
+    if "stage_ratio" in result.figures:
+        out["stage_ratio"] = _plain(result.figures["stage_ratio"])
     out["checks"] = [check_record(c) for c in result.checks]
     return out

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from sizer.laws.data_spec import law_label
-from sizer.report.candidate_row import RPM_PER_RAD_S, percent
+from sizer.report.candidate_row import MARGINS, RPM_PER_RAD_S, percent
 from sizer.report.numbers import short
 from sizer.report.plots.figure_files import new_figure
 
@@ -203,7 +203,7 @@ def _title_lines(motor: str, curves: Sequence[TaskCurve],
         return lines
     for curve, result in zip(curves, results, strict=True):
         margins = ", ".join(f"{name} {percent(result.margin(name))} %"
-                            for name in ("peak", "rms", "speed")
+                            for name in MARGINS
                             if result.margin(name) is not None)
         ratio = f", K = {short(curve.ratio)}" if curve.ratio != 1.0 else ""
         verdict = "" if result.feasible else f" - FAILS ({result.limiting})"
