@@ -232,6 +232,10 @@ def _kill_while_writing(target: Path) -> tuple[bool, Path]:
             break
         if process.poll() is not None:
             break
+        # the run starts for a second or more before it creates the temporary file: spinning
+        # through that took a core from the run and from the other tests; writing and syncing
+        # ~11 MB takes several ms (30-40 ms on a disk), far longer than this pause
+        time.sleep(0.0005)
     else:
         process.kill()
     process.communicate(timeout=60)
