@@ -17,6 +17,7 @@ Placeholders in ``args``: ``{design}``, ``{catalog}`` and ``{tmp}`` (the case's 
 from __future__ import annotations
 
 import copy
+import functools
 import re
 import subprocess
 import warnings
@@ -63,12 +64,19 @@ def edited(example: str, set: dict[str, Any] | None = None,
     catalog named by the example keeps working: the cases copy ``examples/catalogs`` beside
     the design.
     """
-    data = copy.deepcopy(yaml.safe_load((EXAMPLES / example).read_text(encoding="utf-8")))
+    data = copy.deepcopy(_example_data(example))
     for path, value in (set or {}).items():
         _put(data, _parts(path), value)
     for path in delete:
         _put(data, _parts(path), _DELETE)
     return yaml.safe_dump(data, sort_keys=False, allow_unicode=True)
+
+
+@functools.cache
+def _example_data(example: str) -> Any:
+    """The parsed example, once a process: the cases edit ~20 examples ~420 times while
+    pytest collects them, and parsing took most of that time (each edit deep-copies)."""
+    return yaml.safe_load((EXAMPLES / example).read_text(encoding="utf-8"))
 
 
 def _parts(path: str) -> list[str | int]:

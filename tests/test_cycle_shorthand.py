@@ -9,6 +9,7 @@ motors: the segment engine searches, it is slower).
 
 from __future__ import annotations
 
+import functools
 from dataclasses import replace
 from pathlib import Path
 
@@ -22,6 +23,7 @@ ROOT = Path(__file__).resolve().parent.parent / "examples"
 EXAMPLES = sorted([*ROOT.glob("*.yaml"), *(ROOT / "book").glob("*.yaml")])
 
 
+@functools.cache  # loaded once for the two parametrizations below (at collection)
 def task_designs():
     out = []
     for path in EXAMPLES:

@@ -8,6 +8,7 @@ variable of the law, never from the code's own output.
 
 from __future__ import annotations
 
+import functools
 import math
 
 import mpmath as mp
@@ -34,6 +35,7 @@ _tau_of_theta = _theta / (2 * sp.pi) - _kappa * sp.sin(_theta) / (2 * sp.pi)  # 
 _q_of_theta = _theta / (2 * sp.pi) - sp.sin(_theta) / (2 * sp.pi)  # eq. 3.52
 
 
+@functools.cache  # sympy's simplify takes a second: at first use, not at collection
 def _parametric_derivatives(order: int):
     """d^k q/d tau^k as functions of theta (chain rule through tau(theta)), by sympy."""
     out, current = [], _q_of_theta
@@ -43,15 +45,13 @@ def _parametric_derivatives(order: int):
     return out
 
 
-_MC_DERIVATIVES = _parametric_derivatives(3)
-
-
+@functools.cache  # the same peak is the reference for both coefficient sets below
 def _mc_peak(kappa: float, order: int) -> float:
     """max over theta of |d^k q/d tau^k|: dense theta samples refined by bounded Brent.
 
     In theta the profile varies on scales >= sqrt(1 - |kappa|) (0.1 rad at |kappa| = 0.99),
     so 200001 samples resolve every peak."""
-    f = _MC_DERIVATIVES[order - 1]
+    f = _parametric_derivatives(3)[order - 1]
     theta = np.linspace(0.0, 2 * PI, 200001)
     values = np.abs(f(theta, kappa) + 0 * theta)
     k = int(np.argmax(values))
