@@ -5,6 +5,8 @@ SI domain; sizer/sizing in a few modules. Read from the source with ast, nothing
 from __future__ import annotations
 
 import ast
+import functools
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -30,19 +32,28 @@ def _modules() -> dict[str, Path]:
 MODULES = _modules()
 
 
-def _runtime_imports(path: Path, name: str) -> set[str]:
-    """Every module named by an import that runs (in a function too; not under
-    ``if TYPE_CHECKING:``)."""
-    tree = ast.parse(path.read_text(encoding="utf-8"))
-    skipped: set[int] = set()
-    for node in ast.walk(tree):
+def _runtime_nodes(tree: ast.AST) -> Iterator[ast.AST]:
+    """The nodes of ``tree`` outside the bodies of ``if TYPE_CHECKING:`` (their ``else:``
+    included): one walk, not a walk to mark the skipped nodes and a second to read them."""
+    stack = [tree]
+    while stack:
+        node = stack.pop()
+        yield node
         if isinstance(node, ast.If) and "TYPE_CHECKING" in ast.unparse(node.test):
-            skipped.update(id(n) for child in node.body for n in ast.walk(child))
+            stack.append(node.test)
+            stack.extend(node.orelse)
+        else:
+            stack.extend(ast.iter_child_nodes(node))
+
+
+@functools.cache
+def _runtime_imports(path: Path, name: str) -> frozenset[str]:
+    """Every module named by an import that runs (in a function too; not under
+    ``if TYPE_CHECKING:``). Cached: the circle test and the core tests read the same files."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
     package = name if path.name == "__init__.py" else name.rpartition(".")[0]
     names: set[str] = set()
-    for node in ast.walk(tree):
-        if id(node) in skipped:
-            continue
+    for node in _runtime_nodes(tree):
         if isinstance(node, ast.Import):
             names.update(alias.name for alias in node.names)
         elif isinstance(node, ast.ImportFrom):
@@ -53,7 +64,7 @@ def _runtime_imports(path: Path, name: str) -> set[str]:
                 module = node.module or ""
             names.add(module)
             names.update(f"{module}.{alias.name}" for alias in node.names)
-    return names
+    return frozenset(names)
 
 
 def _own(module: str) -> str | None:

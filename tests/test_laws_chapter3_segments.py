@@ -10,6 +10,7 @@ docs/errata.md.
 from __future__ import annotations
 
 import csv
+import functools
 import io
 import json
 import math
@@ -82,6 +83,7 @@ def assert_pointwise(law, rows, order_max=2):
 
 
 # ------------------------------------------------------------ sec. 3.5, fifteen segments
+@functools.cache  # sympy's exact integration takes seconds; the law command test reuses it
 def fifteen_segments_exact(alpha, beta, gamma):
     a, b, g = (sp.Rational(x) for x in (alpha, beta, gamma))
     ta, tj = a, a * b
@@ -274,6 +276,7 @@ def test_minimum_time_of_sec_3_10_3():
 
 
 # ------------------------------------------------------------- sec. 3.10.2 and 3.11
+@functools.cache  # as fifteen_segments_exact: read only, shared with the law command test
 def seven_segments_exact(shares, kinds):
     """Exact (sympy) law of seven acceleration segments: kinds 's' quarter sine, 'c'
     linear ramp for the blends 1, 3, 5, 7; a1, a2 from q(1) = 1, v(1) = 0."""

@@ -29,25 +29,39 @@ LAWS = ("cycloidal", "poly5", "trapezoidal(alpha=1/3)", "modified_sinusoidal",
 SAMPLES = 400_000
 
 
+_GRIDS: dict[str, tuple[np.ndarray, np.ndarray]] = {}
+_SCANS: dict[str, np.ndarray] = {}
+
+
 def dense_curve(law, extra=()):
     """(v_N, a_N) on a uniform grid of each piece, one-sided at its ends, plus the points
-    ``extra`` (tau values)."""
-    taus, pieces = [], []
-    for index, piece in enumerate(law.pieces):
-        count = max(int(SAMPLES * (piece.end - piece.start)), 2)
-        grid = np.linspace(piece.start, piece.end, count + 1)
-        inside = [t for t in extra if piece.start <= t <= piece.end]
-        grid = np.concatenate((grid, inside))
-        taus.append(grid)
-        pieces.append(np.full(len(grid), index))
-    tau, piece = np.concatenate(taus), np.concatenate(pieces)
-    return piece_values(law, tau, piece, (1, 2))
+    ``extra`` (tau values); in no particular order (the tests take maxima). The grid's
+    values are computed once a law (pointwise, the same values), the extras each call."""
+    if law.spec not in _GRIDS:
+        taus, pieces = [], []
+        for index, piece in enumerate(law.pieces):
+            count = max(int(SAMPLES * (piece.end - piece.start)), 2)
+            taus.append(np.linspace(piece.start, piece.end, count + 1))
+            pieces.append(np.full(count + 1, index))
+        _GRIDS[law.spec] = piece_values(law, np.concatenate(taus), np.concatenate(pieces),
+                                        (1, 2))
+    v, a = _GRIDS[law.spec]
+    inside = [(t, index) for index, piece in enumerate(law.pieces) for t in extra
+              if piece.start <= t <= piece.end]
+    if not inside:
+        return v, a
+    tau, piece = (np.array(x) for x in zip(*inside, strict=True))
+    v_extra, a_extra = piece_values(law, tau, piece, (1, 2))
+    return np.concatenate((v, v_extra)), np.concatenate((a, a_extra))
 
 
 def crossings(law, level):
-    """Every tau where v_N = level (brentq between sign changes of a fine scan)."""
+    """Every tau where v_N = level (brentq between sign changes of a fine scan; the scan's
+    v_N computed once a law)."""
     grid = np.linspace(0.0, 1.0, 20_001)
-    v = law.derivative(grid, 1) - level
+    if law.spec not in _SCANS:
+        _SCANS[law.spec] = law.derivative(grid, 1)
+    v = _SCANS[law.spec] - level
     found = []
     for i in np.flatnonzero(np.sign(v[:-1]) * np.sign(v[1:]) < 0):
         found.append(brentq(lambda t: float(law.derivative(np.array([t]), 1)[0]) - level,

@@ -55,6 +55,16 @@ def reference_rms(law, T: float, motor: Motor) -> np.ndarray:
 
     ends = sorted({p.start for p in law.pieces} | {p.end for p in law.pieces} | {0.0, 1.0})
     squares = np.zeros(3)
+    known: dict[tuple[float, float], tuple[float, float, float]] = {}
+
+    def torques(law, T, direction, motor, tau):
+        """The module's torques, each (direction, tau) computed once: the scans of channels
+        1 and 2 and the three channels' quads ask for the same points (same values)."""
+        key = (direction, float(tau))
+        if key not in known:
+            known[key] = globals()["torques"](law, T, direction, motor, tau)
+        return known[key]
+
     for direction in (1.0, -1.0):
         cuts = set(ends)
         for lo, hi in itertools.pairwise(ends):
