@@ -117,7 +117,7 @@ class BusResult:
 
 def _copper(candidate: CandidateResult) -> tuple[float | None, float]:
     motor = candidate.motor_object
-    if motor is None or motor.torque_constant is None or motor.winding_resistance is None:
+    if motor.torque_constant is None or motor.winding_resistance is None:
         return None, 0.0
     return float(motor.torque_constant), float(motor.winding_resistance)
 
@@ -125,7 +125,7 @@ def _copper(candidate: CandidateResult) -> tuple[float | None, float]:
 def _axis_bus_power(axis: AxisOnBus) -> tuple[np.ndarray, np.ndarray]:
     """(time, bus power) of one axis over its machine cycle, from t = 0."""
     c = axis.candidate
-    assert c.motor_object is not None and c.law_object is not None and c.duration is not None
+    assert c.duration is not None  # an axis on the bus is a feasible result
     curve = task_curve(axis.design, c.motor_object, c.law_object, c.duration,
                        c.transmission, samples=SAMPLES)
     k_t, R = _copper(c)
