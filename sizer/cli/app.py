@@ -6,6 +6,7 @@ command (``size``, ``check``, ``catalog ...``) is a new module listed in COMMAND
 
 from __future__ import annotations
 
+import functools
 import inspect
 import os
 import sys
@@ -139,6 +140,16 @@ def _whole_summaries(command: Any) -> None:
         _whole_summaries(sub)
 
 
+@functools.cache
+def _command() -> Any:
+    """sizer's click command tree, built once a process: typer builds it from the
+    commands' annotations (about 30 ms), and a process that runs the CLI many times (the
+    tests, a notebook) need not build it again."""
+    command = typer.main.get_command(app)
+    _whole_summaries(command)
+    return command
+
+
 def run(argv: Sequence[str] | None = None) -> int:
     """Run the app on ``argv`` (default: the command line) and return the exit code.
 
@@ -148,8 +159,7 @@ def run(argv: Sequence[str] | None = None) -> int:
     """
     set_debug(False)
     args = sys.argv[1:] if argv is None else list(argv)
-    command = typer.main.get_command(app)
-    _whole_summaries(command)
+    command = _command()
     try:
         try:
             with command.make_context("sizer", args) as context:
