@@ -54,6 +54,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from sizer.model.cycle import shorthand_task
 from sizer.model.domain import Design, Motor, ServoDrive
 from sizer.numerics.roots import illinois
 from sizer.sizing.candidates import catalog_facts
@@ -63,7 +64,6 @@ from sizer.sizing.checks import (
     WINDING_TEMPERATURE_RISE,
     CheckArrays,
 )
-from sizer.sizing.cycle import shorthand_task
 from sizer.sizing.evaluation import CycleMetrics
 from sizer.sizing.move import CycleCalculator
 from sizer.sizing.samples import sampled

@@ -39,11 +39,11 @@ from sizer.errors import UserError
 from sizer.laws import MotionLaw
 from sizer.laws.quadrature import gauss_legendre
 from sizer.mechanics.drive import Drive
-from sizer.model.cycle import Move, Run, from_task
+from sizer.model.cycle import Move, Run, from_task, shorthand_task
 from sizer.model.domain import Design, Limits, LinkageStage, Load, Task
 from sizer.sizing.candidates import MotorArrays
 from sizer.sizing.checks import CheckArrays, evaluate_checks, feasible
-from sizer.sizing.cycle import cycle_laws, given_scale, segment_load, shorthand_task
+from sizer.sizing.cycle import cycle_laws, given_scale, segment_load
 from sizer.sizing.evaluation import CycleMetrics
 from sizer.sizing.move import rule_speed
 from sizer.sizing.shortest_duration import minimum_duration

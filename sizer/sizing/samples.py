@@ -29,10 +29,10 @@ from sizer.envelope import continuous_region, intermittent_region
 from sizer.errors import UserError
 from sizer.laws import MotionLaw, make_law
 from sizer.mechanics import Drive
-from sizer.model.cycle import Dwell, Move, Run, from_task
+from sizer.model.cycle import Dwell, Move, Run, from_task, shorthand_task
 from sizer.model.domain import Curve, Design, Motor, Transmission
 from sizer.sizing.candidates import MotorArrays
-from sizer.sizing.cycle import JOIN_TOLERANCE, SegmentCycle, normalized_move, shorthand_task
+from sizer.sizing.cycle import JOIN_TOLERANCE, SegmentCycle, normalized_move
 from sizer.sizing.evaluation import CycleMetrics
 from sizer.sizing.linkage_move import (
     HeldDwell,

@@ -41,12 +41,13 @@ import numpy as np
 
 from sizer.laws import AUTO, make_law, resolve
 from sizer.laws.open_shaped import is_open_shaped
+from sizer.model.cycle import shorthand_task
 from sizer.model.domain import Design, Limits
 from sizer.numerics.golden import golden_step, interior_points
 from sizer.numerics.roots import illinois
 from sizer.sizing.candidates import Candidates
 from sizer.sizing.checks import TOLERANCE, CheckArrays, evaluate_checks, feasible, worst_slack
-from sizer.sizing.cycle import shorthand_task, single_task
+from sizer.sizing.cycle import single_task
 from sizer.sizing.evaluation import CycleMetrics, CycleModel, RmsCurve
 from sizer.sizing.move import CycleCalculator, peak_queries, speed_bounds
 
