@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from sizer.model.cycle import Cycle, Dwell, Move, Run
+from sizer.model.cycle import Cycle, Dwell, Move, Run, shorthand_task
 from sizer.model.domain import Design
 from sizer.report.numbers import finite_or_none, short
 from sizer.report.table import Column, Table, make_table
@@ -116,10 +116,8 @@ def cycle_text(cycle: Cycle) -> str:
 
 def sized_as_cycle(design: Design) -> bool:
     """True when the design's results have the cycle time as their duration (a cycle of
-    segments that is not the task shorthand; sizer.sizing.segment_breakdown.scale_of),
-    False when it is the move's duration T."""
-    from sizer.model.cycle import shorthand_task
-
+    segments that is not the task shorthand; sizer.sizing.samples.scale_of), False when
+    it is the move's duration T."""
     return shorthand_task(design.machine_cycle) is None
 
 

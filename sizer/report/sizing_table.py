@@ -103,8 +103,8 @@ class SizingDocument(Rendered):
             move = f"the {output_name(linkage).split('_')[0]} moves {move}"
         move += (", shortest duration" if task.duration is None  # minimize
                  else f" in T = {short(task.duration * 1000.0)} ms")
-        if self.design.cycle is not None and sized_as_cycle(self.design):
-            move = cycle_heading(self.design.cycle)
+        if sized_as_cycle(self.design):
+            move = cycle_heading(self.design.machine_cycle)
         feasible = sum(r.feasible for r in self.sizing.results)
         name = self.design.name or "design"
         return (f"{name}: {move}; {feasible} of {len(self.sizing.results)} motor/law pairs "
