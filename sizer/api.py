@@ -30,6 +30,7 @@ from sizer.errors import UserError
 from sizer.model.domain import Design, EnvelopeRule, Motor
 
 if TYPE_CHECKING:
+    from sizer.laws.choice import LawChoice
     from sizer.model.machine import Machine
     from sizer.sizing.machine import MachineResult
     from sizer.sizing.results import CandidateResult, SizingResult
@@ -72,13 +73,14 @@ def load(design: DesignLike, catalogs: Iterable[CatalogRef] = (), *,
 
 
 def override(design: Design, *, motors: Sequence[str] | Sequence[Motor] | None = None,
-             laws: Sequence[str] | None = None, envelope: str | None = None) -> Design:
+             laws: Sequence[LawChoice | str] | None = None,
+             envelope: str | None = None) -> Design:
     """``design`` with what a command's options change (None keeps the design's own).
 
     - ``motors``: motor ids, to size only those among the design's motors (in catalog
       order; ``--motor``; an unknown id is a UserError with ``field="motors"``), or
       Motor objects to size instead of the design's;
-    - ``laws``: law specs to consider instead of the design's ``laws:``;
+    - ``laws``: law specs (or choices) to consider instead of the design's ``laws:``;
     - ``envelope``: the completion rule of regions without curves (``book``, ``linear``,
       ``linear_intermittent``; ``--envelope``), instead of the design's
       ``limits.envelope`` (sec. 6.1.1).
@@ -88,7 +90,9 @@ def override(design: Design, *, motors: Sequence[str] | Sequence[Motor] | None =
     if motors is not None:
         design = replace(design, motors=_motors(design.motors, motors))
     if laws is not None:
-        design = replace(design, laws=tuple(laws))
+        from sizer.laws.choice import law_choice  # lazy: the law families load with a law
+
+        design = replace(design, laws=tuple(law_choice(spec) for spec in laws))
     if envelope is not None:
         rule = next((r for r in ENVELOPES if r == str(envelope)), None)
         if rule is None:
@@ -131,7 +135,7 @@ def check_rank_by(rank_by: str | None) -> None:
 
 def size(design: DesignLike, *, catalogs: Iterable[CatalogRef] = (),
          rank_by: str | None = None, motors: Sequence[str] | Sequence[Motor] | None = None,
-         laws: Sequence[str] | None = None, envelope: str | None = None,
+         laws: Sequence[LawChoice | str] | None = None, envelope: str | None = None,
          progress: Progress | None = None, workers: int | None = 1) -> SizingResult:
     """Every motor x law (x transmission option) of ``design``, ranked feasible first
     (``sizer size``; the checks of sec. 6.1, T_min of eq. (6.2) with ``minimize``).

@@ -46,11 +46,11 @@ def as_option(parameter: str, option: str) -> Iterator[None]:
 def check_law_specs(specs: list[str] | tuple[str, ...], field: str) -> None:
     """Every spec reads as a law (``auto`` parameters allowed), else a UserError naming
     ``field``: checked before any file is read or any work done."""
-    from sizer.laws import resolve  # lazy: keeps --help fast
+    from sizer.laws import law_choice  # lazy: keeps --help fast
 
     for spec in specs:
         with blame_option(field):
-            resolve(spec)
+            law_choice(spec)
 
 def scaled_move(displacement: str | None, duration: str | None, neither: str
                 ) -> tuple[float, float, bool] | None:

@@ -199,7 +199,7 @@ def plot_pairs(design: Design, motor: str | None = None, laws: Sequence[str] = (
 
     field, given_laws = "--motor", bool(laws)
     if motor is None and not laws and design.chosen_motor and design.chosen_law:
-        motor, laws, field = design.chosen_motor, (design.chosen_law,), "check.motor"
+        motor, laws, field = design.chosen_motor, (design.chosen_law.text,), "check.motor"
     elif motor is None and laws and design.chosen_motor:
         motor, field = design.chosen_motor, "check.motor"
     if motor is not None:

@@ -65,9 +65,8 @@ def vibration(
         sizer vibration examples/vibration-pick.yaml --from '0.2 s' --to '0.6 s' --plot r.png
     """
     from sizer.cli.output_guard import check_output, check_outputs
-    from sizer.laws import AUTO, make_law, resolve
+    from sizer.laws import law_choice
     from sizer.laws.data_spec import law_label
-    from sizer.laws.open_shaped import is_open_shaped
     from sizer.report.output import emit
     from sizer.report.vibration_table import VibrationDocument
 
@@ -87,18 +86,18 @@ def vibration(
     if loaded.load.elastic is None:
         raise UserError("the design gives no mode of the load: add load.natural_frequency "
                         "(and damping_ratio)", file=str(design), field="load.natural_frequency")
-    specs = list(law) if law else list(loaded.laws)
+    specs = [law_choice(spec) for spec in law] if law else list(loaded.laws)
     if not law:  # a law shaped for every duration leaves nothing to sweep: left out
-        specs = [spec for spec in specs if not is_open_shaped(spec)] or specs
+        specs = [spec for spec in specs if not spec.open_shaped] or specs
     for spec in specs:
-        if any(v == AUTO for v in resolve(spec)[1].values()):
+        if spec.auto:
             raise UserError(f"{spec}: give the shape (auto parameters depend on the motor)",
                             field="--law" if law else "laws")
-        if is_open_shaped(spec):
-            raise UserError(f"{law_label(spec)}: shaped for the mode at every duration, its "
+        if spec.open_shaped:
+            raise UserError(f"{law_label(spec.text)}: shaped for the mode at every duration, its "
                             "residual is zero by construction; give f_T to sweep one "
                             "shaping", field="--law" if law else "laws")
-    laws = tuple(make_law(spec) for spec in specs)
+    laws = tuple(spec.law for spec in specs)
     check_output(output)  # again: not over a file a law read (a cam table)
     check_output(plot, field="--plot")
     try:

@@ -35,6 +35,7 @@ from sizer.io.schema.inputs import TaskInput
 from sizer.io.schema.inputs_base import axis_range, convert_in, given_text, show_value
 from sizer.io.schema.ranges import RANGES, check_range, number_text
 from sizer.io.yaml_source import YamlSource, format_path
+from sizer.laws.choice import law_choice
 from sizer.model.cycle import (
     Cycle,
     Dwell,
@@ -64,12 +65,6 @@ TIME_TOLERANCE = 1e-9
 BOUNDARY_SPEED_FAMILIES = ("trapezoidal", "double_s", "polynomial", "constant_acceleration")
 """The law families with a form between non-zero boundary speeds, for the messages
 (sizer.laws.boundary_speeds decides: polynomials of degree 3, 5 and 7)."""
-
-
-def _has_auto(spec: str) -> bool:
-    from sizer.laws import AUTO, resolve
-
-    return any(v == AUTO for v in resolve(spec)[1].values())
 
 
 def has_boundary_form(spec: str) -> bool:
@@ -221,20 +216,18 @@ def _check_law_list(cycle: Cycle, laws: list[LocatedLaw], source: YamlSource) ->
     """The ``laws:`` the moves that name none are sized with: laws shaped per duration
     are chosen for the task shorthand only (a cycle's moves have durations of their own),
     and some law must meet the moves' boundary speeds (and accelerations)."""
-    from sizer.laws.open_shaped import is_open_shaped
-
     listed = [law for law in laws if law.at[0] == "laws"]
     try:
-        boundary_laws(cycle, [law.spec for law in listed])
+        boundary_laws(cycle, [law.choice for law in listed])
     except ValueError as error:
         raise source.error(str(error), ("laws",)) from None
     open_moves = any(m.law is None for m in cycle.moves)
     for law in listed if open_moves and shorthand_task(cycle) is None else ():
-        if _has_auto(law.spec):
+        if law.choice.auto:
             raise source.error(f"{law.spec}: `auto` shape parameters are chosen for the task "
                                "shorthand only, not yet for a cycle of segments; give the "
                                "shape", law.at)
-        if is_open_shaped(law.spec):
+        if law.choice.open_shaped:
             raise source.error(f"{law.spec}: a shaped law without f_T is shaped for one "
                                "duration, and the moves of a cycle have their own: give "
                                "f_T", law.at)
@@ -283,7 +276,8 @@ def _move(given: MoveInput, axis: _Axis, at: Path_, share: ShareRule) -> Move:
     start, end = boundary("start_speed"), boundary("end_speed")
     start_acceleration = boundary("start_acceleration")
     end_acceleration = boundary("end_acceleration")
-    if given.law is not None and _has_auto(given.law):
+    law = None if given.law is None else law_choice(given.law)
+    if law is not None and law.auto:
         raise source.error(f"law {given.law!r}: `auto` shape parameters are chosen for the "
                            "task shorthand only, not yet for a move of a cycle; give the "
                            "shape", (*at, "law"))
@@ -305,7 +299,7 @@ def _move(given: MoveInput, axis: _Axis, at: Path_, share: ShareRule) -> Move:
         raise source.error(f"law {given.law!r} cannot start or end at a non-zero "
                            f"acceleration; polynomials of degree 5 and 7 can (poly5, poly7; "
                            f"this move's {key} is not 0)", (*at, "law"))
-    return Move(displacement=h, duration=given.duration, law=given.law, start_speed=start,
+    return Move(displacement=h, duration=given.duration, law=law, start_speed=start,
                 end_speed=end, weight=_check_weight(given.weight, share, source, at),
                 load=axis.load_change(MoveInput, given, at), name=given.name or "",
                 start_acceleration=start_acceleration, end_acceleration=end_acceleration)

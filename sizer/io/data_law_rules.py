@@ -18,18 +18,14 @@ from typing import Any
 from sizer.errors import UserError
 from sizer.io.plausibility import warning_text
 from sizer.io.yaml_source import YamlSource
-from sizer.laws.data_spec import is_data_spec
+from sizer.laws.choice import LawChoice, law_choice
 
 
 def _data_law(spec: str) -> Any:
-    from sizer.laws import make_law
     from sizer.laws.data_law import DataLaw
-    from sizer.laws.open_shaped import is_open_shaped
 
-    if not is_data_spec(spec) or is_open_shaped(spec):
-        return None  # an open shaped law is shaped at each move's duration: rest to rest
-    law = make_law(spec)
-    return law if isinstance(law, DataLaw) else None
+    choice = law_choice(spec)  # an open shaped law is shaped at each duration: rest to rest
+    return choice.law if choice.is_fixed and issubclass(choice.family, DataLaw) else None
 
 
 @dataclass(frozen=True)
@@ -40,6 +36,11 @@ class LocatedLaw:
     spec: str
     at: tuple[Any, ...]
     data: Any = None
+
+    @property
+    def choice(self) -> LawChoice:
+        """The law choice of ``spec`` (read once per text: sizer.laws.choice)."""
+        return law_choice(self.spec)
 
 
 def locate_laws(laws: Iterable[tuple[str, tuple[Any, ...]]]) -> list[LocatedLaw]:

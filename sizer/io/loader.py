@@ -459,9 +459,9 @@ def design_of_source(source: YamlSource, folder: Path, name: str,
 
 def default_laws() -> tuple[str, ...]:
     """The laws of a design without ``laws:``: DEFAULT_LAW_SPECS minus the exponential."""
-    from sizer.laws import DEFAULT_LAW_SPECS, resolve
+    from sizer.laws import DEFAULT_LAW_SPECS, law_choice
 
-    return tuple(s for s in DEFAULT_LAW_SPECS if resolve(s)[0].law_id != "exponential")
+    return tuple(s for s in DEFAULT_LAW_SPECS if law_choice(s).family.law_id != "exponential")
 
 
 def _quantity(source: YamlSource, at: tuple[Any, ...], value: Any, name: str) -> float:

@@ -2,6 +2,7 @@
 
 from sizer.laws.base import INFINITELY_SMOOTH, MotionLaw, Parameter, law_of
 from sizer.laws.boundary_speeds import BoundaryBasis, boundary_form, has_boundary_form
+from sizer.laws.choice import LawChoice, law_choice
 from sizer.laws.coefficients import AccelerationJump, LawCoefficients
 from sizer.laws.motion import ScaledMotion
 from sizer.laws.pieces import Piece
@@ -23,6 +24,7 @@ __all__ = [
     "LAW_FAMILIES",
     "AccelerationJump",
     "BoundaryBasis",
+    "LawChoice",
     "LawCoefficients",
     "LawSpec",
     "MotionLaw",
@@ -32,6 +34,7 @@ __all__ = [
     "boundary_form",
     "has_boundary_form",
     "known_law_ids",
+    "law_choice",
     "law_of",
     "make_law",
     "parse_law_spec",

@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from fractions import Fraction
 from functools import lru_cache
+from typing import Protocol
 
 from sizer.errors import UserError
 from sizer.laws.base import LAW_CACHE_SIZE, MotionLaw, law_of
@@ -109,15 +110,25 @@ def _resolved(spec: LawSpec | str) -> tuple[type[MotionLaw], Arguments]:
     return family, tuple(values.items())
 
 
-def make_law(spec: LawSpec | str | MotionLaw) -> MotionLaw:
+class SpecText(Protocol):
+    """A law choice (sizer.laws.choice.LawChoice): what it was read from."""
+
+    @property
+    def text(self) -> str: ...
+
+
+def make_law(spec: LawSpec | str | MotionLaw | SpecText) -> MotionLaw:
     """The law of a spec text, e.g. ``make_law('double_s(alpha=1/3, beta=1/4)')``.
 
     Laws are built once per canonical spec: two spellings of one law ('double_s',
     'double_s(beta=0.25, alpha=1/3)') give the same object, whose coefficients, grids and
-    peak tables are then computed once per process. A law passes through unchanged.
+    peak tables are then computed once per process. A law passes through unchanged; a law
+    choice gives its law.
     """
     if isinstance(spec, MotionLaw):
         return spec
+    if not isinstance(spec, (str, LawSpec)):
+        spec = spec.text
     if is_data_spec(spec):
         return data_law_of(canonical_spec(spec))
     return _law_of_text(spec)

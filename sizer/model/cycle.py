@@ -19,6 +19,10 @@ import enum
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from sizer.laws.choice import LawChoice
 
 
 @dataclass(frozen=True)
@@ -77,11 +81,12 @@ class SegmentLoad:
 @dataclass(frozen=True)
 class Move:
     """A move of ``displacement`` (signed) from ``start_speed`` to ``end_speed`` (signed,
-    at the load), by ``law`` (a spec; None: each of the design's laws in turn)."""
+    at the load), by ``law`` (a law choice, a spec text read here; None: each of the
+    design's laws in turn)."""
 
     displacement: float
     duration: float | None = None
-    law: str | None = None
+    law: LawChoice | None = None
     start_speed: float = 0.0
     end_speed: float = 0.0
     weight: float = 1.0
@@ -91,6 +96,12 @@ class Move:
     end_acceleration: float = 0.0
     """Boundary accelerations (signed, at the load), for the laws that can meet them
     (polynomials of degree 5 and 7, sizer.laws.boundary_speeds); 0 by default."""
+
+    def __post_init__(self) -> None:
+        if isinstance(self.law, str):
+            from sizer.laws.choice import law_choice  # lazy: the law families load with a law
+
+            object.__setattr__(self, "law", law_choice(self.law))
 
     @property
     def rest_to_rest(self) -> bool:
@@ -220,20 +231,19 @@ def from_task(task: Task) -> Cycle:
                  shorthand=task)
 
 
-def boundary_laws(cycle: Cycle, laws: Sequence[str]) -> tuple[str, ...]:
+def boundary_laws(cycle: Cycle, laws: Sequence[LawChoice]) -> tuple[LawChoice, ...]:
     """The laws that can size the cycle's moves that name none: every one where those
     moves start and end at rest, else those with a form that meets their boundary speeds
     and accelerations (sizer.laws.boundary_speeds); ValueError where none can."""
     moving = [m for m in cycle.moves if m.law is None and not m.rest_to_rest]
     if not moving:
         return tuple(laws)
-    from sizer.laws import AUTO, resolve
     from sizer.laws.boundary_speeds import boundary_form
 
     accelerated = any(m.start_acceleration or m.end_acceleration for m in moving)
 
-    def usable(spec: str) -> bool:
-        basis = None if AUTO in resolve(spec)[1].values() else boundary_form(spec)
+    def usable(spec: LawChoice) -> bool:
+        basis = None if spec.auto else boundary_form(spec.text)
         return basis is not None and (not accelerated or basis.meets_accelerations)
 
     kept = tuple(spec for spec in laws if usable(spec))

@@ -7,12 +7,16 @@ built from YAML by sizer.io (which checks units and ranges) or directly from Pyt
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, fields, replace
 from pathlib import Path
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
 
 from sizer.model.cycle import Cycle, Task, from_task
 from sizer.vibration.elastic_load import ElasticLoad
+
+if TYPE_CHECKING:
+    from sizer.laws.choice import LawChoice
 
 ThermalSpeedRule = Literal["max", "rms", "mean"]
 """Speed at which the RMS torque is checked against the continuous region (sec. 6.1.1)."""
@@ -305,11 +309,12 @@ class Design:
     machine_cycle: Cycle
     load: Load
     transmission: Transmission
-    laws: tuple[str, ...]
+    laws: tuple[LawChoice, ...]
+    """The law choices to rank (a text given is read here: sizer.laws.choice)."""
     motors: tuple[Motor, ...]
     limits: Limits
     chosen_motor: str | None
-    chosen_law: str | None
+    chosen_law: LawChoice | None
     name: str
     ratio_choice: RatioChoice | None
     warnings: tuple[str, ...]
@@ -323,15 +328,20 @@ class Design:
     a candidate is a motor with one of its compatible drives (sizer.sizing.drives)."""
 
     def __init__(self, task: Task | None = None, load: Load | None = None,
-                 transmission: Transmission = Transmission(), laws: tuple[str, ...] = (),
+                 transmission: Transmission = Transmission(),
+                 laws: Sequence[LawChoice | str] = (),
                  motors: tuple[Motor, ...] = (), limits: Limits = Limits(),
-                 chosen_motor: str | None = None, chosen_law: str | None = None,
+                 chosen_motor: str | None = None, chosen_law: LawChoice | str | None = None,
                  name: str = "", ratio_choice: RatioChoice | None = None,
                  warnings: tuple[str, ...] = (), files: tuple[Path, ...] = (),
                  drives: tuple[ServoDrive, ...] = (), cycle: Cycle | None = None,
                  machine_cycle: Cycle | None = None) -> None:
+        from sizer.laws.choice import law_choice  # lazy: the law families load with a law
+
         given = dict(locals(), machine_cycle=cycle or (from_task(task) if task is not None
-                                                       else machine_cycle))
+                                                       else machine_cycle),
+                     laws=tuple(law_choice(s) for s in laws),
+                     chosen_law=None if chosen_law is None else law_choice(chosen_law))
         if given["machine_cycle"] is None or load is None:
             raise TypeError("a Design needs a task or a cycle, and a load")
         for f in fields(self):

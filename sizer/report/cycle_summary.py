@@ -33,7 +33,8 @@ def segment_json(segment: Move | Run | Dwell) -> dict[str, Any]:
     data: dict[str, Any] = {"name": segment.name or _kind(segment), "kind": _kind(segment),
                             "displacement": float(segment.displacement)}
     if isinstance(segment, Move):
-        data.update({"duration": finite_or_none(segment.duration), "law": segment.law,
+        data.update({"duration": finite_or_none(segment.duration),
+                     "law": segment.law.text if segment.law else None,
                      "start_speed": float(segment.start_speed),
                      "end_speed": float(segment.end_speed), "weight": float(segment.weight)})
     elif isinstance(segment, Run):
@@ -92,7 +93,7 @@ def cycle_table(cycle: Cycle) -> Table:
                Column("added load", "left"))
     rows = [(str(i + 1), s.name or _kind(s), _kind(s), short(s.displacement),
              _duration_text(s),
-             (s.law or "the design's laws") if isinstance(s, Move) else "",
+             (s.law.text if s.law else "the design's laws") if isinstance(s, Move) else "",
              _speeds_text(s, unit), _load_text(s, cycle.linear))
             for i, s in enumerate(cycle.segments)]
     return make_table(columns, rows)

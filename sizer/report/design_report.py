@@ -118,18 +118,11 @@ class DesignReport:
     def _laws(self) -> list[MotionLaw]:
         """The design's laws with fixed shapes, then the shapes the solver chose for 'auto'
         parameters among the pairs shown (ranking and best candidates)."""
-        from sizer.laws import AUTO, make_law, resolve
-        from sizer.laws.open_shaped import is_open_shaped
-
-        def chosen_per_pair(spec: str) -> bool:  # auto shapes, laws shaped for each T
-            return is_open_shaped(spec) or any(v == AUTO for v in resolve(spec)[1].values())
-
         laws: dict[str, MotionLaw] = {}
-        for spec in self.design.laws:
-            if not chosen_per_pair(spec):
-                law = make_law(spec)
-                laws.setdefault(law.spec, law)
-        if any(chosen_per_pair(s) for s in self.design.laws):
+        for choice in self.design.laws:
+            if choice.is_fixed:
+                laws.setdefault(choice.law.spec, choice.law)
+        if not all(s.is_fixed for s in self.design.laws):  # auto shapes, shaped for each T
             for result in self._shown_results():
                 if result.spec not in laws:
                     laws[result.spec] = result.law_object
@@ -335,7 +328,7 @@ class DesignReport:
         text = ("Shape coefficients of the normalized laws (dimensionless; h/T, h/T^2 ... "
                 "give the real values): peak velocity C_v, peak acceleration C_a, peak jerk "
                 "C_j, RMS velocity C_v_rms and RMS acceleration C_a_rms.\n\n" + table)
-        autos = [s for s in self.design.laws if "auto" in s]
+        autos = [s.text for s in self.design.laws if s.auto]
         if autos:
             text += ("\n" + md(f"{', '.join(autos)}: the shape is chosen for each motor; the "
                                f"table lists the shapes of the pairs shown below.") + "\n")

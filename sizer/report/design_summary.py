@@ -89,9 +89,10 @@ def design_summary(design: Design, notes: tuple[str, ...] = ()) -> dict[str, Any
             "units": {"torque_margin": "1", "speed_margin": "1", "inertia_ratio": "1",
                       "max_acceleration": units["acceleration"], "max_jerk": units["jerk"]},
         },
-        "laws": list(design.laws),
+        "laws": [law.text for law in design.laws],
         "motors": len(design.motors),
-        "check": ({"motor": design.chosen_motor, "law": design.chosen_law}
+        "check": ({"motor": design.chosen_motor,
+                   "law": design.chosen_law.text if design.chosen_law else None}
                   if design.chosen_motor or design.chosen_law else None),
         "notes": list(notes),
     }

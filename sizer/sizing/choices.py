@@ -103,7 +103,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from sizer.errors import UserError
-from sizer.laws import AUTO, MotionLaw, make_law
+from sizer.laws import AUTO, LawChoice, MotionLaw, make_law
 from sizer.laws.base import Parameter
 from sizer.laws.data_spec import data_spec_text, read_data_spec
 from sizer.laws.piecewise_polynomial import DoubleS, Trapezoidal
@@ -725,13 +725,13 @@ def _shaped(fields: dict[str, Any], mode: ElasticLoad, T: float) -> MotionLaw:
                                     "damping_ratio": mode.damping_ratio}))
 
 
-def evaluate_shaped(design: Design, spec: str, candidates: Candidates,
+def evaluate_shaped(design: Design, choice: LawChoice, candidates: Candidates,
                     evaluate_fixed_law: FixedLawSizing) -> CandidateTable:
-    """The open shaped law ``spec`` for every candidate, in their order, each law shaped
+    """The open shaped law ``choice`` for every candidate, in their order, each law shaped
     for it sized by ``evaluate_fixed_law`` (sizer.sizing.engine's)."""
     from sizer.vibration.shapers import shaper_length
 
-    fields = dict(read_data_spec(spec))
+    fields = dict(read_data_spec(choice.text))
     mode = _mode(design, fields)
     task = single_task(design)
     if task.duration is not None:

@@ -29,7 +29,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from sizer.errors import UserError
-from sizer.laws import MotionLaw, make_law
+from sizer.laws import LawChoice, MotionLaw, law_choice, make_law
 from sizer.mechanics import Drive
 from sizer.model.cycle import Cycle, Move, Run, Segment, boundary_laws, shorthand_task
 from sizer.model.domain import Design, Limits, Load, Task, ThermalSpeedRule
@@ -68,14 +68,15 @@ def given_scale(cycle: Cycle) -> float:
     return (cycle.cycle_time - cycle.fixed_time) / weights
 
 
-def ranked_laws(design: Design) -> tuple[str, ...]:
-    """The law specs the ranking runs over: the design's laws (those that can meet the
+def ranked_laws(design: Design) -> tuple[LawChoice, ...]:
+    """The law choices the ranking runs over: the design's laws (those that can meet the
     boundary speeds of every move that names no law of its own); with a cycle whose every
     move names its law, that cycle once, labelled by its first move's law."""
     cycle = design.machine_cycle
     open_moves = [m for m in cycle.moves if m.law is None]
     if not open_moves:
-        return (cycle.moves[0].law,) if cycle.moves and cycle.moves[0].law else ("cycloidal",)
+        first = cycle.moves[0].law if cycle.moves else None
+        return (first or law_choice("cycloidal"),)
     if not design.laws:
         raise UserError("no motion laws to consider" + (
             "" if cycle.shorthand else " for the moves that name none"), field="laws")
@@ -86,12 +87,12 @@ def ranked_laws(design: Design) -> tuple[str, ...]:
 
 
 def left_out_laws(design: Design) -> tuple[str, ...]:
-    """The design's laws the ranking leaves out (no form with the moves' boundary speeds
-    or accelerations)."""
+    """The texts of the design's laws the ranking leaves out (no form with the moves'
+    boundary speeds or accelerations), for the notes."""
     if not any(m.law is None for m in design.machine_cycle.moves):
         return ()
     kept = set(ranked_laws(design))
-    return tuple(spec for spec in design.laws if spec not in kept)
+    return tuple(spec.text for spec in design.laws if spec not in kept)
 
 
 @dataclass(frozen=True)

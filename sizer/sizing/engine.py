@@ -39,8 +39,7 @@ import numpy as np
 
 from sizer.envelope import envelope_note
 from sizer.errors import UserError
-from sizer.laws import AUTO, MotionLaw, make_law, resolve
-from sizer.laws.open_shaped import is_open_shaped
+from sizer.laws import LawChoice, MotionLaw, law_choice
 from sizer.model.cycle import Dwell
 from sizer.model.domain import Design, Motor
 from sizer.sizing.candidates import Candidates, MotorArrays
@@ -139,12 +138,13 @@ def _options(design: Design) -> int:
     return max(1, len(choice.ratios) + len(choice.gearboxes))
 
 
-def evaluate_spec(design: Design, spec: str, motors: MotorArrays,
+def evaluate_spec(design: Design, spec: LawChoice | str, motors: MotorArrays,
                   first: np.ndarray | None = None,
                   shared: SharedByLaws | None = None) -> CandidateTable:
-    """One law spec for all motors (one row per motor), the free ratio chosen if any
+    """One law choice for all motors (one row per motor), the free ratio chosen if any
     (``first``: per motor the listed option to try first, sizer.sizing.choices;
     ``shared``: what the laws of the sizing share, built once for them all)."""
+    spec = law_choice(spec)
     if design.ratio_choice is None:
         candidates = Candidates.single(motors, design.load, design.transmission)
         return evaluate_law(design, spec, candidates)
@@ -154,7 +154,7 @@ def evaluate_spec(design: Design, spec: str, motors: MotorArrays,
     common = SharedByLaws(design, motors) if shared is None else shared
 
     def without_peaks(candidates: Candidates) -> CandidateTable:
-        return evaluate_fixed_law(design, make_law(spec), candidates, peaks=False)
+        return evaluate_fixed_law(design, spec.law, candidates, peaks=False)
 
     def floor(candidates: Candidates) -> np.ndarray | None:
         scales = common.scales if candidates is common.pairs.candidates \
@@ -168,30 +168,31 @@ def evaluate_spec(design: Design, spec: str, motors: MotorArrays,
                         else None, first=first, pairs=common.pairs)
 
 
-def _plain_given_duration(design: Design, spec: str) -> bool:
+def _plain_given_duration(design: Design, spec: LawChoice) -> bool:
     """A given duration, the task shorthand, a fixed law: every check but the peaks is
     known from an evaluation without them, and leaving them out only passes them (the
     ratio search evaluates the peaks of the options that can still win: sizer.sizing.
     ratio_choice)."""
     if design.machine_cycle.minimize or shorthand_task(design.machine_cycle) is None or \
-            design.transmission.linkage is not None or is_open_shaped(spec):
+            design.transmission.linkage is not None:
         return False
-    return not any(v == AUTO for v in resolve(spec)[1].values())
+    return spec.is_fixed
 
 
-def evaluate_law(design: Design, spec: str, candidates: Candidates) -> CandidateTable:
-    """One law spec (fixed or with auto parameters) for all candidates, in their order."""
-    if is_open_shaped(spec):  # shaped for the load's mode at each candidate's duration
+def evaluate_law(design: Design, spec: LawChoice | str,
+                 candidates: Candidates) -> CandidateTable:
+    """One law choice (fixed or with auto parameters) for all candidates, in their order."""
+    spec = law_choice(spec)
+    if spec.open_shaped:  # shaped for the load's mode at each candidate's duration
         from sizer.sizing.choices import evaluate_shaped
 
         return evaluate_shaped(design, spec, candidates, evaluate_fixed_law)
-    family, values = resolve(spec)
-    if any(v == AUTO for v in values.values()):
+    if spec.auto:
         single_task(design)  # chosen for the task shorthand only (sizer.io refuses others)
         with without_power_figures():  # verdicts only; the chosen laws get them below
-            laws = choose_shape(family, values, design, candidates)
+            laws = choose_shape(spec.family, dict(spec.values), design, candidates)
     else:
-        return evaluate_fixed_law(design, make_law(spec), candidates)
+        return evaluate_fixed_law(design, spec.law, candidates)
     distinct = list(dict.fromkeys(laws))
     which = {law: k for k, law in enumerate(distinct)}
     group = np.array([which[law] for law in laws])
@@ -544,7 +545,7 @@ def _start(design: Design, motors: MotorArrays) -> None:
     _STATE["shared"] = SharedByLaws(design, motors)
 
 
-def _size_law(spec: str, first: np.ndarray | None) -> CandidateTable:
+def _size_law(spec: LawChoice, first: np.ndarray | None) -> CandidateTable:
     """One law in a worker; the table goes back without its motors (the caller's own
     objects go in again: one copy of the catalog, shared by every table)."""
 
@@ -555,11 +556,12 @@ def _size_law(spec: str, first: np.ndarray | None) -> CandidateTable:
     return dataclasses.replace(table, motors=())
 
 
-def tables_in_processes(design: Design, specs: Sequence[str], motors: MotorArrays,
-                        workers: int, done: Callable[[int], None] | None = None
-                        ) -> list[CandidateTable]:
-    """The table of each law spec (sizer.sizing.engine.evaluate_spec), sized in
+def tables_in_processes(design: Design, specs: Sequence[LawChoice | str],
+                        motors: MotorArrays, workers: int,
+                        done: Callable[[int], None] | None = None) -> list[CandidateTable]:
+    """The table of each law choice (sizer.sizing.engine.evaluate_spec), sized in
     ``workers`` processes; ``done(count)`` after each law with the count so far."""
+    choices = [law_choice(spec) for spec in specs]
     import multiprocessing  # here: the start-up of a command sized in one process
     from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 
@@ -577,7 +579,7 @@ def tables_in_processes(design: Design, specs: Sequence[str], motors: MotorArray
         def submit() -> None:
             k = next(queued, None)
             if k is not None:
-                pending[pool.submit(_size_law, specs[k], hint)] = k
+                pending[pool.submit(_size_law, choices[k], hint)] = k
 
         for _ in range(workers):
             submit()
@@ -610,7 +612,7 @@ FALL = 1e-5
 error there (second order: about 1e-3 STEP^2 on the laws tried) and rounding."""
 
 
-def rms_fails_up_to(design: Design, spec: str, candidates: Candidates,
+def rms_fails_up_to(design: Design, spec: LawChoice | str, candidates: Candidates,
                     T: np.ndarray, group: np.ndarray | None = None) -> np.ndarray:
     """Per candidate: does the RMS check of ``spec`` fail at every duration up to its T?
 
@@ -627,7 +629,7 @@ def rms_fails_up_to(design: Design, spec: str, candidates: Candidates,
     nearest the motor), they share the stretches between reversals too, and one
     evaluation per group gives every member's RMS model (:func:`_shared_models`)."""
 
-    law = make_law(spec)
+    law = law_choice(spec).law
     task = shorthand_task(design.machine_cycle)
     if task is None:
         return _cycle_fails_up_to(design, law, candidates, T)

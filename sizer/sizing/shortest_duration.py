@@ -39,8 +39,7 @@ from typing import Any
 
 import numpy as np
 
-from sizer.laws import AUTO, make_law, resolve
-from sizer.laws.open_shaped import is_open_shaped
+from sizer.laws import LawChoice, law_choice
 from sizer.model.cycle import shorthand_task
 from sizer.model.domain import Design, Limits
 from sizer.numerics.golden import golden_step, interior_points
@@ -729,7 +728,7 @@ def peak_scales(design: Design, candidates: Candidates) -> PeakScales:
     return PeakScales(root, ratio, blocked)
 
 
-def duration_floor(design: Design, spec: str, candidates: Candidates,
+def duration_floor(design: Design, spec: LawChoice | str, candidates: Candidates,
                    scales: PeakScales | None = None) -> np.ndarray | None:
     """Per candidate a duration below which the law ``spec`` is infeasible, in minimize
     mode for the task shorthand (a move, its dwell and return) with a fixed law; None
@@ -738,13 +737,11 @@ def duration_floor(design: Design, spec: str, candidates: Candidates,
     sizes every option at the cost of one evaluation). ``scales``: the candidates'
     :func:`peak_scales` where known (the same for every law). A cycle of segments has
     its own floor: :func:`_cycle_floor`."""
+    choice = law_choice(spec)
     if not design.machine_cycle.minimize or design.transmission.linkage is not None \
-            or is_open_shaped(spec):
+            or not choice.is_fixed:
         return None
-    _, values = resolve(spec)
-    if any(v == AUTO for v in values.values()):
-        return None
-    law, limits = make_law(spec), relaxed(design.limits)
+    law, limits = choice.law, relaxed(design.limits)
     task = shorthand_task(design.machine_cycle)
     if task is None:
         return _cycle_floor(design, law, candidates, limits)

@@ -33,12 +33,11 @@ LAW_SPEC_SCHEMA: dict[str, Any] = {"anyOf": [
 def check_law_spec(text: Any) -> str:
     """Validate a law spec (``auto`` shape parameters allowed); ValueError if invalid.
 
-    Beyond :func:`sizer.laws.resolve` it rejects unknown parameter names and numbers out
-    of a parameter's range, and builds the law when no parameter is ``auto``.
+    Beyond reading it (:func:`sizer.laws.law_choice`) it rejects unknown parameter names
+    and numbers out of a parameter's range, and builds the law when it is fixed.
     """
-    from sizer.laws import AUTO, make_law, resolve
+    from sizer.laws import AUTO, law_choice
     from sizer.laws.data_spec import data_spec_text
-    from sizer.laws.open_shaped import is_open_shaped
 
     if isinstance(text, dict):
         # a law defined by data: the design loader has built it (its files are relative
@@ -51,7 +50,8 @@ def check_law_spec(text: Any) -> str:
         raise ValueError(f"expected a law spec like 'cycloidal' or 'trapezoidal(alpha=1/3)', "
                          f"got {_show(text)}")
     try:
-        family, values = resolve(text)
+        choice = law_choice(text)
+        family, values = choice.family, dict(choice.values)
         names = {p.name: p for p in family.parameters}
         unknown = sorted(set(values) - set(names))
         if unknown:
@@ -62,8 +62,8 @@ def check_law_spec(text: Any) -> str:
                 names[key].validate(family.law_id, float(value))
             elif (refusal := names[key].auto_refusal(family.law_id)) is not None:
                 raise UserError(refusal)
-        if AUTO not in values.values() and not is_open_shaped(text):
-            make_law(text)  # an open shaped law is built by its design (sizer.io.data_laws)
+        if choice.is_fixed:  # an open shaped law is built by its design (sizer.io.data_laws)
+            _ = choice.law
     except UserError as error:
         raise ValueError(error.message) from None
     except (ArithmeticError, ValueError, TypeError) as error:  # huge numbers and the like
