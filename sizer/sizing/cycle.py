@@ -31,17 +31,18 @@ import numpy as np
 from sizer.errors import UserError
 from sizer.laws import LawChoice, MotionLaw, law_choice, make_law
 from sizer.mechanics import Drive
-from sizer.model.cycle import Cycle, Move, Run, Segment, boundary_laws, shorthand_task
+from sizer.model.cycle import Cycle, Dwell, Move, Run, Segment, boundary_laws, shorthand_task
 from sizer.model.domain import Design, Limits, Load, Task, ThermalSpeedRule
 from sizer.sizing.candidates import MotorArrays
 from sizer.sizing.checks import TOLERANCE, evaluate_checks, worst_slack
-from sizer.sizing.evaluation import CycleMetrics
+from sizer.sizing.evaluation import SAMPLES, CycleMetrics, CyclePiece, SegmentPart, held_piece
 from sizer.sizing.move import (
     CycleCalculator,
     MoveFigures,
     MoveScales,
     RmsModel,
     _safe_ratio,
+    law_samples,
     polynomial_move,
     rule_speed,
 )
@@ -210,6 +211,13 @@ class SegmentCycle:
         """Each segment's duration per candidate at scales s."""
         return [np.full_like(s, fixed) if np.isfinite(fixed) else w * s
                 for fixed, w in zip(self.fixed, self.weights, strict=True)]
+
+    def reported(self, metrics: CycleMetrics) -> np.ndarray:
+        """The duration a result reports: the one :meth:`evaluate` gives."""
+        return metrics.duration
+
+    def law_move(self) -> None:
+        return None  # no closed form (sizer.sizing.evaluation.CycleModel)
 
     def cycle_time(self, s: np.ndarray) -> np.ndarray:
         return sum(self.durations(np.asarray(s, dtype=float)), np.zeros_like(s))
@@ -634,6 +642,53 @@ class SegmentCycle:
             stage_square=[x * x * T for x in stage_hold], speed_square=zero, speed_abs=zero,
             energy=zero)
 
+    # ------------------------------------------------------------- samples
+    def pieces(self, s: np.ndarray, samples: int | None = None) -> list[CyclePiece]:
+        """The cycle at scales s, segment by segment: a move from rest on its law's grid
+        (``samples`` per move), a move with boundary speeds on each candidate's own
+        polynomial, a run at its constant speed, a dwell holding its constant load."""
+        samples = SAMPLES if samples is None else samples
+        n = len(self.motors)
+        out, start, position = [], np.zeros((n, 1)), 0.0
+        for segment, law, drive, T in zip(self.cycle.segments, self.laws, self.drives,
+                                          self.durations(s), strict=True):
+            K = np.broadcast_to(np.asarray(drive.ratio, dtype=float), (n,))[:, None]
+            Tc = np.asarray(T, dtype=float)[:, None]
+            name = segment.name or type(segment).__name__.lower()
+            if isinstance(segment, Dwell):
+                hold = np.broadcast_to(np.asarray(drive.holding_torque, dtype=float), (n,))
+                out.append(held_piece(name, start, Tc, position,
+                                      hold * np.sign(drive.load.torque)))
+            else:
+                if isinstance(segment, Move):
+                    assert law is not None, "cycle_laws gives a move one"
+                    u, q, v, a = _move_samples(segment, law, np.asarray(T, dtype=float),
+                                               samples)
+                    rest = 1.0 if segment.displacement >= 0.0 else -1.0
+                else:
+                    assert isinstance(segment, Run)
+                    u, rest = np.array([0.0, 1.0]), 1.0
+                    v, a = np.full((n, 2), segment.speed), np.zeros((n, 2))
+                    q = segment.speed * (Tc * u[None])
+                out.append(CyclePiece(name, start + Tc * u[None], position + q, v, a, K * v,
+                                      K * a, signed_torque(drive, self.motors, a, v, rest)))
+            start, position = start + Tc, position + segment.displacement
+        return out
+
+    def breakdown(self, s: np.ndarray) -> list[SegmentPart]:
+        """Each segment's figures at scales s (:meth:`figures`)."""
+        out = []
+        for segment, law, g in zip(self.cycle.segments, self.laws, self.figures(s),
+                                   strict=True):
+            zero = np.zeros_like(g.duration)
+            start, end = g.end_accelerations or (zero, zero)
+            kind = type(segment).__name__.lower()
+            scale = abs(segment.displacement) / g.duration ** 2 \
+                if isinstance(segment, Move) else None
+            out.append(SegmentPart(segment.name or kind, kind, law, g.duration, g.peak_torque,
+                                   g.torque_square, g.max_speed, g.energy, start, end, scale))
+        return out
+
 
 SECANT_OFFSETS = (1e-2, 1e-4, 1e-6, 1e-8)
 """Where :func:`first_crossing` reads its points beside each round's secant point (shares
@@ -699,3 +754,52 @@ def _take_figures(f: SegmentFigures, index: np.ndarray) -> SegmentFigures:
 
 def _finite_or_inf(x: np.ndarray) -> np.ndarray:
     return np.where(np.isnan(x), np.inf, x)
+
+
+def signed_torque(drive: Drive, motors: MotorArrays, a: np.ndarray, v: np.ndarray,
+                  rest_sign: float) -> np.ndarray:
+    """The motor torque (signed like the motion) at the load's acceleration ``a`` and speed
+    ``v`` (candidates, samples): s (J_m K a_l + B_m K v_l + shaft(a_l, v_l)) with
+    (a_l, v_l) = s (a, v), s the sign of v (``rest_sign`` where v is 0) and shaft() the
+    drive's chain with the efficiencies in the direction of power flow."""
+    n = a.shape[0]
+    K = np.broadcast_to(np.asarray(drive.ratio, dtype=float), (n,))[:, None]
+    J = np.asarray(motors.inertia, dtype=float)[:, None]
+    B = np.asarray(motors.damping, dtype=float)[:, None]
+    sign = np.where(v > 0.0, 1.0, np.where(v < 0.0, -1.0, rest_sign))
+    out = np.zeros_like(a)
+    for s in (1.0, -1.0):
+        if not (sign == s).any():
+            continue
+        shaft, _ = drive.chain(s * a, s * v, s)
+        along = J * K * s * a + B * K * s * v + shaft
+        out = np.where(sign == s, s * along, out)
+    return out
+
+
+def _move_samples(move: Move, law: MotionLaw, T: np.ndarray, samples: int):
+    """u (samples,), the load's position from the move's start (samples,) or (n, samples),
+    speed and acceleration (n, samples) of a move in durations T: a move from rest on its
+    law's grid, a move with boundary speeds on each candidate's own polynomial."""
+    h, Tc = move.displacement, T[:, None]
+    if move.rest_to_rest:
+        u, q_n, v_n, a_n = law_samples(law, samples)
+        return u, h * q_n, h * v_n[None] / Tc, h * a_n[None] / (Tc * Tc)
+    from sizer.laws.boundary_speeds import boundary_form
+
+    basis = boundary_form(law.spec)
+    assert basis is not None, "sizer.io.cycle accepts only laws with a boundary form"
+    c = normalized_move(basis, move, T)  # (n, P, d+1), ascending powers of u - break
+    p = np.arange(c.shape[2])
+    parts: list[list[np.ndarray]] = [[], [], [], []]
+    for k in range(len(basis.breaks) - 1):
+        lo, hi = float(basis.breaks[k]), float(basis.breaks[k + 1])
+        u = np.linspace(lo, hi, max(2, round(samples * (hi - lo))))
+        x = (u - lo)[:, None]
+        dx = np.where(p >= 1, p * x ** np.maximum(p - 1, 0), 0.0)
+        ddx = np.where(p >= 2, p * (p - 1) * x ** np.maximum(p - 2, 0), 0.0)
+        for out, values in zip(parts, (u, c[:, k, :] @ (x ** p).T, c[:, k, :] @ dx.T,
+                                       c[:, k, :] @ ddx.T), strict=True):
+            out.append(values)
+    u, q, v, a = (np.concatenate(x, axis=-1) for x in parts)
+    return u, h * q, h * v / Tc, h * a / (Tc * Tc)

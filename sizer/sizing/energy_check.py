@@ -57,16 +57,16 @@ import numpy as np
 from sizer.model.cycle import shorthand_task
 from sizer.model.domain import Design, Motor, ServoDrive
 from sizer.numerics.roots import illinois
-from sizer.sizing.candidates import catalog_facts
+from sizer.sizing.candidates import MotorArrays, catalog_facts
 from sizer.sizing.checks import (
     BRAKING_RESISTOR_POWER,
     TOLERANCE,
     WINDING_TEMPERATURE_RISE,
     CheckArrays,
 )
-from sizer.sizing.evaluation import CycleMetrics
-from sizer.sizing.move import CycleCalculator
+from sizer.sizing.evaluation import CycleMetrics, CycleModel
 from sizer.sizing.samples import sampled
+from sizer.sizing.shortest_duration import LaterChecks
 
 REGENERATED = "regenerated_energy"
 BRAKING_POWER = "braking_power"
@@ -130,17 +130,6 @@ def energy_notes(design: Design) -> list[str]:
     return []
 
 
-@dataclass(frozen=True)
-class EnergyChecks:
-    """The checks to append, the verdicts with them, the figures and the duration
-    (NaN where infeasible in minimize mode)."""
-
-    checks: list[CheckArrays]
-    feasible: np.ndarray
-    figures: dict[str, np.ndarray]
-    duration: np.ndarray
-
-
 def _motor_column(motors: tuple[Motor, ...], index: np.ndarray, name: str) -> np.ndarray:
     return catalog_facts(motors).column(name)[index]
 
@@ -154,11 +143,11 @@ def _drive_column(drives: tuple[ServoDrive, ...], index: np.ndarray | None, n: i
     return values[index]
 
 
-def energy_checks(design: Design, calculator: CycleCalculator, duration: np.ndarray,
-                  metrics: CycleMetrics, feasible: np.ndarray,
-                  minimize: bool) -> EnergyChecks | None:
+def energy_checks(design: Design, calculator: CycleModel, duration: np.ndarray,
+                  metrics: CycleMetrics) -> LaterChecks | None:
     """The braking and heat checks of the candidates of ``calculator`` at ``duration``
-    (module docstring), or None when the design has neither."""
+    (module docstring; none where it is NaN), their verdicts and figures, or None when
+    the design has neither."""
     motors = calculator.motors
     heat = has_heat_check(motors.catalog)
     brake = has_braking_check(design, motors.drives)
@@ -183,7 +172,7 @@ def energy_checks(design: Design, calculator: CycleCalculator, duration: np.ndar
     if rows.size:
         samples = sampled(calculator.take(rows), T[rows])
         power, wound = _axis_power(motors, samples, rows)
-    feasible = np.asarray(feasible, dtype=bool).copy()
+    feasible = np.ones(n, dtype=bool)
     checks: list[CheckArrays] = []
     figures: dict[str, np.ndarray] = {}
     if brake:
@@ -200,9 +189,33 @@ def energy_checks(design: Design, calculator: CycleCalculator, duration: np.ndar
         figures[WINDING_RISE] = rise
     if with_power:
         figures.update(_power_figures(n, power, wound, rows))
-    if minimize:
-        T = np.where(feasible, T, np.nan)
-    return EnergyChecks(checks, feasible, figures, np.array(T, dtype=float))
+    return LaterChecks(checks, feasible, figures)
+
+
+@dataclass(frozen=True)
+class EnergyLimit:
+    """The braking and heat checks as a later limit of the search for the shortest
+    duration (sizer.sizing.shortest_duration.LaterLimit)."""
+
+    design: Design
+
+    def at(self, calculator: CycleModel, s: np.ndarray, metrics: CycleMetrics,
+           known: np.ndarray) -> LaterChecks:
+        energy = energy_checks(self.design, calculator, np.where(known, s, np.nan), metrics)
+        assert energy is not None, "made only for a design with either check"
+        return energy
+
+    def passing_scale(self, calculator: CycleModel, rows: np.ndarray, s: np.ndarray,
+                      found: LaterChecks) -> np.ndarray:
+        slack = np.min([check.slack[rows] for check in found.checks], axis=0) + TOLERANCE
+        return energy_duration(self.design, calculator.take(rows), s, slack)
+
+
+def energy_limit(design: Design, motors: MotorArrays) -> EnergyLimit | None:
+    """The design's braking and heat checks as a later limit, or None with neither."""
+    if has_heat_check(motors.catalog) or has_braking_check(design, motors.drives):
+        return EnergyLimit(design)
+    return None
 
 
 def _braking_limit(design: Design, motors) -> np.ndarray:
@@ -331,7 +344,7 @@ XTOL = 1e-12
 """Relative width of the final bracket of the duration."""
 
 
-def energy_slack(design: Design, calculator: CycleCalculator, duration: np.ndarray,
+def energy_slack(design: Design, calculator: CycleModel, duration: np.ndarray,
                  rows: np.ndarray) -> np.ndarray:
     """The smallest slack of the energy and heat checks of the candidates at ``rows`` of
     ``calculator``, each moving in its ``duration``; >= 0 where both pass (with the
@@ -340,14 +353,13 @@ def energy_slack(design: Design, calculator: CycleCalculator, duration: np.ndarr
     T = np.asarray(duration, dtype=float)
     metrics = sub.evaluate(T)
     with without_power_figures():
-        energy = energy_checks(design, sub, T, metrics, np.ones(len(rows), dtype=bool),
-                               False)
+        energy = energy_checks(design, sub, T, metrics)
     if energy is None or not energy.checks:
         return np.full(len(rows), np.inf)
     return np.min([check.slack for check in energy.checks], axis=0) + TOLERANCE
 
 
-def energy_duration(design: Design, calculator: CycleCalculator, duration: np.ndarray,
+def energy_duration(design: Design, calculator: CycleModel, duration: np.ndarray,
                     slack: np.ndarray | None = None) -> np.ndarray:
     """Per candidate, the smallest duration >= ``duration`` at which the energy and heat
     checks pass; inf where none does up to ``duration`` 2^DOUBLINGS. ``slack``: that of

@@ -43,7 +43,7 @@ from sizer.laws import LawChoice, MotionLaw, law_choice
 from sizer.model.cycle import Dwell
 from sizer.model.domain import Design, Motor
 from sizer.sizing.candidates import Candidates, MotorArrays
-from sizer.sizing.checks import TOLERANCE, CheckName, evaluate_checks
+from sizer.sizing.checks import TOLERANCE, CheckArrays, CheckName, evaluate_checks
 from sizer.sizing.checks import feasible as all_pass
 from sizer.sizing.choices import SharedByLaws, choose_shape
 from sizer.sizing.cycle import (
@@ -54,19 +54,18 @@ from sizer.sizing.cycle import (
     shorthand_task,
     single_task,
 )
-from sizer.sizing.energy_check import (
-    EnergyChecks,
-    energy_checks,
-    energy_notes,
-    has_braking_check,
-    has_heat_check,
-    without_power_figures,
+from sizer.sizing.energy_check import energy_limit, energy_notes, without_power_figures
+from sizer.sizing.evaluation import CycleMetrics, CycleModel
+from sizer.sizing.linkage_move import (
+    LinkageCalculator,
+    LinkageCycle,
+    linkage_calculator,
+    linkage_mechanics,
 )
 from sizer.sizing.move import CycleCalculator, MoveScales, RmsModel, law_grid
 from sizer.sizing.ranking import rank_order
 from sizer.sizing.results import (
     FIGURES,
-    RESIDUAL,
     CandidateResult,
     CandidateTable,
     Mode,
@@ -75,7 +74,12 @@ from sizer.sizing.results import (
     concatenate,
     in_groups,
 )
-from sizer.sizing.shortest_duration import is_purely_inertial, merge_metrics, minimum_duration
+from sizer.sizing.shortest_duration import (
+    is_purely_inertial,
+    minimum_duration,
+    settle,
+)
+from sizer.sizing.vibration_check import residual_limit
 
 if TYPE_CHECKING:
     from concurrent.futures import Future
@@ -251,196 +255,82 @@ def evaluate_fixed_law(design: Design, law: MotionLaw, candidates: Candidates,
 
 def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates,
                     peaks: bool = True) -> CandidateTable:
-    """One law for a chunk of candidates: the law move's closed forms where the cycle is
-    the task shorthand (the move's T reported), else the cycle of segments (sizer.sizing.
-    cycle: the scale of its free durations searched, time scaling of book sec. 5.2; the
-    cycle time reported)."""
+    """One law for a chunk of candidates on the design's cycle model (:func:`cycle_model`):
+    its mechanical answer (in minimize mode the shortest scale of sizer.sizing.
+    shortest_duration; through a linkage with its dead-point check first), then the
+    later limits (residual vibration, braking, heat) settled in the same search; the
+    duration each reports (:func:`_reported`)."""
+    cycle, limits = design.machine_cycle, design.limits
+    calculator = cycle_model(design, law, candidates)
+    if isinstance(calculator, LinkageCalculator | LinkageCycle):  # its dead-point check
+        scale, metrics, checks, passed = linkage_mechanics(design, calculator)
+    elif cycle.minimize:
+        solution = minimum_duration(calculator, limits)
+        scale, metrics, checks = solution.duration, solution.metrics, solution.checks
+        passed = solution.feasible
+    else:
+        task = shorthand_task(cycle)
+        scale = np.full(len(candidates), given_scale(cycle) if task is None
+                        else task.duration)
+        metrics = calculator.evaluate(scale, peaks)
+        checks = evaluate_checks(metrics, calculator.motors, calculator.drive, limits,
+                                 cycle.linear)
+        passed = all_pass(checks)
+    later = [kind for kind in (residual_limit(design, law),
+                               energy_limit(design, candidates.motors)) if kind is not None]
+    settled = settle(calculator, limits, later, scale, metrics, checks, passed,
+                     cycle.minimize)
+    checks, verdict = settled.checks, settled.feasible
+    if limits.thermal_duty == "once":  # a one-off run: the winding model decides
+        checks, verdict = _once(checks, verdict)
+    duration = calculator.reported(settled.metrics)
+    if cycle.minimize:
+        duration = np.where(settled.feasible, duration, np.nan)
+    return _table(design, law, candidates, duration, settled.metrics, checks, verdict,
+                  settled.figures)
+
+
+def cycle_model(design: Design, law: MotionLaw, candidates: Candidates) -> CycleModel:
+    """The model the design's cycle is sized on, for these candidates: the law move of the
+    task shorthand (its closed forms), the cycle of segments, or either through a
+    linkage (sizer.sizing.linkage_move)."""
     if design.transmission.linkage is not None:
-        return _evaluate_linkage_chunk(design, law, candidates)
+        return linkage_calculator(design, law, candidates.motors, candidates.drive)
     cycle, motors, rule = design.machine_cycle, candidates.motors, design.limits.thermal_speed
     task = shorthand_task(cycle)
-    calculator = SegmentCycle(cycle, law, candidates.drive, motors, rule) if task is None \
-        else CycleCalculator(None, task, candidates.drive, motors, rule, law=law)
-    if cycle.minimize:
-        solution = minimum_duration(calculator, design.limits)
-        metrics, checks, feasible = solution.metrics, solution.checks, solution.feasible
-        scale = solution.duration
-    else:
-        scale = np.full(len(motors), given_scale(cycle) if task is None else task.duration)
-        metrics = calculator.evaluate(scale, peaks)
-        checks = evaluate_checks(metrics, motors, calculator.drive, design.limits, cycle.linear)
-        feasible = all_pass(checks)
-    vibration = _vibration(design, law, calculator, scale, metrics, checks, feasible,
-                           cycle.minimize, cycle.linear)
-    residual = None
-    if vibration is not None:
-        scale, metrics, checks, feasible, residual = vibration
-    scale, metrics, checks, feasible, figures = _with_energy(
-        design, calculator, scale, metrics, checks, feasible, cycle.minimize,
-        residual is not None, cycle.linear)
-    if task is None:  # the cycle time
-        scale = np.where(feasible, metrics.duration, np.nan) if cycle.minimize \
-            else metrics.duration
-    return _table(design, law, candidates, scale, metrics, checks, feasible, residual,
-                  figures)
+    if task is None:
+        return SegmentCycle(cycle, law, candidates.drive, motors, rule)
+    return CycleCalculator(None, task, candidates.drive, motors, rule, law=law)
 
 
-def _with_energy(design: Design, calculator, duration: np.ndarray, metrics, checks, feasible,
-                 minimize: bool, vibrating: bool, linear: bool):
-    """The braking and heat checks added (sizer.sizing.energy_check), and in minimize mode
-    the candidates that fail only those moved to the first duration that passes them
-    (not with a load mode: ``vibrating``). ``duration`` is the move's T, or a cycle's scale
-    s. Returns (duration, metrics, checks, feasible, figures); unchanged, without figures,
-    for a design with neither check."""
-    energy = energy_checks(design, calculator, duration, metrics, feasible, minimize)
-    if energy is not None and minimize and not vibrating:
-        moved = _energy_moved(design, calculator, duration, feasible, energy)
-        if moved is not None:
-            rows, T = moved
-            metrics = merge_metrics(metrics, rows, calculator.take(rows).evaluate(T))
-            checks = _replaced(checks, evaluate_checks(metrics, calculator.motors,
-                                                       calculator.drive, design.limits,
-                                                       linear))
-            # only the moved rows change: their verdicts and durations from the new checks
-            feasible = np.array(feasible, dtype=bool)
-            feasible[rows] = all_pass(checks)[rows]
-            duration = np.array(duration, dtype=float)
-            duration[rows] = np.where(feasible[rows], T, np.nan)
-            energy = energy_checks(design, calculator, duration, metrics, feasible, True)
-    if energy is None:
-        return duration, metrics, checks, feasible, None
-    verdict = energy.feasible
-    if design.limits.thermal_duty == "once":  # a one-off run: the winding model decides
-        checks, verdict = _once(checks, energy)
-    return energy.duration, metrics, [*checks, *energy.checks], verdict, energy.figures
-
-
-def _once(checks, energy: EnergyChecks):
+def _once(checks: list[CheckArrays], verdict: np.ndarray
+          ) -> tuple[list[CheckArrays], np.ndarray]:
     """A one-off run (``thermal_duty: once``): where the winding model checks the motor,
     the RMS check is no criterion (it does not apply there); the verdicts again."""
-    heat = next((c for c in energy.checks if c.name == CheckName.WINDING_TEMPERATURE_RISE), None)
+    heat = next((c for c in checks if c.name == CheckName.WINDING_TEMPERATURE_RISE), None)
     if heat is None:
-        return checks, energy.feasible
+        return checks, verdict
     modelled = np.ones(len(heat.value), dtype=bool) if heat.applies is None else heat.applies
     out = [dataclasses.replace(c, applies=~modelled if c.applies is None
                                else c.applies & ~modelled) if c.name == "rms" else c
            for c in checks]
-    return out, all_pass([*out, *energy.checks])
-
-
-def _replaced(checks, new) -> list:
-    """``checks`` with those ``new`` evaluates again in their place (by name; the others,
-    such as a linkage's dead_point, kept)."""
-    by_name = {c.name: c for c in new}
-    out = [by_name.pop(c.name, c) for c in checks]
-    return [*out, *by_name.values()]
-
-
-def _energy_moved(design: Design, calculator, duration: np.ndarray, feasible: np.ndarray,
-                  energy: EnergyChecks) -> tuple[np.ndarray, np.ndarray] | None:
-    """Minimize mode: the candidates that pass every check but the energy and heat ones
-    at T_min, and the first durations at which those pass too
-    (sizer.sizing.energy_check); where none does, the candidate stays at T_min (its
-    energy check fails there and names the limit). None when no candidate moves."""
-    late = np.asarray(feasible, dtype=bool) & ~energy.feasible & np.isfinite(duration)
-    if not late.any():
-        return None
-    from sizer.sizing.energy_check import energy_duration
-
-    rows = np.flatnonzero(late)
-    slack = np.min([check.slack[rows] for check in energy.checks], axis=0) + TOLERANCE
-    moved = energy_duration(design, calculator.take(rows), duration[rows], slack)
-    found = np.isfinite(moved)
-    if not found.any():
-        return None
-    return rows[found], moved[found]
-
-
-def _vibration(design: Design, law: MotionLaw, calculator, scale: np.ndarray, metrics,
-               checks, feasible, minimize: bool, linear: bool):
-    """The residual vibration of the moves (sizer.sizing.vibration_check), or None when
-    the design gives no mode of the load: with a limit, in minimize mode each scale moved
-    up to the first one that meets it (the other checks then evaluated there), and the
-    check added; the scale, metrics, checks, verdicts and the residual per candidate."""
-    from sizer.sizing.vibration_check import admissible_scale, cycle_vibration, residual_check
-
-    vibration = cycle_vibration(design, law)
-    if vibration is None:
-        return None
-    limit = design.limits.residual_vibration
-    known = np.isfinite(scale) & (np.asarray(feasible, dtype=bool) | (not minimize))
-    if minimize and limit is not None and known.any():
-        moved = np.where(known, admissible_scale(vibration, np.where(known, scale, np.nan),
-                                                 limit), scale)
-        late = known & (moved > scale)
-        if late.any():
-            metrics = calculator.evaluate(np.where(np.isfinite(moved), moved, scale))
-            checks = evaluate_checks(metrics, calculator.motors, calculator.drive,
-                                     design.limits, linear)
-            feasible = np.asarray(feasible, dtype=bool) & np.isfinite(moved) & all_pass(checks)
-            # where no duration within the search meets the limit, the check at T_min
-            # fails and names the limit (the pair is infeasible)
-            scale = np.where(np.isfinite(moved), moved, scale)
-    residual = np.where(known, vibration.worst(np.where(known, scale, 1.0)), np.nan)
-    if limit is not None:
-        check = residual_check(vibration, np.where(known, scale, 1.0), limit, linear)
-        check = type(check)(check.name, np.where(known, check.value, 0.0), check.limit,
-                            check.unit, check.required)
-        checks = [*checks, check]
-        feasible = np.asarray(feasible, dtype=bool) & check.passed
-    if minimize:
-        scale = np.where(feasible, scale, np.nan)
-    return scale, metrics, checks, feasible, residual
+    return out, all_pass(out)
 
 
 LINKAGE_SAMPLES = 8192
 """Samples of a move through a linkage per candidate (sizer.sizing.linkage_move)."""
 
 
-def _evaluate_linkage_chunk(design: Design, law: MotionLaw,
-                            candidates: Candidates) -> CandidateTable:
-    """Through a linkage at the load (sizer.sizing.linkage_move): the profile of the
-    law computed once, the candidates at its samples; minimize by time scaling."""
-    from sizer.sizing.linkage_move import evaluate_linkage  # only linkage designs
-
-    duration, metrics, checks, feasible = evaluate_linkage(design, law, candidates.motors,
-                                                           candidates.drive)
-    if not (has_heat_check(candidates.motors.catalog)
-            or has_braking_check(design, candidates.motors.drives)):
-        return _table(design, law, candidates, duration, metrics, checks, feasible)
-    from sizer.sizing.linkage_move import linkage_calculator, scale_of_durations
-
-    calculator = linkage_calculator(design, law, candidates.motors, candidates.drive)
-    task = shorthand_task(design.machine_cycle)
-    cycle = task is None or task.return_move
-    scale = scale_of_durations(calculator, metrics.duration if cycle else duration)
-    scale = np.where(np.isfinite(duration), scale, np.nan)
-    minimize = design.machine_cycle.minimize
-    moved, metrics, checks, feasible, figures = _with_energy(
-        design, calculator, scale, metrics, checks, feasible, minimize, False,
-        design.machine_cycle.linear)
-    if cycle:  # the cycle time, or for a task with a return each move's T
-        duration = metrics.duration if task is None else \
-            (metrics.duration - 2.0 * task.dwell) / 2.0
-        duration = np.where(feasible, duration, np.nan) if minimize else duration
-    else:
-        duration = moved
-    return _table(design, law, candidates, duration, metrics, checks, feasible,
-                  extra=figures)
-
-
 def _table(design: Design, law: MotionLaw, candidates: Candidates, duration: np.ndarray,
-           metrics, checks, feasible, residual: np.ndarray | None = None,
-           extra: dict[str, np.ndarray] | None = None) -> CandidateTable:
+           metrics: CycleMetrics, checks: list[CheckArrays], feasible: np.ndarray,
+           extra: dict[str, np.ndarray]) -> CandidateTable:
     motors, drive = candidates.motors, candidates.drive
     n = len(motors)
     figures = {"duration": duration, "peak_torque": metrics.peak_torque,
                "rms_torque": metrics.rms_torque, "max_speed": metrics.max_speed,
                "load_speed": metrics.load_speed, "load_torque": metrics.load_torque}
     assert set(figures) == set(FIGURES)
-    if residual is not None:
-        figures[RESIDUAL] = residual
-    figures.update(extra or {})  # energy and heat (sizer.sizing.energy_check)
+    figures.update(extra)  # the later limits': residual vibration, energy and heat
     return CandidateTable(
         mode_of(design), (law,), np.zeros(n, dtype=np.intp), motors.catalog, motors.index,
         drive.transmissions, candidates.gearbox_names, candidates.option,

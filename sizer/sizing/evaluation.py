@@ -6,7 +6,9 @@ rest-to-rest (sizer.sizing.move.CycleCalculator), a cycle of segments
 (sizer.sizing.linkage_move.LinkageCalculator, sizer.sizing.linkage_move.LinkageCycle).
 Each satisfies :class:`CycleModel` structurally; the search for the shortest duration, the
 checks and the energy pass ask only what it declares. Each evaluation is one
-:class:`CycleMetrics`: arrays over candidates, SI.
+:class:`CycleMetrics`: arrays over candidates, SI. Each model samples itself piece by piece
+(:class:`CyclePiece`, for sizer.sizing.samples); a cycle of segments also gives each
+segment's figures (:class:`SegmentedModel`, :class:`SegmentPart`).
 """
 
 from __future__ import annotations
@@ -17,9 +19,11 @@ from typing import TYPE_CHECKING, Protocol, Self
 import numpy as np
 
 if TYPE_CHECKING:
+    from sizer.laws import MotionLaw
     from sizer.mechanics import Drive
     from sizer.model.domain import Limits, Task
     from sizer.sizing.candidates import MotorArrays
+    from sizer.sizing.move import CycleCalculator
 
 
 @dataclass(frozen=True)
@@ -46,6 +50,61 @@ class CycleMetrics:
     stage_rms: list[np.ndarray]
     stage_speed: list[np.ndarray]
     rms_model: RmsCurve | None = None
+
+
+SAMPLES = 1001
+"""Samples of the normalized law per move for energy and heat (spread over its pieces by
+their lengths)."""
+
+
+@dataclass(frozen=True)
+class CyclePiece:
+    """One segment of a sampled cycle: (candidates, samples) arrays, or (samples,) where
+    the same for every candidate (the load's position); ``theta`` and ``ratio`` through a
+    linkage only. Times from the cycle's start (a repeated time is a jump), the load's
+    position, speed and acceleration, the motor's speed and acceleration, the motor torque
+    signed like the motion (SI)."""
+
+    name: str
+    time: np.ndarray
+    position: np.ndarray
+    load_speed: np.ndarray
+    load_acceleration: np.ndarray
+    motor_speed: np.ndarray
+    motor_acceleration: np.ndarray
+    torque: np.ndarray
+    theta: np.ndarray | None = None
+    ratio: np.ndarray | None = None
+
+
+def held_piece(name: str, start: np.ndarray, T: np.ndarray, position: float,
+               torque: np.ndarray) -> CyclePiece:
+    """A dwell of T (candidates, 1) from ``start`` holding ``torque`` (candidates,)."""
+    zeros = np.zeros((len(start), 2))
+    return CyclePiece(name, np.concatenate([start, start + T], axis=1), np.full(2, position),
+                      zeros, zeros, zeros, zeros,
+                      np.repeat(np.asarray(torque)[:, None], 2, axis=1))
+
+
+@dataclass(frozen=True)
+class SegmentPart:
+    """One segment of a cycle for its breakdown (sizer.sizing.samples.segment_breakdown):
+    its name, kind (move, run, dwell) and law, and per candidate its duration, peak motor
+    torque, integral of tau^2 (``square``), peak motor speed, work at the motor shaft, the
+    load's acceleration at its start and end, and for a move its acceleration scale (the
+    largest |h|/T^2 the join tolerance is a share of; None for a run or a dwell)."""
+
+    name: str
+    kind: str
+    law: MotionLaw | None
+    duration: np.ndarray
+    peak_torque: np.ndarray
+    square: np.ndarray
+    max_speed: np.ndarray
+    energy: np.ndarray
+    start_acceleration: np.ndarray
+    end_acceleration: np.ndarray
+    acceleration_scale: np.ndarray | None
 
 
 class RmsCurve(Protocol):
@@ -103,4 +162,37 @@ class CycleModel(Protocol):
 
     def rms_lower_bound(self) -> np.ndarray | None:
         """A torque the motor's RMS exceeds at every duration, or None where none holds."""
+        ...
+
+    def reported(self, metrics: CycleMetrics) -> np.ndarray:
+        """The duration a result reports from the metrics at a scale: the move's T, the
+        cycle time, or each move's T of a task with a return through a linkage."""
+        ...
+
+    def law_move(self) -> CycleCalculator | None:
+        """The law move rest-to-rest this model is (its closed forms: book eq. 6.2), or
+        None."""
+        ...
+
+    def cycle_time(self, s: np.ndarray) -> np.ndarray:
+        """The machine cycle's time at durations (or scales) s."""
+        ...
+
+    def scale_of(self, duration: np.ndarray) -> np.ndarray:
+        """The durations (or scales) s at which :meth:`evaluate` reports ``duration``."""
+        ...
+
+    def pieces(self, s: np.ndarray, samples: int | None = None) -> list[CyclePiece]:
+        """The machine cycle at durations (or scales) s (one per candidate), piece by
+        piece: each move on ``samples`` points (None: the model's own for energy and heat,
+        SAMPLES of a law, a linkage profile's whole uniform grid), each dwell holding its
+        torque."""
+        ...
+
+
+class SegmentedModel(CycleModel, Protocol):
+    """A cycle of segments (``segmented``): also each segment's figures."""
+
+    def breakdown(self, s: np.ndarray) -> list[SegmentPart]:
+        """Each segment's figures at scales s (sizer.sizing.samples.segment_breakdown)."""
         ...

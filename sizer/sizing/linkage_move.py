@@ -31,7 +31,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 from functools import lru_cache
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -44,7 +44,7 @@ from sizer.model.domain import Design, Limits, LinkageStage, Load, Task
 from sizer.sizing.candidates import MotorArrays
 from sizer.sizing.checks import CheckArrays, evaluate_checks, feasible
 from sizer.sizing.cycle import cycle_laws, given_scale, segment_load
-from sizer.sizing.evaluation import CycleMetrics
+from sizer.sizing.evaluation import CycleMetrics, CyclePiece, SegmentPart, held_piece
 from sizer.sizing.move import rule_speed
 from sizer.sizing.shortest_duration import minimum_duration
 
@@ -330,8 +330,39 @@ class LinkageCalculator:
         self.profile, self.task, self.drive, self.motors = profile, task, drive, motors
         self.thermal_rule, self.law = thermal_rule, law
 
+    def reported(self, metrics: CycleMetrics) -> np.ndarray:
+        """The duration a result reports: the one :meth:`evaluate` gives."""
+        return metrics.duration
+
+    def law_move(self) -> None:
+        return None  # no closed form (sizer.sizing.evaluation.CycleModel)
+
     def cycle_time(self, T: np.ndarray) -> np.ndarray:
         return np.asarray(T, dtype=float) + self.task.dwell
+
+    def scale_of(self, duration: np.ndarray) -> np.ndarray:
+        """The move durations T themselves (:meth:`evaluate` reports T)."""
+        return np.asarray(duration, dtype=float)
+
+    def segments(self, T: np.ndarray) -> list[LinkagePart]:
+        """The move at durations T and, where the task has one, its dwell holding the
+        output's static load."""
+        p = self.profile
+        out = [LinkagePart("move", "move", self.law, p, T, move_calculator(self, p))]
+        if self.task.dwell > 0.0:
+            out.append(LinkagePart("dwell", "dwell", None, HeldDwell(p.hold, abs(p.load.torque)),
+                                   np.full_like(T, self.task.dwell), None))
+        return out
+
+    def pieces(self, s: np.ndarray, samples: int | None = None) -> list[CyclePiece]:
+        """The move and its dwell sampled (:func:`linkage_pieces`), the dwell's torque
+        with the sign of the static load it holds."""
+        out = linkage_pieces(self, s, samples)
+        sign = np.sign(self.profile.hold)
+        return out[:1] + [replace(p, torque=p.torque * sign) for p in out[1:]]
+
+    def breakdown(self, s: np.ndarray) -> list[SegmentPart]:
+        return linkage_breakdown(self, s)
 
     def take(self, index: np.ndarray) -> LinkageCalculator:
         return LinkageCalculator(self.profile, self.task, self.drive.take(index),
@@ -520,6 +551,18 @@ def evaluate_linkage(design: Design, law: MotionLaw, motors: MotorArrays, drive:
     """(duration, metrics, checks, feasible) of one law through the design's linkage: the
     move's T alone, the cycle time of a cycle, each move's T of a task with a return."""
     calculator = linkage_calculator(design, law, motors, drive)
+    _, metrics, checks, passed = linkage_mechanics(design, calculator)
+    duration = calculator.reported(metrics)
+    if design.machine_cycle.minimize:
+        duration = np.where(passed, duration, np.nan)
+    return duration, metrics, checks, passed
+
+
+def linkage_mechanics(design: Design, calculator: LinkageCalculator | LinkageCycle):
+    """(scale, metrics, checks, feasible) of the calculator's law through the linkage:
+    the dead-point check first, then the mechanical ones; in minimize mode the shortest
+    scale (NaN where infeasible), unless the law breaks a dead-point rule (a law
+    infeasible at any duration shows one, at the model's first guess)."""
     given: float | None
     if isinstance(calculator, LinkageCycle):
         cycle = calculator.cycle
@@ -528,29 +571,23 @@ def evaluate_linkage(design: Design, law: MotionLaw, motors: MotorArrays, drive:
     else:
         minimize, given = calculator.task.minimize, calculator.task.duration
         issues = calculator.profile.issues
-    n = len(motors)
+    n = len(calculator.motors)
     point = dead_point_check(issues, n)
     if minimize and not issues:
         solution = minimum_duration(calculator, design.limits)
-        metrics, checks, passed = solution.metrics, solution.checks, solution.feasible
-    else:  # a law infeasible at any duration shows one
-        s = calculator.initial_guess() if minimize else \
-            np.full(n, given if given is not None else np.nan)
-        metrics = calculator.evaluate(s)
-        if issues:  # the crank's motion is singular: no torque to report
-            metrics = singular_metrics(metrics)
-        checks = evaluate_checks(metrics, motors, calculator.drive, design.limits,
-                                 calculator.task.linear)
-        if issues:
-            checks = unbounded_checks(checks)
-        passed = feasible([point, *checks])
-    duration = np.where(passed, metrics.duration, np.nan) if minimize else metrics.duration
-    task = shorthand_task(design.machine_cycle)
-    if task is not None and task.return_move:  # the task reports its moves' T
-        T = (duration - cycle.fixed_time) / len(cycle.moves) if minimize else \
-            np.full(n, task.duration)
-        return T, metrics, [point, *checks], passed
-    return duration, metrics, [point, *checks], passed
+        return solution.duration, solution.metrics, [point, *solution.checks], \
+            solution.feasible
+    s = calculator.initial_guess() if minimize else \
+        np.full(n, given if given is not None else np.nan)
+    metrics = calculator.evaluate(s)
+    if issues:  # the crank's motion is singular: no torque to report
+        metrics = singular_metrics(metrics)
+    checks = evaluate_checks(metrics, calculator.motors, calculator.drive, design.limits,
+                             calculator.task.linear)
+    if issues:
+        checks = unbounded_checks(checks)
+    passed = feasible([point, *checks])
+    return (np.where(passed, s, np.nan) if minimize else s), metrics, [point, *checks], passed
 
 
 def dead_points(stage: LinkageStage) -> dict[str, float]:
@@ -638,9 +675,48 @@ class LinkageCycle:
         return [np.full_like(s, fixed) if np.isfinite(fixed) else w * s
                 for fixed, w in zip(self.fixed, self.weights, strict=True)]
 
+    def reported(self, metrics: CycleMetrics) -> np.ndarray:
+        """The duration a result reports: the cycle time; for a task with a return (the
+        cycle it means) each move's T."""
+        task = shorthand_task(self.cycle)
+        if task is None or not task.return_move:
+            return metrics.duration
+        if task.minimize:
+            return (metrics.duration - self.cycle.fixed_time) / len(self.cycle.moves)
+        return np.full(len(metrics.duration), task.duration)
+
+    def law_move(self) -> None:
+        return None  # no closed form (sizer.sizing.evaluation.CycleModel)
+
     def cycle_time(self, s: np.ndarray) -> np.ndarray:
         s = np.asarray(s, dtype=float)
         return sum(self.durations(s), np.zeros_like(s))
+
+    def scale_of(self, duration: np.ndarray) -> np.ndarray:
+        """The scales s at cycle times ``duration``: (cycle time - fixed time) / the sum of
+        the free weights (1 with none)."""
+        fixed = float(np.nansum(self.fixed))
+        weights = math.fsum(w for w, f in zip(self.weights, self.fixed, strict=True)
+                            if not np.isfinite(f))
+        if weights == 0.0:
+            return np.ones_like(np.asarray(duration, dtype=float))
+        return (np.asarray(duration, dtype=float) - fixed) / weights
+
+    def segments(self, s: np.ndarray) -> list[LinkagePart]:
+        """Each segment at scales s: a move or run on its profile, a dwell held."""
+        out = []
+        for segment, law, part, T in zip(self.cycle.segments, self.laws, self.parts,
+                                         self.durations(s), strict=True):
+            kind = type(segment).__name__.lower()
+            move = move_calculator(self, part) if isinstance(part, LinkageProfile) else None
+            out.append(LinkagePart(segment.name or kind, kind, law, part, T, move))
+        return out
+
+    def pieces(self, s: np.ndarray, samples: int | None = None) -> list[CyclePiece]:
+        return linkage_pieces(self, s, samples)
+
+    def breakdown(self, s: np.ndarray) -> list[SegmentPart]:
+        return linkage_breakdown(self, s)
 
     def take(self, index: np.ndarray) -> LinkageCycle:
         out = object.__new__(LinkageCycle)
@@ -704,7 +780,7 @@ def linkage_figures(calculator: LinkageCalculator | LinkageCycle, s: np.ndarray
     n = len(calculator.motors)
     drive = calculator.drive
     N, eta = drive.ratio, drive.efficiency
-    for part, T, calc in linkage_parts(calculator, np.asarray(s, dtype=float)):
+    for _, _, _, part, T, calc in calculator.segments(np.asarray(s, dtype=float)):
         if isinstance(part, HeldDwell):
             hold = np.broadcast_to(abs(part.hold) / (N * eta), (n,))
             zeros = np.zeros(n)
@@ -747,22 +823,60 @@ def move_calculator(calculator: LinkageCalculator | LinkageCycle,
                              calculator.thermal_rule, calculator.law)
 
 
-def linkage_parts(calculator: LinkageCalculator | LinkageCycle, s: np.ndarray
-                  ) -> list[tuple[LinkageProfile | HeldDwell, np.ndarray,
-                                  LinkageCalculator | None]]:
-    """Each part of the machine cycle at durations (one move) or scales s: (the move's
-    profile or the dwell, its durations, the move's calculator or None)."""
-    if isinstance(calculator, LinkageCycle):
-        return [(part, T, move_calculator(calculator, part)
-                 if isinstance(part, LinkageProfile) else None)
-                for part, T in zip(calculator.parts, calculator.durations(s), strict=True)]
-    profile = calculator.profile
-    parts: list[tuple[LinkageProfile | HeldDwell, np.ndarray, LinkageCalculator | None]] = [
-        (profile, s, move_calculator(calculator, profile))]
-    if calculator.task.dwell > 0.0:
-        parts.append((HeldDwell(profile.hold, abs(profile.load.torque)),
-                      np.full_like(s, calculator.task.dwell), None))
-    return parts
+class LinkagePart(NamedTuple):
+    """One part of a machine cycle through a linkage at durations (one move) or scales s:
+    its name, kind and law, the move's profile or the dwell, its durations, the move's
+    calculator (None for a dwell)."""
+
+    name: str
+    kind: str
+    law: MotionLaw | None
+    part: LinkageProfile | HeldDwell
+    duration: np.ndarray
+    move: LinkageCalculator | None
+
+
+def linkage_pieces(calculator: LinkageCalculator | LinkageCycle, s: np.ndarray,
+                   samples: int | None) -> list[CyclePiece]:
+    """The cycle through a linkage at durations (one move) or scales s: each move on
+    ``samples`` of its profile's uniform grid (all of them with None), each dwell holding
+    the output."""
+    n = len(calculator.motors)
+    N = np.broadcast_to(np.asarray(calculator.drive.ratio, dtype=float), (n,))[:, None]
+    eta = np.broadcast_to(np.asarray(calculator.drive.efficiency, dtype=float), (n,))[:, None]
+    out, start, position = [], np.zeros((n, 1)), 0.0
+    for name, _, _, part, T, move in calculator.segments(s):
+        Tc = np.asarray(T, dtype=float)[:, None]
+        if isinstance(part, HeldDwell):
+            out.append(held_piece(name, start, Tc, position, abs(part.hold) / (N * eta)[:, 0]))
+        else:
+            assert move is not None
+            speed, torque, _ = move.motor_samples(np.asarray(T, dtype=float))
+            pick = np.flatnonzero(part.weights == 0.0)  # the uniform grid, in order
+            if samples is not None:
+                pick = pick[np.linspace(0, len(pick) - 1, samples).round().astype(int)]
+            out.append(CyclePiece(name, start + Tc * part.u[pick][None], part.s[pick],
+                                  part.s1[pick][None] / Tc, part.s2[pick][None] / Tc**2,
+                                  speed[:, pick], N * part.theta2[pick][None] / Tc**2,
+                                  torque[:, pick], part.theta[pick], part.ratio[pick]))
+            position = float(part.s[-1])
+        start = start + Tc
+    return out
+
+
+def linkage_breakdown(calculator: LinkageCalculator | LinkageCycle, s: np.ndarray
+                      ) -> list[SegmentPart]:
+    """Each part's figures (:func:`linkage_figures`); a move's acceleration scale is its
+    output's largest |s''| / T^2."""
+    out = []
+    for (name, kind, law, part, T, _), f in zip(calculator.segments(s),
+                                                linkage_figures(calculator, s), strict=True):
+        scale = float(np.max(np.abs(part.s2))) / T ** 2 \
+            if isinstance(part, LinkageProfile) else None
+        out.append(SegmentPart(name, kind, law, f["duration"], f["peak_torque"], f["square"],
+                               f["max_speed"], f["energy"], f["start_acceleration"],
+                               f["end_acceleration"], scale))
+    return out
 
 
 def _shape(segment: Move | Run, law: MotionLaw | None,
@@ -779,19 +893,3 @@ def _shape(segment: Move | Run, law: MotionLaw | None,
     return FixedShape(law.spec, segment.start_speed * T / h, segment.end_speed * T / h,
                       segment.start_acceleration * T * T / h,
                       segment.end_acceleration * T * T / h)
-
-
-def scale_of_durations(calculator: LinkageCalculator | LinkageCycle,
-                       duration: np.ndarray) -> np.ndarray:
-    """The calculator's scale at the engine's reported durations: T itself for one move;
-    for a cycle s = (cycle time - fixed time) / sum of the free weights (1 with none)."""
-    if isinstance(calculator, LinkageCalculator):
-        return np.asarray(duration, dtype=float)
-    fixed = float(np.nansum(calculator.fixed))
-    weights = math.fsum(w for w, f in zip(calculator.weights, calculator.fixed, strict=True)
-                        if not np.isfinite(f))
-    if weights == 0.0:
-        return np.ones_like(np.asarray(duration, dtype=float))
-    return (np.asarray(duration, dtype=float) - fixed) / weights
-
-

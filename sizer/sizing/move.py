@@ -119,13 +119,14 @@ from sizer.laws import MotionLaw
 from sizer.laws.linear_peaks import LinearPeak, piece_values
 from sizer.laws.quadrature import PieceIntervals, Resolution, gauss_legendre, law_intervals
 from sizer.mechanics import Drive
+from sizer.model.cycle import Dwell, from_task
 from sizer.model.domain import Limits, Task, ThermalSpeedRule
 from sizer.numerics.arrays import sorted_unique, spread
 from sizer.numerics.golden import golden_step, interior_points
 from sizer.numerics.hermite import hermite_root
 from sizer.numerics.roots import illinois
 from sizer.sizing.candidates import MotorArrays
-from sizer.sizing.evaluation import CycleMetrics
+from sizer.sizing.evaluation import SAMPLES, CycleMetrics, CyclePiece, held_piece
 
 POLYNOMIAL_INTERVALS = 16
 """Uniform intervals per polynomial piece. One would be exact for the integrals, but the
@@ -823,6 +824,19 @@ Objective = Callable[[np.ndarray, np.ndarray], np.ndarray]
 """A channel's value at normalized (a_N, v_N) arrays of shape (candidates, k)."""
 
 
+def law_samples(law: MotionLaw, samples: int = SAMPLES) -> tuple[np.ndarray, ...]:
+    """u, q_N, v_N, a_N on [0, 1], piece by piece with both ends of each piece (book ch.
+    2-3: the law's normalized form; a step of the acceleration is a repeated u)."""
+    parts: list[list[np.ndarray]] = [[], [], [], []]
+    for index, piece in enumerate(law.pieces):
+        u = np.linspace(piece.start, piece.end, max(2, round(samples * (piece.end -
+                                                                         piece.start))))
+        parts[0].append(u)
+        for order in range(3):
+            parts[order + 1].append(law.piece_derivative(index, u, order))
+    return tuple(np.concatenate(p) for p in parts)
+
+
 @dataclass(frozen=True)
 class MoveScales:
     """Per-candidate scales of one move: load a = acc*a_N, v = vel*v_N."""
@@ -1269,8 +1283,51 @@ class CycleCalculator:
                   [x[at].copy() for x in stages]), exact[at].copy(), certified[at].copy())
                 for at in parts]
 
+    def reported(self, metrics: CycleMetrics) -> np.ndarray:
+        """The duration a result reports: the move's T."""
+        return metrics.duration
+
+    def law_move(self) -> CycleCalculator:
+        """Itself: a law move rest-to-rest, with the closed forms of eq. (6.2)."""
+        return self
+
     def cycle_time(self, T: np.ndarray) -> np.ndarray:
         return self.task.moves_per_cycle * (np.asarray(T, dtype=float) + self.task.dwell)
+
+    def scale_of(self, duration: np.ndarray) -> np.ndarray:
+        """The move durations T themselves (:meth:`evaluate` reports T)."""
+        return np.asarray(duration, dtype=float)
+
+    def pieces(self, s: np.ndarray, samples: int | None = None) -> list[CyclePiece]:
+        """The task shorthand at move durations T = s: move, dwell and with a return the
+        move back and a dwell, each move on the law's normalized grid scaled by T (time
+        t0 + T u, speed h v_N(u) / T, acceleration h a_N(u) / T^2, book sec. 6.1.1)."""
+        T = s
+        n = len(self.motors)
+        u, q_n, v_n, a_n = law_samples(self.law, SAMPLES if samples is None else samples)
+        h, Tc = self.h, T[:, None]
+        K = np.broadcast_to(np.asarray(self.drive.ratio, dtype=float), (n,))[:, None]
+        hold = np.broadcast_to(np.asarray(self.drive.holding_torque, dtype=float), (n,))
+        hold = hold * np.sign(self.drive.load.torque)
+        directions = iter(self.directions)
+        out, start, position = [], np.zeros((n, 1)), 0.0
+        for segment in from_task(self.task).segments:  # named move, dwell, return, dwell 2
+            name = segment.name or ""
+            if isinstance(segment, Dwell):
+                out.append(held_piece(name, start, np.full((n, 1), self.task.dwell), position,
+                                      hold))
+                start = start + self.task.dwell
+                continue
+            direction = next(directions)
+            torque, _ = self.channels(a_n[None], v_n[None],
+                                      MoveScales(h / T / T, h / T, direction))
+            speed = direction * h * v_n[None] / Tc
+            acceleration = direction * h * a_n[None] / Tc / Tc
+            out.append(CyclePiece(name, start + Tc * u[None], position + direction * h * q_n,
+                                  speed, acceleration, K * speed, K * acceleration,
+                                  direction * np.broadcast_to(torque, (n, u.size))))
+            start, position = start + Tc, position + direction * h
+        return out
 
     def take(self, index: np.ndarray) -> CycleCalculator:
         """The calculator of the candidates at ``index`` (same law and grid)."""

@@ -13,6 +13,12 @@ until a feasible duration (or a golden-section search for the slack's maximum wh
 stops rising), then the Illinois method down to where the binding check reaches its
 limit, to a relative width of 1e-13; each step evaluates only the candidates still open.
 
+The checks this search does not see, the later limits (residual vibration, braking
+resistor, winding temperature: :class:`LaterLimit`), are settled in the same search
+(:func:`settle`): from the mechanical T_min each gives its smallest passing scale, the
+candidate moves there and the mechanical checks are evaluated again; the limits take
+turns until none moves.
+
 Feasible means what it means everywhere (sizer.sizing.checks.feasible: every slack
 >= -TOLERANCE). T_min is where the binding check is exactly at its limit; only where no
 duration reaches slack 0 but some are within the tolerance, it is the shortest of those.
@@ -24,18 +30,19 @@ every limit it reads is relaxed by the checks' tolerance: a check passes where v
 (1 - required + TOLERANCE) * limit (sizer.sizing.checks), so a torque margin m reads as
 m - TOLERANCE, a speed margin likewise, a load limit as (1 + TOLERANCE) times itself.
 Every duration a candidate reports as feasible passes those checks, so it is at least
-the floor; the searches that move T_min up afterwards (the residual vibration, braking
-and heat) keep it so. The ratio search (sizer.sizing.choices) leaves out an option
-whose floor lies above a motor's best T_min: it cannot beat it.
+the floor; the later limits only move T_min up, which keeps it so. The ratio search
+(sizer.sizing.choices) leaves out an option whose floor lies above a motor's best T_min:
+it cannot beat it.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import partial
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -98,15 +105,16 @@ def minimum_duration(calculator: CycleModel, limits: Limits) -> DurationSolution
     The closed form is checked like any duration; where it misses (a check it does not
     model, or rounding beyond the tolerance) the search starts from it.
     """
-    if isinstance(calculator, CycleCalculator) and is_purely_inertial(calculator):
+    move = calculator.law_move()
+    if move is not None and is_purely_inertial(move):
         # a law move rest-to-rest: its closed form (only its law has the coefficients)
-        T = closed_form_duration(calculator, limits)
+        T = closed_form_duration(move, limits)
         method = "closed form (eq. 6.2)"
         finite = np.isfinite(T)
         probe = np.where(finite, T, _largest_tried(calculator))
         metrics, checks = evaluate(calculator, limits, probe)
         missed = finite & ~feasible(checks)
-        beyond = beyond_flat_part(calculator, limits, T)
+        beyond = beyond_flat_part(move, limits, T)
         if not (missed | beyond).any():  # the closed form is the answer: no search
             ok = finite & feasible(checks)
             return DurationSolution(np.where(ok, probe, np.nan), ok, metrics, checks, method)
@@ -227,6 +235,105 @@ def merge_metrics(metrics: CycleMetrics, index: np.ndarray, part: CycleMetrics) 
         fields[field.name] = [put(w, r) for w, r in zip(whole, rows, strict=True)] \
             if isinstance(whole, list) else put(whole, rows)
     return CycleMetrics(**fields)
+
+
+@dataclass(frozen=True)
+class LaterChecks:
+    """A later limit's checks at the candidates' scales, its verdict per candidate and the
+    figures it reports (the residual vibration; the braking and heat figures)."""
+
+    checks: list[CheckArrays]
+    passed: np.ndarray
+    figures: dict[str, np.ndarray]
+
+
+class LaterLimit(Protocol):
+    """A check the mechanical search does not see and a longer duration may meet (residual
+    vibration, braking resistor, winding temperature): its checks at given scales, and the
+    smallest scale at or past a given one at which they pass."""
+
+    def at(self, calculator: CycleModel, s: np.ndarray, metrics: CycleMetrics,
+           known: np.ndarray) -> LaterChecks:
+        """The checks at scales ``s`` where ``known`` (elsewhere they pass, value 0)."""
+
+    def passing_scale(self, calculator: CycleModel, rows: np.ndarray, s: np.ndarray,
+                      found: LaterChecks) -> np.ndarray:
+        """For the candidates at ``rows`` (failing at their scales ``s``, ``found`` the
+        checks there), the smallest scale >= s at which they pass; inf where none is."""
+
+
+@dataclass(frozen=True)
+class Settled:
+    """The scales, metrics and checks once every limit is in (mechanical ones first, then
+    the later ones), the verdicts and the later limits' figures."""
+
+    scale: np.ndarray
+    metrics: CycleMetrics
+    checks: list[CheckArrays]
+    feasible: np.ndarray
+    figures: dict[str, np.ndarray]
+
+
+LATER_ROUNDS = 16
+"""Rounds of the search past the mechanical T_min: each round moves every candidate to the
+smallest scale at which each later limit passes; with one later limit one round settles
+it, with several they take turns until none moves."""
+
+
+def settle(calculator: CycleModel, limits: Limits, later: Sequence[LaterLimit],
+           scale: np.ndarray, metrics: CycleMetrics, checks: list[CheckArrays],
+           passed: np.ndarray, minimize: bool) -> Settled:
+    """The one search for the shortest duration, continued past the mechanical slacks.
+
+    ``scale``, ``metrics``, ``checks`` and ``passed`` are the mechanical answer (T_min of
+    :func:`minimum_duration`, or the given scale). With a given scale the later limits are
+    only checked there. In minimize mode each later limit moves the candidates that pass
+    every mechanical check and fail it to its smallest passing scale (the mechanical
+    checks evaluated again there); the limits take turns until no candidate moves, so the
+    scale found is the smallest at which every slack passes, given that the mechanical
+    ones still pass there (else the candidate is infeasible: the moved-to scale names the
+    failing check). Where a later limit finds no passing scale the candidate stays: its
+    check fails there and names the limit.
+    """
+    scale = np.array(scale, dtype=float)
+    ok = np.array(passed, dtype=bool)
+    known = np.isfinite(scale) & (ok | (not minimize))
+    stuck = np.zeros(len(scale), dtype=bool)
+    found = [kind.at(calculator, scale, metrics, known) for kind in later]
+    for _ in range(LATER_ROUNDS if minimize else 0):
+        target = scale.copy()
+        for kind, there in zip(later, found, strict=True):
+            rows = np.flatnonzero(ok & known & ~stuck & ~there.passed)
+            if rows.size:
+                target[rows] = np.maximum(target[rows], kind.passing_scale(
+                    calculator, rows, scale[rows], there))
+        stuck |= ~np.isfinite(target)
+        moved = np.flatnonzero(np.isfinite(target) & (target != scale))
+        if not moved.size:
+            break
+        metrics = merge_metrics(metrics, moved,
+                                calculator.take(moved).evaluate(target[moved]))
+        checks = replaced_checks(checks, evaluate_checks(
+            metrics, calculator.motors, calculator.drive, limits, calculator.task.linear))
+        scale[moved] = target[moved]
+        ok[moved] = feasible(checks)[moved]
+        found = [kind.at(calculator, scale, metrics, known) for kind in later]
+    figures: dict[str, np.ndarray] = {}
+    for there in found:
+        checks = [*checks, *there.checks]
+        ok &= there.passed
+        figures.update(there.figures)
+    if minimize:
+        scale = np.where(ok, scale, np.nan)
+    return Settled(scale, metrics, checks, ok, figures)
+
+
+def replaced_checks(checks: list[CheckArrays], new: list[CheckArrays]) -> list[CheckArrays]:
+    """``checks`` with those ``new`` evaluates again in their place (by name; the others,
+    such as a linkage's dead_point, kept)."""
+    by_name = {c.name: c for c in new}
+    out = [by_name.pop(c.name, c) for c in checks]
+    return [*out, *by_name.values()]
 
 
 def rms_lower_bound(calculator: CycleModel) -> np.ndarray | None:

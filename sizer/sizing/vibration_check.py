@@ -8,8 +8,10 @@ has no steady state: its cycle is then run once from rest. The check's value is 
 largest over the moves; ``limits.residual_vibration`` bounds it.
 
 The residual depends on the law and the durations only, not on the motor, so in minimize
-mode the shortest admissible duration is found per law once (:class:`Admissible`) and each
-candidate's T_min is moved up to the first duration where the limit holds.
+mode the admissible scales are found on one grid for every candidate
+(:func:`admissible_scale`); as a later limit of the search for the shortest duration
+(:class:`ResidualLimit`, sizer.sizing.shortest_duration.settle) it moves each candidate's
+T_min up to the first scale where the limit holds.
 """
 
 from __future__ import annotations
@@ -24,7 +26,10 @@ from sizer.errors import UserError
 from sizer.laws.base import MotionLaw
 from sizer.model.cycle import Cycle, Move, from_task
 from sizer.model.domain import Design
-from sizer.sizing.checks import RESIDUAL_VIBRATION, CheckArrays
+from sizer.sizing.checks import RESIDUAL_VIBRATION
+from sizer.sizing.evaluation import CycleMetrics, CycleModel
+from sizer.sizing.results import RESIDUAL
+from sizer.sizing.shortest_duration import LaterChecks
 from sizer.vibration.elastic_load import ElasticLoad
 from sizer.vibration.modal_state import (
     amplitude,
@@ -152,11 +157,41 @@ def cycle_vibration(design: Design, law: MotionLaw, sweep: bool = False
     return CycleVibration(elastic, cycle, cycle_laws(cycle, law))
 
 
-def residual_check(vibration: CycleVibration, s: np.ndarray, limit: float,
-                   linear: bool) -> CheckArrays:
-    """The check of the worst residual vibration against the design's limit."""
-    return RESIDUAL_VIBRATION.arrays(vibration.worst(s), np.full(np.shape(s), limit), 0.0,
-                                     linear=linear)
+@dataclass(frozen=True)
+class ResidualLimit:
+    """The residual vibration as a later limit of the search for the shortest duration
+    (sizer.sizing.shortest_duration.LaterLimit): its figure always, its check where the
+    design gives a limit. The residual depends on the law and the scale only."""
+
+    vibration: CycleVibration
+    limit: float | None
+    linear: bool
+
+    def at(self, calculator: CycleModel, s: np.ndarray, metrics: CycleMetrics,
+           known: np.ndarray) -> LaterChecks:
+        worst = self.vibration.worst(np.where(known, s, 1.0))
+        figures = {RESIDUAL: np.where(known, worst, np.nan)}
+        if self.limit is None:
+            return LaterChecks([], np.ones(len(known), dtype=bool), figures)
+        check = RESIDUAL_VIBRATION.arrays(np.where(known, worst, 0.0),
+                                          np.full(np.shape(s), self.limit), 0.0,
+                                          linear=self.linear)
+        return LaterChecks([check], check.passed, figures)
+
+    def passing_scale(self, calculator: CycleModel, rows: np.ndarray, s: np.ndarray,
+                      found: LaterChecks) -> np.ndarray:
+        assert self.limit is not None, "a check fails only against a limit"
+        return admissible_scale(self.vibration, s, self.limit)
+
+
+def residual_limit(design: Design, law: MotionLaw) -> ResidualLimit | None:
+    """The design's residual vibration with this law as a later limit, or None without a
+    mode of the load."""
+    vibration = cycle_vibration(design, law)
+    if vibration is None:
+        return None
+    return ResidualLimit(vibration, design.limits.residual_vibration,
+                         design.machine_cycle.linear)
 
 
 def admissible_scale(vibration: CycleVibration, s: np.ndarray, limit: float) -> np.ndarray:
