@@ -20,7 +20,7 @@ although rounding leaves it one ulp above; a requirement 1e-6 (relative) above f
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from enum import StrEnum
 from functools import cached_property
 
@@ -349,3 +349,32 @@ def limiting_index(checks: list[CheckArrays]) -> np.ndarray:
 
 def _drive_positions(checks: list[CheckArrays]) -> np.ndarray:
     return np.array([k for k, c in enumerate(checks) if c.name in DRIVE_CHECKS], dtype=np.intp)
+
+
+def dead_point_check(issues: tuple[str, ...], n: int) -> CheckArrays:
+    """``dead_point``: passes when the law meets the paper's rule at every dead point
+    the output reaches; else fails for every candidate with the reasons as its note."""
+    notes = np.full(n, "; ".join(issues), dtype=object) if issues else None
+    return DEAD_POINT.arrays(np.full(n, np.inf if issues else 0.0), np.ones(n), 0.0,
+                             None, notes)
+
+
+UNBOUNDED_NOTE = ("unbounded: the crank's acceleration is infinite at the dead point (see "
+                  "dead_point)")
+
+
+def unbounded(check: CheckArrays) -> CheckArrays:
+    """A torque check of a law that breaks the dead-point rule: unbounded, saying why."""
+    n = len(check.value)
+    return replace(check, value=np.full(n, np.inf),
+                   notes=np.full(n, UNBOUNDED_NOTE, dtype=object))
+
+
+UNBOUNDED_CHECKS = ("peak", "rms", "drive_peak_current", "drive_rms_current")
+"""The checks of the peak and RMS torques (and the drive's currents they need): unbounded
+where a law breaks the dead-point rule."""
+
+
+def unbounded_checks(checks: list[CheckArrays]) -> list[CheckArrays]:
+    """``checks`` with those of the torques unbounded (:func:`unbounded`)."""
+    return [unbounded(c) if c.name in UNBOUNDED_CHECKS else c for c in checks]

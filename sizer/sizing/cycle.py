@@ -216,6 +216,12 @@ class SegmentCycle:
         """The duration a result reports: the one :meth:`evaluate` gives."""
         return metrics.duration
 
+    def dead_point_issues(self) -> None:
+        return None  # no linkage
+
+    def given_scale(self) -> float:
+        return given_scale(self.cycle)
+
     def law_move(self) -> None:
         return None  # no closed form (sizer.sizing.evaluation.CycleModel)
 

@@ -43,12 +43,11 @@ from sizer.laws import LawChoice, MotionLaw, law_choice
 from sizer.model.cycle import Dwell
 from sizer.model.domain import Design, Motor
 from sizer.sizing.candidates import Candidates, MotorArrays
-from sizer.sizing.checks import TOLERANCE, CheckArrays, CheckName, evaluate_checks
+from sizer.sizing.checks import TOLERANCE, CheckArrays, CheckName
 from sizer.sizing.checks import feasible as all_pass
 from sizer.sizing.choices import SharedByLaws, choose_shape
 from sizer.sizing.cycle import (
     SegmentCycle,
-    given_scale,
     left_out_laws,
     ranked_laws,
     shorthand_task,
@@ -56,12 +55,7 @@ from sizer.sizing.cycle import (
 )
 from sizer.sizing.energy_check import energy_limit, energy_notes, without_power_figures
 from sizer.sizing.evaluation import CycleMetrics, CycleModel
-from sizer.sizing.linkage_move import (
-    LinkageCalculator,
-    LinkageCycle,
-    linkage_calculator,
-    linkage_mechanics,
-)
+from sizer.sizing.linkage_move import linkage_calculator
 from sizer.sizing.move import CycleCalculator, MoveScales, RmsModel, law_grid
 from sizer.sizing.ranking import rank_order
 from sizer.sizing.results import (
@@ -74,11 +68,7 @@ from sizer.sizing.results import (
     concatenate,
     in_groups,
 )
-from sizer.sizing.shortest_duration import (
-    is_purely_inertial,
-    minimum_duration,
-    settle,
-)
+from sizer.sizing.shortest_duration import answer, is_purely_inertial
 from sizer.sizing.vibration_check import residual_limit
 
 if TYPE_CHECKING:
@@ -256,30 +246,14 @@ def evaluate_fixed_law(design: Design, law: MotionLaw, candidates: Candidates,
 def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates,
                     peaks: bool = True) -> CandidateTable:
     """One law for a chunk of candidates on the design's cycle model (:func:`cycle_model`):
-    its mechanical answer (in minimize mode the shortest scale of sizer.sizing.
-    shortest_duration; through a linkage with its dead-point check first), then the
-    later limits (residual vibration, braking, heat) settled in the same search; the
-    duration each reports (:func:`_reported`)."""
+    every check at the given scale, or in minimize mode at the shortest scale at which
+    every slack passes, the later limits (residual vibration, braking, heat) included
+    (sizer.sizing.shortest_duration.answer); the duration the model reports."""
     cycle, limits = design.machine_cycle, design.limits
     calculator = cycle_model(design, law, candidates)
-    if isinstance(calculator, LinkageCalculator | LinkageCycle):  # its dead-point check
-        scale, metrics, checks, passed = linkage_mechanics(design, calculator)
-    elif cycle.minimize:
-        solution = minimum_duration(calculator, limits)
-        scale, metrics, checks = solution.duration, solution.metrics, solution.checks
-        passed = solution.feasible
-    else:
-        task = shorthand_task(cycle)
-        scale = np.full(len(candidates), given_scale(cycle) if task is None
-                        else task.duration)
-        metrics = calculator.evaluate(scale, peaks)
-        checks = evaluate_checks(metrics, calculator.motors, calculator.drive, limits,
-                                 cycle.linear)
-        passed = all_pass(checks)
     later = [kind for kind in (residual_limit(design, law),
                                energy_limit(design, candidates.motors)) if kind is not None]
-    settled = settle(calculator, limits, later, scale, metrics, checks, passed,
-                     cycle.minimize)
+    settled = answer(calculator, limits, later, cycle.minimize, peaks)
     checks, verdict = settled.checks, settled.feasible
     if limits.thermal_duty == "once":  # a one-off run: the winding model decides
         checks, verdict = _once(checks, verdict)

@@ -13,7 +13,7 @@ segment's figures (:class:`SegmentedModel`, :class:`SegmentPart`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Protocol, Self
 
 import numpy as np
@@ -107,6 +107,15 @@ class SegmentPart:
     acceleration_scale: np.ndarray | None
 
 
+def singular_metrics(metrics: CycleMetrics) -> CycleMetrics:
+    """The metrics of a law that breaks the dead-point rule: its peak and RMS torques are
+    not numbers (NaN, so results hold None and reports a verdict, never inf); the peak
+    ratio is unbounded (its check fails, :func:`unbounded`)."""
+    n = len(metrics.peak_torque)
+    return replace(metrics, peak_torque=np.full(n, np.nan), peak_ratio=np.full(n, np.inf),
+                   rms_torque=np.full(n, np.nan))
+
+
 class RmsCurve(Protocol):
     """The RMS torque as a function of the duration near where it was built: a law's
     :class:`RmsModel`, or a cycle's (sizer.sizing.cycle.CycleRmsModel)."""
@@ -167,6 +176,17 @@ class CycleModel(Protocol):
     def reported(self, metrics: CycleMetrics) -> np.ndarray:
         """The duration a result reports from the metrics at a scale: the move's T, the
         cycle time, or each move's T of a task with a return through a linkage."""
+        ...
+
+    def dead_point_issues(self) -> tuple[str, ...] | None:
+        """The dead-point rules the law breaks through a linkage (book sec. 3: the paper
+        on linkages at dead points), () where it breaks none; None without a linkage (no
+        dead-point check)."""
+        ...
+
+    def given_scale(self) -> float:
+        """The scale of the design's given durations (not minimized): the move's T, or
+        the scale of a cycle's free durations."""
         ...
 
     def law_move(self) -> CycleCalculator | None:

@@ -42,11 +42,10 @@ from sizer.mechanics.drive import Drive
 from sizer.model.cycle import Move, Run, from_task, shorthand_task
 from sizer.model.domain import Design, Limits, LinkageStage, Load, Task
 from sizer.sizing.candidates import MotorArrays
-from sizer.sizing.checks import CheckArrays, evaluate_checks, feasible
 from sizer.sizing.cycle import cycle_laws, given_scale, segment_load
 from sizer.sizing.evaluation import CycleMetrics, CyclePiece, SegmentPart, held_piece
 from sizer.sizing.move import rule_speed
-from sizer.sizing.shortest_duration import minimum_duration
+from sizer.sizing.shortest_duration import mechanical_answer
 
 PEAK_POINTS = 4001
 """Uniform samples of u in [0, 1] where the peaks are read (with the law's breakpoints):
@@ -334,6 +333,13 @@ class LinkageCalculator:
         """The duration a result reports: the one :meth:`evaluate` gives."""
         return metrics.duration
 
+    def dead_point_issues(self) -> tuple[str, ...]:
+        return self.profile.issues
+
+    def given_scale(self) -> float:
+        assert self.task.duration is not None, "a given duration"
+        return self.task.duration
+
     def law_move(self) -> None:
         return None  # no closed form (sizer.sizing.evaluation.CycleModel)
 
@@ -457,36 +463,6 @@ def peak_ratio(motors: MotorArrays, torque: np.ndarray, speed: np.ndarray) -> np
     return np.max(ratio, axis=1)
 
 
-UNBOUNDED_NOTE = ("unbounded: the crank's acceleration is infinite at the dead point (see "
-                  "dead_point)")
-
-
-def unbounded(check: CheckArrays) -> CheckArrays:
-    """A torque check of a law that breaks the dead-point rule: unbounded, saying why."""
-    n = len(check.value)
-    return replace(check, value=np.full(n, np.inf),
-                   notes=np.full(n, UNBOUNDED_NOTE, dtype=object))
-
-
-UNBOUNDED_CHECKS = ("peak", "rms", "drive_peak_current", "drive_rms_current")
-"""The checks of the peak and RMS torques (and the drive's currents they need): unbounded
-where a law breaks the dead-point rule."""
-
-
-def unbounded_checks(checks: list[CheckArrays]) -> list[CheckArrays]:
-    """``checks`` with those of the torques unbounded (:func:`unbounded`)."""
-    return [unbounded(c) if c.name in UNBOUNDED_CHECKS else c for c in checks]
-
-
-def singular_metrics(metrics: CycleMetrics) -> CycleMetrics:
-    """The metrics of a law that breaks the dead-point rule: its peak and RMS torques are
-    not numbers (NaN, so results hold None and reports a verdict, never inf); the peak
-    ratio is unbounded (its check fails, :func:`unbounded`)."""
-    n = len(metrics.peak_torque)
-    return replace(metrics, peak_torque=np.full(n, np.nan), peak_ratio=np.full(n, np.inf),
-                   rms_torque=np.full(n, np.nan))
-
-
 def refined_max(values: np.ndarray, u: np.ndarray) -> np.ndarray:
     """The largest value of each row of samples at the increasing points u, refined by
     the parabola through the largest sample and its two neighbours (a smooth peak between
@@ -505,14 +481,6 @@ def refined_max(values: np.ndarray, u: np.ndarray) -> np.ndarray:
         top = f0 + d01 * (vertex - x0) + curvature * (vertex - x0) * (vertex - x1)
     inside = (curvature < 0.0) & (vertex > x0) & (vertex < x2) & np.isfinite(top)
     return np.where(inside, np.maximum(best, top), best)
-
-
-def dead_point_check(issues: tuple[str, ...], n: int) -> CheckArrays:
-    """``dead_point``: passes when the law meets the paper's rule at every dead point
-    the output reaches; else fails for every candidate with the reasons as its note."""
-    notes = np.full(n, "; ".join(issues), dtype=object) if issues else None
-    return CheckArrays("dead_point", np.full(n, np.inf if issues else 0.0), np.ones(n), "",
-                       0.0, None, notes)
 
 
 def crank_drive(design: Design, drive: Drive, profile: LinkageProfile) -> Drive:
@@ -551,43 +519,12 @@ def evaluate_linkage(design: Design, law: MotionLaw, motors: MotorArrays, drive:
     """(duration, metrics, checks, feasible) of one law through the design's linkage: the
     move's T alone, the cycle time of a cycle, each move's T of a task with a return."""
     calculator = linkage_calculator(design, law, motors, drive)
-    _, metrics, checks, passed = linkage_mechanics(design, calculator)
+    _, metrics, checks, passed = mechanical_answer(calculator, design.limits,
+                                                   design.machine_cycle.minimize)
     duration = calculator.reported(metrics)
     if design.machine_cycle.minimize:
         duration = np.where(passed, duration, np.nan)
     return duration, metrics, checks, passed
-
-
-def linkage_mechanics(design: Design, calculator: LinkageCalculator | LinkageCycle):
-    """(scale, metrics, checks, feasible) of the calculator's law through the linkage:
-    the dead-point check first, then the mechanical ones; in minimize mode the shortest
-    scale (NaN where infeasible), unless the law breaks a dead-point rule (a law
-    infeasible at any duration shows one, at the model's first guess)."""
-    given: float | None
-    if isinstance(calculator, LinkageCycle):
-        cycle = calculator.cycle
-        minimize, given = cycle.minimize, given_scale(cycle)
-        issues = calculator.issues()
-    else:
-        minimize, given = calculator.task.minimize, calculator.task.duration
-        issues = calculator.profile.issues
-    n = len(calculator.motors)
-    point = dead_point_check(issues, n)
-    if minimize and not issues:
-        solution = minimum_duration(calculator, design.limits)
-        return solution.duration, solution.metrics, [point, *solution.checks], \
-            solution.feasible
-    s = calculator.initial_guess() if minimize else \
-        np.full(n, given if given is not None else np.nan)
-    metrics = calculator.evaluate(s)
-    if issues:  # the crank's motion is singular: no torque to report
-        metrics = singular_metrics(metrics)
-    checks = evaluate_checks(metrics, calculator.motors, calculator.drive, design.limits,
-                             calculator.task.linear)
-    if issues:
-        checks = unbounded_checks(checks)
-    passed = feasible([point, *checks])
-    return (np.where(passed, s, np.nan) if minimize else s), metrics, [point, *checks], passed
 
 
 def dead_points(stage: LinkageStage) -> dict[str, float]:
@@ -659,7 +596,7 @@ class LinkageCycle:
         self.drive = crank_drive(design, drive, heaviest)
         self.task = Task(cycle.moves[0].displacement, None, linear=cycle.linear)
 
-    def issues(self) -> tuple[str, ...]:
+    def dead_point_issues(self) -> tuple[str, ...]:
         """The dead-point rule broken by any move, each named by its segment."""
         out = []
         for segment, part in zip(self.cycle.segments, self.parts, strict=True):
@@ -684,6 +621,9 @@ class LinkageCycle:
         if task.minimize:
             return (metrics.duration - self.cycle.fixed_time) / len(self.cycle.moves)
         return np.full(len(metrics.duration), task.duration)
+
+    def given_scale(self) -> float:
+        return given_scale(self.cycle)
 
     def law_move(self) -> None:
         return None  # no closed form (sizer.sizing.evaluation.CycleModel)

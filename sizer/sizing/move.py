@@ -1287,6 +1287,13 @@ class CycleCalculator:
         """The duration a result reports: the move's T."""
         return metrics.duration
 
+    def dead_point_issues(self) -> None:
+        return None  # no linkage
+
+    def given_scale(self) -> float:
+        assert self.task.duration is not None, "a given duration"
+        return self.task.duration
+
     def law_move(self) -> CycleCalculator:
         """Itself: a law move rest-to-rest, with the closed forms of eq. (6.2)."""
         return self

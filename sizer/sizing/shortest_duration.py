@@ -52,9 +52,17 @@ from sizer.model.domain import Design, Limits
 from sizer.numerics.golden import golden_step, interior_points
 from sizer.numerics.roots import illinois
 from sizer.sizing.candidates import Candidates
-from sizer.sizing.checks import TOLERANCE, CheckArrays, evaluate_checks, feasible, worst_slack
+from sizer.sizing.checks import (
+    TOLERANCE,
+    CheckArrays,
+    dead_point_check,
+    evaluate_checks,
+    feasible,
+    unbounded_checks,
+    worst_slack,
+)
 from sizer.sizing.cycle import single_task
-from sizer.sizing.evaluation import CycleMetrics, CycleModel, RmsCurve
+from sizer.sizing.evaluation import CycleMetrics, CycleModel, RmsCurve, singular_metrics
 from sizer.sizing.move import CycleCalculator, peak_queries, speed_bounds
 
 EXPANSIONS = 80
@@ -237,6 +245,34 @@ def merge_metrics(metrics: CycleMetrics, index: np.ndarray, part: CycleMetrics) 
     return CycleMetrics(**fields)
 
 
+def mechanical_answer(calculator: CycleModel, limits: Limits, minimize: bool,
+                      peaks: bool = True
+                      ) -> tuple[np.ndarray, CycleMetrics, list[CheckArrays], np.ndarray]:
+    """(scale, metrics, checks, verdicts) of the mechanical checks: in minimize mode at the
+    shortest scale (:func:`minimum_duration`; NaN where infeasible), else at the model's
+    given scale (without ``peaks`` the peak checks left passing). Through a linkage the
+    dead-point check comes first; a law that breaks its rule is infeasible at any
+    duration, shown at the model's first guess with its torques unbounded."""
+    issues = calculator.dead_point_issues()
+    n = len(calculator.motors)
+    point = [] if issues is None else [dead_point_check(issues, n)]
+    if minimize and not issues:
+        solution = minimum_duration(calculator, limits)
+        return solution.duration, solution.metrics, [*point, *solution.checks], \
+            solution.feasible
+    s = calculator.initial_guess() if minimize else np.full(n, calculator.given_scale())
+    metrics = calculator.evaluate(s, peaks)
+    if issues:  # the crank's motion is singular: no torque to report
+        metrics = singular_metrics(metrics)
+    checks = evaluate_checks(metrics, calculator.motors, calculator.drive, limits,
+                             calculator.task.linear)
+    if issues:
+        checks = unbounded_checks(checks)
+    checks = [*point, *checks]
+    passed = feasible(checks)
+    return (np.where(passed, s, np.nan) if minimize else s), metrics, checks, passed
+
+
 @dataclass(frozen=True)
 class LaterChecks:
     """A later limit's checks at the candidates' scales, its verdict per candidate and the
@@ -278,6 +314,15 @@ LATER_ROUNDS = 16
 """Rounds of the search past the mechanical T_min: each round moves every candidate to the
 smallest scale at which each later limit passes; with one later limit one round settles
 it, with several they take turns until none moves."""
+
+
+def answer(calculator: CycleModel, limits: Limits, later: Sequence[LaterLimit],
+           minimize: bool, peaks: bool = True) -> Settled:
+    """Every check of the model's law for each candidate: in minimize mode at the shortest
+    scale at which every slack passes (:func:`mechanical_answer`, then the later limits
+    settled by :func:`settle`), else at the given scale."""
+    scale, metrics, checks, passed = mechanical_answer(calculator, limits, minimize, peaks)
+    return settle(calculator, limits, later, scale, metrics, checks, passed, minimize)
 
 
 def settle(calculator: CycleModel, limits: Limits, later: Sequence[LaterLimit],
