@@ -118,11 +118,7 @@ def energy_notes(design: Design) -> list[str]:
     """What the energy and heat checks left out, for reports (none without them)."""
     if not (has_heat_check(design.motors) or has_braking_check(design, design.drives)):
         return []
-    minimize = design.machine_cycle.minimize
-    if minimize and design.load.elastic is not None:
-        return ["T_min is searched without winding_temperature_rise and "
-                "braking_resistor_power; they are checked at T_min"]
-    if minimize:
+    if design.machine_cycle.minimize:
         what = "the move is" if shorthand_task(design.machine_cycle) else "the free durations are"
         return ["where winding_temperature_rise or braking_resistor_power fails at the T_min "
                 f"of the other checks, {what} lengthened to the first duration that "

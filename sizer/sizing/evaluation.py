@@ -5,7 +5,8 @@ rest-to-rest (sizer.sizing.move.CycleCalculator), a cycle of segments
 (sizer.sizing.cycle.SegmentCycle), a move or a cycle through a linkage
 (sizer.sizing.linkage_move.LinkageCalculator, sizer.sizing.linkage_move.LinkageCycle).
 Each satisfies :class:`CycleModel` structurally; the search for the shortest duration, the
-checks and the energy pass ask only what it declares. Each evaluation is one
+checks and the later limits (residual vibration, energy and heat) ask only what it
+declares. Each evaluation is one
 :class:`CycleMetrics`: arrays over candidates, SI. Each model samples itself piece by piece
 (:class:`CyclePiece`, for sizer.sizing.samples); a cycle of segments also gives each
 segment's figures (:class:`SegmentedModel`, :class:`SegmentPart`).
