@@ -77,3 +77,33 @@ def test_an_infeasible_candidate_names_the_check_failing_at_every_duration(tmp_p
         assert row.limiting == "inertia_ratio"
         assert row.check("inertia_ratio").value == pytest.approx(expected, rel=1e-12)
         assert all(c.value is not None and np.isfinite(c.value) for c in row.checks)
+
+
+def test_a_limit_without_the_mode_it_needs_is_refused_not_skipped(tmp_path):
+    """Built in code (sizer.io refuses it at its line), a residual-vibration limit on a
+    load without a mode is an error, never a limit left unchecked."""
+    from dataclasses import replace
+
+    from sizer.errors import UserError
+
+    data = yaml.safe_load(EXAMPLE.read_text())
+    data["motors"] = str(CATALOG)
+    path = tmp_path / "vibration.yaml"
+    path.write_text(yaml.safe_dump(data))
+    design = api.load(str(path))
+    without_mode = replace(design, load=replace(design.load, elastic=None))
+    with pytest.raises(UserError, match="residual_vibration limit needs the load's mode"):
+        api.size(without_mode)
+
+
+def test_a_winding_limit_on_motors_without_thermal_data_is_said(tmp_path):
+    """The example catalog gives no thermal time constant: a winding-rise limit cannot be
+    checked there, and the notes say so by motor (the RMS check stands for it)."""
+    data = yaml.safe_load(EXAMPLE.read_text())
+    data["motors"] = str(CATALOG)
+    data["limits"]["winding_temperature_rise"] = "80 K"
+    path = tmp_path / "hot.yaml"
+    path.write_text(yaml.safe_dump(data))
+    notes = api.size(str(path), motors=["HG-KN43J"]).notes
+    said = [n for n in notes if "winding_temperature_rise is not checked" in n]
+    assert len(said) == 1 and "HG-KN43J" in said[0]

@@ -115,15 +115,25 @@ def has_braking_check(design: Design, drives: tuple[ServoDrive, ...]) -> bool:
 
 
 def energy_notes(design: Design) -> list[str]:
-    """What the energy and heat checks left out, for reports (none without them)."""
+    """What the energy and heat checks left out, for reports (none without them): a
+    winding-rise limit the design states is never left out silently."""
+    notes = []
+    if design.limits.winding_temperature_rise is not None:
+        cold = [m.id for m in design.motors if m.thermal_time_constant is None
+                or m.max_winding_temperature_rise is None]
+        if cold:
+            shown = ", ".join(cold[:5]) + (f" and {len(cold) - 5} more" if len(cold) > 5 else "")
+            notes.append("limits.winding_temperature_rise is not checked for the motors "
+                         "without thermal_time_constant and max_winding_temperature_rise "
+                         f"({shown}); their RMS check stands for it")
     if not (has_heat_check(design.motors) or has_braking_check(design, design.drives)):
-        return []
+        return notes
     if design.machine_cycle.minimize:
         what = "the move is" if shorthand_task(design.machine_cycle) else "the free durations are"
-        return ["where winding_temperature_rise or braking_resistor_power fails at the T_min "
-                f"of the other checks, {what} lengthened to the first duration that "
-                "passes them"]
-    return []
+        notes.append("where winding_temperature_rise or braking_resistor_power fails at the "
+                     f"T_min of the other checks, {what} lengthened to the first duration "
+                     "that passes them")
+    return notes
 
 
 def _motor_column(motors: tuple[Motor, ...], index: np.ndarray, name: str) -> np.ndarray:

@@ -186,9 +186,14 @@ class ResidualLimit:
 
 def residual_limit(design: Design, law: MotionLaw) -> ResidualLimit | None:
     """The design's residual vibration with this law as a later limit, or None without a
-    mode of the load."""
+    mode of the load (UserError where the design limits it all the same: a limit is never
+    skipped; sizer.io refuses it at its line)."""
     vibration = cycle_vibration(design, law)
     if vibration is None:
+        if design.limits.residual_vibration is not None:
+            raise UserError("a residual_vibration limit needs the load's mode: give "
+                            "load.natural_frequency (and damping_ratio)",
+                            field="limits.residual_vibration")
         return None
     return ResidualLimit(vibration, design.limits.residual_vibration,
                          design.machine_cycle.linear)
