@@ -13,7 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-from sizer.model.cycle import from_task
+from sizer.model.cycle import Dwell, Move, ShareRule, from_task
 from sizer.model.domain import Design
 
 
@@ -33,6 +33,16 @@ class MachineAxis:
         task = replace(self.design.task, duration=self.move * share,
                        dwell=self.dwell * share)
         return replace(self.design, machine_cycle=from_task(task))
+
+    def scaled(self, cycle_angle: float) -> Design:
+        """The axis's design with its moves and dwells free, lasting f s and g s (f, g
+        their shares of ``cycle_angle``): minimizing the scale s gives the axis's T_c."""
+        f, g = self.move / cycle_angle, self.dwell / cycle_angle
+        cycle = from_task(replace(self.design.task, duration=None, dwell=g))
+        segments = tuple(replace(s, weight=f) if isinstance(s, Move) else
+                         Dwell(None, weight=g, name=s.name) for s in cycle.segments)
+        return replace(self.design, machine_cycle=replace(
+            cycle, segments=segments, share=ShareRule.WEIGHTS, shorthand=None))
 
     def minimizing(self, dwell_time: float) -> Design:
         """The axis's design with ``duration: minimize`` and a dwell of ``dwell_time`` s."""

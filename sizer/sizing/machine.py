@@ -26,23 +26,18 @@ the capacitances add (modules on one DC link), the nominal voltage and the braki
 threshold (or the trip level) are the lowest of the drives'.
 
 How fast can the master turn (:func:`machine_cycle_time`)? The slowest axis sets the
-master speed (book sec. 5.3).
-
-The book takes v_c = min over the axes of the speed each axis's limits allow (velocity,
-acceleration, jerk: v_max,k / |q_k'(theta)|max, ...). Here an axis's limit is its best
-candidate: the machine cycle time T_c at which at least one of its motor x law (x
-transmission) candidates passes every check. At T_c the axis moves in T = f T_c and rests
-d = g T_c (f, g its move and dwell shares of the master's cycle), so T_c is feasible for
-the axis when f T_c >= T_min(g T_c), the engine's minimum duration (eq. 6.2 and its
-extensions) of the best candidate with that dwell. The smallest such T_c is the root of
-
-    phi(T_c) = T_c - H(T_c),   H(T_c) = min over candidates of T_min(g T_c) / f,
-
-found by the project's root finder (sizer.numerics.roots.illinois) on a bracket built from
-H itself: a dwell that only relieves the RMS torque makes H fall with T_c (then
-[H(H(0)), H(0)] brackets the root), a held load that heats the motor while it rests makes
-H rise (then T_c is doubled until phi >= 0). The machine's cycle time is the largest of
-the axes' (the slowest axis), its master speed Theta / T_c.
+master speed (book sec. 5.3): v_c = min over the axes of the speed each axis's limits
+allow. Here an axis's limit is its best candidate (motor x law x transmission): at the
+machine cycle time T_c the axis moves in f T_c and rests g T_c (f, g its move and dwell
+shares of the master's cycle), so each candidate's smallest T_c is the smallest scale s
+of the axis's cycle with move f s and dwell g s at which every check passes: one
+minimize sizing of that cycle gives them all (:func:`scaled_cycle_time`). Laws chosen
+per duration (`auto` shapes, shaped laws without f_T: the task shorthand only) and
+axes without a dwell take the root of phi(T_c) = T_c - H(T_c), H(T_c) = min over the
+candidates of T_min(g T_c) / f (:func:`searched_cycle_time`; sizer.numerics.roots.
+illinois on a bracket from H itself: a dwell that relieves the RMS torque makes H fall,
+then [H(H(0)), H(0)] brackets the root; one that costs makes it rise, then T_c doubles
+until phi >= 0). The machine's cycle time is the largest of the axes', Theta / v_c.
 """
 
 from __future__ import annotations
@@ -135,8 +130,7 @@ def _axis_bus_power(axis: AxisOnBus) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _lowest(values: Sequence[float | None]) -> float | None:
-    known = [v for v in values if v is not None]
-    return min(known) if known else None
+    return min((v for v in values if v is not None), default=None)
 
 
 def _bus_levels(bus: Bus | None, drives: Sequence[ServoDrive | None]
@@ -201,20 +195,11 @@ DOUBLINGS = 40
 """At most this many doublings of T_c when a held load makes the dwell costly."""
 
 
-@dataclass(frozen=True)
-class AxisSpeed:
-    """An axis's smallest machine cycle time (s; None: no candidate is feasible at any
-    master speed) and how many sizings it took."""
-
-    cycle_time: float | None
-    sizings: int
-
-
-def best_duration(axis: MachineAxis, dwell_time: float, workers: int | None = 1) -> float:
-    """min over the axis's candidates of T_min with each dwell ``dwell_time`` (s); inf
-    when none is feasible at any duration (sized in ``workers`` processes: size_design)."""
+def shortest(design: Design, workers: int | None = 1) -> float:
+    """The shortest feasible duration (the design's reported one) over its candidates
+    in minimize mode; inf when none is feasible at any (sized in ``workers`` processes)."""
     with without_power_figures():  # only the durations count here
-        table = size_design(axis.minimizing(dwell_time), workers=workers).table
+        table = size_design(design, workers=workers).table
     assert table is not None
     durations = np.asarray(table.figures["duration"], dtype=float)[table.feasible]
     durations = durations[np.isfinite(durations)]
@@ -222,27 +207,42 @@ def best_duration(axis: MachineAxis, dwell_time: float, workers: int | None = 1)
 
 
 def axis_cycle_time(axis: MachineAxis, cycle_angle: float,
-                    workers: int | None = 1) -> AxisSpeed:
+                    workers: int | None = 1) -> float | None:
     """The smallest machine cycle time at which ``axis`` has a feasible candidate."""
+    if axis.dwell > 0.0 and all(spec.is_fixed for spec in axis.design.laws):
+        return scaled_cycle_time(axis, cycle_angle, workers)
+    return searched_cycle_time(axis, cycle_angle, workers)
+
+
+def scaled_cycle_time(axis: MachineAxis, cycle_angle: float,
+                      workers: int | None = 1) -> float | None:
+    """T_c of a resting axis with fixed laws: its scaled cycle (MachineAxis.scaled)
+    minimized over s, which reports its cycle time sum(w_i) s."""
+    design = axis.scaled(cycle_angle)
+    top = shortest(design, workers) / math.fsum(design.machine_cycle.weights())
+    return top if math.isfinite(top) else None
+
+
+def searched_cycle_time(axis: MachineAxis, cycle_angle: float,
+                        workers: int | None = 1) -> float | None:
+    """T_c by the search on phi (module docstring): one sizing of the task, its dwell
+    fixed, per step."""
     f, g = axis.move / cycle_angle, axis.dwell / cycle_angle
-    calls = 0
 
     def H(cycle_time: float) -> float:
-        nonlocal calls
-        calls += 1
-        return best_duration(axis, g * cycle_time, workers) / f
+        return shortest(axis.minimizing(g * cycle_time), workers) / f
 
     first = H(0.0)
     if not math.isfinite(first):
-        return AxisSpeed(None, calls)
+        return None
     if g == 0.0:
-        return AxisSpeed(first, calls)
+        return first
     value = H(first)
     if value <= first:  # the dwell relieves: [H(first), first] brackets the root
         lo, hi = value, first
         phi_lo = lo - H(lo) if lo < hi else 0.0
         if phi_lo >= 0.0:
-            return AxisSpeed(lo, calls)
+            return lo
         phi_hi = hi - value
     else:  # the dwell costs: lengthen until the axis keeps up
         lo, phi_lo = first, first - value
@@ -253,33 +253,32 @@ def axis_cycle_time(axis: MachineAxis, cycle_angle: float,
                 break
             lo, phi_lo, hi = hi, phi_hi, 2.0 * hi
         else:
-            return AxisSpeed(None, calls)
+            return None
     if phi_hi == 0.0:
-        return AxisSpeed(hi, calls)
+        return hi
 
     def phi(x: np.ndarray) -> np.ndarray:
         return np.array([float(x[0]) - H(float(x[0]))])
 
     _, top = illinois(phi, np.array([lo]), np.array([hi]), np.array([phi_lo]),
                       np.array([phi_hi]), xtol=RELATIVE_TOLERANCE * min(1.0, hi), bracket=True)
-    return AxisSpeed(float(top[0]), calls)
+    return float(top[0])
 
 
 def machine_cycle_time(machine: Machine, workers: int | None = 1,
                        on_axis: Callable[[], None] | None = None
-                       ) -> tuple[list[AxisSpeed], int | None]:
+                       ) -> tuple[list[float | None], int | None]:
     """Each axis's smallest cycle time and the index of the slowest axis (None when an
     axis is feasible at no master speed); each sizing in ``workers`` processes;
     ``on_axis()`` called after each axis (for progress)."""
-    speeds = []
+    times = []
     for axis in machine.axes:
-        speeds.append(axis_cycle_time(axis, machine.cycle_angle, workers))
+        times.append(axis_cycle_time(axis, machine.cycle_angle, workers))
         if on_axis is not None:
             on_axis()
-    times = [s.cycle_time for s in speeds]
     if any(t is None for t in times):
-        return speeds, None
-    return speeds, int(np.argmax(np.array(times, dtype=float)))
+        return times, None
+    return times, int(np.argmax(np.array(times, dtype=float)))
 
 
 Progress = Callable[[int, int], None]
@@ -347,8 +346,7 @@ def size_machine(machine: Machine, rank_by: str | None = None,
     limiting: str | None = None
     reason = ""
     if machine.minimize:
-        speeds, slowest = machine_cycle_time(machine, workers, on_axis=step)
-        fastest = [s.cycle_time for s in speeds]
+        fastest, slowest = machine_cycle_time(machine, workers, on_axis=step)
         known = [t for t in fastest if t is not None]
         blocked = [a.name for a, t in zip(machine.axes, fastest, strict=True) if t is None]
         if blocked:
