@@ -1,11 +1,18 @@
-"""Time `auto` shape parameters against a fixed law, in the same process.
+"""Time `auto` shape parameters against a fixed law, in the same process (CPU time).
 
-    python benchmarks/bench_auto_shape.py --motors 200
+    python benchmarks/bench_auto_shape.py --motors 200 --searched 64 4 2
+
+Searched shapes (issue 34): the load has friction, so no closed form applies and each
+auto parameter is searched by sizer.sizing.choices.search_shape, every point a T_min
+search: trapezoidal(alpha=auto) on 64 motors, double_s(alpha=auto, beta=auto) on 4 and
+fifteen_segments with three auto parameters on 2 (fewer motors: they are slower), each
+printed as the ratio of size_design with the auto spec to size_design with one fixed law
+of the family (best of 3) on the same motors.
 
 The book's case of eq. (6.2) (rectangular regions, purely inertial load, ideal gearbox),
 minimize mode, synthetic motors (a geometric family of ratings, NOT datasheet figures),
 a load jerk limit for the double S. For each family it times: the exact choice of the
-auto parameters for all motors (sizer.sizing.auto_shape.choose_shape), the whole size_design
+auto parameters for all motors (sizer.sizing.choices.choose_shape), the whole size_design
 with the auto spec (which then evaluates each motor's own law), and size_design with one
 fixed law of the family. Results are in benchmarks/README.md.
 """
@@ -36,24 +43,37 @@ def rectangular_motors(count: int) -> tuple[Motor, ...]:
     return tuple(motors)
 
 
-def design(count: int, spec: str) -> Design:
-    """The trapezoid has jerk impulses: the jerk limit only for the double S."""
+SEARCHED = (("trapezoidal(alpha=auto)", "trapezoidal(alpha=1/3)"),
+            ("double_s(alpha=auto, beta=auto)", "double_s(alpha=1/3, beta=1/4)"),
+            ("fifteen_segments(alpha=auto, beta=auto, gamma=auto)",
+             "fifteen_segments(alpha=1/3, beta=1/4, gamma=1/4)"))
+
+
+def design(count: int, spec: str, friction: float = 0.0) -> Design:
+    """The trapezoid has jerk impulses: the jerk limit only for the others."""
     task = Task(math.pi / 2, None, dwell=0.15, return_move=True)
-    jerk = 2e4 if spec.startswith("double_s") else None
-    return Design(task, Load(0.35), Transmission((Stage("gearbox", 10.0, 1.0, 1.2e-4),)),
+    jerk = None if spec.startswith("trapezoidal") else 2e4
+    return Design(task, Load(0.35, friction=friction),
+                  Transmission((Stage("gearbox", 10.0, 1.0, 1.2e-4),)),
                   laws=(spec,), motors=rectangular_motors(count),
                   limits=Limits(torque_margin=0.1, max_jerk=jerk))
 
 
-def timed(function) -> float:
-    start = time.perf_counter()
-    function()
-    return time.perf_counter() - start
+def timed(function, repeat: int = 1) -> float:
+    """The least CPU time of ``repeat`` calls."""
+    best = math.inf
+    for _ in range(repeat):
+        start = time.process_time()
+        function()
+        best = min(best, time.process_time() - start)
+    return best
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--motors", type=int, default=200)
+    parser.add_argument("--searched", type=int, nargs=3, default=(64, 4, 2),
+                        help="motors of the three searched cases (0 skips one)")
     args = parser.parse_args()
     print(f"{'family':32s} {'motors':>6s} {'choose [ms]':>11s} {'auto size [s]':>13s} "
           f"{'fixed size [s]':>14s}")
@@ -65,6 +85,13 @@ def main() -> None:
         whole = timed(lambda: size_design(d))  # noqa: B023
         one = timed(lambda: size_design(design(args.motors, fixed)))  # noqa: B023
         print(f"{auto:32s} {args.motors:6d} {1000 * choose:11.1f} {whole:13.2f} {one:14.2f}")
+    print(f"\nsearched (friction 0.5 N*m), CPU time\n{'family':52s} {'motors':>6s} "
+          f"{'auto [s]':>9s} {'fixed [s]':>9s} {'ratio':>7s}")
+    for (auto, fixed), count in zip(SEARCHED, args.searched, strict=True):
+        if count:
+            whole = timed(lambda: size_design(design(count, auto, 0.5)))  # noqa: B023
+            one = timed(lambda: size_design(design(count, fixed, 0.5)), 3)  # noqa: B023
+            print(f"{auto:52s} {count:6d} {whole:9.3f} {one:9.4f} {whole / one:7.1f}")
 
 
 if __name__ == "__main__":

@@ -41,9 +41,10 @@ golden section narrows the bracket to TOLERANCE[1] (T_min and the margins are ma
 quasi-convex/quasi-concave bounds, unimodal on the bracket), or until the scores across the
 bracket agree to FLAT. Two parameters: the same, nested (the inner search for each outer
 point), to TOLERANCE[2] per parameter (coarser: the cost is the product of the two
-searches). Integer parameters are enumerated. Motors at equal points are evaluated together
-(vectorized). In minimize mode each T_min starts from the motor's previous one
-(warm_duration), falling back to the full search of sizer.sizing.shortest_duration.
+searches). Three or more (:func:`search_box`): a grid shared by all motors, then a pattern
+search on the 3^N - 1 neighbours of each motor's best point to TOLERANCE[3]. Integer
+parameters are enumerated. Motors at equal points are evaluated together (vectorized). In
+minimize mode each T_min is the engine's (sizer.sizing.shortest_duration).
 
 Time-optimal trapezoid and double S in the book's case, exactly (sec. 3.2-3.4, 5.2, 6.2).
 With rectangular regions, a purely inertial load and an ideal transmission, T_min of a shape
@@ -92,6 +93,7 @@ sizer.sizing.engine, and each of its worker processes).
 from __future__ import annotations
 
 import dataclasses
+import itertools
 import math
 from collections.abc import Callable
 from contextlib import nullcontext
@@ -110,9 +112,8 @@ from sizer.laws.piecewise_polynomial import DoubleS, Trapezoidal
 from sizer.model.domain import Design, Transmission
 from sizer.numerics.arrays import sorted_unique
 from sizer.numerics.golden import golden_step, interior_points
-from sizer.numerics.roots import illinois
 from sizer.sizing.candidates import Candidates, MotorArrays
-from sizer.sizing.checks import evaluate_checks, worst_slack
+from sizer.sizing.checks import evaluate_checks
 from sizer.sizing.cycle import single_task
 from sizer.sizing.energy_check import has_braking_check, has_heat_check, without_power_figures
 from sizer.sizing.move import CycleCalculator
@@ -120,7 +121,6 @@ from sizer.sizing.results import CandidateTable, Mode, concatenate, in_groups
 from sizer.sizing.shortest_duration import (
     beyond_flat_part,
     duration_bounds,
-    evaluate,
     is_purely_inertial,
     minimum_duration,
 )
@@ -317,7 +317,6 @@ def best_beta(scales: BoundScales, a: np.ndarray, low: float, high: float = HALF
         if cross.any():
             where = np.flatnonzero(cross)
             # in log(beta), where T_J ~ beta^(-1/3) makes the gap nearly linear
-            # in log(beta), where T_J ~ beta^(-1/3) makes the gap nearly linear
             flat[where] = np.exp(log_gap_root(lambda u, i: gap(np.exp(u), where[i]),
                                               np.full(len(where), math.log(low)),
                                               np.log(flat[where]), f_low[where],
@@ -412,14 +411,17 @@ def bound_scales(calculator, limits) -> BoundScales:
     return BoundScales(speed, torque, rms, jerk, dwell=raw.dwell, feasible=feasible)
 
 
-GRID = {1: 13, 2: 7}
-TOLERANCE = {1: 1e-12, 2: 1e-4}
+GRID = {1: 13, 2: 7, 3: 4}
+TOLERANCE = {1: 1e-12, 2: 1e-4, 3: 1e-3}
 """Bracket width at which the golden section stops, per parameter. Two parameters cost
 the product of the two searches, each point a full T_min search in minimize mode (about
-0.1 s per motor with friction), so 1e-12 there would take hours; 1e-4 takes minutes."""
+0.1 s per motor with friction), so 1e-12 there would take hours; 1e-4 takes minutes.
+Three or more: the step of the pattern search (:func:`search_box`), at most BOX_ROUNDS
+rounds; where two bounds cross along a ridge oblique to the axes it can stop short of the
+optimum by about the step (1e-4 relative in T_min): never worse than its grid."""
+BOX_ROUNDS = 60
 FLAT = 1e-13
 TIE = 1e-14
-WARM = 1e-2
 INV_PHI = (math.sqrt(5.0) - 1.0) / 2.0
 
 Scores = np.ndarray
@@ -435,34 +437,86 @@ def search_shape(family: type[MotionLaw], fixed: dict[str, float],
     n = len(motors)
     dims = len(names)
 
-    guess = np.full(n, np.nan)  # the last T_min of each motor, to start the next one
-
     def score(points: list[np.ndarray]) -> Scores:
-        scores = evaluate_points(family, fixed, names, points, design, motors, guess)
-        if design.machine_cycle.minimize:
-            found = np.isfinite(scores[:, 0])
-            guess[found] = -scores[found, 0]
+        return evaluate_points(family, fixed, names, points, design, motors)
+
+    bounds = [ranges[name] for name in names]
+    best = search_box(score, bounds, n) if dims >= 3 else \
+        _nested(score, [params[name] for name in names], bounds, n, dims, ())[0]
+    return dict(zip(names, best, strict=True))
+
+
+def _nested(score: Callable[[list[np.ndarray]], Scores], parameters: list[Parameter],
+            bounds: list[tuple[float, float]], n: int, dims: int,
+            prefix: tuple[np.ndarray, ...]) -> tuple[list[np.ndarray], Scores]:
+    """Best values per motor of the parameters after ``prefix`` (their values fixed), and
+    the score there: a 1-D search of the first whose score is the best over the rest for
+    that value (nested); the best of all the points tried is returned."""
+    if len(parameters) == 1:
+        value, scores = search_1d(lambda x: score([*prefix, x]), parameters[0], bounds[0], n,
+                                  dims)
+        return [value], scores
+    tried: list[tuple[list[np.ndarray], Scores]] = []
+
+    def outer(x: np.ndarray) -> Scores:
+        rest, scores = _nested(score, parameters[1:], bounds[1:], n, dims, (*prefix, x))
+        tried.append(([x.copy(), *rest], scores))
         return scores
 
-    if dims == 1:
-        best, _ = search_1d(lambda x: score([x]), params[names[0]], ranges[names[0]], n, dims)
-        return {names[0]: best}
-    outer, inner = names
-    # the inner optimum of every outer point tried, to return the best pair at the end
-    tried: list[tuple[np.ndarray, np.ndarray, Scores]] = []
-
-    def outer_score(x: np.ndarray) -> Scores:
-        y, scores = search_1d(lambda y: score([x, y]), params[inner], ranges[inner], n, dims)
-        tried.append((x.copy(), y, scores))
-        return scores
-
-    search_1d(outer_score, params[outer], ranges[outer], n, dims)
-    best_x, best_y, best_s = tried[0]
-    for x, y, s in tried[1:]:
+    search_1d(outer, parameters[0], bounds[0], n, dims)
+    best, best_s = tried[0]
+    for point, s in tried[1:]:
         take = beats(s, best_s)
-        best_x, best_y = np.where(take, x, best_x), np.where(take, y, best_y)
+        best = [np.where(take, p, b) for p, b in zip(point, best, strict=True)]
         best_s = np.where(take[:, None], s, best_s)
-    return {outer: best_x, inner: best_y}
+    return best, best_s
+
+
+def search_box(score: Callable[[list[np.ndarray]], Scores], bounds: list[tuple[float, float]],
+               n: int) -> list[np.ndarray]:
+    """Best point per motor of N >= 3 continuous parameters (nested 1-D searches would
+    cost the product of N searches): a grid of GRID[3] points per parameter shared by all
+    motors, then per motor the 3^N - 1 neighbours at +-step around its best point, the
+    step halved where none is better, until it is below TOLERANCE[3] or the neighbours'
+    scores agree with the best to FLAT (at most BOX_ROUNDS rounds). Motors at equal
+    points are evaluated together, a point of a motor once; the best of all the points
+    tried is returned."""
+    low, high = (np.array(ends, dtype=float) for ends in zip(*bounds, strict=True))
+    points = np.array(list(itertools.product(*(np.linspace(a, b, GRID[3]) for a, b in bounds))))
+    _, best_s, index, _ = _best_on_grid(lambda k: score(list(points[k.astype(int)].T)),
+                                        np.arange(len(points), dtype=float), n)
+    best = points[index]
+    step = np.broadcast_to((high - low) / (GRID[3] - 1), best.shape).copy()
+    offsets = [np.array(o) for o in itertools.product((-1, 0, 1), repeat=len(bounds)) if any(o)]
+    active = np.ones(n, dtype=bool)
+    seen: list[dict[bytes, Scores]] = [{} for _ in range(n)]  # per motor: point -> score
+
+    def once(point: np.ndarray) -> Scores:
+        """The scores at per-motor points (nan: none), each motor's point scored once in
+        the search (a clipped neighbour or the neighbour of a moved centre repeats one)."""
+        keys = [row.tobytes() for row in point]
+        known = [keys[i] in seen[i] for i in range(n)]
+        fresh = np.where(np.array(known)[:, None], np.nan, point)
+        out = np.full(best_s.shape, -np.inf) if np.isnan(fresh).all() else score(list(fresh.T))
+        for i in np.flatnonzero(~np.isnan(point[:, 0])):
+            out[i] = seen[i][keys[i]] if known[i] else seen[i].setdefault(keys[i], out[i].copy())
+        return out
+
+    for _ in range(BOX_ROUNDS):
+        if not active.any():
+            break
+        step[active] *= HALF
+        center, center_s, flat = best.copy(), best_s, np.ones(n, dtype=bool)
+        for offset in offsets:
+            point = np.where(active[:, None], np.clip(center + offset * step, low, high), np.nan)
+            scores = once(point)
+            flat &= _flat(center_s, scores)
+            take = active & beats(scores, best_s)
+            best[take], best_s = point[take], np.where(take[:, None], scores, best_s)
+        moved = np.any(best != center, axis=1)
+        step[moved] *= 2.0  # a better neighbour: the same step around it
+        active &= moved | ((step.max(axis=1) > TOLERANCE[3]) & ~flat)
+    return list(best.T)
 
 
 def search_1d(score: Callable[[np.ndarray], Scores], parameter, bounds: tuple[float, float],
@@ -545,8 +599,7 @@ def beats(new: Scores, old: Scores) -> np.ndarray:
 
 
 def evaluate_points(family: type[MotionLaw], fixed: dict[str, float], names: list[str],
-                    points: list[np.ndarray], design: Design,
-                    motors: Candidates, guess: np.ndarray | None = None) -> Scores:
+                    points: list[np.ndarray], design: Design, motors: Candidates) -> Scores:
     """The score of each motor at its own point (motors at equal points evaluated together)."""
     n = len(motors)
     stacked = np.column_stack(points)
@@ -560,8 +613,7 @@ def evaluate_points(family: type[MotionLaw], fixed: dict[str, float], names: lis
         members = wanted[np.nonzero(inverse == k)[0]]
         law = family(**fixed, **{name: float(v) for name, v in zip(names, key, strict=True)})
         subset = motors if len(members) == n else motors.take(members)
-        rows = score_law(law, design, subset,
-                         None if guess is None else guess[members])
+        rows = score_law(law, design, subset)
         if out is None:
             out = np.full((n, rows.shape[1]), -np.inf)
         out[members] = rows
@@ -569,9 +621,10 @@ def evaluate_points(family: type[MotionLaw], fixed: dict[str, float], names: lis
     return out
 
 
-def score_law(law: MotionLaw, design: Design, candidates: Candidates,
-              guess: np.ndarray | None = None) -> Scores:
-    """(-T_min,) in minimize mode (-inf if infeasible), else the sorted slacks."""
+def score_law(law: MotionLaw, design: Design, candidates: Candidates) -> Scores:
+    """(-T_min,) in minimize mode (-inf if infeasible), else the sorted slacks. T_min is
+    the engine's own (sizer.sizing.shortest_duration.minimum_duration: from its bounds,
+    cheaper than a bracket around a neighbouring shape's T_min)."""
     motors, drive = candidates.motors, candidates.drive
     if design.transmission.linkage is not None:  # through the linkage (issue 14)
         from sizer.sizing.linkage_move import evaluate_linkage
@@ -584,41 +637,11 @@ def score_law(law: MotionLaw, design: Design, candidates: Candidates,
     calculator = CycleCalculator(None, task, drive, motors, design.limits.thermal_speed,
                                  law=law)
     if task.minimize:
-        T = warm_duration(calculator, design, guess) if guess is not None else None
-        if T is None:
-            solution = minimum_duration(calculator, design.limits)
-            T = np.where(solution.feasible, solution.duration, np.inf)
-        return -T[:, None]
+        solution = minimum_duration(calculator, design.limits)
+        return -np.where(solution.feasible, solution.duration, np.inf)[:, None]
     metrics = calculator.evaluate(np.full(len(motors), task.duration))
     checks = evaluate_checks(metrics, motors, drive, design.limits, task.linear)
     return np.sort(np.stack([c.slack for c in checks], axis=1), axis=1)
-
-
-def warm_duration(calculator: CycleCalculator, design: Design,
-                  guess: np.ndarray) -> np.ndarray | None:
-    """T_min near a previous one (a neighbouring shape's): the worst slack bracketed in
-    [guess (1 - WARM), guess (1 + WARM)], then the Illinois method on log T to 1e-14
-    (the feasible end returned). None when a motor has no guess or no bracket there:
-    the caller then uses the full search of sizer.sizing.shortest_duration."""
-    if not np.all(np.isfinite(guess)):
-        return None
-
-    def slack(T: np.ndarray) -> np.ndarray:
-        return worst_slack(evaluate(calculator, design.limits, T)[1])
-
-    lo, hi = guess * (1.0 - WARM), guess * (1.0 + WARM)
-    f_lo, f_hi = slack(lo), slack(hi)
-    if not (np.all(f_lo < 0.0) and np.all(f_hi >= 0.0)):
-        return None
-    root = illinois(lambda x: slack(np.exp(x)), np.log(lo), np.log(hi), f_lo, f_hi,
-                    xtol=1e-14)
-    T = np.exp(root)
-    for _ in range(8):  # the feasible side, as minimum_duration reports it
-        short = slack(T) < 0.0
-        if not short.any():
-            return T
-        T = np.where(short, T * (1.0 + 1e-14), T)
-    return None
 
 
 OPEN_INSET = 1e-10
