@@ -22,8 +22,9 @@ def illinois(f: Callable[..., np.ndarray], lo: np.ndarray, hi: np.ndarray,
     With ``bracket`` the final (lo, hi) is returned instead of its midpoint: the end on
     the side of f_hi's sign stays there (a feasible end stays feasible).
 
-    This is the project's one root finder: the sizing engine (via sizer.sizing.roots) and
-    the laws' coefficient peaks (sizer.laws.coefficients) use it.
+    This is the project's root finder for functions without a derivative: the sizing
+    engine and the laws' coefficient peaks (sizer.laws.coefficients) use it (a
+    polynomial's roots, with its derivative at hand: sizer.sizing.move._bracketed).
     """
     lo, hi, f_lo, f_hi = (np.array(x, dtype=float) for x in (lo, hi, f_lo, f_hi))
     if args is not None:

@@ -115,6 +115,12 @@ BOUND_SPAN = 16
 """The grid of scales a move with boundary speeds is first read at: 2 BOUND_SPAN + 1
 points, factors of sqrt 2 apart, centred on the search's start."""
 
+BOUND_CHUNKS = ((0, BOUND_SPAN + 1), (BOUND_SPAN + 1, BOUND_SPAN + 7),
+                (BOUND_SPAN + 7, 2 * BOUND_SPAN + 1))
+"""The grid is read in these slices from below, each for the candidates that have not
+passed yet (only the first passing point and the one below it are used): most pass within
+a factor 2 of the start."""
+
 JOIN_TOLERANCE = 1e-9
 """A step of the acceleration at a join counts when it exceeds this share of the cycle's
 acceleration scale (the largest |h|/T^2 of its moves)."""
@@ -361,11 +367,11 @@ class SegmentCycle:
         its segments, so no smaller scale is feasible).
 
         The move's shape changes with its duration, so no closed form bounds it; its
-        figures are exact (sizer.sizing.move) and cost about as much for a few
-        rows as for many, so every candidate's slack is read at once on a log grid of
-        scales around ``start`` (factors of sqrt 2 over 2^-8 to 2^8), and the crossing
-        below its first feasible point is refined by the project's root finder to the
-        engine's width (1e-13 in log s, the feasible end kept). 0 (no bound) where the
+        figures are exact (sizer.sizing.move), so every candidate's slack is read on a
+        log grid of scales around ``start`` (factors of sqrt 2 over 2^-8 to 2^8; in
+        BOUND_CHUNKS from below, up to the first feasible point), and the crossing below
+        its first feasible point is refined (:func:`first_crossing`) to the engine's width
+        (1e-13 in log s, the feasible end kept). 0 (no bound) where the
         grid's lowest point already passes or none does: the search of the whole cycle
         then decides, as without the bound."""
         out = np.zeros(len(self.motors))
@@ -374,8 +380,13 @@ class SegmentCycle:
             return out
         steps = np.arange(-BOUND_SPAN, BOUND_SPAN + 1) * (0.5 * np.log(2.0))
         x = np.log(start[where])[:, None] + steps[None, :]  # (candidates, G)
-        rows = np.repeat(where, len(steps))
-        f = self._boundary_slack(i, limits, np.exp(x.ravel()), rows).reshape(x.shape)
+        f = np.full(x.shape, np.nan)
+        for a, b in BOUND_CHUNKS:  # from below, only the candidates with no pass yet
+            rest = np.flatnonzero(~(f >= -TOLERANCE).any(axis=1))
+            if len(rest):
+                f[rest, a:b] = self._boundary_slack(
+                    i, limits, np.exp(x[rest, a:b].ravel()),
+                    np.repeat(where[rest], b - a)).reshape(len(rest), b - a)
         good = f >= -TOLERANCE
         first = np.argmax(good, axis=1)
         found = np.flatnonzero(good.any(axis=1) & (first > 0))
@@ -391,7 +402,10 @@ class SegmentCycle:
             return self._boundary_slack(i, limits, np.exp(z), index[where]) \
                 + offset[where]
 
-        hi = first_crossing(slack, x_lo, x_hi, f_lo + offset, f_hi + offset, xtol=1e-13)
+        # 3 even points a round, not 7: each row costs its own polynomial move, and the
+        # secant with its offsets does the narrowing (a quarter a round at worst)
+        hi = first_crossing(slack, x_lo, x_hi, f_lo + offset, f_hi + offset, xtol=1e-13,
+                            points=3)
         out[index] = np.exp(hi)
         return out
 

@@ -65,8 +65,8 @@ is at most the channel, equal where its choice of flow directions holds). Then:
 - integrals by Gauss-Legendre with enough nodes for the degree (exact);
 - peaks at the sub-pieces' ends and the real roots of the derivative (:func:`_unit_roots`:
   closed forms to degree 2; above, the derivative's roots cut [0, 1] into monotone
-  intervals and each sign change is found by the project's root finder, all rows at
-  once);
+  intervals and each sign change is found by Newton steps kept in its bracket
+  (:func:`_bracketed`), all rows at once);
 - the peak ratio |tau| / tau_int(|omega|) (the speed clipped into the region, as in the
   engine) at the ends, at the torque's stationary points, where |omega| crosses a corner of
   the region and at the stationary points of tau / (c0 + c1 |omega|) on each of its
@@ -124,7 +124,6 @@ from sizer.model.domain import Limits, Task, ThermalSpeedRule
 from sizer.numerics.arrays import sorted_unique, spread
 from sizer.numerics.golden import golden_step, interior_points
 from sizer.numerics.hermite import hermite_root
-from sizer.numerics.roots import illinois
 from sizer.sizing.candidates import MotorArrays
 from sizer.sizing.evaluation import SAMPLES, CycleMetrics, CyclePiece, held_piece
 
@@ -257,6 +256,12 @@ are kept as roots: a spurious cut costs nothing, a missed pair of close crossing
 _NEWTON_STEPS = 3
 """Newton steps polishing the closed-form roots of degree 1 and 2 (each taken only where
 it lowers |c(u)|)."""
+_BRACKET_STEPS = 60
+_BRACKET_TOLERANCE = 1e-14
+"""The bracketed roots' steps at most and their end (:func:`_bracketed`)."""
+_RATIO_MARGIN = 1e-9
+"""The share by which a sub-piece's bound of the peak ratio (:func:`_peak_ratio`) is
+widened (its speeds' range too) against the rounding of the points it is read at."""
 _SPEED_NOISE = 1e-12
 """Speeds below this share of the piece's largest possible speed have no sign."""
 
@@ -391,7 +396,7 @@ class _Cuts:
         """Cut every sub-piece at the real roots of its polynomial ``poly`` (n, M, m+1) of
         the sub-piece's unit variable, then drop the empty ones (keeping the order)."""
         n = len(self.lo)
-        roots = _unit_roots(poly)
+        roots = _unit_roots(poly, self.hi > self.lo)
         w = self.hi - self.lo
         at = self.lo[..., None] + w[..., None] * roots
         at = np.where(np.isnan(at), self.hi[..., None], np.minimum(at, self.hi[..., None]))
@@ -462,20 +467,21 @@ def _figures(kin: _Kinematics, channels: _Channels, drive: Drive, motors: MotorA
     energy = K * integral(torque_nodes * kin.sigma[..., None] * speed_nodes)
     speed_abs = K * np.where(valid, kin.sigma * kin.dx, 0.0).sum(axis=1)
 
-    motor_points = _critical_points(motor)
-    peak_torque = _peak(motor, motor_points, valid)
-    stage_peak = [_peak(x, _critical_points(x), valid) for x in stages]
-    load_torque = _peak(load, _critical_points(load), valid)
     along = kin.sigma[..., None] * kin.V  # |v| on each sub-piece
-    speed_points = _critical_points(along)
+    motor_points, *stage_points, load_points, speed_points, a_points, j_points = \
+        _critical_points([motor, *stages, load, along, kin.A, kin.J], valid)
+    top = _most(np.abs(_polyval(motor, motor_points)))  # max |tau| per sub-piece
+    peak_torque = _most(np.where(valid, top, 0.0))
+    stage_peak = [_peak(x, p, valid) for x, p in zip(stages, stage_points, strict=True)]
+    load_torque = _peak(load, load_points, valid)
     speed_values = _polyval(along, speed_points)
-    fastest = np.where(valid, speed_values.max(axis=-1), -np.inf)
-    slowest = np.where(valid, speed_values.min(axis=-1), np.inf)
-    load_speed = np.where(valid, np.abs(fastest), 0.0).max(axis=1, initial=0.0)
-    load_acceleration = _peak(kin.A, _critical_points(kin.A), valid)
-    load_jerk = _peak(kin.J, _critical_points(kin.J), valid)
+    fastest = np.where(valid, _most(speed_values), -np.inf)
+    slowest = np.where(valid, _most(speed_values, np.minimum), np.inf)
+    load_speed = _most(np.where(valid, np.abs(fastest), 0.0))
+    load_acceleration = _peak(kin.A, a_points, valid)
+    load_jerk = _peak(kin.J, j_points, valid)
     load_jerk = np.where(_acceleration_jumps(breaks, coefficients), np.inf, load_jerk)
-    peak_ratio = _peak_ratio(motor, motor_points, kin, K, motors.intermittent,
+    peak_ratio = _peak_ratio(motor, motor_points, top, kin, K, motors.intermittent,
                              K[:, None] * slowest, K[:, None] * fastest)
     return MoveFigures(
         peak_torque=peak_torque, peak_ratio=peak_ratio, load_torque=load_torque,
@@ -506,76 +512,91 @@ def _acceleration_jumps(breaks: np.ndarray, coefficients: np.ndarray) -> np.ndar
     return np.any(real & (np.abs(end - start) > 1e-9 * scale[:, None]), axis=1)
 
 
-def _critical_points(poly: np.ndarray) -> np.ndarray:
-    """The unit variable's ends and the roots of the derivative inside (NaN ones at 0)."""
-    roots = np.nan_to_num(_unit_roots(_derivative(poly)), nan=0.0)
-    ends = np.broadcast_to(np.array([0.0, 1.0]), (*poly.shape[:-1], 2))
-    return np.concatenate((ends, roots), axis=-1)
+def _critical_points(polys: list[np.ndarray], valid: np.ndarray) -> list[np.ndarray]:
+    """For each of the polynomials (n, M, .) the unit variable's ends and the roots of its
+    derivative inside (NaN ones and those of the shorter polynomials' padding at 0), all
+    solved at once on the ``valid`` sub-pieces only (0 on the others)."""
+    width = max(p.shape[-1] for p in polys)
+    stack = _derivative(np.stack([_pad(p, width) for p in polys]))
+    roots = np.nan_to_num(_unit_roots(stack, np.broadcast_to(valid, stack.shape[:-1])), nan=0.0)
+    ends = np.broadcast_to(np.array([0.0, 1.0]), (*stack.shape[:-1], 2))
+    return list(np.concatenate((ends, roots), axis=-1))
 
 
 def _peak(poly: np.ndarray, points: np.ndarray, valid: np.ndarray) -> np.ndarray:
     """max |poly| over the valid sub-pieces, from its values at ``points``."""
-    values = np.abs(_polyval(poly, points)).max(axis=-1)
-    return np.where(valid, values, 0.0).max(axis=1, initial=0.0)
+    return _most(np.where(valid, _most(np.abs(_polyval(poly, points))), 0.0))
 
 
-def _peak_ratio(motor: np.ndarray, points: np.ndarray, kin: _Kinematics, K: np.ndarray,
-                region, slowest: np.ndarray, fastest: np.ndarray) -> np.ndarray:
+def _peak_ratio(motor: np.ndarray, points: np.ndarray, top: np.ndarray, kin: _Kinematics,
+                K: np.ndarray, region, slowest: np.ndarray, fastest: np.ndarray) -> np.ndarray:
     """max |tau| / tau_int(|omega|) over the move (the speed clipped into the region).
 
     On the speeds of one segment of the region the limit is a line L = c0 + c1 |omega|, so
     the maximum is at a sub-piece's end, where |omega| crosses a corner, at a stationary
     point of tau (a flat limit) or at a root of tau' L - tau L'. ``slowest`` and
     ``fastest`` bound |omega| on each sub-piece: only the corners and segments they reach
-    are solved for.
+    are solved for, and only on the sub-pieces where ``top`` (max |tau| there) over the
+    smallest limit at those speeds may exceed the ratio found so far (elsewhere no point
+    can: the maximum is the same).
     """
     n = len(K)
     valid = kin.valid
     omega = (kin.sigma * K[:, None])[..., None] * kin.V  # |omega| on each sub-piece
     ratio = np.zeros(n)
 
-    def evaluate(rows, cols, u):
+    def raised(rows, cols, u):  # the ratio with the points u of the sub-pieces (rows, cols)
+        if not len(rows):
+            return ratio
         torque = np.abs(_polyval(motor[rows, cols], u))
-        speed = _polyval(omega[rows, cols], u)
-        limit = region.take(rows).limit_clipped(speed)
-        return _safe_ratio(torque, limit).max(axis=-1)
+        limit = region.take(rows).limit_clipped(_polyval(omega[rows, cols], u))
+        out = ratio.copy()
+        np.maximum.at(out, rows, _most(_safe_ratio(torque, limit)))
+        return out
 
-    def gather(rows, cols, values):
-        dense = np.zeros(valid.shape)
-        dense[rows, cols] = values
-        return dense.max(axis=1)
+    def solved(found):  # the ratio with the roots of the polynomials (rows, cols, poly)
+        if not found:
+            return ratio
+        rows, cols, polys = (np.concatenate(x) for x in zip(*found, strict=True))
+        return raised(rows, cols, np.nan_to_num(_unit_roots(polys), nan=0.0))
 
     rows, cols = np.nonzero(valid)
-    if not len(rows):
-        return ratio
-    ratio = gather(rows, cols, evaluate(rows, cols, points[rows, cols]))
-    speeds, torques, top = region.speeds, region.torques, region.max_speed
+    ratio = raised(rows, cols, points[rows, cols])
+    speeds, torques, limit_top = region.speeds, region.torques, region.max_speed
     derivative = _pad(_derivative(motor), motor.shape[-1])
-    for j in range(1, speeds.shape[1]):  # corners: |omega| = s_j
+    widened = top * (1.0 + _RATIO_MARGIN)  # against the rounding of the points read
+
+    def may_exceed(limit):  # where max |tau| over ``limit`` may exceed the ratio found
+        return _safe_ratio(widened, limit) >= ratio[:, None]
+
+    found = []  # the corners at once: |omega| = s_j, the limit t_j there
+    for j in range(1, speeds.shape[1]):
         corner = speeds[:, j]
-        reach = valid & (corner <= top)[:, None] & (slowest < corner[:, None]) \
-            & (fastest > corner[:, None])
-        rows, cols = np.nonzero(reach)
-        if len(rows):
-            crossing = omega[rows, cols].copy()
-            crossing[:, 0] -= corner[rows]
-            u = np.nan_to_num(_unit_roots(crossing), nan=0.0)
-            ratio = np.maximum(ratio, gather(rows, cols, evaluate(rows, cols, u)))
-    for j in range(speeds.shape[1] - 1):  # segments: L = t_j + slope (|omega| - s_j)
+        rows, cols = np.nonzero(
+            valid & (corner <= limit_top)[:, None] & (slowest < corner[:, None])
+            & (fastest > corner[:, None]) & may_exceed(torques[:, j, None]))
+        crossing = omega[rows, cols].copy()
+        crossing[:, 0] -= corner[rows]
+        found.append((rows, cols, crossing))
+    ratio = solved(found)
+    found = []  # then the segments at once: L = t_j + slope (|omega| - s_j)
+    for j in range(speeds.shape[1] - 1):
         start, end = speeds[:, j], speeds[:, j + 1]
         slope = (torques[:, j + 1] - torques[:, j]) / (end - start)
-        reach = valid & ((start < top) & (slope != 0.0))[:, None] \
-            & (fastest > start[:, None]) & (slowest < end[:, None])
-        rows, cols = np.nonzero(reach)
-        if len(rows):
-            line = slope[rows, None] * omega[rows, cols]
-            line[:, 0] += torques[rows, j] - slope[rows] * start[rows]
-            tau = motor[rows, cols]
-            first = _multiply(derivative[rows, cols], line)
-            stationary = first - _pad(_multiply(tau, _derivative(line)), first.shape[-1])
-            u = np.nan_to_num(_unit_roots(stationary), nan=0.0)
-            ratio = np.maximum(ratio, gather(rows, cols, evaluate(rows, cols, u)))
-    return ratio
+        # the line's smallest value over the speeds of the sub-piece on the segment
+        ends = [np.clip(x, start[:, None], np.minimum(end, limit_top)[:, None])
+                * (1.0 + sign * _RATIO_MARGIN) for x, sign in ((slowest, -1.0), (fastest, 1.0))]
+        least = np.minimum(*(torques[:, j, None] + slope[:, None] * (x - start[:, None])
+                             for x in ends))
+        rows, cols = np.nonzero(
+            valid & ((start < limit_top) & (slope != 0.0))[:, None] & (fastest > start[:, None])
+            & (slowest < end[:, None]) & may_exceed(least))
+        line = slope[rows, None] * omega[rows, cols]
+        line[:, 0] += torques[rows, j] - slope[rows] * start[rows]
+        first = _multiply(derivative[rows, cols], line)  # tau' L - tau L'
+        found.append((rows, cols, first - _pad(_multiply(motor[rows, cols], _derivative(line)),
+                                               first.shape[-1])))
+    return solved(found)
 
 
 def _safe_ratio(torque: np.ndarray, limit: np.ndarray) -> np.ndarray:
@@ -593,6 +614,15 @@ def _polyval(c: np.ndarray, u: np.ndarray) -> np.ndarray:
         return out.copy()
     for k in range(c.shape[-1] - 2, -1, -1):
         out = out * u + c[..., k:k + 1]
+    return out
+
+
+def _most(a: np.ndarray, pick=np.maximum) -> np.ndarray:
+    """The largest (``pick`` np.minimum: smallest) entry over the last axis, taken column
+    by column: numpy reduces a short last axis many times slower. Needs one entry."""
+    out = a[..., 0].copy()
+    for k in range(1, a.shape[-1]):
+        pick(out, a[..., k], out=out)
     return out
 
 
@@ -633,9 +663,10 @@ def _compose(c: np.ndarray, s0: np.ndarray, w: np.ndarray) -> np.ndarray:
     return out
 
 
-def _unit_roots(c: np.ndarray) -> np.ndarray:
+def _unit_roots(c: np.ndarray, where: np.ndarray | None = None) -> np.ndarray:
     """The real roots inside [0, 1] of polynomials c (..., m+1), the ends aside (every use
-    has them already): (..., m), NaN for none.
+    has them already): (..., m), NaN for none (and where ``where`` (...) is False: those
+    polynomials are not solved).
 
     Roots at the ends are divided out first (u^k, (1-u)^k where the low coefficients in
     u, or in 1-u, are below _DEGREE_TOLERANCE of the largest: a double root at a rest
@@ -648,6 +679,10 @@ def _unit_roots(c: np.ndarray) -> np.ndarray:
     shape = c.shape
     m = shape[-1] - 1
     width = max(m, 1)
+    if where is not None:
+        out = np.full((*shape[:-1], width), np.nan)
+        out[where] = _unit_roots(c[where])
+        return out
     flat = np.array(c.reshape(-1, m + 1), dtype=float)  # a copy: rows are deflated in place
     out = np.full((len(flat), width), np.nan)
     if m == 0 or not len(flat):
@@ -655,28 +690,28 @@ def _unit_roots(c: np.ndarray) -> np.ndarray:
     flat = _deflate(flat)
     size = np.abs(flat)
     ends = np.flatnonzero(np.abs(flat.sum(axis=1))
-                          <= _DEGREE_TOLERANCE * size.max(axis=1))  # c(1) = 0
+                          <= _DEGREE_TOLERANCE * _most(size))  # c(1) = 0
     if len(ends):
         ones = np.ones(len(ends))
         flat[ends] = _compose(_deflate(_compose(flat[ends], ones, -ones)), ones, -ones)
     size = np.abs(flat)
-    big = size > _DEGREE_TOLERANCE * size.max(axis=1, keepdims=True)
+    big = size > _DEGREE_TOLERANCE * _most(size)[:, None]
     degree = np.where(big.any(axis=1), m - np.argmax(big[:, ::-1], axis=1), 0)
     for k in range(1, m + 1):
         rows = np.flatnonzero(degree == k)
         if len(rows):
             out[rows, :k] = _real_roots(flat[rows, :k + 1])
-    slope = _derivative(flat)
-    u = np.nan_to_num(out, nan=0.5)
-    value = _polyval(flat, u)
+    found = np.nonzero(~np.isnan(out))  # polished, each root with its row
+    c, u = flat[found[0]], out[found]
+    slope, value = _derivative(c), _horner(c, u)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         for _ in range(_NEWTON_STEPS):
-            step = np.clip(u - value / _polyval(slope, u), 0.0, 1.0)
-            new = _polyval(flat, step)
+            step = np.clip(u - value / _horner(slope, u), 0.0, 1.0)
+            new = _horner(c, step)
             better = np.isfinite(new) & (np.abs(new) < np.abs(value))
             u = np.where(better, step, u)
             value = np.where(better, new, value)
-    out = np.where(np.isnan(out), np.nan, u)
+    out[found] = u
     return out.reshape((*shape[:-1], width))
 
 
@@ -684,7 +719,7 @@ def _deflate(flat: np.ndarray) -> np.ndarray:
     """Rows c (rows, m+1) with their roots at u = 0 divided out: the low coefficients
     below _DEGREE_TOLERANCE of the row's largest dropped, the rest shifted down."""
     size = np.abs(flat)
-    small = size <= _DEGREE_TOLERANCE * size.max(axis=1, keepdims=True)
+    small = size <= _DEGREE_TOLERANCE * _most(size)[:, None]
     low = np.argmin(small, axis=1)  # 0 where none (or where all are: a zero row)
     if not low.any():
         return flat
@@ -701,8 +736,8 @@ def _real_roots(c: np.ndarray) -> np.ndarray:
     axis counts as a root: a spurious cut costs nothing). Above, every root where the
     sign changes: the derivative's roots (recursively) cut [0, 1] into intervals where
     the polynomial is monotone, and each one that brackets a sign change holds one root,
-    found by the project's root finder (Illinois). A root where the sign does not
-    change (even multiplicity) is of no use: it cuts no sign of speed or flow, and the
+    found by Newton steps kept in it (:func:`_bracketed`). A root where the sign does
+    not change (even multiplicity) is of no use: it cuts no sign of speed or flow, and the
     maxima of a smooth function are where its derivative changes sign.
     """
     k = c.shape[1] - 1
@@ -724,12 +759,42 @@ def _real_roots(c: np.ndarray) -> np.ndarray:
 
 
 def _bracketed(c: np.ndarray, a: np.ndarray, b: np.ndarray, f_a: np.ndarray) -> np.ndarray:
-    """The root of each row c in [a, b], where c changes sign once (f_a = c(a)): the
-    project's root finder (sizer.numerics.roots, Illinois), all rows together, to 1e-14
-    of [0, 1] (a cut's error moves an integral by its square, a stationary point's a
-    peak by its square too)."""
-    f_b = _polyval(c, b[:, None])[:, 0]
-    return illinois(lambda x: _polyval(c, x[:, None])[:, 0], a, b, f_a, f_b, xtol=1e-14)
+    """The root of each row c in [a, b], where c changes sign once (f_a = c(a)): Newton's
+    steps kept inside the bracket (bisection where a step leaves it), the bracket shrunk
+    at every point, the rows still open only, until a step or the bracket is below
+    _BRACKET_TOLERANCE of [0, 1] or c's value is within its rounding there (a cut's error
+    moves an integral by its square, a stationary point's a peak by its square too;
+    :func:`_unit_roots` polishes the roots after)."""
+    slope, size = _derivative(c), np.abs(c)
+    x, out = 0.5 * (a + b), np.empty(len(a))
+    rows = np.arange(len(a))
+    a, b, up = a.copy(), b.copy(), f_a < 0.0  # up: c rises through the root
+    for _ in range(_BRACKET_STEPS):
+        value, change = _horner(c[rows], x), _horner(slope[rows], x)
+        low = (value < 0.0) == up
+        a, b = np.where(low, x, a), np.where(low, b, x)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = x - value / change
+        inside = (step > a) & (step < b)
+        new = np.where(inside, step, 0.5 * (a + b))
+        settled = np.abs(value) <= 8.0 * np.finfo(float).eps * _horner(size[rows], x)
+        done = settled | (inside & (np.abs(new - x) <= _BRACKET_TOLERANCE)) \
+            | (b - a <= _BRACKET_TOLERANCE)
+        out[rows[done]] = np.where(settled[done], x[done], new[done])
+        keep = ~done
+        if not keep.any():
+            return out
+        rows, x, a, b, up = rows[keep], new[keep], a[keep], b[keep], up[keep]
+    out[rows] = x
+    return out
+
+
+def _horner(c: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """Rows c (rows, m+1) ascending at one point x (rows,) each."""
+    out = c[:, -1].copy()
+    for k in range(c.shape[1] - 2, -1, -1):
+        out = out * x + c[:, k]
+    return out
 
 
 def _roots_of_degree(c: np.ndarray) -> np.ndarray:
