@@ -63,18 +63,10 @@ def clamped_system(t: np.ndarray, q: np.ndarray, v0: float, vn: float
                    ) -> tuple[np.ndarray, np.ndarray]:
     """The book's (4.10): A(T) v = c for the interior velocities v_1 .. v_{n-1} (n >= 2)."""
     T = intervals(t)
-    q = np.asarray(q, dtype=float)
-    n = len(T)
-    A = np.zeros((n - 1, n - 1))
-    c = np.empty(n - 1)
-    for k in range(n - 1):  # row k is eq. (4.9) for v_k, v_{k+1}, v_{k+2}
-        A[k, k] = 2.0 * (T[k] + T[k + 1])
-        if k > 0:
-            A[k, k - 1] = T[k + 1]
-        if k < n - 2:
-            A[k, k + 1] = T[k]
-        c[k] = 3.0 / (T[k] * T[k + 1]) * (T[k] ** 2 * (q[k + 2] - q[k + 1])
-                                          + T[k + 1] ** 2 * (q[k + 1] - q[k]))
+    dq = np.diff(np.asarray(q, dtype=float))
+    n = len(T)  # row k is eq. (4.9) for v_k, v_{k+1}, v_{k+2}
+    A = np.diag(2.0 * (T[:-1] + T[1:])) + np.diag(T[2:], -1) + np.diag(T[:-2], 1)
+    c = 3.0 / (T[:-1] * T[1:]) * (T[:-1] ** 2 * dq[1:] + T[1:] ** 2 * dq[:-1])
     c[0] -= T[1] * v0
     c[-1] -= T[n - 2] * vn
     return A, c
@@ -93,24 +85,15 @@ def clamped_velocities(t: np.ndarray, q: np.ndarray, v0: float = 0.0, vn: float 
 def periodic_system(t: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The book's cyclic system of sec. 4.4.2 for v_0 .. v_{n-1} (v_n = v_0; n >= 2)."""
     T = intervals(t)
-    q = np.asarray(q, dtype=float)
+    dq = np.diff(np.asarray(q, dtype=float))
     n = len(T)
+    # row k + 1 is eq. (4.9) for v_k, v_{k+1}, v_{k+2}, indices mod n (v_n = v_0); row 0
+    # (k = -1) is eq. (4.13), the acceleration at t_0 equal to the one at t_n
+    k = np.arange(-1, n - 1)
     A = np.zeros((n, n))
-    c = np.empty(n)
-    # row 0: eq. (4.13), the acceleration at t_0 equal to the one at t_n
-    A[0, 0] += 2.0 * (T[n - 1] + T[0])
-    A[0, 1 % n] += T[n - 1]
-    A[0, n - 1] += T[0]
-    c[0] = 3.0 / (T[n - 1] * T[0]) * (T[n - 1] ** 2 * (q[1] - q[0])
-                                      + T[0] ** 2 * (q[n] - q[n - 1]))
-    for k in range(n - 1):  # rows 1 .. n-1: eq. (4.9), v_n replaced by v_0
-        row = k + 1
-        A[row, k] += T[k + 1]
-        A[row, k + 1] += 2.0 * (T[k] + T[k + 1])
-        A[row, (k + 2) % n] += T[k]
-        c[row] = 3.0 / (T[k] * T[k + 1]) * (T[k] ** 2 * (q[k + 2] - q[k + 1])
-                                            + T[k + 1] ** 2 * (q[k + 1] - q[k]))
-    return A, c
+    for col, value in ((k % n, T[k + 1]), (k + 1, 2.0 * (T[k] + T[k + 1])), ((k + 2) % n, T[k])):
+        np.add.at(A, (k + 1, col), value)
+    return A, 3.0 / (T[k] * T[k + 1]) * (T[k] ** 2 * dq[k + 1] + T[k + 1] ** 2 * dq[k])
 
 
 def periodic_velocities(t: np.ndarray, q: np.ndarray) -> np.ndarray:
@@ -180,6 +163,26 @@ def _scipy_spline(t: np.ndarray, q: np.ndarray, bc_type: Any):
 def clamped_spline(t: np.ndarray, q: np.ndarray, v0: float = 0.0, vn: float = 0.0):
     """The spline with end velocities v_0, v_n (sec. 4.4.1): CubicSpline, bc ((1,v0),(1,vn))."""
     return _scipy_spline(t, q, ((1, float(v0)), (1, float(vn))))
+
+
+def _clamped_spline_unchecked(t: np.ndarray, q: np.ndarray, v0: float = 0.0,
+                              vn: float = 0.0):
+    """:func:`clamped_spline` of float arrays, 3 or more points, bit for bit: scipy's
+    CubicSpline system (4.10) by the same LAPACK gtsv, then its Hermite coefficients,
+    without the per-call checks (the inner step of ``times: auto``)."""
+    from scipy.interpolate import PPoly
+    from scipy.linalg.lapack import dgtsv
+
+    dx = np.diff(t)
+    slope = np.diff(q) / dx
+    d = np.concatenate([[1.0], 2 * (dx[:-1] + dx[1:]), [1.0]])
+    b = np.concatenate([[v0], 3 * (dx[1:] * slope[:-1] + dx[:-1] * slope[1:]), [vn]])
+    *_, s, info = dgtsv(np.append(dx[1:], 0.0), d, np.append(0.0, dx[:-1]), b, 1, 1, 1, 1)
+    if info != 0:
+        return clamped_spline(t, q, v0, vn)  # singular: scipy's own error
+    h = (s[:-1] + s[1:] - 2 * slope) / dx
+    return PPoly.construct_fast(np.stack((h / dx, (slope - s[:-1]) / dx - h, s[:-1], q[:-1])),
+                                t)
 
 
 def natural_spline(t: np.ndarray, q: np.ndarray):
@@ -351,6 +354,9 @@ DISTRIBUTIONS = ("equal", "chord", "centripetal")
 OBJECTIVES = ("peak_acceleration", "rms_acceleration")
 TIME_WORDS = (*DISTRIBUTIONS, "auto")
 
+_FD_STEP = float(np.sqrt(np.finfo(float).eps))
+"""SLSQP's default finite-difference step (scipy's ``_epsilon``)."""
+
 _SOFTMAX_BOUND = 5.0
 """Bound on the free variables: no interval shorter than e^-10 times another (keeps the
 spline systems well conditioned during the search)."""
@@ -410,13 +416,48 @@ MEASURES = {"peak_acceleration": peak_acceleration, "rms_acceleration": rms_acce
 # ---------------------------------------------------------------- auto: best interior times
 
 def times_from_free(y: np.ndarray, duration: float, start: float = 0.0) -> np.ndarray:
-    """The times of the free variables y (n - 1 of them, y_0 = 0 implied): intervals
-    T_k = duration * softmax([0, y])_k."""
-    z = np.concatenate([[0.0], np.asarray(y, dtype=float)])
-    e = np.exp(z - z.max())
-    t = start + duration * np.concatenate([[0.0], np.cumsum(e) / e.sum()])
-    t[-1] = start + duration
+    """The times of the free variables y (n - 1 of them, y_0 = 0 implied; or rows of
+    them): intervals T_k = duration * softmax([0, y])_k."""
+    y = np.asarray(y, dtype=float)
+    zero = np.zeros((*y.shape[:-1], 1))
+    z = np.concatenate([zero, y], axis=-1)
+    e = np.exp(z - z.max(axis=-1, keepdims=True))
+    t = start + duration * np.concatenate(
+        [zero, np.cumsum(e, axis=-1) / e.sum(axis=-1, keepdims=True)], axis=-1)
+    t[..., -1] = start + duration
     return t
+
+
+def _knot_accelerations(t: np.ndarray, q: np.ndarray, v0: float = 0.0, vn: float = 0.0
+                        ) -> np.ndarray | None:
+    """s''(t_k) of the clamped splines (:func:`_clamped_spline_unchecked`) on the rows of
+    times t, bit for bit: LAPACK dgtsv's elimination without row exchanges (None when one
+    is needed), the Hermite coefficients, PPoly's evaluation at the breakpoints."""
+    dx = np.diff(t, axis=1)
+    slope = np.diff(q) / dx
+    one = np.ones((len(t), 1))
+    d = np.concatenate([one, 2 * (dx[:, :-1] + dx[:, 1:]), one], axis=1).T.copy()
+    b = np.concatenate([one * v0, 3 * (dx[:, 1:] * slope[:, :-1] + dx[:, :-1] * slope[:, 1:]),
+                        one * vn], axis=1).T.copy()
+    dl, du = np.append(dx[:, 1:], 0.0 * one, axis=1).T, np.append(0.0 * one, dx[:, :-1], axis=1).T
+    n = len(d)
+    for i in range(n - 1):
+        if np.any(np.abs(d[i]) < np.abs(dl[i])) or np.any(d[i] == 0.0):
+            return None
+        fact = dl[i] / d[i]
+        d[i + 1] = d[i + 1] - fact * du[i]
+        b[i + 1] = b[i + 1] - fact * b[i]
+    b[n - 1] = b[n - 1] / d[n - 1]
+    b[n - 2] = (b[n - 2] - du[n - 2] * b[n - 1]) / d[n - 2]
+    for i in range(n - 3, -1, -1):
+        b[i] = (b[i] - du[i] * b[i + 1] - 0.0 * b[i + 2]) / d[i]
+    s = b.T
+    h = (s[:, :-1] + s[:, 1:] - 2 * slope) / dx
+    c3, c2 = h / dx, (slope - s[:, :-1]) / dx - h
+    at = np.zeros_like(t)  # t_j - t_k of each breakpoint in its piece (the last: h_{n-1})
+    at[:, -1] = dx[:, -1]
+    c3, c2 = np.append(c3, c3[:, -1:], axis=1), np.append(c2, c2[:, -1:], axis=1)
+    return (0.0 + c2 * 1.0 * 2.0) + c3 * at * 6.0
 
 
 def optimal_times(q: np.ndarray, duration: float = 1.0,
@@ -441,8 +482,10 @@ def optimal_times(q: np.ndarray, duration: float = 1.0,
     if n < 2:
         return equal
 
+    build = _clamped_spline_unchecked if set(conditions) <= {"v0", "vn"} else cubic_spline
+
     def spline(y: np.ndarray):
-        return cubic_spline(times_from_free(y, duration), q, **conditions)
+        return build(times_from_free(y, duration), q, **conditions)
 
     y0 = np.zeros(n - 1)
     bounds = [(-_SOFTMAX_BOUND, _SOFTMAX_BOUND)] * (n - 1)
@@ -453,12 +496,27 @@ def optimal_times(q: np.ndarray, duration: float = 1.0,
                           options={"ftol": 1e-15, "maxiter": 500})
         y = result.x
     else:
-        def accelerations(y: np.ndarray) -> np.ndarray:
-            pp = spline(y)
-            return pp(pp.x, 2) / scale
+        found: dict[bytes, np.ndarray] = {}  # s''(t_j) at the Jacobian's points, batched
 
-        constraints = [{"type": "ineq", "fun": lambda v: v[-1] - accelerations(v[:-1])},
-                       {"type": "ineq", "fun": lambda v: v[-1] + accelerations(v[:-1])}]
+        def bands(v: np.ndarray) -> np.ndarray:  # z -+ s''(t_j) >= 0, one spline for both
+            a = found.pop(v[:-1].tobytes(), None)
+            if a is None:
+                pp = spline(v[:-1])
+                a = pp(pp.x, 2)
+            a = a / scale
+            return np.concatenate([v[-1] - a, v[-1] + a])
+
+        def batched(fun, points):  # the map of approx_derivative: all columns at once
+            points = list(points)
+            ys = np.array([p[:-1] for p in points])
+            a = _knot_accelerations(times_from_free(ys, duration), q, **conditions)
+            found.clear()
+            found.update(() if a is None else zip((y.tobytes() for y in ys), a, strict=True))
+            return [fun(p) for p in points]
+
+        jacobian = _batched_jacobian(bands, batched, [*bounds, (0.0, None)]) \
+            if build is _clamped_spline_unchecked else None
+        constraints = [{"type": "ineq", "fun": bands, "jac": jacobian}]
         start = np.append(y0, 1.0)
         result = minimize(lambda v: v[-1], start, method="SLSQP", constraints=constraints,
                           bounds=[*bounds, (0.0, None)],
@@ -468,6 +526,31 @@ def optimal_times(q: np.ndarray, duration: float = 1.0,
     if not np.all(np.isfinite(y)) or measure(spline(y)) > measure(spline(y0)):
         return equal  # the search did not improve on the equal times
     return times_from_free(y, duration)
+
+
+def _batched_jacobian(fun, batched, bounds):
+    """SLSQP's own forward-difference Jacobian of ``fun`` (scipy's approx_derivative,
+    called as SLSQP calls it: same step, bounds and clipping), its points evaluated at
+    once through ``batched``; None (SLSQP's default, the same values one point at a time)
+    where this scipy does not offer those private functions as expected."""
+    try:
+        import inspect
+
+        from scipy.optimize._constraints import old_bound_to_new
+        from scipy.optimize._numdiff import approx_derivative
+        from scipy.optimize._optimize import _check_clip_x
+
+        if "workers" not in inspect.signature(approx_derivative).parameters:
+            return None
+        limits = old_bound_to_new(bounds)
+    except (ImportError, AttributeError, TypeError, ValueError):
+        return None
+
+    def jacobian(v: np.ndarray) -> np.ndarray:
+        return approx_derivative(fun, _check_clip_x(v, limits), method="2-point",
+                                 abs_step=_FD_STEP, bounds=limits, workers=batched)
+
+    return jacobian
 
 
 # ---------------------------------------------------------------- minimum duration (4.39)
