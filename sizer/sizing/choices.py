@@ -786,21 +786,30 @@ def evaluate_shaped(design: Design, choice: LawChoice, candidates: Candidates,
         nxt = np.where(moving, np.maximum(T + step, t_n * (1.0 + 1e-6)), T)
         previous_T, previous_h = T, h
         T = nxt
-        table, h = _round(plain, fields, mode, T, candidates, evaluate_fixed_law)
+        table, h = _round(plain, fields, mode, T, candidates, evaluate_fixed_law,
+                          (table, previous_T))
     if limit is None:
         return table
     return _round(design, fields, mode, T, candidates, evaluate_fixed_law)[0]
 
 
 def _round(design: Design, fields: dict[str, Any], mode: ElasticLoad, T: np.ndarray,
-           candidates: Candidates,
-           evaluate_fixed_law: FixedLawSizing) -> tuple[CandidateTable, np.ndarray]:
+           candidates: Candidates, evaluate_fixed_law: FixedLawSizing,
+           previous: tuple[CandidateTable, np.ndarray] | None = None,
+           ) -> tuple[CandidateTable, np.ndarray]:
     """Every candidate sized (minimize) with the law shaped for its own T; the table in
-    the candidates' order and h = T_min - T (nan where infeasible)."""
-    distinct, group = np.unique(np.round(T, 15), return_inverse=True)
-    table = in_groups(group, lambda k, index: evaluate_fixed_law(
-        design, _shaped(fields, mode, float(T[index[0]])), candidates.take(index)),
-        len(distinct))
+    the candidates' order and h = T_min - T (nan where infeasible). ``previous``: an
+    earlier round's table and T, its rows kept where T is the same (the same row)."""
+    kept = np.zeros(len(T), dtype=bool) if previous is None else previous[1] == T
+    keys, group = np.unique(np.where(kept, np.inf, np.round(T, 15)), return_inverse=True)
+
+    def size(k: int, index: np.ndarray) -> CandidateTable:
+        if previous is not None and kept[index[0]]:
+            return previous[0].take(index)
+        return evaluate_fixed_law(design, _shaped(fields, mode, float(T[index[0]])),
+                                  candidates.take(index))
+
+    table = in_groups(group, size, len(keys))
     return table, table.figures["duration"] - T
 
 

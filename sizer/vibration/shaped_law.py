@@ -41,6 +41,7 @@ import numpy as np
 from sizer.errors import UserError
 from sizer.laws.base import MotionLaw
 from sizer.laws.data_law import data_law_of
+from sizer.laws.multipoint.fields import as_number, refuse_unknown
 from sizer.laws.pieces import Piece
 from sizer.vibration.elastic_load import ElasticLoad
 from sizer.vibration.shapers import Shaper, kind_of_shaper, make_shaper
@@ -65,8 +66,8 @@ class ShapedLaw(MotionLaw):
     def __init__(self, base: MotionLaw, shaper: str, f_T: float,
                  damping_ratio: float = 0.0, vibration_limit: float | None = None) -> None:
         kind = kind_of_shaper(shaper)
-        f_T = _finite(f_T, "f_T")
-        damping_ratio = _finite(damping_ratio, "damping_ratio")
+        f_T = as_number(f_T, "f_T")
+        damping_ratio = as_number(damping_ratio, "damping_ratio")
         if not 0.0 <= damping_ratio < 1.0:
             raise UserError(f"the damping ratio must be in [0, 1) (an under-damped mode), "
                             f"not {damping_ratio:g}", field="damping_ratio")
@@ -120,11 +121,6 @@ class ShapedLaw(MotionLaw):
         return data_law_of, (self.spec,)
 
     # ------------------------------------------------------------------ shape
-    @property
-    def delays(self) -> np.ndarray:
-        """tau_i = t_i / T_s, the impulse times over the shaped move."""
-        return np.asarray(self.shaper.times)
-
     def fine_points(self) -> tuple[float, ...]:
         """The base's fine points, shifted by every impulse."""
         points = self.base.fine_points()
@@ -133,7 +129,7 @@ class ShapedLaw(MotionLaw):
 
     def _build(self) -> tuple[Sequence[Piece], float]:
         base, r = self.base, self.base_fraction
-        tau_i = self.delays
+        tau_i = np.asarray(self.shaper.times)  # t_i / T_s
         amplitudes = np.asarray(self.shaper.amplitudes)
         base_starts = np.asarray(base.breakpoints[:-1])
         edges = np.sort((tau_i[:, None] + r * np.asarray(base.breakpoints)[None, :]).ravel())
@@ -173,12 +169,6 @@ class ShapedLaw(MotionLaw):
         return Piece(start, end, evaluate, degree)
 
 
-def _finite(value: Any, field: str) -> float:
-    from sizer.laws.multipoint.fields import as_number
-
-    return as_number(value, field)
-
-
 def _check_base(base: MotionLaw) -> None:
     """A base law must go rest to rest from 0 to 1 (shifted copies then add up)."""
     if not getattr(base, "rest_to_rest", True) or getattr(base, "end_position", 1.0) != 1.0:
@@ -195,7 +185,7 @@ def shaped_for_duration(base: MotionLaw, shaper_kind: str, load: ElasticLoad,
     ``keep="total"``: T_s = duration, the base law gets duration - t_n; ``keep="base"``:
     the base law keeps ``duration`` and the move grows to duration + t_n (sec. 7.4.2).
     """
-    duration = _finite(duration, "duration")
+    duration = as_number(duration, "duration")
     if duration <= 0.0:
         raise UserError(f"must be a positive duration, not {duration:g} s", field="duration")
     if keep not in ("total", "base"):
@@ -230,7 +220,6 @@ def build_shaped(fields: Mapping[str, Any]) -> ShapedCurve:
     mapping), ``shaper`` (a name of SHAPER_KINDS), ``f_T`` (> 0), ``damping_ratio``
     (default 0), ``vibration_limit`` (the ei shaper's z, default 0.05)."""
     from sizer.laws.data_spec import data_spec_text
-    from sizer.laws.multipoint.fields import refuse_unknown
     from sizer.laws.registry import make_law
 
     refuse_unknown(fields, FIELDS, "shaped")
@@ -248,7 +237,7 @@ def build_shaped(fields: Mapping[str, Any]) -> ShapedCurve:
         raise error.located(field="law") from None
     limit = fields.get("vibration_limit")
     if limit is not None:
-        limit = _finite(limit, "vibration_limit")
+        limit = as_number(limit, "vibration_limit")
     law = ShapedLaw(base, fields["shaper"], fields["f_T"], fields.get("damping_ratio", 0.0),
                     limit)
     return ShapedCurve(law)
