@@ -35,6 +35,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from sizer.envelope import RegionTable
 from sizer.errors import UserError
 from sizer.laws import MotionLaw
 from sizer.laws.quadrature import gauss_legendre
@@ -42,6 +43,7 @@ from sizer.mechanics.drive import Drive
 from sizer.model.cycle import Move, Run, from_task, shorthand_task
 from sizer.model.domain import Design, Limits, LinkageStage, Load, Task
 from sizer.sizing.candidates import MotorArrays
+from sizer.sizing.checks import evaluate_checks, worst_slack
 from sizer.sizing.cycle import cycle_laws, given_scale, segment_load
 from sizer.sizing.evaluation import CycleMetrics, CyclePiece, SegmentPart, held_piece
 from sizer.sizing.move import rule_speed
@@ -374,8 +376,19 @@ class LinkageCalculator:
         return LinkageCalculator(self.profile, self.task, self.drive.take(index),
                                  self.motors.subset(index), self.thermal_rule, self.law)
 
-    def peak_bound(self, limits: Limits) -> None:
-        return None
+    def peak_bound(self, limits: Limits) -> np.ndarray:
+        """The speed bound where it is the shortest duration (:func:`answer_bound`)."""
+        return answer_bound(self, limits, self.speed_bound(limits))
+
+    def speed_bound(self, limits: Limits) -> np.ndarray:
+        """The duration where the motor's peak speed, N max|theta'(u)| / T (read as
+        :meth:`evaluate` reads it), reaches the speed limit with its margin: the speed
+        check's slack is 0 there and negative below (inf: no duration meets it)."""
+        p, N = self.profile, self.drive.ratio
+        fastest = refined_max(np.abs(N[:, None] * p.theta1), p.u)  # at T = 1
+        limit = (1.0 - limits.speed_margin) * self.motors.speed_limit
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(limit > 0.0, fastest / limit, np.inf)
 
     def rms_lower_bound(self) -> None:
         return None  # none known through a linkage (sizer.sizing.evaluation.CycleModel)
@@ -407,6 +420,11 @@ class LinkageCalculator:
 
     def evaluate(self, duration: np.ndarray, peaks: bool = True, model: bool = False,
                  rms: np.ndarray | None = None) -> CycleMetrics:  # no RMS model: not used
+        return self.sampled(duration)[0]
+
+    def sampled(self, duration: np.ndarray
+                ) -> tuple[CycleMetrics, np.ndarray, np.ndarray]:
+        """:meth:`evaluate` and the samples it read: (metrics, motor speed, torque)."""
         p, motors, drive = self.profile, self.motors, self.drive
         T = np.broadcast_to(np.asarray(duration, dtype=float), (len(motors),))[:, None]
         N, eta = drive.ratio[:, None], drive.efficiency[:, None]
@@ -419,7 +437,7 @@ class LinkageCalculator:
         force = (p.output_mass * p.s2 / T**2 + load.damping * p.s1 / T + load.torque
                  + load.friction * np.sign(p.s1))
         stage_torque, stage_speed = self._stages(crank, T)
-        return CycleMetrics(
+        metrics = CycleMetrics(
             duration=T[:, 0], max_speed=refined_max(np.abs(speed), p.u),
             peak_torque=refined_max(np.abs(torque), p.u),
             peak_ratio=peak_ratio(motors, torque, speed),
@@ -431,6 +449,7 @@ class LinkageCalculator:
             stage_peak=[np.max(np.abs(x), axis=1) for x in stage_torque],
             stage_rms=[np.sqrt(T[:, 0] * (x**2 @ p.weights) / cycle) for x in stage_torque],
             stage_speed=stage_speed)
+        return metrics, speed, torque
 
     def thermal_speed(self, T: np.ndarray) -> np.ndarray:
         """The speed the continuous region is read at: the peak (book), RMS or mean."""
@@ -455,12 +474,58 @@ class LinkageCalculator:
 
 def peak_ratio(motors: MotorArrays, torque: np.ndarray, speed: np.ndarray) -> np.ndarray:
     """The largest |tau| / tau_int(|speed|) over each candidate's samples (candidates,
-    samples): infinite where a torque meets a zero limit."""
+    samples): infinite where a torque meets a zero limit. Read only at the samples that
+    may hold it (:func:`_contenders`): those of the candidates with few, together; the
+    others' all."""
+    region = motors.intermittent
+    keep = _contenders(region, torque, speed)
+    if keep is None:
+        return _ratio(region, torque, speed)
+    narrow = keep.sum(axis=1) <= keep.shape[1] // 8
+    out = np.empty(len(torque))
+    for rows, few in ((np.flatnonzero(narrow), True), (np.flatnonzero(~narrow), False)):
+        if len(rows):
+            columns = np.flatnonzero(keep[rows].any(axis=0)) if few else slice(None)
+            out[rows] = _ratio(region.take(rows), torque[rows][:, columns],
+                               speed[rows][:, columns])
+    return out
+
+
+def _ratio(region: RegionTable, torque: np.ndarray, speed: np.ndarray) -> np.ndarray:
+    """:func:`peak_ratio` at every sample given."""
     with np.errstate(divide="ignore", invalid="ignore"):
-        limit = motors.intermittent.limit_clipped(speed)
+        limit = region.limit_clipped(speed)
         ratio = np.where(limit > 0.0, np.abs(torque) / limit,
                          np.where(torque == 0.0, 0.0, np.inf))
     return np.max(ratio, axis=1)
+
+
+PRUNE_MARGIN = 1e-9
+"""Relative margin of :func:`_contenders`' threshold, far above the rounding of a ratio."""
+
+
+def _contenders(region: RegionTable, torque: np.ndarray, speed: np.ndarray
+                ) -> np.ndarray | None:
+    """Per candidate the samples where its |tau| / tau_int(|speed|) may be its largest
+    (None: few samples, all of them). Its ratio at its largest |tau| is a lower bound R
+    of its largest, and its limit over the speeds it reaches is at least L, the least of
+    the piecewise-linear region at 0, at its corners up to the fastest sample and there;
+    a sample with |tau| < R L (1 - PRUNE_MARGIN) has a ratio below R."""
+    n, m = torque.shape
+    if m < 64:
+        return None
+    magnitude = np.abs(torque)
+    top = np.argmax(magnitude, axis=1)[:, None]
+    fastest = np.minimum(np.max(np.abs(speed), axis=1), region.max_speed)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        first = np.take_along_axis(magnitude, top, 1)[:, 0] / \
+            region.limit_clipped(np.take_along_axis(speed, top, 1))[:, 0]
+        ends = region.limit(np.stack((np.zeros(n), fastest), axis=1)).min(axis=1)
+        corners = np.where(region.speeds <= fastest[:, None], region.torques, np.inf)
+        least = np.minimum(ends, corners.min(axis=1))
+        threshold = first * least * (1.0 - PRUNE_MARGIN)
+    usable = np.isfinite(threshold) & (least > 0.0)  # elsewhere every sample is kept
+    return magnitude >= np.where(usable, threshold, -np.inf)[:, None]
 
 
 def refined_max(values: np.ndarray, u: np.ndarray) -> np.ndarray:
@@ -578,6 +643,7 @@ class LinkageCycle:
         self.fixed = np.array([np.nan if s.duration is None or i in free else s.duration
                                for i, s in enumerate(cycle.segments)], dtype=float)
         self.parts: list[LinkageProfile | HeldDwell] = []
+        self.known: dict[int, dict[str, Any]] = {}  # the fixed moves' figures
         theta = stage.start_angle
         for i, (segment, own) in enumerate(zip(cycle.segments, self.laws, strict=True)):
             load = segment_load(design.load, segment)
@@ -658,15 +724,46 @@ class LinkageCycle:
     def breakdown(self, s: np.ndarray) -> list[SegmentPart]:
         return linkage_breakdown(self, s)
 
+    def fixed_figures(self, i: int) -> dict[str, Any]:
+        """The figures (:func:`linkage_figures`) of the move ``i`` of fixed duration, the
+        same at every scale: computed once per calculator, its rows passed on by
+        :meth:`take`."""
+        if i not in self.known:
+            part = self.parts[i]
+            assert isinstance(part, LinkageProfile)
+            self.known[i] = _move_figures(move_calculator(self, part),
+                                          np.full(len(self.motors), self.fixed[i]))
+        return self.known[i]
+
     def take(self, index: np.ndarray) -> LinkageCycle:
         out = object.__new__(LinkageCycle)
         out.__dict__.update(self.__dict__)
         out.motors = self.motors.subset(index)
         out.drive = self.drive.take(index)
+        n = len(self.motors)
+
+        def rows(x: Any) -> Any:
+            if isinstance(x, list):
+                return [rows(v) for v in x]
+            return np.asarray(x)[index] if np.ndim(x) and len(x) == n else x
+
+        out.known = {i: {k: rows(v) for k, v in figures.items()}
+                     for i, figures in self.known.items()}
         return out
 
-    def peak_bound(self, limits: Limits) -> None:
-        return None
+    def peak_bound(self, limits: Limits) -> np.ndarray:
+        """The speed bound where it is the shortest scale (:func:`answer_bound`)."""
+        return answer_bound(self, limits, self.speed_bound(limits))
+
+    def speed_bound(self, limits: Limits) -> np.ndarray:
+        """The scale below which the speed check fails: the largest of the free moves'
+        (LinkageCalculator.speed_bound) over their weights, the cycle's peak speed being
+        the largest over its segments."""
+        bound = np.zeros(len(self.motors))
+        for part, w, fixed in zip(self.parts, self.weights, self.fixed, strict=True):
+            if isinstance(part, LinkageProfile) and w > 0.0 and not np.isfinite(fixed):
+                bound = np.maximum(bound, move_calculator(self, part).speed_bound(limits) / w)
+        return bound
 
     def rms_lower_bound(self) -> None:
         return None  # none known through a linkage (sizer.sizing.evaluation.CycleModel)
@@ -711,6 +808,23 @@ class LinkageCycle:
                                  for p in parts], axis=0) for k in range(stages)])
 
 
+def answer_bound(calculator: LinkageCalculator | LinkageCycle, limits: Limits,
+                 bound: np.ndarray) -> np.ndarray:
+    """``bound`` (a scale below which a check fails) where every check passes there, to
+    rounding and not by the tolerance alone: it is then the shortest scale, the one the
+    search would find (sizer.sizing.shortest_duration); 0 elsewhere, where the search runs
+    as without a bound."""
+    usable = np.isfinite(bound) & (bound > 0.0)
+    checks = evaluate_checks(calculator.evaluate(np.where(usable, bound, 1.0)),
+                             calculator.motors, calculator.drive, limits,
+                             calculator.task.linear)
+    return np.where(usable & (worst_slack(checks) >= -ROUNDING), bound, 0.0)
+
+
+ROUNDING = 1e-12
+"""The slack of a check exactly at its limit, to rounding (:func:`answer_bound`)."""
+
+
 def linkage_figures(calculator: LinkageCalculator | LinkageCycle, s: np.ndarray
                     ) -> list[dict[str, Any]]:
     """Per part of the cycle and candidate: duration, peak torque, peak ratio, the
@@ -720,8 +834,13 @@ def linkage_figures(calculator: LinkageCalculator | LinkageCycle, s: np.ndarray
     n = len(calculator.motors)
     drive = calculator.drive
     N, eta = drive.ratio, drive.efficiency
-    for _, _, _, part, T, calc in calculator.segments(np.asarray(s, dtype=float)):
-        if isinstance(part, HeldDwell):
+    for i, (_, _, _, part, T, calc) in enumerate(calculator.segments(np.asarray(s, float))):
+        if calc is not None and isinstance(calculator, LinkageCycle) \
+                and np.isfinite(calculator.fixed[i]):  # the same at every scale: once
+            out.append(calculator.fixed_figures(i))
+        elif calc is not None:
+            out.append(_move_figures(calc, T))
+        elif isinstance(part, HeldDwell):
             hold = np.broadcast_to(abs(part.hold) / (N * eta), (n,))
             zeros = np.zeros(n)
             ratio = peak_ratio(calculator.motors, hold[:, None], zeros[:, None])
@@ -734,12 +853,15 @@ def linkage_figures(calculator: LinkageCalculator | LinkageCycle, s: np.ndarray
                         "stage_peak": [zeros] * stages, "stage_square": [zeros] * stages,
                         "stage_speed": [zeros] * stages, "start_acceleration": zeros,
                         "end_acceleration": zeros})
-            continue
-        assert calc is not None
-        metrics = calc.evaluate(T)
-        speed, torque, _ = calc.motor_samples(T)
-        weights = part.weights
-        out.append({
+    return out
+
+
+def _move_figures(calc: LinkageCalculator, T: np.ndarray) -> dict[str, Any]:
+    """The figures of :func:`linkage_figures` of one move at durations T."""
+    n, part, N = len(calc.motors), calc.profile, calc.drive.ratio
+    metrics, speed, torque = calc.sampled(T)
+    weights = part.weights
+    return {
             "duration": T, "peak_torque": metrics.peak_torque,
             "peak_ratio": metrics.peak_ratio, "square": T * (torque**2 @ weights),
             "speed_square": T * (speed**2 @ weights), "max_speed": metrics.max_speed,
@@ -752,8 +874,7 @@ def linkage_figures(calculator: LinkageCalculator | LinkageCycle, s: np.ndarray
             "stage_square": [T * r**2 for r in metrics.stage_rms],
             "stage_speed": metrics.stage_speed,
             "start_acceleration": np.full(n, part.s2[0]) / T**2,
-            "end_acceleration": np.full(n, part.s2[-1]) / T**2})
-    return out
+            "end_acceleration": np.full(n, part.s2[-1]) / T**2}
 
 
 def move_calculator(calculator: LinkageCalculator | LinkageCycle,
