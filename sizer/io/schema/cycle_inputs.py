@@ -25,6 +25,7 @@ from sizer.io.schema.inputs_base import (
     RawQuantity,
     RawValue,
     Strict,
+    at_most,
     convert,
     convert_in,
     not_null,
@@ -218,14 +219,6 @@ _EXAMPLES = {"move": "{move: {displacement: 90 deg, duration: 0.3 s}}",
              "dwell": "{dwell: {duration: 0.2 s}}"}
 
 
-def _few_segments(value: Any) -> Any:
-    """At most MAX_CYCLE_SEGMENTS segments, refused before any segment is read."""
-    if isinstance(value, list) and len(value) > MAX_CYCLE_SEGMENTS:
-        raise ValueError(f"a cycle of {len(value)} segments: the limit is "
-                         f"{MAX_CYCLE_SEGMENTS} (sizer.input_limits.MAX_CYCLE_SEGMENTS)")
-    return value
-
-
 class CycleInput(Strict):
     """A machine cycle: its segments, in order, repeated; how free durations share time."""
 
@@ -243,6 +236,7 @@ class CycleInput(Strict):
     closed: StrictBool = Field(
         False, description="the cycle ends where it starts: net displacement 0, and the "
                            "last end speed equals the first start speed")
-    segments: Annotated[list[SegmentInput], BeforeValidator(_few_segments)] = Field(
+    segments: Annotated[list[SegmentInput], at_most(MAX_CYCLE_SEGMENTS, "cycle", "segments",
+                                                          "MAX_CYCLE_SEGMENTS")] = Field(
         min_length=1, max_length=MAX_CYCLE_SEGMENTS,
         description=f"the segments, in order (1 to {MAX_CYCLE_SEGMENTS})")

@@ -263,6 +263,19 @@ def _identifier(value: Any) -> str:
 Identifier = Annotated[str, BeforeValidator(_identifier)]
 
 
+def at_most(limit: int, whole: str, items: str, name: str) -> Any:
+    """A before-validator refusing a list of more than ``limit`` items before any item is
+    read (``name``: the limit in sizer.input_limits)."""
+
+    def check(value: Any) -> Any:
+        if isinstance(value, list) and len(value) > limit:
+            raise ValueError(f"a {whole} of {len(value)} {items}: the limit is {limit} "
+                             f"(sizer.input_limits.{name})")
+        return value
+
+    return BeforeValidator(check)
+
+
 def given(value: Any) -> Any:
     """A before-validator of an optional section: written out, it must not be null."""
     if value is None:

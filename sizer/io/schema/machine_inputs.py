@@ -31,6 +31,7 @@ from sizer.io.schema.inputs_base import (
     RawValue,
     Strict,
     Text,
+    at_most,
     convert_in,
     given,
     not_null,
@@ -149,14 +150,6 @@ class BusInput(Strict):
                               "checked against the axes' summed braking")] | None = None
 
 
-def _few_axes(value: Any) -> Any:
-    """At most MAX_MACHINE_AXES axes, refused before any axis is read."""
-    if isinstance(value, list) and len(value) > MAX_MACHINE_AXES:
-        raise ValueError(f"a machine of {len(value)} axes: the limit is {MAX_MACHINE_AXES} "
-                         f"(sizer.input_limits.MAX_MACHINE_AXES)")
-    return value
-
-
 class MachineFile(Strict):
     """A machine file: the master, two or more axes on it, and their DC bus."""
 
@@ -164,7 +157,8 @@ class MachineFile(Strict):
 
     name: Text | None = None
     machine: Annotated[MachineInput, BeforeValidator(given)]
-    axes: Annotated[list[AxisInput], BeforeValidator(_few_axes)] = Field(
+    axes: Annotated[list[AxisInput], at_most(MAX_MACHINE_AXES, "machine", "axes",
+                                                    "MAX_MACHINE_AXES")] = Field(
         min_length=1, max_length=MAX_MACHINE_AXES,
         description=f"the axes on the master (1 to {MAX_MACHINE_AXES})")
     bus: Annotated[BusInput | None, BeforeValidator(given)] = Field(
