@@ -13,8 +13,8 @@ from sizer.sizing.move import CycleCalculator
 from sizer.sizing.results import Mode, SizingResult
 
 MEMBERS = ("segmented", "task", "drive", "motors", "take", "evaluate", "thermal_speed",
-           "peak_bound", "initial_guess", "rms_lower_bound", "cycle_time", "scale_of",
-           "pieces", "reported", "law_move", "dead_point_issues", "given_scale")
+           "peak_bound", "search_start", "initial_guess", "rms_lower_bound", "cycle_time",
+           "scale_of", "pieces", "reported", "law_move", "dead_point_issues", "given_scale")
 ATTRIBUTES = ("segmented", "task", "drive", "motors")
 """Members a calculator sets per instance (``segmented`` on the class)."""
 SEGMENTED = ("breakdown",)

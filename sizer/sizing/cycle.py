@@ -35,7 +35,14 @@ from sizer.model.cycle import Cycle, Dwell, Move, Run, Segment, boundary_laws, s
 from sizer.model.domain import Design, Limits, Load, Task, ThermalSpeedRule
 from sizer.sizing.candidates import MotorArrays
 from sizer.sizing.checks import TOLERANCE, evaluate_checks, worst_slack
-from sizer.sizing.evaluation import SAMPLES, CycleMetrics, CyclePiece, SegmentPart, held_piece
+from sizer.sizing.evaluation import (
+    SAMPLES,
+    CycleMetrics,
+    CyclePiece,
+    RmsCurve,
+    SegmentPart,
+    held_piece,
+)
 from sizer.sizing.move import (
     CycleCalculator,
     MoveFigures,
@@ -134,7 +141,7 @@ class CycleRmsModel:
     sizer.sizing.shortest_duration.rms_crossing finds where the RMS check binds in a few
     rounds, as for a single law."""
 
-    moves: tuple[tuple[RmsModel, float], ...]
+    moves: tuple[tuple[RmsCurve, float], ...]
     constant: np.ndarray
     hold_rate: np.ndarray
     fixed_time: float
@@ -266,6 +273,10 @@ class SegmentCycle:
                            np.sqrt(c.C_a * k * h * J_t / tau_p))
             guess = np.maximum(guess, np.broadcast_to(T / w, (n,)))
         return np.where(np.isfinite(guess) & (guess > 0.0), guess, 1.0)
+
+    def search_start(self, limits: Limits) -> None:
+        """None: the peak bound is a bound wherever it is usable (CycleModel)."""
+        return None
 
     def peak_bound(self, limits: Limits) -> np.ndarray | None:
         """A lower bound on the minimized scale s: each free rest-to-rest move's bound on

@@ -166,6 +166,12 @@ class CycleModel(Protocol):
         such bound holds."""
         ...
 
+    def search_start(self, limits: Limits) -> np.ndarray | None:
+        """Where the RMS crossing starts for the candidates whose peak bound is 0 (no
+        answer there): a duration below which a check fails, the speed bound through a
+        linkage; None: only from a usable peak bound."""
+        ...
+
     def initial_guess(self) -> np.ndarray:
         """A duration scale to start a search from (never zero)."""
         ...

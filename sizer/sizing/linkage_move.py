@@ -42,12 +42,13 @@ from sizer.laws.quadrature import gauss_legendre
 from sizer.mechanics.drive import Drive
 from sizer.model.cycle import Move, Run, from_task, shorthand_task
 from sizer.model.domain import Design, Limits, LinkageStage, Load, Task
+from sizer.numerics.roots import illinois
 from sizer.sizing.candidates import MotorArrays
 from sizer.sizing.checks import evaluate_checks, worst_slack
-from sizer.sizing.cycle import cycle_laws, given_scale, segment_load
+from sizer.sizing.cycle import CycleRmsModel, cycle_laws, given_scale, segment_load
 from sizer.sizing.evaluation import CycleMetrics, CyclePiece, SegmentPart, held_piece
-from sizer.sizing.move import rule_speed
-from sizer.sizing.shortest_duration import mechanical_answer
+from sizer.sizing.move import rms_of_powers, rule_speed
+from sizer.sizing.shortest_duration import EXPANSIONS, mechanical_answer
 
 PEAK_POINTS = 4001
 """Uniform samples of u in [0, 1] where the peaks are read (with the law's breakpoints):
@@ -320,6 +321,24 @@ def _finite(x: np.ndarray) -> np.ndarray:
     return np.where(np.isfinite(x), x, 0.0)
 
 
+@dataclass(frozen=True)
+class LinkageRms:
+    """The motor's RMS torque through a linkage near the durations it was built at
+    (:meth:`LinkageCalculator.powers`), with the task's dwell holding ``hold``: the form
+    of sizer.sizing.move.RmsModel, so the RMS crossing
+    (sizer.sizing.shortest_duration.rms_crossing_with_rms) finds where the RMS check
+    binds in a few rounds instead of a search on the evaluated slack."""
+
+    powers: np.ndarray
+    dwell: float
+    hold: np.ndarray
+
+    def rms(self, T: np.ndarray, index: np.ndarray | None = None) -> np.ndarray:
+        c = self.powers if index is None else self.powers[:, index]
+        hold = self.hold if index is None else self.hold[index]
+        return rms_of_powers(c, T, 1, self.dwell, hold)
+
+
 class LinkageCalculator:
     """The requirements of one law through a linkage for each candidate at durations T
     (a sizer.sizing.evaluation.CycleModel)."""
@@ -377,8 +396,14 @@ class LinkageCalculator:
                                  self.motors.subset(index), self.thermal_rule, self.law)
 
     def peak_bound(self, limits: Limits) -> np.ndarray:
-        """The speed bound where it is the shortest duration (:func:`answer_bound`)."""
-        return answer_bound(self, limits, self.speed_bound(limits))
+        """The peak crossing above the speed bound where it is the shortest duration
+        (:func:`peak_crossing`, :func:`answer_bound`)."""
+        return answer_bound(self, limits, peak_crossing(self, limits, self.speed_bound(limits)))
+
+    def peak_ratio_at(self, T: np.ndarray) -> np.ndarray:
+        """The peak ratio of :meth:`evaluate` at durations T, alone."""
+        speed, torque, _ = self.motor_samples(T)
+        return peak_ratio(self.motors, torque, speed)
 
     def speed_bound(self, limits: Limits) -> np.ndarray:
         """The duration where the motor's peak speed, N max|theta'(u)| / T (read as
@@ -389,6 +414,10 @@ class LinkageCalculator:
         limit = (1.0 - limits.speed_margin) * self.motors.speed_limit
         with np.errstate(divide="ignore", invalid="ignore"):
             return np.where(limit > 0.0, fastest / limit, np.inf)
+
+    def search_start(self, limits: Limits) -> np.ndarray:
+        """The speed bound: below it the speed check fails (CycleModel)."""
+        return self.speed_bound(limits)
 
     def rms_lower_bound(self) -> None:
         return None  # none known through a linkage (sizer.sizing.evaluation.CycleModel)
@@ -418,9 +447,38 @@ class LinkageCalculator:
                                                          crank * eta / N)
         return N * p.theta1 / T, torque, crank
 
+    def powers(self, duration: np.ndarray) -> np.ndarray:
+        """The motor's int tau^2 dt over the move near the durations T0 = ``duration``, as
+        c_3/T^3 + c_2/T^2 + c_1/T + c_0 + c_(-1) T (sizer.sizing.move.RmsModel.powers):
+        at each sample the torque is A/T^2 + B/T + C (A the inertias, B the damping, C the
+        static load, through the gearbox's efficiency in the power flow's direction at T0,
+        held), so T int (A/T^2 + B/T + C)^2 du gives the five integrals. Exact at T0;
+        near it off only at the samples where the crank torque changes sign between the
+        two durations (the torque is small there: 1e-7 relative at 1 % from T0 in the
+        bundled press cycle, tests/test_linkage_rms_model.py)."""
+        p, motors, drive = self.profile, self.motors, self.drive
+        T = np.broadcast_to(np.asarray(duration, dtype=float), (len(motors),))[:, None]
+        N, eta = drive.ratio[:, None], drive.efficiency[:, None]
+        rotor = (motors.inertia + drive.transmission_inertia)[:, None]
+        crank = p.inertial / T**2 + p.damping / T + p.steady
+        through = np.where(crank * p.theta1 >= 0.0, 1.0 / (N * eta), eta / N)
+        A = rotor * N * p.theta2 + through * p.inertial
+        B, C = through * p.damping, through * p.steady
+        w = p.weights
+        return np.stack([(A * A) @ w, 2.0 * ((A * B) @ w), (B * B + 2.0 * A * C) @ w,
+                         2.0 * ((B * C) @ w), (C * C) @ w])
+
     def evaluate(self, duration: np.ndarray, peaks: bool = True, model: bool = False,
-                 rms: np.ndarray | None = None) -> CycleMetrics:  # no RMS model: not used
-        return self.sampled(duration)[0]
+                 rms: np.ndarray | None = None) -> CycleMetrics:
+        """The requirements at ``duration`` (every one sampled: ``peaks`` and ``rms``
+        change nothing), with ``model`` the RMS model there (:class:`LinkageRms`)."""
+        metrics = self.sampled(duration)[0]
+        if not model:
+            return metrics
+        hold = abs(self.profile.hold) / (self.drive.ratio * self.drive.efficiency)
+        curve = LinkageRms(self.powers(duration), self.task.dwell,
+                           np.broadcast_to(hold, (len(self.motors),)))
+        return replace(metrics, rms_model=curve)
 
     def sampled(self, duration: np.ndarray
                 ) -> tuple[CycleMetrics, np.ndarray, np.ndarray]:
@@ -643,7 +701,7 @@ class LinkageCycle:
         self.fixed = np.array([np.nan if s.duration is None or i in free else s.duration
                                for i, s in enumerate(cycle.segments)], dtype=float)
         self.parts: list[LinkageProfile | HeldDwell] = []
-        self.known: dict[int, dict[str, Any]] = {}  # the fixed moves' figures
+        self.known: dict[int, dict[str, Any]] = {}  # fixed moves: figures; free: speeds
         theta = stage.start_angle
         for i, (segment, own) in enumerate(zip(cycle.segments, self.laws, strict=True)):
             load = segment_load(design.load, segment)
@@ -752,8 +810,24 @@ class LinkageCycle:
         return out
 
     def peak_bound(self, limits: Limits) -> np.ndarray:
-        """The speed bound where it is the shortest scale (:func:`answer_bound`)."""
-        return answer_bound(self, limits, self.speed_bound(limits))
+        """The peak crossing above the speed bound where it is the shortest scale
+        (:func:`peak_crossing`, :func:`answer_bound`)."""
+        return answer_bound(self, limits, peak_crossing(self, limits, self.speed_bound(limits)))
+
+    def peak_ratio_at(self, s: np.ndarray) -> np.ndarray:
+        """The peak ratio of :meth:`evaluate` at scales s, alone: the largest over the
+        moves (the fixed ones known) and the dwells' holding."""
+        n, N, eta = len(self.motors), self.drive.ratio, self.drive.efficiency
+        ratios = []
+        for i, (part, T) in enumerate(zip(self.parts, self.durations(s), strict=True)):
+            if isinstance(part, HeldDwell):
+                hold = np.broadcast_to(abs(part.hold) / (N * eta), (n,))
+                ratios.append(peak_ratio(self.motors, hold[:, None], np.zeros((n, 1))))
+            elif np.isfinite(self.fixed[i]):
+                ratios.append(self.fixed_figures(i)["peak_ratio"])
+            else:
+                ratios.append(move_calculator(self, part).peak_ratio_at(T))
+        return np.max([np.broadcast_to(r, (n,)) for r in ratios], axis=0)
 
     def speed_bound(self, limits: Limits) -> np.ndarray:
         """The scale below which the speed check fails: the largest of the free moves'
@@ -765,12 +839,44 @@ class LinkageCycle:
                 bound = np.maximum(bound, move_calculator(self, part).speed_bound(limits) / w)
         return bound
 
+    def search_start(self, limits: Limits) -> np.ndarray:
+        """The speed bound: below it the speed check fails (CycleModel)."""
+        return self.speed_bound(limits)
+
     def rms_lower_bound(self) -> None:
         return None  # none known through a linkage (sizer.sizing.evaluation.CycleModel)
 
     def thermal_speed(self, s: np.ndarray) -> np.ndarray:
-        """The thermal speed at scales s (sizer.sizing.evaluation.CycleModel)."""
-        return self.evaluate(s, peaks=False).thermal_speed
+        """The thermal speed at scales s (sizer.sizing.evaluation.CycleModel) from each
+        part's figures at unit duration: a free move's peak speed and int omega^2 dt go
+        as 1/T, its turn stays; the fixed moves' are known (:meth:`fixed_figures`)."""
+        s = np.asarray(s, dtype=float)
+        n = len(self.motors)
+        top, square, turn = np.zeros(n), np.zeros(n), np.zeros(n)
+        N = self.drive.ratio
+        for i, (part, T) in enumerate(zip(self.parts, self.durations(s), strict=True)):
+            if not isinstance(part, LinkageProfile):
+                continue
+            if np.isfinite(self.fixed[i]):
+                known = self.fixed_figures(i)
+                peak, spin = known["max_speed"], known["speed_square"]
+            else:
+                unit = self.unit_speeds(i)
+                peak, spin = unit[0] / T, unit[1] / T
+            top, square = np.maximum(top, peak), square + spin
+            turn = turn + N * abs(part.turn)
+        return rule_speed(self.thermal_rule, top, square, turn, self.cycle_time(s))
+
+    def unit_speeds(self, i: int) -> tuple[np.ndarray, np.ndarray]:
+        """The free move ``i``'s peak motor speed and int omega^2 dt at T = 1 (as
+        :func:`linkage_figures` reads them), computed once per calculator."""
+        if i not in self.known:
+            part = self.parts[i]
+            assert isinstance(part, LinkageProfile)
+            speed = self.drive.ratio[:, None] * part.theta1
+            self.known[i] = {"unit": [refined_max(np.abs(speed), part.u),
+                                      speed**2 @ part.weights]}
+        return self.known[i]["unit"][0], self.known[i]["unit"][1]
 
     def initial_guess(self) -> np.ndarray:
         """A scale from the free moves' speed and inertial bounds."""
@@ -781,7 +887,41 @@ class LinkageCycle:
         return np.where(np.isfinite(guess) & (guess > 0.0), guess, 1.0)
 
     def evaluate(self, duration: np.ndarray, peaks: bool = True, model: bool = False,
-                 rms: np.ndarray | None = None) -> CycleMetrics:  # no RMS model: not used
+                 rms: np.ndarray | None = None) -> CycleMetrics:
+        """The requirements at scales ``duration`` (every one sampled: ``peaks`` and
+        ``rms`` change nothing), with ``model`` the cycle's RMS model there
+        (sizer.sizing.cycle.CycleRmsModel over each free move's :class:`LinkageRms`)."""
+        metrics = self._evaluate(duration)
+        return replace(metrics, rms_model=self._rms_model(duration)) if model else metrics
+
+    def _rms_model(self, s: np.ndarray) -> CycleRmsModel:
+        """Free moves by their models, fixed parts as constants, free dwells' holding as
+        linear in s (sizer.sizing.cycle.CycleRmsModel)."""
+        n = len(self.motors)
+        moves, constant, hold_rate = [], np.zeros(n), np.zeros(n)
+        N, eta = self.drive.ratio, self.drive.efficiency
+        none = np.zeros(n)
+        for i, (part, w, T) in enumerate(zip(self.parts, self.weights, self.durations(s),
+                                             strict=True)):
+            free = not np.isfinite(self.fixed[i])
+            if isinstance(part, LinkageProfile):
+                if free:
+                    powers = move_calculator(self, part).powers(T)
+                    moves.append((LinkageRms(powers, 0.0, none), float(w)))
+                else:
+                    constant = constant + self.fixed_figures(i)["square"]
+            else:
+                hold = np.broadcast_to(abs(part.hold) / (N * eta), (n,))
+                if free:
+                    hold_rate = hold_rate + hold * hold * w
+                else:
+                    constant = constant + self.fixed[i] * hold**2
+        weights = math.fsum(w for w, f in zip(self.weights, self.fixed, strict=True)
+                            if not np.isfinite(f))
+        return CycleRmsModel(tuple(moves), constant, hold_rate,
+                             float(np.nansum(self.fixed)), weights)
+
+    def _evaluate(self, duration: np.ndarray) -> CycleMetrics:
         parts = linkage_figures(self, duration)
         cycle = sum((p["duration"] for p in parts), np.zeros(len(self.motors)))
 
@@ -823,6 +963,53 @@ def answer_bound(calculator: LinkageCalculator | LinkageCycle, limits: Limits,
 
 ROUNDING = 1e-12
 """The slack of a check exactly at its limit, to rounding (:func:`answer_bound`)."""
+
+
+def peak_crossing(calculator: LinkageCalculator | LinkageCycle, limits: Limits,
+                  low: np.ndarray) -> np.ndarray:
+    """Per candidate the scale at or above ``low`` (a bound below which a check fails)
+    where the peak ratio (``peak_ratio_at``) falls to 1 - torque margin: ``low`` where it
+    passes there, else the crossing above it, from steps up by factors of 2 and the
+    project's root finder in log s, returned at the passing end of its bracket (1e-13
+    wide, as the search's); inf where ``low`` is no bound.
+
+    Through a linkage the motor torque at each sample is A/T^2 + B/T + C, so the ratio
+    falls with the duration wherever the inertial and damping terms outweigh the static
+    load; where it does not (a load that the motor holds beyond its peak), no longer
+    scale passes either and the search after it says so."""
+    grip = math.log(1.0 - limits.torque_margin)
+    n = len(low)
+    usable = np.isfinite(low) & (low > 0.0)
+    out = np.where(usable, low, np.inf)
+    rows = np.flatnonzero(usable)
+
+    def excess(x: np.ndarray, where: np.ndarray) -> np.ndarray:
+        part = calculator if len(where) == n else calculator.take(where)
+        with np.errstate(divide="ignore"):
+            return np.log(part.peak_ratio_at(np.exp(x))) - grip
+
+    x_lo = np.log(out[rows])
+    g_lo = excess(x_lo, rows)
+    failing = g_lo > 0.0
+    rows, x_lo, g_lo = rows[failing], x_lo[failing], g_lo[failing]
+    x_hi, g_hi = x_lo.copy(), g_lo.copy()
+    falling = np.ones(len(rows), dtype=bool)
+    for _ in range(EXPANSIONS):
+        up = (g_hi > 0.0) & falling
+        if not up.any():
+            break
+        x_lo[up], g_lo[up] = x_hi[up], g_hi[up]
+        x_hi[up] += math.log(2.0)
+        g_hi[up] = excess(x_hi[up], rows[up])
+        falling[up] = g_hi[up] < g_lo[up]  # a ratio that a longer scale does not lower
+    found = g_hi <= 0.0
+    out[rows[~found]] = np.inf
+    rows, x_lo, x_hi, g_lo, g_hi = (v[found] for v in (rows, x_lo, x_hi, g_lo, g_hi))
+    if len(rows):
+        _, hi = illinois(excess, x_lo, x_hi, g_lo, g_hi, xtol=1e-13, args=(rows,),
+                         bracket=True)
+        out[rows] = np.exp(hi)
+    return out
 
 
 def linkage_figures(calculator: LinkageCalculator | LinkageCycle, s: np.ndarray

@@ -877,12 +877,19 @@ class RmsModel:
         """RMS torque at durations T (of the candidates at ``index``, default all)."""
         c = self.powers if index is None else self.powers[:, index]
         hold = self.hold if index is None else self.hold[index]
-        n = len(self.moves)
-        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            u = 1.0 / T
-            square = ((c[0] * u + c[1]) * u + c[2]) * u + c[3] + c[4] * T
-            mean = (square + n * self.dwell * np.square(hold)) / (n * (T + self.dwell))
-        return np.sqrt(np.where(np.isnan(mean), np.inf, mean))
+        return rms_of_powers(c, T, len(self.moves), self.dwell, hold)
+
+
+def rms_of_powers(c: np.ndarray, T: np.ndarray, n: int, dwell: float,
+                  hold: np.ndarray) -> np.ndarray:
+    """The RMS torque at durations T of n moves whose summed int tau^2 dt is
+    c_3/T^3 + c_2/T^2 + c_1/T + c_0 + c_(-1) T (rows of ``c``: :attr:`RmsModel.powers`),
+    each followed by a dwell holding ``hold``."""
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        u = 1.0 / T
+        square = ((c[0] * u + c[1]) * u + c[2]) * u + c[3] + c[4] * T
+        mean = (square + n * dwell * np.square(hold)) / (n * (T + dwell))
+    return np.sqrt(np.where(np.isnan(mean), np.inf, mean))
 
 
 Objective = Callable[[np.ndarray, np.ndarray], np.ndarray]
@@ -1409,6 +1416,10 @@ class CycleCalculator:
     def peak_bound(self, limits: Limits) -> np.ndarray | None:
         """The peak and speed bound on T_min (:func:`peak_duration`)."""
         return peak_duration(self, limits)
+
+    def search_start(self, limits: Limits) -> None:
+        """None: the peak bound is a bound wherever it is usable (CycleModel)."""
+        return None
 
     def initial_guess(self) -> np.ndarray:
         """A duration scale from the speed and inertial bounds (never zero)."""

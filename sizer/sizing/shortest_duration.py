@@ -178,15 +178,23 @@ def _from_bound(calculator: CycleModel, limits: Limits,
     T = np.where(ok, bound, np.inf)
 
     known = np.full(len(T), np.nan)  # the RMS at the crossings found, from their models
+    floor = calculator.search_start(limits)
+    # where the RMS crossing starts: the bound, else (where the model gives one) a
+    # duration below which a check fails; the crossing above it is then the shortest
+    # duration the RMS check allows, verified below with every check
+    above = bound if floor is None else np.where(usable, bound, floor)
+    startable = np.isfinite(above) & (above > 0.0)
 
     def from_rms(left: np.ndarray) -> np.ndarray:
         out = np.full(len(T), np.nan)
-        index = np.flatnonzero(left & usable)
+        index = np.flatnonzero(left & startable)
         if len(index):
-            first = None if at_bound is None else (at_bound, index)
-            found, rms = rms_crossing_with_rms(calculator.take(index), limits, bound[index],
+            # the model at the bound is built where the crossing starts only where usable
+            first = (at_bound, index) if at_bound is not None and usable[index].all() \
+                else None
+            found, rms = rms_crossing_with_rms(calculator.take(index), limits, above[index],
                                                first)
-            keep = found >= bound[index] * (1.0 - 1e-12)
+            keep = found >= above[index] * (1.0 - 1e-12)
             out[index] = np.where(keep, found, np.nan)
             known[index] = np.where(keep, rms, np.nan)
         return out
