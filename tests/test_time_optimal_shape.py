@@ -13,7 +13,7 @@ from reference_values import ruckig_duration
 from scipy import optimize
 
 from sizer.laws import make_law
-from sizer.sizing.choices import (
+from sizer.sizing.optimal_shapes import (
     BoundScales,
     double_s_coefficients,
     optimal_double_s,

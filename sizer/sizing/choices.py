@@ -22,7 +22,8 @@ Shape parameters written ``auto`` are chosen per motor by the solver (:func:`cho
 In minimize mode the parameters minimize T_min; with a given duration they maximize the
 smallest margin (ties broken by the next smallest). The trapezoid and the double S in the
 book's case (rectangular regions, purely inertial load, ideal transmission) have their time-
-optimal shape computed exactly (below, sec. 3.2-3.4 and 6.2); every other case is searched
+optimal shape computed exactly (sizer.sizing.optimal_shapes, sec. 3.2-3.4 and 6.2); every
+other case is searched
 to tolerance (below). The chosen parameters are kept at full precision: the duration and
 margins reported are those of the law with exactly these parameters.
 
@@ -45,30 +46,6 @@ searches). Three or more (:func:`search_box`): a grid shared by all motors, then
 search on the 3^N - 1 neighbours of each motor's best point to TOLERANCE[3]. Integer
 parameters are enumerated. Motors at equal points are evaluated together (vectorized). In
 minimize mode each T_min is the engine's (sizer.sizing.shortest_duration).
-
-Time-optimal trapezoid and double S in the book's case, exactly (sec. 3.2-3.4, 5.2, 6.2).
-With rectangular regions, a purely inertial load and an ideal transmission, T_min of a shape
-is the largest of the bounds of eq. (6.2), each a closed form in one coefficient:
-
-    speed   T_V = C_v S_V            S_V = max(K h / v_lim, h / v_load)
-    torque  T_A = sqrt(C_a S_A)      S_A = max(K h J_t / tau_p, h / a_max)
-    RMS     T_R: T^3 (T + dwell) = (C_a_rms S_R)^2,  S_R = K h J_t / tau_c
-    jerk    T_J = cbrt(C_j S_J)      S_J = h / j_max
-
-(margins applied to the limits as in sizer.sizing.shortest_duration). The trapezoid's
-coefficients are C_v = 1/(1-a), C_a = 1/(a(1-a)), C_a_rms = sqrt(2/a)/(1-a) (a = alpha,
-sec. 6.2.1); each bound is monotone or unimodal in a (T_V increasing, T_A decreasing, T_R
-smallest at a = 1/3) and the sign of every difference of two bounds changes at most once
-on (0, 1/2]. The optimum is therefore among: the ends, a = 1/3, and the crossings of two
-bounds, each found to machine precision by a bracketed root; all candidates are
-evaluated and the best kept, for all motors at once.
-
-The double S (a = alpha, b = beta) has C_a = 1/(a(1-a)(1-b)), C_j = 1/(a^2 b (1-a)(1-b)),
-C_a_rms = sqrt((6-8b)/(3a))/((1-a)(1-b)): in b, T_A and T_R increase and T_J decreases,
-so for a given a the best b is where max(T_A, T_R) meets T_J (a 1-D root), or an end of
-the range. What remains is a function of a alone, the largest of smooth pieces; its
-minimum (a minimum of one piece or a crossing of two) is bracketed on a dense sample
-that contains the special points and located by golden section to 1e-13 in a.
 
 A law shaped for the load's mode at each candidate's own duration (book sec. 7.4.2,
 :func:`evaluate_shaped`). ``{kind: shaped, law: L, shaper: zv}`` without ``f_T`` in a design
@@ -108,307 +85,19 @@ from sizer.errors import UserError
 from sizer.laws import AUTO, LawChoice, MotionLaw, make_law
 from sizer.laws.base import Parameter
 from sizer.laws.data_spec import data_spec_text, read_data_spec
-from sizer.laws.piecewise_polynomial import DoubleS, Trapezoidal
 from sizer.model.domain import Design, Transmission
-from sizer.numerics.arrays import sorted_unique
-from sizer.numerics.golden import golden_step, interior_points
 from sizer.sizing.candidates import Candidates, MotorArrays
 from sizer.sizing.checks import evaluate_checks
 from sizer.sizing.cycle import single_task
 from sizer.sizing.energy_check import has_braking_check, has_heat_check, without_power_figures
 from sizer.sizing.move import CycleCalculator
+from sizer.sizing.optimal_shapes import HALF, exact_time_optimal
 from sizer.sizing.results import CandidateTable, Mode, concatenate, in_groups
-from sizer.sizing.shortest_duration import (
-    beyond_flat_part,
-    duration_bounds,
-    is_purely_inertial,
-    minimum_duration,
-)
+from sizer.sizing.shortest_duration import minimum_duration
 from sizer.vibration.elastic_load import ElasticLoad
 
 if TYPE_CHECKING:
     from sizer.sizing.shortest_duration import PeakScales
-
-
-SAMPLES = 65
-GOLDEN_WIDTH = 1e-13
-HALF = 0.5
-
-
-@dataclass(frozen=True)
-class BoundScales:
-    """Per-motor scales of the bounds of eq. (6.2) (see the module docstring), SI.
-
-    A zero scale means no such limit; ``feasible`` is False where no shape can work
-    (e.g. a zero torque); checks that no shape changes (the inertia ratio) are left to
-    the verdict.
-    """
-
-    speed: np.ndarray
-    torque: np.ndarray
-    rms: np.ndarray
-    jerk: np.ndarray
-    dwell: float
-    feasible: np.ndarray
-
-
-@dataclass(frozen=True)
-class OptimalShape:
-    """The best parameters per motor and T_min there (inf where nothing is feasible)."""
-
-    params: dict[str, np.ndarray]
-    duration: np.ndarray
-
-
-# --------------------------------------------------------------------- coefficients
-def trapezoid_coefficients(a):
-    """C_v, C_a, C_a_rms of the trapezoid with alpha = a (sec. 3.2, 6.2.1), vectorized."""
-    return 1.0 / (1.0 - a), 1.0 / (a * (1.0 - a)), np.sqrt(2.0 / a) / (1.0 - a)
-
-
-def double_s_coefficients(a, b):
-    """C_v, C_a, C_a_rms, C_j of the double S (sec. 3.4, 6.2.1), vectorized."""
-    c_a = 1.0 / (a * (1.0 - a) * (1.0 - b))
-    c_a_rms = np.sqrt((6.0 - 8.0 * b) / (3.0 * a)) / ((1.0 - a) * (1.0 - b))
-    return 1.0 / (1.0 - a), c_a, c_a_rms, c_a / (a * b)
-
-
-# --------------------------------------------------------------------------- bounds
-def rms_time(x: np.ndarray, dwell: float) -> np.ndarray:
-    """The smallest T with T^3 (T + dwell) >= x^2 (x = C_a_rms S_R), vectorized.
-
-    Newton's method from an upper bound (the quartic is convex and increasing for T > 0,
-    so the iterates decrease monotonically to the root).
-    """
-    x = np.asarray(x, dtype=float)
-    target = x * x
-    if dwell == 0.0:
-        return np.sqrt(x)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        T = np.sqrt(x)
-        if dwell > 0.0:
-            T = np.minimum(T, np.cbrt(target / dwell))
-        for _ in range(60):
-            f = T**3 * (T + dwell) - target
-            step = f / (T * T * (4.0 * T + 3.0 * dwell))
-            step = np.where(np.isfinite(step) & (T > 0.0) & (step > 0.0), step, 0.0)
-            T = T - step
-            if not np.any(step > 1e-15 * T):  # quadratic convergence: one more is exact
-                f = T**3 * (T + dwell) - target
-                T = T - np.where(T > 0.0, f / (T * T * (4.0 * T + 3.0 * dwell)), 0.0)
-                break
-    return np.where(x > 0.0, T, np.where(np.isnan(x), np.nan, 0.0))
-
-
-def _scales_like(scales: BoundScales, shape: tuple[int, ...], rows=None):
-    """The four scales broadcast to ``shape`` (motor-major), or taken at flat ``rows``."""
-    out = []
-    for s in (scales.speed, scales.torque, scales.rms, scales.jerk):
-        full = np.broadcast_to(s.reshape((-1,) + (1,) * (len(shape) - 1)), shape)
-        out.append(full if rows is None else full.reshape(-1)[rows])
-    return out
-
-
-def _bounds(S, dwell: float, c_v, c_a, c_a_rms, c_j=None) -> list[np.ndarray]:
-    """T_V, T_A, T_R (and T_J) from coefficient arrays and scales S of the same shape."""
-    out = [c_v * S[0], np.sqrt(c_a * S[1]), rms_time(c_a_rms * S[2], dwell)]
-    if c_j is not None:
-        out.append(np.cbrt(c_j * S[3]))
-    return out
-
-
-def trapezoid_bounds(scales: BoundScales, a: np.ndarray) -> list[np.ndarray]:
-    """T_V, T_A, T_R of the trapezoid at alpha = a (array (motors, k))."""
-    return _bounds(_scales_like(scales, np.shape(a)), scales.dwell, *trapezoid_coefficients(a))
-
-
-def double_s_bounds(scales: BoundScales, a: np.ndarray, b: np.ndarray,
-                    rows=None) -> list[np.ndarray]:
-    """T_V, T_A, T_R, T_J of the double S at (a, b) (arrays (motors, k), or flat arrays
-    at the positions ``rows`` of such an array)."""
-    shape = np.shape(a) if rows is None else rows[1]
-    S = _scales_like(scales, shape, None if rows is None else rows[0])
-    return _bounds(S, scales.dwell, *double_s_coefficients(a, b))
-
-
-def trapezoid_duration(scales: BoundScales, a: np.ndarray) -> np.ndarray:
-    """T_min of the trapezoid at alpha = a (array (motors, k)): the largest bound."""
-    return np.max(np.stack(trapezoid_bounds(scales, a)), axis=0)
-
-
-def double_s_duration(scales: BoundScales, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """T_min of the double S at (a, b) (arrays (motors, k)): the largest bound."""
-    return np.max(np.stack(double_s_bounds(scales, a, b)), axis=0)
-
-
-# -------------------------------------------------------------------------- optima
-def optimal_trapezoid(scales: BoundScales, low: float, high: float = HALF) -> OptimalShape:
-    """alpha in [low, high] minimizing T_min, per motor: the candidates enumerated."""
-    n = len(scales.speed)
-    special = np.array([low, min(max(1.0 / 3.0, low), high), high])
-    candidates = [np.broadcast_to(special, (n, 3))]
-    for i, j in ((0, 1), (0, 2), (1, 2)):
-        def gap(a, i=i, j=j):
-            return _log_gap(trapezoid_bounds(scales, a), i, j)
-        candidates.append(_crossing(gap, n, low, high)[:, None])
-    a = np.concatenate(candidates, axis=1)
-    T = trapezoid_duration(scales, a)
-    best = np.argmin(np.where(np.isnan(T), np.inf, T), axis=1)
-    rows = np.arange(n)
-    return _finish(scales, {"alpha": a[rows, best]}, T[rows, best], {"alpha": 1.0 / 3.0})
-
-
-def optimal_double_s(scales: BoundScales, low_a: float, low_b: float,
-                     high_a: float = HALF, high_b: float = HALF) -> OptimalShape:
-    """(alpha, beta) minimizing T_min per motor: beta exact for each alpha, alpha by a
-    dense sample polished with golden section."""
-    n = len(scales.speed)
-
-    def reduced(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        b = best_beta(scales, a, low_b, high_b)
-        return double_s_duration(scales, a, b), b
-
-    grid = sorted_unique(np.concatenate((np.linspace(low_a, high_a, SAMPLES),
-                                     [min(max(1.0 / 3.0, low_a), high_a)])))
-    T_grid, _ = reduced(np.broadcast_to(grid, (n, len(grid))).copy())
-    best = np.argmin(np.where(np.isnan(T_grid), np.inf, T_grid), axis=1)
-    lo = grid[np.maximum(best - 1, 0)]
-    hi = grid[np.minimum(best + 1, len(grid) - 1)]
-    a = _golden(lambda x: reduced(x[:, None])[0][:, 0], lo, hi)
-    candidates = np.column_stack((a, grid[best]))
-    T, b = reduced(candidates)
-    pick = np.argmin(np.where(np.isnan(T), np.inf, T), axis=1)
-    rows = np.arange(n)
-    params = {"alpha": candidates[rows, pick], "beta": b[rows, pick]}
-    return _finish(scales, params, T[rows, pick], {"alpha": 1.0 / 3.0, "beta": 0.25})
-
-
-def best_beta(scales: BoundScales, a: np.ndarray, low: float, high: float = HALF) -> np.ndarray:
-    """For each alpha (array (motors, k)), the beta minimizing max(T_A, T_R, T_J).
-
-    T_A and T_R increase with beta, T_J decreases: the best beta is where the larger of
-    the first two meets T_J (the smaller of the two crossings), or an end of [low, high].
-    T_A = T_J is the quadratic b^2/(1-b) = S_J^2 P_j^2/(S_A^3 P^3) (P = 1/(a(1-a)),
-    P_j = P/a); T_R = T_J, i.e. T_J^3 (T_J + dwell) = (C_a_rms S_R)^2, is a 1-D root.
-    """
-    a = np.asarray(a, dtype=float)
-    _, S_A, S_R, S_J = _scales_like(scales, a.shape)
-    P = 1.0 / (a * (1.0 - a))
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        c = S_J**2 * (P / a) ** 2 / (S_A**3 * P**3)
-        b_aj = np.where(np.isinf(c), 1.0, 2.0 * c / (c + np.sqrt(c * c + 4.0 * c)))
-    beta = np.clip(b_aj, low, high)
-    if scales.rms.any():
-        def gap(b: np.ndarray, where: np.ndarray) -> np.ndarray:
-            aa, bb = a.reshape(-1)[where], b
-            _, _, c_a_rms, c_j = double_s_coefficients(aa, bb)
-            T_j = np.cbrt(c_j * S_J.reshape(-1)[where])
-            # T_R > T_J exactly where T_J^3 (T_J + dwell) < (C_a_rms S_R)^2
-            with np.errstate(divide="ignore"):
-                return (2.0 * np.log(c_a_rms * S_R.reshape(-1)[where])
-                        - np.log(T_j**3 * (T_j + scales.dwell)))
-
-        every = np.arange(a.size)
-        f_low = gap(np.full(a.size, low), every)
-        f_top = gap(beta.reshape(-1), every)
-        cross = (f_low < 0.0) & (f_top > 0.0)
-        flat = beta.reshape(-1).copy()
-        flat[f_low >= 0.0] = low
-        if cross.any():
-            where = np.flatnonzero(cross)
-            # in log(beta), where T_J ~ beta^(-1/3) makes the gap nearly linear
-            flat[where] = np.exp(log_gap_root(lambda u, i: gap(np.exp(u), where[i]),
-                                              np.full(len(where), math.log(low)),
-                                              np.log(flat[where]), f_low[where],
-                                              f_top[where]))
-        beta = flat.reshape(a.shape)
-    return np.where(S_J > 0.0, beta, low)
-
-
-# ------------------------------------------------------------------------- helpers
-def _log_gap(bounds: list[np.ndarray], i: int, j: int) -> np.ndarray:
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return np.log(bounds[i]) - np.log(bounds[j])
-
-
-def _crossing(gap, n: int, low: float, high: float) -> np.ndarray:
-    """Where gap(a) (arrays (n, 1) -> (n, 1)) changes sign in [low, high], else low."""
-    lo, hi = np.full(n, low), np.full(n, high)
-    f_lo, f_hi = gap(lo[:, None])[:, 0], gap(hi[:, None])[:, 0]
-    root = np.full(n, low)
-    sign_change = np.isfinite(f_lo) & np.isfinite(f_hi) & (np.sign(f_lo) * np.sign(f_hi) < 0)
-    if sign_change.any():
-        idx = np.nonzero(sign_change)[0]
-
-        def restricted(x: np.ndarray, i: np.ndarray) -> np.ndarray:
-            full = np.full(n, low)
-            full[idx[i]] = x
-            return gap(full[:, None])[idx[i], 0]
-
-        root[idx] = log_gap_root(restricted, lo[idx], hi[idx], f_lo[idx], f_hi[idx])
-    return root
-
-
-def log_gap_root(f, lo: np.ndarray, hi: np.ndarray, f_lo: np.ndarray, f_hi: np.ndarray,
-                 ftol: float = 1e-15) -> np.ndarray:
-    """Roots of a log-ratio of two bounds, f(x, i) for the elements i, bracketed by
-    [lo, hi] with f_lo, f_hi of opposite signs: Illinois steps on the unsettled elements
-    until |f| <= ftol (the bounds equal to 1e-15 relative) or the bracket is one ulp."""
-    lo, hi, f_lo, f_hi = (np.array(x, dtype=float) for x in (lo, hi, f_lo, f_hi))
-    root = 0.5 * (lo + hi)
-    side = np.zeros(lo.shape)
-    active = np.arange(len(lo))
-    for step in range(200):
-        if not len(active):
-            break
-        a, b, fa, fb = lo[active], hi[active], f_lo[active], f_hi[active]
-        with np.errstate(invalid="ignore", divide="ignore"):
-            x = (a * fb - b * fa) / (fb - fa)
-        bad = ~np.isfinite(x) | (x <= a) | (x >= b) | (step % 8 == 7)
-        x = np.where(bad, 0.5 * (a + b), x)
-        fx = f(x, active)
-        done = (np.abs(fx) <= ftol) | (b - a <= 4e-16 * np.maximum(np.abs(a), np.abs(b)))
-        root[active] = x
-        same = np.sign(fx) == np.sign(fa)  # root in [x, b]: move lo
-        s = side[active]
-        fb = np.where(same & (s == -1), 0.5 * fb, fb)
-        fa = np.where(~same & (s == 1), 0.5 * fa, fa)
-        lo[active], f_lo[active] = np.where(same, x, a), np.where(same, fx, fa)
-        hi[active], f_hi[active] = np.where(same, b, x), np.where(same, fb, fx)
-        side[active] = np.where(same, -1, 1)
-        active = active[~done]
-    return root
-
-
-def _golden(f, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
-    """Per-element golden-section minimum of f on [lo, hi] to a width of GOLDEN_WIDTH."""
-    lo, hi = lo.astype(float).copy(), hi.astype(float).copy()
-    x1, x2 = interior_points(lo, hi)
-    bracket = (lo, hi, x1, x2, f(x1), f(x2))
-    while np.any(bracket[1] - bracket[0] > GOLDEN_WIDTH):
-        bracket = golden_step(f, bracket, bracket[4] <= bracket[5])  # min in [lo, x2]
-    _, _, x1, x2, f1, f2 = bracket
-    return np.where(f1 <= f2, x1, x2)
-
-
-def _finish(scales: BoundScales, params: dict[str, np.ndarray], duration: np.ndarray,
-            default: dict[str, float]) -> OptimalShape:
-    """Infeasible motors keep the default shape (for reporting) and T = inf."""
-    ok = scales.feasible & np.isfinite(duration)
-    params = {k: np.where(ok, v, default[k]) for k, v in params.items()}
-    return OptimalShape(params, np.where(ok, duration, np.inf))
-
-
-# --------------------------------------------------------------------------- entry
-def bound_scales(calculator, limits) -> BoundScales:
-    """The scales of the bounds for the candidates of a CycleCalculator (law unused):
-    those of eq. (6.2) in sizer.sizing.shortest_duration, zeroed where one is infinite (no shape
-    can meet it: ``feasible`` False)."""
-    raw = duration_bounds(calculator, limits)
-    scales = (raw.speed, raw.torque, raw.rms, raw.jerk)
-    feasible = np.all(np.isfinite(np.stack(scales)), axis=0)
-    speed, torque, rms, jerk = (np.where(feasible, s, 0.0) for s in scales)
-    return BoundScales(speed, torque, rms, jerk, dwell=raw.dwell, feasible=feasible)
 
 
 GRID = {1: 13, 2: 7, 3: 4}
@@ -686,42 +375,6 @@ def search_range(law_id: str, p: Parameter, inset: float) -> tuple[float, float]
     span = high - low
     return (low + (inset * span if p.low_open and low == p.low else 0.0),
             high - (inset * span if p.high_open and high == p.high else 0.0))
-
-
-def exact_time_optimal(family: type[MotionLaw], fixed: dict[str, float],
-                       ranges: dict[str, tuple[float, float]], design: Design,
-                       candidates: Candidates) -> tuple[dict[str, np.ndarray], np.ndarray] | None:
-    """The exact optimum where it is known (minimize mode, book's case), else None.
-
-    With it, the mask of the motors left to the search: those whose region goes on past
-    the flat part the exact optimum sees, where the optimum reaches the end of it
-    (sizer.sizing.shortest_duration.beyond_flat_part).
-    """
-    if not design.machine_cycle.minimize or family not in (Trapezoidal, DoubleS) \
-            or design.transmission.linkage is not None:  # the book's case has no linkage
-        return None
-    if "alpha_d" in fixed or "beta_d" in fixed:  # the closed form is the symmetric law's
-        return None
-    motors = candidates.motors
-    calculator = CycleCalculator(None, single_task(design), candidates.drive, motors,
-                                 design.limits.thermal_speed)
-    if not is_purely_inertial(calculator):
-        return None
-    scales = bound_scales(calculator, design.limits)
-    if family is Trapezoidal:
-        if design.limits.max_jerk is not None:  # infinite jerk: no alpha is feasible
-            return {"alpha": np.full(len(motors), 1.0 / 3.0)}, np.zeros(len(motors), bool)
-        solution = optimal_trapezoid(scales, *ranges["alpha"])
-    else:
-        given = {p.name: float(p.default) for p in family.parameters
-                 if p.default is not None} | fixed
-        a = ranges.get("alpha", (given["alpha"],) * 2)
-        b = ranges.get("beta", (given["beta"],) * 2)
-        solution = optimal_double_s(scales, a[0], b[0], a[1], b[1])
-    alpha = solution.params.get("alpha", np.full(len(motors), fixed.get("alpha", 0.0)))
-    # C_v = 1/(1 - alpha) for both families (sec. 3.2, 3.4)
-    beyond = beyond_flat_part(calculator, design.limits, solution.duration, 1.0 / (1.0 - alpha))
-    return {name: solution.params[name] for name in ranges}, beyond
 
 
 FixedLawSizing = Callable[[Design, MotionLaw, Candidates], CandidateTable]
