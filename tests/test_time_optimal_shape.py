@@ -1,4 +1,4 @@
-"""The exact time-optimal trapezoid and double S (sizer.sizing.time_optimal_shape) against
+"""The exact time-optimal trapezoid and double S (sizer.sizing.optimal_shapes) against
 independent computations: Ruckig (time-optimal 1-DOF rest-to-rest profiles under speed,
 acceleration and jerk limits) and a constrained minimization (scipy SLSQP) of the test's
 own formulation with the peak-torque and RMS bounds."""

@@ -23,7 +23,8 @@ C_a_rms = sqrt((6-8b)/(3a))/((1-a)(1-b)): in b, T_A and T_R increase and T_J dec
 so for a given a the best b is where max(T_A, T_R) meets T_J (a 1-D root), or an end of
 the range. What remains is a function of a alone, the largest of smooth pieces; its
 minimum (a minimum of one piece or a crossing of two) is bracketed on a dense sample
-that contains the special points and located by golden section to 1e-13 in a.
+that contains the special points and located by golden section to 1e-13 in a. Where T_R
+does not bind and the optimum lies in the ranges, it is the book's closed form (sec. 3.4.3).
 """
 
 from __future__ import annotations
@@ -37,7 +38,7 @@ from sizer.laws import MotionLaw
 from sizer.laws.piecewise_polynomial import DoubleS, Trapezoidal
 from sizer.model.domain import Design
 from sizer.numerics.arrays import sorted_unique
-from sizer.numerics.golden import golden_step, interior_points
+from sizer.numerics.golden import INV_PHI, golden_step, interior_points
 from sizer.sizing.candidates import Candidates
 from sizer.sizing.cycle import single_task
 from sizer.sizing.move import CycleCalculator
@@ -63,6 +64,11 @@ class BoundScales:
     jerk: np.ndarray
     dwell: float
     feasible: np.ndarray
+
+    def take(self, rows: np.ndarray) -> BoundScales:
+        """The scales of the motors ``rows``."""
+        return BoundScales(self.speed[rows], self.torque[rows], self.rms[rows],
+                           self.jerk[rows], self.dwell, self.feasible[rows])
 
 
 @dataclass(frozen=True)
@@ -173,8 +179,65 @@ def optimal_trapezoid(scales: BoundScales, low: float, high: float = HALF) -> Op
 
 def optimal_double_s(scales: BoundScales, low_a: float, low_b: float,
                      high_a: float = HALF, high_b: float = HALF) -> OptimalShape:
-    """(alpha, beta) minimizing T_min per motor: beta exact for each alpha, alpha by a
-    dense sample polished with golden section."""
+    """(alpha, beta) in [low_a, high_a] x [low_b, high_b] minimizing T_min per motor: the
+    book's closed form (:func:`time_optimal_double_s`) where it is the optimum, else
+    :func:`searched_double_s`.
+
+    The closed form is the minimum-time move under the speed, acceleration and jerk limits
+    (sec. 3.4; Ruckig's, tests/test_double_s_closed_form.py): it minimizes max(T_V, T_A,
+    T_J) over every double S, (a, b) in (0, 1/2]^2 (b = low_b without a jerk limit). It is
+    the optimum here where (a) T_R <= T at it: adding the bound T_R cannot lower the
+    minimum, and this point meets it; and (b) (alpha, beta) lies in the box: a minimum
+    over a set, attained in a subset, is the subset's minimum. Infeasible motors are left
+    to _finish, the others to the search.
+    """
+    alpha, beta, T = time_optimal_double_s(scales, low_b)
+    with np.errstate(invalid="ignore"):
+        exact = (scales.feasible & np.isfinite(T) & (T > 0.0) & (alpha >= low_a)
+                 & (alpha <= high_a) & (beta >= low_b) & (beta <= high_b))
+    if scales.rms.any() and exact.any():
+        _, _, c_a_rms, _ = double_s_coefficients(alpha[exact], beta[exact])
+        exact[exact] = rms_time(c_a_rms * scales.rms[exact], scales.dwell) <= T[exact]
+    params = {"alpha": alpha, "beta": beta}
+    rest = np.flatnonzero(scales.feasible & ~exact)
+    if len(rest):
+        found, T[rest] = searched_double_s(scales.take(rest), low_a, low_b, high_a, high_b)
+        for name, value in found.items():
+            params[name][rest] = value
+    return _finish(scales, params, T, {"alpha": 1.0 / 3.0, "beta": 0.25})
+
+
+def time_optimal_double_s(scales: BoundScales,
+                          low_b: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """alpha = T_a/T, beta = T_j/T_a and T of the time-optimal rest-to-rest double S under
+    the speed, acceleration and jerk scales (T_R left out), vectorized: book sec. 3.4.3 with
+    h = 1, v_max = 1/S_V, a_max = 1/S_A, j_max = 1/S_J (a zero scale: no such limit), its
+    cases whether v_max and a_max are reached. Without a jerk limit beta = low_b (T_A
+    increases with beta, T_J = 0): the trapezoid with S_A/(1 - low_b) (sec. 3.2), the same
+    formulas with T_j = 0. nan where no limit bounds the move.
+    """
+    S_V, S_J = scales.speed, scales.jerk
+    S_A = np.where(S_J > 0.0, scales.torque, scales.torque / (1.0 - low_b))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        # case 1, v_max reached (T_v >= 0): a_max reached iff v_max j_max >= a_max^2
+        reached = S_A * S_A >= S_V * S_J
+        T_j = np.where(reached, S_J / S_A, np.sqrt(S_J / S_V))
+        T_a = np.where(reached, T_j + S_A / S_V, 2.0 * T_j)
+        slow = ~(T_a <= S_V)
+        # case 2, v_max not reached: a_max reached iff h >= 2 a_max^3 / j_max^2
+        reached = S_A**3 >= 2.0 * S_J * S_J
+        T_j2 = np.where(reached, S_J / S_A, np.cbrt(0.5 * S_J))
+        T_a2 = np.where(reached, 0.5 * T_j2 + np.sqrt(0.25 * T_j2 * T_j2 + S_A), 2.0 * T_j2)
+        T_j, T_a = np.where(slow, T_j2, T_j), np.where(slow, T_a2, T_a)
+        T = np.where(slow, 2.0 * T_a, T_a + S_V)
+        return T_a / T, np.where(S_J > 0.0, T_j / T_a, low_b), T
+
+
+def searched_double_s(scales: BoundScales, low_a: float, low_b: float, high_a: float,
+                      high_b: float) -> tuple[dict[str, np.ndarray], np.ndarray]:
+    """(alpha, beta) minimizing T_min per motor and T_min there, searched: beta exact for
+    each alpha, alpha by a dense sample polished with golden section (each motor's result
+    independent of the others': every bracket takes the steps of the widest)."""
     n = len(scales.speed)
 
     def reduced(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -185,15 +248,17 @@ def optimal_double_s(scales: BoundScales, low_a: float, low_b: float,
                                      [min(max(1.0 / 3.0, low_a), high_a)])))
     T_grid, _ = reduced(np.broadcast_to(grid, (n, len(grid))).copy())
     best = np.argmin(np.where(np.isnan(T_grid), np.inf, T_grid), axis=1)
-    lo = grid[np.maximum(best - 1, 0)]
-    hi = grid[np.minimum(best + 1, len(grid) - 1)]
-    a = _golden(lambda x: reduced(x[:, None])[0][:, 0], lo, hi)
+
+    def bracket(i: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return grid[np.maximum(i - 1, 0)], grid[np.minimum(i + 1, len(grid) - 1)]
+
+    widest = float(np.max(np.subtract(*bracket(np.arange(len(grid)))[::-1])))
+    a = _golden(lambda x: reduced(x[:, None])[0][:, 0], *bracket(best), widest)
     candidates = np.column_stack((a, grid[best]))
     T, b = reduced(candidates)
     pick = np.argmin(np.where(np.isnan(T), np.inf, T), axis=1)
     rows = np.arange(n)
-    params = {"alpha": candidates[rows, pick], "beta": b[rows, pick]}
-    return _finish(scales, params, T[rows, pick], {"alpha": 1.0 / 3.0, "beta": 0.25})
+    return {"alpha": candidates[rows, pick], "beta": b[rows, pick]}, T[rows, pick]
 
 
 def best_beta(scales: BoundScales, a: np.ndarray, low: float, high: float = HALF) -> np.ndarray:
@@ -293,13 +358,15 @@ def log_gap_root(f, lo: np.ndarray, hi: np.ndarray, f_lo: np.ndarray, f_hi: np.n
     return root
 
 
-def _golden(f, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
-    """Per-element golden-section minimum of f on [lo, hi] to a width of GOLDEN_WIDTH."""
+def _golden(f, lo: np.ndarray, hi: np.ndarray, widest: float = 0.0) -> np.ndarray:
+    """Per-element golden-section minimum of f on [lo, hi] to a width of GOLDEN_WIDTH, in
+    at least the steps that take a bracket ``widest`` wide there."""
     lo, hi = lo.astype(float).copy(), hi.astype(float).copy()
     x1, x2 = interior_points(lo, hi)
     bracket = (lo, hi, x1, x2, f(x1), f(x2))
-    while np.any(bracket[1] - bracket[0] > GOLDEN_WIDTH):
+    while np.any(bracket[1] - bracket[0] > GOLDEN_WIDTH) or widest > GOLDEN_WIDTH:
         bracket = golden_step(f, bracket, bracket[4] <= bracket[5])  # min in [lo, x2]
+        widest *= INV_PHI
     _, _, x1, x2, f1, f2 = bracket
     return np.where(f1 <= f2, x1, x2)
 
