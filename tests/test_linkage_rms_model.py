@@ -19,7 +19,7 @@ from sizer.laws import law_choice
 from sizer.mechanics.drive import Drive
 from sizer.model.domain import Motor
 from sizer.sizing.candidates import MotorArrays
-from sizer.sizing.linkage_move import LinkageCycle, linkage_calculator, peak_crossing
+from sizer.sizing.linkage_move import LinkageCycle, linkage_calculator
 from sizer.sizing.shortest_duration import bisect_duration, minimum_duration
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -78,20 +78,29 @@ def test_cycle_thermal_speed_is_the_evaluated_one():
                            calculator.evaluate(s).thermal_speed[index], rtol=1e-14, atol=0.0)
 
 
-def test_peak_crossing_is_where_the_peak_check_reaches_its_limit():
-    calculator, design = _press(8)
+@pytest.mark.parametrize("file", ["press-slider-crank-cycle.yaml", "press-slider-crank.yaml"])
+def test_peak_floor_is_where_the_peak_check_starts_to_pass_for_good(file):
+    calculator, design = _press(8, file)
     limits = design.limits
     low = calculator.speed_bound(limits)
-    crossing = peak_crossing(calculator, limits, low)
+    floor = calculator.search_start(limits)
     grip = 1.0 - limits.torque_margin
-    at = calculator.evaluate(crossing).peak_ratio
-    moved = crossing > low  # the peak fails at the speed bound: a crossing above it
+    finite = np.isfinite(floor)
+    assert finite.any() and np.all(floor[finite] >= low[finite])
+    moved = finite & (floor > low * (1.0 + 1e-12))  # the peak binds above the speed bound
     assert moved.any()
-    assert np.all(at[moved] <= grip) and np.allclose(at[moved], grip, rtol=1e-11, atol=0.0)
-    below = calculator.evaluate(crossing * (1.0 - 1e-8)).peak_ratio
+    at = calculator.evaluate(np.where(finite, floor, 1.0)).peak_ratio
+    assert np.all(at[moved] <= grip * (1.0 + 1e-12))
+    assert np.allclose(at[moved], grip, rtol=1e-9, atol=0.0)
+    below = calculator.evaluate(np.where(moved, floor * (1.0 - 1e-7), 1.0)).peak_ratio
     assert np.all(below[moved] > grip)
-    at_low = calculator.evaluate(low).peak_ratio
-    assert np.all(at_low[~moved & np.isfinite(crossing)] <= grip)
+    for factor in (1.0 + 1e-9, 1.3, 2.0, 5.0, 40.0):  # and it passes at every longer one
+        later = calculator.evaluate(np.where(finite, floor * factor, 1.0)).peak_ratio
+        assert np.all(later[finite] <= grip * (1.0 + 1e-12))
+    # inf: no duration passes (the ratio does not fall below the limit however long)
+    for factor in (1.0, 10.0, 1e3):
+        never = calculator.evaluate(np.where(finite, 1.0, low * factor)).peak_ratio
+        assert np.all(never[~finite] > grip)
 
 
 @pytest.mark.parametrize("file", ["press-slider-crank-cycle.yaml", "press-slider-crank.yaml"])

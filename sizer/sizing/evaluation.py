@@ -167,9 +167,10 @@ class CycleModel(Protocol):
         ...
 
     def search_start(self, limits: Limits) -> np.ndarray | None:
-        """Where the RMS crossing starts for the candidates whose peak bound is 0 (no
-        answer there): a duration below which a check fails, the speed bound through a
-        linkage; None: only from a usable peak bound."""
+        """Where the searches start for the candidates whose peak bound is 0 (no answer
+        there): a duration below which a check fails and from which on the peak check
+        passes (through a linkage the larger of the speed bound and the peak floor; inf:
+        no duration passes them); None: from a usable peak bound or the initial guess."""
         ...
 
     def initial_guess(self) -> np.ndarray:

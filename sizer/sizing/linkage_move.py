@@ -42,13 +42,12 @@ from sizer.laws.quadrature import gauss_legendre
 from sizer.mechanics.drive import Drive
 from sizer.model.cycle import Move, Run, from_task, shorthand_task
 from sizer.model.domain import Design, Limits, LinkageStage, Load, Task
-from sizer.numerics.roots import illinois
 from sizer.sizing.candidates import MotorArrays
 from sizer.sizing.checks import evaluate_checks, worst_slack
 from sizer.sizing.cycle import CycleRmsModel, cycle_laws, given_scale, segment_load
 from sizer.sizing.evaluation import CycleMetrics, CyclePiece, SegmentPart, held_piece
 from sizer.sizing.move import rms_of_powers, rule_speed
-from sizer.sizing.shortest_duration import EXPANSIONS, mechanical_answer
+from sizer.sizing.shortest_duration import mechanical_answer
 
 PEAK_POINTS = 4001
 """Uniform samples of u in [0, 1] where the peaks are read (with the law's breakpoints):
@@ -349,6 +348,7 @@ class LinkageCalculator:
                  motors: MotorArrays, thermal_rule: str, law: MotionLaw | None) -> None:
         self.profile, self.task, self.drive, self.motors = profile, task, drive, motors
         self.thermal_rule, self.law = thermal_rule, law
+        self._start: tuple[Limits, np.ndarray] | None = None  # search_start's
 
     def reported(self, metrics: CycleMetrics) -> np.ndarray:
         """The duration a result reports: the one :meth:`evaluate` gives."""
@@ -396,14 +396,8 @@ class LinkageCalculator:
                                  self.motors.subset(index), self.thermal_rule, self.law)
 
     def peak_bound(self, limits: Limits) -> np.ndarray:
-        """The peak crossing above the speed bound where it is the shortest duration
-        (:func:`peak_crossing`, :func:`answer_bound`)."""
-        return answer_bound(self, limits, peak_crossing(self, limits, self.speed_bound(limits)))
-
-    def peak_ratio_at(self, T: np.ndarray) -> np.ndarray:
-        """The peak ratio of :meth:`evaluate` at durations T, alone."""
-        speed, torque, _ = self.motor_samples(T)
-        return peak_ratio(self.motors, torque, speed)
+        """The search start where it is the shortest duration (:func:`answer_bound`)."""
+        return answer_bound(self, limits, self.search_start(limits))
 
     def speed_bound(self, limits: Limits) -> np.ndarray:
         """The duration where the motor's peak speed, N max|theta'(u)| / T (read as
@@ -416,8 +410,12 @@ class LinkageCalculator:
             return np.where(limit > 0.0, fastest / limit, np.inf)
 
     def search_start(self, limits: Limits) -> np.ndarray:
-        """The speed bound: below it the speed check fails (CycleModel)."""
-        return self.speed_bound(limits)
+        """The larger of the speed bound and the peak floor (:func:`peak_floor`): below
+        it the speed or the peak check fails, from it on the peak check passes (inf: no
+        duration passes them); computed once per calculator and limits."""
+        if self._start is None or self._start[0] is not limits:
+            self._start = (limits, peak_floor(self, limits, self.speed_bound(limits)))
+        return self._start[1]
 
     def rms_lower_bound(self) -> None:
         return None  # none known through a linkage (sizer.sizing.evaluation.CycleModel)
@@ -719,6 +717,7 @@ class LinkageCycle:
         heaviest = max(profiles, key=lambda p: p.max_inertia)
         self.drive = crank_drive(design, drive, heaviest)
         self.task = Task(cycle.moves[0].displacement, None, linear=cycle.linear)
+        self._start: tuple[Limits, np.ndarray] | None = None  # search_start's
 
     def dead_point_issues(self) -> tuple[str, ...]:
         """The dead-point rule broken by any move, each named by its segment."""
@@ -805,29 +804,35 @@ class LinkageCycle:
                 return [rows(v) for v in x]
             return np.asarray(x)[index] if np.ndim(x) and len(x) == n else x
 
+        out._start = None
         out.known = {i: {k: rows(v) for k, v in figures.items()}
                      for i, figures in self.known.items()}
         return out
 
     def peak_bound(self, limits: Limits) -> np.ndarray:
-        """The peak crossing above the speed bound where it is the shortest scale
-        (:func:`peak_crossing`, :func:`answer_bound`)."""
-        return answer_bound(self, limits, peak_crossing(self, limits, self.speed_bound(limits)))
+        """The search start where it is the shortest scale (:func:`answer_bound`)."""
+        return answer_bound(self, limits, self.search_start(limits))
 
-    def peak_ratio_at(self, s: np.ndarray) -> np.ndarray:
-        """The peak ratio of :meth:`evaluate` at scales s, alone: the largest over the
-        moves (the fixed ones known) and the dwells' holding."""
+    def peak_floor(self, limits: Limits) -> np.ndarray:
+        """The scale below which the speed or the peak check fails and from which on the
+        peak check passes: the largest of the free moves' (:func:`peak_floor`, each from
+        its speed bound) over their weights; inf where a part that does not scale (a move
+        of fixed duration, a dwell's holding) fails it."""
         n, N, eta = len(self.motors), self.drive.ratio, self.drive.efficiency
-        ratios = []
-        for i, (part, T) in enumerate(zip(self.parts, self.durations(s), strict=True)):
+        grip = 1.0 - limits.torque_margin
+        floor = np.zeros(n)
+        for i, (part, w) in enumerate(zip(self.parts, self.weights, strict=True)):
             if isinstance(part, HeldDwell):
                 hold = np.broadcast_to(abs(part.hold) / (N * eta), (n,))
-                ratios.append(peak_ratio(self.motors, hold[:, None], np.zeros((n, 1))))
+                fixed = peak_ratio(self.motors, hold[:, None], np.zeros((n, 1)))
             elif np.isfinite(self.fixed[i]):
-                ratios.append(self.fixed_figures(i)["peak_ratio"])
+                fixed = self.fixed_figures(i)["peak_ratio"]
             else:
-                ratios.append(move_calculator(self, part).peak_ratio_at(T))
-        return np.max([np.broadcast_to(r, (n,)) for r in ratios], axis=0)
+                move = move_calculator(self, part)
+                floor = np.maximum(floor, peak_floor(move, limits, move.speed_bound(limits)) / w)
+                continue
+            floor = np.where(fixed > grip, np.inf, floor)
+        return floor
 
     def speed_bound(self, limits: Limits) -> np.ndarray:
         """The scale below which the speed check fails: the largest of the free moves'
@@ -840,8 +845,11 @@ class LinkageCycle:
         return bound
 
     def search_start(self, limits: Limits) -> np.ndarray:
-        """The speed bound: below it the speed check fails (CycleModel)."""
-        return self.speed_bound(limits)
+        """The larger of the speed bound and the peak floor (:meth:`peak_floor`; inf: no
+        scale passes them); computed once per calculator and limits."""
+        if self._start is None or self._start[0] is not limits:
+            self._start = (limits, self.peak_floor(limits))
+        return self._start[1]
 
     def rms_lower_bound(self) -> None:
         return None  # none known through a linkage (sizer.sizing.evaluation.CycleModel)
@@ -965,51 +973,142 @@ ROUNDING = 1e-12
 """The slack of a check exactly at its limit, to rounding (:func:`answer_bound`)."""
 
 
-def peak_crossing(calculator: LinkageCalculator | LinkageCycle, limits: Limits,
-                  low: np.ndarray) -> np.ndarray:
-    """Per candidate the scale at or above ``low`` (a bound below which a check fails)
-    where the peak ratio (``peak_ratio_at``) falls to 1 - torque margin: ``low`` where it
-    passes there, else the crossing above it, from steps up by factors of 2 and the
-    project's root finder in log s, returned at the passing end of its bracket (1e-13
-    wide, as the search's); inf where ``low`` is no bound.
+def peak_floor(calculator: LinkageCalculator, limits: Limits, low: np.ndarray) -> np.ndarray:
+    """Per candidate the larger of ``low`` (a duration below which a check fails) and the
+    shortest duration from which on the move's peak check passes (its peak ratio at most
+    1 - torque margin at every longer duration); inf where none.
 
-    Through a linkage the motor torque at each sample is A/T^2 + B/T + C, so the ratio
-    falls with the duration wherever the inertial and damping terms outweigh the static
-    load; where it does not (a load that the motor holds beyond its peak), no longer
-    scale passes either and the search after it says so."""
-    grip = math.log(1.0 - limits.torque_margin)
-    n = len(low)
+    In closed form on the samples (:func:`_sample_floors`). Most samples cannot bind: the
+    one with the largest ratio at ``low`` gives a first floor T0, and a sample passes at
+    every duration past T0 where the largest |P u^2 + Q u + C| for u <= 1/T0 (either
+    direction of the power flow) stays within the least limit at the speeds up to its
+    own at T0; only the others are solved."""
+    p, motors, drive = calculator.profile, calculator.motors, calculator.drive
+    region, grip = motors.intermittent, 1.0 - limits.torque_margin
+    n = len(motors)
     usable = np.isfinite(low) & (low > 0.0)
-    out = np.where(usable, low, np.inf)
-    rows = np.flatnonzero(usable)
-
-    def excess(x: np.ndarray, where: np.ndarray) -> np.ndarray:
-        part = calculator if len(where) == n else calculator.take(where)
-        with np.errstate(divide="ignore"):
-            return np.log(part.peak_ratio_at(np.exp(x))) - grip
-
-    x_lo = np.log(out[rows])
-    g_lo = excess(x_lo, rows)
-    failing = g_lo > 0.0
-    rows, x_lo, g_lo = rows[failing], x_lo[failing], g_lo[failing]
-    x_hi, g_hi = x_lo.copy(), g_lo.copy()
-    falling = np.ones(len(rows), dtype=bool)
-    for _ in range(EXPANSIONS):
-        up = (g_hi > 0.0) & falling
-        if not up.any():
-            break
-        x_lo[up], g_lo[up] = x_hi[up], g_hi[up]
-        x_hi[up] += math.log(2.0)
-        g_hi[up] = excess(x_hi[up], rows[up])
-        falling[up] = g_hi[up] < g_lo[up]  # a ratio that a longer scale does not lower
-    found = g_hi <= 0.0
-    out[rows[~found]] = np.inf
-    rows, x_lo, x_hi, g_lo, g_hi = (v[found] for v in (rows, x_lo, x_hi, g_lo, g_hi))
-    if len(rows):
-        _, hi = illinois(excess, x_lo, x_hi, g_lo, g_hi, xtol=1e-13, args=(rows,),
-                         bracket=True)
-        out[rows] = np.exp(hi)
+    probe = np.where(usable, low, calculator.initial_guess())
+    speed, torque, _ = calculator.motor_samples(probe)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.abs(torque) / region.limit_clipped(speed)
+    rows = np.arange(n)
+    first = _sample_floors(calculator, limits, rows,
+                           np.argmax(np.where(np.isnan(ratio), np.inf, ratio), axis=1))
+    T0 = np.maximum(np.where(usable, low, 0.0), first)
+    N = np.broadcast_to(drive.ratio, (n,))[:, None]
+    eta = np.broadcast_to(drive.efficiency, (n,))[:, None]
+    rotor = (motors.inertia + drive.transmission_inertia)[:, None]
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        u0 = np.where(T0 > 0.0, 1.0 / T0, np.inf)[:, None]
+        bound = np.zeros(torque.shape)
+        for through in (1.0 / (N * eta), eta / N):  # either direction of the power flow
+            P, Q, C = rotor * N * p.theta2 + through * p.inertial, through * p.damping, \
+                through * p.steady
+            vertex = -Q / (2.0 * P)
+            top = np.maximum(np.abs(C), np.abs((P * u0 + Q) * u0 + C))
+            inside = (vertex > 0.0) & (vertex < u0)
+            bound = np.maximum(bound, np.where(inside, np.maximum(top, np.abs(
+                C + Q * vertex / 2.0)), top))
+        reach = np.minimum(np.abs(N * p.theta1) * u0, region.max_speed[:, None])
+        # first against the least limit up to the fastest sample, then each survivor
+        # against the least up to its own speed
+        fastest = reach.max(axis=1)
+        corners = np.where(region.speeds <= fastest[:, None], region.torques, np.inf)
+        ends = region.limit_clipped(np.stack((np.zeros(n), fastest), axis=1)).min(axis=1)
+        cand, sample = np.nonzero(~(bound <= grip * np.minimum(ends, corners.min(axis=1))
+                                    [:, None] * (1.0 - 1e-9)) & np.isfinite(T0)[:, None])
+        own = reach[cand, sample]
+        table = region.take(cand)
+        corners = np.where(table.speeds <= own[:, None], table.torques, np.inf).min(axis=1)
+        least = np.minimum(np.minimum(corners, table.limit_clipped(own[:, None])[:, 0]),
+                           table.limit_clipped(np.zeros((len(cand), 1)))[:, 0])
+        keep = ~(bound[cand, sample] <= grip * least * (1.0 - 1e-9))
+    cand, sample = cand[keep], sample[keep]
+    out = T0.copy()
+    if len(cand):
+        np.maximum.at(out, cand, _sample_floors(calculator, limits, cand, sample))
     return out
+
+
+def _sample_floors(calculator: LinkageCalculator, limits: Limits, cand: np.ndarray,
+                   sample: np.ndarray) -> np.ndarray:
+    """For pairs (candidate, sample) the shortest duration from which on the sample's
+    torque stays within 1 - torque margin of the limit at its speed; inf where none.
+
+    With u = 1/T the motor torque at a sample is P u^2 + Q u + C
+    (:meth:`LinkageCalculator.motor_samples`: P the inertias, Q the damping, C the static
+    load, through the gearbox's efficiency in the power flow's direction, which changes
+    only where the crank torque I u^2 + D u + S does) and the limit a line a + b u on each
+    segment of the region (the speed N |theta'| u, clipped at its end). Between those
+    breakpoints the check is two quadratic inequalities; the first u where one rises
+    above zero is the pair's, and T = 1/u."""
+    p, motors, drive = calculator.profile, calculator.motors, calculator.drive
+    region, grip = motors.intermittent, 1.0 - limits.torque_margin
+    n = len(motors)
+    N = np.broadcast_to(drive.ratio, (n,))[cand][:, None]
+    eta = np.broadcast_to(drive.efficiency, (n,))[cand][:, None]
+    rotor = (motors.inertia + drive.transmission_inertia)[cand][:, None]
+    inert, D, S = (np.broadcast_to(x, p.u.shape)[sample][:, None]
+                   for x in (p.inertial, p.damping, p.steady))
+    theta1, theta2 = p.theta1[sample][:, None], p.theta2[sample][:, None]
+    speeds, torques, top = region.speeds[cand], region.torques[cand], region.max_speed[cand]
+    rate = np.abs(N * theta1)  # the motor speed per unit u
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ends = np.concatenate((np.zeros((len(cand), 1)), _positive_roots(inert, D, S)[:, 0],
+                               speeds[:, 1:] / rate), axis=1)
+    lo = np.sort(np.where(np.isnan(ends) | (ends < 0.0), np.inf, ends), axis=1)
+    hi = np.concatenate((lo[:, 1:], np.full((len(cand), 1), np.inf)), axis=1)
+    middle = np.where(np.isfinite(hi), 0.5 * (lo + hi), np.where(lo > 0.0, 2.0 * lo, 1.0))
+    middle = np.where(np.isfinite(lo), middle, 1.0)
+    at = np.minimum(middle * rate, top[:, None])  # the speed, clipped at the region's end
+    segment = np.clip((speeds[:, None, 1:-1] <= at[:, :, None]).sum(axis=-1), 0,
+                      speeds.shape[1] - 2)
+    row = np.arange(len(cand))[:, None]
+    s0, s1 = speeds[row, segment], speeds[row, segment + 1]
+    t0, t1 = torques[row, segment], torques[row, segment + 1]
+    slope = (t1 - t0) / (s1 - s0)
+    beyond = middle * rate >= top[:, None]
+    a = np.where(beyond, t0 + slope * (top[:, None] - s0), t0 - slope * s0)
+    b = np.where(beyond, 0.0, slope * rate)  # the limit a + b u
+    through = np.where(((inert * middle + D) * middle + S) * theta1 >= 0.0, 1.0 / (N * eta),
+                       eta / N)
+    P, Q, C = rotor * N * theta2 + through * inert, through * D, through * S
+    first = np.minimum(_first_rise(P, Q - grip * b, C - grip * a, lo, hi),
+                       _first_rise(-P, -Q - grip * b, -C - grip * a, lo, hi))
+    u = np.min(np.where(np.isfinite(lo), first, np.inf), axis=1)
+    with np.errstate(divide="ignore"):
+        return np.where(u > 0.0, 1.0 / u, np.inf)
+
+
+def _positive_roots(a2: np.ndarray, a1: np.ndarray, a0: np.ndarray) -> np.ndarray:
+    """The real roots of a2 x^2 + a1 x + a0 (x > 0 or nan), two per element: (..., 2)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        disc = a1 * a1 - 4.0 * a2 * a0
+        root = np.sqrt(disc)
+        q = -0.5 * (a1 + np.copysign(root, a1))
+        r1 = np.where(a2 != 0.0, q / a2, np.where(a1 != 0.0, -a0 / a1, np.nan))
+        r2 = np.where(a2 != 0.0, a0 / q, np.nan)
+    out = np.stack((r1, r2), axis=-1)
+    return np.where((disc[..., None] >= 0.0) & (out > 0.0), out, np.nan)
+
+
+def _first_rise(a2: np.ndarray, a1: np.ndarray, a0: np.ndarray, lo: np.ndarray,
+                hi: np.ndarray) -> np.ndarray:
+    """The least x in [lo, hi) where q = a2 x^2 + a1 x + a0 > 0 (inf: none): lo where q
+    is positive there, else the root where q rises (the larger of a convex q, the
+    smaller of a concave one, a line's with a positive slope) if it lies before hi."""
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        at_lo = (a2 * lo + a1) * lo + a0
+        disc = a1 * a1 - 4.0 * a2 * a0
+        root = np.sqrt(np.maximum(disc, 0.0))
+        q = -0.5 * (a1 + np.copysign(root, a1))
+        x1, x2 = q / a2, a0 / q
+        small, large = np.minimum(x1, x2), np.maximum(x1, x2)
+        rise = np.where(a2 > 0.0, large, np.where(a2 < 0.0, small,
+                                                  np.where(a1 > 0.0, -a0 / a1, np.inf)))
+        rise = np.where((disc >= 0.0) | (a2 == 0.0), rise, np.inf)
+        inside = (rise > lo) & (rise < hi)
+    return np.where(at_lo > 0.0, lo, np.where(inside, rise, np.inf))
 
 
 def linkage_figures(calculator: LinkageCalculator | LinkageCycle, s: np.ndarray

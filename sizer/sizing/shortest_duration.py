@@ -173,12 +173,17 @@ def _from_bound(calculator: CycleModel, limits: Limits,
     if not rest.any() and not np.isnan(at).any():
         return DurationSolution(np.where(ok, probe, np.nan), ok, metrics, checks, method)
     method += " and searches"
+    floor = calculator.search_start(limits)
     rest &= ~rms_unreachable(calculator, limits)  # no duration meets the RMS check
-    start = np.where(usable, bound, calculator.initial_guess())
+    if floor is not None:  # below it a check fails: inf, at every duration
+        rest &= np.isfinite(floor)
+    guess = calculator.initial_guess()
+    if floor is not None:  # from it on the peaks pass (the linkage's peak floor)
+        guess = np.where(np.isfinite(floor) & (floor > 0.0), floor, guess)
+    start = np.where(usable, bound, guess)
     T = np.where(ok, bound, np.inf)
 
     known = np.full(len(T), np.nan)  # the RMS at the crossings found, from their models
-    floor = calculator.search_start(limits)
     # where the RMS crossing starts: the bound, else (where the model gives one) a
     # duration below which a check fails; the crossing above it is then the shortest
     # duration the RMS check allows, verified below with every check
