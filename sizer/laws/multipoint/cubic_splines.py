@@ -24,7 +24,8 @@ The time instants t_k of a spline through positions q_k (sec. 4.4.6):
 - ``auto`` (not in the book): the interior times that minimize the peak or the RMS
   acceleration of the spline for a fixed total time; scipy.optimize SLSQP from the equal
   times, the intervals as a softmax of free variables (always positive, summing to the
-  duration), so the times stay strictly increasing.
+  duration), so the times stay strictly increasing; exact derivatives of the knot
+  accelerations by implicit differentiation of the spline's system.
 - ``minimize: duration`` under velocity/acceleration/jerk limits: the book's iteration
   (4.39), each interval scaled by lambda_k = max{lambda_v,k, lambda_a,k, lambda_j,k} and
   the spline recomputed, until the intervals settle (Example 4.15).
@@ -33,7 +34,7 @@ The time instants t_k of a spline through positions q_k (sec. 4.4.6):
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
@@ -163,26 +164,6 @@ def _scipy_spline(t: np.ndarray, q: np.ndarray, bc_type: Any):
 def clamped_spline(t: np.ndarray, q: np.ndarray, v0: float = 0.0, vn: float = 0.0):
     """The spline with end velocities v_0, v_n (sec. 4.4.1): CubicSpline, bc ((1,v0),(1,vn))."""
     return _scipy_spline(t, q, ((1, float(v0)), (1, float(vn))))
-
-
-def _clamped_spline_unchecked(t: np.ndarray, q: np.ndarray, v0: float = 0.0,
-                              vn: float = 0.0):
-    """:func:`clamped_spline` of float arrays, 3 or more points, bit for bit: scipy's
-    CubicSpline system (4.10) by the same LAPACK gtsv, then its Hermite coefficients,
-    without the per-call checks (the inner step of ``times: auto``)."""
-    from scipy.interpolate import PPoly
-    from scipy.linalg.lapack import dgtsv
-
-    dx = np.diff(t)
-    slope = np.diff(q) / dx
-    d = np.concatenate([[1.0], 2 * (dx[:-1] + dx[1:]), [1.0]])
-    b = np.concatenate([[v0], 3 * (dx[1:] * slope[:-1] + dx[:-1] * slope[1:]), [vn]])
-    *_, s, info = dgtsv(np.append(dx[1:], 0.0), d, np.append(0.0, dx[:-1]), b, 1, 1, 1, 1)
-    if info != 0:
-        return clamped_spline(t, q, v0, vn)  # singular: scipy's own error
-    h = (s[:-1] + s[1:] - 2 * slope) / dx
-    return PPoly.construct_fast(np.stack((h / dx, (slope - s[:-1]) / dx - h, s[:-1], q[:-1])),
-                                t)
 
 
 def natural_spline(t: np.ndarray, q: np.ndarray):
@@ -354,12 +335,13 @@ DISTRIBUTIONS = ("equal", "chord", "centripetal")
 OBJECTIVES = ("peak_acceleration", "rms_acceleration")
 TIME_WORDS = (*DISTRIBUTIONS, "auto")
 
-_FD_STEP = float(np.sqrt(np.finfo(float).eps))
-"""SLSQP's default finite-difference step (scipy's ``_epsilon``)."""
-
 _SOFTMAX_BOUND = 5.0
-"""Bound on the free variables: no interval shorter than e^-10 times another (keeps the
-spline systems well conditioned during the search)."""
+"""Bound on the free variables: every interval between e^-5 and e^5 times the first one
+(keeps the spline systems well conditioned during the search)."""
+
+_FREE_SCALE = 10.0
+"""SLSQP's variables are y / 10: its first quasi-Newton metric (the identity) fits better (a
+third of the iterations of y itself on the 32 points of bench_axes.py --case spline)."""
 
 
 def distributed_times(q: np.ndarray, rule: str, duration: float = 1.0,
@@ -416,141 +398,155 @@ MEASURES = {"peak_acceleration": peak_acceleration, "rms_acceleration": rms_acce
 # ---------------------------------------------------------------- auto: best interior times
 
 def times_from_free(y: np.ndarray, duration: float, start: float = 0.0) -> np.ndarray:
-    """The times of the free variables y (n - 1 of them, y_0 = 0 implied; or rows of
-    them): intervals T_k = duration * softmax([0, y])_k."""
-    y = np.asarray(y, dtype=float)
-    zero = np.zeros((*y.shape[:-1], 1))
-    z = np.concatenate([zero, y], axis=-1)
-    e = np.exp(z - z.max(axis=-1, keepdims=True))
-    t = start + duration * np.concatenate(
-        [zero, np.cumsum(e, axis=-1) / e.sum(axis=-1, keepdims=True)], axis=-1)
-    t[..., -1] = start + duration
+    """The times of the free variables y (n - 1 of them, y_0 = 0 implied): intervals
+    T_k = duration * softmax([0, y])_k."""
+    z = np.concatenate([[0.0], y])
+    e = np.exp(z - z.max())
+    t = start + duration * np.concatenate([[0.0], np.cumsum(e) / e.sum()])
+    t[-1] = start + duration
     return t
 
 
-def _knot_accelerations(t: np.ndarray, q: np.ndarray, v0: float = 0.0, vn: float = 0.0
-                        ) -> np.ndarray | None:
-    """s''(t_k) of the clamped splines (:func:`_clamped_spline_unchecked`) on the rows of
-    times t, bit for bit: LAPACK dgtsv's elimination without row exchanges (None when one
-    is needed), the Hermite coefficients, PPoly's evaluation at the breakpoints."""
-    dx = np.diff(t, axis=1)
-    slope = np.diff(q) / dx
-    one = np.ones((len(t), 1))
-    d = np.concatenate([one, 2 * (dx[:, :-1] + dx[:, 1:]), one], axis=1).T.copy()
-    b = np.concatenate([one * v0, 3 * (dx[:, 1:] * slope[:, :-1] + dx[:, :-1] * slope[:, 1:]),
-                        one * vn], axis=1).T.copy()
-    dl, du = np.append(dx[:, 1:], 0.0 * one, axis=1).T, np.append(0.0 * one, dx[:, :-1], axis=1).T
-    n = len(d)
-    for i in range(n - 1):
-        if np.any(np.abs(d[i]) < np.abs(dl[i])) or np.any(d[i] == 0.0):
-            return None
-        fact = dl[i] / d[i]
-        d[i + 1] = d[i + 1] - fact * du[i]
-        b[i + 1] = b[i + 1] - fact * b[i]
-    b[n - 1] = b[n - 1] / d[n - 1]
-    b[n - 2] = (b[n - 2] - du[n - 2] * b[n - 1]) / d[n - 2]
-    for i in range(n - 3, -1, -1):
-        b[i] = (b[i] - du[i] * b[i + 1] - 0.0 * b[i + 2]) / d[i]
-    s = b.T
-    h = (s[:, :-1] + s[:, 1:] - 2 * slope) / dx
-    c3, c2 = h / dx, (slope - s[:, :-1]) / dx - h
-    at = np.zeros_like(t)  # t_j - t_k of each breakpoint in its piece (the last: h_{n-1})
-    at[:, -1] = dx[:, -1]
-    c3, c2 = np.append(c3, c3[:, -1:], axis=1), np.append(c2, c2[:, -1:], axis=1)
-    return (0.0 + c2 * 1.0 * 2.0) + c3 * at * 6.0
+_Knots = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
+
+
+def _knot_accelerations(q: np.ndarray, conditions: Mapping[str, Any]
+                        ) -> Callable[[np.ndarray], _Knots]:
+    """The map from the intervals h of the given times to (T, dT/dh, omega, d omega/dh):
+    the pieces T of the spline through q with ``conditions`` (the given intervals; with end
+    accelerations, the first and last ones halved by the free points of sec. 4.4.4) and
+    its accelerations omega at every breakpoint, with their exact derivatives.
+
+    Piece k adds to the conditions at its ends ((4.19) times T_k, (4.22)) row k:
+    2 T_k w_k + T_k w_{k+1} - 6 (q_{k+1} - q_k) / T_k and row k + 1: T_k w_k +
+    2 T_k w_{k+1} + 6 (q_{k+1} - q_k) / T_k; with z = (omega, positions), K(T) z = c:
+    clamped (c_0 = -6 v_0, c_n = 6 v_n), natural (rows 0, n out, omega_0 = omega_n = 0),
+    periodic (row n added to row 0, omega_n = omega_0), end accelerations (omega_0 = a_0,
+    omega_n = a_n, the free points' positions unknown). With z = S x + z0 and rows R,
+    A x = R (c - K z0), A = R K S, and dx/dT_k = -A^-1 R (dK/dT_k) z: all the columns
+    from one inverse of A, each (dK/dT_k) z nonzero in rows k and k + 1 only.
+    """
+    q = np.array(q, dtype=float)
+    n = len(q) - 1
+    periodic, natural = bool(conditions.get("periodic")), bool(conditions.get("natural"))
+    ends = not (periodic or natural) and (conditions.get("a0") is not None
+                                          or conditions.get("an") is not None)
+    pieces = n + 2 if ends else n
+    size = 2 * (pieces + 1)
+    P = np.eye(n)[np.r_[0, 0:n, n - 1] if ends else np.arange(n)]  # the pieces T = P h
+    P[[0, 1, -2, -1] if ends else []] *= 0.5
+    z0, c = np.zeros(size), np.zeros(pieces + 1)
+    if periodic:
+        check_periodic(q)
+        q[-1] = q[0]
+    z0[pieces + 1:] = np.r_[q[0], 0.0, q[1:-1], 0.0, q[-1]] if ends else q
+    z0[[0, pieces]] = (conditions.get("a0") or 0.0, conditions.get("an") or 0.0) if ends else 0
+    if not (periodic or natural):
+        c[[0, pieces]] = -6.0 * conditions.get("v0", 0.0), 6.0 * conditions.get("vn", 0.0)
+    unknown = (np.r_[1:pieces, pieces + 2, 2 * pieces] if ends else
+               np.arange(1 if natural else 0, pieces if natural or periodic else pieces + 1))
+    S = np.eye(size)[:, unknown]
+    R = np.eye(pieces + 1)[1:pieces] if natural else np.eye(pieces + 1)
+    if periodic:
+        S[pieces, 0] = R[0, pieces] = 1.0
+        R = R[:pieces]
+    k = np.arange(pieces)
+    flat = (np.r_[k, k, k + 1, k + 1, k, k, k + 1, k + 1] * size
+            + np.r_[k, k + 1, k, k + 1, k + pieces + 1, k + pieces + 2, k + pieces + 1,
+                    k + pieces + 2])
+
+    def accelerations(h: np.ndarray) -> _Knots:
+        T = P @ h
+        w = 6.0 / T
+        K = np.bincount(flat, np.concatenate([2 * T, T, T, 2 * T, w, -w, -w, w]),
+                        len(c) * size).reshape(len(c), size)
+        A_inv = np.linalg.inv(R @ K @ S)  # at most 35 x 35: the values and all columns
+        z = S @ (A_inv @ (R @ (c - K @ z0))) + z0
+        omega, slope = z[:pieces + 1], np.diff(z[pieces + 1:]) / T
+        G = np.zeros((pieces + 1, pieces))
+        G[k, k] = 2.0 * omega[:-1] + omega[1:] + slope * w
+        G[k + 1, k] = omega[:-1] + 2.0 * omega[1:] - slope * w
+        return T, P, omega, -S[:pieces + 1] @ (A_inv @ (R @ G @ P))
+
+    return accelerations
 
 
 def optimal_times(q: np.ndarray, duration: float = 1.0,
                   objective: str = "peak_acceleration", **conditions: Any) -> np.ndarray:
     """The times t_0 = 0 < t_1 < ... < t_n = duration minimizing ``objective``
     (``peak_acceleration`` or ``rms_acceleration``) of the cubic spline through q with
-    ``conditions`` (the keywords of :func:`cubic_spline`).
+    ``conditions`` (the keywords of :func:`cubic_spline`; with end accelerations, the
+    free points at the midpoints).
 
-    Deterministic: SLSQP from the equal times. The peak is a minimax, solved as
-    min z subject to -z <= s''(t_j) <= z at every breakpoint t_j (the acceleration of a
-    cubic spline is piecewise linear, so its peak sits at a breakpoint); the RMS
-    acceleration is smooth and minimized directly (its square).
+    Deterministic: SLSQP from the equal times, with the exact derivatives of
+    :func:`_knot_accelerations` through the softmax of :func:`times_from_free`. The peak
+    is a minimax, solved as min z subject to -z <= s''(t_j) <= z at every breakpoint t_j
+    (the acceleration of a cubic spline is piecewise linear, so its peak sits at a
+    breakpoint); the RMS acceleration is smooth and minimized directly (its square, by
+    (4.31) on each piece).
     """
     from scipy.optimize import minimize
 
     if objective not in MEASURES:
         raise UserError(f"unknown objective {objective!r}; use one of "
                         f"{', '.join(OBJECTIVES)}", field="minimize")
+    if conditions.get("extra_times") is not None:
+        raise UserError("with times: auto the free points are at the midpoints of the "
+                        "first and last intervals", field="extra_times")
     q = np.asarray(q, dtype=float)
     n = len(q) - 1
     equal = distributed_times(q, "equal", duration)
     if n < 2:
         return equal
+    start = cubic_spline(equal, q, **conditions)
+    scale = max(peak_acceleration(start), 1e-300)
+    knots = _knot_accelerations(q, conditions)
+    memo: dict[bytes, _Knots] = {}
 
-    build = _clamped_spline_unchecked if set(conditions) <= {"v0", "vn"} else cubic_spline
+    def solved(x: np.ndarray) -> _Knots:  # (T, dT/dx, omega / scale, d(omega / scale)/dx)
+        key = x.tobytes()
+        if key not in memo:
+            memo.clear()
+            h = np.diff(times_from_free(_FREE_SCALE * x, duration))
+            p = h / duration  # dh/dy = duration (diag(p) - p p^T), without y_0
+            dh = (np.diag(h) - np.outer(h, p))[:, 1:] * _FREE_SCALE
+            T, dT, omega, d_omega = knots(h)
+            memo[key] = T, dT @ dh, omega / scale, d_omega @ dh / scale
+        return memo[key]
 
-    def spline(y: np.ndarray):
-        return build(times_from_free(y, duration), q, **conditions)
-
-    y0 = np.zeros(n - 1)
-    bounds = [(-_SOFTMAX_BOUND, _SOFTMAX_BOUND)] * (n - 1)
-    scale = max(peak_acceleration(spline(y0)), 1e-300)
+    bounds = [(-_SOFTMAX_BOUND / _FREE_SCALE, _SOFTMAX_BOUND / _FREE_SCALE)] * (n - 1)
+    x0 = np.zeros(n - 1)
     if objective == "rms_acceleration":
-        result = minimize(lambda y: (rms_acceleration(spline(y)) / scale) ** 2, y0,
-                          method="SLSQP", bounds=bounds,
-                          options={"ftol": 1e-15, "maxiter": 500})
-        y = result.x
-    else:
-        found: dict[bytes, np.ndarray] = {}  # s''(t_j) at the Jacobian's points, batched
+        def mean_square(x: np.ndarray) -> tuple[float, np.ndarray]:
+            T, dT, a, da = solved(x)
+            a0, a1 = a[:-1], a[1:]
+            value = T @ (a0 * a0 + a0 * a1 + a1 * a1) / (3.0 * duration)
+            gradient = ((a0 * a0 + a0 * a1 + a1 * a1) @ dT
+                        + (np.r_[T * (2.0 * a0 + a1), 0.0] + np.r_[0.0, T * (a0 + 2.0 * a1)])
+                        @ da) / (3.0 * duration)
+            return value, gradient
 
-        def bands(v: np.ndarray) -> np.ndarray:  # z -+ s''(t_j) >= 0, one spline for both
-            a = found.pop(v[:-1].tobytes(), None)
-            if a is None:
-                pp = spline(v[:-1])
-                a = pp(pp.x, 2)
-            a = a / scale
+        x = minimize(mean_square, x0, jac=True, method="SLSQP", bounds=bounds,
+                     options={"ftol": 1e-15, "maxiter": 500}).x  # its value ~ 1: as before
+    else:
+        def bands(v: np.ndarray) -> np.ndarray:  # z -+ s''(t_j) >= 0
+            a = solved(v[:-1])[2]
             return np.concatenate([v[-1] - a, v[-1] + a])
 
-        def batched(fun, points):  # the map of approx_derivative: all columns at once
-            points = list(points)
-            ys = np.array([p[:-1] for p in points])
-            a = _knot_accelerations(times_from_free(ys, duration), q, **conditions)
-            found.clear()
-            found.update(() if a is None else zip((y.tobytes() for y in ys), a, strict=True))
-            return [fun(p) for p in points]
+        def bands_jacobian(v: np.ndarray) -> np.ndarray:
+            da = solved(v[:-1])[3]
+            return np.hstack([np.vstack([-da, da]), np.ones((2 * len(da), 1))])
 
-        jacobian = _batched_jacobian(bands, batched, [*bounds, (0.0, None)]) \
-            if build is _clamped_spline_unchecked else None
-        constraints = [{"type": "ineq", "fun": bands, "jac": jacobian}]
-        start = np.append(y0, 1.0)
-        result = minimize(lambda v: v[-1], start, method="SLSQP", constraints=constraints,
-                          bounds=[*bounds, (0.0, None)],
-                          options={"ftol": 1e-14, "maxiter": 500})
-        y = result.x[:-1]
+        last = np.eye(n)[-1]
+        x = minimize(lambda v: v[-1], np.append(x0, 1.0), jac=lambda v: last, method="SLSQP",
+                     constraints=[{"type": "ineq", "fun": bands, "jac": bands_jacobian}],
+                     bounds=[*bounds, (0.0, None)],  # z ~ 1; below 1e-12 only roundoff
+                     options={"ftol": 1e-12, "maxiter": 500}).x[:-1]
     measure = MEASURES[objective]
-    if not np.all(np.isfinite(y)) or measure(spline(y)) > measure(spline(y0)):
+    t = times_from_free(_FREE_SCALE * x, duration)
+    if not np.all(np.isfinite(t)) or measure(cubic_spline(t, q, **conditions)) > measure(start):
         return equal  # the search did not improve on the equal times
-    return times_from_free(y, duration)
-
-
-def _batched_jacobian(fun, batched, bounds):
-    """SLSQP's own forward-difference Jacobian of ``fun`` (scipy's approx_derivative,
-    called as SLSQP calls it: same step, bounds and clipping), its points evaluated at
-    once through ``batched``; None (SLSQP's default, the same values one point at a time)
-    where this scipy does not offer those private functions as expected."""
-    try:
-        import inspect
-
-        from scipy.optimize._constraints import old_bound_to_new
-        from scipy.optimize._numdiff import approx_derivative
-        from scipy.optimize._optimize import _check_clip_x
-
-        if "workers" not in inspect.signature(approx_derivative).parameters:
-            return None
-        limits = old_bound_to_new(bounds)
-    except (ImportError, AttributeError, TypeError, ValueError):
-        return None
-
-    def jacobian(v: np.ndarray) -> np.ndarray:
-        return approx_derivative(fun, _check_clip_x(v, limits), method="2-point",
-                                 abs_step=_FD_STEP, bounds=limits, workers=batched)
-
-    return jacobian
+    return t
 
 
 # ---------------------------------------------------------------- minimum duration (4.39)
