@@ -132,10 +132,10 @@ def piece_values(law: LawShape, tau: np.ndarray, piece: np.ndarray,
     orders = (order,) if isinstance(order, int) else tuple(order)
     tau, piece = np.broadcast_arrays(np.asarray(tau, dtype=float), np.asarray(piece))
     flat_tau, flat_piece = tau.ravel(), piece.ravel()
-    out = [np.empty(flat_tau.shape) for _ in orders]
     if len(law.pieces) == 1:  # one piece: no grouping
         shaped = tuple(law.piece_derivative(0, flat_tau, k).reshape(tau.shape) for k in orders)
         return shaped[0] if isinstance(order, int) else shaped
+    out = [np.empty(flat_tau.shape) for _ in orders]
     by_piece = np.argsort(flat_piece, kind="stable")
     bounds = np.searchsorted(flat_piece[by_piece], np.arange(len(law.pieces) + 1))
     for index in range(len(law.pieces)):
@@ -205,26 +205,110 @@ def _chain_vertices(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     neighbours (cross product <= 0) lies inside the triangle of its neighbours' chord or
     on it, so it is no vertex (the points are distinct: no vertex hides behind a copy of
     itself); all are dropped at once, pass after pass, until every turn is strictly left:
-    the monotone chain of the points. After THINNING_PASSES, the monotone chain runs
-    point by point on what is left."""
+    the monotone chain of the points. Once a pass drops few points, the next passes test
+    only the points next to a dropped one (the others keep their neighbours, hence their
+    turn), on a linked list (:func:`_thin_links`). After THINNING_PASSES, the monotone
+    chain runs on what is left (:func:`_chain_on`)."""
     kept = np.arange(len(x), dtype=np.intp)
-    for _ in range(THINNING_PASSES):
+    for passes in range(1, THINNING_PASSES + 1):
         if len(kept) < 3:
             return kept
-        a, b, c = kept[:-2], kept[1:-1], kept[2:]
-        flat = (x[b] - x[a]) * (y[c] - y[a]) - (y[b] - y[a]) * (x[c] - x[a]) <= 0.0
-        if not flat.any():
+        flat = _turns(x, y, kept[:-2], kept[1:-1], kept[2:]) <= 0.0
+        drop = np.flatnonzero(flat) + 1
+        if len(drop) == 0:
             return kept
-        kept = kept[~np.concatenate(([False], flat, [False]))]
+        alive = np.ones(len(kept), dtype=bool)
+        alive[drop] = False
+        kept = kept[alive]
+        if len(drop) <= FEW_DROPPED and passes < THINNING_PASSES:
+            # the points next to a dropped one, by their positions in what is left
+            near = np.zeros(len(alive), dtype=bool)
+            near[drop - 1] = near[drop + 1] = True
+            return _thin_links(x, y, kept, np.flatnonzero(near[alive]).tolist(),
+                               THINNING_PASSES - passes)
+    return kept[_chain_on(x[kept], y[kept])]
+
+
+FEW_DROPPED = 64
+"""A thinning pass dropping at most this many points hands over to :func:`_thin_links`."""
+
+
+def _turns(x: np.ndarray, y: np.ndarray, a: np.ndarray, b: np.ndarray,
+           c: np.ndarray) -> np.ndarray:
+    """The cross products of (b - a, c - a): > 0 where a, b, c turn strictly left."""
+    return (x[b] - x[a]) * (y[c] - y[a]) - (y[b] - y[a]) * (x[c] - x[a])
+
+
+def _thin_links(x: np.ndarray, y: np.ndarray, kept: np.ndarray, near: list[int],
+                passes: int) -> np.ndarray:
+    """:func:`_chain_vertices`'s last ``passes`` thinning passes on the points ``kept``
+    (a doubly linked list), each testing the points ``near`` a point the pass before
+    dropped (positions in ``kept``; the same cross products, the same floats), then the
+    monotone chain on what is left."""
+    xs, ys = x[kept].tolist(), y[kept].tolist()
+    count = len(xs)
+    before = list(range(-1, count - 1))
+    after = list(range(1, count + 1))
+    dropped: list[int] = []
+    for _ in range(passes):
+        flat: list[int] = []
+        for b in near:
+            a, c = before[b], after[b]
+            if a >= 0 and c < count and (xs[b] - xs[a]) * (ys[c] - ys[a]) - \
+                    (ys[b] - ys[a]) * (xs[c] - xs[a]) <= 0.0:
+                flat.append(b)
+        if not flat or count - len(dropped) < 3:
+            break
+        touched: list[int] = []
+        for b in flat:
+            a, c = before[b], after[b]
+            if a >= 0:
+                after[a] = c
+            if c < count:
+                before[c] = a
+            before[b] = after[b] = -2  # dropped
+            touched += (a, c)
+        dropped += flat
+        near = [p for p in set(touched) if 0 <= p < count and after[p] != -2]
+    else:  # THINNING_PASSES done: the monotone chain on what is left
+        left = np.delete(kept, dropped)
+        return left[_chain_on(x[left], y[left])]
+    return np.delete(kept, dropped)
+
+
+def _chain_on(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """The monotone chain of the points (x, y) in their order, point by point (Andrew's
+    stack: pop while the last two and the new point do not turn strictly left), the
+    positions it keeps. Its tests of three consecutive points are read from one array
+    computation: while the stack's top two are the new point's two predecessors, the
+    points up to the next turn that is not strictly left are pushed at once (the same
+    cross products, the same floats; the thinned chain has few such turns)."""
+    count = len(x)
+    if count < 3:
+        return np.arange(count, dtype=np.intp)
+    position = np.arange(count, dtype=np.intp)
+    turn = _turns(x, y, position[:-2], position[1:-1], position[2:])
+    bad = (np.flatnonzero(~(turn > 0.0)) + 1).tolist()  # their middle points, ascending
     xs, ys = x.tolist(), y.tolist()
-    hull: list[int] = []
-    for i in kept.tolist():
+    hull: list[int] = [0, 1]
+    i, k = 2, 0  # the next point; the next such turn's middle is bad[k] (>= i - 1)
+    while i < count:
+        if hull[-1] == i - 1 and hull[-2] == i - 2:
+            while k < len(bad) and bad[k] < i - 1:
+                k += 1
+            stop = bad[k] if k < len(bad) else count - 1
+            if stop > i - 1:  # every turn up to the one at stop is left: push to stop
+                hull.extend(range(i, stop + 1))
+                i = stop + 1
+                continue
+        xi, yi = xs[i], ys[i]
         while len(hull) >= 2:
-            a0, b0 = hull[-2], hull[-1]
-            if (xs[b0] - xs[a0]) * (ys[i] - ys[a0]) - (ys[b0] - ys[a0]) * (xs[i] - xs[a0]) > 0.0:
+            a, b = hull[-2], hull[-1]
+            if (xs[b] - xs[a]) * (yi - ys[a]) - (ys[b] - ys[a]) * (xi - xs[a]) > 0.0:
                 break
             hull.pop()
         hull.append(i)
+        i += 1
     return np.array(hull, dtype=np.intp)
 
 
