@@ -99,12 +99,17 @@ def trig_poly_piece(
     sines = tuple(sines)
     derivatives = [coef.tolist()]  # polynomial coefficients of each derivative order, built once
 
+    waves: dict[int, list[tuple[float, float, float, float]]] = {}  # per order, built once
+
     def evaluate(tau: np.ndarray, order: int) -> np.ndarray:
         while len(derivatives) <= order:
             derivatives.append(_derivative(derivatives[-1]))
         out = _horner(derivatives[order], tau - origin) + 0.0  # (-0.0 read as 0.0)
-        for amplitude, omega, phase in sines:
-            out = out + amplitude * omega**order * np.sin(omega * tau + phase + order * math.pi / 2)
+        if order not in waves:
+            waves[order] = [(amplitude * omega**order, omega, phase, order * math.pi / 2)
+                            for amplitude, omega, phase in sines]
+        for scale, omega, phase, quarter in waves[order]:
+            out = out + scale * np.sin(omega * tau + phase + quarter)
         return out
 
     return Piece(start, end, evaluate, None if sines else len(coef) - 1)

@@ -159,11 +159,27 @@ class ShapedLaw(MotionLaw):
         degree = (None if any(d is None for d in degrees)
                   else max([0, *(d for d in degrees if d is not None)]))
 
+        # the terms on one base piece in one call, their arguments in one flat array (the
+        # operations of MotionLaw.piece_derivative, elementwise: the same floats); the sum
+        # keeps the terms' order
+        shared: dict[int, list[int]] = {}
+        for k, (_, _, index) in enumerate(terms):
+            shared.setdefault(index, []).append(k)
+        groups = [(base.pieces[index], np.array([terms[k][1] for k in members])[:, None],
+                   members) for index, members in shared.items()]
+
         def evaluate(tau: np.ndarray, order: int) -> np.ndarray:
             tau = np.asarray(tau, dtype=float)
             out = np.full(tau.shape, offset if order == 0 else 0.0)
-            for a, t, index in terms:
-                out += (a * r**-order) * base.piece_derivative(index, (tau - t) / r, order)
+            values: list[np.ndarray] = [out] * len(terms)
+            for piece, shifts, members in groups:
+                u = np.minimum(np.maximum(((tau.reshape(1, -1) - shifts) / r).ravel(),
+                                          piece.start), piece.end)
+                value = piece.evaluate(u, order).reshape((len(members), *tau.shape))
+                for k, row in zip(members, value, strict=True):
+                    values[k] = row
+            for (a, _, _), value in zip(terms, values, strict=True):
+                out += (a * r**-order) * value
             return out
 
         return Piece(start, end, evaluate, degree)
