@@ -140,12 +140,27 @@ def _whole_summaries(command: Any) -> None:
         _whole_summaries(sub)
 
 
+def _invoked(args: Sequence[str]) -> str | None:
+    """The command of ``args`` when only --debug precedes it, else None (the whole tree: a
+    root --help or --version, no command, an unknown one)."""
+    first = next((a for a in args if a != "--debug"), None)
+    known = [c.name for c in app.registered_commands] + [g.name for g in app.registered_groups]
+    return first if first in known else None
+
+
 @functools.cache
-def _command() -> Any:
-    """sizer's click command tree, built once a process: typer builds it from the
-    commands' annotations (about 30 ms), and a process that runs the CLI many times (the
-    tests, a notebook) need not build it again."""
-    command = typer.main.get_command(app)
+def _command(name: str | None = None) -> Any:
+    """sizer's click command tree (typer builds it from the annotations), once a process;
+    with ``name`` the root with that one command, all its run needs (building every
+    command costs ~20 ms more of each start-up, issue 34)."""
+    commands, groups = app.registered_commands, app.registered_groups
+    if name is not None:
+        app.registered_commands = [c for c in commands if c.name == name]
+        app.registered_groups = [g for g in groups if g.name == name]
+    try:
+        command = typer.main.get_command(app)
+    finally:
+        app.registered_commands, app.registered_groups = commands, groups
     _whole_summaries(command)
     return command
 
@@ -159,7 +174,7 @@ def run(argv: Sequence[str] | None = None) -> int:
     """
     set_debug(False)
     args = sys.argv[1:] if argv is None else list(argv)
-    command = _command()
+    command = _command(_invoked(args))
     try:
         try:
             with command.make_context("sizer", args) as context:
