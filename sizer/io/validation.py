@@ -15,7 +15,7 @@ from typing import Any, TypeVar
 from pydantic import BaseModel, ValidationError
 
 from sizer.errors import UserError
-from sizer.io.schema.inputs import show_value as _show
+from sizer.io.schema.inputs_base import show_value as _show
 from sizer.io.yaml_source import YamlSource, format_path
 
 ModelT = TypeVar("ModelT", bound=BaseModel)
@@ -112,8 +112,6 @@ def _has_key(mapping: dict[Any, Any], key: Any) -> bool:
         return key in mapping
     except TypeError:
         return False
-
-
 
 
 def _message(kind: str, item: Any, value: Any, ctx: dict[str, Any],
@@ -239,10 +237,8 @@ def _models_at(model: type[BaseModel], loc: tuple[Any, ...]) -> list[type[BaseMo
 
 
 def _field(model: type[BaseModel], key: Any) -> Any:
-    for name, info in model.model_fields.items():
-        if (info.alias or name) == key:
-            return info
-    return None
+    return next((info for name, info in model.model_fields.items()
+                 if (info.alias or name) == key), None)
 
 
 def _tags_of(model: type[BaseModel]) -> list[str]:
@@ -255,9 +251,8 @@ def _tags_of(model: type[BaseModel]) -> list[str]:
 def _allowed_fields(model: type[BaseModel], loc: tuple[Any, ...]) -> list[str]:
     """The fields of the model at ``loc``, if exactly one model fits."""
     found = _models_at(model, loc)
-    if len(found) != 1:
-        return []
-    return [info.alias or name for name, info in found[0].model_fields.items()]
+    return [info.alias or name for name, info in found[0].model_fields.items()] \
+        if len(found) == 1 else []
 
 
 def _tags_at(model: type[BaseModel], loc: tuple[Any, ...]) -> list[str]:

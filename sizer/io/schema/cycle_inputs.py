@@ -8,7 +8,6 @@ span several segments (speed continuity, a closed cycle, the time budget) and bu
 :class:`sizer.model.cycle.Cycle`.
 """
 
-from __future__ import annotations
 
 import difflib
 import math

@@ -12,10 +12,9 @@ Validators raise ValueError with a one-line message; the loader turns pydantic's
 ValidationError into a UserError at the file, line and field.
 """
 
-from __future__ import annotations
 
 from itertools import pairwise
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any, Literal, Self
 
 from pydantic import (
     BeforeValidator,
@@ -44,23 +43,15 @@ from sizer.io.schema.inputs_base import (
     given,
     not_null,
     quantity_text,
-    show_value,
 )
 from sizer.io.schema.law_schema import LawSpecText
 from sizer.io.schema.ranges import RANGES
-from sizer.io.schema.transmission_inputs import (
-    TransmissionStageInput,
-)
-
-_show = show_value
+from sizer.io.schema.transmission_inputs import TransmissionStageInput
 
 # ---------------------------------------------------------------- catalog
 
 
-_Strict = Strict
-
-
-class CurvePointInput(_Strict):
+class CurvePointInput(Strict):
     """A (speed, torque) point of a speed-torque curve."""
 
     speed: Annotated[float, Ranged("curve_speed")]
@@ -71,7 +62,7 @@ CurvePoint = Annotated[CurvePointInput, OrArray(("speed", "torque"), "curve poin
 """A point as a mapping or as the pair [speed, torque], e.g. ['3000 rpm', '0.3 N*m']."""
 
 
-class TorqueCurrentPointInput(_Strict):
+class TorqueCurrentPointInput(Strict):
     """A (current, torque) point of a motor's torque-current curve."""
 
     current: Annotated[float, Ranged("curve_current")]
@@ -97,7 +88,7 @@ def _increasing_points(points: list[Any] | None) -> list[Any] | None:
     return points
 
 
-class MotorInput(_Strict):
+class MotorInput(Strict):
     """One motor of a catalog (or inline in a design file)."""
 
     id: Identifier = Field(description="unique among all loaded motors")
@@ -147,7 +138,7 @@ class MotorInput(_Strict):
     notes: Text | None = Field(None, description="free text, ignored by the tool")
 
     @model_validator(mode="after")
-    def _resistances(self) -> MotorInput:
+    def _resistances(self) -> Self:
         """One resistance convention; the torque-current curve increasing."""
         if self.winding_resistance is not None and self.phase_resistance is not None:
             raise PydanticCustomError("two_resistances", "give winding_resistance (phase to "
@@ -161,7 +152,7 @@ class MotorInput(_Strict):
         return self
 
 
-class DriveInput(_Strict):
+class DriveInput(Strict):
     """One drive (servo amplifier) of a catalog."""
 
     id: Identifier = Field(description="unique among the loaded drives")
@@ -191,7 +182,7 @@ class DriveInput(_Strict):
     notes: Text | None = Field(None, description="free text, ignored by the tool")
 
     @model_validator(mode="after")
-    def _levels(self) -> DriveInput:
+    def _levels(self) -> Self:
         """Peak current >= continuous; the bus levels consistent (bus_level_fault)."""
         from sizer.model.machine import bus_level_fault
 
@@ -206,7 +197,7 @@ class DriveInput(_Strict):
         return self
 
 
-class CatalogFile(_Strict):
+class CatalogFile(Strict):
     """A motor catalog file."""
 
     catalog: Text | None = Field(None, description="the catalog's name")
@@ -219,7 +210,7 @@ class CatalogFile(_Strict):
                           "catalog pairs its motors with them")
 
 
-class DriveCatalogFile(_Strict):
+class DriveCatalogFile(Strict):
     """A drive catalog file (named by a design's ``drives:``)."""
 
     catalog: Text | None = Field(None, description="the catalog's name")
@@ -246,7 +237,7 @@ def _duration_or_master(schema: dict[str, Any]) -> None:
     schema["oneOf"] = [{"required": ["duration"]}, {"required": ["master_speed"]}]
 
 
-class TaskInput(_Strict):
+class TaskInput(Strict):
     """The motion task: a move of h in T, then a dwell (and a move back)."""
 
     model_config = ConfigDict(json_schema_extra=lambda schema, _: _duration_or_master(schema))
@@ -289,7 +280,7 @@ class TaskInput(_Strict):
         return data
 
 
-class LoadInput(_Strict):
+class LoadInput(Strict):
     """The load at the load side; rotary fields or linear ones, per the displacement."""
 
     inertia: Annotated[RawValue, RawQuantity(
@@ -333,14 +324,14 @@ MotorRef = Annotated[
 """A catalog (file path or bundled name) or an inline motor mapping."""
 
 
-class CheckInput(_Strict):
+class CheckInput(Strict):
     """The motor and law that ``sizer check`` verifies."""
 
     motor: Identifier | None = Field(None, description="a motor id among the loaded motors")
     law: LawSpecText | None = None
 
 
-class LimitsInput(_Strict):
+class LimitsInput(Strict):
     """Margins and user limits (all optional)."""
 
     torque_margin: Annotated[float, Ranged(
@@ -410,7 +401,7 @@ def _efficiency_rule(value: Any) -> Any:
     return value
 
 
-class DesignFile(_Strict):
+class DesignFile(Strict):
     """A design file: the task (or a cycle), the load, the transmission, laws, motors and
     limits."""
 
@@ -451,7 +442,7 @@ class DesignFile(_Strict):
     ] = "power_flow"
 
     @model_validator(mode="after")
-    def _task_or_cycle(self) -> DesignFile:
+    def _task_or_cycle(self) -> Self:
         """One of ``task`` and ``cycle``: the error at the field to add or remove."""
         if self.task is None and self.cycle is None:
             raise PydanticCustomError("missing", "required field is missing",

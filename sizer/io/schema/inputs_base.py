@@ -302,9 +302,10 @@ def not_null(*names: str, **extra: Any) -> Any:
 
 
 class Strict(BaseModel):
-    """Unknown fields are errors; models are immutable."""
+    """Unknown fields are errors; models are immutable, built on first use (issue 34: start-up;
+    so their modules keep annotations objects, not text pydantic evaluates one by one)."""
 
-    model_config = ConfigDict(extra="forbid", populate_by_name=False, frozen=True)
+    model_config = ConfigDict(extra="forbid", populate_by_name=False, frozen=True, defer_build=True)
 
 
 # ---------------------------------------------------------------- shorthands

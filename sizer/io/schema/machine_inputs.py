@@ -7,9 +7,8 @@ An axis is a design file's content (load, transmission, laws, motors, drives, li
 with ``task:`` in master angles; sizer.io.machine_loader builds the domain objects.
 """
 
-from __future__ import annotations
 
-from typing import Annotated, Any
+from typing import Annotated, Any, Self
 
 from pydantic import (
     BeforeValidator,
@@ -125,7 +124,7 @@ class MachineInput(Strict):
         "duration", note="instead of master_speed: the time of one machine cycle")] | None = None
 
     @model_validator(mode="after")
-    def _speed(self) -> MachineInput:
+    def _speed(self) -> Self:
         """master_speed (a speed or 'minimize') or cycle_time: exactly one."""
         if (self.master_speed is None) == (self.cycle_time is None):
             raise PydanticCustomError(
@@ -166,7 +165,7 @@ class MachineFile(Strict):
                           "drives' data")
 
     @model_validator(mode="after")
-    def _unique_names(self) -> MachineFile:
+    def _unique_names(self) -> Self:
         """Axis names are unique."""
         seen: set[str] = set()
         for i, axis in enumerate(self.axes):

@@ -5,7 +5,6 @@ A stage's ``ratio`` may be a number, a list of ratios to try, ``optimize`` (betw
 whose ratios are the options. Quantities are converted to SI like the other inputs.
 """
 
-from __future__ import annotations
 
 from typing import Annotated, Any, Literal
 
