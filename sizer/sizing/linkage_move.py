@@ -851,8 +851,25 @@ class LinkageCycle:
             self._start = (limits, self.peak_floor(limits))
         return self._start[1]
 
-    def rms_lower_bound(self) -> None:
-        return None  # none known through a linkage (sizer.sizing.evaluation.CycleModel)
+    def rms_lower_bound(self) -> np.ndarray | None:
+        """Per candidate a torque the motor's RMS over the cycle exceeds at every scale
+        (as sizer.sizing.cycle.SegmentCycle.rms_lower_bound): each dwell's holding torque
+        squared (exact), 0 for a move; the mean square is then at least (a + b s) /
+        (F + W s) (F, a the fixed segments' time and integral, W, b the free ones'
+        weights and theirs), never below its smaller limit; None where no segment is
+        free or fixed with a positive time."""
+        n, N, eta = len(self.motors), self.drive.ratio, self.drive.efficiency
+        fixed_time, fixed_sum = 0.0, np.zeros(n)
+        free_weight, free_sum = 0.0, np.zeros(n)
+        for i, (part, w) in enumerate(zip(self.parts, self.weights, strict=True)):
+            rate = np.zeros(n) if isinstance(part, LinkageProfile) else \
+                np.broadcast_to(np.square(abs(part.hold) / (N * eta)), (n,))
+            if np.isfinite(self.fixed[i]):
+                fixed_time, fixed_sum = fixed_time + self.fixed[i], fixed_sum + rate * self.fixed[i]
+            else:
+                free_weight, free_sum = free_weight + w, free_sum + rate * w
+        limits = [x / t for x, t in ((fixed_sum, fixed_time), (free_sum, free_weight)) if t > 0.0]
+        return np.sqrt(np.minimum.reduce(limits)) if limits else None
 
     def thermal_speed(self, s: np.ndarray) -> np.ndarray:
         """The thermal speed at scales s (sizer.sizing.evaluation.CycleModel) from each
