@@ -1034,13 +1034,14 @@ def peak_floor(calculator: LinkageCalculator, limits: Limits, low: np.ndarray) -
         ends = region.limit_clipped(np.stack((np.zeros(n), fastest), axis=1)).min(axis=1)
         cand, sample = np.nonzero(~(bound <= grip * np.minimum(ends, corners.min(axis=1))
                                     [:, None] * (1.0 - 1e-9)) & np.isfinite(T0)[:, None])
-        own = reach[cand, sample]
-        table = region.take(cand)
-        corners = np.where(table.speeds <= own[:, None], table.torques, np.inf).min(axis=1)
-        least = np.minimum(np.minimum(corners, table.limit_clipped(own[:, None])[:, 0]),
-                           table.limit_clipped(np.zeros((len(cand), 1)))[:, 0])
-        keep = ~(bound[cand, sample] <= grip * least * (1.0 - 1e-9))
-    cand, sample = cand[keep], sample[keep]
+        if len(cand):
+            own = reach[cand, sample]
+            table = region.take(cand)
+            corners = np.where(table.speeds <= own[:, None], table.torques, np.inf).min(axis=1)
+            least = np.minimum(np.minimum(corners, table.limit_clipped(own[:, None])[:, 0]),
+                               table.limit_clipped(np.zeros((len(cand), 1)))[:, 0])
+            keep = ~(bound[cand, sample] <= grip * least * (1.0 - 1e-9))
+            cand, sample = cand[keep], sample[keep]
     out = T0.copy()
     if len(cand):
         np.maximum.at(out, cand, _sample_floors(calculator, limits, cand, sample))
