@@ -26,6 +26,7 @@ from sizer.errors import UserError
 from sizer.laws.base import MotionLaw
 from sizer.model.cycle import Cycle, Move, from_task
 from sizer.model.domain import Design
+from sizer.numerics.roots import illinois
 from sizer.sizing.checks import RESIDUAL_VIBRATION
 from sizer.sizing.evaluation import CycleMetrics, CycleModel
 from sizer.sizing.results import RESIDUAL
@@ -238,15 +239,22 @@ def admissible_scale(vibration: CycleVibration, s: np.ndarray, limit: float) -> 
 def _crossing(vibration: CycleVibration, left: np.ndarray, right: np.ndarray,
               limit: float) -> np.ndarray:
     """The first scale in (left, right] where the worst residual meets the limit, right
-    meeting it: bisection to rounding (the residual is smooth within a grid step)."""
-    for _ in range(60):
-        mid = 0.5 * (left + right)
-        mid_ok = vibration.worst(mid) <= limit
-        right = np.where(mid_ok, mid, right)
-        left = np.where(mid_ok, left, mid)
-        if np.all(right - left <= 4e-16 * right):
-            break
-    return right
+    meeting it: the project's root finder on residual - limit to an ulp or so (the
+    residual is smooth within a grid step), the end that meets the limit returned; left
+    itself where it meets it already."""
+    def excess(x: np.ndarray) -> np.ndarray:
+        return vibration.worst(x) - limit
+
+    f_left, f_right = excess(left), excess(right)
+    out = np.where(f_left <= 0.0, left, right)
+    open_ = (f_left > 0.0) & (f_right < 0.0)
+    if open_.any():
+        index = np.flatnonzero(open_)
+        _, hi = illinois(lambda x, where: excess(x), left[index], right[index],
+                         f_left[index], f_right[index], xtol=4e-16,
+                         args=(index,), bracket=True)
+        out[index] = hi
+    return out
 
 
 @dataclass(frozen=True)
