@@ -91,7 +91,6 @@ from sizer.sizing.checks import evaluate_checks
 from sizer.sizing.cycle import single_task
 from sizer.sizing.energy_check import has_braking_check, has_heat_check, without_power_figures
 from sizer.sizing.move import CycleCalculator
-from sizer.sizing.optimal_shapes import HALF, exact_time_optimal
 from sizer.sizing.results import CandidateTable, Mode, concatenate, in_groups
 from sizer.sizing.shortest_duration import minimum_duration
 from sizer.vibration.elastic_load import ElasticLoad
@@ -194,7 +193,7 @@ def search_box(score: Callable[[list[np.ndarray]], Scores], bounds: list[tuple[f
     for _ in range(BOX_ROUNDS):
         if not active.any():
             break
-        step[active] *= HALF
+        step[active] *= 0.5
         center, center_s, flat = best.copy(), best_s, np.ones(n, dtype=bool)
         for offset in offsets:
             point = np.where(active[:, None], np.clip(center + offset * step, low, high), np.nan)
@@ -347,6 +346,8 @@ def choose_shape(family: type[MotionLaw], values: dict[str, Fraction | str], des
     free = [p for p in family.parameters if values.get(p.name) == AUTO]
     fixed = {k: float(v) for k, v in values.items() if v != AUTO}
     ranges = {p.name: search_range(family.law_id, p, OPEN_INSET) for p in free}
+    from sizer.sizing.optimal_shapes import exact_time_optimal  # lazy: start-up (issue 34)
+
     exact = exact_time_optimal(family, fixed, ranges, design, candidates)
     params, search = (None, np.ones(len(motors), dtype=bool)) if exact is None else exact
     if search.any():

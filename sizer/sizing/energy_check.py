@@ -65,7 +65,6 @@ from sizer.sizing.checks import (
     CheckArrays,
 )
 from sizer.sizing.evaluation import CycleMetrics, CycleModel
-from sizer.sizing.samples import sampled
 from sizer.sizing.shortest_duration import LaterChecks
 
 REGENERATED = "regenerated_energy"
@@ -176,6 +175,8 @@ def energy_checks(design: Design, calculator: CycleModel, duration: np.ndarray,
         rows = np.flatnonzero(need & known)
     samples = power = None
     if rows.size:
+        from sizer.sizing.samples import sampled  # lazy: start-up (issue 34)
+
         samples = sampled(calculator.take(rows), T[rows])
         power, wound = _axis_power(motors, samples, rows)
     feasible = np.ones(n, dtype=bool)

@@ -55,7 +55,6 @@ from sizer.sizing.cycle import (
 )
 from sizer.sizing.energy_check import energy_limit, energy_notes, without_power_figures
 from sizer.sizing.evaluation import CycleMetrics, CycleModel
-from sizer.sizing.linkage_move import linkage_calculator
 from sizer.sizing.move import CycleCalculator, MoveScales, RmsModel, law_grid
 from sizer.sizing.ranking import rank_order
 from sizer.sizing.results import (
@@ -269,6 +268,8 @@ def cycle_model(design: Design, law: MotionLaw, candidates: Candidates) -> Cycle
     task shorthand (its closed forms), the cycle of segments, or either through a
     linkage (sizer.sizing.linkage_move)."""
     if design.transmission.linkage is not None:
+        from sizer.sizing.linkage_move import linkage_calculator  # lazy: start-up
+
         return linkage_calculator(design, law, candidates.motors, candidates.drive)
     cycle, motors, rule = design.machine_cycle, candidates.motors, design.limits.thermal_speed
     task = shorthand_task(cycle)
