@@ -83,3 +83,14 @@ def _compacting(f, lo, hi, f_lo, f_hi, xtol, args, bracket=False):
                                          f_hi, side)
     out_lo[index], out_hi[index] = lo, hi
     return result()
+
+
+def quadratic_roots(a2: np.ndarray, a1: np.ndarray, a0: np.ndarray
+                    ) -> tuple[np.ndarray, np.ndarray]:
+    """The real roots q/a2 and a0/q of a2 x^2 + a1 x + a0, elementwise, by the stable
+    formula q = -(a1 + sign(a1) sqrt(a1^2 - 4 a2 a0))/2 (no cancellation); nan where the
+    discriminant is negative. Where a2 = 0 the second is the line's root -a0/a1 (the
+    first is then infinite or nan)."""
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        q = -0.5 * (a1 + np.copysign(np.sqrt(a1 * a1 - 4.0 * a2 * a0), a1))
+        return q / a2, a0 / q

@@ -42,6 +42,7 @@ from sizer.laws.quadrature import gauss_legendre
 from sizer.mechanics.drive import Drive
 from sizer.model.cycle import Move, Run, from_task, shorthand_task
 from sizer.model.domain import Design, Limits, LinkageStage, Load, Task
+from sizer.numerics.roots import quadratic_roots
 from sizer.sizing.candidates import MotorArrays
 from sizer.sizing.checks import evaluate_checks, worst_slack
 from sizer.sizing.cycle import CycleRmsModel, cycle_laws, given_scale, segment_load
@@ -1100,14 +1101,9 @@ def _sample_floors(calculator: LinkageCalculator, limits: Limits, cand: np.ndarr
 
 def _positive_roots(a2: np.ndarray, a1: np.ndarray, a0: np.ndarray) -> np.ndarray:
     """The real roots of a2 x^2 + a1 x + a0 (x > 0 or nan), two per element: (..., 2)."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        disc = a1 * a1 - 4.0 * a2 * a0
-        root = np.sqrt(disc)
-        q = -0.5 * (a1 + np.copysign(root, a1))
-        r1 = np.where(a2 != 0.0, q / a2, np.where(a1 != 0.0, -a0 / a1, np.nan))
-        r2 = np.where(a2 != 0.0, a0 / q, np.nan)
-    out = np.stack((r1, r2), axis=-1)
-    return np.where((disc[..., None] >= 0.0) & (out > 0.0), out, np.nan)
+    out = np.stack(quadratic_roots(a2, a1, a0), axis=-1)
+    with np.errstate(invalid="ignore"):
+        return np.where(out > 0.0, out, np.nan)
 
 
 def _first_rise(a2: np.ndarray, a1: np.ndarray, a0: np.ndarray, lo: np.ndarray,
@@ -1115,16 +1111,11 @@ def _first_rise(a2: np.ndarray, a1: np.ndarray, a0: np.ndarray, lo: np.ndarray,
     """The least x in [lo, hi) where q = a2 x^2 + a1 x + a0 > 0 (inf: none): lo where q
     is positive there, else the root where q rises (the larger of a convex q, the
     smaller of a concave one, a line's with a positive slope) if it lies before hi."""
-    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+    x1, x2 = quadratic_roots(a2, a1, a0)  # nan without real roots: no rise
+    with np.errstate(over="ignore", invalid="ignore"):
         at_lo = (a2 * lo + a1) * lo + a0
-        disc = a1 * a1 - 4.0 * a2 * a0
-        root = np.sqrt(np.maximum(disc, 0.0))
-        q = -0.5 * (a1 + np.copysign(root, a1))
-        x1, x2 = q / a2, a0 / q
-        small, large = np.minimum(x1, x2), np.maximum(x1, x2)
-        rise = np.where(a2 > 0.0, large, np.where(a2 < 0.0, small,
-                                                  np.where(a1 > 0.0, -a0 / a1, np.inf)))
-        rise = np.where((disc >= 0.0) | (a2 == 0.0), rise, np.inf)
+        rise = np.where(a2 > 0.0, np.maximum(x1, x2), np.where(
+            a2 < 0.0, np.minimum(x1, x2), np.where(a1 > 0.0, x2, np.inf)))
         inside = (rise > lo) & (rise < hi)
     return np.where(at_lo > 0.0, lo, np.where(inside, rise, np.inf))
 
