@@ -436,15 +436,22 @@ class LinkageCalculator:
                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(motor speed, motor torque, crank torque) at the profile's samples for each
         candidate's duration: arrays (candidates, samples)."""
+        p = self.profile
+        T, N, eta, rotor, crank, driving = self._crank(duration)
+        torque = rotor * N * p.theta2 / T**2 + np.where(driving, crank / (N * eta),
+                                                         crank * eta / N)
+        return N * p.theta1 / T, torque, crank
+
+    def _crank(self, duration: np.ndarray) -> tuple[np.ndarray, ...]:
+        """(T, N, eta, the rotor's and stages' inertia, the crank torque, where the power
+        flows from the motor) at the durations, as (candidates, 1) columns and
+        (candidates, samples) arrays."""
         p, motors, drive = self.profile, self.motors, self.drive
         T = np.broadcast_to(np.asarray(duration, dtype=float), (len(motors),))[:, None]
         N, eta = drive.ratio[:, None], drive.efficiency[:, None]
         rotor = (motors.inertia + drive.transmission_inertia)[:, None]
         crank = p.inertial / T**2 + p.damping / T + p.steady
-        driving = crank * p.theta1 >= 0.0
-        torque = rotor * N * p.theta2 / T**2 + np.where(driving, crank / (N * eta),
-                                                         crank * eta / N)
-        return N * p.theta1 / T, torque, crank
+        return T, N, eta, rotor, crank, crank * p.theta1 >= 0.0
 
     def powers(self, duration: np.ndarray) -> np.ndarray:
         """The motor's int tau^2 dt over the move near the durations T0 = ``duration``, as
@@ -455,12 +462,9 @@ class LinkageCalculator:
         near it off only at the samples where the crank torque changes sign between the
         two durations (the torque is small there: 1e-7 relative at 1 % from T0 in the
         bundled press cycle, tests/test_linkage_rms_model.py)."""
-        p, motors, drive = self.profile, self.motors, self.drive
-        T = np.broadcast_to(np.asarray(duration, dtype=float), (len(motors),))[:, None]
-        N, eta = drive.ratio[:, None], drive.efficiency[:, None]
-        rotor = (motors.inertia + drive.transmission_inertia)[:, None]
-        crank = p.inertial / T**2 + p.damping / T + p.steady
-        through = np.where(crank * p.theta1 >= 0.0, 1.0 / (N * eta), eta / N)
+        p = self.profile
+        _, N, eta, rotor, _, driving = self._crank(duration)
+        through = np.where(driving, 1.0 / (N * eta), eta / N)
         A = rotor * N * p.theta2 + through * p.inertial
         B, C = through * p.damping, through * p.steady
         w = p.weights
@@ -474,9 +478,8 @@ class LinkageCalculator:
         metrics = self.sampled(duration)[0]
         if not model:
             return metrics
-        hold = abs(self.profile.hold) / (self.drive.ratio * self.drive.efficiency)
         curve = LinkageRms(self.powers(duration), self.task.dwell,
-                           np.broadcast_to(hold, (len(self.motors),)))
+                           held_torque(self.profile.hold, self.drive, len(self.motors)))
         return replace(metrics, rms_model=curve)
 
     def sampled(self, duration: np.ndarray
@@ -484,10 +487,9 @@ class LinkageCalculator:
         """:meth:`evaluate` and the samples it read: (metrics, motor speed, torque)."""
         p, motors, drive = self.profile, self.motors, self.drive
         T = np.broadcast_to(np.asarray(duration, dtype=float), (len(motors),))[:, None]
-        N, eta = drive.ratio[:, None], drive.efficiency[:, None]
         speed, torque, crank = self.motor_samples(T[:, 0])
         dwell = self.task.dwell
-        hold = abs(p.hold) / (N[:, 0] * eta[:, 0])
+        hold = held_torque(p.hold, drive, len(motors))
         cycle = T[:, 0] + dwell
         square = T[:, 0] * (torque**2 @ p.weights) + dwell * hold**2
         load = p.load
@@ -671,6 +673,12 @@ def dead_points(stage: LinkageStage) -> dict[str, float]:
     return out
 
 
+def held_torque(hold: float, drive: Drive, n: int) -> np.ndarray:
+    """The motor torque holding the static crank torque ``hold`` through the gear
+    stages, |hold| / (N eta), per candidate."""
+    return np.broadcast_to(abs(hold) / (drive.ratio * drive.efficiency), (n,))
+
+
 @dataclass(frozen=True)
 class HeldDwell:
     """A dwell on the linkage: its static crank torque (the output's load through the
@@ -819,12 +827,12 @@ class LinkageCycle:
         peak check passes: the largest of the free moves' (:func:`peak_floor`, each from
         its speed bound) over their weights; inf where a part that does not scale (a move
         of fixed duration, a dwell's holding) fails it."""
-        n, N, eta = len(self.motors), self.drive.ratio, self.drive.efficiency
+        n = len(self.motors)
         grip = 1.0 - limits.torque_margin
         floor = np.zeros(n)
         for i, (part, w) in enumerate(zip(self.parts, self.weights, strict=True)):
             if isinstance(part, HeldDwell):
-                hold = np.broadcast_to(abs(part.hold) / (N * eta), (n,))
+                hold = held_torque(part.hold, self.drive, n)
                 fixed = peak_ratio(self.motors, hold[:, None], np.zeros((n, 1)))
             elif np.isfinite(self.fixed[i]):
                 fixed = self.fixed_figures(i)["peak_ratio"]
@@ -859,12 +867,12 @@ class LinkageCycle:
         (F + W s) (F, a the fixed segments' time and integral, W, b the free ones'
         weights and theirs), never below its smaller limit; None where no segment is
         free or fixed with a positive time."""
-        n, N, eta = len(self.motors), self.drive.ratio, self.drive.efficiency
+        n = len(self.motors)
         fixed_time, fixed_sum = 0.0, np.zeros(n)
         free_weight, free_sum = 0.0, np.zeros(n)
         for i, (part, w) in enumerate(zip(self.parts, self.weights, strict=True)):
             rate = np.zeros(n) if isinstance(part, LinkageProfile) else \
-                np.broadcast_to(np.square(abs(part.hold) / (N * eta)), (n,))
+                np.square(held_torque(part.hold, self.drive, n))
             if np.isfinite(self.fixed[i]):
                 fixed_time, fixed_sum = fixed_time + self.fixed[i], fixed_sum + rate * self.fixed[i]
             else:
@@ -925,7 +933,6 @@ class LinkageCycle:
         linear in s (sizer.sizing.cycle.CycleRmsModel)."""
         n = len(self.motors)
         moves, constant, hold_rate = [], np.zeros(n), np.zeros(n)
-        N, eta = self.drive.ratio, self.drive.efficiency
         none = np.zeros(n)
         for i, (part, w, T) in enumerate(zip(self.parts, self.weights, self.durations(s),
                                              strict=True)):
@@ -937,7 +944,7 @@ class LinkageCycle:
                 else:
                     constant = constant + self.fixed_figures(i)["square"]
             else:
-                hold = np.broadcast_to(abs(part.hold) / (N * eta), (n,))
+                hold = held_torque(part.hold, self.drive, n)
                 if free:
                     hold_rate = hold_rate + hold * hold * w
                 else:
@@ -1128,7 +1135,6 @@ def linkage_figures(calculator: LinkageCalculator | LinkageCycle, s: np.ndarray
     out = []
     n = len(calculator.motors)
     drive = calculator.drive
-    N, eta = drive.ratio, drive.efficiency
     for i, (_, _, _, part, T, calc) in enumerate(calculator.segments(np.asarray(s, float))):
         if calc is not None and isinstance(calculator, LinkageCycle) \
                 and np.isfinite(calculator.fixed[i]):  # the same at every scale: once
@@ -1136,7 +1142,7 @@ def linkage_figures(calculator: LinkageCalculator | LinkageCycle, s: np.ndarray
         elif calc is not None:
             out.append(_move_figures(calc, T))
         elif isinstance(part, HeldDwell):
-            hold = np.broadcast_to(abs(part.hold) / (N * eta), (n,))
+            hold = held_torque(part.hold, drive, n)
             zeros = np.zeros(n)
             ratio = peak_ratio(calculator.motors, hold[:, None], zeros[:, None])
             stages = len(drive.stages)
@@ -1199,12 +1205,12 @@ def linkage_pieces(calculator: LinkageCalculator | LinkageCycle, s: np.ndarray,
     the output."""
     n = len(calculator.motors)
     N = np.broadcast_to(np.asarray(calculator.drive.ratio, dtype=float), (n,))[:, None]
-    eta = np.broadcast_to(np.asarray(calculator.drive.efficiency, dtype=float), (n,))[:, None]
     out, start, position = [], np.zeros((n, 1)), 0.0
     for name, _, _, part, T, move in calculator.segments(s):
         Tc = np.asarray(T, dtype=float)[:, None]
         if isinstance(part, HeldDwell):
-            out.append(held_piece(name, start, Tc, position, abs(part.hold) / (N * eta)[:, 0]))
+            out.append(held_piece(name, start, Tc, position,
+                                  held_torque(part.hold, calculator.drive, n)))
         else:
             assert move is not None
             speed, torque, _ = move.motor_samples(np.asarray(T, dtype=float))
