@@ -159,6 +159,24 @@ class CycleRmsModel:
         return np.sqrt(np.where(np.isnan(mean), np.inf, mean))
 
 
+def rms_floor(rates: list[np.ndarray], fixed: np.ndarray, weights: np.ndarray,
+              n: int) -> np.ndarray | None:
+    """A torque the RMS over a cycle exceeds at every scale s, from each segment's lower
+    bound on its mean square (``rates``), its fixed duration (nan: free) and its weight:
+    the mean square is at least (a + b s)/(F + W s) (F, a the fixed segments' time and
+    integral, W, b the free ones' weights and theirs), monotone in s, so never below its
+    smaller limit (s -> 0 or s -> inf); None where no segment has a positive time."""
+    fixed_time, fixed_sum = 0.0, np.zeros(n)
+    free_weight, free_sum = 0.0, np.zeros(n)
+    for rate, duration, w in zip(rates, fixed, weights, strict=True):
+        if np.isfinite(duration):
+            fixed_time, fixed_sum = fixed_time + duration, fixed_sum + rate * duration
+        else:
+            free_weight, free_sum = free_weight + w, free_sum + rate * w
+    limits = [x / t for x, t in ((fixed_sum, fixed_time), (free_sum, free_weight)) if t > 0.0]
+    return np.sqrt(np.minimum.reduce(limits)) if limits else None
+
+
 def segment_load(base: Load, segment: Segment) -> Load:
     """The design's load with the segment's added inertia (or mass) and torque (force)."""
     if segment.load.is_zero:
@@ -320,10 +338,9 @@ class SegmentCycle:
         monotone in s, so never below its smaller limit (s -> 0 or s -> inf)."""
         n = len(self.motors)
         ones = np.ones(n)
-        fixed_time, fixed_sum = 0.0, np.zeros(n)
-        free_weight, free_sum = 0.0, np.zeros(n)
-        for segment, law, drive, fixed, w in zip(self.cycle.segments, self.laws, self.drives,
-                                                 self.fixed, self.weights, strict=True):
+        rates = []
+        for segment, law, drive in zip(self.cycle.segments, self.laws, self.drives,
+                                       strict=True):
             if isinstance(segment, Move):
                 if not segment.rest_to_rest or law is None:
                     rate = np.zeros(n)
@@ -338,14 +355,8 @@ class SegmentCycle:
                 rate = self._run(segment, drive, ones).torque_square
             else:
                 rate = self._dwell(drive, ones).torque_square
-            if np.isfinite(fixed):
-                fixed_time, fixed_sum = fixed_time + fixed, fixed_sum + rate * fixed
-            else:
-                free_weight, free_sum = free_weight + w, free_sum + rate * w
-        limits = [x / t for x, t in ((fixed_sum, fixed_time), (free_sum, free_weight)) if t > 0.0]
-        if not limits:
-            return None
-        return np.sqrt(np.minimum.reduce(limits))
+            rates.append(rate)
+        return rms_floor(rates, self.fixed, self.weights, n)
 
     def _boundary_slack(self, i: int, limits: Limits, s: np.ndarray,
                         rows: np.ndarray) -> np.ndarray:

@@ -45,7 +45,13 @@ from sizer.model.domain import Design, Limits, LinkageStage, Load, Task
 from sizer.numerics.roots import quadratic_roots
 from sizer.sizing.candidates import MotorArrays
 from sizer.sizing.checks import evaluate_checks, worst_slack
-from sizer.sizing.cycle import CycleRmsModel, cycle_laws, given_scale, segment_load
+from sizer.sizing.cycle import (
+    CycleRmsModel,
+    cycle_laws,
+    given_scale,
+    rms_floor,
+    segment_load,
+)
 from sizer.sizing.evaluation import CycleMetrics, CyclePiece, SegmentPart, held_piece
 from sizer.sizing.move import rms_of_powers, rule_speed
 from sizer.sizing.shortest_duration import mechanical_answer
@@ -862,23 +868,12 @@ class LinkageCycle:
 
     def rms_lower_bound(self) -> np.ndarray | None:
         """Per candidate a torque the motor's RMS over the cycle exceeds at every scale
-        (as sizer.sizing.cycle.SegmentCycle.rms_lower_bound): each dwell's holding torque
-        squared (exact), 0 for a move; the mean square is then at least (a + b s) /
-        (F + W s) (F, a the fixed segments' time and integral, W, b the free ones'
-        weights and theirs), never below its smaller limit; None where no segment is
-        free or fixed with a positive time."""
+        (sizer.sizing.cycle.rms_floor): each dwell's holding torque squared (exact), 0 for
+        a move."""
         n = len(self.motors)
-        fixed_time, fixed_sum = 0.0, np.zeros(n)
-        free_weight, free_sum = 0.0, np.zeros(n)
-        for i, (part, w) in enumerate(zip(self.parts, self.weights, strict=True)):
-            rate = np.zeros(n) if isinstance(part, LinkageProfile) else \
-                np.square(held_torque(part.hold, self.drive, n))
-            if np.isfinite(self.fixed[i]):
-                fixed_time, fixed_sum = fixed_time + self.fixed[i], fixed_sum + rate * self.fixed[i]
-            else:
-                free_weight, free_sum = free_weight + w, free_sum + rate * w
-        limits = [x / t for x, t in ((fixed_sum, fixed_time), (free_sum, free_weight)) if t > 0.0]
-        return np.sqrt(np.minimum.reduce(limits)) if limits else None
+        rates = [np.zeros(n) if isinstance(part, LinkageProfile) else
+                 np.square(held_torque(part.hold, self.drive, n)) for part in self.parts]
+        return rms_floor(rates, self.fixed, self.weights, n)
 
     def thermal_speed(self, s: np.ndarray) -> np.ndarray:
         """The thermal speed at scales s (sizer.sizing.evaluation.CycleModel) from each
