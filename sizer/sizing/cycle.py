@@ -332,10 +332,8 @@ class SegmentCycle:
         Segment by segment a lower bound on the mean square of the motor torque over it:
         a rest-to-rest move's (CycleCalculator.rms_lower_bound, squared: the
         square of its largest positive constant torque), a dwell's holding torque and a
-        run's constant torque squared (exact), 0 for a move with boundary speeds. The
-        cycle's mean square is then at least (a + b s)/(F + W s): F, a the fixed
-        segments' time and bound integral, W, b the free segments' weights and theirs;
-        monotone in s, so never below its smaller limit (s -> 0 or s -> inf)."""
+        run's constant torque squared (exact), 0 for a move with boundary speeds; the
+        cycle's from them (:func:`rms_floor`)."""
         n = len(self.motors)
         ones = np.ones(n)
         rates = []
