@@ -84,6 +84,9 @@ KINDS: dict[str, Kind] = {
         Kind("torque_constant", "[mass]*[length]**2/[time]**2/[current]", "0.88 N*m/A",
              "N*m/A"),
         Kind("resistance", "[mass]*[length]**2/[time]**3/[current]**2", "1.2 ohm", "ohm"),
+        Kind("inductance", "[mass]*[length]**2/[time]**2/[current]**2", "12.5 mH", "H"),
+        Kind("back_emf_constant", "[mass]*[length]**2/[time]**2/[current]", "52 V/krpm",
+             "V*s/rad"),
         Kind("voltage", "[mass]*[length]**2/[time]**3/[current]", "600 V", "V"),
         Kind("capacitance", "[current]**2*[time]**4/[mass]/[length]**2", "705 uF", "F"),
         Kind("power", "[mass]*[length]**2/[time]**3", "1.5 kW", "W"),
@@ -220,6 +223,10 @@ _TEMPERATURE_DIFFERENCES = frozenset({"K", "kelvin", "delta_degC", "delta_degF"}
 """Units of a temperature rise: a difference, no offset (a rise of 100 K = 100 delta_degC)."""
 _TORQUE_LIKE = frozenset({"torque", "rotary_damping", "torque_constant"})
 _ELECTRIC = frozenset({"current", "torque_constant"})
+_PER_ANGLE = frozenset({"back_emf_constant"})
+"""Quantities per unit of angular speed (V/krpm, mV/min^-1): a unit without an angle in its
+speed counts revolutions (min^-1 = rpm), so its value is per 2 pi rad."""
+_RMS_VOLT = re.compile(r"^(V|mV)(?:_?rms|rms|eff|_eff)$|^(Vrms|Veff)$", re.IGNORECASE)
 _RMS_AMPERE = re.compile(r"^(A|mA)(?:_?rms|rms|eff|_eff)$|^(Arms|Aeff)$", re.IGNORECASE)
 """Amperes as datasheets write RMS currents ('Arms', 'A_rms', 'Aeff'): plain amperes (a
 current of a drive or a motor is an RMS value throughout)."""
@@ -246,6 +253,8 @@ def _normalize(unit: str, kind: str) -> str:
             return _ANGLE_WORDS.get(text, text)
         if kind in _ELECTRIC and _RMS_AMPERE.match(text):
             return "mA" if text[:2].lower() == "ma" else "A"
+        if kind in _PER_ANGLE and _RMS_VOLT.match(text):
+            return "mV" if text[:2].lower() == "mv" else "V"
         if kind in _TORQUE_LIKE:
             return _NEWTON_METRE.sub(r"\1N*\2", text)
         if kind == "inertia":
@@ -268,11 +277,14 @@ class _Recipe:
     factor: float
     revolutions: bool = False
     gd2: bool = False
+    per_revolution: bool = False
 
     def apply(self, number: float) -> float:
         value = number * self.factor
         if self.revolutions:
             return value * 2.0 * math.pi
+        if self.per_revolution:
+            return value / (2.0 * math.pi)
         if self.gd2:
             return value / 4.0
         return value
@@ -303,6 +315,7 @@ _SI_FACTORS: dict[str, dict[str, float]] = {
     "temperature_rise": {"K": 1.0, "kelvin": 1.0},  # a difference of temperatures
     "torque_constant": {"N*m/A": 1.0, "mN*m/A": 0.001},
     "resistance": {"ohm": 1.0},
+    "inductance": {"H": 1.0, "mH": 0.001},
     "voltage": {"V": 1.0},
     "capacitance": {"F": 1.0, "uF": 1e-06, "mF": 0.001},
     "power": {"W": 1.0, "kW": 1000.0},
@@ -414,6 +427,11 @@ def _pint_recipe(pint_unit: str, unit: str, text: str, spec: Kind, field: str | 
         if angle not in (0, 1):
             raise _expected(spec, text, field)
         return _Recipe(factor, revolutions=angle == 0)
+    if spec.name in _PER_ANGLE:
+        factor, angle = _base_and_angle(quantity)
+        if angle not in (0, -1):
+            raise _expected(spec, text, field)
+        return _Recipe(factor, per_revolution=angle == 0)
     return _Recipe(float(quantity.to_base_units().magnitude))
 
 
@@ -430,6 +448,13 @@ def _with_pint(number: float, pint_unit: str, unit: str, text: str, spec: Kind,
         if angle == 0:
             return magnitude * 2.0 * math.pi
         raise _expected(spec, text, field)
+    if spec.name in _PER_ANGLE:
+        magnitude, angle = _base_and_angle(quantity)
+        if angle == -1:
+            return magnitude
+        if angle == 0:
+            return magnitude / (2.0 * math.pi)
+        raise _expected(spec, text, field)
     return float(quantity.to_base_units().magnitude)
 
 
@@ -438,6 +463,13 @@ def _root_and_angle(quantity: Any) -> tuple[float, float]:
     quantity, 0 when the unit has no angle (then it counts revolutions)."""
     root = quantity.to_root_units()
     return float(root.magnitude), dict(root.unit_items()).get("radian", 0)
+
+
+def _base_and_angle(quantity: Any) -> tuple[float, float]:
+    """The magnitude in SI base units (kg, not the root units' g) and the power of the
+    radian in them: -1 for a quantity per radian, 0 when its speed counts revolutions."""
+    base = quantity.to_base_units()
+    return float(base.magnitude), dict(base.unit_items()).get("radian", 0)
 
 
 def _gd2_factor(quantity: Any, text: str, field: str | None) -> float:

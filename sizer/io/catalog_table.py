@@ -25,7 +25,14 @@ from typing import Any
 import numpy as np
 from pydantic import BaseModel
 
-from sizer.io.motor_rules import CurveColumns, Figures, MotorColumns, is_idealized, line_to_line
+from sizer.io.motor_rules import (
+    CurveColumns,
+    Figures,
+    MotorColumns,
+    bus_voltage,
+    is_idealized,
+    line_to_line,
+)
 from sizer.io.schema.inputs import CatalogFile, CurvePointInput, MotorInput
 from sizer.io.schema.inputs_base import RangeRef, field_markers
 from sizer.io.schema.ranges import RANGES
@@ -36,6 +43,22 @@ CURVES = ("continuous_curve", "intermittent_curve")
 TORQUE_CURRENT = "torque_current_curve"
 _CURRENT_KEYS = frozenset({"current", "torque"})
 _POINT_KEYS = frozenset({"speed", "torque"})
+_ONE_OF = (("winding_resistance", "phase_resistance"),
+           ("winding_inductance", "phase_inductance"),
+           ("dc_bus_voltage", "supply_voltage"))
+"""Fields of which a motor gives one (MotorInput's validator words the other case)."""
+_COMMUTATIONS = ("sinusoidal", "block")
+
+
+def _consistent(columns: dict[str, Any]) -> bool:
+    """The checks of MotorInput's validator across fields, on the columns: poles even and
+    whole, the peak current not below the continuous one."""
+    poles = columns["poles"]
+    given = ~np.isnan(poles)
+    if np.any(given & ((poles != np.round(poles)) | (np.round(poles) % 2 != 0))):
+        return False
+    with np.errstate(invalid="ignore"):
+        return not np.any(columns["peak_current"] < columns["continuous_current"])
 
 
 @dataclass(frozen=True)
@@ -113,7 +136,9 @@ def read_table(data: Any) -> CatalogTable | None:
     for row in rows:
         if type(row) is not dict or not row.keys() <= allowed or not required <= row.keys():
             return None
-        if "winding_resistance" in row and "phase_resistance" in row:
+        if any(one in row and other in row for one, other in _ONE_OF):
+            return None
+        if row.get("commutation", "sinusoidal") not in _COMMUTATIONS:
             return None
     try:
         catalog = {key: _texts([data.get(key)], nullable=True)[0] for key in fields.catalog_texts}
@@ -129,7 +154,7 @@ def read_table(data: Any) -> CatalogTable | None:
         currents = _curve_column(rows, TORQUE_CURRENT, fields,
                                  (_CURRENT_KEYS, ("current", "torque"),
                                   ("curve_current", "curve_torque")))
-        if not _increasing(currents[0]):
+        if not _increasing(currents[0]) or not _consistent(columns):
             return None
     except _NotCommonError:
         return None
@@ -270,6 +295,15 @@ def _table(rows: list[dict[str, Any]], ids: list[str], columns: dict[str, Any],
               torque_constant=numbers["torque_constant"][i],
               winding_resistance=line_to_line(numbers["winding_resistance"][i],
                                               numbers["phase_resistance"][i]),
+              winding_inductance=line_to_line(numbers["winding_inductance"][i],
+                                              numbers["phase_inductance"][i]),
+              back_emf_constant=numbers["back_emf_constant"][i],
+              poles=None if numbers["poles"][i] is None else int(numbers["poles"][i]),
+              continuous_current=numbers["continuous_current"][i],
+              peak_current=numbers["peak_current"][i],
+              dc_bus_voltage=bus_voltage(numbers["dc_bus_voltage"][i],
+                                         numbers["supply_voltage"][i]),
+              commutation=columns["commutation"][i],
               brake_holding_torque=numbers["brake_holding_torque"][i],
               brake_inertia=numbers["brake_inertia"][i] or 0.0,
               thermal_time_constant=numbers["thermal_time_constant"][i],

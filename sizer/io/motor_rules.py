@@ -620,6 +620,12 @@ def motor_of(item: Any) -> Motor:
         manufacturer=item.manufacturer, price=item.price, mass=item.mass,
         torque_constant=item.torque_constant,
         winding_resistance=line_to_line(item.winding_resistance, item.phase_resistance),
+        winding_inductance=line_to_line(item.winding_inductance, item.phase_inductance),
+        back_emf_constant=item.back_emf_constant,
+        poles=None if item.poles is None else int(item.poles),
+        continuous_current=item.continuous_current, peak_current=item.peak_current,
+        dc_bus_voltage=bus_voltage(item.dc_bus_voltage, item.supply_voltage),
+        commutation=item.commutation,
         brake_holding_torque=item.brake_holding_torque,
         brake_inertia=item.brake_inertia or 0.0,
         thermal_time_constant=item.thermal_time_constant,
@@ -634,6 +640,15 @@ def line_to_line(winding: float | None, phase: float | None) -> float | None:
     if winding is not None:
         return winding
     return None if phase is None else 2.0 * phase
+
+
+def bus_voltage(dc_bus: float | None, supply: float | None) -> float | None:
+    """The DC link from the one given: ``dc_bus_voltage`` as it is, an AC ``supply_voltage``
+    (line to line, RMS) rectified to its peak, sqrt(2) times it (a diode bridge's DC link
+    without load)."""
+    if dc_bus is not None:
+        return dc_bus
+    return None if supply is None else math.sqrt(2.0) * supply
 
 
 def _pairs(points: Sequence[Any] | None) -> Curve | None:

@@ -29,10 +29,13 @@ torque passing without loss (Yaskawa: T_L = F P / (2 pi R eta), T_a = J omega / 
 ThermalDuty = Literal["repeated", "once"]
 """A machine cycle repeated without end, or a one-off sequence (issue 16)."""
 InertiaRatioRule = Literal["driven", "load"]
+Commutation = Literal["sinusoidal", "block"]
+"""A motor's winding fed with sinusoidal currents (an AC servo) or in six steps (a
+brushless DC motor: maxon's EC data)."""
 """Numerator of the inertia ratio: everything the motor drives (load, screw, gears,
 couplings, reflected to the motor; the vendors' definition) or the load alone."""
 
-EnvelopeRule = Literal["book", "linear", "linear_intermittent"]
+EnvelopeRule = Literal["book", "linear", "linear_intermittent", "electrical"]
 """How a region without a curve is completed up to max_speed (sizer.envelope.completion)."""
 
 Curve = tuple[tuple[float, float], ...]
@@ -192,6 +195,21 @@ class Motor:
     winding_resistance: float | None = None
     """Ohm, phase to phase (line to line: between two terminals; twice the per-phase
     resistance of a star winding)."""
+    winding_inductance: float | None = None
+    """H, phase to phase (as ``winding_resistance``)."""
+    back_emf_constant: float | None = None
+    """k_e, V*s/rad: RMS line-to-line back-EMF per rad/s (sinusoidal: k_t = sqrt(3) k_e)."""
+    poles: int | None = None
+    """The rotor's magnetic poles (pole pairs = poles / 2)."""
+    continuous_current: float | None = None
+    """A rms: the current of ``continuous_torque``."""
+    peak_current: float | None = None
+    """A rms: the motor's maximum current."""
+    dc_bus_voltage: float | None = None
+    """V: the DC link (or supply) the ratings are given for; the voltage limit of the
+    electrical envelope (sizer.envelope.electrical)."""
+    commutation: Commutation = "sinusoidal"
+    """How the drive feeds the winding (sizer.envelope.electrical)."""
     brake_holding_torque: float | None = None
     """N*m: the holding brake's static torque (the motor is a brake variant); None: no
     brake."""

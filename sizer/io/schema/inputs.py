@@ -122,6 +122,35 @@ class MotorInput(Strict):
         "winding_resistance", note="per phase of a star winding, as some vendors give it "
                                    "(Siemens R_ph): read as winding_resistance = 2 x this; "
                                    "give one of the two")] | None = None
+    winding_inductance: Annotated[float, Ranged(
+        "winding_inductance", note="phase to phase (line to line, between two terminals), "
+                                   "e.g. '12.5 mH'")] | None = None
+    phase_inductance: Annotated[float, Ranged(
+        "winding_inductance", note="per phase of a star winding: read as "
+                                   "winding_inductance = 2 x this; give one of the two")] | None = None
+    back_emf_constant: Annotated[float, Ranged(
+        "back_emf_constant", note="k_e: RMS line-to-line back-EMF per speed, as Kollmorgen, "
+                                  "Siemens and Beckhoff print it ('52 V/krpm', "
+                                  "'52 mV/min^-1'); sinusoidal: k_t = sqrt(3) k_e")] | None = None
+    poles: Annotated[float, Ranged(
+        "poles", note="the rotor's magnetic poles (even; pole pairs = poles / 2): the "
+                      "winding's electrical frequency for its inductance")] | None = None
+    continuous_current: Annotated[float, Ranged(
+        "motor_current", note="the current of continuous_torque (standstill or rated), "
+                              "A rms")] | None = None
+    peak_current: Annotated[float, Ranged(
+        "motor_current", note="the motor's maximum (peak) current, A rms")] | None = None
+    dc_bus_voltage: Annotated[float, Ranged(
+        "bus_voltage", note="the DC-link (or supply) voltage the ratings are given for: "
+                            "the voltage limit of the electrical envelope")] | None = None
+    supply_voltage: Annotated[float, Ranged(
+        "supply_voltage", note="the AC mains the ratings are given for, line to line RMS: "
+                               "read as dc_bus_voltage = sqrt(2) x this; give one of the "
+                               "two")] | None = None
+    commutation: Literal["sinusoidal", "block"] = Field(
+        "sinusoidal", description="sinusoidal (AC servo, field-oriented: the default) or "
+                                  "block (a brushless DC motor's six-step, as maxon's EC "
+                                  "data: U = R I + k_t omega at the terminals)")
     brake_holding_torque: Annotated[float, Ranged(
         "brake_holding_torque", note="a holding brake's static torque, e.g. '1.27 N*m': "
                                      "the motor is the brake variant")] | None = None
@@ -144,6 +173,20 @@ class MotorInput(Strict):
             raise PydanticCustomError("two_resistances", "give winding_resistance (phase to "
                                       "phase) or phase_resistance (per phase), not both",
                                       {"at": ("phase_resistance",)})
+        for one, other, what in (("winding_inductance", "phase_inductance", "inductance"),
+                                 ("dc_bus_voltage", "supply_voltage", "voltage")):
+            if getattr(self, one) is not None and getattr(self, other) is not None:
+                raise PydanticCustomError(f"two_{what}s", f"give {one} or {other}, not both",
+                                          {"at": (other,)})
+        if self.poles is not None and (self.poles != int(self.poles) or self.poles % 2):
+            raise PydanticCustomError("poles", f"poles must be an even whole number (twice "
+                                      f"the pole pairs), got {self.poles:g}",
+                                      {"at": ("poles",)})
+        if (self.peak_current is not None and self.continuous_current is not None
+                and self.peak_current < self.continuous_current):
+            raise PydanticCustomError(
+                "peak_below_continuous", f"peak_current {self.peak_current:g} A is below "
+                f"continuous_current {self.continuous_current:g} A", {"at": ("peak_current",)})
         try:
             _increasing_points(self.torque_current_curve)
         except ValueError as error:

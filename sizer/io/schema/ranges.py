@@ -198,6 +198,15 @@ RANGES: dict[str, Range] = {
                           "10 uN*m/A (a micro motor) to 1000 N*m/A (a large torque motor)"),
     "winding_resistance": _r("resistance", 1e-4, 1e4, "0.1 mOhm (a large motor) to 10 "
                              "kOhm (a micro motor's fine winding)"),
+    "winding_inductance": _r("inductance", 1e-8, 10.0, "10 nH (a large motor's winding) to "
+                             "10 H (a micro motor's fine winding)"),
+    "back_emf_constant": _r("back_emf_constant", 1e-5, 1e4, "k_e, RMS line-to-line volts per "
+                            "rad/s: 1 uV/krpm... 1 MV/krpm, as torque_constant"),
+    "poles": _r("ratio", 2.0, 1000.0, "the rotor's magnetic poles (twice the pole pairs): "
+                "servo motors have 4 to 50"),
+    "motor_current": _r("current", 1e-4, 1e5, "0.1 mA to 100 kA, RMS (a motor's rated or "
+                        "peak current)"),
+    "supply_voltage": _r("voltage", 1.0, 1e4, "1 V to 10 kV AC, line to line (RMS)"),
     "brake_holding_torque": _r("torque", 1e-6, 1e6, "a holding brake's static friction torque "
                                "at the motor shaft, as the motors' torques"),
     "brake_inertia": _r("inertia", 1e-12, 1e3, "what the brake adds to the rotor's inertia; "
