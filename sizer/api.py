@@ -24,7 +24,7 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import replace
 from os import PathLike
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, TypeAlias
+from typing import TYPE_CHECKING, Any, TypeAlias, get_args
 
 from sizer.errors import UserError
 from sizer.model.domain import Design, EnvelopeRule, Motor
@@ -44,7 +44,7 @@ CatalogRef = str | PathLike[str]
 Progress = Callable[[int, int], None]
 """``progress(done, total)``: called with (0, n), then after each of the design's n laws."""
 
-ENVELOPES: tuple[EnvelopeRule, ...] = ("book", "linear", "linear_intermittent")
+ENVELOPES: tuple[EnvelopeRule, ...] = get_args(EnvelopeRule)
 """The ``envelope`` rules (sizer.envelope.completion.ENVELOPE_RULES)."""
 
 
@@ -82,7 +82,7 @@ def override(design: Design, *, motors: Sequence[str] | Sequence[Motor] | None =
       Motor objects to size instead of the design's;
     - ``laws``: law specs (or choices) to consider instead of the design's ``laws:``;
     - ``envelope``: the completion rule of regions without curves (``book``, ``linear``,
-      ``linear_intermittent``; ``--envelope``), instead of the design's
+      ``linear_intermittent``, ``electrical``; ``--envelope``), instead of the design's
       ``limits.envelope`` (sec. 6.1.1).
 
     The notes of a sizing (:func:`assumptions`) follow the motors and envelope given.

@@ -399,7 +399,41 @@ BRAKE_CASES = [
               (f"{M}.brake_inertia",), (f"{C}.brake_inertia",)),
 ]
 
-CASES = [*FIELDS, *IMPOSSIBLE, *GEARBOX_CASES, *DRIVE_CASES, *BRAKE_CASES]
+MOTOR_WINDING = {**MOTOR_KT, "winding_inductance": "8 mH", "back_emf_constant": "30 V/krpm",
+                 "poles": 8, "continuous_current": "2.6 A", "peak_current": "7.6 A",
+                 "dc_bus_voltage": "320 V", "commutation": "sinusoidal"}
+"""MOTOR_KT with its winding's electrical data (issue 35: the electrical envelope)."""
+
+ELECTRICAL_CASES = [
+    bad_drive("inductance-negative", {f"{M}.winding_inductance": "-8 mH"},
+              (f"{M}.winding_inductance", "[1e-8, 10] H", "-8 mH"),
+              (f"{C}.winding_inductance",), motor=MOTOR_WINDING),
+    bad_drive("phase-and-winding-inductance", {f"{M}.phase_inductance": "4 mH"},
+              (f"{M}.phase_inductance", "not both"), (f"{C}.phase_inductance",),
+              motor=MOTOR_WINDING),
+    bad_drive("back-emf-a-voltage", {f"{M}.back_emf_constant": "30 V"},
+              (f"{M}.back_emf_constant", "expected a back emf constant"),
+              (f"{C}.back_emf_constant",), motor=MOTOR_WINDING),
+    bad_drive("poles-odd", {f"{M}.poles": 7}, (f"{M}.poles", "even whole number"),
+              (f"{C}.poles",), motor=MOTOR_WINDING),
+    bad_drive("continuous-current-zero", {f"{M}.continuous_current": "0 A"},
+              (f"{M}.continuous_current", "[1e-4, 1e5] A"), (f"{C}.continuous_current",),
+              motor=MOTOR_WINDING),
+    bad_drive("peak-current-below-continuous", {f"{M}.peak_current": "2 A"},
+              (f"{M}.peak_current", "below continuous_current"), (f"{C}.peak_current",),
+              motor=MOTOR_WINDING),
+    bad_drive("bus-voltage-huge", {f"{M}.dc_bus_voltage": "20 kV"},
+              (f"{M}.dc_bus_voltage", "[1, 1e4] V"), (f"{C}.dc_bus_voltage",),
+              motor=MOTOR_WINDING),
+    bad_drive("bus-and-supply-voltage", {f"{M}.supply_voltage": "230 V"},
+              (f"{M}.supply_voltage", "not both"), (f"{C}.supply_voltage",),
+              motor=MOTOR_WINDING),
+    bad_drive("commutation-unknown", {f"{M}.commutation": "trapezoidal"},
+              (f"{M}.commutation", "'sinusoidal'", "'block'"), (f"{C}.commutation",),
+              motor=MOTOR_WINDING),
+]
+
+CASES = [*FIELDS, *IMPOSSIBLE, *GEARBOX_CASES, *DRIVE_CASES, *BRAKE_CASES, *ELECTRICAL_CASES]
 
 
 @pytest.mark.parametrize("case", CASES, ids=str)

@@ -67,7 +67,7 @@ def test_json_has_the_design_in_si_with_units(indexing_json: dict) -> None:
     assert design["limits"]["inertia_ratio"] == 10.0
     assert design["motors"] == 4 and len(design["laws"]) == 6
     assert design["check"] == {"motor": "HG-KN43J", "law": "modified_sinusoidal"}
-    assert any("rectangular" in note for note in design["notes"])
+    assert any(note.startswith("envelope electrical:") for note in design["notes"])
     assert indexing_json["units"]["max_speed"] == "rad/s"
 
 
@@ -140,7 +140,7 @@ def test_csv_is_si_with_units_in_the_headers() -> None:
                              "margin_peak [1]", "margin_rms [1]", "margin_speed [1]",
                              "limiting", "reason", "price", "mass [kg]", "ratio",
                              "gearbox", "envelope"]
-    assert {r["envelope"] for r in rows} == {"linear"}  # the rule is stated in the CSV too
+    assert {r["envelope"] for r in rows} == {"electrical"}  # the rule is stated in the CSV too
     by_law = {r["law"]: r for r in rows}
     assert float(by_law["cycloidal"]["max_speed [rad/s]"]) == pytest.approx(10.0, rel=1e-12)
     assert round(float(by_law["cycloidal"]["rms_torque [N*m]"]), 4) == 7.6293

@@ -33,10 +33,13 @@ PLAIN = Motor(id="plain", inertia=1e-4, continuous_torque=1.0, peak_torque=3.0,
               rated_speed=100.0, max_speed=200.0)
 
 
-def test_the_rules_are_named_and_linear_is_the_default():
-    assert RULES == ("book", "linear", "linear_intermittent")
-    assert DEFAULT_ENVELOPE == "linear"
-    assert Design(task=Task(1.0, 1.0), load=Load(1.0)).limits.envelope == "linear"
+def test_the_rules_are_named_and_electrical_is_the_default():
+    assert RULES == ("book", "linear", "linear_intermittent", "electrical")
+    assert DEFAULT_ENVELOPE == "electrical"
+    assert Design(task=Task(1.0, 1.0), load=Load(1.0)).limits.envelope == "electrical"
+    # a motor without its winding's data is completed as by `linear` (issue 35)
+    assert continuous_region(PLAIN, "electrical") == continuous_region(PLAIN, "linear")
+    assert intermittent_region(PLAIN, "electrical") == intermittent_region(PLAIN, "linear")
 
 
 def test_book_keeps_the_rectangles_up_to_the_rated_speed():

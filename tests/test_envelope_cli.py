@@ -36,8 +36,8 @@ def _feasible(stdout):
 
 
 def test_the_design_file_chooses_the_rule(tmp_path):
-    assert load_design(_write(tmp_path)).limits.envelope == "linear"
-    for rule in ("book", "linear", "linear_intermittent"):
+    assert load_design(_write(tmp_path)).limits.envelope == "electrical"
+    for rule in ("book", "linear", "linear_intermittent", "electrical"):
         design = load_design(_write(tmp_path, f"limits: {{envelope: {rule}}}\n"))
         assert design.limits.envelope == rule
 
@@ -54,7 +54,8 @@ def test_31_yaskawa_motors_none_feasible_with_book_some_with_linear(tmp_path):
     assert len(load_design(path).motors) == 31
     linear, notes = _feasible(run_cli("size", str(path), "--format", "json").stdout)
     assert "SGM7J-04A" in linear
-    assert any(n.startswith("envelope linear:") for n in notes)
+    # the default, electrical: these motors give no winding data, so as linear
+    assert any(n.startswith("envelope electrical:") for n in notes)
     # the SGM7G's maximum speed is 3000 rpm: no rule lets it run at 4000 rpm
     assert not any(m.startswith("SGM7G") for m in linear)
     book, notes = _feasible(run_cli("size", str(path), "--format", "json",
@@ -72,7 +73,7 @@ def test_check_states_the_rule_and_follows_the_option(tmp_path):
     path = _write(tmp_path)
     passed = run_cli("check", str(path))
     assert passed.returncode == 0, passed.stdout
-    assert "note: envelope linear:" in passed.stdout
+    assert "note: envelope electrical:" in passed.stdout
     failed = run_cli("check", str(path), "--envelope", "book")
     assert failed.returncode == 1
     assert "note: envelope book:" in failed.stdout

@@ -101,6 +101,7 @@ class EnvelopeChoice(StrEnum):
     BOOK = "book"
     LINEAR = "linear"
     LINEAR_INTERMITTENT = "linear_intermittent"
+    ELECTRICAL = "electrical"
 
 
 MotorsOption = Annotated[
@@ -129,7 +130,8 @@ EnvelopeOption = Annotated[
         "--envelope", case_sensitive=False, show_default=False,
         help="How a motor region without a curve is completed up to max_speed: book "
              "(the book's rectangles up to the rated speed), linear (then straight lines "
-             "down to max_speed) or linear_intermittent. Default: the design's "
-             "'envelope:' (linear).",
+             "down to max_speed), linear_intermittent, or electrical (the region the "
+             "winding's supply allows, for motors with k_t, R and a supply voltage; "
+             "linear for the others). Default: the design's 'envelope:' (electrical).",
     ),
 ]

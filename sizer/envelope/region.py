@@ -13,29 +13,22 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from sizer.envelope.completion import completed_continuous, completed_intermittent
+from sizer.envelope.completion import completed_continuous, completed_intermittent, from_zero
 from sizer.model.domain import Curve, EnvelopeRule, Motor
 
 
 def continuous_region(motor: Motor, rule: EnvelopeRule = "book") -> Curve:
     """The continuous (S1) region's corner points: the catalog's curve, else by ``rule``."""
     if motor.continuous_curve:
-        return _from_zero(motor.continuous_curve)
+        return from_zero(motor.continuous_curve)
     return completed_continuous(motor, rule)
 
 
 def intermittent_region(motor: Motor, rule: EnvelopeRule = "book") -> Curve:
     """The intermittent (peak) region's corner points: the catalog's curve, else by ``rule``."""
     if motor.intermittent_curve:
-        return _from_zero(motor.intermittent_curve)
+        return from_zero(motor.intermittent_curve)
     return completed_intermittent(motor, rule)
-
-
-def _from_zero(curve: Curve) -> Curve:
-    """A curve starting above zero speed holds its first torque down to standstill."""
-    if curve[0][0] > 0.0:
-        return ((0.0, curve[0][1]), *curve)
-    return tuple(curve)
 
 
 _BRUTE_FORCE_CELLS = 2**25

@@ -271,6 +271,10 @@ def _floats(column: np.ndarray) -> list[float | None]:
     return [None if x != x else x for x in column.tolist()]
 
 
+def _whole(value: float | None) -> int | None:
+    return None if value is None else int(value)
+
+
 def _table(rows: list[dict[str, Any]], ids: list[str], columns: dict[str, Any],
            curves: dict[str, tuple[CurveColumns, list[float], list[float]]],
            catalog: dict[str, Any],
@@ -298,7 +302,7 @@ def _table(rows: list[dict[str, Any]], ids: list[str], columns: dict[str, Any],
               winding_inductance=line_to_line(numbers["winding_inductance"][i],
                                               numbers["phase_inductance"][i]),
               back_emf_constant=numbers["back_emf_constant"][i],
-              poles=None if numbers["poles"][i] is None else int(numbers["poles"][i]),
+              poles=_whole(numbers["poles"][i]),
               continuous_current=numbers["continuous_current"][i],
               peak_current=numbers["peak_current"][i],
               dc_bus_voltage=bus_voltage(numbers["dc_bus_voltage"][i],

@@ -37,6 +37,8 @@ couplings, reflected to the motor; the vendors' definition) or the load alone.""
 
 EnvelopeRule = Literal["book", "linear", "linear_intermittent", "electrical"]
 """How a region without a curve is completed up to max_speed (sizer.envelope.completion)."""
+DEFAULT_ENVELOPE: EnvelopeRule = "electrical"
+"""The rule of a design that names none (sizer.envelope.completion: why)."""
 
 Curve = tuple[tuple[float, float], ...]
 """(speed rad/s, torque N*m) points, speed strictly increasing, piecewise linear between."""
@@ -272,7 +274,7 @@ class Limits:
     max_jerk: float | None = None
     thermal_speed: ThermalSpeedRule = "max"
     inertia_ratio_of: InertiaRatioRule = "driven"
-    envelope: EnvelopeRule = "linear"  # regions without curves (sizer.envelope.completion)
+    envelope: EnvelopeRule = DEFAULT_ENVELOPE  # regions without curves (sizer.envelope)
     max_speed: float | None = None
     residual_vibration: float | None = None
     """The largest amplitude of vibration a move may leave at the load (m or rad)."""

@@ -32,7 +32,7 @@ from __future__ import annotations
 import fnmatch
 from collections import OrderedDict
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 
 import numpy as np
@@ -40,7 +40,7 @@ import numpy as np
 from sizer.envelope import RegionTable, continuous_region, intermittent_region
 from sizer.errors import UserError
 from sizer.mechanics import Drive
-from sizer.model.domain import EnvelopeRule, Load, Motor, ServoDrive, Transmission
+from sizer.model.domain import Curve, EnvelopeRule, Load, Motor, ServoDrive, Transmission
 
 KEPT = 8
 """Catalogs whose facts are kept (a design has one; tests and loops make more)."""
@@ -274,10 +274,33 @@ class MotorArrays:
             np.searchsorted(distinct, motor))
         peak = np.array([d.peak_current for d in drives])[drive]
         continuous = np.array([d.continuous_current for d in drives])[drive]
+        intermittent_table, continuous_table = paired.intermittent, paired.continuous
+        if self.envelope == "electrical":
+            intermittent_table, continuous_table = self._on_drive_buses(
+                drives, motor, drive, paired)
         return MotorArrays(self.catalog, paired.index, paired.inertia, paired.damping,
-                           clip_region(paired.intermittent, currents.torque(peak)),
-                           clip_region(paired.continuous, currents.torque(continuous)),
+                           clip_region(intermittent_table, currents.torque(peak)),
+                           clip_region(continuous_table, currents.torque(continuous)),
                            self.envelope, drives, drive, currents)
+
+    def _on_drive_buses(self, drives: tuple[ServoDrive, ...], motor: np.ndarray,
+                        drive: np.ndarray, paired: MotorArrays
+                        ) -> tuple[RegionTable, RegionTable]:
+        """The pairs' regions under ``electrical`` with the drive's DC link as the motor's
+        supply, where the drive gives one (sizer.envelope.electrical; a printed curve
+        still wins); the motor's own regions elsewhere."""
+        buses = [drives[int(d)].dc_bus_voltage for d in drive]
+        if all(bus is None for bus in buses):
+            return paired.intermittent, paired.continuous
+        found: dict[tuple[int, float | None], tuple[Curve, Curve]] = {}
+        for m, bus in zip(motor.tolist(), buses, strict=True):
+            if (m, bus) not in found:
+                on_bus = self.catalog[m] if bus is None else replace(self.catalog[m],
+                                                                     dc_bus_voltage=bus)
+                found[(m, bus)] = (intermittent_region(on_bus, self.envelope),
+                                   continuous_region(on_bus, self.envelope))
+        rows = [found[(m, bus)] for m, bus in zip(motor.tolist(), buses, strict=True)]
+        return RegionTable([r[0] for r in rows]), RegionTable([r[1] for r in rows])
 
     @property
     def peak_current(self) -> np.ndarray:

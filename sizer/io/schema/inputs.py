@@ -47,6 +47,7 @@ from sizer.io.schema.inputs_base import (
 from sizer.io.schema.law_schema import LawSpecText
 from sizer.io.schema.ranges import RANGES
 from sizer.io.schema.transmission_inputs import TransmissionStageInput
+from sizer.model.domain import DEFAULT_ENVELOPE, EnvelopeRule
 
 # ---------------------------------------------------------------- catalog
 
@@ -127,7 +128,8 @@ class MotorInput(Strict):
                                    "e.g. '12.5 mH'")] | None = None
     phase_inductance: Annotated[float, Ranged(
         "winding_inductance", note="per phase of a star winding: read as "
-                                   "winding_inductance = 2 x this; give one of the two")] | None = None
+                                   "winding_inductance = 2 x this; give one of the "
+                                   "two")] | None = None
     back_emf_constant: Annotated[float, Ranged(
         "back_emf_constant", note="k_e: RMS line-to-line back-EMF per speed, as Kollmorgen, "
                                   "Siemens and Beckhoff print it ('52 V/krpm', "
@@ -425,11 +427,14 @@ class LimitsInput(Strict):
                                 "'repeated' (its periodic steady state) or 'once' (a "
                                 "one-off run from the ambient: the winding model decides, "
                                 "not the RMS check; given durations only)")
-    envelope: Literal["book", "linear", "linear_intermittent"] = Field(
-        "linear", description="how a motor region without a curve is completed up to "
-                              "max_speed: book (rectangles up to the rated speed), linear "
-                              "(then straight lines down to max_speed) or "
-                              "linear_intermittent (only the intermittent region extended)")
+    envelope: EnvelopeRule = Field(
+        DEFAULT_ENVELOPE, description="how a motor region without a curve is completed up "
+                                      "to max_speed: book (rectangles up to the rated "
+                                      "speed), linear (then straight lines down to "
+                                      "max_speed), linear_intermittent (only the "
+                                      "intermittent region extended) or electrical (the "
+                                      "region the winding's supply allows where the motor "
+                                      "gives its winding data, else linear)")
 
 
 EFFICIENCY_ALIASES = {"siemens": "power_flow", "mitsubishi": "power_flow",

@@ -200,8 +200,8 @@ RANGES: dict[str, Range] = {
                              "kOhm (a micro motor's fine winding)"),
     "winding_inductance": _r("inductance", 1e-8, 10.0, "10 nH (a large motor's winding) to "
                              "10 H (a micro motor's fine winding)"),
-    "back_emf_constant": _r("back_emf_constant", 1e-5, 1e4, "k_e, RMS line-to-line volts per "
-                            "rad/s: 1 uV/krpm... 1 MV/krpm, as torque_constant"),
+    "back_emf_constant": _r("back_emf_constant", 1e-5, 1e4, "k_e, RMS line to line, per "
+                            "rad/s: about 1 mV/krpm to 1 MV/krpm, as torque_constant"),
     "poles": _r("ratio", 2.0, 1000.0, "the rotor's magnetic poles (twice the pole pairs): "
                 "servo motors have 4 to 50"),
     "motor_current": _r("current", 1e-4, 1e5, "0.1 mA to 100 kA, RMS (a motor's rated or "
