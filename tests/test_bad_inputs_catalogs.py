@@ -433,7 +433,41 @@ ELECTRICAL_CASES = [
               motor=MOTOR_WINDING),
 ]
 
-CASES = [*FIELDS, *IMPOSSIBLE, *GEARBOX_CASES, *DRIVE_CASES, *BRAKE_CASES, *ELECTRICAL_CASES]
+def graded() -> dict[str, Any]:
+    """A file's provenance (issue 35): its sources with grades and the default one (a
+    fresh copy: the cases edit it)."""
+    return {"sources": {"ds": {"grade": "A", "text": "Acme, datasheet M1, p. 3"},
+                        "calc": {"grade": "C", "text": "computed from the datasheet"}},
+            "default_source": "ds"}
+
+PROVENANCE_CASES = [
+    bad_drive("source-grade-unknown", {**graded(), "sources.ds.grade": "E"},
+              ("sources.ds.grade", "'A'", "'D'"), ("catalog:sources",)),
+    bad_drive("default-source-unknown", {**graded(), "default_source": "dss"},
+              ("default_source", "'dss'", "ds"), ("catalog:default_source",)),
+    bad_drive("motor-figure-source-unknown",
+              {**graded(), f"{M}.figure_sources": {"torque_constant": "calcx"}},
+              (f"{M}.figure_sources.torque_constant", "unknown source 'calcx'"),
+              ("catalog:motors.figure_sources",)),
+    bad_drive("drive-figure-source-not-a-figure",
+              {**graded(), f"{D}.figure_sources": {"torque": "calc"}},
+              (f"{D}.figure_sources", "torque"), ("catalog:drives.figure_sources",)),
+    bad_gears("gears-source-grade-unknown", {**graded(), "sources.ds.grade": 1},
+              ("sources.ds.grade",), ("gearboxes:sources",)),
+    bad_gears("gears-default-source-unknown", {**graded(), "default_source": "x"},
+              ("default_source", "'x'"), ("gearboxes:default_source",)),
+    bad_gears("gears-series-figure-source-unknown",
+              {**graded(), "gearboxes[0].figure_sources": {"backlash": "dsx"}},
+              ("gearboxes[0].figure_sources.backlash", "unknown source 'dsx'"),
+              ("gearboxes:gearboxes.figure_sources",)),
+    bad_gears("gears-ratio-figure-source-not-a-figure",
+              {**graded(), "gearboxes[0].ratios[0].figure_sources": {"stiffness": "ds"}},
+              ("gearboxes[0].ratios[0].figure_sources", "stiffness"),
+              ("gearboxes:gearboxes.ratios.figure_sources",)),
+]
+
+CASES = [*FIELDS, *IMPOSSIBLE, *GEARBOX_CASES, *DRIVE_CASES, *BRAKE_CASES, *ELECTRICAL_CASES,
+         *PROVENANCE_CASES]
 
 
 @pytest.mark.parametrize("case", CASES, ids=str)

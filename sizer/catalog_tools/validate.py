@@ -7,7 +7,9 @@ A loader stops at the first mistake; the validator goes on, so a CI run shows th
     report.unreadable   -> [UserError, ...]  (missing file, not UTF-8, broken YAML, ...)
 
 Duplicate motor ids are findings within a file and across the files validated together
-(they would clash when loaded together). A file named twice is validated once.
+(they would clash when loaded together). A file named twice is validated once. Each motor
+that loading accepts is also checked for consistency (:mod:`sizer.catalog_tools.consistency`,
+warnings), and each file's figures are counted by grade (``report.grades``).
 """
 
 from __future__ import annotations
@@ -19,11 +21,14 @@ from typing import Any
 
 from pydantic import ValidationError
 
+from sizer.catalog_tools.consistency import NOT_CHECKED, inconsistencies
 from sizer.catalog_tools.findings import Finding, Severity
+from sizer.catalog_tools.grade_mix import GradeMix, grade_mix, total
 from sizer.errors import UserError
 from sizer.io.loader import resolve_catalog
 from sizer.io.motor_rules import check_motor, motor_of
 from sizer.io.schema.inputs import CatalogFile, DriveCatalogFile, MotorInput
+from sizer.io.schema.transmission_inputs import GearboxCatalogFile
 from sizer.io.validation import all_problems
 from sizer.io.yaml_source import YamlSource, format_path, read_yaml
 
@@ -39,6 +44,17 @@ class ValidationReport:
     """How many motor entries the readable files hold."""
     drives: int = 0
     """How many drive entries the readable drive catalogs hold."""
+    gearboxes: int = 0
+    """How many gearbox series the readable gearbox catalogs hold."""
+    grades: dict[str, GradeMix] = field(default_factory=dict)
+    """Each readable file's figures per grade (A, B, C, D, ungraded)."""
+    not_checked: tuple[str, ...] = NOT_CHECKED
+    """The consistency checks that cannot run, and why."""
+
+    @property
+    def total_grades(self) -> GradeMix:
+        """The figures of every file per grade."""
+        return total(self.grades.values())
 
     @property
     def exit_code(self) -> int:
@@ -81,6 +97,7 @@ def validate_catalogs(references: Iterable[str | Path], base: Path | None = None
             continue
         source.file = shown
         report.files.append(shown)
+        report.grades[shown] = grade_mix(source.data)
         report.findings += _validate_source(source, ids, report)
     report.findings.sort(key=Finding.sort_key)
     return report
@@ -106,6 +123,8 @@ def _validate_source(source: YamlSource, ids: dict[str, _Seen],
     data = source.data
     if isinstance(data, dict) and "drives" in data and "motors" not in data:
         return _validate_drives(source, finding, report, findings)
+    if isinstance(data, dict) and "gearboxes" in data and "motors" not in data:
+        return _validate_gearboxes(source, report, findings)
     try:
         CatalogFile.model_validate(source.data)
     except ValidationError as error:
@@ -121,7 +140,7 @@ def _validate_source(source: YamlSource, ids: dict[str, _Seen],
         finding(("motors",), "the catalog has no motors")
     report.motors += len(motors)
     manufacturer = _text(data.get("manufacturer"))
-    default_source = _text(data.get("source"))
+    default_source = _text(data.get("source")) or _default_citation(data)
     for index, raw in enumerate(motors):
         at = ("motors", index)
         if isinstance(raw, dict):
@@ -130,9 +149,29 @@ def _validate_source(source: YamlSource, ids: dict[str, _Seen],
             item = MotorInput.model_validate(raw)
         except (ValidationError, RecursionError):
             continue  # reported by the schema pass above
-        for rule_problem in check_motor(motor_of(item), manufacturer=manufacturer,
-                                        source=default_source, given=raw):
+        motor = motor_of(item)
+        problems = check_motor(motor, manufacturer=manufacturer, source=default_source,
+                               given=raw)
+        for rule_problem in problems:
             finding((*at, *rule_problem.path), rule_problem.message, rule_problem.severity)
+        if not any(problem.at_load for problem in problems):  # refused motors: no more
+            for path, message in inconsistencies(motor):
+                finding((*at, *path), message, "warning")
+    return findings
+
+
+def _validate_gearboxes(source: YamlSource, report: ValidationReport,
+                        findings: list[Finding]) -> list[Finding]:
+    """A gearbox catalog (``gearboxes:`` without ``motors:``): its schema, provenance
+    included."""
+    file = source.file or "?"
+    try:
+        GearboxCatalogFile.model_validate(source.data)
+    except ValidationError as error:
+        for problem in all_problems(error, GearboxCatalogFile, source):
+            findings.append(Finding(file, problem.line, problem.field, problem.message))
+    series = source.data.get("gearboxes")
+    report.gearboxes += len(series) if isinstance(series, list) else 0
     return findings
 
 
@@ -186,3 +225,12 @@ def _text(value: Any) -> str | None:
     if isinstance(value, int | float) and not isinstance(value, bool):
         return str(value)
     return None
+
+
+def _default_citation(data: dict[str, Any]) -> str | None:
+    """The text of the catalog's default source (``sources:`` and ``default_source:``)."""
+    sources, key = data.get("sources"), data.get("default_source")
+    if not isinstance(sources, dict) or not isinstance(key, str):
+        return None
+    entry = sources.get(key.strip())
+    return _text(entry.get("text")) if isinstance(entry, dict) else None

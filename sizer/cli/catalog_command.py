@@ -128,7 +128,15 @@ def validate(
     peak >= continuous torque, max speed >= rated speed, curves with strictly increasing
     speeds and torques >= 0, the continuous region under the intermittent one, each
     curve's first torque within 10 % of the rating (a warning), a rotor inertia > 0 for
-    real motors, a source on every motor, duplicate ids (also across the files given).
+    real motors, a source on every motor, duplicate ids (also across the files given),
+    the provenance (sources, default_source, figure_sources).
+
+    Consistency (warnings, 3 % unless said): k_t = sqrt(3) k_e (block: k_t = k_e),
+    k_t x continuous_current = continuous_torque (12 %: no-load current, warm winding),
+    peak_torque <= k_t x peak_current, a continuous curve through the rated point, the
+    intermittent region holding the continuous one (linear rule). Rated power = torque x
+    speed is not checked: a motor has no rated power field. The summary gives each file's
+    figures per grade (A, B, C, D, ungraded) and the total.
 
     Exit code: 0 when clean, 1 on any finding, 2 when a file cannot be read at all.
 
@@ -140,16 +148,25 @@ def validate(
     """
     from sizer.catalog_tools import validate_catalogs
     from sizer.io import bundled_catalogs
+    from sizer.io.loader import bundled_drive_catalogs, bundled_gearbox_catalogs
 
-    references = files or [str(p) for p in bundled_catalogs().values()]
+    references = files or [str(p) for p in (*bundled_catalogs().values(),
+                                             *bundled_drive_catalogs().values(),
+                                             *bundled_gearbox_catalogs().values())]
     report = validate_catalogs(references)
     for finding in report.findings:
         typer.echo(printable(str(finding)))
     for error in report.unreadable:
         typer.echo(printable(f"error: {error}"), err=True)
     if not quiet:
+        for file, mix in report.grades.items():
+            typer.echo(printable(f"grades of {file}: {mix.text()}"), err=True)
+        typer.echo(f"grades of all files: {report.total_grades.text()}", err=True)
+        for note in report.not_checked:
+            typer.echo(f"not checked: {note}", err=True)
         count = len(report.findings)
         drives = f", {report.drives} drive(s)" if report.drives else ""
+        drives += f", {report.gearboxes} gearbox series" if report.gearboxes else ""
         summary = (f"{len(report.files)} file(s), {report.motors} motor(s){drives}: "
                    f"{count or 'no'} finding{'s' * (count != 1)}")
         if report.unreadable:

@@ -35,12 +35,16 @@ from sizer.io.motor_rules import (
 )
 from sizer.io.schema.inputs import CatalogFile, CurvePointInput, MotorInput
 from sizer.io.schema.inputs_base import RangeRef, field_markers
+from sizer.io.schema.provenance import catalog_source_text, common_sources
 from sizer.io.schema.ranges import RANGES
-from sizer.model.domain import Motor
+from sizer.model.domain import FigureSources, Motor
 from sizer.units import column_to_si
 
 CURVES = ("continuous_curve", "intermittent_curve")
 TORQUE_CURRENT = "torque_current_curve"
+FIGURE_SOURCES = "figure_sources"
+"""A row naming its figures' sources is read field by field (the file's are read here)."""
+PROVENANCE = ("sources", "default_source")
 _CURRENT_KEYS = frozenset({"current", "torque"})
 _POINT_KEYS = frozenset({"speed", "torque"})
 _ONE_OF = (("winding_resistance", "phase_resistance"),
@@ -94,7 +98,7 @@ def _fields() -> _Fields:
     assert all(info.alias is None for info in motor.values())
     quantities = {name: found for name in motor if (found := _range_of(MotorInput, name))}
     texts = tuple(name for name in motor if name not in quantities and name not in CURVES
-                  and name != TORQUE_CURRENT)
+                  and name not in (TORQUE_CURRENT, FIGURE_SOURCES))
     speed, torque = _range_of(CurvePointInput, "speed"), _range_of(CurvePointInput, "torque")
     assert speed is not None and torque is not None and texts[0] == "id"
     catalog = CatalogFile.model_fields
@@ -105,7 +109,7 @@ def _fields() -> _Fields:
         allowed=frozenset(motor),
         defaults={n: info.default for n, info in motor.items() if not info.is_required()},
         point=(speed, torque),
-        catalog_texts=tuple(n for n in catalog if n not in ("motors", "drives")),
+        catalog_texts=tuple(n for n in catalog if n not in ("motors", "drives", *PROVENANCE)),
         catalog_keys=frozenset(catalog))
 
 
@@ -138,8 +142,12 @@ def read_table(data: Any) -> CatalogTable | None:
             return None
         if any(one in row and other in row for one, other in _ONE_OF):
             return None
-        if row.get("commutation", "sinusoidal") not in _COMMUTATIONS:
+        if row.get("commutation", "sinusoidal") not in _COMMUTATIONS or FIGURE_SOURCES in row:
             return None
+    try:
+        provenance = common_sources(data)
+    except ValueError:
+        return None
     try:
         catalog = {key: _texts([data.get(key)], nullable=True)[0] for key in fields.catalog_texts}
         columns: dict[str, Any] = {}  # texts as lists, quantities as SI arrays
@@ -158,7 +166,7 @@ def read_table(data: Any) -> CatalogTable | None:
             return None
     except _NotCommonError:
         return None
-    return _table(rows, ids, columns, curves, catalog, _curves_of(currents))
+    return _table(rows, ids, columns, curves, catalog, _curves_of(currents), provenance)
 
 
 def _column(rows: list[dict[str, Any]], key: str, fields: _Fields) -> list[Any]:
@@ -278,8 +286,10 @@ def _whole(value: float | None) -> int | None:
 def _table(rows: list[dict[str, Any]], ids: list[str], columns: dict[str, Any],
            curves: dict[str, tuple[CurveColumns, list[float], list[float]]],
            catalog: dict[str, Any],
-           currents: list[tuple[tuple[float, float], ...] | None]) -> CatalogTable:
-    manufacturer, source = catalog.get("manufacturer"), catalog.get("source")
+           currents: list[tuple[tuple[float, float], ...] | None],
+           provenance: FigureSources | None) -> CatalogTable:
+    manufacturer = catalog.get("manufacturer")
+    source = catalog_source_text(catalog.get("source"), provenance)
     makers = [m or manufacturer for m in columns["manufacturer"]]
     sources = [s or source for s in columns["source"]]
     fields = _fields()
@@ -312,7 +322,7 @@ def _table(rows: list[dict[str, Any]], ids: list[str], columns: dict[str, Any],
               brake_inertia=numbers["brake_inertia"][i] or 0.0,
               thermal_time_constant=numbers["thermal_time_constant"][i],
               max_winding_temperature_rise=numbers["max_winding_temperature_rise"][i],
-              torque_current_curve=currents[i])
+              torque_current_curve=currents[i], provenance=provenance)
         for i in range(len(rows))]
     idealized = {m: is_idealized(m) for m in set(makers)}
     figures = Figures(*(columns[key] for key in ("inertia", "continuous_torque", "peak_torque",

@@ -47,6 +47,7 @@ from sizer.io.schema.inputs import (
     MotorInput,
 )
 from sizer.io.schema.inputs_base import axis_range, convert_in
+from sizer.io.schema.provenance import catalog_source_text, file_sources, row_sources
 from sizer.io.schema.transmission_inputs import GearboxCatalogFile
 from sizer.io.transmission import build_transmission
 from sizer.io.validation import validate
@@ -58,7 +59,15 @@ from sizer.io.yaml_source import (
     read_yaml,
 )
 from sizer.mechanics import linear_load
-from sizer.model.domain import Design, Limits, Load, Motor, ServoDrive
+from sizer.model.domain import (
+    Design,
+    FigureSources,
+    Limits,
+    Load,
+    Motor,
+    Provenance,
+    ServoDrive,
+)
 from sizer.vibration.elastic_load import ElasticLoad
 
 PathLike = str | Path
@@ -78,6 +87,14 @@ def bundled_catalogs() -> dict[str, Path]:
 def bundled_drive_catalogs() -> dict[str, Path]:
     """The drive catalogs shipped with sizer (sizer/catalogs/drives), by name."""
     folder = Path(str(resources.files("sizer").joinpath("catalogs", "drives")))
+    if not folder.is_dir():
+        return {}
+    return {p.stem: p for p in sorted(folder.glob("*.yaml"))}
+
+
+def bundled_gearbox_catalogs() -> dict[str, Path]:
+    """The gearbox catalogs shipped with sizer (sizer/catalogs/gearboxes), by name."""
+    folder = Path(str(resources.files("sizer").joinpath("catalogs", "gearboxes")))
     if not folder.is_dir():
         return {}
     return {p.stem: p for p in sorted(folder.glob("*.yaml"))}
@@ -206,30 +223,35 @@ def _validated_catalog(source: YamlSource, warnings: list[str],
     """The motors of a catalog validated by its model, field by field (its drives, if
     any, appended to ``drives``)."""
     catalog = validate(CatalogFile, source)
+    shared, common = file_sources(catalog.sources, catalog.default_source)
+    source_text = catalog_source_text(catalog.source, common)
     if drives is not None:
         drives.extend(_drives_of(catalog.drives or (), source, catalog.manufacturer,
-                                 catalog.source))
+                                 source_text, shared, common))
     if not catalog.motors:
         raise source.error("the catalog has no motors", ("motors",))
     located = []
     for index, item in enumerate(catalog.motors):
         at = ("motors", index)
         motor = _motor(item, source, at, manufacturer=catalog.manufacturer,
-                       source_text=catalog.source)
+                       source_text=source_text,
+                       provenance=row_sources(item, shared, common))
         warnings += _motor_warnings(motor, source, at)
         located.append(_Located(motor, source, at))
     return located
 
 
 def _motor(item: MotorInput, source: YamlSource, at: tuple[Any, ...], *,
-           manufacturer: str | None = None, source_text: str | None = None) -> Motor:
+           manufacturer: str | None = None, source_text: str | None = None,
+           provenance: FigureSources | None = None) -> Motor:
     """A Motor from its validated input; an impossible motor (the impossible rules of
     :mod:`sizer.io.motor_rules`) is refused at its first problem, with its id.
-    ``manufacturer`` and ``source_text`` are the catalog's, for a motor without its own."""
+    ``manufacturer`` and ``source_text`` are the catalog's, for a motor without its own;
+    ``provenance`` its figures' sources."""
     motor = motor_of(item)
     _refuse_impossible(motor, source, at)
     return replace(motor, source=item.source or source_text,
-                   manufacturer=item.manufacturer or manufacturer)
+                   manufacturer=item.manufacturer or manufacturer, provenance=provenance)
 
 
 def _refuse_impossible(motor: Motor, source: YamlSource, at: tuple[Any, ...]) -> None:
@@ -259,7 +281,8 @@ class _LocatedDrive:
 
 
 def _drives_of(items: Iterable[DriveInput], source: YamlSource, manufacturer: str | None,
-               source_text: str | None) -> list[_LocatedDrive]:
+               source_text: str | None, shared: Mapping[str, Provenance] | None = None,
+               common: FigureSources | None = None) -> list[_LocatedDrive]:
     return [_LocatedDrive(ServoDrive(
         id=item.id, continuous_current=item.continuous_current,
         peak_current=item.peak_current, dc_bus_voltage=item.dc_bus_voltage,
@@ -268,7 +291,8 @@ def _drives_of(items: Iterable[DriveInput], source: YamlSource, manufacturer: st
         braking_resistor_power=item.braking_resistor_power, price=item.price,
         motors=None if item.motors is None else tuple(m.strip() for m in item.motors),
         source=item.source or source_text, part_number=item.part_number,
-        manufacturer=item.manufacturer or manufacturer), source, ("drives", index))
+        manufacturer=item.manufacturer or manufacturer,
+        provenance=row_sources(item, shared or {}, common)), source, ("drives", index))
         for index, item in enumerate(items)]
 
 
@@ -280,12 +304,15 @@ def read_drive_catalog(path: Path) -> list[_LocatedDrive]:
         if not catalog.drives:
             raise source.error("the catalog has no drives (a design's `drives:` names drive "
                                "catalogs)", ("drives",))
-        return _drives_of(catalog.drives, source, catalog.manufacturer, catalog.source)
+        shared, common = file_sources(catalog.sources, catalog.default_source)
+        return _drives_of(catalog.drives, source, catalog.manufacturer,
+                          catalog_source_text(catalog.source, common), shared, common)
     drive_catalog = validate(DriveCatalogFile, source)
     if not drive_catalog.drives:
         raise source.error("the catalog has no drives", ("drives",))
+    shared, common = file_sources(drive_catalog.sources, drive_catalog.default_source)
     return _drives_of(drive_catalog.drives, source, drive_catalog.manufacturer,
-                      drive_catalog.source)
+                      catalog_source_text(drive_catalog.source, common), shared, common)
 
 
 def resolve_drive_catalog(reference: str, base: Path, source: YamlSource,

@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from sizer.io.linkage import linkage_stage
+from sizer.io.schema.provenance import file_sources, gearbox_sources
 from sizer.io.schema.ranges import TOTAL_EFFICIENCY, TOTAL_RATIO, number_text
 from sizer.io.schema.transmission_inputs import (
     LINEAR_OUTPUT_TYPES,
@@ -194,6 +195,7 @@ def load_gearbox_catalog(path: str | Path) -> tuple[GearboxOption, ...]:
     """Every ratio of every series of a gearbox catalog, as options for the ratio choice."""
     source = read_yaml(path)
     model = validate(GearboxCatalogFile, source)
+    shared, common = file_sources(model.sources, model.default_source)
     options = []
     seen: set[str] = set()
     for s_index, series in enumerate(model.gearboxes):
@@ -220,7 +222,8 @@ def load_gearbox_catalog(path: str | Path) -> tuple[GearboxOption, ...]:
                 backlash=series.backlash,
                 name="gearbox",
             )
-            options.append(GearboxOption(f"{series.id} i={ratio.ratio:g}", stage))
+            options.append(GearboxOption(f"{series.id} i={ratio.ratio:g}", stage,
+                                         gearbox_sources(series, ratio, shared, common)))
     return tuple(options)
 
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Literal
 
@@ -169,6 +169,59 @@ class Transmission:
         return replace(self, stages=tuple(stages))
 
 
+Grade = Literal["A", "B", "C", "D"]
+"""How a figure is known: A printed as a number in the maker's own document, B the
+maker's document read from a mirror or secondary copy, C computed from printed figures,
+D assumed."""
+
+GRADES: tuple[Grade, ...] = ("A", "B", "C", "D")
+
+
+@dataclass(frozen=True)
+class Provenance:
+    """Where a catalog figure comes from: its grade and its source ("<maker>, <document>,
+    <section>, p. <n>, <URL>")."""
+
+    grade: Grade
+    text: str
+
+
+@dataclass(frozen=True)
+class FigureSources:
+    """The provenance of an object's figures: ``figures`` names the source of some,
+    ``default`` (None: ungraded) is every other figure's. One object is shared by the rows
+    of a file that name no figure source of their own."""
+
+    default: Provenance | None = None
+    figures: tuple[tuple[str, Provenance], ...] = ()
+
+    def of(self, name: str) -> Provenance | None:
+        """The provenance of figure ``name``; None: ungraded."""
+        for figure, provenance in self.figures:
+            if figure == name:
+                return provenance
+        return self.default
+
+
+NOT_FIGURES = frozenset({"id", "source", "part_number", "manufacturer", "provenance",
+                         "motors", "gearbox", "name", "kind"})
+"""Fields of the catalog objects that are no figures (names, texts, references)."""
+
+
+def figure_provenance(item: Motor | ServoDrive | GearboxOption
+                      ) -> dict[str, Provenance | None]:
+    """Each figure the object has (a field differing from its default; a gearbox option's
+    stage fields) and its provenance (None: ungraded), in field order."""
+    given = item.stage if isinstance(item, GearboxOption) else item
+    sources = item.provenance
+    out: dict[str, Provenance | None] = {}
+    for f in fields(given):
+        if f.name in NOT_FIGURES or getattr(given, f.name) == f.default:
+            continue
+        out[f.name] = None if sources is None else sources.of(f.name)
+    return out
+
+
 @dataclass(frozen=True)
 class Motor:
     """A motor's ratings and, where known, its speed-torque curves (sec. 6.1).
@@ -224,6 +277,8 @@ class Motor:
     torque_current_curve: tuple[tuple[float, float], ...] | None = None
     """(current A rms, torque N*m) points, both strictly increasing: torque vs current with
     saturation; None: torque = k_t * current."""
+    provenance: FigureSources | None = field(default=None, compare=False, repr=False)
+    """Where each figure comes from (a catalog's ``sources:``); None: ungraded."""
 
 
 @dataclass(frozen=True)
@@ -252,6 +307,8 @@ class ServoDrive:
     source: str | None = None
     part_number: str | None = None
     manufacturer: str | None = None
+    provenance: FigureSources | None = field(default=None, compare=False, repr=False)
+    """Where each figure comes from (a catalog's ``sources:``); None: ungraded."""
 
 
 @dataclass(frozen=True)
@@ -299,6 +356,8 @@ class GearboxOption:
 
     gearbox: str
     stage: Stage
+    provenance: FigureSources | None = field(default=None, compare=False, repr=False)
+    """Where each figure of the stage comes from (the catalog's ``sources:``)."""
 
 
 @dataclass(frozen=True)

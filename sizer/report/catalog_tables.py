@@ -12,8 +12,10 @@ from collections.abc import Sequence
 from typing import Any
 
 from sizer.catalog_tools.listing import CatalogSummary, MotorEntry
-from sizer.model.domain import Curve
+from sizer.io.schema.provenance import ROW_ALIASES
+from sizer.model.domain import Curve, Motor
 from sizer.report.csv_text import render_csv
+from sizer.report.figure_grades import SourceIndex, grade_counts, provenance_json
 from sizer.report.json_text import render_json
 from sizer.report.numbers import full, short
 from sizer.report.table import Column, Table, make_table
@@ -112,7 +114,8 @@ class MotorsDocument:
                         "peak_torque": e.motor.peak_torque,
                         "rated_speed": e.motor.rated_speed, "max_speed": e.motor.max_speed,
                         "inertia": e.motor.inertia, "curves": e.has_curves,
-                        "source": e.motor.source} for e in self.entries],
+                        "source": e.motor.source, "grades": grade_counts(e.motor)}
+                       for e in self.entries],
         })
 
 
@@ -138,10 +141,17 @@ def _point(speed: float, torque: float) -> str:
     return f"{short(speed * RPM_PER_RAD_S)} rpm, {short(torque)} N*m"
 
 
-class MotorDocument:
-    """One motor: every field as written and in display units, its regions, its source."""
+SHOWN_ELSEWHERE = frozenset({"id", "manufacturer", "part_number", "source", "notes",
+                             "figure_sources", "continuous_curve", "intermittent_curve"})
+"""Fields of a motor row the table shows in rows of their own."""
 
-    columns = (Column("field", "left"), Column("as written", "left"), Column("value", "left"))
+
+class MotorDocument:
+    """One motor: every field as written and in display units, with its grade (A1: grade
+    A, source 1 of the list below the figures; '-' ungraded), its regions, its sources."""
+
+    columns = (Column("field", "left"), Column("as written", "left"), Column("value", "left"),
+               Column("grade", "left"))
     csv_headers = ("field", "as written", "SI value", "SI unit")
 
     def __init__(self, entry: MotorEntry) -> None:
@@ -172,24 +182,40 @@ class MotorDocument:
         return f"Motor {e.motor.id} (catalog {e.catalog}, {where})"
 
     def table(self) -> Table:
-        e, given = self.entry, self.entry.given
-        rows: list[tuple[str, str, str]] = [("id", str(given.get("id", e.motor.id)), e.motor.id)]
+        e, given, m = self.entry, self.entry.given, self.entry.motor
+        index = SourceIndex()
+
+        def grade(key: str) -> str:
+            name = ROW_ALIASES.get(key, key)
+            return index.label(None if m.provenance is None else m.provenance.of(name))
+
+        rows: list[tuple[str, str, str, str]] = [
+            ("id", str(given.get("id", m.id)), m.id, "")]
         for key in ("manufacturer", "part_number"):
             if key in given:
-                rows.append((key, str(given[key]), ""))
-        for key, value, scale, unit in self._values():
+                rows.append((key, str(given[key]), "", ""))
+        values = self._values()
+        for key, value, scale, unit in values:
             if key in given or (value is not None and key != "damping"):
                 shown = "" if value is None else f"{short(value * scale)} {unit}".strip()
-                rows.append((key, _given_text(given.get(key, "")), shown))
+                rows.append((key, _given_text(given.get(key, "")), shown, grade(key)))
+        listed = {key for key, *_ in values} | SHOWN_ELSEWHERE
+        for key in given:
+            if key not in listed:
+                rows.append((key, _given_text(given[key]), "", grade(key)))
         for key in ("continuous_curve", "intermittent_curve"):
             if key in given:
-                rows.append((key, _given_text(given[key]), ""))
+                rows.append((key, _given_text(given[key]), "", grade(key)))
         for name, region in self._regions():
-            for index, (speed, torque) in enumerate(region):
-                rows.append((f"{name} [{index}]", "", _point(speed, torque)))
-        rows.append(("source", str(given.get("source", "")), ""))
+            for index_, (speed, torque) in enumerate(region):
+                rows.append((f"{name} [{index_}]", "", _point(speed, torque), ""))
+        rows.append(("source", str(given.get("source", m.source or "")), "", ""))
+        rows.append(("grades", grade_counts(m), "", ""))
+        for provenance, number in index.sources.items():
+            rows.append((f"source {number}", f"grade {provenance.grade}: {provenance.text}",
+                         "", ""))
         if e.notes:
-            rows.append(("notes", e.notes, ""))
+            rows.append(("notes", e.notes, "", ""))
         return make_table(self.columns, rows, title=self.title)
 
     def csv(self) -> str:
@@ -226,5 +252,12 @@ class MotorDocument:
             "continuous_region": [[s, t] for s, t in e.continuous_region],
             "intermittent_region": [[s, t] for s, t in e.intermittent_region],
             "source": m.source,
+            "figure_sources": _provenance(m),
             "notes": e.notes,
         })
+
+
+def _provenance(motor: Motor) -> dict[str, Any]:
+    """The motor's figures' grades and the sources they cite (JSON)."""
+    shown = provenance_json([motor])
+    return {"sources": shown["sources"], **shown["motors"][motor.id]}

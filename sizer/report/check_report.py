@@ -15,6 +15,7 @@ from sizer.laws.data_spec import law_label
 from sizer.report.candidate_row import RPM_PER_RAD_S, check_line, check_passed, result_json
 from sizer.report.cycle_summary import duration_name
 from sizer.report.design_summary import design_summary
+from sizer.report.figure_grades import chosen_provenance
 from sizer.report.json_text import render_json
 from sizer.report.numbers import short, short_or_na
 from sizer.report.segment_table import SegmentDocument, breakdown_json, indented_text
@@ -80,7 +81,8 @@ class CheckDocument:
         """The JSON object: the design, the verdict, the units and the pair's result."""
         return {
             "format": FORMAT,
-            "design": design_summary(self.design, self.notes),
+            "design": {**design_summary(self.design, self.notes),
+                       "figure_sources": chosen_provenance([self.result])},
             "passed": self.passed,
             "units": RESULT_UNITS,
             "result": result_json(self.result),

@@ -25,6 +25,7 @@ from sizer.errors import UserError
 from sizer.laws.data_spec import law_label
 from sizer.report.candidate_row import RPM_PER_RAD_S, check_line, percent
 from sizer.report.cycle_summary import duration_name
+from sizer.report.figure_grades import cited_sources, grade_counts
 from sizer.report.laws_table import LawsDocument
 from sizer.report.markdown_table import render_markdown_table
 from sizer.report.numbers import short, short_or_na
@@ -304,18 +305,19 @@ class DesignReport:
         columns = (Column("motor", "left"), Column("rotor inertia [kg*m^2]"),
                    Column("continuous torque [N*m]"), Column("peak torque [N*m]"),
                    Column("rated speed [rpm]"), Column("max speed [rpm]"),
-                   Column("speed-torque curves", "left"), Column("part number", "left"))
+                   Column("speed-torque curves", "left"), Column("part number", "left"),
+                   Column("figures by grade", "left"))
         rows = [(m.id, short(m.inertia), short(m.continuous_torque), short(m.peak_torque),
                  short(m.rated_speed * RPM_PER_RAD_S),
                  "" if m.max_speed is None else short(m.max_speed * RPM_PER_RAD_S),
                  "catalog" if m.continuous_curve or m.intermittent_curve
                  else f"none (envelope {self.design.limits.envelope})",
-                 m.part_number or "") for m in motors]
+                 m.part_number or "", grade_counts(m)) for m in motors]
         text += md(render_markdown_table(make_table(columns, rows)))
         sources: dict[str, list[str]] = {}
         for m in motors:
-            if m.source:
-                sources.setdefault(m.source, []).append(m.id)
+            for source in cited_sources(m):
+                sources.setdefault(source, []).append(m.id)
         if sources:
             text += "\nSources:\n\n" + "".join(
                 f"- {md(', '.join(ids))}: {md(source)}\n" for source, ids in sources.items())

@@ -1,7 +1,8 @@
 """The ranked motor/law table of a design (``sizer size``) in every format.
 
 - JSON: ``{"format", "design", "ranked_by", "ranking", "units", "results"}``, SI, margins
-  as fractions; ``format`` is FORMAT, ``ranking`` the rule of ``ranked_by`` in words.
+  as fractions; ``format`` is FORMAT, ``ranking`` the rule of ``ranked_by`` in words;
+  ``design.provenance`` the grades and sources of the listed motors' and drives' figures.
 - CSV: one line per pair, SI units in the headers, full precision.
 - Markdown and the terminal table: duration in ms, speed in rpm, margins in %; a title
   line above and, below, why the shown infeasible pairs fail and what was assumed.
@@ -29,6 +30,7 @@ from sizer.report.candidate_row import (
 from sizer.report.csv_text import render_csv
 from sizer.report.cycle_summary import cycle_heading, duration_name, sized_as_cycle
 from sizer.report.design_summary import design_summary
+from sizer.report.figure_grades import chosen_provenance
 from sizer.report.formats import Format, Rendered
 from sizer.report.json_text import render_json
 from sizer.report.markdown_table import render_markdown_table
@@ -228,7 +230,8 @@ class SizingDocument(Rendered):
     def json(self) -> str:
         return render_json({
             "format": FORMAT,
-            "design": design_summary(self.design, self.sizing.notes),
+            "design": {**design_summary(self.design, self.sizing.notes),
+                       "figure_sources": chosen_provenance(r for _, r in self.rows)},
             "ranked_by": self.rank_key,
             "ranking": self.rank_rule.text,
             "units": {**RESULT_UNITS, **({"residual_vibration": RESIDUAL_UNIT}

@@ -45,6 +45,12 @@ from sizer.io.schema.inputs_base import (
     quantity_text,
 )
 from sizer.io.schema.law_schema import LawSpecText
+from sizer.io.schema.provenance import (
+    FigureSourcesInput,
+    SourceKey,
+    Sources,
+    check_provenance,
+)
 from sizer.io.schema.ranges import RANGES
 from sizer.io.schema.transmission_inputs import TransmissionStageInput
 from sizer.model.domain import DEFAULT_ENVELOPE, EnvelopeRule
@@ -166,6 +172,7 @@ class MotorInput(Strict):
     torque_current_curve: list[TorqueCurrentPoint] | None = Field(
         None, description="torque vs current (saturation), [current, torque] points, both "
                           "strictly increasing; without it torque = k_t x current")
+    figure_sources: FigureSourcesInput | None = None
     notes: Text | None = Field(None, description="free text, ignored by the tool")
 
     @model_validator(mode="after")
@@ -224,6 +231,7 @@ class DriveInput(Strict):
     source: Text | None = None
     part_number: Text | None = None
     manufacturer: Text | None = None
+    figure_sources: FigureSourcesInput | None = None
     notes: Text | None = Field(None, description="free text, ignored by the tool")
 
     @model_validator(mode="after")
@@ -248,11 +256,22 @@ class CatalogFile(Strict):
     catalog: Text | None = Field(None, description="the catalog's name")
     manufacturer: Text | None = Field(None, description="default for the motors")
     source: Text | None = Field(None, description="default for the motors")
+    sources: Sources | None = None
+    default_source: SourceKey | None = None
     notes: Text | None = Field(None, description="free text, ignored by the tool")
     motors: list[MotorInput] = Field(description="at least one motor")
     drives: list[DriveInput] | None = Field(
         None, description="drives (amplifiers) for these motors; a design that loads this "
                           "catalog pairs its motors with them")
+
+    @model_validator(mode="after")
+    def _provenance(self) -> Self:
+        """default_source and figure_sources name sources and figures of the file."""
+        rows: list[tuple[tuple[Any, ...], Strict]] = [
+            (("motors", i), m) for i, m in enumerate(self.motors)]
+        rows += [(("drives", i), d) for i, d in enumerate(self.drives or ())]
+        check_provenance(self.sources, self.default_source, rows)
+        return self
 
 
 class DriveCatalogFile(Strict):
@@ -261,8 +280,17 @@ class DriveCatalogFile(Strict):
     catalog: Text | None = Field(None, description="the catalog's name")
     manufacturer: Text | None = Field(None, description="default for the drives")
     source: Text | None = Field(None, description="default for the drives")
+    sources: Sources | None = None
+    default_source: SourceKey | None = None
     notes: Text | None = Field(None, description="free text, ignored by the tool")
     drives: list[DriveInput] = Field(description="at least one drive")
+
+    @model_validator(mode="after")
+    def _provenance(self) -> Self:
+        """default_source and figure_sources name sources and figures of the file."""
+        check_provenance(self.sources, self.default_source,
+                         [(("drives", i), d) for i, d in enumerate(self.drives)])
+        return self
 
 
 # ---------------------------------------------------------------- design
@@ -499,4 +527,6 @@ class DesignFile(Strict):
             raise PydanticCustomError("task_and_cycle", "give `task:` (one move, a dwell, a "
                                       "return) or `cycle:` (segments), not both",
                                       {"at": ("cycle",)})
+        check_provenance(None, None, [(("motors", i), m) for i, m in
+                                      enumerate(self.motors or ()) if isinstance(m, MotorInput)])
         return self

@@ -6,9 +6,9 @@ whose ratios are the options. Quantities are converted to SI like the other inpu
 """
 
 
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any, Literal, Self
 
-from pydantic import BeforeValidator, Field, WithJsonSchema
+from pydantic import BaseModel, BeforeValidator, Field, WithJsonSchema, model_validator
 
 from sizer.io.schema.inputs_base import (
     Ranged,
@@ -18,6 +18,12 @@ from sizer.io.schema.inputs_base import (
     convert_in,
     quantity_text,
     show_value,
+)
+from sizer.io.schema.provenance import (
+    FigureSourcesInput,
+    SourceKey,
+    Sources,
+    check_provenance,
 )
 from sizer.io.schema.ranges import RANGES
 from sizer.mechanics.stages import STEEL_DENSITY
@@ -255,6 +261,7 @@ class GearboxRatioInput(Strict):
     max_input_speed: Speed | None = None
     rated_output_torque: Torque | None = None
     peak_output_torque: Torque | None = None
+    figure_sources: FigureSourcesInput | None = None
 
 
 class GearboxSeriesInput(Strict):
@@ -267,6 +274,7 @@ class GearboxSeriesInput(Strict):
     peak_output_torque: Torque | None = None
     backlash: Annotated[float, Ranged("backlash")] | None = None
     source: Text | None = None
+    figure_sources: FigureSourcesInput | None = None
     notes: Text | None = None
     ratios: list[GearboxRatioInput] = Field(min_length=1)
 
@@ -277,5 +285,17 @@ class GearboxCatalogFile(Strict):
     catalog: Text | None = None
     manufacturer: Text | None = None
     source: Text | None = None
+    sources: Sources | None = None
+    default_source: SourceKey | None = None
     notes: Text | None = None
     gearboxes: list[GearboxSeriesInput] = Field(min_length=1)
+
+    @model_validator(mode="after")
+    def _provenance(self) -> Self:
+        """default_source and figure_sources name sources and figures of the file."""
+        rows: list[tuple[tuple[Any, ...], BaseModel]] = []
+        for i, series in enumerate(self.gearboxes):
+            rows.append((("gearboxes", i), series))
+            rows += [(("gearboxes", i, "ratios", k), r) for k, r in enumerate(series.ratios)]
+        check_provenance(self.sources, self.default_source, rows)
+        return self
