@@ -20,10 +20,11 @@ import types
 import typing
 from dataclasses import dataclass
 from functools import cache
+from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
-from pydantic import BaseModel
+from pydantic import BaseModel, TypeAdapter, ValidationError
 
 from sizer.io.motor_rules import (
     CurveColumns,
@@ -34,8 +35,15 @@ from sizer.io.motor_rules import (
     line_to_line,
 )
 from sizer.io.schema.inputs import CatalogFile, CurvePointInput, MotorInput
-from sizer.io.schema.inputs_base import RangeRef, field_markers
-from sizer.io.schema.provenance import catalog_source_text, common_sources
+from sizer.io.schema.inputs_base import Identifier, RangeRef, field_markers
+from sizer.io.schema.provenance import (
+    SourceInput,
+    catalog_source_text,
+    common_sources,
+    figure_names,
+    file_sources,
+    row_sources,
+)
 from sizer.io.schema.ranges import RANGES
 from sizer.model.domain import FigureSources, Motor
 from sizer.units import column_to_si
@@ -43,7 +51,8 @@ from sizer.units import column_to_si
 CURVES = ("continuous_curve", "intermittent_curve")
 TORQUE_CURRENT = "torque_current_curve"
 FIGURE_SOURCES = "figure_sources"
-"""A row naming its figures' sources is read field by field (the file's are read here)."""
+"""A row naming its figures' sources: read here where every name is well formed (plain
+keys of given figures and of the file's sources), else field by field (which words it)."""
 PROVENANCE = ("sources", "default_source")
 _CURRENT_KEYS = frozenset({"current", "torque"})
 _POINT_KEYS = frozenset({"speed", "torque"})
@@ -142,11 +151,14 @@ def read_table(data: Any) -> CatalogTable | None:
             return None
         if any(one in row and other in row for one, other in _ONE_OF):
             return None
-        if row.get("commutation", "sinusoidal") not in _COMMUTATIONS or FIGURE_SOURCES in row:
+        if row.get("commutation", "sinusoidal") not in _COMMUTATIONS:
             return None
     try:
         provenance = common_sources(data)
     except ValueError:
+        return None
+    row_provenance = _row_provenance(data, rows, provenance)
+    if row_provenance is None:
         return None
     try:
         catalog = {key: _texts([data.get(key)], nullable=True)[0] for key in fields.catalog_texts}
@@ -166,7 +178,43 @@ def read_table(data: Any) -> CatalogTable | None:
             return None
     except _NotCommonError:
         return None
-    return _table(rows, ids, columns, curves, catalog, _curves_of(currents), provenance)
+    return _table(rows, ids, columns, curves, catalog, _curves_of(currents), provenance,
+                  row_provenance)
+
+
+@cache
+def _sources_adapter() -> TypeAdapter[dict[str, SourceInput]]:
+    return TypeAdapter(dict[Identifier, SourceInput])
+
+
+def _row_provenance(data: dict[str, Any], rows: list[dict[str, Any]],
+                   common: FigureSources | None) -> list[FigureSources | None] | None:
+    """Each row's FigureSources (as the field-by-field load gives them), or None where a
+    row's ``figure_sources`` is not plainly well formed (the model then words it)."""
+    if not any(FIGURE_SOURCES in row for row in rows):
+        return [common] * len(rows)
+    given = data.get("sources")
+    if type(given) is not dict or not all(type(key) is str and key == key.strip()
+                                          for key in given):
+        return None
+    try:
+        sources = _sources_adapter().validate_python(given)
+    except ValidationError:
+        return None
+    shared, _ = file_sources(sources, None)
+    figures = frozenset(figure_names(MotorInput))
+    out: list[FigureSources | None] = []
+    for row in rows:
+        named = row.get(FIGURE_SOURCES)
+        if named is None and FIGURE_SOURCES not in row:
+            out.append(common)
+            continue
+        if type(named) is not dict or not all(
+                type(figure) is str and figure in figures and figure in row
+                and type(key) is str and key in shared for figure, key in named.items()):
+            return None
+        out.append(row_sources(SimpleNamespace(figure_sources=named), shared, common))
+    return out
 
 
 def _column(rows: list[dict[str, Any]], key: str, fields: _Fields) -> list[Any]:
@@ -287,7 +335,8 @@ def _table(rows: list[dict[str, Any]], ids: list[str], columns: dict[str, Any],
            curves: dict[str, tuple[CurveColumns, list[float], list[float]]],
            catalog: dict[str, Any],
            currents: list[tuple[tuple[float, float], ...] | None],
-           provenance: FigureSources | None) -> CatalogTable:
+           provenance: FigureSources | None,
+           row_provenance: list[FigureSources | None]) -> CatalogTable:
     manufacturer = catalog.get("manufacturer")
     source = catalog_source_text(catalog.get("source"), provenance)
     makers = [m or manufacturer for m in columns["manufacturer"]]
@@ -322,7 +371,7 @@ def _table(rows: list[dict[str, Any]], ids: list[str], columns: dict[str, Any],
               brake_inertia=numbers["brake_inertia"][i] or 0.0,
               thermal_time_constant=numbers["thermal_time_constant"][i],
               max_winding_temperature_rise=numbers["max_winding_temperature_rise"][i],
-              torque_current_curve=currents[i], provenance=provenance)
+              torque_current_curve=currents[i], provenance=row_provenance[i])
         for i in range(len(rows))]
     idealized = {m: is_idealized(m) for m in set(makers)}
     figures = Figures(*(columns[key] for key in ("inertia", "continuous_torque", "peak_torque",
