@@ -25,10 +25,10 @@ from sizer.catalog_tools.grade_mix import GradeMix, grade_mix, total  # noqa: E4
 from sizer.io.loader import (  # noqa: E402
     bundled_catalogs,
     bundled_drive_catalogs,
-    bundled_gearbox_catalogs,
     load_catalog,
     read_drive_catalog,
 )
+from sizer.io.transmission import bundled_gearbox_catalogs  # noqa: E402
 from sizer.io.yaml_source import read_yaml  # noqa: E402
 from sizer.model.domain import Motor, ServoDrive  # noqa: E402
 

@@ -148,7 +148,8 @@ def validate(
     """
     from sizer.catalog_tools import validate_catalogs
     from sizer.io import bundled_catalogs
-    from sizer.io.loader import bundled_drive_catalogs, bundled_gearbox_catalogs
+    from sizer.io.loader import bundled_drive_catalogs
+    from sizer.io.transmission import bundled_gearbox_catalogs
 
     references = files or [str(p) for p in (*bundled_catalogs().values(),
                                              *bundled_drive_catalogs().values(),

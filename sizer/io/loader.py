@@ -92,17 +92,12 @@ def bundled_drive_catalogs() -> dict[str, Path]:
     return {p.stem: p for p in sorted(folder.glob("*.yaml"))}
 
 
-def bundled_gearbox_catalogs() -> dict[str, Path]:
-    """The gearbox catalogs shipped with sizer (sizer/catalogs/gearboxes), by name."""
-    folder = Path(str(resources.files("sizer").joinpath("catalogs", "gearboxes")))
-    if not folder.is_dir():
-        return {}
-    return {p.stem: p for p in sorted(folder.glob("*.yaml"))}
-
-
-NOT_DEFAULT_CATALOGS = frozenset({"book-examples"})
+NOT_DEFAULT_CATALOGS = frozenset({"book-examples", "maxon-ec"})
 """Bundled catalogs left out of the default set: the book's idealized motors (no rotor
-inertia, bare SI numbers) would rank among real motors without being buyable."""
+inertia, bare SI numbers) would rank among real motors without being buyable; maxon's
+small brushless DC motors (maxon-ec) give as peak torque their stall torque, the end of
+the voltage line at nominal voltage and up to 28 times the nominal torque, not an overload
+they may carry: name them with a drive whose current limits the peak (e.g. maxon-escon)."""
 
 
 def default_catalogs() -> dict[str, Path]:

@@ -11,6 +11,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Sequence
+from importlib import resources
 from pathlib import Path
 from typing import Any
 
@@ -181,14 +182,27 @@ def _gearbox(item: GearboxInput, source: YamlSource, at, index: int,
               "peak_output_torque": item.peak_output_torque, "backlash": item.backlash}
     if item.catalog is not None:
         path = folder / item.catalog
+        bundled = bundled_gearbox_catalogs()
+        if not path.exists() and item.catalog in bundled:
+            path = bundled[item.catalog]
         if not path.exists() or path.is_dir():
-            raise source.error(f"no gearbox catalog file {str(path)!r}", at(index, "catalog"))
+            raise source.error(f"no gearbox catalog file {str(path)!r} (bundled gearbox "
+                               f"catalogs: {', '.join(bundled) or 'none'})",
+                               at(index, "catalog"))
         options = load_gearbox_catalog(path)
         files.append(path)
         return options[0].stage, RatioChoice(gearboxes=options)
     ratio, free = _ratio(item.ratio)
     assert ratio is not None  # no catalog: the ratio is given (checked above)
     return gearbox(ratio, item.efficiency, item.inertia, name=item.name or "", **limits), free
+
+
+def bundled_gearbox_catalogs() -> dict[str, Path]:
+    """The gearbox catalogs shipped with sizer (sizer/catalogs/gearboxes), by name."""
+    folder = Path(str(resources.files("sizer").joinpath("catalogs", "gearboxes")))
+    if not folder.is_dir():
+        return {}
+    return {p.stem: p for p in sorted(folder.glob("*.yaml"))}
 
 
 def load_gearbox_catalog(path: str | Path) -> tuple[GearboxOption, ...]:
