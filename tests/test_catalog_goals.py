@@ -18,6 +18,7 @@ def test_the_goals_script_prints_every_goal() -> None:
     text = runs[0].stdout
     for start in ("motors: ", "makers: ", "with k_t, R and L: ",
                   "with electrical envelope (k_t or k_e, R, bus voltage): ",
+                  "electrical model vs printed curve points: ",
                   "grades of all figures: A ", "motor families with a drive family: ",
                   "gearbox series: ", "motors with prices: "):
         assert any(line.startswith(start) for line in text.splitlines()), start

@@ -174,3 +174,13 @@ def test_the_no_load_speed_matches_premo_within_5_percent(code):
     winding = Winding(k_t, k_t / math.sqrt(3.0), 1.0, 0.0, None, 320.0, False)
     model = winding.no_load_speed() / RPM
     assert model == pytest.approx(printed, rel=0.05)
+
+
+def test_the_disagreement_with_a_printed_point():
+    """Relative in torque, or in speed at zero torque (sizer's tools/catalog_goals.py)."""
+    from sizer.envelope.electrical import disagreement
+
+    w = Winding(0.0255, 0.0255, 1.2, 0.0, None, 12.0, True)  # block: U = R I + k_e w
+    stall = 0.0255 * 12.0 / 1.2
+    assert disagreement(w, 0.0, stall / 1.02) == pytest.approx(0.02, rel=1e-12)
+    assert disagreement(w, 12.0 / 0.0255 / 1.05, 0.0) == pytest.approx(0.05, rel=1e-12)

@@ -118,6 +118,15 @@ class Winding:
         return float(-C / (half_B + math.sqrt(half_B * half_B - A * C)))  # stable form
 
 
+def disagreement(winding: Winding, speed: float, torque: float) -> float:
+    """How far the model is from a printed point (speed rad/s, torque N*m) of the voltage
+    limit, relative: in torque (k_t I(speed) against ``torque``), or in speed for a point
+    at zero torque (the no-load speed against ``speed``); the current is not capped."""
+    if torque == 0.0:
+        return winding.no_load_speed() / speed - 1.0
+    return float(winding.torque_constant * winding.current(np.array([speed]))[0]) / torque - 1.0
+
+
 def electrical_intermittent(motor: Motor, winding: Winding) -> Curve:
     """The intermittent region of ``motor`` from its winding: its peak torque (and k_t
     times its peak current) up to the corner where the supply starts to limit, then the
