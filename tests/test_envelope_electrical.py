@@ -184,3 +184,23 @@ def test_the_disagreement_with_a_printed_point():
     stall = 0.0255 * 12.0 / 1.2
     assert disagreement(w, 0.0, stall / 1.02) == pytest.approx(0.02, rel=1e-12)
     assert disagreement(w, 12.0 / 0.0255 / 1.05, 0.0) == pytest.approx(0.05, rel=1e-12)
+
+
+def test_a_printed_line_holds_at_its_own_supply_only():
+    """maxon's line is printed at the nominal voltage: on a drive's other DC link the
+    winding's model replaces it (capped at the printed peak); on the same, it stays."""
+    from sizer.model.domain import ServoDrive
+    from sizer.sizing.candidates import MotorArrays
+
+    k_t, R, U = 0.0255, 1.2, 24.0
+    line = ((0.0, 0.5), (U / k_t * 0.98, 0.0))  # printed: a little below the ideal line
+    motor = Motor(id="ec", inertia=1e-6, continuous_torque=0.05, peak_torque=0.5,
+                  rated_speed=3000 * RPM, torque_constant=k_t, winding_resistance=R,
+                  dc_bus_voltage=U, commutation="block", intermittent_curve=line)
+    drives = tuple(ServoDrive(id=f"d{v:g}", continuous_current=5.0, peak_current=100.0,
+                              dc_bus_voltage=v, motors=("ec",)) for v in (24.0, 48.0))
+    arrays = MotorArrays.of([motor], "electrical", drives)
+    ends = dict(zip(arrays.drive.tolist(), arrays.intermittent.max_speed.tolist(),
+                    strict=True))
+    assert ends[0] == pytest.approx(line[-1][0], rel=1e-15)  # its own supply: as printed
+    assert ends[1] == pytest.approx(48.0 / k_t, rel=1e-12)  # 48 V: the model's no-load

@@ -35,7 +35,7 @@ within TOLERANCE of it at the middle of each.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -116,6 +116,17 @@ class Winding:
         if C >= 0.0:
             return 0.0
         return float(-C / (half_B + math.sqrt(half_B * half_B - A * C)))  # stable form
+
+
+def on_supply(motor: Motor, bus: float | None) -> Motor:
+    """The motor fed from a DC link of ``bus`` volts (None: its own figures). A printed
+    intermittent curve stated for another supply (the motor's ``dc_bus_voltage``: maxon's
+    line at its nominal voltage) no longer holds there: the winding's model replaces it."""
+    if bus is None or bus == motor.dc_bus_voltage:
+        return motor
+    drawn_elsewhere = motor.intermittent_curve is not None and motor.dc_bus_voltage is not None
+    return replace(motor, dc_bus_voltage=bus,
+                   intermittent_curve=None if drawn_elsewhere else motor.intermittent_curve)
 
 
 def disagreement(winding: Winding, speed: float, torque: float) -> float:

@@ -32,12 +32,13 @@ from __future__ import annotations
 import fnmatch
 from collections import OrderedDict
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
 
 from sizer.envelope import RegionTable, continuous_region, intermittent_region
+from sizer.envelope.electrical import on_supply
 from sizer.errors import UserError
 from sizer.mechanics import Drive
 from sizer.model.domain import Curve, EnvelopeRule, Load, Motor, ServoDrive, Transmission
@@ -287,16 +288,15 @@ class MotorArrays:
                         drive: np.ndarray, paired: MotorArrays
                         ) -> tuple[RegionTable, RegionTable]:
         """The pairs' regions under ``electrical`` with the drive's DC link as the motor's
-        supply, where the drive gives one (sizer.envelope.electrical; a printed curve
-        still wins); the motor's own regions elsewhere."""
+        supply, where the drive gives one (sizer.envelope.electrical.on_supply); the
+        motor's own regions elsewhere."""
         buses = [drives[int(d)].dc_bus_voltage for d in drive]
         if all(bus is None for bus in buses):
             return paired.intermittent, paired.continuous
         found: dict[tuple[int, float | None], tuple[Curve, Curve]] = {}
         for m, bus in zip(motor.tolist(), buses, strict=True):
             if (m, bus) not in found:
-                on_bus = self.catalog[m] if bus is None else replace(self.catalog[m],
-                                                                     dc_bus_voltage=bus)
+                on_bus = on_supply(self.catalog[m], bus)
                 found[(m, bus)] = (intermittent_region(on_bus, self.envelope),
                                    continuous_region(on_bus, self.envelope))
         rows = [found[(m, bus)] for m, bus in zip(motor.tolist(), buses, strict=True)]
