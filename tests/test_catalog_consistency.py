@@ -12,8 +12,8 @@ import yaml
 
 from sizer.catalog_tools import validate_catalogs
 from sizer.catalog_tools.consistency import (
-    CURRENT_TOLERANCE,
     NOT_CHECKED,
+    TEMPERATURE_TOLERANCE,
     TOLERANCE,
     inconsistencies,
 )
@@ -41,10 +41,10 @@ def test_a_consistent_motor_has_no_finding() -> None:
 
 
 @pytest.mark.parametrize(("changes", "field", "words"), [
-    ({"back_emf_constant": K_T / math.sqrt(3.0) * (1 + 2 * TOLERANCE)}, "back_emf_constant",
-     "sqrt(3) k_e"),
+    ({"back_emf_constant": K_T / math.sqrt(3.0) * math.sqrt(2.0)}, "back_emf_constant",
+     "sqrt(3) k_e"),  # a peak k_e read as an RMS one
     ({"commutation": "block"}, "back_emf_constant", "k_t = k_e"),
-    ({"continuous_current": 2.0 * (1 + 2 * CURRENT_TOLERANCE)}, "continuous_current",
+    ({"continuous_current": 2.0 * (1 + 2 * TEMPERATURE_TOLERANCE)}, "continuous_current",
      "torque_constant x continuous_current"),
     ({"peak_torque": K_T * 6.0 * (1 + 2 * TOLERANCE)}, "peak_torque", "saturation"),
     ({"continuous_curve": ((0.0, 1.0), (2000 * RPM, 1.0))}, "continuous_curve",
@@ -62,7 +62,7 @@ def test_each_check_fires_on_a_crafted_motor(changes: dict, field: str, words: s
 
 def test_the_checks_allow_their_tolerance() -> None:
     within = replace(CONSISTENT, back_emf_constant=K_T / math.sqrt(3.0) * (1 + TOLERANCE / 2),
-                     continuous_current=2.0 * (1 + CURRENT_TOLERANCE / 2),
+                     continuous_current=2.0 * (1 + TEMPERATURE_TOLERANCE / 2),
                      peak_current=6.0 * 0.5)  # a saturating peak: k_t I_p above tau_p is fine
     assert fields_of(within) == ["peak_torque"]  # tau_p = 2 k_t I_p: too high
     saturating = replace(CONSISTENT, peak_current=6.0 * 1.5)

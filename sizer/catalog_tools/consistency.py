@@ -31,11 +31,16 @@ TOLERANCE = 0.03
 most 0.5 % to 2.5 % each, so a larger disagreement is a mistake in the data (a unit, a
 column, a convention), not rounding."""
 
-CURRENT_TOLERANCE = 0.12
-"""12 % for k_t x continuous_current against the continuous torque: the torque at a
-current is k_t (I - I_0), I_0 the no-load (friction) current, and k_t is printed for a
-cold winding while the rated torque is the warm one's: the 56 bundled maxon EC windings
-(maxon-ec.yaml) differ by up to 11.8 %, their data printed by the maker."""
+TEMPERATURE_TOLERANCE = 0.15
+"""15 % where the two figures are printed at different temperatures: k_t x a current
+against a torque, and k_t against k_e. Makers print k_e (and often k_t) for a cold winding
+and the rated torque, or k_t, for a warm one: the magnets of a winding 100 K warmer give
+about 10 % less (NdFeB, -0.1 %/K), and the torque at a current is k_t (I - I_0), I_0 the
+no-load (friction) current. Printed data of the bundled catalogs differ by up to 14.3 %
+(Yaskawa SGM7G-13A: 0.891 N*m/A x 10.7 A against 8.34 N*m; Siemens 1FT7044-AK7: k_T
+0.88 N*m/A hot against sqrt(3) k_E = 0.943 N*m/A cold; maxon EC: up to 11.8 %). The
+conventions this check is for are larger: a peak for an RMS figure is sqrt(2) (41 %),
+a phase for a line-to-line one sqrt(3) (73 %)."""
 
 NOT_CHECKED = ("rated power = rated torque x rated speed: not checked, a catalog motor "
                "has no rated power field",)
@@ -69,13 +74,13 @@ def _torque_constants(m: Motor) -> Found:
         return []
     block = m.commutation == "block"
     expected = k_e if block else math.sqrt(3.0) * k_e
-    if abs(k_t / expected - 1.0) <= TOLERANCE:
+    if abs(k_t / expected - 1.0) <= TEMPERATURE_TOLERANCE:
         return []
     rule = "k_t = k_e" if block else "k_t = sqrt(3) k_e"
     return [(("back_emf_constant",),
              f"torque_constant {k_t:.4g} N*m/A and back_emf_constant {k_e:.4g} V*s/rad "
              f"disagree by {_percent(k_t / expected)}: a {m.commutation} winding has {rule} "
-             f"= {expected:.4g} N*m/A (tolerance {TOLERANCE:.0%})")]
+             f"= {expected:.4g} N*m/A (tolerance {TEMPERATURE_TOLERANCE:.0%})")]
 
 
 def _continuous_current(m: Motor) -> Found:
@@ -83,12 +88,12 @@ def _continuous_current(m: Motor) -> Found:
     if k_t is None or current is None:
         return []
     torque = k_t * current
-    if abs(torque / m.continuous_torque - 1.0) <= CURRENT_TOLERANCE:
+    if abs(torque / m.continuous_torque - 1.0) <= TEMPERATURE_TOLERANCE:
         return []
     return [(("continuous_current",),
              f"torque_constant x continuous_current = {torque:.4g} N*m differs from the "
              f"continuous torque {m.continuous_torque:.4g} N*m by "
-             f"{_percent(torque / m.continuous_torque)} (tolerance {CURRENT_TOLERANCE:.0%})")]
+             f"{_percent(torque / m.continuous_torque)} (tolerance {TEMPERATURE_TOLERANCE:.0%})")]
 
 
 def _peak_current(m: Motor) -> Found:

@@ -131,8 +131,8 @@ def validate(
     real motors, a source on every motor, duplicate ids (also across the files given),
     the provenance (sources, default_source, figure_sources).
 
-    Consistency (warnings, 3 % unless said): k_t = sqrt(3) k_e (block: k_t = k_e),
-    k_t x continuous_current = continuous_torque (12 %: no-load current, warm winding),
+    Consistency (warnings, 3 % unless said): k_t = sqrt(3) k_e (block: k_t = k_e) and
+    k_t x continuous_current = continuous_torque (15 %: figures printed cold and warm),
     peak_torque <= k_t x peak_current, a continuous curve through the rated point, the
     intermittent region holding the continuous one (linear rule). Rated power = torque x
     speed is not checked: a motor has no rated power field. The summary gives each file's
