@@ -160,16 +160,21 @@ def _validate_source(source: YamlSource, ids: dict[str, _Seen],
     return findings
 
 
+def _schema_findings(model: Any, source: YamlSource, findings: list[Finding]) -> None:
+    """Every problem of the file against its schema ``model``, as findings."""
+    try:
+        model.model_validate(source.data)
+    except ValidationError as error:
+        for problem in all_problems(error, model, source):
+            findings.append(Finding(source.file or "?", problem.line, problem.field,
+                                    problem.message))
+
+
 def _validate_gearboxes(source: YamlSource, report: ValidationReport,
                         findings: list[Finding]) -> list[Finding]:
     """A gearbox catalog (``gearboxes:`` without ``motors:``): its schema, provenance
     included."""
-    file = source.file or "?"
-    try:
-        GearboxCatalogFile.model_validate(source.data)
-    except ValidationError as error:
-        for problem in all_problems(error, GearboxCatalogFile, source):
-            findings.append(Finding(file, problem.line, problem.field, problem.message))
+    _schema_findings(GearboxCatalogFile, source, findings)
     series = source.data.get("gearboxes")
     report.gearboxes += len(series) if isinstance(series, list) else 0
     return findings
@@ -181,11 +186,7 @@ def _validate_drives(source: YamlSource, finding: Any, report: ValidationReport,
     levels) and unique drive ids. Which motors a drive suits is checked when a design
     pairs them (it needs the motors)."""
     file = source.file or "?"
-    try:
-        DriveCatalogFile.model_validate(source.data)
-    except ValidationError as error:
-        for problem in all_problems(error, DriveCatalogFile, source):
-            findings.append(Finding(file, problem.line, problem.field, problem.message))
+    _schema_findings(DriveCatalogFile, source, findings)
     drives = source.data.get("drives")
     if isinstance(drives, list):
         report.drives += len(drives)
