@@ -25,7 +25,7 @@ EX61 = str(EXAMPLES / "book" / "ex6_1-6_2.yaml")
 EX64 = str(EXAMPLES / "book" / "ex6_4.yaml")
 SERVO_CATALOG = str(EXAMPLES / "catalogs" / "example-servo.yaml")
 
-RESULT_KEYS = ["motor", "law", "spec", "params", "feasible", "duration", "peak_torque",
+RESULT_KEYS = ["motor", "law", "spec", "params", "feasible", "front", "duration", "peak_torque",
                "rms_torque", "max_speed", "margin_peak", "margin_rms", "margin_speed",
                "limiting", "reason", "price", "mass", "rated_power", "ratio", "gearbox",
                "load_speed", "load_torque", "checks"]
@@ -139,7 +139,7 @@ def test_csv_is_si_with_units_in_the_headers() -> None:
                              "peak_torque [N*m]", "rms_torque [N*m]", "max_speed [rad/s]",
                              "margin_peak [1]", "margin_rms [1]", "margin_speed [1]",
                              "limiting", "reason", "price", "mass [kg]", "ratio",
-                             "gearbox", "envelope"]
+                             "gearbox", "envelope", "front"]
     assert {r["envelope"] for r in rows} == {"electrical"}  # the rule is stated in the CSV too
     by_law = {r["law"]: r for r in rows}
     assert float(by_law["cycloidal"]["max_speed [rad/s]"]) == pytest.approx(10.0, rel=1e-12)

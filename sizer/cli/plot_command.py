@@ -16,6 +16,7 @@ import typer
 
 from sizer.cli.catalog_option import CatalogOption, DesignArgument, load_design_file
 from sizer.cli.options import as_option, blame_option, check_law_specs, scaled_move
+from sizer.cli.size_command import FrontByOption
 from sizer.errors import UserError
 from sizer.report.printable import printable
 
@@ -95,6 +96,13 @@ def plot(
         help="Samples of each move of the cycle.")] = 401,
     dpi: DpiOption = 100,
     size: SizeOption = None,
+    front: Annotated[bool, typer.Option(
+        "--front",
+        help="Draw the trade-off front instead: every feasible pair's motor size against "
+             "its time (T_min, or with a given duration its smallest margin), the front "
+             "and its knee marked (docs/trade-off.md). With --law: the front of those "
+             "laws.")] = False,
+    front_by: FrontByOption = None,
 ) -> None:
     """Draw the speed-torque diagram of a motor with the task of one or more laws.
 
@@ -117,6 +125,8 @@ def plot(
 
         sizer plot examples/book/ex6_1-6_2.yaml --motor ex6_1 --law cycloidal
         --law 'trapezoidal(alpha=0.12732200375003505)' --speed-unit rad/s -o fig6_2.svg
+
+        sizer plot examples/indexing-table-gearboxes.yaml --front -o front.png
     """
     from sizer.cli.output_guard import check_output, check_outputs
     from sizer.report.cycle_summary import duration_name as cycle_duration_name
@@ -130,6 +140,12 @@ def plot(
     from sizer.report.plots.speed_torque import SPEED_UNITS
 
     figure_format(output)
+    if front or front_by is not None:
+        _plot_front(design, output, catalog, motor, law, front_by,
+                    refused={"--acceleration": acceleration, "--time": over_time,
+                             "--linkage": over_crank, "--front": not front},
+                    size=parse_size(size), dpi=dpi)
+        return
     if over_crank and (over_time or acceleration):
         raise UserError("--linkage draws the ratio and torque over the crank angle; it "
                         "does not combine with --time or --acceleration", field="--linkage")
@@ -179,6 +195,46 @@ def plot(
     save_figure(figure, output, dpi=dpi)
     typer.echo(printable(f"{output}: {what} of {drawn[0].motor} with "
                          f"{', '.join(_label(r.spec) for r in drawn)}"))
+
+
+def _plot_front(design: Path, output: Path, catalog: Sequence[str] | None,
+                motor: str | None, laws: Sequence[str] | None, front_by: str | None, *,
+                refused: dict[str, bool], size: tuple[float, float] | None,
+                dpi: float) -> None:
+    """``sizer plot --front``: size the design (its laws, or the --law ones) and draw the
+    front of its feasible pairs (sizer.report.plots.front_plot)."""
+    from sizer.cli.output_guard import check_output
+    from sizer.cli.size_command import check_front_key, check_laws, front_of, load_and_size
+    from sizer.report.cycle_summary import duration_name
+    from sizer.report.plots.figure_files import save_figure
+    from sizer.report.plots.front_plot import front_figure
+
+    if motor is not None:
+        raise UserError("the front compares every motor; leave out --motor",
+                        field="--motor")
+    for option, given in refused.items():
+        if given:
+            message = ("--front-by chooses the size of the front: give --front too"
+                       if option == "--front" else
+                       f"--front draws the trade-off front; it does not combine with "
+                       f"{option}")
+            raise UserError(message, field=option)
+    key = check_front_key(front_by)
+    check_laws(laws or ())
+    check_output(output, [design, *(catalog or ())])
+    loaded, sizing = load_and_size(design, catalog, None, None, outputs=(output,),
+                                   laws=laws)
+    trade = front_of(sizing, key, design)
+    if not len(trade.members):
+        raise UserError("no feasible motor/law pair: no front to draw", file=str(design))
+    figure = front_figure(sizing, trade, duration_name=duration_name(loaded),
+                          title=loaded.name, size=size, dpi=dpi)
+    save_figure(figure, output, dpi=dpi)
+    knee = ("" if trade.knee is None else
+            f", knee {sizing.results[trade.knee].motor} with "
+            f"{_label(sizing.results[trade.knee].spec)}")
+    typer.echo(printable(f"{output}: trade-off front of {len(trade.members)} of "
+                         f"{len(sizing.feasible)} feasible pairs{knee}"))
 
 
 def plot_pairs(design: Design, motor: str | None = None, laws: Sequence[str] = (),

@@ -21,6 +21,8 @@ from sizer.cli.options import (
     MotorsOption,
     OutputOption,
     as_option,
+    blame_option,
+    check_law_specs,
 )
 from sizer.errors import UserError
 from sizer.report.formats import Format
@@ -30,6 +32,7 @@ if TYPE_CHECKING:
 
     from sizer.model.domain import Design
     from sizer.sizing import SizingResult
+    from sizer.sizing.front import Front, FrontBy
 
 RANK_HELP = ("Rank the feasible pairs by size (alias power: the smallest motor first, by "
              "rated power tau_c*v_n), duration (shortest first), margin (most room left at "
@@ -39,11 +42,36 @@ RANK_HELP = ("Rank the feasible pairs by size (alias power: the smallest motor f
              "(size, margin, rotor inertia, finally motor id, law spec, ratio). Default: "
              "duration with 'duration: minimize', size otherwise.")
 
+LawsOption = Annotated[list[str] | None, typer.Option(
+    "--law", "-l", metavar="SPEC",
+    help="Size this law instead of the design's 'laws:' (repeat for more), e.g. --law "
+         "cycloidal --law 'trapezoidal(alpha=auto)'. The design file is not changed.",
+    show_default=False)]
+"""``--law``: the laws to size instead of the design's (sizer.api.override)."""
+
+FrontOption = Annotated[bool, typer.Option(
+    "--front",
+    help="Show only the trade-off front: the feasible pairs that no other beats on both "
+         "time and motor size, smallest motor first, the knee marked (docs/trade-off.md). "
+         "Time: T_min (or the shortest cycle time) with 'duration: minimize'; with a "
+         "given duration, the smallest margin beyond the required one (larger better).")]
+"""``--front``: only the front's rows, sorted by the size objective."""
+
+FrontByOption = Annotated[str | None, typer.Option(
+    "--front-by", metavar="power|price|mass|energy",
+    help="The size objective of the front (and of the 'front' column of every CSV and "
+         "JSON): the motor's rated power tau_c*v_n (default), its catalog price or mass, "
+         "or the net energy drawn from the DC bus per cycle (designs with energy or heat "
+         "checks). Pairs without the figure are left out of the front (and counted).",
+    show_default=False)]
+"""``--front-by``: the size objective (sizer.sizing.front.FrontBy)."""
+
 
 def size(
     design: DesignArgument,
     catalog: CatalogOption = None,
     motor: MotorsOption = None,
+    law: LawsOption = None,
     rank_by: Annotated[str | None, typer.Option(
         "--rank-by", "-r", metavar="KEY", help=RANK_HELP, show_default=False)] = None,
     top: Annotated[int | None, typer.Option(
@@ -56,6 +84,8 @@ def size(
     output: OutputOption = None,
     envelope: EnvelopeOption = None,
     jobs: JobsOption = None,
+    front: FrontOption = False,
+    front_by: FrontByOption = None,
 ) -> None:
     """Size a design: every motor with every motion law, feasible pairs ranked.
 
@@ -64,6 +94,13 @@ def size(
     'duration: minimize' each pair gets its shortest feasible duration T_min.
     Exit code 0 even when no pair is feasible (the report says so); 2 for bad input;
     3 for an internal error (a bug in sizer).
+
+    On a terminal too narrow for the table (80 columns) the table abbreviates rather than
+    cuts: mrg = margin, pk = peak, spd = speed, limit = the limiting check (J_ratio =
+    inertia_ratio, winding_dT = winding_temperature_rise, drv_pk_I / drv_rms_I = the
+    drive's currents, ...), and laws with their parameters by position (trap(1/3) =
+    trapezoidal(alpha=1/3), poly(5) = polynomial(degree=5), mod_sine =
+    modified_sinusoidal, cycl = cycloidal); --format md, csv or json keep the full words.
 
     Examples:
 
@@ -74,20 +111,34 @@ def size(
         sizer size machine.yaml --catalog my-motors.yaml --rank-by price --top 5
 
         sizer size examples/book/ex6_3.yaml --motor ex6_3
+
+        sizer size examples/indexing-table-gearboxes.yaml --front
+
+        sizer size examples/indexing-table.yaml --law cycloidal --law poly5
     """
     from sizer.cli.output_guard import check_output
     from sizer.report.sizing_table import SizingDocument, publish_sizing
 
     check_rank_key(rank_by)
+    front_key = check_front_key(front_by)
+    check_laws(law or ())
     check_output(output, [design, *(catalog or ())])
     if is_machine(design):
+        if law:
+            raise UserError("not for a machine file: each axis names its laws",
+                            field="--law")
+        if front or front_by:
+            raise UserError("not for a machine file: size one axis's design for its "
+                            "front", field="--front" if front else "--front-by")
         _size_machine(design, catalog, motor, rank_by, top, show_all, fmt, output, envelope,
                       jobs)
         return
     loaded, sizing = load_and_size(design, catalog, motor, rank_by, envelope=envelope,
-                                   outputs=() if output is None else (output,), workers=jobs)
+                                   outputs=() if output is None else (output,), workers=jobs,
+                                   laws=law)
     document = SizingDocument(sizing, loaded, rank_by=rank_by, top=top,
-                              include_infeasible=show_all)
+                              include_infeasible=show_all,
+                              front=front_of(sizing, front_key, design), front_only=front)
     publish_sizing(document, fmt, output)
 
 
@@ -105,7 +156,7 @@ def _size_machine(path: Path, catalog: Sequence[str] | None, motor: Sequence[str
     machine = api.load_machine(path)
     check_outputs(() if output is None else (output,), machine.files)
     try:
-        with sizing_progress(f"sizing {path.name}") as progress:
+        with sizing_progress(f"sizing {path.name}", unit="laws") as progress:
             result = api.size_machine(machine, rank_by=rank_by, envelope=envelope or None,
                                       progress=progress, workers=jobs)
     except UserError as error:
@@ -117,12 +168,13 @@ def _size_machine(path: Path, catalog: Sequence[str] | None, motor: Sequence[str
 
 def load_and_size(design: Path, catalog: Sequence[str] | None, motor: Sequence[str] | None,
                   rank_by: str | None, *, envelope: str | None = None,
-                  outputs: Sequence[Path] = (), workers: int | None = None
-                  ) -> tuple[Design, SizingResult]:
-    """Load a design (plus --catalog), restrict it to the --motor ids, with --envelope, and
-    size it (sizer.api) in ``workers`` processes (None: every CPU for a large design);
-    UserErrors of the sizing name the design file. None of the ``outputs`` may be a file
-    the load read (checked before the sizing)."""
+                  outputs: Sequence[Path] = (), workers: int | None = None,
+                  laws: Sequence[str] | None = None) -> tuple[Design, SizingResult]:
+    """Load a design (plus --catalog), restrict it to the --motor ids, with --envelope and
+    the --law specs instead of the design's laws (None: the design's), and size it
+    (sizer.api) in ``workers`` processes (None: every CPU for a large design);
+    UserErrors of the sizing name the design file (those of a --law name the option).
+    None of the ``outputs`` may be a file the load read (checked before the sizing)."""
     from sizer import api
     from sizer.cli.output_guard import check_outputs
     from sizer.cli.progress import sizing_progress
@@ -132,10 +184,52 @@ def load_and_size(design: Path, catalog: Sequence[str] | None, motor: Sequence[s
     check_outputs(outputs, loaded.files)
     with as_option("motors", "--motor"):
         loaded = api.override(loaded, motors=motor or None, envelope=envelope or None)
+    if laws:
+        with as_option("laws", "--law"):
+            loaded = api.override(loaded, laws=list(dict.fromkeys(laws)))
     try:
-        with sizing_progress(f"sizing {design.name}") as progress:
+        with sizing_progress(f"sizing {design.name}", unit="laws") as progress:
+            if laws:  # a law's own mistake (a data law's file) names the option
+                with as_option("laws", "--law"):
+                    return loaded, api.size(loaded, rank_by=rank_by, progress=progress,
+                                            workers=workers)
             return loaded, api.size(loaded, rank_by=rank_by, progress=progress,
                                     workers=workers)
+    except UserError as error:
+        if error.field == "--law":  # the option's mistake, not the file's
+            raise
+        raise error.located(file=str(design)) from None
+
+
+def check_laws(specs: Sequence[str]) -> None:
+    """Every --law spec reads as a law and, without ``auto`` parameters, builds (its
+    parameters in range); else a UserError naming --law, before any file is read."""
+    from sizer.laws import law_choice  # lazy: keeps --help fast
+
+    check_law_specs(list(specs), "--law")
+    for spec in specs:
+        with blame_option("--law"):
+            choice = law_choice(spec)
+            if choice.is_fixed:
+                choice.law  # noqa: B018 (built for its check)
+
+
+def check_front_key(front_by: str | None) -> FrontBy:
+    """The --front-by objective (power by default); a UserError naming the option."""
+    from sizer.sizing.front import front_by as read_front_by
+
+    with as_option("front_by", "--front-by"):
+        return read_front_by(front_by)
+
+
+def front_of(sizing: SizingResult, by: FrontBy, design: Path) -> Front:
+    """The trade-off front of a sizing by ``by``; its UserError names --front-by (and the
+    design file)."""
+    from sizer.sizing.front import trade_off
+
+    try:
+        with as_option("front_by", "--front-by"):
+            return trade_off(sizing, by)
     except UserError as error:
         raise error.located(file=str(design)) from None
 

@@ -31,10 +31,12 @@ CSV_HEADERS = (
     "rank", "motor", "law", "spec", "feasible", "duration [s]", "peak_torque [N*m]",
     "rms_torque [N*m]", "max_speed [rad/s]", "margin_peak [1]", "margin_rms [1]",
     "margin_speed [1]", "limiting", "reason", "price", "mass [kg]", "ratio", "gearbox",
-    "envelope",
+    "envelope", "front",
 )
 """``envelope`` is the rule that completed the regions of motors without curves
-(sizer.envelope.completion), so that a CSV states what it assumed as the table does."""
+(sizer.envelope.completion), so that a CSV states what it assumed as the table does;
+``front`` where the pair stands on the trade-off front (sizer.sizing.front: ``knee``,
+``front`` or empty)."""
 
 
 def summary_margin(result: CandidateResult, name: str) -> float | None:
@@ -72,9 +74,10 @@ def check_json(result: CandidateResult, check: Check) -> dict[str, Any]:
     }
 
 
-def result_json(result: CandidateResult) -> dict[str, Any]:
+def result_json(result: CandidateResult, front: str | None = None) -> dict[str, Any]:
     """The JSON object of one pair, keys in a fixed order, SI units (``drive`` after
-    ``motor`` where the design has drives)."""
+    ``motor`` where the design has drives; ``front`` after ``feasible`` when given: where
+    the pair stands on the trade-off front, ``knee``, ``front`` or '')."""
     return {
         "motor": result.motor,
         **({"drive": result.drive} if result.drive is not None else {}),
@@ -82,6 +85,7 @@ def result_json(result: CandidateResult) -> dict[str, Any]:
         "spec": result.spec,
         "params": {name: float(value) for name, value in result.params.items()},
         "feasible": bool(result.feasible),
+        **({"front": front} if front is not None else {}),
         "duration": finite_or_none(result.duration),
         "peak_torque": finite_or_none(result.peak_torque),
         "rms_torque": finite_or_none(result.rms_torque),
@@ -101,8 +105,10 @@ def result_json(result: CandidateResult) -> dict[str, Any]:
     }
 
 
-def result_csv_cells(rank: int, result: CandidateResult, envelope: str = "") -> tuple[str, ...]:
-    """CSV cells at full precision (SI), in the order of CSV_HEADERS."""
+def result_csv_cells(rank: int, result: CandidateResult, envelope: str = "",
+                     front: str = "") -> tuple[str, ...]:
+    """CSV cells at full precision (SI), in the order of CSV_HEADERS (``front``: the
+    pair's place on the trade-off front, ``knee``, ``front`` or '')."""
     return (
         str(rank), result.motor, result.law, result.spec,
         "true" if result.feasible else "false",
@@ -111,7 +117,7 @@ def result_csv_cells(rank: int, result: CandidateResult, envelope: str = "") -> 
         *(full_or_empty(summary_margin(result, name)) for name in MARGINS),
         result.limiting or "", result.reason,
         full_or_empty(result.price), full_or_empty(result.mass),
-        full_or_empty(result.ratio), result.gearbox or "", envelope,
+        full_or_empty(result.ratio), result.gearbox or "", envelope, front,
     )
 
 
@@ -124,12 +130,6 @@ def percent(fraction: float | None) -> str:
     if fraction is None:
         return NOT_AVAILABLE
     return margin_percent(fraction, 1, failed=fraction < -TOLERANCE)
-
-
-def ratio_text(result: CandidateResult) -> str:
-    """The transmission ratio for a table, with the catalog gearbox if one was chosen."""
-    text = short_or_na(result.ratio)
-    return f"{text} ({result.gearbox})" if result.gearbox else text
 
 
 def display_spec(result: CandidateResult) -> str:
@@ -145,17 +145,18 @@ def display_spec(result: CandidateResult) -> str:
     return f"{result.law}({args})"
 
 
-def result_display_cells(rank: int, result: CandidateResult, *,
-                         with_ratio: bool = False, with_drive: bool = False) -> tuple[str, ...]:
+def result_display_cells(rank: int, result: CandidateResult, *, ratio: str | None = None,
+                         with_drive: bool = False) -> tuple[str, ...]:
     """Cells for a table: rank, motor, law, feasible, T [ms], torques, rpm, margins [%].
 
-    With ``with_ratio`` the transmission ratio follows the law (when it varies by pair);
-    with ``with_drive`` the drive follows the motor.
+    ``ratio``: the transmission's cell after the law (when it varies by pair: the free
+    stage's ratio as listed, sizer.report.transmission_text); with ``with_drive`` the
+    drive follows the motor.
     """
-    ratio = (ratio_text(result),) if with_ratio else ()
+    ratio_cell = () if ratio is None else (ratio,)
     drive = (result.drive or "",) if with_drive else ()
     return (
-        str(rank), result.motor, *drive, display_spec(result), *ratio,
+        str(rank), result.motor, *drive, display_spec(result), *ratio_cell,
         "yes" if result.feasible else "no",
         short_or_na(result.duration, 1000.0), short_or_na(result.peak_torque),
         short_or_na(result.rms_torque), short_or_na(result.max_speed, RPM_PER_RAD_S),

@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING, Any
 from sizer.laws.data_spec import law_label
 from sizer.report.candidate_row import (
     CSV_HEADERS,
+    percent,
     result_csv_cells,
     result_display_cells,
     result_json,
@@ -34,17 +35,19 @@ from sizer.report.figure_grades import chosen_provenance
 from sizer.report.formats import Format, Rendered
 from sizer.report.json_text import render_json
 from sizer.report.markdown_table import render_markdown_table
-from sizer.report.numbers import full_or_empty, short
+from sizer.report.numbers import finite_or_none, full_or_empty, short
 from sizer.report.output import emit, stdout_is_terminal
 from sizer.report.printable import printable
 from sizer.report.rich_table import print_rich_table
 from sizer.report.table import Column, Table, make_table
 from sizer.report.text_table import render_text_table
+from sizer.report.transmission_text import listed_ratio_text, ratio_header
 from sizer.sizing.results import Mode
 
 if TYPE_CHECKING:
     from sizer.model.domain import Design
     from sizer.sizing import CandidateResult, SizingResult
+    from sizer.sizing.front import Front
 
 NO_FEASIBLE = "no feasible motor/law pair"
 NO_DURATION_NOTE = ("n/a: no duration is feasible for the pair, so it has no operating "
@@ -73,16 +76,26 @@ class SizingDocument(Rendered):
     """The ranked results of a design, filtered for display, in every format."""
 
     def __init__(self, sizing: SizingResult, design: Design, *, rank_by: str | None = None,
-                 top: int | None = None, include_infeasible: bool = False) -> None:
+                 top: int | None = None, include_infeasible: bool = False,
+                 front: Front | None = None, front_only: bool = False) -> None:
         self.sizing = sizing
         self.design = design
         from sizer.sizing.ranking import rank_rule
 
         self.rank_rule = rank_rule(rank_by, sizing.mode)
         self.rank_key = self.rank_rule.key
+        if front is None:  # the default front (rated power), for the 'front' column
+            from sizer.sizing.front import trade_off
+
+            front = trade_off(sizing)
+        self.front = front
+        self.front_only = front_only
         ranked = list(enumerate(sizing.results, start=1))
-        shown = [(rank, r) for rank, r in ranked if include_infeasible or r.feasible]
-        self.hidden_infeasible = len(ranked) - len(shown)
+        if front_only:  # the front alone, smallest motor first
+            shown = [ranked[int(i)] for i in front.members]
+        else:
+            shown = [(rank, r) for rank, r in ranked if include_infeasible or r.feasible]
+        self.hidden_infeasible = 0 if front_only else len(ranked) - len(shown)
         self.cut = max(0, len(shown) - top) if top is not None else 0
         self.rows: list[tuple[int, CandidateResult]] = shown[:top] if top is not None else shown
 
@@ -109,8 +122,85 @@ class SizingDocument(Rendered):
             move = cycle_heading(self.design.machine_cycle)
         feasible = sum(r.feasible for r in self.sizing.results)
         name = self.design.name or "design"
+        if self.front_only:
+            return (f"{name}: {move}; the trade-off front: {len(self.front.members)} of "
+                    f"{feasible} feasible pairs, {self.front_axes}")
         return (f"{name}: {move}; {feasible} of {len(self.sizing.results)} motor/law pairs "
                 f"feasible, ranked by {self.rank_key}")
+
+    # ---------------------------------------------------------------- the front
+    @property
+    def front_axes(self) -> str:
+        """The front's two objectives in words ('T_min against rated power')."""
+        time = (duration_name(self.design) if self.front.time_name == "duration"
+                else "smallest margin")
+        return f"{time} against {FRONT_SIZE[self.front.by][0]}"
+
+    def front_status(self, rank: int) -> str:
+        """``knee``, ``front`` or '' for the pair of rank ``rank`` (1-based)."""
+        return self.front.statuses[rank - 1]
+
+    @property
+    def with_front_column(self) -> bool:
+        """The human-readable table shows the front column: with --front, and in minimize
+        mode (where each row stands on the front of T_min against motor size)."""
+        return self.front_only or self.sizing.mode is Mode.MINIMIZE
+
+    def front_lines(self) -> list[str]:
+        """What the front column means, the knee and what was left out."""
+        if not self.with_front_column:
+            return []
+        better = ("faster" if self.front.time_name == "duration"
+                  else "leaves more margin")
+        lines = [f"front: on the trade-off front of {self.front_axes}: no other feasible "
+                 f"pair both {better} and smaller; knee: the front point farthest from the "
+                 f"line through its two ends, both scaled to [0, 1] (docs/trade-off.md; "
+                 f"--front shows the front alone, --front-by chooses the size)"]
+        knee = self.front.knee
+        if knee is not None:
+            r = self.sizing.results[knee]
+            lines.append(f"knee: #{knee + 1} {r.motor}, {law_label(r.spec)}: "
+                         f"{self._time_text(knee)}, {self._size_text(knee)}")
+        elif len(self.front.members):
+            lines.append("no knee: the front has fewer than 3 distinct points or does not "
+                         "bulge towards the ideal point")
+        if self.front.left_out:
+            lines.append(f"{self.front.left_out} feasible pairs without "
+                         f"{FRONT_SIZE[self.front.by][0]} left out of the front")
+        return lines
+
+    def _time_text(self, position: int) -> str:
+        value = float(self.front.time[position])
+        if self.front.time_name == "duration":
+            return f"{duration_name(self.design)} {short(value * 1000.0)} ms"
+        return f"smallest margin {percent(value)} %"
+
+    def _size_text(self, position: int) -> str:
+        name, unit, factor = FRONT_SIZE[self.front.by]
+        value = short(float(self.front.size[position]) * factor)
+        return f"{name} {value}{f' {unit}' if unit else ''}"
+
+    def _size_cell(self, rank: int) -> str:
+        _, _, factor = FRONT_SIZE[self.front.by]
+        value = float(self.front.size[rank - 1])
+        return short(value * factor) if math.isfinite(value) else "n/a"
+
+    def _front_json(self) -> dict[str, Any]:
+        front = self.front
+
+        def point(i: int) -> dict[str, Any]:
+            r = self.sizing.results[i]
+            return {"rank": i + 1, "motor": r.motor, "spec": r.spec,
+                    "ratio": finite_or_none(r.ratio), "status": front.statuses[i],
+                    "time": finite_or_none(float(front.time[i])),
+                    "size": finite_or_none(float(front.size[i]))}
+        return {"by": front.by.value, "time": front.time_name, "size": front.size_field,
+                "units": {"time": "s" if front.time_name == "duration"
+                          else "1 (the smallest margin beyond the required one)",
+                          "size": FRONT_SI_UNITS[front.by]},
+                "rule": front.rule, "left_out": front.left_out,
+                "knee": None if front.knee is None else point(front.knee),
+                "points": [point(int(i)) for i in front.members]}
 
     def footer(self, dropped: Sequence[str] = ()) -> list[str]:
         """Lines under a human-readable table (``dropped``: columns a terminal left out)."""
@@ -135,7 +225,9 @@ class SizingDocument(Rendered):
                          f"them)")
         if self.cut:
             lines.append(f"{self.cut} more pairs not shown (--top)")
-        lines.append(f"ranked by {self.rank_key}: {self.rank_rule.text}")
+        lines += self.front_lines()
+        if not self.front_only:
+            lines.append(f"ranked by {self.rank_key}: {self.rank_rule.text}")
         lines += [f"note: {note}" for note in self.sizing.notes]
         return lines
 
@@ -182,18 +274,33 @@ class SizingDocument(Rendered):
         columns = (
             Column("#"), Column("motor", "left"),
             *((Column("drive", "left"),) if with_drive else ()), Column("law", "left"),
-            *((Column("ratio", "left"),) if with_ratio else ()),
+            *((Column(ratio_header(self.design), "left"),) if with_ratio else ()),
             Column(FEASIBLE[compact], "left"), Column(duration), Column("peak [N*m]"),
             Column("rms [N*m]"), Column(SPEED[compact]), Column("peak margin [%]"),
             Column("rms margin [%]"), Column("speed margin [%]"), Column("limiting", "left"),
         )
-        rows = [result_display_cells(rank, r, with_ratio=with_ratio, with_drive=with_drive)
-                for rank, r in self.rows]
+        rows = [result_display_cells(
+            rank, r, ratio=listed_ratio_text(self.design, r) if with_ratio else None,
+            with_drive=with_drive) for rank, r in self.rows]
         if self.with_vibration:
             unit, factor = self.residual_unit
             columns = (*columns[:-1], Column(f"residual [{unit}]"), columns[-1])
             rows = [(*row[:-1], _residual_cell(r, factor), row[-1])
                     for row, (_, r) in zip(rows, self.rows, strict=True)]
+        if self.front_only:  # the objectives of the front: margin (given T), size
+            name, unit, _ = FRONT_SIZE[self.front.by]
+            extra: tuple[Column, ...] = (Column(f"{name} [{unit}]" if unit else name),)
+            cells: list[tuple[str, ...]] = [(self._size_cell(rank),) for rank, _ in self.rows]
+            if self.front.time_name != "duration":
+                extra = (Column("min margin [%]"), *extra)
+                cells = [(percent(float(self.front.time[rank - 1])), *c)
+                         for c, (rank, _) in zip(cells, self.rows, strict=True)]
+            columns = (*columns, *extra)
+            rows = [(*row, *c) for row, c in zip(rows, cells, strict=True)]
+        if self.with_front_column:
+            columns = (*columns, Column("front", "left"))
+            rows = [(*row, self.front_status(rank))
+                    for row, (rank, _) in zip(rows, self.rows, strict=True)]
         return make_table(columns, rows, title=self.title)
 
     def droppable(self, compact: bool = True) -> list[str]:
@@ -202,7 +309,8 @@ class SizingDocument(Rendered):
         where every row is feasible, then the ratio. Margins and limiting always stay."""
         feasible = FEASIBLE[compact]
         every_row_ok = all(r.feasible for _, r in self.rows)
-        order = [SPEED[compact], "peak [N*m]", "rms [N*m]", feasible, "ratio"]
+        order = [SPEED[compact], "peak [N*m]", "rms [N*m]", feasible,
+                 ratio_header(self.design)]
         if every_row_ok:
             order.insert(0, order.pop(order.index(feasible)))
         return order
@@ -210,7 +318,8 @@ class SizingDocument(Rendered):
     def csv(self) -> str:
         envelope = self.design.limits.envelope
         headers: tuple[str, ...] = CSV_HEADERS
-        rows = [result_csv_cells(rank, r, envelope) for rank, r in self.rows]
+        rows = [result_csv_cells(rank, r, envelope, self.front_status(rank))
+                for rank, r in self.rows]
         if self.with_vibration:
             unit = "m" if self.design.task.linear else "rad"
             headers = (*headers, f"residual_vibration [{unit}]")
@@ -234,12 +343,16 @@ class SizingDocument(Rendered):
                        "figure_sources": chosen_provenance(r for _, r in self.rows)},
             "ranked_by": self.rank_key,
             "ranking": self.rank_rule.text,
+            **({"front": self._front_json()} if self.front_only else {}),
             "units": {**RESULT_UNITS, **({"residual_vibration": RESIDUAL_UNIT}
                                          if self.with_vibration else {}),
-                      **{k: ENERGY_UNITS[k] for k in self.energy_figures}},
-            "results": [_with_energy(_with_residual(result_json(r), r, self.with_vibration),
+                      **{k: ENERGY_UNITS[k] for k in self.energy_figures},
+                      "front": (f"'knee', 'front' or '': the pair's place on the trade-off "
+                                f"front of {self.front_axes}; {self.front.rule}")},
+            "results": [_with_energy(_with_residual(result_json(r, self.front_status(rank)),
+                                                    r, self.with_vibration),
                                      r, self.energy_figures)
-                        for _, r in self.rows],
+                        for rank, r in self.rows],
         })
 
     def markdown(self) -> str:
@@ -255,6 +368,16 @@ class SizingDocument(Rendered):
         if footer:
             text += "\n" + "\n".join(footer) + "\n"
         return text
+
+
+FRONT_SIZE = {"power": ("rated power", "W", 1.0), "price": ("price", "", 1.0),
+              "mass": ("mass", "kg", 1.0), "energy": ("energy per cycle", "J", 1.0)}
+"""The size objective of a front (sizer.sizing.front.FrontBy) for people: its name, the
+unit shown and the factor from SI."""
+
+FRONT_SI_UNITS = {"power": "W (tau_c*v_n)", "price": "as in the catalog", "mass": "kg",
+                  "energy": "J per machine cycle drawn from the DC bus (net)"}
+"""The SI units of the size objectives in JSON."""
 
 
 RESIDUAL_UNIT = "rad (m on a linear axis): amplitude at the load (book sec. 7.2)"
