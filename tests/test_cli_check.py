@@ -54,7 +54,7 @@ def test_failing_design_exits_1_and_says_which_limit_by_how_much(failing: Path) 
     last = result.stdout.splitlines()[-1]
     # everything driven, (0.034/10^2 + 0.3e-4) kg*m^2, over 0.225e-4 kg*m^2 = 16.444
     assert last == ("FAIL: HG-KN23J with modified_sinusoidal: inertia_ratio: 16.4444 "
-                    "against 10, margin -64.44% (FAILS)")
+                    "against 10 (inertia driven over the rotor's), margin -64.44% (FAILS)")
 
 
 def test_failing_torque_margin(tmp_path: Path) -> None:

@@ -1,4 +1,4 @@
-"""The exit codes of every sizer command, written once (documented in the README)."""
+"""The exit codes of every sizer command, written once (documented in docs/errors.md)."""
 
 from __future__ import annotations
 

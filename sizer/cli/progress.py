@@ -5,7 +5,8 @@ module makes one that draws a transient bar on stderr, and only when stderr is a
 The bar appears once a run has taken ``DELAY`` seconds, so quick runs print nothing; a
 timer shows it then even while one long step (a law of a 400-segment cycle, an axis of a
 machine) has not called back yet, and its spinner and elapsed time keep moving: a long run
-is never silent on a terminal.
+is never silent on a terminal. The bar counts its steps in ``unit`` ('laws', 'steps') and
+shows rich's estimate of the time remaining from the steps done so far.
 """
 
 from __future__ import annotations
@@ -34,8 +35,10 @@ class TerminalProgress:
     """A ``progress(done, total)`` callback drawing a rich bar on ``console`` after DELAY
     (by a timer: also while no callback comes)."""
 
-    def __init__(self, description: str, console: Any, delay: float = DELAY) -> None:
+    def __init__(self, description: str, console: Any, delay: float = DELAY,
+                 unit: str = "") -> None:
         self.description = description
+        self.unit = unit
         self.console = console
         self.delay = delay
         self.started = time.monotonic()
@@ -80,11 +83,14 @@ class TerminalProgress:
             SpinnerColumn,
             TextColumn,
             TimeElapsedColumn,
+            TimeRemainingColumn,
         )
 
         done, total = self._state if self._state is not None else (0, 1)
+        unit = (TextColumn(self.unit),) if self.unit else ()
         self._bar = Progress(SpinnerColumn(), TextColumn("{task.description}"), BarColumn(),
-                             MofNCompleteColumn(), TimeElapsedColumn(),
+                             MofNCompleteColumn(), *unit, TimeElapsedColumn(),
+                             TextColumn("eta"), TimeRemainingColumn(),
                              console=self.console, transient=True)
         self._bar.start()
         self._task = self._bar.add_task(self.description, total=total, completed=done)
@@ -101,9 +107,10 @@ class TerminalProgress:
 
 @contextmanager
 def sizing_progress(description: str, stream: IO[str] | None = None,
-                    delay: float | None = None) -> Iterator[Callable[[int, int], None] | None]:
+                    delay: float | None = None, unit: str = ""
+                    ) -> Iterator[Callable[[int, int], None] | None]:
     """A progress callback drawing on ``stream`` (default stderr) if it is a terminal, else
-    None (nothing is ever written to a pipe or a file)."""
+    None (nothing is ever written to a pipe or a file); ``unit`` names what it counts."""
     stream = sys.stderr if stream is None else stream
     if not is_terminal(stream):
         yield None
@@ -116,7 +123,7 @@ def sizing_progress(description: str, stream: IO[str] | None = None,
         except ValueError:
             delay = DELAY
 
-    progress = TerminalProgress(description, Console(file=stream), delay)
+    progress = TerminalProgress(description, Console(file=stream), delay, unit)
     try:
         yield progress
     finally:

@@ -60,9 +60,9 @@ def vibration(
 
     Examples:
 
-        sizer vibration examples/vibration-pick.yaml
+        sizer vibration examples/indexing-table-vibration.yaml
 
-        sizer vibration examples/vibration-pick.yaml --from '0.2 s' --to '0.6 s' --plot r.png
+        sizer vibration examples/indexing-table-vibration.yaml --from 0.2s --to 0.6s --plot r.png
     """
     from sizer.cli.output_guard import check_output, check_outputs
     from sizer.laws import law_choice
@@ -104,9 +104,11 @@ def vibration(
         low, high = _range(loaded, start, stop)
         import numpy as np
 
-        from sizer.sizing.vibration_check import vibration_sweep
+        from sizer.cli.progress import sizing_progress
+        from sizer.cli.vibration_progress import stepped_sweep
 
-        sweep = vibration_sweep(loaded, laws, np.linspace(low, high, points))
+        with sizing_progress(f"sweeping {design.name}", unit="steps") as progress:
+            sweep = stepped_sweep(loaded, laws, np.linspace(low, high, points), progress)
     except UserError as error:
         if (error.field or "").startswith("--"):
             raise
@@ -170,9 +172,11 @@ def _base_scale(design: Design) -> float:
     if design.task.duration is not None:
         return design.task.duration
     from sizer import api
+    from sizer.cli.progress import sizing_progress
 
-    best = [r.duration for r in api.size(design).results
-            if r.feasible and r.duration is not None]
+    with sizing_progress("sizing for the shortest T_min", unit="laws") as progress:
+        sized = api.size(design, progress=progress)
+    best = [r.duration for r in sized.results if r.feasible and r.duration is not None]
     if not best:
         raise UserError("no motor/law pair is feasible: give the durations with --from "
                         "and --to", field="--from")

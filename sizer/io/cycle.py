@@ -201,12 +201,14 @@ def motion_of(task: TaskInput | None, cycle: CycleInput | None, laws: list[Locat
               source: YamlSource) -> tuple[Cycle, list[str]]:
     """A design's motion, one Cycle: its ``cycle:``, or the cycle its ``task:`` shorthand
     means (``shorthand`` set); with the warnings of the task's laws whose own displacement
-    it scales."""
+    it scales, or of the cycle's segment forces that help their motion (force_sign)."""
     if cycle is not None:
         built = build_cycle(cycle, source)
         check_cycle_laws(laws, source)
         _check_law_list(built, laws, source)
-        return built, []
+        from sizer.io.force_sign import force_sign_warnings
+
+        return built, force_sign_warnings(built, source)
     assert task is not None  # a task or a cycle (DesignFile)
     shorthand, noted = _task_of(task, laws, source)
     return from_task(shorthand), noted

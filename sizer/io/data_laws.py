@@ -4,12 +4,14 @@ A design's ``laws:`` entries, ``check.law`` and a cycle move's ``law`` may be a 
 (``{kind: cubic_spline, points: ...}``, book ch. 4). Before the design is validated each
 mapping is built once: a mistake is reported at the line of the field inside the mapping
 (``points[3]``, ``start.velocity``), a cam table's relative ``file`` is taken from the
-design's folder (and written absolute), and the mapping is replaced by its canonical
+design's folder (and written relative to the working directory, where the cam-table
+builder reads it: :func:`cam_table_file`), and the mapping is replaced by its canonical
 text, the spec every later layer reads.
 """
 
 from __future__ import annotations
 
+import os
 import re
 from collections.abc import Iterator
 from pathlib import Path
@@ -54,7 +56,7 @@ def canonical_data_laws(source: YamlSource, folder: Path) -> None:
         parent = _at(source.data, path[:-1])
         fields = dict(parent[path[-1]])
         if fields.get("kind") == "cam_table" and isinstance(fields.get("file"), str):
-            fields["file"] = str((folder / fields["file"]).absolute())
+            fields["file"] = cam_table_file(fields["file"], folder)
         try:
             text = data_spec_text(fields)
             if is_open_shaped(fields):
@@ -68,6 +70,37 @@ def canonical_data_laws(source: YamlSource, folder: Path) -> None:
             source.lines[("laws", 0)] = source.line_of(("laws",)) or 1
         else:
             parent[path[-1]] = text
+
+
+def cam_table_file(written: str, folder: Path) -> str:
+    """The ``file`` of a cam table in its law's spec: the path as the user wrote it when
+    it is absolute or the design is in the working directory; else the file relative to
+    the working directory (``examples/cams/knife.csv`` for ``cams/knife.csv`` written in
+    ``examples/knife.yaml``), which is where the cam-table builder reads a relative path
+    (sizer.io.cam_table_law). So an export that prints the spec names no absolute path of
+    the machine (issue 36), and the spec pasted into ``sizer law`` from the same folder
+    reads the same file. A file outside the working directory (``..``, another drive) is
+    written absolute: ``..`` does not name the same folder through a symbolic link."""
+    if Path(written).is_absolute():
+        return written
+    target = (folder / written).absolute()
+    try:
+        relative = os.path.relpath(target, Path.cwd())
+    except ValueError:  # another drive (Windows): no relative path
+        return str(target)
+    if os.pardir in Path(relative).parts:
+        return str(target)
+    text = written if Path(relative) == Path(written) else relative
+    if _RELATIVE_FILES.setdefault(text, str(target)) != str(target):
+        return str(target)  # the text named another file before a chdir: laws are cached
+    return text
+
+
+_RELATIVE_FILES: dict[str, str] = {}
+"""The file each relative cam-table path of a spec has named in this process. Laws are
+built once per spec text (sizer.laws.registry): after a change of the working directory
+the same text naming another file would get the law of the first, so that design's spec
+names its file absolute instead."""
 
 
 def _check_open_shaped(source: YamlSource, fields: dict[str, Any]) -> None:

@@ -2,7 +2,10 @@
 
 A table wider than the terminal keeps its columns readable: the columns named in
 ``droppable`` are left out, in that order, until the rest fits, and the caller is told
-which ones (to say so under the table). Nothing is ever dropped silently.
+which ones (to say so under the table). Nothing is ever dropped silently. Where that is
+not enough (or a word would be cut), the headers and cells with a short form
+(sizer.report.abbreviations: the margins, the law, the limiting check) are abbreviated,
+and a line under the table says so; then fewer columns may need to be left out.
 """
 
 from __future__ import annotations
@@ -31,8 +34,10 @@ COLUMN_GAP = 2
 """Characters between two columns (padding and the blank divider of box.SIMPLE_HEAD)."""
 
 
-def _column_width(table: Table, index: int, wrap_headers: bool) -> int:
-    """The narrowest a column gets: numbers are never cut, words not into slivers."""
+def _column_width(table: Table, index: int, wrap_headers: bool,
+                  longest: int = MAX_WORD_WIDTH) -> int:
+    """The narrowest a column gets: numbers are never cut, words not into slivers (words
+    longer than ``longest`` fold)."""
     column = table.columns[index]
     cells = [row[index] for row in (table.unicode_rows or table.rows)]
     header_words = (column.header.split() or [""]) if wrap_headers else []
@@ -41,13 +46,20 @@ def _column_width(table: Table, index: int, wrap_headers: bool) -> int:
     if column.align == "right":
         return max([len(column.header), *map(len, cells)])
     words = [w for cell in cells for w in cell.split()] or [""]
-    return min(max(map(len, words + header_words)), MAX_WORD_WIDTH)
+    return min(max(map(len, words + header_words)), longest)
 
 
-def minimum_width(table: Table, wrap_headers: bool = False) -> int:
-    """The width below which the table's columns would be cut or squeezed."""
-    widths = [_column_width(table, i, wrap_headers) for i in range(len(table.columns))]
+def minimum_width(table: Table, wrap_headers: bool = False,
+                  longest: int = MAX_WORD_WIDTH) -> int:
+    """The width below which the table's columns would be cut or squeezed (with
+    ``longest`` larger: below which a word longer than MAX_WORD_WIDTH would fold)."""
+    widths = [_column_width(table, i, wrap_headers, longest)
+              for i in range(len(table.columns))]
     return sum(widths) + COLUMN_GAP * max(len(widths) - 1, 0)
+
+
+WHOLE_WORDS = 10**6
+"""``longest`` of minimum_width when no word may fold."""
 
 
 def _rich_table(table: Table, wrap_headers: bool) -> Any:
@@ -74,17 +86,41 @@ def _rich_table(table: Table, wrap_headers: bool) -> Any:
     return rich_table
 
 
+def _drop(table: Table, names: Sequence[str], width: int, droppable: Sequence[str],
+          wrap_headers: bool) -> tuple[Table, list[str]]:
+    """Leave out ``droppable`` columns in order until the table fits; ``names`` are the
+    full headers of ``table``'s columns (the droppable and the dropped are named by them)."""
+    dropped: list[str] = []
+    header = dict(zip(names, table.headers, strict=True))
+    candidates = [h for h in droppable if h in header]
+    while minimum_width(table, wrap_headers) > width and candidates:
+        dropped.append(candidates.pop(0))
+        table = without_columns(table, [header[dropped[-1]]])
+    return table, dropped
+
+
 def fit_table(table: Table, width: int, droppable: Sequence[str] = (), *,
               wrap_headers: bool = False) -> tuple[Table, list[str]]:
     """The table without as few ``droppable`` columns (in that order) as make it fit in
-    ``width`` characters, and the headers left out."""
-    dropped: list[str] = []
-    present = set(table.headers)
-    candidates = [h for h in droppable if h in present]
-    while minimum_width(table, wrap_headers) > width and candidates:
-        dropped.append(candidates.pop(0))
-        table = without_columns(table, dropped[-1:])
-    return table, dropped
+    ``width`` characters, and the (full) headers left out; abbreviated
+    (sizer.report.abbreviations) where the full words would still not fit whole."""
+    fitted, dropped, _ = _fit(table, width, droppable, wrap_headers)
+    return fitted, dropped
+
+
+def _fit(table: Table, width: int, droppable: Sequence[str],
+         wrap_headers: bool) -> tuple[Table, list[str], bool]:
+    """fit_table, and whether the table was abbreviated."""
+    fitted, dropped = _drop(table, table.headers, width, droppable, wrap_headers)
+    if minimum_width(fitted, wrap_headers, WHOLE_WORDS) <= width:
+        return fitted, dropped, False
+    from sizer.report.abbreviations import abbreviated
+
+    short = abbreviated(table)
+    if short is table:
+        return fitted, dropped, False
+    fitted, dropped = _drop(short, table.headers, width, droppable, wrap_headers)
+    return fitted, dropped, True
 
 
 def print_rich_table(table: Table, wrap_headers: bool = False, *,
@@ -102,10 +138,14 @@ def print_rich_table(table: Table, wrap_headers: bool = False, *,
     from rich.text import Text
 
     console = console or Console(highlight=False)
-    table, dropped = fit_table(table, console.width, droppable, wrap_headers=wrap_headers)
+    table, dropped, short = _fit(table, console.width, droppable, wrap_headers)
     if table.title and title_above:
         console.print(Text(table.title))
         console.print()
         table = Table(table.columns, table.rows, "", table.unicode_rows)
     console.print(_rich_table(table, wrap_headers))
+    if short:
+        from sizer.report.abbreviations import CAPTION
+
+        console.print(Text(CAPTION))
     return dropped

@@ -17,7 +17,7 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from enum import StrEnum
 from functools import cached_property
-from typing import overload
+from typing import Any, overload
 
 import numpy as np
 
@@ -35,6 +35,10 @@ UNBOUNDED_WHY = {"jerk": "the law has jerk impulses",
                  "peak": "the move needs torque at a speed where the intermittent region "
                          "gives none"}
 """Why a check's value can be infinite, by check name."""
+
+RATIO_MEANING = {"peak": "torque over the intermittent torque at its speed",
+                 "inertia_ratio": "inertia driven over the rotor's"}
+"""What the unitless value of a check is a ratio of (its unit in a reason)."""
 
 
 def margin_percent(margin: float, decimals: int = 2, *, failed: bool = False,
@@ -98,19 +102,23 @@ class Check:
         return f"{self.name}: unbounded ({why})"
 
     def describe(self) -> str:
-        """One line: which limit, the values, and by how much it passes or fails."""
+        """One line: which limit, the value and the limit with their unit, the margin, and
+        whether it passes; a failing check's note (how its value was found) after the
+        verdict. Only where the value is no number (an unbounded requirement, a broken
+        dead-point rule) does the note stand in for the numbers."""
         unit = f" {self.unit}" if self.unit else ""
-        if self.note and not self.passed:
-            return f"{self.name}: {self.note} (FAILS)"
         undefined = self.undefined_reason
-        if undefined is not None:
-            verdict = "ok" if self.passed else "FAILS"
-            return f"{undefined} against {self.limit:.6g}{unit} ({verdict})"
+        if self.note and not self.passed and undefined is not None:
+            return f"{self.name}: {self.note} (FAILS)"
         verdict = "ok" if self.passed else "FAILS"
+        if undefined is not None:
+            return f"{undefined} against {self.limit:.6g}{unit} ({verdict})"
         need = f", {self.required:.0%} required" if self.required else ""
         margin = margin_percent(self.margin, failed=not self.passed, required=self.required)
-        return (f"{self.name}: {self.value:.6g}{unit} against {self.limit:.6g}{unit}, "
-                f"margin {margin}%{need} ({verdict})")
+        ratio = f" ({RATIO_MEANING[self.name]})" if self.name in RATIO_MEANING else ""
+        note = f"; {self.note}" if self.note and not self.passed else ""
+        return (f"{self.name}: {self.value:.6g}{unit} against {self.limit:.6g}{unit}{ratio}, "
+                f"margin {margin}%{need} ({verdict}{note})")
 
 
 class CheckFigure:
@@ -232,6 +240,17 @@ class CandidateResult:
         """All slacks, smallest first: ties on the worst are broken by the next ones."""
         return tuple(sorted(c.slack for c in self.checks))
 
+    def record(self) -> dict[str, object]:
+        """This candidate as one flat record (:func:`flat_record`; units:
+        :data:`RECORD_UNITS`)."""
+        return flat_record(self)
+
+    def _repr_html_(self) -> str:
+        """Jupyter's display: the verdict and every check as an HTML table."""
+        from sizer.notebook import candidate_html  # formatting: loaded when displayed
+
+        return candidate_html(self)
+
 
 @dataclass(frozen=True)
 class SizingResult:
@@ -264,6 +283,37 @@ class SizingResult:
         """The whole result as plain data: mode, design name, notes and the records."""
         return {"design": self.design_name, "mode": str(self.mode),
                 "notes": list(self.notes), "candidates": self.to_records()}
+
+    def records(self) -> list[dict[str, object]]:
+        """One flat record per candidate, ranked (:func:`flat_record`): the figures, a
+        ``margin_<check>`` per check of the design (None where a check does not apply) and
+        the limiting check; SI numbers, units in :data:`RECORD_UNITS` (:meth:`units`)."""
+        names = self.check_names()
+        return [flat_record(r, rank, names) for rank, r in enumerate(self.results, 1)]
+
+    def check_names(self) -> tuple[str, ...]:
+        """The names of the design's checks, in the order the rows give them."""
+        if self.table is not None:
+            return tuple(str(c.name) for c in self.table.checks)
+        return tuple(dict.fromkeys(str(c.name) for r in self.results for c in r.checks))
+
+    def units(self) -> dict[str, str]:
+        """The unit of each key of :meth:`records` (``RECORD_UNITS``, margins ``1``)."""
+        return {**RECORD_UNITS, **{f"margin_{n}": "1" for n in self.check_names()}}
+
+    def to_pandas(self) -> Any:
+        """:meth:`records` as a pandas DataFrame, ranked (index ``rank``), the units in
+        ``frame.attrs["units"]``. Needs pandas (the ``pandas`` extra: ``pip install
+        'sizer-motion[pandas]'``); an ImportError saying so without it."""
+        from sizer.notebook import to_pandas  # pandas is imported only here
+
+        return to_pandas(self.records(), self.units(), self.design_name, str(self.mode))
+
+    def _repr_html_(self) -> str:
+        """Jupyter's display: the ranked candidates as a compact HTML table."""
+        from sizer.notebook import sizing_html
+
+        return sizing_html(self)
 
 
 class Mode(StrEnum):
@@ -523,4 +573,54 @@ def record(result: CandidateResult) -> dict[str, object]:
     if "stage_ratio" in result.figures:
         out["stage_ratio"] = _plain(result.figures["stage_ratio"])
     out["checks"] = [check_record(c) for c in result.checks]
+    return out
+
+
+RECORD_UNITS: Mapping[str, str] = {
+    "rank": "", "motor": "", "drive": "", "law": "", "spec": "", "feasible": "",
+    "duration": "s", "peak_torque": "N*m", "rms_torque": "N*m", "max_speed": "rad/s",
+    "load_speed": "rad/s (m/s on a linear axis)",
+    "load_torque": "N*m (N on a linear axis)",
+    "ratio": "rad/rad (rad/m on a linear axis)", "gearbox": "", "limiting": "",
+    "limiting_margin": "1", "reason": "", "price": "catalog currency", "mass": "kg",
+    "rated_power": "W",
+}
+"""The unit of each key of a flat record (:func:`flat_record`): SI, the shaft figures at
+the motor; every ``margin_<check>`` is a fraction (unit ``1``: 0.25 is 25 % of the limit
+left unused, negative where the check fails)."""
+
+
+def flat_record(result: CandidateResult, rank: int | None = None,
+                check_names: Sequence[str] | None = None) -> dict[str, object]:
+    """One candidate as a flat record for a table or a DataFrame: ``rank`` (where given),
+    motor (and drive), law, spec, feasible, duration, peak and RMS torque, max speed, the
+    load's speed and torque, ratio, gearbox, ``margin_<check>`` for every check (those of
+    ``check_names``, None where a check does not apply to this candidate), the limiting
+    check and its margin, the reason it fails, price, mass and rated power.
+
+    Numbers in SI (:data:`RECORD_UNITS`), None for a figure that does not exist (never
+    NaN or inf). As in the JSON, a candidate with no feasible duration (``minimize``) has
+    no margins: its checks describe the longest duration tried, no operating point (its
+    ``checks`` keep them: :meth:`SizingResult.to_records`).
+    """
+    out: dict[str, object] = {} if rank is None else {"rank": rank}
+    out["motor"] = result.motor
+    if result.drive is not None:
+        out["drive"] = result.drive
+    out.update({"law": result.law, "spec": result.spec, "feasible": bool(result.feasible)})
+    for name in ("duration", "peak_torque", "rms_torque", "max_speed", "load_speed",
+                 "load_torque", "ratio"):
+        out[name] = _plain(getattr(result, name))
+    out["gearbox"] = result.gearbox
+    known = result.duration is not None
+    names = check_names if check_names is not None else [c.name for c in result.checks]
+    for name in names:
+        margin = result.margin(name)
+        out[f"margin_{name}"] = _plain(margin) if known and margin is not None else None
+    out["limiting"] = None if result.limiting is None else str(result.limiting)
+    limiting = result.margin(result.limiting) if result.limiting else None
+    out["limiting_margin"] = _plain(limiting) if known and limiting is not None else None
+    out["reason"] = result.reason
+    out.update({"price": _plain(result.price), "mass": _plain(result.mass),
+                "rated_power": _plain(result.rated_power)})
     return out
