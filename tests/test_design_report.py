@@ -20,6 +20,7 @@ from sizer.report.design_report import (
     LAWS_FIGURE,
     REPORT_FILE,
     DesignReport,
+    display_check,
     md,
     write_report,
 )
@@ -126,7 +127,8 @@ def test_report_sections_and_checks(written, book):
     for rank, result in enumerate(best, start=1):
         assert f"### {rank}. {result.motor} with {result.spec}" in headings
         for check in result.checks:
-            assert f"- {md(check_line(result, check))}" in text
+            # speeds in rpm in the report (issue 36), as display_check converts them
+            assert f"- {md(check_line(result, display_check(check)))}" in text
     # the coefficient table of the laws considered
     for spec in ("cycloidal", "harmonic", "polynomial(degree=5)"):
         assert f"\n| {spec} | " in text

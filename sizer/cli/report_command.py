@@ -1,4 +1,5 @@
-"""``sizer report``: a Markdown report of a design (report.md and PNG figures in a folder)."""
+"""``sizer report``: a Markdown report of a design (report.md and PNG figures in a folder),
+or with ``--html`` one self-contained report.html (figures inline as SVG)."""
 
 from __future__ import annotations
 
@@ -18,8 +19,9 @@ def report(
     design: DesignArgument,
     output: Annotated[Path, typer.Option(
         "--output", "-o", file_okay=False, metavar="DIR",
-        help="The folder for report.md and its figures (created if missing; files of "
-             "the same names are replaced).", show_default=False)],
+        help="The folder for report.md and its figures, or for report.html with --html "
+             "(created if missing; files of the same names are replaced).",
+        show_default=False)],
     catalog: CatalogOption = None,
     motor: MotorsOption = None,
     rank_by: Annotated[str | None, typer.Option(
@@ -33,6 +35,10 @@ def report(
         "--best", "-b", metavar="N", min=0, max=50,
         help="Candidates with a speed-torque diagram and every check.")] = 3,
     dpi: DpiOption = 100,
+    html: Annotated[bool, typer.Option(
+        "--html", help="Write one self-contained DIR/report.html instead (figures inline "
+                       "as SVG, the design file and the provenance; no external file or "
+                       "link; prints to PDF from a browser).")] = False,
 ) -> None:
     """Write a Markdown report of a design: DIR/report.md plus PNG figures beside it.
 
@@ -42,9 +48,14 @@ def report(
     machine cycle of the first one segment by segment (with a cycle of segments, also its
     torque and speed over time).
 
-    Example:
+    With --html, the same content as one self-contained DIR/report.html, plus the
+    design file as written and the provenance (docs/reports.md).
+
+    Examples:
 
         sizer report examples/indexing-table.yaml -o report/
+
+        sizer report examples/indexing-table.yaml -o report/ --html
     """
     from sizer.cli.output_guard import check_outputs
     from sizer.cli.size_command import check_rank_key, load_and_size
@@ -63,6 +74,9 @@ def report(
     if output.exists() and not output.is_dir():
         raise UserError(f"{printable(str(output))} is not a folder; name a folder",
                         field="--output")
+    if html:
+        _html_report(design, output, catalog, motor, rank_by, top, best, dpi)
+        return
     targets = [output / REPORT_FILE, output / LAWS_FIGURE, output / TIME_FIGURE,
                *(output / candidate_figure(rank) for rank in range(1, best + 1))]
     check_outputs(targets, [design, *(catalog or ())])
@@ -73,6 +87,29 @@ def report(
     written = write_report(loaded, sizing, output, top=top, best=best, rank_by=rank_by,
                            source=design.name, dpi=dpi)
     typer.echo(printable(f"{written[0]}: report with {len(written) - 1} figures"))
+
+
+def _html_report(design: Path, output: Path, catalog, motor, rank_by: str | None, top: int,
+                 best: int, dpi: float) -> None:
+    """``sizer report --html``: DIR/report.html, one self-contained file."""
+    from sizer.cli.output_guard import check_outputs
+    from sizer.cli.size_command import load_and_size
+    from sizer.report.html_report import HTML_FILE, write_html_report
+
+    if is_machine(design):
+        raise UserError("a machine file's report is Markdown only: leave out --html, or "
+                        "give one axis's design file", field="--html")
+    targets = [output / HTML_FILE]
+    check_outputs(targets, [design, *(catalog or ())])
+    try:
+        design_bytes = design.read_bytes()
+    except OSError as error:
+        raise UserError(f"cannot read it: {error.strerror or error}",
+                        file=str(design)) from None
+    loaded, sizing = load_and_size(design, catalog, motor, rank_by, outputs=targets)
+    path = write_html_report(loaded, sizing, output, top=top, best=best, rank_by=rank_by,
+                             source=design.name, design_bytes=design_bytes, dpi=dpi)
+    typer.echo(printable(f"{path}: self-contained HTML report"))
 
 
 def _machine_report(path: Path, output: Path, catalog, motor, rank_by: str | None, top: int,
@@ -90,7 +127,7 @@ def _machine_report(path: Path, output: Path, catalog, motor, rank_by: str | Non
     check_outputs([*targets, output / BUS_FIGURE,
                    *(f / t.name for f in folders for t in targets)], machine.files)
     try:
-        with sizing_progress(f"sizing {path.name}") as progress:
+        with sizing_progress(f"sizing {path.name}", unit="laws") as progress:
             result = api.size_machine(machine, rank_by=rank_by, progress=progress)
     except UserError as error:
         raise error.located(file=str(path)) from None

@@ -15,8 +15,8 @@ core's task curves.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
-from dataclasses import dataclass
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -35,9 +35,12 @@ from sizer.report.table import Column, make_table
 from sizer.sizing.results import Mode
 
 if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
     from sizer.laws import MotionLaw
     from sizer.model.domain import Design, Motor
     from sizer.sizing import CandidateResult, SizingResult
+    from sizer.sizing.results import Check
 
 REPORT_FILE = "report.md"
 LAWS_FIGURE = "laws.png"
@@ -423,7 +426,7 @@ class DesignReport:
         else:
             lines += ["No figure: the pair has no feasible duration.", ""]
         lines += ["Checks (value against limit, margin left, margin required):", ""]
-        lines += [f"- {md(check_line(r, check))}" for check in r.checks]
+        lines += [f"- {md(check_line(r, display_check(check)))}" for check in r.checks]
         lines.append("")
         return "\n".join(lines)
 
@@ -472,6 +475,20 @@ class DesignReport:
         return ", ".join(parts)
 
 
+DISPLAY_UNITS = {"rad/s": ("rpm", RPM_PER_RAD_S)}
+"""Units a reader reads otherwise: a check in rad/s is shown in rpm (CSV and JSON stay SI)."""
+
+
+def display_check(check: Check) -> Check:
+    """The check with its value and limit in the report's units (speeds in rpm); the
+    margin, a ratio, is unchanged, and so is the verdict."""
+    shown = DISPLAY_UNITS.get(check.unit)
+    if shown is None:
+        return check
+    unit, factor = shown
+    return replace(check, value=check.value * factor, limit=check.limit * factor, unit=unit)
+
+
 def _motor_text(motor: Motor) -> str:
     return (f"Motor {motor.id}: rotor inertia {short(motor.inertia)} kg*m^2, continuous torque "
             f"{short(motor.continuous_torque)} N*m, peak torque {short(motor.peak_torque)} N*m, "
@@ -499,6 +516,37 @@ def report_directory(directory: Path | str) -> Path:
     return directory
 
 
+def draw_figures(design: Design, report: DesignReport, *, dpi: float = 100.0,
+                 samples: int = 401) -> Iterator[tuple[str, Figure]]:
+    """Each figure the report links to, as (file name, matplotlib figure), drawn one at a
+    time (the Markdown report saves them as PNG, the HTML report inlines them as SVG)."""
+    from sizer.report.plots import (
+        curve_for,
+        law_profiles_figure,
+        speed_torque_figure,
+        time_figure,
+    )
+
+    if report.laws:
+        yield LAWS_FIGURE, law_profiles_figure(report.laws[:MAX_LAWS_IN_FIGURE],
+                                               size=LAWS_FIGURE_SIZE, dpi=dpi, samples=samples)
+    for candidate in report.candidates:
+        if candidate.figure is None:
+            continue
+        result = candidate.result
+        curve = curve_for(design, result, samples=samples)
+        yield candidate.figure, speed_torque_figure(
+            [curve], [result], size=FIGURE_SIZE, dpi=dpi,
+            title=f"#{candidate.rank} {design.name}".rstrip(),
+            duration_name=duration_name(design), mark_segments=design.cycle is not None)
+    if report.time_figure:
+        first = report.candidates[0]
+        curve = curve_for(design, first.result, samples=samples)
+        yield report.time_figure, time_figure([curve], size=TIME_FIGURE_SIZE, dpi=dpi,
+                                              title=f"#{first.rank} {design.name}".rstrip(),
+                                              duration_name=duration_name(design))
+
+
 def write_report(design: Design, sizing: SizingResult, directory: Path | str, *,
                  top: int = DEFAULT_TOP, best: int = DEFAULT_BEST, rank_by: str | None = None,
                  source: str | None = None, dpi: float = 100.0,
@@ -507,38 +555,12 @@ def write_report(design: Design, sizing: SizingResult, directory: Path | str, *,
 
     Returns the paths written, report.md first.
     """
-    from sizer.report.plots import (
-        curve_for,
-        law_profiles_figure,
-        save_figure,
-        speed_torque_figure,
-        time_figure,
-    )
+    from sizer.report.plots import save_figure
 
     directory = report_directory(directory)
     report = DesignReport(design, sizing, top=top, best=best, rank_by=rank_by, source=source)
-    written = []
-    if report.laws:
-        figure = law_profiles_figure(report.laws[:MAX_LAWS_IN_FIGURE], size=LAWS_FIGURE_SIZE,
-                                     dpi=dpi, samples=samples)
-        written.append(save_figure(figure, directory / LAWS_FIGURE, dpi=dpi))
-    for candidate in report.candidates:
-        if candidate.figure is None:
-            continue
-        result = candidate.result
-        curve = curve_for(design, result, samples=samples)
-        figure = speed_torque_figure([curve], [result], size=FIGURE_SIZE, dpi=dpi,
-                                     title=f"#{candidate.rank} {design.name}".rstrip(),
-                                     duration_name=duration_name(design),
-                                     mark_segments=design.cycle is not None)
-        written.append(save_figure(figure, directory / candidate.figure, dpi=dpi))
-    if report.time_figure:
-        first = report.candidates[0]
-        curve = curve_for(design, first.result, samples=samples)
-        figure = time_figure([curve], size=TIME_FIGURE_SIZE, dpi=dpi,
-                             title=f"#{first.rank} {design.name}".rstrip(),
-                             duration_name=duration_name(design))
-        written.append(save_figure(figure, directory / report.time_figure, dpi=dpi))
+    written = [save_figure(figure, directory / name, dpi=dpi)
+               for name, figure in draw_figures(design, report, dpi=dpi, samples=samples)]
     path = directory / REPORT_FILE
     try:
         write_text_atomically(path, report.markdown())

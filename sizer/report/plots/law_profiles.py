@@ -3,7 +3,11 @@
 
 Each law is sampled piece by piece, so a derivative that jumps at a breakpoint is drawn
 as a vertical step rather than a slanted line; the rest before and after the move is
-drawn too. Where the acceleration jumps the jerk is an impulse: an arrow in the jerk
+drawn too (at the law's own end position: a cam that returns rests at its start). A
+periodic law (a cam whose ends move and join, sec. 4.4.2) is drawn over ``PERIODS``
+periods, its position unwrapped (each period starts where the last ended, one stroke
+higher for a knife that turns once per cycle), so the curve never jumps between periods.
+Where the acceleration jumps the jerk is an impulse: an arrow in the jerk
 panel, up or down with the sign of the jump, labelled with the jump's size (its area).
 """
 
@@ -29,6 +33,9 @@ if TYPE_CHECKING:
 DEFAULT_SIZE = (8.0, 9.0)
 REST_PAD = 0.05
 """Rest shown before and after the move, as a fraction of T."""
+
+PERIODS = 3
+"""Periods drawn of a periodic law."""
 
 ORDERS = (0, 1, 2, 3)
 NAMES = ("position", "velocity", "acceleration", "jerk")
@@ -74,22 +81,41 @@ class Move:
         return f"\u0394a = {'+' if jump > 0 else ''}{short(jump)}{unit}"
 
 
-def law_samples(law: MotionLaw, order: int, samples: int) -> tuple[np.ndarray, np.ndarray]:
-    """(tau, value) of the order-th derivative of q_N, piece by piece, with the rest before
-    0 and after 1; a breakpoint appears twice (the values on its left and right)."""
-    taus = [np.array([-REST_PAD, 0.0])]
-    values = [np.zeros(2)]
-    for index, piece in enumerate(law.pieces):
-        width = piece.end - piece.start
-        count = max(3, math.ceil(samples * width))
-        u = np.linspace(0.0, 1.0, count)
-        if law.steep_ends:
-            u = 0.5 - 0.5 * np.cos(np.pi * u)  # denser toward the piece's ends
-        tau = piece.start + width * u
-        taus.append(tau)
-        values.append(np.asarray(law.piece_derivative(index, tau, order), dtype=float))
-    taus.append(np.array([1.0, 1.0 + REST_PAD]))
-    values.append(np.full(2, 1.0 if order == 0 else 0.0))
+def periods_of(law: MotionLaw) -> int:
+    """Periods drawn of ``law``: PERIODS for a periodic law, else 1 (one move)."""
+    return PERIODS if getattr(law, "periodic", False) else 1
+
+
+def law_samples(law: MotionLaw, order: int, samples: int,
+                end: float = 1.0 + REST_PAD) -> tuple[np.ndarray, np.ndarray]:
+    """(tau, value) of the order-th derivative of q_N, piece by piece; a breakpoint
+    appears twice (the values on its left and right).
+
+    A move rests before 0 and after 1 (until ``end``) at its outside values; a periodic
+    law is drawn over ``periods_of(law)`` periods from 0, the position unwrapped."""
+    periods = periods_of(law)
+    taus: list[np.ndarray] = []
+    values: list[np.ndarray] = []
+    before, after = law.outside(order)
+    if periods == 1:
+        taus.append(np.array([-REST_PAD, 0.0]))
+        values.append(np.full(2, before))
+    stroke = (float(law.piece_derivative(len(law.pieces) - 1, 1.0, 0))
+              - float(law.piece_derivative(0, 0.0, 0))) if order == 0 else 0.0
+    for period in range(periods):
+        for index, piece in enumerate(law.pieces):
+            width = piece.end - piece.start
+            count = max(3, math.ceil(samples * width))
+            u = np.linspace(0.0, 1.0, count)
+            if law.steep_ends:
+                u = 0.5 - 0.5 * np.cos(np.pi * u)  # denser toward the piece's ends
+            tau = piece.start + width * u
+            taus.append(tau + period)
+            values.append(np.asarray(law.piece_derivative(index, tau, order), dtype=float)
+                          + period * stroke)
+    if periods == 1:
+        taus.append(np.array([1.0, max(end, 1.0 + REST_PAD)]))
+        values.append(np.full(2, after))
     return np.concatenate(taus), np.concatenate(values)
 
 
@@ -105,11 +131,13 @@ def law_profiles_figure(laws: Sequence[MotionLaw], *, displacement: float | None
     move = Move(displacement, duration, linear)
     figure = new_figure(size or DEFAULT_SIZE, dpi)
     axes = figure.subplots(4, 1, sharex=True)
+    periods = max(periods_of(law) for law in laws)
+    end = periods + REST_PAD
     jerk_extent = 0.0
     for index, law in enumerate(laws):
         color = CURVE_COLORS[index % len(CURVE_COLORS)]
         for ax, order in zip(axes, ORDERS, strict=True):
-            tau, value = law_samples(law, order, samples)
+            tau, value = law_samples(law, order, samples, end)
             y = move.scale(order) * value
             ax.plot(move.T * tau, y, color=color, lw=1.4, gid=GID_PROFILE,
                     label=law_label(law.spec) if order == 0 else None)
@@ -124,7 +152,7 @@ def law_profiles_figure(laws: Sequence[MotionLaw], *, displacement: float | None
         ax.set_ylabel(move.label(order), fontsize="small")
     axes[0].legend(loc="upper left", fontsize="x-small")
     axes[3].set_xlabel("tau = t/T [-]" if move.normalized else "time t [s]")
-    axes[3].set_xlim(-REST_PAD * move.T, (1.0 + REST_PAD) * move.T)
+    axes[3].set_xlim(-REST_PAD * move.T, end * move.T)
     if impulses:
         more = (f"; the {MAX_DRAWN_IMPULSES} largest of each law, {left_out} smaller not "
                 f"drawn" if left_out else "")
@@ -135,6 +163,8 @@ def law_profiles_figure(laws: Sequence[MotionLaw], *, displacement: float | None
     else:
         unit = "m" if linear else "rad"
         heading = f"Motion laws, h = {short(move.h)} {unit}, T = {short(move.T * 1000.0)} ms"
+    if periods > 1:
+        heading += f"; periodic laws over {periods} periods"
     figure.suptitle(heading, fontsize="medium")
     return figure
 
@@ -166,9 +196,10 @@ def _draw_impulses(ax, impulses, move: Move, jerk_extent: float) -> None:
         return
     reach = jerk_extent if jerk_extent > 0.0 else 1.0
     tips = []
-    for index, _law, jump in impulses:
+    repeated = [(i, jump, k) for i, law, jump in impulses for k in range(periods_of(law))]
+    for index, jump, period in repeated:
         color = CURVE_COLORS[index % len(CURVE_COLORS)]
-        x = move.T * jump.tau
+        x = move.T * (jump.tau + period)
         size = move.scale(2) * jump.jump
         tip = math.copysign(reach * (0.9 - 0.2 * (index % 4)), size)
         tips.append(tip)
