@@ -114,11 +114,14 @@ def test_readme_command_runs_from_the_repository_root() -> None:
 
 
 def readme_transcripts() -> list[tuple[list[str], str]]:
-    """The ``$ sizer ...`` commands shown in README code blocks with the output under each."""
+    """The ``$ sizer ...`` commands shown in code blocks of the README and of the docs its
+    reference moved to, with the output under each."""
+    files = ("README.md", "docs/commands.md", "docs/machine-cycles.md", "docs/vibration.md")
     transcripts: list[tuple[list[str], list[str]]] = []
     current: list[str] | None = None
     inside = False
-    for line in (ROOT / "README.md").read_text().splitlines():
+    lines = [line for name in files for line in (ROOT / name).read_text().splitlines()]
+    for line in lines:
         if line.startswith("```"):
             inside, current = not inside, None
         elif inside and line.startswith("$ sizer "):

@@ -67,7 +67,8 @@ def input_files() -> list[Path]:
 
 
 def readme_yaml_blocks() -> list[str]:
-    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    text = "\n".join((ROOT / name).read_text(encoding="utf-8") for name in (
+        "README.md", "docs/design-files.md", "docs/machine-cycles.md", "docs/machines.md"))
     return re.findall(r"^```yaml\n(.*?)^```$", text, flags=re.DOTALL | re.MULTILINE)
 
 

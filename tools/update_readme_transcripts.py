@@ -1,8 +1,9 @@
-"""Rewrite the outputs under each ``$ sizer ...`` line of README.md with the real output.
+"""Rewrite the outputs under each ``$ sizer ...`` line of README.md and of the docs that
+hold transcripts (TRANSCRIPTS) with the real output.
 
     python tools/update_readme_transcripts.py
 
-tests/test_examples_e2e.py checks that the README shows what the commands print; run this
+tests/test_examples_e2e.py checks that these files show what the commands print; run this
 after a change that moves the numbers, and read the diff before committing.
 """
 
@@ -44,6 +45,11 @@ def rewrite(text: str) -> str:
     return "\n".join(out) + "\n"
 
 
+TRANSCRIPTS = ("README.md", "docs/commands.md", "docs/machine-cycles.md", "docs/vibration.md")
+"""The files whose transcripts tests/test_examples_e2e.py reads (readme_transcripts)."""
+
+
 if __name__ == "__main__":
-    readme = ROOT / "README.md"
-    readme.write_text(rewrite(readme.read_text()))
+    for name in TRANSCRIPTS:
+        path = ROOT / name
+        path.write_text(rewrite(path.read_text()))
