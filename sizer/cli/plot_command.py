@@ -261,11 +261,16 @@ def plot_pairs(design: Design, motor: str | None = None, laws: Sequence[str] = (
     if motor is not None:
         with as_option("motors", field):
             design = api.override(design, motors=[motor])
+    from sizer.cli.progress import sizing_progress
+
     laws = tuple(dict.fromkeys(laws))
     if not laws:
-        return [best_of(api.size(design, rank_by=rank_by).results)]
-    with as_option("laws", "--law" if given_laws else "check.law"):  # the sizing's word on
-        per_law = [api.size(design, laws=[spec], rank_by=rank_by)  # a law names its source
+        with sizing_progress(f"sizing {design.name}", unit="laws") as progress:
+            return [best_of(api.size(design, rank_by=rank_by, progress=progress).results)]
+    with as_option("laws", "--law" if given_laws else "check.law"), \
+            sizing_progress(f"sizing {design.name}", unit="laws") as progress:
+        # the sizing's word on a law names its source
+        per_law = [api.size(design, laws=[spec], rank_by=rank_by, progress=progress)
                    for spec in laws]
     if motor is None:
         pooled = [r for sizing in per_law for r in sizing.results]
