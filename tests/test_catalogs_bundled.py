@@ -7,6 +7,7 @@ its row of the notes, so no figure was invented, rounded or converted on the way
 
 from __future__ import annotations
 
+import fnmatch
 import itertools
 import re
 import tomllib
@@ -300,7 +301,13 @@ def test_no_grade_d_or_left_out_series_shipped():
 
 def test_package_data_includes_the_catalogs():
     pyproject = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
-    assert "catalogs/*.yaml" in pyproject["tool"]["setuptools"]["package-data"]["sizer"]
+    globs = pyproject["tool"]["setuptools"]["package-data"]["sizer"]
+    assert "catalogs/*.yaml" in globs
+    # every bundled file, drives and gearboxes too, is installed with the package
+    catalogs = ROOT / "sizer" / "catalogs"
+    for path in catalogs.rglob("*.yaml"):
+        relative = path.relative_to(ROOT / "sizer").as_posix()
+        assert any(fnmatch.fnmatch(relative, glob) for glob in globs), relative
     folder = resources.files("sizer").joinpath("catalogs")
     names = sorted(p.name for p in folder.iterdir() if p.name.endswith(".yaml"))
     assert names == sorted(f"{n}.yaml" for n in bundled_catalogs())
