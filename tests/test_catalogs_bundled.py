@@ -7,7 +7,6 @@ its row of the notes, so no figure was invented, rounded or converted on the way
 
 from __future__ import annotations
 
-import fnmatch
 import itertools
 import re
 import tomllib
@@ -307,7 +306,9 @@ def test_package_data_includes_the_catalogs():
     catalogs = ROOT / "sizer" / "catalogs"
     for path in catalogs.rglob("*.yaml"):
         relative = path.relative_to(ROOT / "sizer").as_posix()
-        assert any(fnmatch.fnmatch(relative, glob) for glob in globs), relative
+        # setuptools' globs: '*' stays within one folder
+        assert any(re.fullmatch(re.escape(glob).replace(r"\*", "[^/]*"), relative)
+                   for glob in globs), relative
     folder = resources.files("sizer").joinpath("catalogs")
     names = sorted(p.name for p in folder.iterdir() if p.name.endswith(".yaml"))
     assert names == sorted(f"{n}.yaml" for n in bundled_catalogs())
