@@ -316,6 +316,8 @@ _SI_FACTORS: dict[str, dict[str, float]] = {
     "torque_constant": {"N*m/A": 1.0, "mN*m/A": 0.001},
     "resistance": {"ohm": 1.0},
     "inductance": {"H": 1.0, "mH": 0.001},
+    "back_emf_constant": {"V/krpm": 0.00954929658551372, "mV/rpm": 0.00954929658551372,
+                          "V*s/rad": 1.0},  # per radian (a speed in rpm counts radians)
     "voltage": {"V": 1.0},
     "capacitance": {"F": 1.0, "uF": 1e-06, "mF": 0.001},
     "power": {"W": 1.0, "kW": 1000.0},
