@@ -211,10 +211,11 @@ def test_a_design_field_on_the_command_line_names_no_file(tmp_path: Path) -> Non
 ])
 def test_a_mistake_in_the_csv_is_blamed_at_its_line_and_column(
         tmp_path: Path, table: str, line: int, field: str, words: str) -> None:
-    design = _design(tmp_path, "order: 2", table)
+    design = _design(tmp_path, "interpolation: cubic_spline", table)
     csv = tmp_path / "cam.csv"
     for args in (["size", str(design)],
-                 ["law", f"{{kind: cam_table, file: {csv}, order: 2}}", "--displacement", "1",
+                 ["law", f"{{kind: cam_table, file: {csv}, interpolation: cubic_spline}}",
+                  "--displacement", "1",
                   "--duration", "1"]):
         shown = assert_user_error(run_cli(*args), words)
         assert shown.startswith(f"error: {csv}:{line}: {field}: "), shown

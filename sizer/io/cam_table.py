@@ -39,6 +39,7 @@ from sizer.io.csv_rows import NUMBER, comma_is_decimal, csv_delimiter, csv_recor
 from sizer.io.files import decode_text, read_user_bytes
 
 if TYPE_CHECKING:
+    from sizer.laws.cam_interpolation import RestEnds
     from sizer.laws.multipoint.sample_fit import SampleFit
 
 CAM_TABLE_FIELDS = ("file", "columns")
@@ -66,6 +67,9 @@ class CamTableData:
     lines: np.ndarray
     columns: tuple[int, int]
     header_line: int | None = None
+    derivatives: tuple[np.ndarray, np.ndarray] | None = None
+    """The velocity and acceleration columns of an XYVA table (``interpolation:
+    quintic_hermite``), in the table's units (q's unit per x's unit, per its square)."""
 
     def column_name(self, i: int) -> str:
         """How messages name the x (``i`` = 0) or q (1) column: ``column 0 (t [s])``."""
@@ -77,13 +81,14 @@ class CamTableData:
         return f"column {column} ({name}" + (f" [{unit}]" if unit is not None else "") + ")"
 
 
-def read_cam_table(path: Path, *, columns: Sequence[str | int] | None = None
-                   ) -> CamTableData:
+def read_cam_table(path: Path, *, columns: Sequence[str | int] | None = None,
+                   derivatives: bool = False) -> CamTableData:
     """Read the samples of ``path``: columns ``columns`` = [x, q] chosen by header name
     (with or without its unit, e.g. ``t`` or ``t [s]``) or 0-based index; default the
     first two. A mistake in the file is a UserError at its file, line and column; a
     ``columns`` that does not fit the file names the field ``columns[i]`` (the caller
-    locates it where ``columns`` is written)."""
+    locates it where ``columns`` is written). With ``derivatives`` the table has four
+    columns [x, q, v, a] (default the first four), v and a read into ``derivatives``."""
     file = str(path)
     text = _text(path)
     delimiter = csv_delimiter(text, comment="#")
@@ -100,8 +105,9 @@ def read_cam_table(path: Path, *, columns: Sequence[str | int] | None = None
         if first is None:                            # too: _cell reports it
             raise UserError(f"{path.name} has a header but no rows", file=file,
                             line=header[0])
-    chosen = _columns(columns, header, first, path)
-    x, q, lines = array("d"), array("d"), array("q")
+    chosen = _columns(columns, header, first, path, 4 if derivatives else 2)
+    values = [array("d") for _ in chosen]
+    x, q, lines = values[0], values[1], array("q")
     for line, cells in itertools.chain((first,), records):
         if len(cells) <= max(chosen):
             raise UserError(f"the row has {len(cells)} cells, column {max(chosen)} is needed "
@@ -111,8 +117,8 @@ def read_cam_table(path: Path, *, columns: Sequence[str | int] | None = None
             raise UserError(f"more than {MAX_CAM_TABLE_ROWS:,} rows: the limit is "
                             f"{MAX_CAM_TABLE_ROWS:,} (MAX_CAM_TABLE_ROWS); resample the "
                             f"table more coarsely", file=file, line=line)
-        x.append(_cell(cells, chosen[0], line, header, file, decimal_comma))
-        q.append(_cell(cells, chosen[1], line, header, file, decimal_comma))
+        for column, read in zip(chosen, values, strict=True):
+            read.append(_cell(cells, column, line, header, file, decimal_comma))
         lines.append(line)
     if len(x) < 2:
         raise UserError(f"has {len(x)} row: a cam table needs at least 2 samples",
@@ -120,13 +126,16 @@ def read_cam_table(path: Path, *, columns: Sequence[str | int] | None = None
     names: list[str | None] = [None, None]
     units: list[str | None] = [None, None]
     if header is not None:
-        for i, column in enumerate(chosen):
+        for i, column in enumerate(chosen[:2]):
             names[i], units[i] = _name_unit(header[1][column])
     return CamTableData(path=path, x=np.array(x, dtype=float),
                         q=np.array(q, dtype=float), names=(names[0], names[1]),
                         units=(units[0], units[1]), lines=np.array(lines, dtype=np.int64),
                         columns=(chosen[0], chosen[1]), header_line=(
-                            header[0] if header is not None else None))
+                            header[0] if header is not None else None),
+                        derivatives=(np.array(values[2], dtype=float),
+                                     np.array(values[3], dtype=float)) if derivatives
+                        else None)
 
 
 def build_cam_table(fields: Mapping[str, Any], base_dir: Path) -> SampleFit:
@@ -137,30 +146,41 @@ def build_cam_table(fields: Mapping[str, Any], base_dir: Path) -> SampleFit:
 
 
 def load_cam_table(fields: Mapping[str, Any], base_dir: Path
-                   ) -> tuple[CamTableData, SampleFit]:
-    """The table a cam table's mapping names and its fit (see :func:`build_cam_table`)."""
+                   ) -> tuple[CamTableData, SampleFit, RestEnds | None]:
+    """The table a cam table's mapping names, its fit (see :func:`build_cam_table`) and
+    which of its ends are at rest (sizer.laws.cam_interpolation)."""
+    from sizer.laws.cam_interpolation import INTERPOLATION_FIELDS, cam_table_fit
     from sizer.laws.multipoint.fields import refuse_unknown
-    from sizer.laws.multipoint.sample_fit import FIT_FIELDS, build_cam_table_samples
+    from sizer.laws.multipoint.sample_fit import FIT_FIELDS
 
-    refuse_unknown(fields, CAM_TABLE_FIELDS + FIT_FIELDS, "cam_table")
+    refuse_unknown(fields, CAM_TABLE_FIELDS + FIT_FIELDS + INTERPOLATION_FIELDS,
+                   "cam_table")
     raw = fields.get("file")
     if not isinstance(raw, str) or not raw.strip():
         raise UserError(f"must be the path of a CSV file, got {raw!r}", field="file")
     columns = fields.get("columns")
+    hermite = fields.get("interpolation") == "quintic_hermite"
+    count = 4 if hermite else 2
     if columns is not None and not (
-            isinstance(columns, list | tuple) and len(columns) == 2
+            isinstance(columns, list | tuple) and len(columns) == count
             and all(isinstance(c, str) or (isinstance(c, int) and not isinstance(c, bool))
                     for c in columns)):
         raise UserError(f"must be two column names or 0-based indices, e.g. [t, q] or "
-                        f"[0, 1], got {columns!r}", field="columns")
+                        f"[0, 1], got {columns!r}" if not hermite else
+                        f"must be four column names or 0-based indices (x, q, v, a) for "
+                        f"interpolation quintic_hermite, e.g. [t, q, v, a], got "
+                        f"{columns!r}", field="columns")
     path = Path(raw)
     if not path.is_absolute():
         path = base_dir / path
-    table = read_cam_table(path, columns=columns)
+    table = read_cam_table(path, columns=columns, derivatives=hermite)
     _increasing(table)
-    # the fitting fields (order, smoothing, periodic) are the mapping's: their errors stay
-    # unlocated, for the design loader (its line) or the command line (its option)
-    return table, build_cam_table_samples(fields, table.x, table.q)
+    # the fitting fields (order, smoothing, periodic, interpolation) are the mapping's: their
+    # errors stay unlocated, for the design loader (its line) or the command line (its
+    # option)
+    v, a = table.derivatives if table.derivatives is not None else (None, None)
+    fit, rest = cam_table_fit(fields, table.x, table.q, v, a)
+    return table, fit, rest
 
 
 def _text(path: Path) -> str:
@@ -205,15 +225,19 @@ def _column_name(column: int, header: tuple[int, list[str]] | None) -> str:
 
 
 def _columns(columns: Sequence[str | int] | None, header: tuple[int, list[str]] | None,
-             first: tuple[int, list[str]], path: Path) -> tuple[int, int]:
-    """The 0-based [x, q] columns: the first two, or those ``columns`` names."""
+             first: tuple[int, list[str]], path: Path, count: int = 2) -> list[int]:
+    """The 0-based [x, q] (or [x, q, v, a], ``count`` 4) columns: the first ``count``, or
+    those ``columns`` names."""
     width = len(header[1]) if header is not None else len(first[1])
     if columns is None:
         if width < 2:
             raise UserError("has one column: a cam table needs two (x and q), separated by "
                             "',', ';', a tab or '|'", file=str(path),
                             line=(header or first)[0])
-        return 0, 1
+        if width < count:
+            raise UserError(f"has {width} columns: a quintic_hermite table needs four (x, "
+                            f"q, v and a)", file=str(path), line=(header or first)[0])
+        return list(range(count))
     chosen = []
     for i, column in enumerate(columns):
         if isinstance(column, int):
@@ -232,9 +256,10 @@ def _columns(columns: Sequence[str | int] | None, header: tuple[int, list[str]] 
             raise UserError(f"no column {column!r} in {path.name}; its header (line "
                             f"{header[0]}) has: {', '.join(cells)}", field=f"columns[{i}]")
         chosen.append(found[0])
-    if chosen[0] == chosen[1]:
-        raise UserError("x and q must be two different columns", field="columns")
-    return chosen[0], chosen[1]
+    if len(set(chosen)) < len(chosen):
+        raise UserError("x and q must be two different columns" if count == 2 else
+                        "x, q, v and a must be four different columns", field="columns")
+    return chosen
 
 
 def _cell(cells: list[str], column: int, line: int, header: tuple[int, list[str]] | None,

@@ -50,7 +50,7 @@ def build_cam_table_law(fields: Mapping[str, Any]) -> FittedCurve:
     """The fitted curve of a cam table, the units of its columns and its fit report:
     residuals at the samples and the noise the fit puts in v, a and j (relative to
     their RMS; sizer.laws.multipoint.sample_fit)."""
-    table, fit = load_cam_table(fields, Path.cwd())
+    table, fit, rest = load_cam_table(fields, Path.cwd())
     report: dict[str, float] = {k: float(getattr(fit, k)) for k in FIT_REPORT
                                 if getattr(fit, k) is not None}
     for name, values in (("noise_rms", fit.noise_rms), ("noise_peak", fit.noise_peak)):
@@ -58,4 +58,7 @@ def build_cam_table_law(fields: Mapping[str, Any]) -> FittedCurve:
             report.update({f"{name}_{order}": float(v)
                            for order, v in zip(NOISE_ORDERS, values, strict=True)})
     report["samples"] = float(len(table.x))
+    if rest is not None:  # ends at rest within the table's resolution (DataLaw.end_speeds)
+        report["rest_start"] = float(rest.start)
+        report["rest_end"] = float(rest.end)
     return FittedCurve(fit.curve, report, header_units(table))

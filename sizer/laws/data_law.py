@@ -255,8 +255,13 @@ class DataLaw(MotionLaw):
         """v_N(0) and v_N(1) (normalized), zero for a rest-to-rest law."""
         first = float(self.piece_derivative(0, 0.0, 1))
         last = float(self.piece_derivative(len(self.pieces) - 1, 1.0, 1))
-        return tuple(0.0 if abs(v) < REST_TOLERANCE else v  # type: ignore[return-value]
-                     for v in (first, last))
+        report = self.report or {}
+        rest = (report.get("rest_start") == 1.0, report.get("rest_end") == 1.0)
+        # a cam table at rest within its resolution (sizer.laws.cam_interpolation): its
+        # fit is clamped to v = 0 there, or, a broken line (order 2), steps from rest at
+        # its end as it does at every sample
+        return tuple(0.0 if abs(v) < REST_TOLERANCE or at_rest  # type: ignore[return-value]
+                     else v for v, at_rest in zip((first, last), rest, strict=True))
 
     @property
     def rest_to_rest(self) -> bool:

@@ -9,6 +9,7 @@ from pydantic import BeforeValidator, WithJsonSchema
 
 from sizer.errors import UserError
 from sizer.io.schema.inputs_base import show_value as _show
+from sizer.laws.cam_interpolation import INTERPOLATIONS
 from sizer.laws.data_spec import DATA_LAW_KINDS
 
 
@@ -18,7 +19,12 @@ def _data_law_schema() -> dict[str, Any]:
                            "units": {"type": "object",
                                      "properties": {"time": {"type": "string"},
                                                     "position": {"type": "string"}},
-                                     "additionalProperties": False}},
+                                     "additionalProperties": False},
+                           "interpolation": {
+                               "enum": list(INTERPOLATIONS),
+                               "description": "cam_table: the controller's interpolation "
+                                              "of the points (absent: a spline fitted by "
+                                              "order)"}},
             "description": "a law defined by data (docs/data-laws.md), e.g. {kind: "
                            "cubic_spline, points: [[0, 0], [0.4, 0.3], [1, 1]]}"}
 
