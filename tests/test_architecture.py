@@ -13,7 +13,7 @@ import pytest
 
 PACKAGE = Path(__file__).resolve().parents[1] / "sizer"
 CORE = ("laws", "mechanics", "sizing", "vibration", "energy", "thermal", "envelope",
-        "numerics", "model")
+        "numerics", "model", "export")
 """Packages of the core: pure numpy, no printing, files, CLI or plotting."""
 SURFACE = ("sizer.cli", "sizer.report", "typer", "rich", "matplotlib", "click")
 MAX_SIZING_MODULES = 20

@@ -24,6 +24,7 @@ except ImportError:  # pragma: no cover
 
 from sizer import __version__
 from sizer.cli import (
+    cam_command,
     catalog_command,
     check_command,
     idta_command,
@@ -50,7 +51,7 @@ EXIT_CODES_HELP = ("Exit codes: 0 ok; 1 a check failed (sizer check: a limit not
 
 COMMAND_MODULES = (laws_command, law_command, size_command, check_command, schema_command,
                    catalog_command, plot_command, report_command, segments_command,
-                   spectrum_command, vibration_command, idta_command)
+                   spectrum_command, vibration_command, cam_command, idta_command)
 
 app = typer.Typer(
     name="sizer",

@@ -1,0 +1,324 @@
+"""``sizer cam``: a candidate's motion as a controller's cam (a point table), with a
+certificate: the table re-evaluated as the controller interpolates it and its true largest
+errors against the sized law (sizer.export, docs/cam-export.md).
+
+Exit codes: 0 written and within the tolerance; 1 written, clipped to the target's limit,
+and the tolerance not met; 2 bad input.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import TYPE_CHECKING, Annotated, Any
+
+import typer
+
+from sizer.cli.catalog_option import CatalogOption
+from sizer.cli.exit_codes import ExitCode
+from sizer.errors import UserError
+from sizer.report.printable import printable
+
+if TYPE_CHECKING:
+    from sizer.export.sampling import PointTable
+    from sizer.export.targets import Target
+    from sizer.laws.base import MotionLaw
+
+TARGET_NAMES = ("csv", "codesys-xy", "sew")
+DEFAULT_TOLERANCE = 1e-4
+
+
+def cam(
+    source: Annotated[str, typer.Argument(
+        metavar="DESIGN.yaml|SPEC",
+        help="The design file; or, with --displacement and --duration, a law spec.",
+        show_default=False)],
+    to: Annotated[str, typer.Option(
+        "--to", metavar="FORMAT",
+        help="The target: csv, codesys-xy (CODESYS ASCII X/Y table, at most 128 points) "
+             "or sew (SEW MOVI-C: n, then n 'master;slave' lines).", show_default=False)],
+    output: Annotated[Path, typer.Option(
+        "--output", "-o", dir_okay=False, metavar="FILE",
+        help="The cam file (replaced atomically).", show_default=False)],
+    motor: Annotated[str | None, typer.Option(
+        "--motor", "-m", metavar="ID",
+        help="The motor whose sized motion to export. Default: the design's check motor, "
+             "else the best-ranked feasible pair's.", show_default=False)] = None,
+    law: Annotated[str | None, typer.Option(
+        "--law", "-l", metavar="SPEC",
+        help="The law to export. Default: the design's check law, else the best-ranked "
+             "law for the motor.", show_default=False)] = None,
+    catalog: CatalogOption = None,
+    tolerance: Annotated[float | None, typer.Option(
+        "--tolerance", metavar="T",
+        help="Largest position error of the controller's interpolation against the law, "
+             f"as a fraction of the stroke (default {DEFAULT_TOLERANCE:g}); sets the "
+             "number of points.", show_default=False)] = None,
+    points: Annotated[int | None, typer.Option(
+        "--points", "-n", metavar="N",
+        help="The number of points instead of a tolerance.", show_default=False)] = None,
+    master_range: Annotated[str | None, typer.Option(
+        "--master-range", metavar="ANGLE",
+        help="A table over a master range instead of time: the master's travel over the "
+             "move (degrees if bare: 360, or '2 rev'), proportional to time.",
+        show_default=False)] = None,
+    displacement: Annotated[str | None, typer.Option(
+        "--displacement", metavar="H",
+        help="A law alone: the stroke ('90 deg', rad if bare, or '200 mm'); with "
+             "--duration.", show_default=False)] = None,
+    duration: Annotated[str | None, typer.Option(
+        "--duration", metavar="T", help="A law alone: the move's duration ('0.2 s').",
+        show_default=False)] = None,
+    whole_cycle: Annotated[bool, typer.Option(
+        "--cycle",
+        help="The task's whole machine cycle: the move, its dwell, and with 'return: "
+             "true' the move back and its dwell (default: the move alone).")] = False,
+    certificate: Annotated[Path | None, typer.Option(
+        "--certificate", dir_okay=False, metavar="FILE.json",
+        help="Also write the certificate as JSON.", show_default=False)] = None,
+) -> None:
+    """Export a sized motion as a controller's cam table, with a certificate.
+
+    The top-ranked feasible pair's move (or the --motor/--law pair, or the design's
+    `check:` pair), or a law alone with --displacement and --duration, as a point table
+    over time or over a master range; --cycle: the task's whole machine cycle. The number
+    of points comes from --tolerance (or --points), clipped to the target's limit. The
+    certificate re-evaluates the table as the controller interpolates it (linearly) and
+    gives the true largest position and velocity errors against the law; its
+    acceleration is a train of impulses. Exit 1 when the tolerance is not met within the
+    target's limit.
+
+    Examples:
+
+        sizer cam examples/indexing-table.yaml --to sew -o index.txt
+
+        sizer cam examples/indexing-table.yaml --to codesys-xy --master-range 360
+        -o index-cam.txt --certificate index-cam.json
+
+        sizer cam cycloidal --displacement '90 deg' --duration '0.25 s' --to csv -o c.csv
+    """
+    from sizer.cli.options import scaled_move
+
+    target = _target(to)
+    if tolerance is not None and points is not None:
+        raise UserError("give either --tolerance or --points, not both", field="--points")
+    if tolerance is not None and not (math.isfinite(tolerance) and 0.0 < tolerance < 1.0):
+        raise UserError(f"must be a fraction of the stroke in (0, 1), got {tolerance!r}",
+                        field="--tolerance")
+    if points is not None and not 2 <= points <= target.limit:
+        raise UserError(f"{target.name} takes 2 to {target.limit} points, got {points}",
+                        field="--points")
+    span_master = None if master_range is None else _master_range(master_range)
+    if certificate is not None and output.resolve() == certificate.resolve():
+        raise UserError("the certificate must not overwrite the cam file",
+                        field="--certificate")
+    move = scaled_move(displacement, duration, "a design file")
+    if move is not None:
+        for option, given in (("--motor", motor), ("--law", law), ("--catalog", catalog),
+                              ("--cycle", whole_cycle)):
+            if given:
+                raise UserError("a law alone (--displacement, --duration) has no motor or "
+                                "design: leave out " + option, field=option)
+        h, T, linear = move
+        the_law = _law_alone(source, output, certificate)
+        pair, task = None, None
+    else:
+        h, T, linear, the_law, pair, task = _sized_move(Path(source), motor, law, catalog,
+                                                        [output, certificate])
+    table = _table(the_law, h, T, linear, span_master, target, tolerance, points,
+                   task if whole_cycle else None)
+    _write(output, target.write(table))
+    record = certificate_record(table, target, output, pair, duration=T)
+    typer.echo("\n".join(printable(line) for line in certificate_text(record)))
+    if certificate is not None:
+        _write(certificate, json.dumps(record, indent=2) + "\n", "--certificate")
+    if not table.met:
+        typer.echo(printable(f"{output}: the tolerance {table.tolerance:g} is not met within "
+                             f"{target.name}'s limit of {table.limit} points"), err=True)
+        raise typer.Exit(ExitCode.CHECK_FAILED)
+
+
+def register(app: typer.Typer) -> None:
+    app.command("cam")(cam)
+
+
+# ----------------------------------------------------------------------- helpers
+def _target(name: str) -> Target:
+    from sizer.export.targets import TARGETS
+
+    if name not in TARGETS:
+        raise UserError(f"expected one of {', '.join(TARGETS)}, got {printable(repr(name))}",
+                        field="--to")
+    return TARGETS[name]
+
+
+def _master_range(text: str) -> float:
+    """The master range in degrees: a bare number is degrees."""
+    from sizer.units import to_si
+
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.degrees(to_si(text, "angle", field="--master-range"))
+    if not (math.isfinite(value) and value > 0.0):
+        raise UserError(f"must be a positive angle, got {text!r}", field="--master-range")
+    return value
+
+
+def _law_alone(spec: str, output: Path, certificate: Path | None) -> MotionLaw:
+    from sizer.cli.options import blame_option
+    from sizer.cli.output_guard import check_output
+    from sizer.laws import make_law
+
+    for path, field in ((output, "--output"), (certificate, "--certificate")):
+        check_output(path, field=field)
+    with blame_option("SPEC"):
+        law = make_law(spec)
+    for path, field in ((output, "--output"), (certificate, "--certificate")):
+        check_output(path, field=field)  # again: not over a file a law read (a cam table)
+    return law
+
+
+def _sized_move(design: Path, motor: str | None, law: str | None,
+                catalog: list[str] | None, outputs: list[Path | None]
+                ) -> tuple[float, float, bool, MotionLaw, Any, Any]:
+    """(h, T, linear, law, result, task) of the design's pair to export."""
+    from sizer.cli.catalog_option import load_design_file
+    from sizer.cli.options import check_law_specs
+    from sizer.cli.output_guard import check_output
+    from sizer.cli.plot_command import plot_pairs
+    from sizer.laws.data_spec import law_label
+
+    check_law_specs([law] if law else [], "--law")
+    inputs = [design, *(catalog or ())]
+    for path, field in zip(outputs, ("--output", "--certificate"), strict=True):
+        check_output(path, inputs, field=field)
+    loaded = load_design_file(design, catalog)
+    for path, field in zip(outputs, ("--output", "--certificate"), strict=True):
+        check_output(path, loaded.files, field=field)
+    if loaded.cycle is not None:
+        raise UserError("a cycle of segments is not exported yet (one move only): export "
+                        "a law alone with SPEC --displacement H --duration T",
+                        file=str(design), field="cycle")
+    try:
+        result = plot_pairs(loaded, motor, [law] if law else ())[0]
+    except UserError as error:
+        if (error.field or "").startswith("--"):
+            raise
+        raise error.located(file=str(design)) from None
+    if result.duration is None:
+        raise UserError(f"{result.motor} with {law_label(result.spec)} has no feasible "
+                        f"duration ({result.reason}): no motion to export", file=str(design))
+    task = loaded.task
+    return task.displacement, result.duration, task.linear, result.law_object, result, task
+
+
+def _table(law: MotionLaw, h: float, T: float, linear: bool, master_range: float | None,
+           target: Target, tolerance: float | None, points: int | None,
+           task: Any = None) -> PointTable:
+    """The certified table of the move (or with ``task``, its machine cycle)."""
+    from sizer.export.profile import CamProfile, task_cycle
+    from sizer.export.sampling import fewest_points, table_for_tolerance, table_of
+
+    stroke, unit = (h * 1000.0, "mm") if linear else (math.degrees(h), "deg")
+    master_unit = "s" if master_range is None else "deg"
+    if task is None:
+        span = T if master_range is None else master_range
+        profile = CamProfile(law, stroke, span, unit, master_unit)
+    else:
+        cycle_time = (T + task.dwell) * (2 if task.return_move else 1)
+        scale = 1.0 if master_range is None else master_range / cycle_time
+        profile = task_cycle(law, stroke, T, task.dwell, task.return_move, scale,
+                             slave_unit=unit, master_unit=master_unit)
+    if points is not None:
+        fewest = fewest_points(profile, target.per_segment)
+        if points < fewest:
+            raise UserError(f"the machine cycle's table needs at least {fewest} points (its "
+                            f"segments' ends), got {points}", field="--points")
+        return table_of(profile, points, target.limit, per_segment=target.per_segment)
+    return table_for_tolerance(profile, DEFAULT_TOLERANCE if tolerance is None
+                               else tolerance, target.limit, target.per_segment)
+
+
+def _write(path: Path, text: str, field: str = "--output") -> None:
+    from sizer.report.output import write_text_atomically
+
+    write_text_atomically(path, text, field)
+
+
+# ------------------------------------------------------------------- certificate
+def certificate_record(table: PointTable, target: Target, output: Path, pair: Any,
+                       duration: float) -> dict[str, Any]:
+    """The certificate as plain data (the JSON of --certificate)."""
+    profile, errors = table.profile, table.errors
+    peak_velocity = profile.peak_velocity
+    velocity_unit = f"{profile.slave_unit}/{profile.master_unit}"
+    notes = []
+    if table.clipped:
+        needed = ("more" if table.needed is None else f"{table.needed}")
+        notes.append(f"clipped to {table.limit} points, {target.name}'s limit; the "
+                     f"tolerance needs {needed}: NOT met")
+    return {
+        "target": target.name,
+        "title": target.title,
+        "file": str(output),
+        "law": profile.law.spec,
+        "motor": None if pair is None else pair.motor,
+        "stroke": profile.stroke,
+        "slave_unit": profile.slave_unit,
+        "master": {"kind": "time" if profile.over_time else "master position",
+                   "span": profile.span, "unit": profile.master_unit,
+                   "move_duration_s": duration},
+        "segments": [{"name": s.name, "start": s.start, "span": s.span,
+                      "stroke": s.stroke} for s in profile.segments],
+        "points": table.points,
+        "limit": None if table.limit >= 1_000_000 else table.limit,
+        "clipped": table.clipped,
+        "points_needed": table.needed,
+        "tolerance": table.tolerance,
+        "tolerance_met": table.met if table.tolerance is not None else None,
+        "interpolation": {"kind": target.interpolation, "source": target.source},
+        "errors": {
+            "position": {"max": errors.position, "at": errors.position_at,
+                         "unit": profile.slave_unit,
+                         "of_stroke": errors.position / abs(profile.stroke)},
+            "velocity": {"max": errors.velocity, "at": errors.velocity_at,
+                         "unit": velocity_unit,
+                         "of_peak": errors.velocity / peak_velocity},
+            "acceleration": {"finite": False,
+                             "note": "linear interpolation: the acceleration is a train of "
+                                     "impulses, one at each point, of the velocity step",
+                             "largest_velocity_step": errors.velocity_step,
+                             "unit": velocity_unit},
+        },
+        "notes": notes,
+    }
+
+
+def certificate_text(record: dict[str, Any]) -> list[str]:
+    """The certificate as the command prints it, line by line."""
+    master, errors = record["master"], record["errors"]
+    pos, vel, acc = errors["position"], errors["velocity"], errors["acceleration"]
+    mu, su = master["unit"], record["slave_unit"]
+    who = "" if record["motor"] is None else f" sized for {record['motor']}"
+    if len(record["segments"]) > 1:
+        who += " (machine cycle: " + ", ".join(s["name"] for s in record["segments"]) + ")"
+    tolerance = ("" if record["tolerance"] is None else
+                 f", tolerance {record['tolerance']:g}"
+                 + ("" if record["tolerance_met"] else ": NOT met"))
+    lines = [
+        f"{record['file']}: {record['title']}, {record['points']} points over "
+        f"{master['span']:g} {mu} ({master['kind']}), {record['law']}{who}, stroke "
+        f"{record['stroke']:g} {su}",
+        f"interpolation: {record['interpolation']['kind']} "
+        f"({record['interpolation']['source']})",
+        f"position error: {pos['max']:.6g} {su} ({pos['of_stroke']:.3g} of the stroke"
+        f"{tolerance}) at {pos['at']:.6g} {mu}",
+        f"velocity error: {vel['max']:.6g} {vel['unit']} ({vel['of_peak']:.3g} of the peak "
+        f"velocity) at {vel['at']:.6g} {mu}",
+        f"acceleration: not finite, a train of impulses (largest velocity step "
+        f"{acc['largest_velocity_step']:.6g} {acc['unit']})",
+    ]
+    lines += [f"note: {n}" for n in record["notes"]]
+    return lines
