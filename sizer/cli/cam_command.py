@@ -25,7 +25,6 @@ if TYPE_CHECKING:
     from sizer.export.targets import Target
     from sizer.laws.base import MotionLaw
 
-TARGET_NAMES = ("csv", "codesys-xy", "sew")
 DEFAULT_TOLERANCE = 1e-4
 
 
@@ -37,7 +36,10 @@ def cam(
     to: Annotated[str, typer.Option(
         "--to", metavar="FORMAT",
         help="The target: csv, codesys-xy (CODESYS ASCII X/Y table, at most 128 points) "
-             "or sew (SEW MOVI-C: n, then n 'master;slave' lines).", show_default=False)],
+             "or sew (SEW MOVI-C: n, then n 'master;slave' lines), or codesys-xyva "
+             "(CODESYS XYVA X,Y,V,A table, quintic Hermite, at most 128 points; with "
+             "the motor's torques re-computed on it), or twincat-mc3 (TwinCAT 3 MC3 "
+             "motion functions: the law itself, segment-exact).", show_default=False)],
     output: Annotated[Path, typer.Option(
         "--output", "-o", dir_okay=False, metavar="FILE",
         help="The cam file (replaced atomically).", show_default=False)],
@@ -126,6 +128,20 @@ def cam(
     else:
         h, T, linear, the_law, pair, task = _sized_move(Path(source), motor, law, catalog,
                                                         [output, certificate])
+    if target.interpolation == "segment-exact":  # the law itself (twincat-mc3)
+        from sizer.cli.cam_segment_exact import export_segments
+
+        export_segments(target.name, the_law, h, T, linear, span_master,
+                        task if whole_cycle else None, output, certificate, pair,
+                        tolerance, points)
+        return
+    if target.interpolation == "quintic_hermite":  # XYVA: sizer.cli.cam_smooth
+        from sizer.cli.cam_smooth import export_smooth
+
+        return export_smooth(target, the_law, h, T, linear, span_master, tolerance, points,
+                             task if whole_cycle else None, output, certificate, pair,
+                             None if pair is None else Path(source), catalog,
+                             DEFAULT_TOLERANCE)
     table = _table(the_law, h, T, linear, span_master, target, tolerance, points,
                    task if whole_cycle else None)
     _write(output, target.write(table))
@@ -145,12 +161,15 @@ def register(app: typer.Typer) -> None:
 
 # ----------------------------------------------------------------------- helpers
 def _target(name: str) -> Target:
+    from sizer.export.segment_targets import SEGMENT_TARGETS
+    from sizer.export.smooth_targets import SMOOTH_TARGETS
     from sizer.export.targets import TARGETS
 
-    if name not in TARGETS:
-        raise UserError(f"expected one of {', '.join(TARGETS)}, got {printable(repr(name))}",
+    targets = {**TARGETS, **SMOOTH_TARGETS, **SEGMENT_TARGETS}
+    if name not in targets:
+        raise UserError(f"expected one of {', '.join(targets)}, got {printable(repr(name))}",
                         field="--to")
-    return TARGETS[name]
+    return targets[name]
 
 
 def _master_range(text: str) -> float:

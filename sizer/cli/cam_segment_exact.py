@@ -1,0 +1,138 @@
+"""``sizer cam --to twincat-mc3``: the law itself as the controller's motion functions, with
+its certificate (sizer.export.twincat_mc3, docs/cam-export.md "TwinCAT 3 MC3").
+
+Called by sizer.cli.cam_command once the move is known; formats and writes, decides
+nothing the export layer does not.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import typer
+
+from sizer.errors import UserError
+from sizer.report.printable import printable
+
+if TYPE_CHECKING:
+    from sizer.export.profile import CamProfile
+    from sizer.laws.base import MotionLaw
+
+EXACT = "exact (the law the controller names)"
+
+
+def export_segments(name: str, law: MotionLaw, h: float, T: float, linear: bool,
+                    master_range: float | None, task: Any, output: Path,
+                    certificate: Path | None, pair: Any, tolerance: float | None,
+                    points: int | None) -> None:
+    """Write the move (or with ``task``, its machine cycle) as motion functions."""
+    from sizer.export import twincat_mc3
+    from sizer.export.profile import CamProfile, task_cycle
+    from sizer.report.output import write_text_atomically
+
+    for option, given in (("--tolerance", tolerance), ("--points", points)):
+        if given is not None:
+            raise UserError(f"{name} writes the law's own segments, not a point table: "
+                            f"leave out {option}", field=option)
+    try:
+        named = twincat_mc3.named_law(law)
+    except twincat_mc3.UnnamedLawError as error:
+        raise UserError(str(error), field="SPEC" if pair is None else "--law") from None
+    stroke, unit = (h * 1000.0, "mm") if linear else (math.degrees(h), "deg")
+    master_unit = "s" if master_range is None else "deg"
+    profile: CamProfile
+    if task is None:
+        profile = CamProfile(law, stroke, T if master_range is None else master_range,
+                             unit, master_unit)
+    else:
+        cycle_time = (T + task.dwell) * (2 if task.return_move else 1)
+        scale = 1.0 if master_range is None else master_range / cycle_time
+        profile = task_cycle(law, stroke, T, task.dwell, task.return_move, scale,
+                             slave_unit=unit, master_unit=master_unit)
+    functions = twincat_mc3.motion_functions(profile)
+    errors = twincat_mc3.exact_errors(profile, functions)
+    record = certificate_record(profile, functions, errors, named, name, output, pair, T)
+    header = ["sizer cam", *certificate_text(record)]
+    write_text_atomically(output, twincat_mc3.write(functions, header), "--output")
+    typer.echo("\n".join(printable(line) for line in certificate_text(record)))
+    if certificate is not None:
+        write_text_atomically(certificate, json.dumps(record, indent=2) + "\n",
+                              "--certificate")
+
+
+def certificate_record(profile: CamProfile, functions: Any, errors: Any, named: Any,
+                       name: str, output: Path, pair: Any, duration: float
+                       ) -> dict[str, Any]:
+    """The certificate as plain data (the JSON of --certificate)."""
+    mu, su = profile.master_unit, profile.slave_unit
+    peak_v, peak_a = profile.peak_velocity, profile.peak_acceleration
+    return {
+        "target": name,
+        "title": "TwinCAT 3 MC3 motion functions (IEC 61131-3 initialisation code)",
+        "file": str(output),
+        "law": profile.law.spec,
+        "motor": None if pair is None else pair.motor,
+        "stroke": profile.stroke,
+        "slave_unit": su,
+        "master": {"kind": "time" if profile.over_time else "master position",
+                   "span": profile.span, "unit": mu, "move_duration_s": duration},
+        "segments": [{"name": s.name, "start": s.start, "span": s.span, "stroke": s.stroke,
+                      "function_type": "Linear" if s.law is None else named.function_type}
+                     for s in profile.segments],
+        "points": len(functions),
+        "function_type": named.function_type,
+        "definition": named.formula,
+        "identification": {"basis": named.basis, "confirmed": named.confirmed},
+        "interpolation": {"kind": "segment-exact",
+                          "source": "infosys.beckhoff.com TF55xx TC3 MC3: "
+                                    "MotionFunctionPoint (21872070667), EMotionFunctionType "
+                                    "(21872045067), MC_CAM_REF (21872066827)"},
+        "verdict": EXACT,
+        "errors": {
+            "position": {"max": errors.position, "at": errors.at[0], "unit": su,
+                         "of_stroke": errors.position / abs(profile.stroke)},
+            "velocity": {"max": errors.velocity, "at": errors.at[1], "unit": f"{su}/{mu}",
+                         "of_peak": errors.velocity / peak_v},
+            "acceleration": {"max": errors.acceleration, "at": errors.at[2],
+                             "unit": f"{su}/{mu}^2", "of_peak": errors.acceleration / peak_a},
+            "checked_abscissae": errors.checked,
+        },
+        "expected_characteristics": {
+            "note": "the extreme slave dynamics MC_CamObject.ComputeCharacteristics should "
+                    "return for the controller's curve to be this law",
+            "peak_velocity": peak_v, "peak_acceleration": peak_a,
+            "velocity_unit": f"{su}/{mu}", "acceleration_unit": f"{su}/{mu}^2"},
+        "torques": "the sizing's: the controller's curve is the sized law",
+    }
+
+
+def certificate_text(record: dict[str, Any]) -> list[str]:
+    """The certificate as the command prints it, line by line."""
+    master, errors = record["master"], record["errors"]
+    pos, vel, acc = errors["position"], errors["velocity"], errors["acceleration"]
+    mu, su = master["unit"], record["slave_unit"]
+    who = "" if record["motor"] is None else f" sized for {record['motor']}"
+    kinds = ", ".join(f"{s['name']} {s['function_type']}" for s in record["segments"])
+    expected = record["expected_characteristics"]
+    identification = record["identification"]
+    lines = [
+        f"{record['file']}: {record['title']}, {record['points']} points over "
+        f"{master['span']:g} {mu} ({master['kind']}), {record['law']}{who}, stroke "
+        f"{record['stroke']:g} {su}",
+        f"segments: {kinds}; {record['function_type']} = {record['definition']}",
+        f"identification: {identification['basis']}",
+        f"{record['verdict']}: largest errors position {pos['max']:.3g} {su} "
+        f"({pos['of_stroke']:.2g} of the stroke), velocity {vel['max']:.3g} {vel['unit']} "
+        f"({vel['of_peak']:.2g} of the peak), acceleration {acc['max']:.3g} {acc['unit']} "
+        f"({acc['of_peak']:.2g} of the peak), over {errors['checked_abscissae']} abscissae",
+        f"expected ComputeCharacteristics: peak velocity "
+        f"{expected['peak_velocity']:.6g} {expected['velocity_unit']}, peak acceleration "
+        f"{expected['peak_acceleration']:.6g} {expected['acceleration_unit']}",
+    ]
+    if not identification["confirmed"]:
+        lines.append("note: the function type's formula is not published by Beckhoff; "
+                     "check the expected peaks on the controller")
+    return lines

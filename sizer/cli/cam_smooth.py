@@ -1,0 +1,229 @@
+"""``sizer cam --to codesys-xyva``: an XYVA table (quintic Hermite between points), its
+certificate of position, velocity and acceleration errors, and the motor's torques
+re-computed on the written table read back (docs/cam-export.md, "XYVA").
+
+Exit codes: 0 written, tolerance met and every check the law passed still passed; 1
+written but the tolerance is not met within the limit, or the exported profile fails a
+check the law passed; 2 bad input.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, cast
+
+import typer
+
+from sizer.cli.exit_codes import ExitCode
+from sizer.errors import UserError
+from sizer.report.printable import printable
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from sizer.export.hermite_certificate import HermiteTable
+    from sizer.export.resized import Resized
+    from sizer.export.targets import Target
+    from sizer.laws.base import MotionLaw
+    from sizer.sizing.results import CandidateResult
+
+
+def export_smooth(target: Target, law: MotionLaw, h: float, T: float, linear: bool,
+                  master_range: float | None, tolerance: float | None, points: int | None,
+                  task: Any, output: Path, certificate: Path | None, pair: Any,
+                  design: Path | None, catalog: list[str] | None,
+                  default_tolerance: float) -> None:
+    """Write the XYVA table of the move (``task``: its machine cycle), print the
+    certificate, write it as JSON, and exit 1 when it says so."""
+    table = _table(law, h, T, linear, master_range, target, tolerance, points, task,
+                   default_tolerance)
+    write = cast("Callable[[Any], str]", target.write)  # a smooth target writes this table
+    _write(output, write(table))
+    resized = None
+    skipped = None
+    if pair is not None and design is not None and task is None:
+        resized = _resized(design, catalog, pair, output)
+    elif pair is None:
+        skipped = "a law alone: no motor to size"
+    else:
+        skipped = ("--cycle: the table is the whole machine cycle, not the move the motor "
+                   "was sized for; export the move alone for its torques")
+    record = certificate_record(table, target, output, pair, T, resized, skipped)
+    typer.echo("\n".join(printable(line) for line in certificate_text(record)))
+    if certificate is not None:
+        _write(certificate, json.dumps(record, indent=2) + "\n", "--certificate")
+    failed = False
+    if not table.met:
+        typer.echo(printable(f"{output}: the tolerance {table.tolerance:g} is not met within "
+                             f"{target.name}'s limit of {table.limit} points"), err=True)
+        failed = True
+    if resized is not None and resized.newly_failed:
+        typer.echo(printable(f"{output}: the exported profile fails "
+                             f"{', '.join(resized.newly_failed)}, which the sized law "
+                             f"passed"), err=True)
+        failed = True
+    if failed:
+        raise typer.Exit(ExitCode.CHECK_FAILED)
+
+
+def _table(law: MotionLaw, h: float, T: float, linear: bool, master_range: float | None,
+           target: Target, tolerance: float | None, points: int | None, task: Any,
+           default_tolerance: float) -> HermiteTable:
+    from sizer.export.hermite_certificate import fewest_points, table_for_tolerance, table_of
+    from sizer.export.profile import CamProfile, task_cycle
+
+    stroke, unit = (h * 1000.0, "mm") if linear else (math.degrees(h), "deg")
+    master_unit = "s" if master_range is None else "deg"
+    if task is None:
+        profile = CamProfile(law, stroke, T if master_range is None else master_range, unit,
+                             master_unit)
+    else:
+        cycle_time = (T + task.dwell) * (2 if task.return_move else 1)
+        scale = 1.0 if master_range is None else master_range / cycle_time
+        profile = task_cycle(law, stroke, T, task.dwell, task.return_move, scale,
+                             slave_unit=unit, master_unit=master_unit)
+    fewest = fewest_points(profile)
+    if fewest > target.limit:
+        raise UserError(f"the law has {fewest} breakpoints, more than {target.name}'s limit "
+                        f"of {target.limit} points", field="--to")
+    if points is not None:
+        if points < fewest:
+            raise UserError(f"an XYVA table of this motion needs at least {fewest} points "
+                            f"(its breakpoints), got {points}", field="--points")
+        return table_of(profile, points, target.limit)
+    return table_for_tolerance(profile, default_tolerance if tolerance is None
+                               else tolerance, target.limit)
+
+
+def _resized(design: Path, catalog: list[str] | None, pair: CandidateResult, output: Path
+             ) -> Resized:
+    """The written table read back as a user would ({kind: cam_table, file, interpolation:
+    quintic_hermite}) and sized for the same pair."""
+    from sizer import api
+    from sizer.export.resized import resize
+    from sizer.laws import make_law
+
+    spec = cam_table_spec(output)
+    make_law(spec)  # read back here: a file that does not read is said before sizing
+    return resize(api.load(design, catalog or ()), pair, spec)
+
+
+def _write(path: Path, text: str, field: str = "--output") -> None:
+    from sizer.report.output import write_text_atomically
+
+    write_text_atomically(path, text, field)
+
+
+def cam_table_spec(path: Path) -> str:
+    """The law spec that reads the written XYVA table back."""
+    return (f"{{kind: cam_table, file: {json.dumps(str(path))}, "
+            f"interpolation: quintic_hermite}}")
+
+
+# ------------------------------------------------------------------- certificate
+def _figures(result: CandidateResult) -> dict[str, Any]:
+    return {"feasible": result.feasible,
+            "peak_torque_Nm": result.peak_torque, "rms_torque_Nm": result.rms_torque,
+            "margins": {str(c.name): {"margin": c.margin, "required": c.required,
+                                      "passed": c.passed} for c in result.checks}}
+
+
+def certificate_record(table: HermiteTable, target: Target, output: Path, pair: Any,
+                       duration: float, resized: Resized | None, skipped: str | None
+                       ) -> dict[str, Any]:
+    """The certificate as plain data (the JSON of --certificate)."""
+    profile, errors = table.profile, table.errors
+    mu, su = profile.master_unit, profile.slave_unit
+    notes = []
+    if table.clipped:
+        needed = "more" if table.needed is None else f"{table.needed}"
+        notes.append(f"clipped to {table.limit} points, {target.name}'s limit; the "
+                     f"tolerance needs {needed}: NOT met")
+    peak_a = profile.peak_acceleration
+    torques: dict[str, Any]
+    if resized is None:
+        torques = {"computed": False, "why": skipped}
+    else:
+        torques = {"computed": True, "law": _figures(resized.law),
+                   "exported": _figures(resized.exported),
+                   "exported_spec": cam_table_spec(output),
+                   "newly_failed": list(resized.newly_failed)}
+    return {
+        "target": target.name,
+        "title": target.title,
+        "file": str(output),
+        "law": profile.law.spec,
+        "motor": None if pair is None else pair.motor,
+        "stroke": profile.stroke,
+        "slave_unit": su,
+        "master": {"kind": "time" if profile.over_time else "master position",
+                   "span": profile.span, "unit": mu, "move_duration_s": duration},
+        "segments": [{"name": s.name, "start": s.start, "span": s.span,
+                      "stroke": s.stroke} for s in profile.segments],
+        "points": table.points,
+        "limit": table.limit,
+        "clipped": table.clipped,
+        "points_needed": table.needed,
+        "tolerance": table.tolerance,
+        "tolerance_met": table.met if table.tolerance is not None else None,
+        "interpolation": {"kind": target.interpolation, "source": target.source},
+        "errors": {
+            "position": {"max": errors.position.max, "at": errors.position.at,
+                         "unit": su, "of_stroke": errors.position.max / abs(profile.stroke)},
+            "velocity": {"max": errors.velocity.max, "at": errors.velocity.at,
+                         "unit": f"{su}/{mu}",
+                         "of_peak": errors.velocity.max / profile.peak_velocity},
+            "acceleration": {"finite": True, "max": errors.acceleration.max,
+                             "at": errors.acceleration.at, "unit": f"{su}/{mu}^2",
+                             "of_peak": (errors.acceleration.max / peak_a
+                                         if math.isfinite(peak_a) and peak_a > 0 else None)},
+        },
+        "torques": torques,
+        "notes": notes,
+    }
+
+
+def certificate_text(record: dict[str, Any]) -> list[str]:
+    master, errors = record["master"], record["errors"]
+    pos, vel, acc = errors["position"], errors["velocity"], errors["acceleration"]
+    mu, su = master["unit"], record["slave_unit"]
+    who = "" if record["motor"] is None else f" sized for {record['motor']}"
+    tolerance = ("" if record["tolerance"] is None else
+                 f", tolerance {record['tolerance']:g}"
+                 + ("" if record["tolerance_met"] else ": NOT met"))
+    acc_share = "" if acc["of_peak"] is None else f" ({acc['of_peak']:.3g} of the peak)"
+    lines = [
+        f"{record['file']}: {record['title']}, {record['points']} points over "
+        f"{master['span']:g} {mu} ({master['kind']}), {record['law']}{who}, stroke "
+        f"{record['stroke']:g} {su}",
+        f"interpolation: {record['interpolation']['kind']} "
+        f"({record['interpolation']['source']})",
+        f"position error: {pos['max']:.6g} {su} ({pos['of_stroke']:.3g} of the stroke"
+        f"{tolerance}) at {pos['at']:.6g} {mu}",
+        f"velocity error: {vel['max']:.6g} {vel['unit']} ({vel['of_peak']:.3g} of the peak "
+        f"velocity) at {vel['at']:.6g} {mu}",
+        f"acceleration error: {acc['max']:.6g} {acc['unit']}{acc_share} at {acc['at']:.6g} "
+        f"{mu}",
+    ]
+    torques = record["torques"]
+    if not torques["computed"]:
+        lines.append(f"torques: not re-computed ({torques['why']})")
+    else:
+        for name, figures in (("sized law", torques["law"]),
+                              ("exported table", torques["exported"])):
+            margins = ", ".join(f"{k} {100 * m['margin']:.4g} %"
+                                + ("" if m["passed"] else " FAILS")
+                                for k, m in figures["margins"].items())
+            lines.append(f"{name}: peak torque {_nm(figures['peak_torque_Nm'])}, RMS "
+                         f"{_nm(figures['rms_torque_Nm'])}; margins: {margins}")
+        if torques["newly_failed"]:
+            lines.append("the exported table FAILS " + ", ".join(torques["newly_failed"])
+                         + ", which the sized law passed")
+    lines += [f"note: {n}" for n in record["notes"]]
+    return lines
+
+
+def _nm(value: float | None) -> str:
+    return "-" if value is None else f"{value:.6g} N*m"
