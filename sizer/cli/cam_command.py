@@ -317,27 +317,11 @@ def certificate_record(table: PointTable, target: Target, output: Path, pair: An
 
 def certificate_text(record: dict[str, Any]) -> list[str]:
     """The certificate as the command prints it, line by line."""
-    master, errors = record["master"], record["errors"]
-    pos, vel, acc = errors["position"], errors["velocity"], errors["acceleration"]
-    mu, su = master["unit"], record["slave_unit"]
-    who = "" if record["motor"] is None else f" sized for {record['motor']}"
-    if len(record["segments"]) > 1:
-        who += " (machine cycle: " + ", ".join(s["name"] for s in record["segments"]) + ")"
-    tolerance = ("" if record["tolerance"] is None else
-                 f", tolerance {record['tolerance']:g}"
-                 + ("" if record["tolerance_met"] else ": NOT met"))
-    lines = [
-        f"{record['file']}: {record['title']}, {record['points']} points over "
-        f"{master['span']:g} {mu} ({master['kind']}), {record['law']}{who}, stroke "
-        f"{record['stroke']:g} {su}",
-        f"interpolation: {record['interpolation']['kind']} "
-        f"({record['interpolation']['source']})",
-        f"position error: {pos['max']:.6g} {su} ({pos['of_stroke']:.3g} of the stroke"
-        f"{tolerance}) at {pos['at']:.6g} {mu}",
-        f"velocity error: {vel['max']:.6g} {vel['unit']} ({vel['of_peak']:.3g} of the peak "
-        f"velocity) at {vel['at']:.6g} {mu}",
-        f"acceleration: not finite, a train of impulses (largest velocity step "
-        f"{acc['largest_velocity_step']:.6g} {acc['unit']})",
-    ]
+    from sizer.report.cam_certificate import certificate_head
+
+    acc = record["errors"]["acceleration"]
+    lines = [*certificate_head(record),
+             f"acceleration: not finite, a train of impulses (largest velocity step "
+             f"{acc['largest_velocity_step']:.6g} {acc['unit']})"]
     lines += [f"note: {n}" for n in record["notes"]]
     return lines

@@ -186,27 +186,14 @@ def certificate_record(table: HermiteTable, target: Target, output: Path, pair: 
 
 
 def certificate_text(record: dict[str, Any]) -> list[str]:
-    master, errors = record["master"], record["errors"]
-    pos, vel, acc = errors["position"], errors["velocity"], errors["acceleration"]
-    mu, su = master["unit"], record["slave_unit"]
-    who = "" if record["motor"] is None else f" sized for {record['motor']}"
-    tolerance = ("" if record["tolerance"] is None else
-                 f", tolerance {record['tolerance']:g}"
-                 + ("" if record["tolerance_met"] else ": NOT met"))
+    """The XYVA certificate as the command prints it, line by line."""
+    from sizer.report.cam_certificate import certificate_head
+
+    acc, mu = record["errors"]["acceleration"], record["master"]["unit"]
     acc_share = "" if acc["of_peak"] is None else f" ({acc['of_peak']:.3g} of the peak)"
-    lines = [
-        f"{record['file']}: {record['title']}, {record['points']} points over "
-        f"{master['span']:g} {mu} ({master['kind']}), {record['law']}{who}, stroke "
-        f"{record['stroke']:g} {su}",
-        f"interpolation: {record['interpolation']['kind']} "
-        f"({record['interpolation']['source']})",
-        f"position error: {pos['max']:.6g} {su} ({pos['of_stroke']:.3g} of the stroke"
-        f"{tolerance}) at {pos['at']:.6g} {mu}",
-        f"velocity error: {vel['max']:.6g} {vel['unit']} ({vel['of_peak']:.3g} of the peak "
-        f"velocity) at {vel['at']:.6g} {mu}",
-        f"acceleration error: {acc['max']:.6g} {acc['unit']}{acc_share} at {acc['at']:.6g} "
-        f"{mu}",
-    ]
+    lines = [*certificate_head(record),
+             f"acceleration error: {acc['max']:.6g} {acc['unit']}{acc_share} at "
+             f"{acc['at']:.6g} {mu}"]
     torques = record["torques"]
     if not torques["computed"]:
         lines.append(f"torques: not re-computed ({torques['why']})")
