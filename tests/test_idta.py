@@ -223,3 +223,22 @@ def test_cli_errors_exit_2(tmp_path):
     assert_user_error(run_cli("idta", "read", str(bad), "-o", str(tmp_path / "d.yaml")),
                       "bad.json", "no IDTA 02021")
     assert_user_error(run_cli("idta", "read", str(bad), "-o", str(bad)), "bad.json")
+
+
+def test_the_written_result_is_the_same_bytes_for_the_same_input(tmp_path, monkeypatch):
+    """No clock in the output: the dates are the design file's (or SOURCE_DATE_EPOCH)."""
+    from cli_run import run_cli
+
+    design = tmp_path / "axis.yaml"
+    root = Path(__file__).resolve().parents[1]
+    design.write_text((root / "examples" / "indexing-table.yaml").read_text(encoding="utf-8")
+                      .replace("motors: catalogs/", f"motors: {root}/examples/catalogs/"))
+    outputs = []
+    for name in ("a.json", "b.json"):
+        assert run_cli("idta", "write", str(design), "-o", str(tmp_path / name)).returncode \
+            in (0, 1)
+        outputs.append((tmp_path / name).read_bytes())
+    assert outputs[0] == outputs[1]
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "0")
+    run_cli("idta", "write", str(design), "-o", str(tmp_path / "c.json"))
+    assert "1970-01-01T00:00:00Z" in (tmp_path / "c.json").read_text()

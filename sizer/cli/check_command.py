@@ -119,8 +119,11 @@ def _check_machine(path: Path, catalogs: list[str] | tuple[str, ...],
 
     refuse_motor_options(catalogs)
     machine = api.load_machine(path)
+    from sizer.cli.progress import sizing_progress
+
     try:
-        result = api.size_machine(machine, envelope=envelope or None)
+        with sizing_progress(f"sizing {path.name}") as progress:
+            result = api.size_machine(machine, envelope=envelope or None, progress=progress)
     except UserError as error:
         raise error.located(file=str(path)) from None
     return MachineCheckDocument(result, machine, path.stem)

@@ -5,6 +5,7 @@ The mapping is :mod:`sizer.idta`; this module reads and writes the files."""
 from __future__ import annotations
 
 import json
+import os
 from pathlib import Path
 from typing import Annotated
 
@@ -124,13 +125,15 @@ def write(
     from sizer import __version__, api
     from sizer.cli.exit_codes import ExitCode
     from sizer.cli.output_guard import check_output
+    from sizer.cli.progress import sizing_progress
     from sizer.errors import UserError
     from sizer.idta.write import pair_from_record, sizing_result_submodel
     from sizer.io.files import read_user_text
     from sizer.report.output import write_text_atomically
 
     check_output(output, [design])
-    result = api.size(str(design))
+    with sizing_progress(f"sizing {design.name}", unit="laws") as progress:
+        result = api.size(str(design), progress=progress)
     rows = list(zip(result.results, result.records(), strict=True))
     if motor is not None:
         rows = [(c, r) for c, r in rows if r["motor"] == motor]
@@ -144,7 +147,10 @@ def write(
     pair = pair_from_record(record, manufacturer=chosen.motor_object.manufacturer,
                             part_number=chosen.motor_object.part_number,
                             notes=(*read_notes, *result.notes))
-    now = datetime.now(UTC).replace(microsecond=0).isoformat().replace("+00:00", "Z")
+    # the design file's date (SOURCE_DATE_EPOCH where set), not the clock's: the same
+    # input writes the same bytes
+    stamp = float(os.environ.get("SOURCE_DATE_EPOCH") or design.stat().st_mtime)
+    now = datetime.fromtimestamp(int(stamp), UTC).isoformat().replace("+00:00", "Z")
     submodel = sizing_result_submodel(
         pair, submodel_id=submodel_id or f"urn:sizer:idta02021:{design.name}",
         project=result.design_name or design.stem, tool=f"sizer {__version__}",
