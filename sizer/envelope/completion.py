@@ -52,8 +52,6 @@ ENVELOPE_RULES: dict[str, str] = {
 }
 """Rule -> what a motor without curves is given, as stated in the outputs."""
 
-
-
 __all__ = ["DEFAULT_ENVELOPE", "ENVELOPE_RULES", "completed_continuous",
            "completed_intermittent", "envelope_note", "from_zero"]
 

@@ -152,6 +152,7 @@ def electrical_intermittent(motor: Motor, winding: Winding) -> Curve:
     corner = winding.corner_speed(cap / k_t)
     if corner >= end:  # the supply never limits below the end
         return ((0.0, cap), (end, cap))
+
     def torque(speed: np.ndarray) -> np.ndarray:
         return np.minimum(cap, k_t * winding.current(speed))
 

@@ -20,11 +20,10 @@ import types
 import typing
 from dataclasses import dataclass
 from functools import cache
-from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
-from pydantic import BaseModel, TypeAdapter, ValidationError
+from pydantic import BaseModel, ValidationError
 
 from sizer.io.motor_rules import (
     CurveColumns,
@@ -35,14 +34,14 @@ from sizer.io.motor_rules import (
     line_to_line,
 )
 from sizer.io.schema.inputs import CatalogFile, CurvePointInput, MotorInput
-from sizer.io.schema.inputs_base import Identifier, RangeRef, field_markers
+from sizer.io.schema.inputs_base import RangeRef, field_markers
 from sizer.io.schema.provenance import (
-    SourceInput,
     catalog_source_text,
     common_sources,
     figure_names,
     file_sources,
     row_sources,
+    sources_adapter,
 )
 from sizer.io.schema.ranges import RANGES
 from sizer.model.domain import FigureSources, Motor
@@ -182,11 +181,6 @@ def read_table(data: Any) -> CatalogTable | None:
                   row_provenance)
 
 
-@cache
-def _sources_adapter() -> TypeAdapter[dict[str, SourceInput]]:
-    return TypeAdapter(dict[Identifier, SourceInput])
-
-
 def _row_provenance(data: dict[str, Any], rows: list[dict[str, Any]],
                    common: FigureSources | None) -> list[FigureSources | None] | None:
     """Each row's FigureSources (as the field-by-field load gives them), or None where a
@@ -198,7 +192,7 @@ def _row_provenance(data: dict[str, Any], rows: list[dict[str, Any]],
                                           for key in given):
         return None
     try:
-        sources = _sources_adapter().validate_python(given)
+        sources = sources_adapter().validate_python(given)
     except ValidationError:
         return None
     shared, _ = file_sources(sources, None)
@@ -213,7 +207,7 @@ def _row_provenance(data: dict[str, Any], rows: list[dict[str, Any]],
                 type(figure) is str and figure in figures and figure in row
                 and type(key) is str and key in shared for figure, key in named.items()):
             return None
-        out.append(row_sources(SimpleNamespace(figure_sources=named), shared, common))
+        out.append(row_sources(named, shared, common))
     return out
 
 

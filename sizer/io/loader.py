@@ -230,7 +230,7 @@ def _validated_catalog(source: YamlSource, warnings: list[str],
         at = ("motors", index)
         motor = _motor(item, source, at, manufacturer=catalog.manufacturer,
                        source_text=source_text,
-                       provenance=row_sources(item, shared, common))
+                       provenance=row_sources(item.figure_sources, shared, common))
         warnings += _motor_warnings(motor, source, at)
         located.append(_Located(motor, source, at))
     return located
@@ -287,7 +287,8 @@ def _drives_of(items: Iterable[DriveInput], source: YamlSource, manufacturer: st
         motors=None if item.motors is None else tuple(m.strip() for m in item.motors),
         source=item.source or source_text, part_number=item.part_number,
         manufacturer=item.manufacturer or manufacturer,
-        provenance=row_sources(item, shared or {}, common)), source, ("drives", index))
+        provenance=row_sources(item.figure_sources, shared or {}, common)),
+        source, ("drives", index))
         for index, item in enumerate(items)]
 
 

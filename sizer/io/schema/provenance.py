@@ -116,11 +116,11 @@ def file_sources(sources: Mapping[str, SourceInput] | None, default: str | None
     return shared, FigureSources(shared[default])
 
 
-def row_sources(row: Any, shared: Mapping[str, Provenance],
+def row_sources(named: Mapping[str, str] | None, shared: Mapping[str, Provenance],
                 common: FigureSources | None) -> FigureSources | None:
-    """A row's FigureSources: the file's common one, or its own where it names sources
-    (figures by their domain names, sorted)."""
-    named = getattr(row, "figure_sources", None)
+    """A row's FigureSources from its ``figure_sources`` (figure -> source key): the
+    file's common one where it names none, else its own (figures by their domain names,
+    sorted; the rest the file's default)."""
     if not named:
         return common
     figures = tuple(sorted((ROW_ALIASES.get(figure, figure), shared[key])
@@ -143,7 +143,7 @@ def catalog_source_text(text: str | None, common: FigureSources | None) -> str |
 
 
 @cache
-def _sources_adapter() -> TypeAdapter[dict[str, SourceInput]]:
+def sources_adapter() -> TypeAdapter[dict[str, SourceInput]]:
     return TypeAdapter(dict[Identifier, SourceInput])
 
 
@@ -155,7 +155,7 @@ def common_sources(data: Mapping[str, Any]) -> FigureSources | None:
     if given is None and default is None:
         return None
     try:
-        sources = _sources_adapter().validate_python(given)
+        sources = sources_adapter().validate_python(given)
     except ValidationError:
         raise ValueError("sources") from None
     if default is None:
@@ -169,9 +169,5 @@ def gearbox_sources(series: Any, ratio: Any, shared: Mapping[str, Provenance],
                     common: FigureSources | None) -> FigureSources | None:
     """The FigureSources of one ratio of a gearbox series (a GearboxOption's): the ratio
     row's figure_sources, then the series row's, then the file's default."""
-    named = {**(getattr(series, "figure_sources", None) or {}),
-             **(getattr(ratio, "figure_sources", None) or {})}
-    if not named:
-        return common
-    figures = tuple(sorted((figure, shared[key]) for figure, key in named.items()))
-    return _interned(None if common is None else common.default, figures)
+    return row_sources({**(series.figure_sources or {}), **(ratio.figure_sources or {})},
+                       shared, common)
