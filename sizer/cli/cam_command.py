@@ -18,6 +18,7 @@ import typer
 from sizer.cli.catalog_option import CatalogOption
 from sizer.cli.exit_codes import ExitCode
 from sizer.errors import UserError
+from sizer.report.output import write_text_atomically
 from sizer.report.printable import printable
 
 if TYPE_CHECKING:
@@ -144,11 +145,12 @@ def cam(
                              DEFAULT_TOLERANCE)
     table = _table(the_law, h, T, linear, span_master, target, tolerance, points,
                    task if whole_cycle else None)
-    _write(output, target.write(table))
+    write_text_atomically(output, target.write(table), "--output")
     record = certificate_record(table, target, output, pair, duration=T)
     typer.echo("\n".join(printable(line) for line in certificate_text(record)))
     if certificate is not None:
-        _write(certificate, json.dumps(record, indent=2) + "\n", "--certificate")
+        write_text_atomically(certificate, json.dumps(record, indent=2) + "\n",
+                              "--certificate")
     if not table.met:
         typer.echo(printable(f"{output}: the tolerance {table.tolerance:g} is not met within "
                              f"{target.name}'s limit of {table.limit} points"), err=True)
@@ -260,16 +262,12 @@ def _table(law: MotionLaw, h: float, T: float, linear: bool, master_range: float
                                else tolerance, target.limit, target.per_segment)
 
 
-def _write(path: Path, text: str, field: str = "--output") -> None:
-    from sizer.report.output import write_text_atomically
-
-    write_text_atomically(path, text, field)
-
-
 # ------------------------------------------------------------------- certificate
 def certificate_record(table: PointTable, target: Target, output: Path, pair: Any,
                        duration: float) -> dict[str, Any]:
     """The certificate as plain data (the JSON of --certificate)."""
+    from sizer.export.sampling import MAX_POINTS
+
     profile, errors = table.profile, table.errors
     peak_velocity = profile.peak_velocity
     velocity_unit = f"{profile.slave_unit}/{profile.master_unit}"
@@ -292,7 +290,7 @@ def certificate_record(table: PointTable, target: Target, output: Path, pair: An
         "segments": [{"name": s.name, "start": s.start, "span": s.span,
                       "stroke": s.stroke} for s in profile.segments],
         "points": table.points,
-        "limit": None if table.limit >= 1_000_000 else table.limit,
+        "limit": None if table.limit >= MAX_POINTS else table.limit,
         "clipped": table.clipped,
         "points_needed": table.needed,
         "tolerance": table.tolerance,

@@ -55,9 +55,10 @@ def export_segments(name: str, law: MotionLaw, h: float, T: float, linear: bool,
     functions = twincat_mc3.motion_functions(profile)
     errors = twincat_mc3.exact_errors(profile, functions)
     record = certificate_record(profile, functions, errors, named, name, output, pair, T)
-    header = ["sizer cam", *certificate_text(record)]
-    write_text_atomically(output, twincat_mc3.write(functions, header), "--output")
-    typer.echo("\n".join(printable(line) for line in certificate_text(record)))
+    lines = certificate_text(record)
+    write_text_atomically(output, twincat_mc3.write(functions, ["sizer cam", *lines]),
+                          "--output")
+    typer.echo("\n".join(printable(line) for line in lines))
     if certificate is not None:
         write_text_atomically(certificate, json.dumps(record, indent=2) + "\n",
                               "--certificate")

@@ -18,6 +18,7 @@ import typer
 
 from sizer.cli.exit_codes import ExitCode
 from sizer.errors import UserError
+from sizer.report.output import write_text_atomically
 from sizer.report.printable import printable
 
 if TYPE_CHECKING:
@@ -40,7 +41,7 @@ def export_smooth(target: Target, law: MotionLaw, h: float, T: float, linear: bo
     table = _table(law, h, T, linear, master_range, target, tolerance, points, task,
                    default_tolerance)
     write = cast("Callable[[Any], str]", target.write)  # a smooth target writes this table
-    _write(output, write(table))
+    write_text_atomically(output, write(table), "--output")
     resized = None
     skipped = None
     if pair is not None and design is not None and task is None:
@@ -53,7 +54,8 @@ def export_smooth(target: Target, law: MotionLaw, h: float, T: float, linear: bo
     record = certificate_record(table, target, output, pair, T, resized, skipped)
     typer.echo("\n".join(printable(line) for line in certificate_text(record)))
     if certificate is not None:
-        _write(certificate, json.dumps(record, indent=2) + "\n", "--certificate")
+        write_text_atomically(certificate, json.dumps(record, indent=2) + "\n",
+                              "--certificate")
     failed = False
     if not table.met:
         typer.echo(printable(f"{output}: the tolerance {table.tolerance:g} is not met within "
@@ -108,12 +110,6 @@ def _resized(design: Path, catalog: list[str] | None, pair: CandidateResult, out
     spec = cam_table_spec(output)
     make_law(spec)  # read back here: a file that does not read is said before sizing
     return resize(api.load(design, catalog or ()), pair, spec)
-
-
-def _write(path: Path, text: str, field: str = "--output") -> None:
-    from sizer.report.output import write_text_atomically
-
-    write_text_atomically(path, text, field)
 
 
 def cam_table_spec(path: Path) -> str:

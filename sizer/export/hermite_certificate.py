@@ -31,11 +31,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from sizer.export.profile import CamProfile
+from sizer.export.sampling import MAX_POINTS
+from sizer.laws.cam_interpolation import interpolated_curve
 
 SAMPLES = 32
 """Samples of e^(k+1) per cell (sign changes between them bracket the extrema of e^(k))."""
 
-MAX_POINTS = 1_000_000
 
 
 @dataclass(frozen=True)
@@ -83,21 +84,13 @@ class HermiteTable:
         return self.tolerance is None or self.relative_position_error <= self.tolerance
 
 
-def hermite_curve(x: np.ndarray, y: np.ndarray, v: np.ndarray, a: np.ndarray):
-    """The quintic Hermite curve through the points (a scipy PPoly)."""
-    from scipy.interpolate import BPoly, PPoly  # lazy: scipy is heavy
-
-    bpoly = BPoly.from_derivatives(x, np.stack([y, v, a], axis=1), orders=5)
-    return PPoly.from_bernstein_basis(bpoly)
-
-
 def hermite_errors(profile: CamProfile, x: np.ndarray, y: np.ndarray, v: np.ndarray,
                    a: np.ndarray) -> HermiteErrors:
     """The certificate of the XYVA table (module docstring)."""
     x = np.asarray(x, dtype=float)
     if x.ndim != 1 or len(x) < 2 or not np.all(np.diff(x) > 0):
         raise ValueError("a table needs at least 2 points with increasing master values")
-    curve = hermite_curve(x, np.asarray(y, float), np.asarray(v, float),
+    curve = interpolated_curve("quintic_hermite", x, np.asarray(y, float), np.asarray(v, float),
                           np.asarray(a, float))
     breaks = profile.breakpoints
     edges = np.unique(np.concatenate([x, breaks[(breaks > x[0]) & (breaks < x[-1])]]))

@@ -39,6 +39,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from sizer.export.numbers import exact
 from sizer.export.profile import CamProfile
 from sizer.laws.base import MotionLaw
 
@@ -278,12 +279,6 @@ def _law_piece(profile: CamProfile, x: np.ndarray, segment: np.ndarray) -> np.nd
 
 
 # ------------------------------------------------------------------- the IEC text
-def _value(v: float) -> str:
-    text = repr(float(v))
-    return text if ("." in text or "e" in text or "inf" in text or "nan" in text) \
-        else text + ".0"
-
-
 def write(points: tuple[MotionFunctionPoint, ...], header: list[str],
           name: str = "aCamPoints") -> str:
     """IEC 61131-3 declarations: the ARRAY OF MotionFunctionPoint with its initial values
@@ -293,12 +288,12 @@ def write(points: tuple[MotionFunctionPoint, ...], header: list[str],
     rows = []
     for i, p in enumerate(points):
         fields = [f"FunctionType := EMotionFunctionType.{p.function_type}",
-                  f"MasterPosition := {_value(p.master)}",
-                  f"SlavePosition := {_value(p.slave)}"]
+                  f"MasterPosition := {exact(p.master)}",
+                  f"SlavePosition := {exact(p.slave)}"]
         for label, v in (("SlaveVelocity", p.velocity), ("SlaveAcceleration", p.acceleration),
                          ("SlaveJerk", p.jerk), ("SymmetryRatio", p.symmetry_ratio)):
             if v is not None:
-                fields.append(f"{label} := {_value(v)}")
+                fields.append(f"{label} := {exact(v)}")
         rows.append(f"        ({', '.join(fields)})" + ("," if i < last else ""))
     comment = ["(*", *(f"  {line.replace('*)', '* )')}" for line in header), "*)"]
     return "\n".join([
