@@ -86,7 +86,9 @@ def test_cli_csv_json_and_plot(tmp_path) -> None:
     done = run("laws", "--sweep", "trapezoidal(alpha=0.1..0.5:5)", "--format", "csv")
     assert done.returncode == 0, done.stderr
     rows = list(csv.DictReader(io.StringIO(done.stdout)))
-    assert [float(r["alpha"]) for r in rows] == [0.1, 0.2, 0.30000000000000004, 0.4, 0.5]
+    # five equidistant points 0.1 .. 0.5 (each exact to the float's rounding)
+    assert [float(r["alpha"]) for r in rows] == pytest.approx([0.1, 0.2, 0.3, 0.4, 0.5],
+                                                              rel=1e-15)
     assert float(rows[-1]["C_a"]) == pytest.approx(4.0, rel=1e-12)
     assert rows[0]["C_j"] == "" and rows[0]["jerk_bounded"] == "false"
     document = json.loads(run("laws", "--sweep", "trapezoidal(alpha=0.1..0.5:5)",
@@ -140,3 +142,15 @@ def test_t_min_needs_a_minimize_design() -> None:
     done = run("laws", "--sweep", "trapezoidal(alpha=0.1..0.5:3)", "--design", str(design))
     assert done.returncode == 2 and "duration: minimize" in done.stderr
     assert "--design" in done.stderr and "Traceback" not in done.stderr
+
+
+def test_range_ends_are_read_within_the_spec_limits_and_written_back_exactly() -> None:
+    """An end past the spec parser's limits is a user error, not a traceback; a tiny end
+    is written 1e-20 (its own law, refused by its range), never rounded to 0."""
+    huge = run("laws", "--sweep", "trapezoidal(alpha=1e999999..0.5)")
+    assert huge.returncode == 2 and "Traceback" not in huge.stderr
+    assert "out of range" in huge.stderr
+    tiny = run("laws", "--sweep", "trapezoidal(alpha=1e-20..0.5:3)", "--format", "csv")
+    assert tiny.returncode == 0, tiny.stderr
+    first = next(csv.DictReader(io.StringIO(tiny.stdout)))
+    assert first["spec"] == "trapezoidal(alpha=1e-20)" and first["C_a"] == ""

@@ -93,7 +93,7 @@ def parse_law_spec(text: str) -> LawSpec:
     return LawSpec(name, tuple(args))
 
 
-def _number(token: str, text: str) -> Fraction:
+def spec_number(token: str, text: str) -> Fraction:
     """The exact value of a number token, refused before any huge work."""
     exponent = _EXPONENT.search(token)
     if len(token) > MAX_NUMBER_CHARS or (exponent and abs(int(exponent.group(1))) > MAX_EXPONENT):
@@ -121,9 +121,9 @@ def _value(group: list[tuple[str, str]], text: str) -> Fraction | str:
             return AUTO
         value = None
         if kinds == ["number"]:
-            value = _number(values[0], text)
+            value = spec_number(values[0], text)
         if kinds == ["number", "punct", "number"] and values[1] == "/":
-            value = _number(values[0], text) / _number(values[2], text)
+            value = spec_number(values[0], text) / spec_number(values[2], text)
     except (ValueError, ZeroDivisionError):
         value = None
     if value is not None:

@@ -15,12 +15,12 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from fractions import Fraction
 
 import numpy as np
 
 from sizer.errors import UserError
 from sizer.laws.coefficients import COEFFICIENT_NAMES
+from sizer.laws.spec import spec_number
 
 DEFAULT_POINTS = 21
 """Points of a range written without ``:n``."""
@@ -101,14 +101,21 @@ class SweepResult:
 
 
 def _number_text(value: float) -> str:
-    text = repr(float(value))
-    return text if "e" not in text else f"{value:.17f}".rstrip("0").rstrip(".")
+    """A point's value as a spec writes it: the shortest text of the float (scientific
+    notation included: 1e-20 is not 0)."""
+    return repr(float(value))
 
 
 def _fraction(text: str, spec: str, what: str) -> float:
+    """An end of a range: a number or a fraction as a law spec writes it, within the spec
+    parser's limits (sizer.laws.spec.spec_number: no huge exponent)."""
+    parts = text.strip().split("/")
     try:
-        value = float(Fraction(text.strip()))
-    except (ValueError, ZeroDivisionError):
+        if len(parts) > 2:
+            raise ValueError
+        value = float(spec_number(parts[0].strip(), spec) / (
+            spec_number(parts[1].strip(), spec) if len(parts) == 2 else 1))
+    except (ValueError, ZeroDivisionError, OverflowError):
         raise UserError(f"{what} {text.strip()!r} of {spec!r} is not a number; "
                         f"{EXAMPLE}") from None
     if not np.isfinite(value):
