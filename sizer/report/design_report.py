@@ -562,9 +562,5 @@ def write_report(design: Design, sizing: SizingResult, directory: Path | str, *,
     written = [save_figure(figure, directory / name, dpi=dpi)
                for name, figure in draw_figures(design, report, dpi=dpi, samples=samples)]
     path = directory / REPORT_FILE
-    try:
-        write_text_atomically(path, report.markdown())
-    except OSError as error:
-        reason = error.strerror or str(error)
-        raise UserError(f"cannot write the report: {reason}", file=str(path)) from error
+    write_text_atomically(path, report.markdown())  # failures: a UserError naming the file
     return [path, *written]

@@ -24,7 +24,6 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from sizer import __version__
-from sizer.errors import UserError
 from sizer.report.output import write_text_atomically
 
 if TYPE_CHECKING:
@@ -307,9 +306,5 @@ def write_html_report(design: Design, sizing: SizingResult, directory: Path | st
     text = report_html(design, sizing, top=top, best=best, rank_by=rank_by, source=source,
                        design_bytes=design_bytes, dpi=dpi, samples=samples)
     path = directory / HTML_FILE
-    try:
-        write_text_atomically(path, text)
-    except OSError as error:
-        reason = error.strerror or str(error)
-        raise UserError(f"cannot write the report: {reason}", file=str(path)) from error
+    write_text_atomically(path, text)  # failures: a UserError naming the file
     return path
