@@ -93,7 +93,13 @@ def test_the_minimize_table_says_where_each_row_stands() -> None:
     text = ok("size", GEARBOXES, "--format", "md")
     header = next(line for line in text.splitlines() if line.startswith("| #"))
     assert header.rstrip(" |").endswith("front")
-    assert "knee: #3 HG-KN43J" in text
+    from test_front import knee_by_hand
+
+    from sizer import api
+
+    sizing = api.size(GEARBOXES)
+    knee = knee_by_hand(sizing)[0]
+    assert f"knee: #{sizing.results.index(knee) + 1} {knee.motor}" in text
     given = ok("size", INDEXING, "--format", "md")  # a given duration: no column
     header = next(line for line in given.splitlines() if line.startswith("| #"))
     assert "front" not in header
