@@ -29,10 +29,10 @@ from sizer.idta.template import (
     TEMPLATE,
     semantic_id,
 )
+from sizer.units import to_si
 
 Element = Mapping[str, Any]
 
-TIME_SCALE = {"s": 1.0, "ms": 1e-3, "min": 60.0}
 """Time units of a motion file that the cycle (UsageProfile.CyclesPerMinute) can use."""
 DEFAULT_UNITS = {"Time": "s", "AngularPosition": "rad", "Position": "m"}
 """The template's units (its concept descriptions) where a header gives none."""
@@ -458,10 +458,11 @@ def read_submodel(data: Mapping[str, Any], *, source: str, read_file: Callable[[
     usage = _one(requirements, "UsageProfile")
     cycles = reader.number(usage, "CyclesPerMinute", "ApplicationRequirements.UsageProfile")
     if cycles is not None and cycles > 0:
-        scale = TIME_SCALE.get(table.units["time"])
-        if scale is None:
+        try:  # the seconds of one unit of the motion's time column (sizer.units)
+            scale = to_si(f"1 {table.units['time']}", "time")
+        except UserError:
             reader.notes.append("UsageProfile.CyclesPerMinute not used: the motion's time unit "
-                                f"{table.units['time']!r} is not s, ms or min")
+                                f"{table.units['time']!r} is not a time")
         else:
             table = _with_rest(table, 60.0 / cycles / scale, reader)
     load = _load(axis, sections, names, reader)

@@ -45,7 +45,6 @@ class PairResult:
     law: str
     ratio: float | None = None
     gearbox: str | None = None
-    gearbox_manufacturer: str | None = None
     reason: str = ""
     notes: tuple[str, ...] = field(default=())
     part_number: str | None = None
@@ -141,7 +140,8 @@ def sizing_result_submodel(pair: PairResult, *, submodel_id: str, project: str, 
     components = [_motor(pair)]
     if pair.gearbox:
         components.append(_entity("MainComponent", _component(
-            "Gearbox", pair.gearbox, pair.gearbox_manufacturer), "MainComponent01"))
+            "Gearbox", pair.gearbox, None), "MainComponent01"))  # catalogs name no maker per
+        # gearbox option yet: the template's ManufacturerName is written as unknown
     result = _collection("SizingResult", [*components, _messages(pair)])
     information = _collection("SizingProjectInformation", [
         _property("SizingProjectName", project),
