@@ -38,6 +38,7 @@ from functools import cached_property
 import numpy as np
 
 from sizer.errors import UserError
+from sizer.sizing.ranking import margin_columns, rated_power_column
 from sizer.sizing.results import CandidateResult, Mode, Rows, SizingResult
 
 
@@ -181,10 +182,6 @@ class Front:
             out[self.knee] = KNEE
         return tuple(str(x) for x in out)
 
-    def status(self, position: int) -> str:
-        """``knee``, ``front`` or '' for the result at ``position`` (0-based, ranked)."""
-        return self.statuses[position]
-
     @property
     def rule(self) -> str:
         """The front in words: its objectives, the dominance and the knee."""
@@ -209,12 +206,10 @@ def objectives(sizing: SizingResult, by: FrontBy | str | None = None
         feasible = np.asarray(table.feasible, dtype=bool)[order]
         if sizing.mode is Mode.MINIMIZE:
             time = np.asarray(table.figures["duration"], dtype=float)[order]
-        else:
-            slack = np.where(np.isnan(table.slacks), -np.inf, table.slacks)
-            time = -np.min(slack, axis=1, initial=np.inf)[order]
+        else:  # the smallest margin, negated: the ranking's own key (--rank-by margin)
+            time = margin_columns(table)[0][order]
         if key is FrontBy.POWER:
-            size = (table.motor_column("continuous_torque")
-                    * table.motor_column("rated_speed"))[order]
+            size = rated_power_column(table)[0][order]
         elif key is FrontBy.ENERGY:
             size = (np.asarray(table.figures[field], dtype=float)[order]
                     if field in table.figures else np.full(len(order), np.nan))

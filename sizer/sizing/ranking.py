@@ -93,18 +93,18 @@ def _margin_row(r: CandidateResult) -> tuple[float, ...]:
     return tuple(math.inf if math.isnan(s) else -s for s in r.slacks)
 
 
-def _margin_columns(t: CandidateTable) -> list[np.ndarray]:
+def margin_columns(t: CandidateTable) -> list[np.ndarray]:
     slacks = np.sort(np.where(np.isnan(t.slacks), -np.inf, t.slacks), axis=1)
     return list(-slacks.T)  # a check that does not apply (slack inf) sorts like an absent one
 
 
-def _rated_power(t: CandidateTable) -> list[np.ndarray]:
+def rated_power_column(t: CandidateTable) -> list[np.ndarray]:
     return [_column(t.motor_column("continuous_torque") * t.motor_column("rated_speed"))]
 
 
-_POWER = Criterion("rated_power", lambda r: _number(r.rated_power), _rated_power)
+_POWER = Criterion("rated_power", lambda r: _number(r.rated_power), rated_power_column)
 _CONTINUOUS = _motor("continuous_torque", "continuous_torque")
-_MARGIN = Criterion("margin", _margin_row, _margin_columns)
+_MARGIN = Criterion("margin", _margin_row, margin_columns)
 _INERTIA = _motor("rotor_inertia", "inertia")
 
 
