@@ -239,19 +239,10 @@ def _table(law: MotionLaw, h: float, T: float, linear: bool, master_range: float
            target: Target, tolerance: float | None, points: int | None,
            task: Any = None) -> PointTable:
     """The certified table of the move (or with ``task``, its machine cycle)."""
-    from sizer.export.profile import CamProfile, task_cycle
+    from sizer.export.profile import move_profile
     from sizer.export.sampling import fewest_points, table_for_tolerance, table_of
 
-    stroke, unit = (h * 1000.0, "mm") if linear else (math.degrees(h), "deg")
-    master_unit = "s" if master_range is None else "deg"
-    if task is None:
-        span = T if master_range is None else master_range
-        profile = CamProfile(law, stroke, span, unit, master_unit)
-    else:
-        cycle_time = (T + task.dwell) * (2 if task.return_move else 1)
-        scale = 1.0 if master_range is None else master_range / cycle_time
-        profile = task_cycle(law, stroke, T, task.dwell, task.return_move, scale,
-                             slave_unit=unit, master_unit=master_unit)
+    profile = move_profile(law, h, T, linear, master_range, task)
     if points is not None:
         fewest = fewest_points(profile, target.per_segment)
         if points < fewest:

@@ -8,7 +8,6 @@ nothing the export layer does not.
 from __future__ import annotations
 
 import json
-import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -30,7 +29,7 @@ def export_segments(name: str, law: MotionLaw, h: float, T: float, linear: bool,
                     points: int | None) -> None:
     """Write the move (or with ``task``, its machine cycle) as motion functions."""
     from sizer.export import twincat_mc3
-    from sizer.export.profile import CamProfile, task_cycle
+    from sizer.export.profile import move_profile
     from sizer.report.output import write_text_atomically
 
     for option, given in (("--tolerance", tolerance), ("--points", points)):
@@ -41,17 +40,7 @@ def export_segments(name: str, law: MotionLaw, h: float, T: float, linear: bool,
         named = twincat_mc3.named_law(law)
     except twincat_mc3.UnnamedLawError as error:
         raise UserError(str(error), field="SPEC" if pair is None else "--law") from None
-    stroke, unit = (h * 1000.0, "mm") if linear else (math.degrees(h), "deg")
-    master_unit = "s" if master_range is None else "deg"
-    profile: CamProfile
-    if task is None:
-        profile = CamProfile(law, stroke, T if master_range is None else master_range,
-                             unit, master_unit)
-    else:
-        cycle_time = (T + task.dwell) * (2 if task.return_move else 1)
-        scale = 1.0 if master_range is None else master_range / cycle_time
-        profile = task_cycle(law, stroke, T, task.dwell, task.return_move, scale,
-                             slave_unit=unit, master_unit=master_unit)
+    profile = move_profile(law, h, T, linear, master_range, task)
     functions = twincat_mc3.motion_functions(profile)
     errors = twincat_mc3.exact_errors(profile, functions)
     record = certificate_record(profile, functions, errors, named, name, output, pair, T)

@@ -74,18 +74,9 @@ def _table(law: MotionLaw, h: float, T: float, linear: bool, master_range: float
            target: Target, tolerance: float | None, points: int | None, task: Any,
            default_tolerance: float) -> HermiteTable:
     from sizer.export.hermite_certificate import fewest_points, table_for_tolerance, table_of
-    from sizer.export.profile import CamProfile, task_cycle
+    from sizer.export.profile import move_profile
 
-    stroke, unit = (h * 1000.0, "mm") if linear else (math.degrees(h), "deg")
-    master_unit = "s" if master_range is None else "deg"
-    if task is None:
-        profile = CamProfile(law, stroke, T if master_range is None else master_range, unit,
-                             master_unit)
-    else:
-        cycle_time = (T + task.dwell) * (2 if task.return_move else 1)
-        scale = 1.0 if master_range is None else master_range / cycle_time
-        profile = task_cycle(law, stroke, T, task.dwell, task.return_move, scale,
-                             slave_unit=unit, master_unit=master_unit)
+    profile = move_profile(law, h, T, linear, master_range, task)
     fewest = fewest_points(profile)
     if fewest > target.limit:
         raise UserError(f"the law has {fewest} breakpoints, more than {target.name}'s limit "

@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cached_property
+from typing import Any
 
 import numpy as np
 
@@ -142,3 +143,19 @@ def task_cycle(law: MotionLaw, stroke: float, duration: float, dwell: float,
         segments.append(CamSegment(x, span, y, h, None if h == 0.0 else law, name))
         x, y = x + span, y + h
     return CamProfile(law, stroke, x, segments=tuple(segments), **units)
+
+
+def move_profile(law: MotionLaw, h: float, duration: float, linear: bool,
+                 master_range: float | None, task: Any = None) -> CamProfile:
+    """The profile ``sizer cam`` exports: a move of h (m or rad, SI) in ``duration`` s,
+    the slave in mm or deg; over time, or over a master range (deg) spanning the move (or,
+    with ``task``: its dwell, return and second dwell, the machine cycle)."""
+    stroke, unit = (h * 1000.0, "mm") if linear else (math.degrees(h), "deg")
+    master_unit = "s" if master_range is None else "deg"
+    if task is None:
+        span = duration if master_range is None else master_range
+        return CamProfile(law, stroke, span, unit, master_unit)
+    cycle_time = (duration + task.dwell) * (2 if task.return_move else 1)
+    scale = 1.0 if master_range is None else master_range / cycle_time
+    return task_cycle(law, stroke, duration, task.dwell, task.return_move, scale,
+                      slave_unit=unit, master_unit=master_unit)
