@@ -15,7 +15,6 @@ import numpy as np
 import pytest
 
 from sizer.cli.progress import sizing_progress
-from sizer.cli.vibration_progress import stepped_sweep
 
 ROOT = Path(__file__).resolve().parent.parent
 DESIGN = ROOT / "examples" / "indexing-table-vibration.yaml"
@@ -41,7 +40,7 @@ def test_the_stepped_sweep_is_the_one_run_sweep(design, points: int, chunks: int
     laws = tuple(s.law for s in design.laws if not s.open_shaped and not s.auto)
     scales = np.linspace(0.05, 0.5, points)
     calls: list[tuple[int, int]] = []
-    stepped = stepped_sweep(design, laws, scales, lambda d, t: calls.append((d, t)), chunks)
+    stepped = vibration_sweep(design, laws, scales, lambda d, t: calls.append((d, t)), chunks)
     whole = vibration_sweep(design, laws, scales)
     steps = len(laws) * min(chunks, points)
     assert calls == [(i, steps) for i in range(steps + 1)]  # every step, in order
@@ -52,7 +51,7 @@ def test_the_stepped_sweep_is_the_one_run_sweep(design, points: int, chunks: int
     assert (stepped.tracking is None) == (whole.tracking is None)
     for a, b in zip(stepped.tracking or (), whole.tracking or (), strict=True):
         np.testing.assert_allclose(a, b, rtol=1e-13, atol=0.0)
-    quiet = stepped_sweep(design, laws, scales, None, chunks)  # a pipe: the same numbers
+    quiet = vibration_sweep(design, laws, scales, None, chunks)  # a pipe: the same numbers
     for a, b in zip(stepped.residual, quiet.residual, strict=True):
         assert np.array_equal(a, b)
 

@@ -20,6 +20,8 @@ POINTS = 201
 """Durations in the sweep by default."""
 
 MAX_POINTS = MAX_VIBRATION_POINTS
+SWEEP_STEPS = 16
+"""Runs of each law's sweep: the progress bar moves every 1/16 of its durations."""
 """The most durations one sweep evaluates (sizer.input_limits)."""
 
 
@@ -105,10 +107,12 @@ def vibration(
         import numpy as np
 
         from sizer.cli.progress import sizing_progress
-        from sizer.cli.vibration_progress import stepped_sweep
+        from sizer.sizing.vibration_check import vibration_sweep
 
         with sizing_progress(f"sweeping {design.name}", unit="steps") as progress:
-            sweep = stepped_sweep(loaded, laws, np.linspace(low, high, points), progress)
+            # in SWEEP_STEPS runs per law, so that the bar moves (the same numbers)
+            sweep = vibration_sweep(loaded, laws, np.linspace(low, high, points), progress,
+                                    SWEEP_STEPS)
     except UserError as error:
         if (error.field or "").startswith("--"):
             raise

@@ -17,6 +17,7 @@ T_min up to the first scale where the limit holds.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 from functools import cached_property
 
@@ -272,23 +273,40 @@ class VibrationSweep:
     per law (m or rad); None for a cycle."""
 
 
-def vibration_sweep(design: Design, laws: tuple[MotionLaw, ...],
-                    scales: np.ndarray) -> VibrationSweep:
-    """The residual vibration of each law at every scale (UserError without a mode)."""
+def vibration_sweep(design: Design, laws: tuple[MotionLaw, ...], scales: np.ndarray,
+                    progress: Callable[[int, int], None] | None = None,
+                    steps: int = 1) -> VibrationSweep:
+    """The residual vibration of each law at every scale (UserError without a mode).
+
+    With ``steps`` > 1 each law's scales are evaluated in that many runs, ``progress(done,
+    total)`` called with (0, total) and after each (a progress bar with an estimate): the
+    residual at a scale depends on that scale only, so the numbers are the one run's."""
     from sizer.vibration.response import tracking_error
 
     scales = np.asarray(scales, dtype=float)
+    pieces = [p for p in np.array_split(scales, max(1, min(steps, scales.size))) if p.size]
+    pieces = pieces or [scales]
+    total = len(laws) * len(pieces)
+    if progress is not None:
+        progress(0, total)
     out, tracking, task = [], [], design.machine_cycle.shorthand
-    for law in laws:
+    for k, law in enumerate(laws):
         vibration = cycle_vibration(design, law, sweep=True)
         if vibration is None:
             raise UserError("the design gives no mode of the load: add "
                             "load.natural_frequency (and damping_ratio)",
                             field="load.natural_frequency")
-        out.append(vibration.worst(scales))
+        worst, track = [], []
+        for j, piece in enumerate(pieces, start=1):
+            worst.append(vibration.worst(piece))
+            if task is not None:
+                mode = vibration.load
+                track.append(abs(task.displacement) * tracking_error(
+                    law, mode.natural_frequency * piece, mode.damping_ratio))
+            if progress is not None:
+                progress(k * len(pieces) + j, total)
+        out.append(np.concatenate(worst))
         if task is not None:
-            mode = vibration.load
-            tracking.append(abs(task.displacement) * tracking_error(
-                law, mode.natural_frequency * scales, mode.damping_ratio))
+            tracking.append(np.concatenate(track))
     return VibrationSweep(scales, laws, tuple(out), design.limits.residual_vibration,
                           tuple(tracking) if task is not None else None)
