@@ -42,6 +42,7 @@ from sizer.report.rich_table import print_rich_table
 from sizer.report.table import Column, Table, make_table
 from sizer.report.text_table import render_text_table
 from sizer.report.transmission_text import listed_ratio_text, ratio_header
+from sizer.sizing.front import SIZE_OBJECTIVES
 from sizer.sizing.results import Mode
 
 if TYPE_CHECKING:
@@ -134,7 +135,7 @@ class SizingDocument(Rendered):
         """The front's two objectives in words ('T_min against rated power')."""
         time = (duration_name(self.design) if self.front.time_name == "duration"
                 else "smallest margin")
-        return f"{time} against {FRONT_SIZE[self.front.by][0]}"
+        return f"{time} against {SIZE_OBJECTIVES[self.front.by].name}"
 
     def front_status(self, rank: int) -> str:
         """``knee``, ``front`` or '' for the pair of rank ``rank`` (1-based)."""
@@ -166,7 +167,7 @@ class SizingDocument(Rendered):
                          "bulge towards the ideal point")
         if self.front.left_out:
             lines.append(f"{self.front.left_out} feasible pairs without "
-                         f"{FRONT_SIZE[self.front.by][0]} left out of the front")
+                         f"{SIZE_OBJECTIVES[self.front.by].name} left out of the front")
         return lines
 
     def _time_text(self, position: int) -> str:
@@ -176,14 +177,13 @@ class SizingDocument(Rendered):
         return f"smallest margin {percent(value)} %"
 
     def _size_text(self, position: int) -> str:
-        name, unit, factor = FRONT_SIZE[self.front.by]
-        value = short(float(self.front.size[position]) * factor)
-        return f"{name} {value}{f' {unit}' if unit else ''}"
+        size = SIZE_OBJECTIVES[self.front.by]
+        value = short(float(self.front.size[position]))
+        return f"{size.name} {value}{f' {size.unit}' if size.unit else ''}"
 
     def _size_cell(self, rank: int) -> str:
-        _, _, factor = FRONT_SIZE[self.front.by]
         value = float(self.front.size[rank - 1])
-        return short(value * factor) if math.isfinite(value) else "n/a"
+        return short(value) if math.isfinite(value) else "n/a"
 
     def _front_json(self) -> dict[str, Any]:
         front = self.front
@@ -197,7 +197,7 @@ class SizingDocument(Rendered):
         return {"by": front.by.value, "time": front.time_name, "size": front.size_field,
                 "units": {"time": "s" if front.time_name == "duration"
                           else "1 (the smallest margin beyond the required one)",
-                          "size": FRONT_SI_UNITS[front.by]},
+                          "size": SIZE_OBJECTIVES[front.by].json_unit},
                 "rule": front.rule, "left_out": front.left_out,
                 "knee": None if front.knee is None else point(front.knee),
                 "points": [point(int(i)) for i in front.members]}
@@ -288,8 +288,9 @@ class SizingDocument(Rendered):
             rows = [(*row[:-1], _residual_cell(r, factor), row[-1])
                     for row, (_, r) in zip(rows, self.rows, strict=True)]
         if self.front_only:  # the objectives of the front: margin (given T), size
-            name, unit, _ = FRONT_SIZE[self.front.by]
-            extra: tuple[Column, ...] = (Column(f"{name} [{unit}]" if unit else name),)
+            size = SIZE_OBJECTIVES[self.front.by]
+            extra: tuple[Column, ...] = (Column(f"{size.name} [{size.unit}]" if size.unit
+                                                else size.name),)
             cells: list[tuple[str, ...]] = [(self._size_cell(rank),) for rank, _ in self.rows]
             if self.front.time_name != "duration":
                 extra = (Column("min margin [%]"), *extra)
@@ -369,15 +370,6 @@ class SizingDocument(Rendered):
             text += "\n" + "\n".join(footer) + "\n"
         return text
 
-
-FRONT_SIZE = {"power": ("rated power", "W", 1.0), "price": ("price", "", 1.0),
-              "mass": ("mass", "kg", 1.0), "energy": ("energy per cycle", "J", 1.0)}
-"""The size objective of a front (sizer.sizing.front.FrontBy) for people: its name, the
-unit shown and the factor from SI."""
-
-FRONT_SI_UNITS = {"power": "W (tau_c*v_n)", "price": "as in the catalog", "mass": "kg",
-                  "energy": "J per machine cycle drawn from the DC bus (net)"}
-"""The SI units of the size objectives in JSON."""
 
 
 RESIDUAL_UNIT = "rad (m on a linear axis): amplitude at the load (book sec. 7.2)"

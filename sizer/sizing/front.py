@@ -57,17 +57,29 @@ FRONT_ALIASES: dict[str, FrontBy] = {"size": FrontBy.POWER, "rated_power": Front
 FRONT_CHOICES = ", ".join(k.value for k in FrontBy)
 """The size objectives, in words."""
 
-SIZE_FIELDS: dict[FrontBy, str] = {FrontBy.POWER: "rated_power", FrontBy.PRICE: "price",
-                                   FrontBy.MASS: "mass", FrontBy.ENERGY: "cycle_energy"}
-"""The result field (record key) of each size objective."""
+@dataclass(frozen=True)
+class SizeObjective:
+    """A size objective: the result field (record key) it reads, what it is in words,
+    its short name and unit in tables and plots, and its SI unit in JSON."""
 
-SIZE_TEXT: dict[FrontBy, str] = {
-    FrontBy.POWER: "the motor's rated power tau_c*v_n",
-    FrontBy.PRICE: "the motor's catalog price",
-    FrontBy.MASS: "the motor's mass",
-    FrontBy.ENERGY: "the net energy drawn from the DC bus per machine cycle",
+    field: str
+    text: str
+    name: str
+    unit: str
+    json_unit: str
+
+
+SIZE_OBJECTIVES: dict[FrontBy, SizeObjective] = {
+    FrontBy.POWER: SizeObjective("rated_power", "the motor's rated power tau_c*v_n",
+                                 "rated power", "W", "W (tau_c*v_n)"),
+    FrontBy.PRICE: SizeObjective("price", "the motor's catalog price", "price", "",
+                                 "as in the catalog"),
+    FrontBy.MASS: SizeObjective("mass", "the motor's mass", "mass", "kg", "kg"),
+    FrontBy.ENERGY: SizeObjective(
+        "cycle_energy", "the net energy drawn from the DC bus per machine cycle",
+        "energy per cycle", "J", "J per machine cycle drawn from the DC bus (net)"),
 }
-"""Each size objective in words."""
+"""Each size objective, listed once."""
 
 KNEE_RULE = ("knee: with both objectives scaled to [0, 1] over the front, the front point "
              "farthest from the straight line through the front's two ends (its smallest "
@@ -171,7 +183,7 @@ class Front:
 
     @property
     def size_field(self) -> str:
-        return SIZE_FIELDS[self.by]
+        return SIZE_OBJECTIVES[self.by].field
 
     @cached_property
     def statuses(self) -> tuple[str, ...]:
@@ -190,7 +202,7 @@ class Front:
                 "the smallest margin beyond the required one over all checks (larger "
                 "better: the duration is given)")
         return (f"front: the feasible pairs that no other pair beats in both {time} and "
-                f"{SIZE_TEXT[self.by]} (each smaller better unless said); {KNEE_RULE}")
+                f"{SIZE_OBJECTIVES[self.by].text} (each smaller better unless said); {KNEE_RULE}")
 
 
 def objectives(sizing: SizingResult, by: FrontBy | str | None = None
@@ -198,7 +210,7 @@ def objectives(sizing: SizingResult, by: FrontBy | str | None = None
     """(time, size, time name) per ranked result, both to minimize: the duration, or
     minus the smallest slack with a given duration; NaN where infeasible or unknown."""
     key = front_by(by)
-    field = SIZE_FIELDS[key]
+    field = SIZE_OBJECTIVES[key].field
     results = sizing.results
     table = sizing.table
     if table is not None and isinstance(results, Rows) and results.table is table:
@@ -234,7 +246,8 @@ def trade_off(sizing: SizingResult, by: FrontBy | str | None = None) -> Front:
     known = feasible_time & np.isfinite(size)
     left_out = int(np.count_nonzero(feasible_time & ~known))
     if left_out and not np.any(known):
-        raise UserError(f"no feasible pair has {SIZE_TEXT[key]} ({SIZE_FIELDS[key]}): "
+        objective = SIZE_OBJECTIVES[key]
+        raise UserError(f"no feasible pair has {objective.text} ({objective.field}): "
                         f"the front by {key.value} needs it; choose one of {FRONT_CHOICES}",
                         field="front_by")
     on = non_dominated(_compared(time, name), _compared(size, None))

@@ -17,7 +17,7 @@ import numpy as np
 from sizer.laws.data_spec import law_label
 from sizer.report.numbers import short
 from sizer.report.plots.figure_files import new_figure
-from sizer.report.sizing_table import FRONT_SIZE
+from sizer.sizing.front import SIZE_OBJECTIVES
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -35,14 +35,14 @@ GID_CHORD = "chord"
 GID_KNEE = "knee"
 
 
-def front_axes_labels(front: Front, duration_name: str) -> tuple[str, str, float, float]:
-    """(x label, y label, x factor, y factor) from SI: the size objective as shown in
-    tables, the time in ms (or the smallest margin in %)."""
-    name, unit, factor = FRONT_SIZE[front.by]
-    x_label = f"{name} [{unit}]" if unit else name
+def front_axes_labels(front: Front, duration_name: str) -> tuple[str, str, float]:
+    """(x label, y label, y factor from SI): the size objective as in tables (its SI
+    value), the time in ms (or the smallest margin in %)."""
+    size = SIZE_OBJECTIVES[front.by]
+    x_label = f"{size.name} [{size.unit}]" if size.unit else size.name
     if front.time_name == "duration":
-        return x_label, f"{duration_name} [ms]", factor, 1000.0
-    return x_label, "smallest margin beyond the required [%] (larger better)", factor, 100.0
+        return x_label, f"{duration_name} [ms]", 1000.0
+    return x_label, "smallest margin beyond the required [%] (larger better)", 100.0
 
 
 def front_figure(sizing: SizingResult, front: Front, *, duration_name: str = "T_min",
@@ -51,8 +51,8 @@ def front_figure(sizing: SizingResult, front: Front, *, duration_name: str = "T_
     """The front of ``sizing`` (its ranked results, as ``front`` indexes them)."""
     figure = new_figure(size or DEFAULT_SIZE, dpi)
     ax = figure.subplots()
-    x_label, y_label, fx, fy = front_axes_labels(front, duration_name)
-    x = np.asarray(front.size, dtype=float) * fx
+    x_label, y_label, fy = front_axes_labels(front, duration_name)
+    x = np.asarray(front.size, dtype=float)
     y = np.asarray(front.time, dtype=float) * fy
     known = np.isfinite(x) & np.isfinite(y)
     ax.scatter(x[known], y[known], s=18, color="0.6", zorder=2, gid=GID_CANDIDATES,
@@ -90,7 +90,7 @@ def front_figure(sizing: SizingResult, front: Front, *, duration_name: str = "T_
                  fontsize=10)
     if front.left_out:
         figure.text(0.01, 0.005, f"{front.left_out} feasible pairs without "
-                    f"{FRONT_SIZE[front.by][0]} not drawn", fontsize=7, color="0.35")
+                    f"{SIZE_OBJECTIVES[front.by].name} not drawn", fontsize=7, color="0.35")
     _pad(ax, x[known], y[known])
     return figure
 
