@@ -6,13 +6,13 @@ import io
 import os
 import subprocess
 import sys
-import threading
 import time
 from pathlib import Path
 
 import pytest
 
 from sizer.cli.progress import TerminalProgress, sizing_progress
+from tests.pseudo_terminal import drawn_on_terminal
 
 ROOT = Path(__file__).resolve().parent.parent
 DESIGN = ROOT / "examples" / "book" / "ex6_4.yaml"  # quick: minimize over two laws
@@ -72,28 +72,8 @@ def test_piped_output_has_no_progress_text() -> None:
 
 @pytest.mark.skipif(not hasattr(os, "openpty"), reason="needs a pseudo-terminal")
 def test_a_terminal_on_stderr_shows_the_bar_and_stdout_stays_clean() -> None:
-    master, slave = os.openpty()
-    chunks: list[bytes] = []
-
-    def drain() -> None:  # read while the child runs: a full pty buffer would block it
-        while True:
-            try:
-                chunk = os.read(master, 65536)
-            except OSError:
-                return
-            if not chunk:
-                return
-            chunks.append(chunk)
-
-    reader = threading.Thread(target=drain, daemon=True)
-    reader.start()
-    try:
-        result = run_sizer(subprocess.PIPE, slave)
-    finally:
-        os.close(slave)
-        reader.join(timeout=30)
-        os.close(master)
-    drawn = b"".join(chunks)
+    result, raw = drawn_on_terminal(lambda fd: run_sizer(subprocess.PIPE, fd))
+    drawn = raw
     assert result.returncode == 0
     assert b"sizing ex6_4.yaml" in drawn
     assert b"sizing" not in result.stdout and b"\x1b" not in result.stdout

@@ -8,13 +8,13 @@ import io
 import os
 import subprocess
 import sys
-import threading
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from sizer.cli.progress import sizing_progress
+from tests.pseudo_terminal import drawn_on_terminal
 
 ROOT = Path(__file__).resolve().parent.parent
 DESIGN = ROOT / "examples" / "indexing-table-vibration.yaml"
@@ -82,28 +82,9 @@ def test_piped_vibration_has_no_progress_characters() -> None:
 
 @pytest.mark.skipif(not hasattr(os, "openpty"), reason="needs a pseudo-terminal")
 def test_a_terminal_shows_the_sweep_with_an_estimate() -> None:
-    master, slave = os.openpty()
-    chunks: list[bytes] = []
-
-    def drain() -> None:
-        while True:
-            try:
-                chunk = os.read(master, 65536)
-            except OSError:
-                return
-            if not chunk:
-                return
-            chunks.append(chunk)
-
-    reader = threading.Thread(target=drain, daemon=True)
-    reader.start()
-    try:
-        result = run(["vibration", str(DESIGN), "--points", "400"], slave)
-    finally:
-        os.close(slave)
-        reader.join(timeout=30)
-        os.close(master)
-    drawn = b"".join(chunks).decode(errors="replace")
+    args = ["vibration", str(DESIGN), "--points", "400"]
+    result, raw = drawn_on_terminal(lambda fd: run(args, fd))
+    drawn = raw.decode(errors="replace")
     assert result.returncode == 0
     assert "sweeping indexing-table-vibration.yaml" in drawn
     assert "steps" in drawn and "eta" in drawn
