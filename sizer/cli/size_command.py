@@ -95,6 +95,10 @@ def size(
     Exit code 0 even when no pair is feasible (the report says so); 2 for bad input;
     3 for an internal error (a bug in sizer).
 
+    With 'motors: []' and the load's limits (limits.max_speed, max_acceleration,
+    max_jerk) each law is planned without a motor: its shortest duration, or for a given
+    duration the scaling factor lambda, and the limit that binds (docs/planning.md).
+
     On a terminal too narrow for the table (80 columns) the table abbreviates rather than
     cuts: mrg = margin, pk = peak, spd = speed, limit = the limiting check (J_ratio =
     inertia_ratio, winding_dT = winding_temperature_rise, drv_pk_I / drv_rms_I = the
@@ -133,9 +137,16 @@ def size(
         _size_machine(design, catalog, motor, rank_by, top, show_all, fmt, output, envelope,
                       jobs)
         return
-    loaded, sizing = load_and_size(design, catalog, motor, rank_by, envelope=envelope,
-                                   outputs=() if output is None else (output,), workers=jobs,
-                                   laws=law)
+    loaded = load_overridden(design, catalog, motor, rank_by, envelope=envelope,
+                             outputs=() if output is None else (output,), laws=law)
+    from sizer.sizing.planning import plans_without_motor
+
+    if plans_without_motor(loaded):  # `motors: []` with the load's limits
+        _plan(design, loaded, refused=((rank_by, "--rank-by"), (front, "--front"),
+                                       (front_by, "--front-by"), (envelope, "--envelope")),
+              top=top, fmt=fmt, output=output)
+        return
+    sizing = size_loaded(design, loaded, rank_by, workers=jobs, laws=law)
     document = SizingDocument(sizing, loaded, rank_by=rank_by, top=top,
                               include_infeasible=show_all,
                               front=front_of(sizing, front_key, design), front_only=front)
@@ -166,6 +177,25 @@ def _size_machine(path: Path, catalog: Sequence[str] | None, motor: Sequence[str
     publish_machine(document, fmt, output)
 
 
+def _plan(path: Path, design: Design, *, refused: Sequence[tuple[object, str]],
+          top: int | None, fmt: Format, output: Path | None) -> None:
+    """``sizer size`` of a design without motors: each law planned against the load's
+    limits (sizer.sizing.planning, docs/planning.md); the ``refused`` (value, option)
+    pairs are motor options, a UserError when given."""
+    from sizer.report.planning_table import PlanningDocument, publish_planning
+    from sizer.sizing.planning import plan
+
+    for given, option in refused:
+        if given:
+            raise UserError("not for a plan without a motor (`motors: []` with the load's "
+                            "limits): it ranks the laws by T_min or lambda", field=option)
+    try:
+        result = plan(design)
+    except UserError as error:
+        raise error.located(file=str(path)) from None
+    publish_planning(PlanningDocument(result, top=top), fmt, output)
+
+
 def load_and_size(design: Path, catalog: Sequence[str] | None, motor: Sequence[str] | None,
                   rank_by: str | None, *, envelope: str | None = None,
                   outputs: Sequence[Path] = (), workers: int | None = None,
@@ -175,9 +205,18 @@ def load_and_size(design: Path, catalog: Sequence[str] | None, motor: Sequence[s
     (sizer.api) in ``workers`` processes (None: every CPU for a large design);
     UserErrors of the sizing name the design file (those of a --law name the option).
     None of the ``outputs`` may be a file the load read (checked before the sizing)."""
+    loaded = load_overridden(design, catalog, motor, rank_by, envelope=envelope,
+                             outputs=outputs, laws=laws)
+    return loaded, size_loaded(design, loaded, rank_by, workers=workers, laws=laws)
+
+
+def load_overridden(design: Path, catalog: Sequence[str] | None,
+                    motor: Sequence[str] | None, rank_by: str | None, *,
+                    envelope: str | None = None, outputs: Sequence[Path] = (),
+                    laws: Sequence[str] | None = None) -> Design:
+    """The first half of :func:`load_and_size`: the design loaded with its options."""
     from sizer import api
     from sizer.cli.output_guard import check_outputs
-    from sizer.cli.progress import sizing_progress
 
     check_rank_key(rank_by)  # an unknown key fails before any work
     loaded = load_design_file(design, catalog)
@@ -187,14 +226,23 @@ def load_and_size(design: Path, catalog: Sequence[str] | None, motor: Sequence[s
     if laws:
         with as_option("laws", "--law"):
             loaded = api.override(loaded, laws=list(dict.fromkeys(laws)))
+    return loaded
+
+
+def size_loaded(design: Path, loaded: Design, rank_by: str | None, *,
+                workers: int | None = None,
+                laws: Sequence[str] | None = None) -> SizingResult:
+    """The second half of :func:`load_and_size`: the loaded design sized."""
+    from sizer import api
+    from sizer.cli.progress import sizing_progress
+
     try:
         with sizing_progress(f"sizing {design.name}", unit="laws") as progress:
             if laws:  # a law's own mistake (a data law's file) names the option
                 with as_option("laws", "--law"):
-                    return loaded, api.size(loaded, rank_by=rank_by, progress=progress,
-                                            workers=workers)
-            return loaded, api.size(loaded, rank_by=rank_by, progress=progress,
+                    return api.size(loaded, rank_by=rank_by, progress=progress,
                                     workers=workers)
+            return api.size(loaded, rank_by=rank_by, progress=progress, workers=workers)
     except UserError as error:
         if error.field == "--law":  # the option's mistake, not the file's
             raise

@@ -618,10 +618,22 @@ def _design_motors(model: DesignFile, source: YamlSource, folder: Path,
     for reference in extra_catalogs:
         add_catalog(resolve_catalog(reference, Path.cwd()))
     if not located and model.motors is not None:  # `motors: []` and no --catalog
+        if _load_limits_given(model):  # planned without a motor (sizer.sizing.planning)
+            return ()
         raise source.error("no motors to size: the list is empty (name a catalog or a motor, "
-                           "or omit `motors:` and give --catalog)", ("motors",))
+                           "or omit `motors:` and give --catalog; or give limits.max_speed, "
+                           "max_acceleration or max_jerk to plan without a motor)",
+                           ("motors",))
     _check_unique(located)
     return tuple(m.motor for m in located)
+
+
+def _load_limits_given(model: DesignFile) -> bool:
+    """Any of the load's limits (max speed, acceleration, jerk): `motors: []` then means a
+    plan without a motor (docs/planning.md)."""
+    limits = model.limits
+    return any(v is not None for v in (limits.max_speed, limits.max_acceleration,
+                                       limits.max_jerk))
 
 
 def _unknown_motor(motor_id: str, known: list[str]) -> str:

@@ -499,7 +499,8 @@ class DesignFile(Strict):
         None, min_length=1, description="law specs; omitted = the default laws")
     motors: Annotated[list[MotorRef] | None, OneOrList("string")] = Field(
         None, description="catalog paths (relative to this file), bundled catalog names "
-                          "or inline motors")
+                          "or inline motors; [] with limits.max_speed, max_acceleration "
+                          "or max_jerk: a plan without a motor (docs/planning.md)")
     drives: Annotated[list[Text] | None, OneOrList("string")] = Field(
         None, min_length=1,
         description="drive catalogs (paths relative to this file, or bundled names): "
