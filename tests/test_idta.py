@@ -38,22 +38,22 @@ def test_the_rotary_table_example_reads_into_the_expected_design():
     result = _read("rotary-table.json")
     assert result.design == {
         "name": "Rotary indexing table",
-        "task": {"duration": "1.0 s", "dwell": "0 s"},
+        # the 0.4 s index, then the rest to the 1 s cycle (60/min): a dwell
+        "task": {"duration": "0.4 s", "dwell": "0.6 s"},
         # LoadTorque -1.5 acts toward decreasing angles (template): it opposes the move
         "load": {"inertia": "0.5 kg*m^2", "friction": "2.0 N*m", "torque": "1.5 N*m"},
         "transmission": {"type": "gearbox", "ratio": 1, "name": "rotary table",
                          "efficiency": 0.9, "inertia": "0.0002 kg*m^2"},
-        "laws": [{"kind": "cam_table", "file": "cam.csv", "periodic": True}],
+        "laws": [{"kind": "cam_table", "file": "cam.csv"}],
     }
     rows = _cam_rows(result.cam_csv)
     assert result.cam_csv.splitlines()[1] == "t [s],q [rad]"
-    # 41 samples of the 0.4 s index, then the rest to the 1 s cycle (60/min) every 10 ms
-    assert len(rows) == 41 + 60
+    # the 41 samples of the 0.4 s index alone (the rest is the task's dwell)
+    assert len(rows) == 41
     assert rows[40] == (0.4, pytest.approx(math.pi / 2, abs=1e-12))
-    assert rows[-1] == (pytest.approx(1.0), pytest.approx(math.pi / 2, abs=1e-12))
     notes = "\n".join(result.notes)
     for fragment in ("AngularVelocity not used", "AxialForce = 100: not used",
-                     "gives no ratio", "holds its last position"):
+                     "gives no ratio", "rests (0.6 s) are the design's dwell"):
         assert fragment in notes
 
 

@@ -49,8 +49,9 @@ def read(
 ) -> None:
     """Read an IDTA 02021 submodel (JSON) or one motion section (CSV: 'idShort [unit]'
     headers, ';' between fields) into a design file, with its motion as a cam table
-    FILE-motion.csv beside it. What the design cannot carry is printed as notes (and kept
-    as comments at the top of the design).
+    FILE-motion.csv beside it (FILE-motion-1.csv, -2... for several moves between rests;
+    a rest is a dwell). What the design cannot carry is printed as notes (and kept as
+    comments at the top of the design).
 
     Example:
 
@@ -66,6 +67,7 @@ def read(
 
     cam = output.with_name(f"{output.stem}-motion.csv")
     check_outputs([output, cam], [source], "--output")
+    inputs: list[Path] = [source]
     text = read_user_text(source, what="IDTA 02021")
     if source.suffix.lower() == ".csv":
         result = read_csv_design(text, source=source.name, cam_file=cam.name)
@@ -83,6 +85,7 @@ def read(
         def read_file(path: str) -> str:
             candidates = [folder / path.lstrip("/"), folder / Path(path).name]
             found = next((c for c in candidates if c.is_file()), candidates[0])
+            inputs.append(found)
             return read_user_text(found, what="motion CSV")
 
         result = read_submodel(data, source=source.name, read_file=read_file,
@@ -94,7 +97,10 @@ def read(
               "Trains) by 'sizer idta read'"]
     header += [f"{NOTE} {note}" for note in result.notes]
     body = yaml.safe_dump(design, sort_keys=False, allow_unicode=True)
-    write_text_atomically(cam, result.cam_csv)
+    cams = [(output.with_name(name), text) for name, text in result.cams]
+    check_outputs([output, *(path for path, _ in cams)], inputs, "--output")
+    for path, text in cams:
+        write_text_atomically(path, text)
     write_text_atomically(output, "\n".join(header) + "\n" + body)
     for note in result.notes:
         _note(note)
@@ -113,8 +119,9 @@ def write(
                                     "<design file name>).")] = None,
 ) -> None:
     """Size DESIGN and write the chosen pair (the top-ranked feasible one, or --motor's) as
-    the IDTA 02021 submodel with its SizingResult (AAS V3.0 JSON). Exit 1 when no pair is
-    feasible (the top-ranked one is written, with its reason as an Error message).
+    the IDTA 02021 submodel with its SizingResult (AAS V3.0 JSON; FILE.aasx: the same
+    submodel in an AASX package, with the 'aas' extra). Exit 1 when no pair is feasible
+    (the top-ranked one is written, with its reason as an Error message).
 
     Example:
 
@@ -129,9 +136,16 @@ def write(
     from sizer.errors import UserError
     from sizer.idta.write import pair_from_record, sizing_result_submodel
     from sizer.io.files import read_user_text
-    from sizer.report.output import write_text_atomically
+    from sizer.report.output import write_bytes_atomically, write_text_atomically
 
     check_output(output, [design])
+    aasx = output.suffix.lower() == ".aasx"
+    if aasx:
+        from sizer.idta.aasx import INSTALL_HINT, aasx_available
+
+        if not aasx_available():
+            raise UserError(f"an .aasx output needs basyx-python-sdk: {INSTALL_HINT} (or "
+                            "write the JSON: -o FILE.json)", field="--output")
     with sizing_progress(f"sizing {design.name}", unit="laws") as progress:
         result = api.size(str(design), progress=progress)
     rows = list(zip(result.results, result.records(), strict=True))
@@ -150,12 +164,20 @@ def write(
     # the design file's date (SOURCE_DATE_EPOCH where set), not the clock's: the same
     # input writes the same bytes
     stamp = float(os.environ.get("SOURCE_DATE_EPOCH") or design.stat().st_mtime)
-    now = datetime.fromtimestamp(int(stamp), UTC).isoformat().replace("+00:00", "Z")
+    date = datetime.fromtimestamp(int(stamp), UTC)
+    now = date.isoformat().replace("+00:00", "Z")
     submodel = sizing_result_submodel(
         pair, submodel_id=submodel_id or f"urn:sizer:idta02021:{design.name}",
         project=result.design_name or design.stem, tool=f"sizer {__version__}",
         created=now)
-    write_text_atomically(output, json.dumps(submodel, indent=2, ensure_ascii=False) + "\n")
+    if aasx:
+        from sizer.idta.aasx import aasx_package
+
+        write_bytes_atomically(output, aasx_package(submodel, created=date,
+                                                    creator=f"sizer {__version__}"))
+    else:
+        write_text_atomically(output, json.dumps(submodel, indent=2, ensure_ascii=False)
+                              + "\n")
     if not pair.feasible:
         typer.echo(f"no feasible pair: wrote {record['motor']} ({pair.reason})", err=True)
         raise typer.Exit(int(ExitCode.CHECK_FAILED))

@@ -1,8 +1,11 @@
 """IDTA 02021 ApplicationRequirements -> a sizer design (a mapping, as a design file holds it).
 
 The motion sections' CSV files (``idShort [unit]`` headers, ``;`` between fields, ``.`` as the
-decimal point) become one cam table over time (sizer's CSV: ``t [s],q [rad]``), the section's
-loads the design's ``load``, the TransformationMechanism its ``transmission``. Whatever has
+decimal point, read by sizer.io.csv_rows) become the design's motion: each move between rests a
+cam table over time (sizer's CSV: ``t [s],q [rad]``), each rest (a span where the position
+holds, and the rest to the cycle time) a dwell; a motion without a rest one periodic cam table.
+The section's loads become the design's ``load``, the TransformationMechanism its
+``transmission``. Whatever has
 no place in a sizer design is named in :attr:`IdtaDesign.notes`, never dropped silently.
 
 The template's defects are tolerated: every quantity is read as a real number whatever its
@@ -29,11 +32,14 @@ from sizer.idta.template import (
     TEMPLATE,
     semantic_id,
 )
+from sizer.io.csv_rows import NUMBER, csv_records
 from sizer.units import to_si
 
 Element = Mapping[str, Any]
 
-"""Time units of a motion file that the cycle (UsageProfile.CyclesPerMinute) can use."""
+MOTION_DELIMITER = ";"
+"""The separator of a motion section file (the template's rule, with '.' as the decimal
+point)."""
 DEFAULT_UNITS = {"Time": "s", "AngularPosition": "rad", "Position": "m"}
 """The template's units (its concept descriptions) where a header gives none."""
 POSITION_COLUMNS = {"AngularPosition": "rotary", "Position": "linear"}
@@ -57,40 +63,51 @@ class MotionTable:
 
 @dataclass(frozen=True)
 class IdtaDesign:
-    """What an IDTA 02021 file (or one motion CSV) becomes: the design mapping (its one law a
-    ``cam_table`` whose ``file`` is the ``cam_file`` given to the reader), the cam table's
-    CSV text, and the notes on what the design does not carry or had to assume."""
+    """What an IDTA 02021 file (or one motion CSV) becomes: the design mapping, the cam
+    tables its laws name (``cams``: file name, CSV text; one file, the ``cam_file`` given to
+    the reader, or one per move, ``cam_file``'s stem with ``-1``, ``-2``...) and the notes on
+    what the design does not carry or had to assume."""
 
     design: dict[str, Any]
-    cam_csv: str
+    cams: tuple[tuple[str, str], ...]
     notes: tuple[str, ...] = field(default=())
+
+    @property
+    def cam_csv(self) -> str:
+        """The CSV text of the first (usually the only) cam table."""
+        return self.cams[0][1]
 
 
 def _number(text: str, where: str, source: str, line: int | None = None) -> float:
-    """A real number written with '.' (an integer too: the template's xs:long)."""
+    """A real number written with '.' (an integer too: the template's xs:long), in the form
+    every sizer CSV reads (sizer.io.csv_rows.NUMBER: no ``nan``, ``inf`` or ``1_000``)."""
     cleaned = text.strip()
-    try:
-        value = float(cleaned)
-    except ValueError:
+    if NUMBER.match(cleaned) is None:
         hint = " (the decimal point is '.')" if "," in cleaned else ""
         raise UserError(f"{where}: {cleaned!r} is not a number{hint}", file=source,
-                        line=line) from None
-    if not math.isfinite(value):
-        raise UserError(f"{where}: {cleaned!r} is not a finite number", file=source, line=line)
-    return value
+                        line=line)
+    return float(cleaned)
+
+
+def _cells(record: list[str]) -> list[str]:
+    """A record's cells without the empty one a trailing ';' leaves."""
+    return record[:-1] if len(record) > 1 and not record[-1].strip() else record
 
 
 def read_motion_csv(text: str, *, source: str) -> MotionTable:
     """A motion section file: the header ``Time [s];AngularPosition [rad];...`` (or
-    ``Position [m]``), then one row of numbers per sample; times must increase."""
-    rows = [(number, line) for number, line in enumerate(text.splitlines(), 1)
-            if line.strip() and not line.lstrip().startswith("#")]
+    ``Position [m]``), then one row of numbers per sample; times must increase. Records are
+    read by sizer's CSV reader (sizer.io.csv_rows) with the template's separator ``;``
+    (not sniffed: a ',' is never a separator nor a decimal comma here)."""
+    rows = [(number, _cells(cells)) for number, cells in
+            csv_records(text, source, MOTION_DELIMITER, comment="#")
+            if any(cell.strip() for cell in cells)]
     if not rows:
         raise UserError("the motion file is empty", file=source)
     header_line, header = rows[0]
     names: list[str] = []
     units: list[str | None] = []
-    for cell in header.rstrip().rstrip(";").split(";"):
+    for cell in header:
         match = _HEADER.match(cell)
         if match is None:
             raise UserError(f"header cell {cell.strip()!r} is not 'idShort [unit]'",
@@ -105,8 +122,7 @@ def read_motion_csv(text: str, *, source: str) -> MotionTable:
                         "'Position' (linear)", file=source, line=header_line)
     position = positions[0]
     columns: list[list[float]] = [[] for _ in names]
-    for number, line in rows[1:]:
-        cells = line.rstrip().rstrip(";").split(";")
+    for number, cells in rows[1:]:
         if len(cells) != len(names):
             raise UserError(f"{len(cells)} fields where the header has {len(names)}",
                             file=source, line=number)
@@ -252,34 +268,182 @@ def _join(tables: Sequence[MotionTable], names: Sequence[str], source: str) -> M
                        tuple(n for t in tables for n in t.notes))
 
 
-def _with_rest(table: MotionTable, cycle: float, reader: _Reader) -> MotionTable:
-    """The table held at its last position until ``cycle`` (in the table's time unit), at the
-    table's last sample interval: the cycle's rest, inside the cam table."""
+def _with_rest(table: MotionTable, rest: float) -> MotionTable:
+    """The table held at its last position for ``rest`` more (in the table's time unit), at
+    the table's last sample interval: the cycle's rest inside a periodic cam table."""
     end = table.times[-1]
-    duration = end - table.times[0]
-    if cycle <= duration * (1 + 1e-9):
-        if cycle < duration * (1 - 1e-9):
-            reader.notes.append(f"UsageProfile.CyclesPerMinute: the cycle ({cycle:g} "
-                                f"{table.units['time']}) is shorter than the motion "
-                                f"({duration:g}): ignored")
-        return table
     step = table.times[-1] - table.times[-2]
-    count = max(1, math.ceil((cycle - duration) / step - 1e-9))
-    rest = [end + (cycle - duration) * k / count for k in range(1, count + 1)]
-    reader.notes.append(f"UsageProfile.CyclesPerMinute: the cycle is {cycle:g} "
-                        f"{table.units['time']}: the table holds its last position for the "
-                        f"{cycle - duration:g} {table.units['time']} of rest")
-    return MotionTable(table.axis, (*table.times, *rest),
+    count = max(1, math.ceil(rest / step - 1e-9))
+    times = [end + rest * k / count for k in range(1, count + 1)]
+    return MotionTable(table.axis, (*table.times, *times),
                        (*table.positions, *[table.positions[-1]] * count), table.units,
                        table.notes)
 
 
+def _cycle_rest(table: MotionTable, cycle: float | None, notes: list[str]) -> float:
+    """The rest after the motion's last sample that the cycle time ``cycle`` (the table's
+    time unit) leaves: 0 without a cycle time, or one shorter than the motion (a note)."""
+    duration = table.times[-1] - table.times[0]
+    if cycle is None or cycle <= duration * (1 + 1e-9):
+        if cycle is not None and cycle < duration * (1 - 1e-9):
+            notes.append(f"UsageProfile.CyclesPerMinute: the cycle ({cycle:g} "
+                         f"{table.units['time']}) is shorter than the motion ({duration:g}): "
+                         "ignored")
+        return 0.0
+    return cycle - duration
+
+
+def _rests(positions: Sequence[float]) -> list[tuple[int, int]]:
+    """The rests of a sample sequence: maximal runs i..j (j > i) of samples at the very same
+    position (as written: a hold is written as the same number)."""
+    rests = []
+    i = 0
+    while i < len(positions) - 1:
+        j = i
+        while j + 1 < len(positions) and positions[j + 1] == positions[i]:
+            j += 1
+        if j > i:
+            rests.append((i, j))
+        i = max(j, i + 1)
+    return rests
+
+
+@dataclass(frozen=True)
+class _Span:
+    kind: str
+    """'move' or 'rest'."""
+    times: tuple[float, ...]
+    positions: tuple[float, ...]
+
+    @property
+    def duration(self) -> float:
+        return self.times[-1] - self.times[0]
+
+
+def _cycle_spans(table: MotionTable, rest_after: float, notes: list[str]) -> list[_Span] | None:
+    """The machine cycle of ``table`` (repeated, with ``rest_after`` at its end) as moves
+    and rests, starting with the move that follows a rest: None without a rest. The cycle
+    is read around its end: a rest before the first move is the end of the last one, and a
+    motion from the last rest to the table's end goes on into the table's start."""
+    times, positions = list(table.times), list(table.positions)
+    if rest_after > 0:
+        times.append(times[-1] + rest_after)
+        positions.append(positions[-1])
+    rests = _rests(positions)
+    if not rests:
+        return None
+    period = times[-1] - times[0]
+    unit = table.units["time"]
+    if rests[0][0] == 0:
+        start = rests[0][1]  # begin after the leading rest, which ends the cycle
+        if rests[0][1] < len(positions) - 1:
+            notes.append(f"the motion rests {times[start] - times[0]:g} {unit} before its first "
+                         "move: read as the end of the cycle's last rest")
+    elif rests[-1][1] == len(positions) - 1:
+        start = 0
+    else:
+        start = rests[0][1]
+        tail = times[-1] - times[rests[-1][1]]
+        notes.append(f"the motion from its last rest to its end ({tail:g} {unit}) goes on "
+                     "into its start: one move across the cycle's end")
+    # the samples before start, after the end: times one period on, positions one net
+    # displacement on ((q - q_first) + q_last keeps a rest's equal numbers equal)
+    first, last = positions[0], positions[-1]
+    turned_t = times[start:] + [t + period for t in times[1:start + 1]]
+    turned_q = positions[start:] + [(q - first) + last for q in positions[1:start + 1]]
+    spans = []
+    edges = [0]
+    for i, j in _rests(turned_q):
+        edges += [i, j]
+    edges.append(len(turned_q) - 1)
+    for k in range(len(edges) - 1):
+        i, j = edges[k], edges[k + 1]
+        if j > i:
+            spans.append(_Span("rest" if k % 2 else "move", tuple(turned_t[i:j + 1]),
+                               tuple(turned_q[i:j + 1])))
+    return spans
+
+
 def cam_csv(table: MotionTable, source: str) -> str:
     """The table as sizer's cam table CSV (``t [s],q [rad]``), numbers written exactly."""
-    lines = [f"# motion of {source} ({TEMPLATE}), one machine cycle",
+    lines = [f"# motion of {source} ({TEMPLATE})",
              f"t [{table.units['time']}],q [{table.units['position']}]"]
     lines += [f"{t!r},{q!r}" for t, q in zip(table.times, table.positions, strict=True)]
     return "\n".join(lines) + "\n"
+
+
+def _span_text(value: float, unit: str) -> str:
+    """A duration or displacement of the design, the difference of two numbers of the file
+    to 15 significant digits (``0.2 s``, not the ``0.19999999999999996`` of 0.6 - 0.4)."""
+    return f"{float(f'{value:.15g}')!r} {unit}"
+
+
+def _cam_name(cam_file: str, k: int, count: int) -> str:
+    if count == 1:
+        return cam_file
+    stem, dot, suffix = cam_file.rpartition(".")
+    return f"{stem}-{k}.{suffix}" if dot else f"{cam_file}-{k}"
+
+
+def _motion_design(table: MotionTable, cycle: float | None, source: str, cam_file: str
+                   ) -> tuple[dict[str, Any], tuple[tuple[str, str], ...], list[str]]:
+    """The design's motion fields (``task`` and ``laws``, or ``cycle``), its cam tables and
+    notes. A rest of the motion (samples holding a position, and the rest to the cycle time)
+    is a dwell: one move gives ``task: {duration, dwell}`` with its cam table, several
+    moves a ``cycle`` of moves (each its own cam table) and dwells. Without a rest the table
+    is one periodic cam table; likewise when a move between rests ends where it started (a
+    move of displacement 0 is no move in a sizer cycle)."""
+    notes: list[str] = []
+    rest_after = _cycle_rest(table, cycle, notes)
+    unit, length = table.units["time"], table.units["position"]
+    spans = _cycle_spans(table, rest_after, notes)
+    if spans is not None and not any(s.kind == "move" for s in spans):
+        raise UserError("the motion holds one position throughout: no move to size",
+                        file=source)
+    moves = [s for s in spans or () if s.kind == "move"]
+    closed = [m for m in moves if abs(m.positions[-1] - m.positions[0])
+              <= 1e-9 * (max(m.positions) - min(m.positions))]
+    if spans is None or closed:
+        if closed:
+            notes.append(f"a move from {closed[0].times[0]:g} {unit} returns to its start "
+                         "(a move of displacement 0 is not a move of a sizer cycle): its rests "
+                         "are kept in one periodic cam table")
+        if rest_after > 0:
+            notes.append(f"UsageProfile.CyclesPerMinute: the cycle is {cycle:g} {unit}: the "
+                         f"table holds its last position for the {rest_after:g} {unit} of rest")
+            table = _with_rest(table, rest_after)
+        task = {"duration": _span_text(table.times[-1] - table.times[0], unit),
+                "dwell": f"0 {unit}"}
+        return ({"task": task, "laws": [{"kind": "cam_table", "file": cam_file,
+                                         "periodic": True}]},
+                ((cam_file, cam_csv(table, source)),), notes)
+    if rest_after > 0:
+        notes.append(f"UsageProfile.CyclesPerMinute: the cycle is {cycle:g} {unit}: "
+                     f"{rest_after:g} {unit} of rest after the motion")
+    names = [_cam_name(cam_file, k, len(moves)) for k in range(1, len(moves) + 1)]
+    cams = tuple((name, cam_csv(MotionTable(table.axis, move.times, move.positions,
+                                            table.units), source))
+                 for name, move in zip(names, moves, strict=True))
+    rests = [s for s in spans if s.kind == "rest"]
+    notes.append(f"the motion's rests ({', '.join(f'{r.duration:g}' for r in rests)} {unit}) "
+                 "are the design's dwell" + ("s" if len(rests) > 1 else "")
+                 + (f", its {len(moves)} moves a cycle" if len(moves) > 1 else ""))
+    if len(moves) == 1:
+        move = moves[0]
+        dwell = sum(r.duration for r in rests)
+        task = {"duration": _span_text(move.duration, unit), "dwell": _span_text(dwell, unit)}
+        return {"task": task, "laws": [{"kind": "cam_table", "file": cam_file}]}, cams, notes
+    segments: list[dict[str, Any]] = []
+    names_of = iter(names)
+    for span in spans:
+        if span.kind == "move":
+            segments.append({"move": {
+                "displacement": _span_text(span.positions[-1] - span.positions[0], length),
+                "duration": _span_text(span.duration, unit),
+                "law": {"kind": "cam_table", "file": next(names_of)}}})
+        else:
+            segments.append({"dwell": {"duration": _span_text(span.duration, unit)}})
+    return {"cycle": {"segments": segments}}, cams, notes
 
 
 def _efficiency(value: float | None, path: str, reader: _Reader) -> float | None:
@@ -457,6 +621,7 @@ def read_submodel(data: Mapping[str, Any], *, source: str, read_file: Callable[[
     table = _join(tables, names, source)
     usage = _one(requirements, "UsageProfile")
     cycles = reader.number(usage, "CyclesPerMinute", "ApplicationRequirements.UsageProfile")
+    cycle = None
     if cycles is not None and cycles > 0:
         try:  # the seconds of one unit of the motion's time column (sizer.units)
             scale = to_si(f"1 {table.units['time']}", "time")
@@ -464,7 +629,9 @@ def read_submodel(data: Mapping[str, Any], *, source: str, read_file: Callable[[
             reader.notes.append("UsageProfile.CyclesPerMinute not used: the motion's time unit "
                                 f"{table.units['time']!r} is not a time")
         else:
-            table = _with_rest(table, 60.0 / cycles / scale, reader)
+            cycle = 60.0 / cycles / scale
+    motion, cams, motion_notes = _motion_design(table, cycle, source, cam_file)
+    reader.notes.extend(motion_notes)
     load = _load(axis, sections, names, reader)
     stage, extra = _transmission(_one(root, "TransformationMechanism"), axis, reader)
     for key, value in extra.items():
@@ -473,21 +640,19 @@ def read_submodel(data: Mapping[str, Any], *, source: str, read_file: Callable[[
     pattern = _one(requirements, "MotionPattern")
     name_of = (_value(info, "SizingProjectName") or _value(pattern, "MotionPatternName")
                or source)
-    design: dict[str, Any] = {
-        "name": name_of,
-        "task": {"duration": f"{table.times[-1] - table.times[0]!r} {table.units['time']}",
-                 "dwell": f"0 {table.units['time']}"},
-        "load": load,
-    }
+    design: dict[str, Any] = {"name": name_of}
+    design.update((k, v) for k, v in motion.items() if k != "laws")
+    design["load"] = load
     if stage is not None:
         design["transmission"] = stage
-    design["laws"] = [{"kind": "cam_table", "file": cam_file, "periodic": True}]
+    if "laws" in motion:
+        design["laws"] = motion["laws"]
     for other in ("Environmental", "OverallSystemRequirements"):
         if _one(requirements, other) is not None and any(
                 c.get("value") not in (None, "", []) for c in _children(_one(requirements, other)
                                                                       or {})):
             reader.notes.append(f"ApplicationRequirements.{other}: not used by sizer")
-    return IdtaDesign(design, cam_csv(table, source), (*table.notes, *reader.notes))
+    return IdtaDesign(design, cams, (*table.notes, *reader.notes))
 
 
 def _value(element: Element | None, name: str) -> str | None:
@@ -500,14 +665,13 @@ def read_csv_design(text: str, *, source: str, cam_file: str) -> IdtaDesign:
     """The design of one motion CSV alone: its law, and a load of 0 to be filled in."""
     table = read_motion_csv(text, source=source)
     key, unit = ("inertia", "kg*m^2") if table.axis == "rotary" else ("mass", "kg")
-    notes = [*table.notes, f"a motion file alone: load.{key} 0, fill in the load"]
+    motion, cams, motion_notes = _motion_design(table, None, source, cam_file)
+    notes = [*table.notes, *motion_notes, f"a motion file alone: load.{key} 0, fill in the load"]
     if table.axis == "linear":
         notes.append("a linear motion needs a transmission: fill in 'transmission'")
-    design: dict[str, Any] = {
-        "name": source,
-        "task": {"duration": f"{table.times[-1] - table.times[0]!r} {table.units['time']}",
-                 "dwell": f"0 {table.units['time']}"},
-        "load": {key: f"0 {unit}"},
-        "laws": [{"kind": "cam_table", "file": cam_file, "periodic": True}],
-    }
-    return IdtaDesign(design, cam_csv(table, source), tuple(notes))
+    design: dict[str, Any] = {"name": source}
+    design.update((k, v) for k, v in motion.items() if k != "laws")
+    design["load"] = {key: f"0 {unit}"}
+    if "laws" in motion:
+        design["laws"] = motion["laws"]
+    return IdtaDesign(design, cams, tuple(notes))
