@@ -8,14 +8,14 @@ continuous region.
 
 __version__ = "0.1.0"
 
-__all__ = ["__version__", "check", "load", "load_machine", "size", "size_machine"]
+__all__ = ["__version__", "check", "load", "load_machine", "plan", "size", "size_machine"]
 
 
 def __getattr__(name: str):
-    """``sizer.size``, ``sizer.check``, ``sizer.load``, ``sizer.size_machine``,
-    ``sizer.load_machine`` (sizer.api), imported on first use so that ``import sizer``
-    stays light."""
-    if name in ("size", "check", "load", "size_machine", "load_machine"):
+    """``sizer.size``, ``sizer.check``, ``sizer.plan``, ``sizer.load``,
+    ``sizer.size_machine``, ``sizer.load_machine`` (sizer.api), imported on first use so
+    that ``import sizer`` stays light."""
+    if name in ("size", "check", "plan", "load", "size_machine", "load_machine"):
         from sizer import api
 
         return getattr(api, name)

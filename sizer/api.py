@@ -33,6 +33,7 @@ if TYPE_CHECKING:
     from sizer.laws.choice import LawChoice
     from sizer.model.machine import Machine
     from sizer.sizing.machine import MachineResult
+    from sizer.sizing.planning import PlanningResult
     from sizer.sizing.results import CandidateResult, SizingResult
 
 DesignLike = str | PathLike[str] | Mapping[str, Any] | Design
@@ -163,6 +164,17 @@ def check(design: DesignLike, *, catalogs: Iterable[CatalogRef] = (),
     import sizer.sizing as sizing
 
     return sizing.check_design(override(load(design, catalogs), envelope=envelope))
+
+
+def plan(design: DesignLike, *, catalogs: Iterable[CatalogRef] = (),
+         laws: Sequence[LawChoice | str] | None = None) -> PlanningResult:
+    """Each law's shortest duration (or, for a given duration, the book's scaling factor
+    lambda, eq. 5.4) under the load's own limits, with no motor (``sizer size`` of a
+    design with ``motors: []``; sizer.sizing.planning, docs/planning.md). The design's
+    motors, if any, are not used."""
+    from sizer.sizing.planning import plan as plan_laws
+
+    return plan_laws(override(load(design, catalogs), laws=laws))
 
 
 def assumptions(design: Design) -> tuple[str, ...]:

@@ -299,3 +299,19 @@ def test_a_fixed_move_shorter_than_its_t_min_fails_the_minimized_cycle() -> None
                     limits=Limits(max_speed=4.0), cycle=cycle)  # T_min = 0.5 s: just met
     row = plan(design).plans[0]
     assert row.feasible and row.T_min == pytest.approx(0.5 + 0.5, rel=1e-12)
+
+
+def test_the_python_api_plans_as_the_command(tmp_path: Path) -> None:
+    """sizer.plan gives the laws' T_min of Table 5.1 (poly5: max(C_v h/v, sqrt(C_a h/a))
+    with C_v = 15/8, C_a = 10/sqrt(3), h = 40, v = 30, a = 80)."""
+    import sizer
+
+    design = tmp_path / "plan.yaml"
+    design.write_text("name: api plan\ntask: {displacement: 40 rad, duration: minimize}\n"
+                      "load: {inertia: 1 kg*m^2}\nlaws: [poly3, poly5]\nmotors: []\n"
+                      "limits: {max_speed: 30 rad/s, max_acceleration: 80 rad/s^2}\n")
+    result = sizer.plan(design, laws=["poly5"])
+    assert [p.law for p in result.plans] == ["poly5"]
+    expected = max(15 / 8 * 40 / 30, math.sqrt(10 / math.sqrt(3) * 40 / 80))
+    assert result.plans[0].T_min == pytest.approx(expected, rel=1e-12)
+    assert result.plans[0].binding == "speed"
