@@ -26,6 +26,9 @@ class Piece:
     count chosen from it. ``intervals``, when set, is the most uniform sub-intervals a
     scan or a grid of this piece needs (a law of many short polynomial pieces, a cam
     table, shares a fixed budget among them: sizer.laws.data_law); None: the caller's.
+    ``form``, when set, is the piece's exact closed form (a polynomial plus sines, as
+    :func:`trig_poly_piece` builds it): what an export that writes coefficients reads
+    (sizer.export.coefficient_segments); nothing evaluates through it.
     """
 
     start: float
@@ -33,11 +36,30 @@ class Piece:
     evaluate: PieceFunction
     degree: int | None = None
     intervals: int | None = None
+    form: TrigPolyForm | None = None
 
     def clamp(self, tau: np.ndarray) -> np.ndarray:
         """tau moved into [start, end]: a point one ulp outside reads the end's value."""
         # np.minimum(np.maximum()) is np.clip's result without its ~10 us of overhead
         return np.minimum(np.maximum(tau, self.start), self.end)
+
+
+@dataclass(frozen=True)
+class TrigPolyForm:
+    """q(tau) = sum_k poly[k] * (tau - origin)^k + sum A * sin(w * tau + phi) for
+    (A, w, phi) in ``sines``: a piece's exact closed form."""
+
+    poly: tuple[float, ...]
+    origin: float = 0.0
+    sines: tuple[tuple[float, float, float], ...] = ()
+
+    def mirrored(self) -> TrigPolyForm:
+        """The form of 1 - q(1 - tau): (1 - tau - o)^k = (-1)^k (tau - (1 - o))^k, and
+        -A sin(w (1 - tau) + phi) = A sin(w tau - w - phi)."""
+        poly = tuple((1.0 if k == 0 else 0.0) - (-1.0) ** k * c
+                     for k, c in enumerate(self.poly))
+        return TrigPolyForm(poly, 1.0 - self.origin,
+                            tuple((a, w, -w - phi) for a, w, phi in self.sines))
 
 
 class LawShape(Protocol):
@@ -77,7 +99,8 @@ def mirrored(pieces: Sequence[Piece]) -> list[Piece]:
                 return 1.0 - value
             return -((-1.0) ** order) * value
 
-        return Piece(start, end, evaluate, piece.degree, piece.intervals)
+        form = None if piece.form is None else piece.form.mirrored()
+        return Piece(start, end, evaluate, piece.degree, piece.intervals, form)
 
     return list(pieces) + [reflect(p) for p in reversed(pieces)]
 
@@ -112,7 +135,9 @@ def trig_poly_piece(
             out = out + scale * np.sin(omega * tau + phase + quarter)
         return out
 
-    return Piece(start, end, evaluate, None if sines else len(coef) - 1)
+    form = TrigPolyForm(tuple(float(c) for c in coef), float(origin),
+                        tuple((float(a), float(w), float(p)) for a, w, p in sines))
+    return Piece(start, end, evaluate, None if sines else len(coef) - 1, form=form)
 
 
 def _derivative(coef: list[float]) -> list[float]:
