@@ -24,6 +24,9 @@ from sizer.laws.open_shaped import is_open_shaped
 _PART = re.compile(r"([^.\[\]]+)|\[(\d+)\]")
 
 
+FILE_KINDS = ("cam_table", "cam_segments")
+"""The data laws read from a file (``file:``, relative to the design's folder)."""
+
 def law_paths(data: Any) -> Iterator[tuple[Any, ...]]:
     """The paths of every law entry of a design's data that is a mapping."""
     if not isinstance(data, dict):
@@ -55,7 +58,7 @@ def canonical_data_laws(source: YamlSource, folder: Path) -> None:
     for path in list(law_paths(source.data)):
         parent = _at(source.data, path[:-1])
         fields = dict(parent[path[-1]])
-        if fields.get("kind") == "cam_table" and isinstance(fields.get("file"), str):
+        if fields.get("kind") in FILE_KINDS and isinstance(fields.get("file"), str):
             fields["file"] = cam_table_file(fields["file"], folder)
         try:
             text = data_spec_text(fields)

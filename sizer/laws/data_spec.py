@@ -50,6 +50,8 @@ DATA_LAW_KINDS: Mapping[str, DataKind] = {k.name: k for k in (
              "Trapezoidal velocity through a sequence of points (sec. 3.2.4)"),
     DataKind("cam_table", "sizer.io.cam_table_law:build_cam_table_law",
              "Cam table: samples fitted by a spline"),
+    DataKind("cam_segments", "sizer.io.segment_table_law:build_cam_segments_law",
+             "Coefficient segments: polynomial of degree <= 6 plus a sine, per segment"),
     DataKind("shaped", "sizer.vibration.shaped_law:build_shaped",
              "A law convolved with an input shaper (sec. 7.4.2)"),
 )}
