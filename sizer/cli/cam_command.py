@@ -76,7 +76,8 @@ def cam(
     whole_cycle: Annotated[bool, typer.Option(
         "--cycle",
         help="The task's whole machine cycle: the move, its dwell, and with 'return: "
-             "true' the move back and its dwell (default: the move alone).")] = False,
+             "true' the move back and its dwell (default: the move alone). A design with "
+             "a `cycle:` of segments always exports its whole cycle.")] = False,
     certificate: Annotated[Path | None, typer.Option(
         "--certificate", dir_okay=False, metavar="FILE.json",
         help="Also write the certificate as JSON.", show_default=False)] = None,
@@ -85,7 +86,9 @@ def cam(
 
     The top-ranked feasible pair's move (or the --motor/--law pair, or the design's
     `check:` pair), or a law alone with --displacement and --duration, as a point table
-    over time or over a master range; --cycle: the task's whole machine cycle. The number
+    over time or over a master range; --cycle: the task's whole machine cycle. A design
+    with a `cycle:` of segments exports its whole sized cycle (each segment at the
+    duration the sizing used; --master-range spans the cycle). The number
     of points comes from --tolerance (or --points), clipped to the target's limit. The
     certificate re-evaluates the table as the controller interpolates it (linearly) and
     gives the true largest position and velocity errors against the law; its
@@ -129,12 +132,19 @@ def cam(
     else:
         h, T, linear, the_law, pair, task = _sized_move(Path(source), motor, law, catalog,
                                                         [output, certificate])
+    profile = None
+    if pair is not None and task is not None and getattr(task, "cycle", None) is not None:
+        # a cycle of segments (task is its Design): always the whole cycle (--cycle implied)
+        from sizer.cli.cam_cycle import sized_cycle
+
+        profile = sized_cycle(task, the_law, T, span_master, Path(source))
+        whole_cycle = True
     if target.interpolation == "segment-exact":  # the law itself (twincat-mc3)
         from sizer.cli.cam_segment_exact import export_segments
 
         export_segments(target.name, the_law, h, T, linear, span_master,
                         task if whole_cycle else None, output, certificate, pair,
-                        tolerance, points)
+                        tolerance, points, profile)
         return
     if target.interpolation == "quintic_hermite":  # XYVA: sizer.cli.cam_smooth
         from sizer.cli.cam_smooth import export_smooth
@@ -142,11 +152,15 @@ def cam(
         return export_smooth(target, the_law, h, T, linear, span_master, tolerance, points,
                              task if whole_cycle else None, output, certificate, pair,
                              None if pair is None else Path(source), catalog,
-                             DEFAULT_TOLERANCE)
+                             DEFAULT_TOLERANCE, profile)
     table = _table(the_law, h, T, linear, span_master, target, tolerance, points,
-                   task if whole_cycle else None)
+                   task if whole_cycle else None, profile)
     write_text_atomically(output, target.write(table), "--output")
     record = certificate_record(table, target, output, pair, duration=T)
+    if profile is not None:
+        from sizer.cli.cam_cycle import with_cycle
+
+        record = with_cycle(record, profile, T)
     typer.echo("\n".join(printable(line) for line in certificate_text(record)))
     if certificate is not None:
         write_text_atomically(certificate, json.dumps(record, indent=2) + "\n",
@@ -204,7 +218,9 @@ def _law_alone(spec: str, output: Path, certificate: Path | None) -> MotionLaw:
 def _sized_move(design: Path, motor: str | None, law: str | None,
                 catalog: list[str] | None, outputs: list[Path | None]
                 ) -> tuple[float, float, bool, MotionLaw, Any, Any]:
-    """(h, T, linear, law, result, task) of the design's pair to export."""
+    """(h, T, linear, law, result, task) of the design's pair to export; for a cycle of
+    segments task is the Design itself (its ``cycle`` set) and T the cycle time the
+    result reports."""
     from sizer.cli.catalog_option import load_design_file
     from sizer.cli.options import check_law_specs
     from sizer.cli.output_guard import check_output
@@ -218,9 +234,10 @@ def _sized_move(design: Path, motor: str | None, law: str | None,
     loaded = load_design_file(design, catalog)
     for path, field in zip(outputs, ("--output", "--certificate"), strict=True):
         check_output(path, loaded.files, field=field)
-    if loaded.cycle is not None:
-        raise UserError("a cycle of segments is not exported yet (one move only): export "
-                        "a law alone with SPEC --displacement H --duration T",
+    if loaded.cycle is not None and loaded.transmission.linkage is not None:
+        raise UserError("a cycle of segments through a linkage is not exported: its moves' "
+                        "laws are at the linkage's output, not at the motor; export a law "
+                        "alone with SPEC --displacement H --duration T",
                         file=str(design), field="cycle")
     try:
         result = plot_pairs(loaded, motor, [law] if law else ())[0]
@@ -231,18 +248,25 @@ def _sized_move(design: Path, motor: str | None, law: str | None,
     if result.duration is None:
         raise UserError(f"{result.motor} with {law_label(result.spec)} has no feasible "
                         f"duration ({result.reason}): no motion to export", file=str(design))
+    if loaded.cycle is not None:
+        cycle = loaded.cycle
+        return (max((s.displacement for s in cycle.segments), key=abs), result.duration,
+                cycle.linear,
+                result.law_object, result, loaded)
     task = loaded.task
     return task.displacement, result.duration, task.linear, result.law_object, result, task
 
 
 def _table(law: MotionLaw, h: float, T: float, linear: bool, master_range: float | None,
            target: Target, tolerance: float | None, points: int | None,
-           task: Any = None) -> PointTable:
-    """The certified table of the move (or with ``task``, its machine cycle)."""
+           task: Any = None, profile: Any = None) -> PointTable:
+    """The certified table of the move (or with ``task``, its machine cycle; or the
+    ``profile`` given: a cycle of segments)."""
     from sizer.export.profile import move_profile
     from sizer.export.sampling import fewest_points, table_for_tolerance, table_of
 
-    profile = move_profile(law, h, T, linear, master_range, task)
+    if profile is None:
+        profile = move_profile(law, h, T, linear, master_range, task)
     if points is not None:
         fewest = fewest_points(profile, target.per_segment)
         if points < fewest:

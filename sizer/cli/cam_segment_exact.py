@@ -26,8 +26,9 @@ EXACT = "exact (the law the controller names)"
 def export_segments(name: str, law: MotionLaw, h: float, T: float, linear: bool,
                     master_range: float | None, task: Any, output: Path,
                     certificate: Path | None, pair: Any, tolerance: float | None,
-                    points: int | None) -> None:
-    """Write the move (or with ``task``, its machine cycle) as motion functions."""
+                    points: int | None, profile: CamProfile | None = None) -> None:
+    """Write the move (or with ``task``, its machine cycle; or the ``profile`` given, a
+    cycle of segments: sizer.export.cycle_profile) as motion functions."""
     from sizer.export import twincat_mc3
     from sizer.export.profile import move_profile
     from sizer.report.output import write_text_atomically
@@ -36,14 +37,24 @@ def export_segments(name: str, law: MotionLaw, h: float, T: float, linear: bool,
         if given is not None:
             raise UserError(f"{name} writes the law's own segments, not a point table: "
                             f"leave out {option}", field=option)
+    field = "SPEC" if pair is None else "--law"
     try:
-        named = twincat_mc3.named_law(law)
+        if profile is None:
+            named = twincat_mc3.named_law(law)
+            profile = move_profile(law, h, T, linear, master_range, task)
+        else:  # a cycle of segments: each move's own law or the ranked one
+            named = _cycle_named(profile)
+        functions = twincat_mc3.motion_functions(profile)
     except twincat_mc3.UnnamedLawError as error:
-        raise UserError(str(error), field="SPEC" if pair is None else "--law") from None
-    profile = move_profile(law, h, T, linear, master_range, task)
-    functions = twincat_mc3.motion_functions(profile)
+        raise UserError(str(error), field=field) from None
     errors = twincat_mc3.exact_errors(profile, functions)
     record = certificate_record(profile, functions, errors, named, name, output, pair, T)
+    if len(profile.segments) > 1 and _is_segment_cycle(profile):
+        from sizer.cli.cam_cycle import with_cycle
+
+        record = with_cycle(record, profile, T)
+        for s, p in zip(record["segments"], functions, strict=False):
+            s["function_type"] = p.function_type
     lines = certificate_text(record)
     write_text_atomically(output, twincat_mc3.write(functions, ["sizer cam", *lines]),
                           "--output")
@@ -51,6 +62,34 @@ def export_segments(name: str, law: MotionLaw, h: float, T: float, linear: bool,
     if certificate is not None:
         write_text_atomically(certificate, json.dumps(record, indent=2) + "\n",
                               "--certificate")
+
+
+def _is_segment_cycle(profile: CamProfile) -> bool:
+    from sizer.export.cycle_profile import FrozenShape
+
+    return any(isinstance(s.law, FrozenShape) for s in profile.segments)
+
+
+def _cycle_named(profile: CamProfile) -> Any:
+    """What the certificate says of a cycle's function types: the ranked law's if every
+    move is it, else a summary (each segment's type is in its record)."""
+    from sizer.export import twincat_mc3
+
+    types = [twincat_mc3.segment_type(s.law, s.name) for s in profile.segments]  # or refused
+    moves = [t for t, s in zip(types, profile.segments, strict=True) if s.law is not None
+             and t != twincat_mc3.LINEAR]
+    kinds = sorted(set(moves)) or [twincat_mc3.LINEAR]
+    polynomial = all(t in twincat_mc3.POLYNOMIALS.values() for t in moves)
+    basis = ("the only polynomial of its degree 2m+1 with the written end conditions "
+             "(position, SlaveVelocity and, for degree 5 and 7, SlaveAcceleration, for 7 "
+             "SlaveJerk: 2m+2 conditions); a run: Linear of its speed")
+    if not polynomial:
+        named = [twincat_mc3.named_law(s.law) for s in profile.segments
+                 if s.law is not None and twincat_mc3.segment_type(s.law) in
+                 ("Sinusoid", "ModifiedSinusoid")]
+        return twincat_mc3.NamedLaw(", ".join(kinds), "per segment (see segments)",
+                                    basis + "; " + "; ".join(n.basis for n in named), False)
+    return twincat_mc3.NamedLaw(", ".join(kinds), "per segment (see segments)", basis, True)
 
 
 def certificate_record(profile: CamProfile, functions: Any, errors: Any, named: Any,
@@ -70,8 +109,8 @@ def certificate_record(profile: CamProfile, functions: Any, errors: Any, named: 
         "master": {"kind": "time" if profile.over_time else "master position",
                    "span": profile.span, "unit": mu, "move_duration_s": duration},
         "segments": [{"name": s.name, "start": s.start, "span": s.span, "stroke": s.stroke,
-                      "function_type": "Linear" if s.law is None else named.function_type}
-                     for s in profile.segments],
+                      "function_type": p.function_type}
+                     for s, p in zip(profile.segments, functions, strict=False)],
         "points": len(functions),
         "function_type": named.function_type,
         "definition": named.formula,
@@ -125,4 +164,5 @@ def certificate_text(record: dict[str, Any]) -> list[str]:
     if not identification["confirmed"]:
         lines.append("note: the function type's formula is not published by Beckhoff; "
                      "check the expected peaks on the controller")
+    lines += [f"note: {n}" for n in record.get("notes", [])]
     return lines

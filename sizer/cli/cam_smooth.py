@@ -25,6 +25,7 @@ if TYPE_CHECKING:
     from collections.abc import Callable
 
     from sizer.export.hermite_certificate import HermiteTable
+    from sizer.export.profile import CamProfile
     from sizer.export.resized import Resized
     from sizer.export.targets import Target
     from sizer.laws.base import MotionLaw
@@ -35,16 +36,19 @@ def export_smooth(target: Target, law: MotionLaw, h: float, T: float, linear: bo
                   master_range: float | None, tolerance: float | None, points: int | None,
                   task: Any, output: Path, certificate: Path | None, pair: Any,
                   design: Path | None, catalog: list[str] | None,
-                  default_tolerance: float) -> None:
-    """Write the XYVA table of the move (``task``: its machine cycle), print the
-    certificate, write it as JSON, and exit 1 when it says so."""
+                  default_tolerance: float, profile: CamProfile | None = None) -> None:
+    """Write the XYVA table of the move (``task``: its machine cycle; ``profile``: the
+    one given, a cycle of segments), print the certificate, write it as JSON, and exit 1
+    when it says so."""
     table = _table(law, h, T, linear, master_range, target, tolerance, points, task,
-                   default_tolerance)
+                   default_tolerance, profile)
     write = cast("Callable[[Any], str]", target.write)  # a smooth target writes this table
     write_text_atomically(output, write(table), "--output")
     resized = None
     skipped = None
-    if pair is not None and design is not None and task is None:
+    if profile is not None:
+        skipped = CYCLE_NOT_RESIZED
+    elif pair is not None and design is not None and task is None:
         resized = _resized(design, catalog, pair, output)
     elif pair is None:
         skipped = "a law alone: no motor to size"
@@ -52,6 +56,10 @@ def export_smooth(target: Target, law: MotionLaw, h: float, T: float, linear: bo
         skipped = ("--cycle: the table is the whole machine cycle, not the move the motor "
                    "was sized for; export the move alone for its torques")
     record = certificate_record(table, target, output, pair, T, resized, skipped)
+    if profile is not None:
+        from sizer.cli.cam_cycle import with_cycle
+
+        record = with_cycle(record, profile, T)
     typer.echo("\n".join(printable(line) for line in certificate_text(record)))
     if certificate is not None:
         write_text_atomically(certificate, json.dumps(record, indent=2) + "\n",
@@ -70,13 +78,21 @@ def export_smooth(target: Target, law: MotionLaw, h: float, T: float, linear: bo
         raise typer.Exit(ExitCode.CHECK_FAILED)
 
 
+CYCLE_NOT_RESIZED = (
+    "torques not re-sized: sizer reads a written table back as one rest-to-rest cam_table "
+    "law, and a cycle's moves between boundary speeds have no such form for the sizing "
+    "(sizer.laws.boundary_speeds), so no faithful re-sizing of this cycle's table exists; "
+    "the torques are the sizing's of the cycle, not of the table")
+
+
 def _table(law: MotionLaw, h: float, T: float, linear: bool, master_range: float | None,
            target: Target, tolerance: float | None, points: int | None, task: Any,
-           default_tolerance: float) -> HermiteTable:
+           default_tolerance: float, profile: CamProfile | None = None) -> HermiteTable:
     from sizer.export.hermite_certificate import fewest_points, table_for_tolerance, table_of
     from sizer.export.profile import move_profile
 
-    profile = move_profile(law, h, T, linear, master_range, task)
+    if profile is None:
+        profile = move_profile(law, h, T, linear, master_range, task)
     fewest = fewest_points(profile)
     if fewest > target.limit:
         raise UserError(f"the law has {fewest} breakpoints, more than {target.name}'s limit "

@@ -6,6 +6,8 @@ A move is y(x) = y0 + H * q_N((x - x0) / X) for x in [x0, x0 + X]: X is its dura
 its stroke in the file's unit (deg for a rotary axis, mm for a linear one). Its k-th
 derivative with respect to x is H / X^k * q_N^(k), evaluated exactly piece by piece. A
 dwell holds y0. The profile's pieces are the moves' law pieces and the dwells, in order.
+A design's ``cycle:`` of segments is built by sizer.export.cycle_profile: its moves between
+boundary speeds are frozen shapes (not at rest at their ends), its runs linear segments.
 """
 
 from __future__ import annotations
@@ -31,6 +33,9 @@ class CamSegment:
     stroke: float = 0.0
     law: MotionLaw | None = None
     name: str = "move"
+    end_speeds: tuple[float, float] | None = None
+    """dy/dx at both ends as the design gives them (a cycle's boundary speeds in file
+    units, sizer.export.cycle_profile); None: from the law (at rest)."""
 
 
 @dataclass(frozen=True)

@@ -64,7 +64,8 @@ def master_values(profile: CamProfile, points: int, per_segment: bool = False
     """``points`` master values over [0, span]: equidistant; or ``per_segment``, every
     segment's ends, a dwell nothing else, and the other points equidistant within each
     move, shared among the moves in proportion to sqrt(|H| C_a) (the spacing that gives
-    each move the same error bound)."""
+    each move the same error bound; a run of a ``cycle:``, linear, has C_a = 0 and gets
+    its two ends only)."""
     if points < fewest_points(profile, per_segment):
         raise ValueError(f"a table needs at least {fewest_points(profile, per_segment)} "
                          f"points")
@@ -75,6 +76,8 @@ def master_values(profile: CamProfile, points: int, per_segment: bool = False
                                   * profile.segments[i].law.coefficients.C_a)  # type: ignore[union-attr]
                         for i in moves])
     weights = np.where(np.isfinite(weights), weights, 1.0)
+    if not weights.sum() > 0.0:  # runs only (linear: exact between their ends)
+        weights = np.ones_like(weights)
     interior = points - fewest_points(profile, True)
     share = interior * weights / weights.sum()
     counts = np.floor(share).astype(int)

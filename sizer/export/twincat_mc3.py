@@ -29,6 +29,18 @@ The mapping and its basis:
   MC_CamObject.ComputeCharacteristics must return for the controller to agree
   (cycloid 2 h/T and 2 pi h/T^2; a harmonic would give pi/2 h/T and pi^2/2 h/T^2).
 
+A ``cycle:`` of segments (sizer.export.cycle_profile): a run is Linear (its slope, with
+SlaveVelocity at both ends); a move between boundary speeds only by
+``polynomial(degree=3|5|7)`` -> Polynomial3/5/7 with its end conditions written at both
+points (SlaveVelocity = the design's boundary speed; degree 5 and 7 SlaveAcceleration,
+7 SlaveJerk, as the sizing's form fixes them). A polynomial of degree 2m+1 is ONE
+polynomial once its positions and derivatives of orders 1..m are given at both ends (the
+Hermite system is non-singular), and the sizing's boundary form meets exactly these
+conditions: the controller's curve is evaluated from the WRITTEN conditions
+(:func:`_hermite`, a dense solve independent of sizer.laws.boundary_speeds) and the
+certificate finds it equal to the sized shape to rounding. Any other law between boundary
+speeds is refused.
+
 Pure numpy; no files.
 """
 
@@ -109,30 +121,62 @@ class MotionFunctionPoint:
     symmetry_ratio: float | None = None
 
 
-def motion_functions(profile: CamProfile) -> tuple[MotionFunctionPoint, ...]:
-    """The points of the profile's segments: a move's start point carries its law's
-    function type (and SymmetryRatio 0.5), a dwell's Linear. Every point is a rest
-    (SlaveVelocity 0); SlaveAcceleration 0 and SlaveJerk 0 are written where every
-    segment meeting there has them zero. The last point repeats the last segment's type
-    (no segment starts at it)."""
-    types = []
-    for segment in profile.segments:
-        types.append(LINEAR if segment.law is None else named_law(segment.law).function_type)
-    ends = [_end_derivatives(s.law) for s in profile.segments]
-    points = []
-    for i, segment in enumerate((*profile.segments, profile.segments[-1])):
-        last = i == len(profile.segments)
-        master = segment.start + segment.span if last else segment.start
-        slave = segment.origin + segment.stroke if last else segment.origin
-        meeting = ([ends[i - 1][1]] if i > 0 else []) + ([] if last else [ends[i][0]])
-        zero_acc = all(m[0] for m in meeting)
-        zero_jerk = all(m[1] for m in meeting)
-        move = not last and segment.law is not None
-        points.append(MotionFunctionPoint(
-            types[-1] if last else types[i], float(master), float(slave), 0.0,
-            0.0 if zero_acc else None, 0.0 if zero_jerk and zero_acc else None,
-            0.5 if move else None))
-    return tuple(points)
+BOUNDARY_SUPPORTED = ("polynomial(degree=3) (poly3)", "polynomial(degree=5) (poly5)",
+                      "polynomial(degree=7) (poly7)")
+"""The laws twincat-mc3 exports for a move between boundary speeds (a run: Linear)."""
+
+
+def segment_type(law: MotionLaw | None, name: str = "") -> str:
+    """The function type of a profile segment: a dwell or a run Linear, a move its law's
+    (:func:`named_law`); a move between boundary speeds (a frozen shape,
+    sizer.export.cycle_profile) only as Polynomial3/5/7, whose boundary conditions the
+    points carry: UnnamedLawError for any other law."""
+    from sizer.export.cycle_profile import FrozenShape
+
+    if law is None:
+        return LINEAR
+    if not isinstance(law, FrozenShape):
+        return named_law(law).function_type
+    if law.is_run:
+        return LINEAR
+    source = law.source
+    if (source is not None and source.law_id == "polynomial"
+            and int(source.params["degree"]) in POLYNOMIALS):
+        return POLYNOMIALS[int(source.params["degree"])]
+    raise UnnamedLawError(
+        f"{'segment ' + repr(name) + ': ' if name else ''}{law.spec}: "
+        f"twincat-mc3 exports a move between boundary speeds only as a "
+        f"polynomial whose written end conditions fix it ({', '.join(BOUNDARY_SUPPORTED)});"
+        f" give the move that `law:` or size with one of them (--law), or export a point "
+        f"table (--to csv, sew, codesys-xy, codesys-xyva)")
+
+
+Ends = tuple[tuple[float | None, float | None, float | None],
+             tuple[float | None, float | None, float | None]]
+
+
+def _segment_ends(segment, function_type: str) -> Ends:
+    """((v, a, j) at the start, at the end) of a segment in file units, exact where the
+    sizing's form fixes them (None: not fixed, left out unless zero to 1e-9)."""
+    from sizer.export.cycle_profile import FrozenShape
+
+    law = segment.law
+    if law is None:
+        return (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
+    X, H = segment.span, segment.stroke
+    if isinstance(law, FrozenShape):
+        v0, v1 = segment.end_speeds or tuple(H / X * s for s in law.speeds)
+        if law.is_run:
+            return (v0, 0.0, 0.0), (v1, 0.0, 0.0)
+        degree = {v: k for k, v in POLYNOMIALS.items()}[function_type]
+        # degree 2m+1 fixes the derivatives of orders 1..m at both ends
+        a0, a1 = ((H / X ** 2 * r for r in law.accelerations) if degree >= 5
+                  else (None, None))
+        j = 0.0 if degree == 7 else None
+        return (v0, a0, j), (v1, a1, j)
+    (za0, zj0), (za1, zj1) = _end_derivatives(law)
+    return ((0.0, 0.0 if za0 else None, 0.0 if za0 and zj0 else None),
+            (0.0, 0.0 if za1 else None, 0.0 if za1 and zj1 else None))
 
 
 def _end_derivatives(law: MotionLaw | None) -> tuple[tuple[bool, bool], tuple[bool, bool]]:
@@ -143,6 +187,64 @@ def _end_derivatives(law: MotionLaw | None) -> tuple[tuple[bool, bool], tuple[bo
     acc = np.abs(law.derivative(ends, 2)) < 1e-9
     jerk = np.abs(law.derivative(ends, 3)) < 1e-9
     return (bool(acc[0]), bool(jerk[0])), (bool(acc[1]), bool(jerk[1]))
+
+
+def _agreed(values: list[float | None], scale: float) -> float | None:
+    """The common value of both sides of a point (None if one side is not fixed or they
+    differ by more than 1e-9 of ``scale``)."""
+    if any(v is None for v in values):
+        return None
+    known = [float(v) for v in values if v is not None]
+    if max(known) - min(known) > 1e-9 * scale:
+        return None
+    return known[-1]
+
+
+def motion_functions(profile: CamProfile) -> tuple[MotionFunctionPoint, ...]:
+    """The points of the profile's segments: a move's start point carries its function
+    type (a move from rest also SymmetryRatio 0.5), a dwell's and a run's Linear. Each
+    point carries the slave velocity there (the boundary speed the move was sized for;
+    0 at a rest); SlaveAcceleration and SlaveJerk where every segment meeting there fixes
+    the same value (a rest law's zero, a boundary polynomial's form). The last point
+    repeats the last segment's type (no segment starts at it). A polynomial between
+    boundary speeds needs its conditions written at both ends (UnnamedLawError where a
+    join's two sides differ)."""
+    from sizer.export.cycle_profile import FrozenShape
+
+    segments = profile.segments
+    types = [segment_type(s.law, s.name) for s in segments]
+    ends = [_segment_ends(s, t) for s, t in zip(segments, types, strict=True)]
+    scales = [max(profile.peak_velocity, 1e-300), max(profile.peak_acceleration, 1e-300)]
+    points = []
+    for i, segment in enumerate((*segments, segments[-1])):
+        last = i == len(segments)
+        master = segment.start + segment.span if last else segment.start
+        slave = segment.origin + segment.stroke if last else segment.origin
+        meeting = ([ends[i - 1][1]] if i > 0 else []) + ([] if last else [ends[i][0]])
+        velocity = _agreed([m[0] for m in meeting], scales[0])
+        if velocity is None:
+            raise UnnamedLawError(
+                f"the velocity steps at master {master:g}: motion functions meet with one "
+                f"SlaveVelocity")
+        acceleration = _agreed([m[1] for m in meeting],
+                               scales[1] if np.isfinite(scales[1]) else 1.0)
+        jerk = None if acceleration is None else _agreed([m[2] for m in meeting], 1.0)
+        rest_move = (not last and segment.law is not None
+                     and not isinstance(segment.law, FrozenShape))
+        points.append(MotionFunctionPoint(
+            types[-1] if last else types[i], float(master), float(slave), velocity,
+            acceleration, jerk, 0.5 if rest_move else None))
+    for k, segment in enumerate(segments):
+        if not isinstance(segment.law, FrozenShape) or segment.law.is_run:
+            continue
+        degree = {v: d for d, v in POLYNOMIALS.items()}[types[k]]
+        for p, side in ((points[k], "start"), (points[k + 1], "end")):
+            if (degree >= 5 and p.acceleration is None) or (degree == 7 and p.jerk is None):
+                raise UnnamedLawError(
+                    f"segment {segment.name!r}: its {side}'s acceleration (or jerk) differs "
+                    f"from its neighbour's, and a MotionFunctionPoint carries one: "
+                    f"{types[k]} is not fixed there")
+    return tuple(points)
 
 
 # --------------------------------------------------------- the controller's curve
@@ -204,9 +306,42 @@ def curve(points: tuple[MotionFunctionPoint, ...], x: np.ndarray, order: int,
         a, b = points[k], points[k + 1]
         span, rise = b.master - a.master, b.slave - a.slave
         t = (x[mask] - a.master) / span
+        if a.function_type in POLYNOMIALS.values() and not _at_rest(a, b):
+            out[mask] = _hermite(a, b, a.function_type, t, order) / span ** order
+            continue
         out[mask] = rise / span ** order * normalized(a.function_type, t, order)
         if order == 0:
             out[mask] += a.slave
+    return out
+
+
+def _at_rest(a: MotionFunctionPoint, b: MotionFunctionPoint) -> bool:
+    """Both ends at rest with no other condition written but zeros: the published
+    rest-to-rest polynomial."""
+    return all(not v for p in (a, b) for v in (p.velocity, p.acceleration, p.jerk))
+
+
+def _hermite(a: MotionFunctionPoint, b: MotionFunctionPoint, function_type: str,
+             t: np.ndarray, order: int) -> np.ndarray:
+    """d^order y/dt^order, t in [0, 1] over the segment, of THE polynomial of the type's
+    degree 2m+1 with the points' positions and their written derivatives of orders 1..m
+    (a condition left out read as 0) at both ends: the 2m+2 conditions fix it. In the
+    segment's own variable t (d/dt = span d/dx), solved as a dense linear system in the
+    monomial basis 1, t, ..., t^(2m+1) (independently of sizer.laws.boundary_speeds)."""
+    degree = {v: d for d, v in POLYNOMIALS.items()}[function_type]
+    m = (degree - 1) // 2
+    span = b.master - a.master
+    rows, rhs = [], []
+    for p, t_end in ((a, 0.0), (b, 1.0)):
+        given = [p.slave, p.velocity, p.acceleration, p.jerk]
+        for k in range(m + 1):
+            rows.append([math.perm(j, k) * t_end ** (j - k) if j >= k else 0.0
+                         for j in range(degree + 1)])
+            rhs.append((given[k] or 0.0) * span ** k)
+    c = np.linalg.solve(np.array(rows), np.array(rhs))
+    out = np.zeros(t.shape)
+    for j in range(degree, order - 1, -1):
+        out = out * t + c[j] * math.perm(j, order)
     return out
 
 
