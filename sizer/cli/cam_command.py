@@ -40,7 +40,10 @@ def cam(
              "or sew (SEW MOVI-C: n, then n 'master;slave' lines), or codesys-xyva "
              "(CODESYS XYVA X,Y,V,A table, quintic Hermite, at most 128 points; with "
              "the motor's torques re-computed on it), or twincat-mc3 (TwinCAT 3 MC3 "
-             "motion functions: the law itself, segment-exact).", show_default=False)],
+             "motion functions: the law itself, segment-exact), or siemens-tcpu (Siemens "
+             "Technology CPU cam segments: polynomial of degree <= 6 plus a sine per "
+             "segment, exact or fitted within --tolerance; with the motor's torques "
+             "re-computed on them).", show_default=False)],
     output: Annotated[Path, typer.Option(
         "--output", "-o", dir_okay=False, metavar="FILE",
         help="The cam file (replaced atomically).", show_default=False)],
@@ -146,6 +149,13 @@ def cam(
                         task if whole_cycle else None, output, certificate, pair,
                         tolerance, points, profile)
         return
+    if target.interpolation == "coefficient-segments":  # sizer.cli.cam_coefficients
+        from sizer.cli.cam_coefficients import export_coefficients
+
+        return export_coefficients(target, the_law, h, T, linear, span_master, tolerance,
+                                   points, task if whole_cycle else None, output,
+                                   certificate, pair, None if pair is None else Path(source),
+                                   catalog, DEFAULT_TOLERANCE, profile)
     if target.interpolation == "quintic_hermite":  # XYVA: sizer.cli.cam_smooth
         from sizer.cli.cam_smooth import export_smooth
 
@@ -177,11 +187,12 @@ def register(app: typer.Typer) -> None:
 
 # ----------------------------------------------------------------------- helpers
 def _target(name: str) -> Target:
+    from sizer.export.coefficient_targets import COEFFICIENT_TARGETS
     from sizer.export.segment_targets import SEGMENT_TARGETS
     from sizer.export.smooth_targets import SMOOTH_TARGETS
     from sizer.export.targets import TARGETS
 
-    targets = {**TARGETS, **SMOOTH_TARGETS, **SEGMENT_TARGETS}
+    targets = {**TARGETS, **SMOOTH_TARGETS, **SEGMENT_TARGETS, **COEFFICIENT_TARGETS}
     if name not in targets:
         raise UserError(f"expected one of {', '.join(targets)}, got {printable(repr(name))}",
                         field="--to")

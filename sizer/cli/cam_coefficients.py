@@ -1,0 +1,235 @@
+"""``sizer cam --to siemens-tcpu``: the motion as coefficient segments (polynomial of degree
+<= 6 plus a sine, a Siemens Technology CPU's MC_CamSectorAdd data), with its certificate
+and the motor's torques re-computed on the written segments read back
+(sizer.export.coefficient_segments, docs/cam-coefficients.md).
+
+Exit codes: 0 written, tolerance met and every check the law passed still passed; 1
+written but the tolerance is not met within the segment cap, or the exported profile
+fails a check the law passed; 2 bad input.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import typer
+
+from sizer.cli.exit_codes import ExitCode
+from sizer.errors import UserError
+from sizer.report.output import write_text_atomically
+from sizer.report.printable import printable
+
+if TYPE_CHECKING:
+    from sizer.export.coefficient_segments import SegmentExport
+    from sizer.export.profile import CamProfile
+    from sizer.export.resized import Resized
+    from sizer.export.targets import Target
+    from sizer.laws.base import MotionLaw
+    from sizer.sizing.results import CandidateResult
+
+FORMULA = "Y = A0 + A1*X + A2*X^2 + A3*X^3 + A4*X^4 + A5*X^5 + A6*X^6 + B0*sin(B1*X + B2)"
+
+
+def export_coefficients(target: Target, law: MotionLaw, h: float, T: float, linear: bool,
+                        master_range: float | None, tolerance: float | None,
+                        points: int | None, task: Any, output: Path,
+                        certificate: Path | None, pair: Any, design: Path | None,
+                        catalog: list[str] | None, default_tolerance: float,
+                        profile: CamProfile | None = None) -> None:
+    """Write the segments of the move (``task``: its machine cycle; ``profile``: a
+    cycle's profile already made), print the certificate, write it as JSON, and exit 1
+    when it says so."""
+    from sizer.export.coefficient_segments import export_segments, with_segments
+    from sizer.export.profile import move_profile
+    from sizer.laws.segment_table import format_segments, parse_segments
+
+    if points is not None:
+        raise UserError(f"{target.name} writes segments, not a point table: leave out "
+                        f"--points (--tolerance bounds the fitted pieces)", field="--points")
+    tol = default_tolerance if tolerance is None else tolerance
+    if profile is None:
+        profile = move_profile(law, h, T, linear, master_range, task)
+    export = export_segments(profile, tol, target.limit)
+    mu, su = profile.master_unit, profile.slave_unit
+    comments = [f"sizer cam --to {target.name}: {profile.law.spec}, stroke "
+                f"{profile.stroke!r} {su} over {profile.span!r} {mu}",
+                f"{target.title}; one line per MC_CamSectorAdd polynomial data block",
+                f"{FORMULA}; X the absolute master coordinate ({mu}), Y the slave "
+                f"({su}), B1 in rad per {mu}",
+                "numbers in double precision; the data block is REAL: see the certificate's "
+                "single-precision estimate"]
+    text = format_segments(export.segments, comments, mu, su)
+    write_text_atomically(output, text, "--output")
+    export = with_segments(export, parse_segments(text, str(output)).segments)
+    resized, skipped = None, None
+    if pair is not None and design is not None and task is None:
+        resized = _resized(design, catalog, pair, output)
+    elif pair is None:
+        skipped = "a law alone: no motor to size"
+    else:
+        skipped = ("--cycle: the segments are the whole machine cycle, not the move the "
+                   "motor was sized for; export the move alone for its torques")
+    record = certificate_record(export, target, output, pair, T, resized, skipped)
+    typer.echo("\n".join(printable(line) for line in certificate_text(record)))
+    if certificate is not None:
+        write_text_atomically(certificate, json.dumps(record, indent=2) + "\n",
+                              "--certificate")
+    failed = False
+    if not export.met:
+        typer.echo(printable(f"{output}: the tolerance {tol:g} is not met: splitting "
+                             f"stopped (the certificate's note says why)"), err=True)
+        failed = True
+    if resized is not None and resized.newly_failed:
+        typer.echo(printable(f"{output}: the exported profile fails "
+                             f"{', '.join(resized.newly_failed)}, which the sized law "
+                             f"passed"), err=True)
+        failed = True
+    if failed:
+        raise typer.Exit(ExitCode.CHECK_FAILED)
+
+
+def segments_spec(path: Path) -> str:
+    """The law spec that reads the written segments back."""
+    return f"{{kind: cam_segments, file: {json.dumps(str(path))}}}"
+
+
+def _resized(design: Path, catalog: list[str] | None, pair: CandidateResult, output: Path
+             ) -> Resized:
+    """The written segments read back as a user would ({kind: cam_segments, file}) and
+    sized for the same pair."""
+    from sizer import api
+    from sizer.export.resized import resize
+    from sizer.laws import make_law
+
+    spec = segments_spec(output)
+    make_law(spec)  # read back here: a file that does not read is said before sizing
+    return resize(api.load(design, catalog or ()), pair, spec)
+
+
+# ------------------------------------------------------------------- certificate
+def _figures(result: CandidateResult) -> dict[str, Any]:
+    return {"feasible": result.feasible,
+            "peak_torque_Nm": result.peak_torque, "rms_torque_Nm": result.rms_torque,
+            "margins": {str(c.name): {"margin": c.margin, "required": c.required,
+                                      "passed": c.passed} for c in result.checks}}
+
+
+def certificate_record(export: SegmentExport, target: Target, output: Path, pair: Any,
+                       duration: float, resized: Resized | None, skipped: str | None
+                       ) -> dict[str, Any]:
+    """The certificate as plain data (the JSON of --certificate)."""
+    profile, errors = export.profile, export.errors
+    mu, su = profile.master_unit, profile.slave_unit
+    stroke = abs(profile.stroke)
+    peak_a = profile.peak_acceleration
+    notes = []
+    if export.capped:
+        notes.append(f"splitting stopped (at most {target.limit} segments, none shorter "
+                     f"than 1e-4 of the span, and only while halving lowers the error: "
+                     f"the rounding floor of absolute-X coefficients): the tolerance is "
+                     f"NOT met")
+    notes.append("the manual advises polynomials up to the 3rd order only: REAL "
+                 "coefficients of higher orders may be inaccurate, and the CPU recomputes "
+                 "the coefficients (S7T Config may show others, start and end Y swapped)")
+    torques: dict[str, Any]
+    if resized is None:
+        torques = {"computed": False, "why": skipped}
+    else:
+        torques = {"computed": True, "law": _figures(resized.law),
+                   "exported": _figures(resized.exported),
+                   "exported_spec": segments_spec(output),
+                   "newly_failed": list(resized.newly_failed)}
+    how: dict[str, int] = {}
+    for w in export.written:
+        how[w.how] = how.get(w.how, 0) + 1
+    return {
+        "target": target.name,
+        "title": target.title,
+        "file": str(output),
+        "law": profile.law.spec,
+        "motor": None if pair is None else pair.motor,
+        "stroke": profile.stroke,
+        "slave_unit": su,
+        "master": {"kind": "time" if profile.over_time else "master position",
+                   "span": profile.span, "unit": mu, "move_duration_s": duration},
+        "segments": [{"name": s.name, "start": s.start, "span": s.span,
+                      "stroke": s.stroke} for s in profile.segments],
+        "points": len(export.written) + 1,
+        "coefficient_segments": len(export.written),
+        "limit": target.limit,
+        "split": how,
+        "fitted_pieces": export.fitted_pieces,
+        "formula": FORMULA,
+        "coordinates": {"X": f"absolute master coordinate ({mu}), inferred",
+                        "B1": f"rad per {mu}, inferred"},
+        "tolerance": export.tolerance,
+        "tolerance_met": export.met,
+        "interpolation": {"kind": target.interpolation, "source": target.source},
+        "errors": {
+            "precision": "double: the file's decimal numbers parsed back, evaluated as the "
+                         "formula says",
+            "position": {"max": errors.position.max, "at": errors.position.at,
+                         "unit": su, "of_stroke": errors.position.max / stroke},
+            "velocity": {"max": errors.velocity.max, "at": errors.velocity.at,
+                         "unit": f"{su}/{mu}",
+                         "of_peak": errors.velocity.max / profile.peak_velocity},
+            "acceleration": {"finite": True, "max": errors.acceleration.max,
+                             "at": errors.acceleration.at, "unit": f"{su}/{mu}^2",
+                             "of_peak": (errors.acceleration.max / peak_a
+                                         if math.isfinite(peak_a) and peak_a > 0 else None)},
+        },
+        "single_precision_estimate": {
+            "what": "ESTIMATE, not a bound: position error with X, the coefficients and "
+                    "the evaluation in IEEE single precision (REAL), on a grid of points",
+            "position": {"max": export.real_position.max, "at": export.real_position.at,
+                         "unit": su, "of_stroke": export.real_position.max / stroke},
+            "amplification": export.amplification,
+            "amplification_note": "largest sum |A_i X^i| + |B0| over a segment, in "
+                                  "strokes: a relative rounding r of the coefficients can "
+                                  "move the position by about r times this many strokes",
+        },
+        "torques": torques,
+        "notes": notes,
+    }
+
+
+def certificate_text(record: dict[str, Any]) -> list[str]:
+    """The certificate as the command prints it, line by line."""
+    from sizer.report.cam_certificate import certificate_head
+
+    acc, mu = record["errors"]["acceleration"], record["master"]["unit"]
+    acc_share = "" if acc["of_peak"] is None else f" ({acc['of_peak']:.3g} of the peak)"
+    real = record["single_precision_estimate"]
+    split = ", ".join(f"{n} {k}" for k, n in record["split"].items())
+    lines = [*certificate_head(record),
+             f"acceleration error: {acc['max']:.6g} {acc['unit']}{acc_share} at "
+             f"{acc['at']:.6g} {mu}",
+             f"segments: {record['coefficient_segments']} ({split}); {record['formula']}, "
+             f"X absolute, B1 rad/{mu} (inferred)",
+             f"single precision (REAL) ESTIMATE: position error "
+             f"{real['position']['max']:.3g} {real['position']['unit']} "
+             f"({real['position']['of_stroke']:.3g} of the stroke); coefficient "
+             f"amplification {real['amplification']:.3g} strokes"]
+    torques = record["torques"]
+    if not torques["computed"]:
+        lines.append(f"torques: not re-computed ({torques['why']})")
+    else:
+        for name, figures in (("sized law", torques["law"]),
+                              ("exported segments", torques["exported"])):
+            margins = ", ".join(f"{k} {100 * m['margin']:.4g} %"
+                                + ("" if m["passed"] else " FAILS")
+                                for k, m in figures["margins"].items())
+            lines.append(f"{name}: peak torque {_nm(figures['peak_torque_Nm'])}, RMS "
+                         f"{_nm(figures['rms_torque_Nm'])}; margins: {margins}")
+        if torques["newly_failed"]:
+            lines.append("the exported segments FAIL " + ", ".join(torques["newly_failed"])
+                         + ", which the sized law passed")
+    lines += [f"note: {n}" for n in record["notes"]]
+    return lines
+
+
+def _nm(value: float | None) -> str:
+    return "-" if value is None else f"{value:.6g} N*m"
