@@ -76,11 +76,7 @@ def save_figure(figure: Figure, path: Path | str, dpi: float | None = None) -> P
     """Write the figure to ``path`` (PNG or SVG by suffix), atomically; returns the path."""
     path = Path(path)
     data = figure_bytes(figure, figure_format(path), dpi)
-    try:
-        write_bytes_atomically(path, data)
-    except OSError as error:
-        reason = error.strerror or str(error)
-        raise UserError(f"cannot write the figure: {reason}", file=str(path)) from error
+    write_bytes_atomically(path, data)  # a UserError naming the file when it cannot
     return path
 
 
