@@ -177,6 +177,29 @@ def plan(design: DesignLike, *, catalogs: Iterable[CatalogRef] = (),
     return plan_laws(override(load(design, catalogs), laws=laws))
 
 
+def fastest_by_law(design: DesignLike, laws: Sequence[str], *,
+                   catalogs: Iterable[CatalogRef] = (), progress: Progress | None = None
+                   ) -> list[tuple[float | None, str | None]]:
+    """For each law spec of ``laws``: the design's shortest duration with that law (the
+    fastest feasible motor, ranked by ``duration``) and that motor; (None, None) where no
+    motor is feasible. The laws are sized together, in one call of :func:`size` (a
+    ``sizer laws --sweep --design`` study). A UserError for a design that does not
+    minimize its duration, or a spec that names no law."""
+    from sizer.laws import make_law
+
+    loaded = load(design, catalogs)
+    if not loaded.machine_cycle.minimize:
+        raise UserError("T_min needs a design that minimizes its duration (duration: "
+                        "minimize)", field="laws")
+    specs = [make_law(text).spec for text in laws]
+    sized = size(loaded, rank_by="duration", laws=list(dict.fromkeys(specs)),
+                 progress=progress)
+    best: dict[str, tuple[float | None, str | None]] = {}
+    for result in sized.feasible:  # ranked: the first of each law is its fastest
+        best.setdefault(result.spec, (result.duration, result.motor))
+    return [best.get(spec, (None, None)) for spec in specs]
+
+
 def assumptions(design: Design) -> tuple[str, ...]:
     """What sizing ``design`` assumes, as the notes under a table say it (the envelope
     rule of motors without curves, the efficiency convention, the inertia ratio's

@@ -154,3 +154,19 @@ def test_range_ends_are_read_within_the_spec_limits_and_written_back_exactly() -
     assert tiny.returncode == 0, tiny.stderr
     first = next(csv.DictReader(io.StringIO(tiny.stdout)))
     assert first["spec"] == "trapezoidal(alpha=1e-20)" and first["C_a"] == ""
+
+
+def test_fastest_by_law_equals_one_sizing_per_law() -> None:
+    """sizer.api.fastest_by_law sizes the laws together; each law's answer is the one a
+    sizing of that law alone gives (its fastest feasible motor)."""
+    from pathlib import Path
+
+    from sizer import api
+
+    design = api.load(Path(__file__).resolve().parents[1] / "examples/book/ex6_3.yaml")
+    laws = ["trapezoidal(alpha=0.2)", "cycloidal", "poly5"]
+    together = api.fastest_by_law(design, laws)
+    for spec, answer in zip(laws, together, strict=True):
+        alone = api.size(api.override(design, laws=[spec]), rank_by="duration")
+        best = alone.feasible[0]
+        assert answer == (best.duration, best.motor)

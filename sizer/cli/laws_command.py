@@ -143,28 +143,16 @@ def _fastest(design: Path, result: SweepResult, outputs: list[Path | None]
 
     loaded = load_design_file(design, None)
     check_outputs([o for o in outputs if o is not None], loaded.files)
-    if not loaded.machine_cycle.minimize:
-        raise UserError("T_min needs a design that minimizes its duration (duration: "
-                        "minimize)", file=str(design), field="--design")
-    out: list[tuple[float | None, str | None]] = []
-    points = result.points
-    with sizing_progress(f"T_min of {design.name}") as progress:
-        for k, point in enumerate(points):
-            if progress is not None:
-                progress(k, len(points))
-            if point.coefficients is None:
-                out.append((None, None))
-                continue
-            try:
-                sized = api.size(api.override(loaded, laws=[point.spec]),
-                                 rank_by="duration")
-            except UserError as error:
-                raise error.located(file=str(design)) from None
-            best = sized.feasible[0] if sized.feasible else None
-            out.append((None, None) if best is None else (best.duration, best.motor))
-        if progress is not None:
-            progress(len(points), len(points))
-    return out
+    existing = [point.spec for point in result.points if point.coefficients is not None]
+    try:
+        with sizing_progress(f"T_min of {design.name}", unit="laws") as progress:
+            fastest = iter(api.fastest_by_law(loaded, existing, progress=progress))
+    except UserError as error:
+        if error.field == "laws":
+            raise UserError(error.message, file=str(design), field="--design") from None
+        raise error.located(file=str(design)) from None
+    return [(None, None) if point.coefficients is None else next(fastest)
+            for point in result.points]
 
 
 def register(app: typer.Typer) -> None:
