@@ -27,6 +27,7 @@ from sizer.cli import (
     cam_command,
     catalog_command,
     check_command,
+    diff_command,
     idta_command,
     law_command,
     laws_command,
@@ -44,14 +45,15 @@ from sizer.errors import UserError
 from sizer.report.printable import printable
 
 EXIT_CODES_HELP = ("Exit codes: 0 ok; 1 a check failed (sizer check: a limit not met; "
-                   "catalog validate: a finding); 2 bad input (one 'error: ...' line naming "
-                   "the file, line and field, or the option); 3 internal error (a bug in "
+                   "catalog validate: a finding; sizer diff: a pair that passed fails); 2 "
+                   "bad input (one 'error: ...' line naming the file, line and field, or "
+                   "the option); 3 internal error (a bug in "
                    "sizer: one 'internal error: ...' line, --debug shows the traceback); "
                    "130 interrupted.")
 
 COMMAND_MODULES = (laws_command, law_command, size_command, check_command, schema_command,
                    catalog_command, plot_command, report_command, segments_command,
-                   spectrum_command, vibration_command, cam_command, idta_command)
+                   spectrum_command, vibration_command, cam_command, idta_command, diff_command)
 
 app = typer.Typer(
     name="sizer",
