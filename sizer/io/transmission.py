@@ -32,6 +32,7 @@ from sizer.io.schema.transmission_inputs import (
 from sizer.io.validation import validate
 from sizer.io.yaml_source import YamlSource, read_yaml
 from sizer.mechanics import ball_screw, belt, gearbox, rack_pinion
+from sizer.mechanics.stages import ScrewRatings
 from sizer.model.domain import GearboxOption, RatioChoice, Stage, Transmission
 
 
@@ -140,10 +141,11 @@ def _stage(item: Any, source: YamlSource, at, index: int, linear_output: bool,
         if item.inertia is None and (item.diameter is None or item.length is None):
             raise source.error("a ball screw needs its inertia, or its diameter and length "
                                "(a steel screw)", at(index))
+        screw = _screw_ratings(item, source, at, index, linear_output)
         return ball_screw(item.lead, efficiency=item.efficiency, inertia=item.inertia,
                           diameter=item.diameter, length=item.length, density=item.density,
                           preload_torque=item.preload_torque, max_speed=item.max_speed,
-                          name=name), None
+                          screw=screw, name=name), None
     if isinstance(item, RackPinionInput):
         if (item.pitch_radius is None) == (item.pitch_diameter is None):
             raise source.error("a rack and pinion needs pitch_radius or pitch_diameter "
@@ -156,6 +158,60 @@ def _stage(item: Any, source: YamlSource, at, index: int, linear_output: bool,
         return rack_pinion(radius, inertia=item.inertia, efficiency=item.efficiency,
                            name=name), None
     raise AssertionError(f"unknown stage {item!r}")
+
+
+SHAFT_FIELDS = ("mounting", "root_diameter", "support_distance", "buckling_length",
+                "speed_factor", "buckling_factor")
+LIFE_FIELDS = ("dynamic_load_rating", "load_factor", "required_life")
+
+
+def _screw_ratings(item: BallScrewInput, source: YamlSource, at, index: int,
+                   last: bool) -> ScrewRatings | None:
+    """A ball screw's ratings for its critical speed, buckling and life checks (docs/
+    ball-screws.md), or None without them; each group complete or absent."""
+    given = item.model_fields_set
+    if not given & {*SHAFT_FIELDS, *LIFE_FIELDS}:
+        return None
+    first = next(f for f in (*SHAFT_FIELDS, *LIFE_FIELDS) if f in given)
+    if not last:
+        raise source.error("a ball screw's critical speed, buckling and life checks need it "
+                           "as the last stage (the nut drives the load: the screw's axial "
+                           "force is the load's)", at(index, first))
+    shaft = bool(given & set(SHAFT_FIELDS))
+    if shaft:
+        if item.mounting is None:
+            field = next(f for f in SHAFT_FIELDS if f in given)
+            raise source.error("the critical speed and buckling checks need the screw's end "
+                               "mounting: mounting: fixed-free, supported-supported, "
+                               "fixed-supported or fixed-fixed", at(index, field))
+        if item.root_diameter is None:
+            raise source.error("the critical speed and buckling checks need root_diameter, "
+                               "the thread minor diameter d_r of the datasheet (the makers' "
+                               "formulas use it, not the nominal diameter)",
+                               at(index, "mounting"))
+        if item.diameter is not None and item.root_diameter > item.diameter:
+            raise source.error(f"root_diameter ({item.root_diameter * 1e3:g} mm) must not "
+                               f"exceed the nominal diameter ({item.diameter * 1e3:g} mm)",
+                               at(index, "root_diameter"))
+        if item.support_distance is None and item.length is None:
+            raise source.error("the critical speed and buckling checks need "
+                               "support_distance (between the mounting surfaces) or the "
+                               "screw's length", at(index, "mounting"))
+    if given & set(LIFE_FIELDS):
+        for field in ("dynamic_load_rating", "required_life"):
+            if field not in given:
+                other = next(f for f in LIFE_FIELDS if f in given)
+                raise source.error(f"the screw's life check needs dynamic_load_rating (C_a "
+                                   f"of the datasheet) and required_life (e.g. '20000 h'); "
+                                   f"{field} is missing", at(index, other))
+    support = item.support_distance if item.support_distance is not None else item.length
+    return ScrewRatings(
+        mounting=item.mounting if shaft else None,
+        root_diameter=item.root_diameter if shaft else None,
+        support_distance=support if shaft else None,
+        buckling_length=item.buckling_length, speed_factor=item.speed_factor,
+        buckling_factor=item.buckling_factor, dynamic_load_rating=item.dynamic_load_rating,
+        load_factor=item.load_factor, required_life=item.required_life)
 
 
 def _ratio(spec: tuple[str, tuple[float, ...]] | None) -> tuple[float | None, RatioChoice | None]:

@@ -27,6 +27,7 @@ from functools import cached_property
 import numpy as np
 
 from sizer.mechanics import Drive
+from sizer.mechanics.stages import BallScrewStage, ScrewRatings
 from sizer.model.domain import Limits
 from sizer.sizing.candidates import MotorArrays
 from sizer.sizing.evaluation import CycleMetrics
@@ -205,6 +206,28 @@ STAGE_CHECKS: tuple[StageCheckKind, ...] = (
 )
 """Per stage: input speed, RMS and peak output torque against its ratings."""
 
+SCREW_CRITICAL_SPEED = "critical_speed"
+SCREW_BUCKLING = "buckling"
+SCREW_AXIAL_LOAD = "axial_load"
+SCREW_LIFE = "life"
+SCREW_CHECKS: tuple[str, ...] = (SCREW_CRITICAL_SPEED, SCREW_BUCKLING, SCREW_AXIAL_LOAD,
+                                 SCREW_LIFE)
+"""The suffixes of a ball screw's own checks (``<stage>_<suffix>``), where its ratings
+give them (sizer.mechanics.stages.ScrewRatings, docs/ball-screws.md), with no further
+margin (the makers' safety factors are in the limits):
+
+- ``critical_speed``: the screw's peak speed against speed_factor x its critical speed
+  (rad/s);
+- ``buckling``: the peak |axial force| (the load's force u, the screw being the last stage;
+  dwells holding the load included) against buckling_factor x its Euler buckling load (N);
+- ``axial_load``: the same force against the root section's permissible tensile-compressive
+  load (THK's P_2 = 116 d_1^2 N);
+- ``life``: the required life against the L10 life from the cycle's mean cubic axial load
+  and mean speed (s).
+
+They are made by :func:`screw_checks` and evaluated as a later limit of the search
+(sizer.sizing.screw_check), after the checks of the cycle."""
+
 
 @dataclass(frozen=True)
 class OwnCheckKind:
@@ -306,6 +329,35 @@ def stage_checks(x: CheckInput) -> list[CheckArrays]:
                                       rating * x.ones, unit, kind.required(x.limits),
                                       _applies(stage.rated[kind.rating], x.ones)))
     return checks
+
+
+def screw_checks(screw: ScrewRatings, label: str, speed: np.ndarray, force: np.ndarray,
+                 life: np.ndarray | None, known: np.ndarray) -> list[CheckArrays]:
+    """The checks of a ball screw with its ratings (:data:`SCREW_CHECKS`, those it has), for
+    the candidates' peak screw ``speed`` (rad/s), peak |axial ``force``| (N) and L10
+    ``life`` (s); where not ``known`` (no scale) they pass with value 0."""
+    checks = []
+    if screw.has_shaft_checks:
+        checks += [CheckArrays(f"{label}_{SCREW_CRITICAL_SPEED}", np.where(known, speed, 0.0),
+                               np.full(known.shape, screw.permissible_speed), "rad/s", 0.0),
+                   CheckArrays(f"{label}_{SCREW_BUCKLING}", np.where(known, force, 0.0),
+                               np.full(known.shape, screw.permissible_buckling_load), "N", 0.0),
+                   CheckArrays(f"{label}_{SCREW_AXIAL_LOAD}", np.where(known, force, 0.0),
+                               np.full(known.shape, screw.permissible_tensile_compressive_load),
+                               "N", 0.0)]
+    if screw.has_life_check:
+        assert life is not None and screw.required_life is not None
+        checks.append(CheckArrays(f"{label}_{SCREW_LIFE}",
+                                  np.where(known, screw.required_life, 0.0),
+                                  np.where(known, life, np.inf), "s", 0.0))
+    return checks
+
+
+def screw_ratings(drive: Drive, i: int) -> ScrewRatings | None:
+    """The ratings of stage ``i`` if it is a ball screw that has them (a screw is never a
+    free-ratio stage: every transmission option has the same one)."""
+    stage = drive.transmission.stages[i]
+    return stage.screw if isinstance(stage, BallScrewStage) else None
 
 
 def _applies(rated: np.ndarray, ones: np.ndarray) -> np.ndarray | None:

@@ -67,6 +67,7 @@ from sizer.sizing.results import (
     concatenate,
     in_groups,
 )
+from sizer.sizing.screw_check import screw_limits
 from sizer.sizing.shortest_duration import answer, is_purely_inertial
 from sizer.sizing.vibration_check import residual_limit
 
@@ -251,7 +252,8 @@ def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates,
     cycle, limits = design.machine_cycle, design.limits
     calculator = cycle_model(design, law, candidates)
     later = [kind for kind in (residual_limit(design, law),
-                               energy_limit(design, candidates.motors)) if kind is not None]
+                               energy_limit(design, candidates.motors),
+                               *screw_limits(candidates.drive)) if kind is not None]
     settled = answer(calculator, limits, later, cycle.minimize, peaks)
     checks, verdict = settled.checks, settled.feasible
     if limits.thermal_duty == "once":  # a one-off run: the winding model decides

@@ -168,6 +168,14 @@ RANGES: dict[str, Range] = {
     "density": _r("density", 100.0, 1e5, "foams (100 kg/m^3) to beyond osmium "
                   "(22,590 kg/m^3)"),
     "preload_torque": _r("torque", 1e-9, 1e4, "as the torques; 0 = none", zero=True),
+    "screw_safety_factor": _r("fraction", 0.01, 1.0, "a ball screw's permissible share of "
+                              "its critical speed (THK: 0.8) or buckling load (THK: 0.5)"),
+    "screw_load_rating": _r("force", 1.0, 1e8, "a ball screw's basic dynamic load rating "
+                            "C_a: 1 N to 100 MN (the largest screws: a few MN)"),
+    "screw_load_factor": _r("ratio", 1.0, 10.0, "f_w: THK gives 1.0 to 1.2 (smooth), 1.2 to "
+                            "1.5 (normal), 1.5 to 3.0 (impacts)"),
+    "screw_life": _r("time", 1.0, 1e10, "the required L10 life of a ball screw, e.g. "
+                     "'20000 h' (7.2e7 s); up to 317 years"),
     "link_length": _r("length", 1e-4, 100.0, "0.1 mm to 100 m: a crank, a rod or a link of a "
                       "linkage"),
     "link_offset": _r("length", 1e-9, 100.0, "the slider line's distance from the crank "

@@ -26,7 +26,7 @@ from sizer.io.schema.provenance import (
     check_provenance,
 )
 from sizer.io.schema.ranges import RANGES
-from sizer.mechanics.stages import STEEL_DENSITY
+from sizer.mechanics.stages import STEEL_DENSITY, Mounting
 
 DEFAULT_RATIO_BOUNDS = (1.0, 100.0)
 
@@ -147,6 +147,28 @@ class BallScrewInput(Strict):
                         "7.87e3 (Yaskawa) or 7.8e3 (Mitsubishi)")] = STEEL_DENSITY
     preload_torque: Annotated[float, Ranged("preload_torque")] = 0.0
     max_speed: Speed | None = None
+    mounting: Mounting | None = Field(
+        None, description="the screw shaft's end mounting (THK's names): with root_diameter "
+                          "it adds the critical speed and buckling checks")
+    root_diameter: Annotated[float, Ranged(
+        "screw_diameter", note="the thread minor diameter d_r (THK: d_1) of the "
+                               "datasheet")] | None = None
+    support_distance: Annotated[float, Ranged(
+        "screw_length", note="between the mounting surfaces, for the critical speed; "
+                             "default: length")] | None = None
+    buckling_length: Annotated[float, Ranged(
+        "screw_length", note="between the nut (at its farthest) and the mounting that "
+                             "takes the thrust; default: support_distance")] | None = None
+    speed_factor: Annotated[float, Ranged(
+        "screw_safety_factor", note="permissible share of the critical speed")] = 0.8
+    buckling_factor: Annotated[float, Ranged(
+        "screw_safety_factor", note="permissible share of the buckling load")] = 0.5
+    dynamic_load_rating: Annotated[float, Ranged(
+        "screw_load_rating", note="C_a of the datasheet, e.g. '12.3 kN'; with "
+                                  "required_life it adds the life check")] | None = None
+    load_factor: Annotated[float, Ranged("screw_load_factor")] = 1.0
+    required_life: Annotated[float, Ranged(
+        "screw_life", note="the L10 life the screw must reach, e.g. '20000 h'")] | None = None
     name: Text | None = None
 
 
