@@ -519,3 +519,20 @@ def test_a_design_error_points_at_the_line_of_the_field(tmp_path: Path) -> None:
     line = text.splitlines().index("    velocity: 0.5") + 1
     assert_user_error(run_cli("size", str(design)), f"bad.yaml:{line}: laws[0].start.velocity",
                       "null end conditions")
+
+
+def test_an_oscillating_polynomial_is_a_warning_at_its_line(tmp_path: Path) -> None:
+    """A step through 17 equidistant points (8 at 0, 0.5, 8 at 1) held at rest: the degree
+    18 polynomial swings far beyond the points (Runge, Fig. 4.5); the design loader warns
+    at the law's line, and a cubic spline through the same points does not."""
+    points = [[i / 16, 0.0 if i < 8 else (0.5 if i == 8 else 1.0)] for i in range(17)]
+    rest = {"velocity": 0}
+    law = {"kind": "interpolating_polynomial", "points": points, "start": rest, "end": rest}
+    design = tmp_path / "runge.yaml"
+    design.write_text(yaml.safe_dump(_design(laws=[law]), sort_keys=False))
+    result = run_cli("size", str(design), "--format", "json")
+    assert result.returncode == 0
+    assert f"warning: {design}:" in result.stderr and "Runge" in result.stderr
+    spline = {"kind": "cubic_spline", "points": points}
+    design.write_text(yaml.safe_dump(_design(laws=[spline]), sort_keys=False))
+    assert "Runge" not in run_cli("size", str(design), "--format", "json").stderr

@@ -26,7 +26,7 @@ from sizer.errors import UserError
 from sizer.input_limits import MAX_DESIGN_BYTES, MAX_DESIGN_NODES
 from sizer.io.catalog_table import read_table
 from sizer.io.cycle import motion_of
-from sizer.io.data_law_rules import LocatedLaw, locate_laws
+from sizer.io.data_law_rules import LocatedLaw, locate_laws, oscillation_warnings
 from sizer.io.data_laws import canonical_data_laws
 from sizer.io.linkage import check_linkage_design, linkage_cycle, output_linear
 from sizer.io.motor_rules import (
@@ -430,7 +430,8 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
     laws = _located_laws(model)
     cycle, noted = motion_of(model.task, model.cycle, laws, source)
     linear = cycle.linear
-    warnings = [*bare_number_warnings(source, linear), *noted]
+    warnings = [*bare_number_warnings(source, linear), *noted,
+                *oscillation_warnings(laws, source)]
     load = _load(model, source, output_linear(model.transmission, linear))
     files = list(files)
     transmission, ratio_choice, linkage_at = build_transmission(
