@@ -42,8 +42,9 @@ if TYPE_CHECKING:
     from sizer.laws.cam_interpolation import RestEnds
     from sizer.laws.multipoint.sample_fit import SampleFit
 
-CAM_TABLE_FIELDS = ("file", "columns")
-"""The YAML fields that locate the samples; the fitting fields are sample_fit.FIT_FIELDS."""
+CAM_TABLE_FIELDS = ("file", "columns", "span")
+"""The YAML fields that locate the samples (``span``: the rows of the law, read by
+sizer.io.cam_table_law); the fitting fields are sample_fit.FIT_FIELDS."""
 
 _NON_FINITE = ("nan", "inf", "infinity")
 _SEPARATORS = {",": "','", ";": "';'", "\t": "tabs", "|": "'|'"}

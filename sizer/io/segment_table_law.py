@@ -2,7 +2,10 @@
 --to siemens-tcpu) read back as the curve its segments make (sizer.laws.segment_table).
 
 Reading the file is I/O, kept out of the core; a relative ``file`` is taken from the
-working directory, as a cam table's is.
+working directory, as a cam table's is. ``span: [x0, x1]`` (master units of the file)
+reads the segments between those X (each the X1 or X2 of a segment: the export writes
+every segment end), normalized to their own stroke and duration, as a cam table's span
+(sizer.io.cam_table_law).
 """
 
 from __future__ import annotations
@@ -21,9 +24,9 @@ def build_cam_segments_law(fields: Mapping[str, Any]) -> FittedCurve:
     from sizer.io.files import read_user_text
     from sizer.laws.segment_table import SegmentCurve, parse_segments
 
-    extra = set(fields) - {"kind", "file"}
+    extra = set(fields) - {"kind", "file", "span"}
     if extra:
-        raise UserError(f"cam_segments reads only 'file'; unknown field "
+        raise UserError(f"cam_segments reads only 'file' and 'span'; unknown field "
                         f"{sorted(extra)[0]!r}", field=sorted(extra)[0])
     file = fields.get("file")
     if not isinstance(file, str) or not file:
@@ -31,5 +34,14 @@ def build_cam_segments_law(fields: Mapping[str, Any]) -> FittedCurve:
                         "file: cam.txt}", field="file")
     read = parse_segments(read_user_text(file, limit=MAX_SEGMENT_FILE_BYTES,
                                          what="cam segment"), file)
-    return FittedCurve(SegmentCurve(read.segments), {"segments": float(len(read.segments))},
+    segments = read.segments
+    if fields.get("span") is not None:
+        import numpy as np
+
+        from sizer.io.cam_table_law import span_rows
+
+        ends = np.array([s.x1 for s in segments] + [segments[-1].x2])
+        i0, i1 = span_rows(fields["span"], ends, file, "segment end")
+        segments = segments[i0:i1]
+    return FittedCurve(SegmentCurve(segments), {"segments": float(len(segments))},
                        (read.master_unit, read.slave_unit))

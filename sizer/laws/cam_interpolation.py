@@ -287,3 +287,30 @@ def _interpolated_fit(curve: PPoly, x: np.ndarray, q: np.ndarray, periodic: bool
                      rms_residual=float(np.sqrt(np.mean(residual ** 2))),
                      derivative_rms=_derivative_rms(curve), noise_sigma=None,
                      noise_rms=None, noise_peak=None)
+
+
+# ------------------------------------------------------------ a span of a table
+def restricted_curve(curve: PPoly, x0: float, x1: float) -> PPoly:
+    """``curve`` over [x0, x1] alone (inside its breakpoints): the pieces there as they
+    are, the first one re-expanded about x0 where x0 is inside a piece (its Taylor
+    coefficients are the curve's derivatives there), the last one ending at x1. The curve
+    is the whole table's (its interpolation or fit, its ends clamped where the table is at
+    rest), so the span is exactly what the controller runs between those points."""
+    import math
+
+    from scipy.interpolate import PPoly
+
+    x = np.asarray(curve.x, dtype=float)
+    c = np.asarray(curve.c, dtype=float)
+    first = int(np.searchsorted(x, x0, side="right")) - 1
+    last = int(np.searchsorted(x, x1, side="left"))  # x[last - 1] < x1 <= x[last]
+    first = min(max(first, 0), len(x) - 2)
+    last = min(max(last, first + 1), len(x) - 1)
+    coefficients = c[:, first:last].copy()
+    if x[first] != x0:  # inside a piece: its Taylor coefficients about x0
+        m = c.shape[0] - 1
+        inside = PPoly(c[:, first:first + 1], x[first:first + 2], extrapolate=True)
+        coefficients[:, 0] = [float(inside(x0, nu=m - k)) / math.factorial(m - k)
+                              for k in range(m + 1)]
+    breaks = np.concatenate(([x0], x[first + 1:last], [x1]))
+    return PPoly(coefficients, breaks, extrapolate=False)

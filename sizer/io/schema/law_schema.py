@@ -24,7 +24,16 @@ def _data_law_schema() -> dict[str, Any]:
                                "enum": list(INTERPOLATIONS),
                                "description": "cam_table: the controller's interpolation "
                                               "of the points (absent: a spline fitted by "
-                                              "order)"}},
+                                              "order)"},
+                           "span": {
+                               "type": "array", "minItems": 2, "maxItems": 2,
+                               "items": {"type": "number"},
+                               "description": "cam_table, cam_segments: [x0, x1], the "
+                                              "rows (segment ends) of the file between "
+                                              "which the law is read, in the file's "
+                                              "master units; the law is normalized to "
+                                              "their stroke and duration (one move of "
+                                              "an exported cycle)"}},
             "description": "a law defined by data (docs/data-laws.md), e.g. {kind: "
                            "cubic_spline, points: [[0, 0], [0.4, 0.3], [1, 1]]}"}
 
