@@ -6,8 +6,13 @@ load-change fields of that axis, a run's speed and extent, speed continuity betw
 segments, a closed cycle, the time budget (cycle time or rate against the fixed
 durations), ``minimize``, the share rule, boundary speeds only with laws that have a
 form with boundary speeds, and boundary accelerations only with laws that meet them
-(polynomials of degree 5 and 7). Accelerations need not be continuous between segments:
-a step is a jerk impulse, which the reports mark.
+(polynomials of degree 5 and 7). A move between boundary speeds may also take a law of
+fixed shape (a law defined by data without such a form: the span of an exported cam
+table or segment file) at a fixed ``duration`` at which its end slopes are the move's
+speeds v T/h (and its end accelerations a T^2/h where given), within
+sizer.model.cycle.SHAPE_TOLERANCE; else an error at its ``law`` with the numbers.
+Accelerations need not be continuous between segments: a step is a jerk impulse, which
+the reports mark.
 
     motion_of(task, cycle, laws, source) -> Cycle, warnings
     build_cycle(given, source)           -> Cycle
@@ -283,19 +288,26 @@ def _move(given: MoveInput, axis: _Axis, at: Path_, share: ShareRule) -> Move:
         raise source.error(f"law {given.law!r}: `auto` shape parameters are chosen for the "
                            "task shorthand only, not yet for a move of a cycle; give the "
                            "shape", (*at, "law"))
-    if given.law is not None and (reason := moving_ends(given.law)) is not None:
+    moving = start != 0.0 or end != 0.0 or start_acceleration != 0.0 \
+        or end_acceleration != 0.0
+    shaped = _shaped_law(given.law) if moving and given.law is not None else None
+    if shaped is not None:  # a law of fixed shape between boundary speeds (a table's span)
+        _check_shaped(given, shaped, h, (start, end, start_acceleration, end_acceleration),
+                      axis, at)
+    elif given.law is not None and (reason := moving_ends(given.law)) is not None:
         raise source.error(f"this move's law {reason}: in a cycle of segments a move's law "
                            f"must start and end at rest (the move's speeds are its "
                            f"start_speed and end_speed); size a periodic cam as a task with "
                            f"dwell 0", (*at, "law"))
-    if given.law is not None and (start != 0.0 or end != 0.0) \
+    if shaped is None and given.law is not None and (start != 0.0 or end != 0.0) \
             and not has_boundary_form(given.law):
         laws = ", ".join(BOUNDARY_SPEED_FAMILIES).replace(
             "polynomial", "polynomial (poly3, poly5, poly7)")
         raise source.error(f"law {given.law!r} has no form with boundary speeds (this "
                            f"move's start_speed or end_speed is not 0); laws with one: "
                            f"{laws}", (*at, "law"))
-    if given.law is not None and (start_acceleration != 0.0 or end_acceleration != 0.0) \
+    if shaped is None and given.law is not None \
+            and (start_acceleration != 0.0 or end_acceleration != 0.0) \
             and not meets_accelerations(given.law):
         key = "start_acceleration" if start_acceleration != 0.0 else "end_acceleration"
         raise source.error(f"law {given.law!r} cannot start or end at a non-zero "
@@ -305,6 +317,40 @@ def _move(given: MoveInput, axis: _Axis, at: Path_, share: ShareRule) -> Move:
                 end_speed=end, weight=_check_weight(given.weight, share, source, at),
                 load=axis.load_change(MoveInput, given, at), name=given.name or "",
                 start_acceleration=start_acceleration, end_acceleration=end_acceleration)
+
+
+def _shaped_law(spec: str) -> Any:
+    """The law of ``spec`` when it is defined by data with no form between boundary
+    speeds (its shape is its own: the span of a cam table or of a segment file), else
+    None (a family's law: the messages below say which have a form)."""
+    from sizer.laws.data_law import DataLaw
+
+    choice = law_choice(spec)
+    if not (choice.is_fixed and issubclass(choice.family, DataLaw)) \
+            or has_boundary_form(spec):
+        return None
+    return choice.law
+
+
+def _check_shaped(given: MoveInput, law: Any, h: float,
+                  ends: tuple[float, float, float, float], axis: _Axis, at: Path_) -> None:
+    """A move between boundary speeds by a law of fixed shape: its duration is fixed (the
+    shape does not stretch with it) and the law's end slopes (and accelerations, where
+    given) are the move's (sizer.model.cycle.shape_mismatch), else an error at its law."""
+    from sizer.model.cycle import shape_mismatch
+
+    source = axis.source
+    if given.duration is None:
+        raise source.error(f"this move's law {given.law!r} is defined by data, with end "
+                           f"slopes of its own: a move between boundary speeds takes it "
+                           f"only at a fixed duration (give `duration`), at which its slopes "
+                           f"are the move's speeds", (*at, "duration"))
+    probe = Move(displacement=h, duration=given.duration, start_speed=ends[0],
+                 end_speed=ends[1], start_acceleration=ends[2], end_acceleration=ends[3])
+    reason = shape_mismatch(probe, law, given.duration, axis.linear)
+    if reason is not None:
+        raise source.error(f"this move's law does not meet its boundary speeds: {reason}",
+                           (*at, "law"))
 
 
 def _run(given: RunInput, axis: _Axis, at: Path_) -> Run:

@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from sizer.laws.base import MotionLaw
     from sizer.laws.choice import LawChoice
 
 
@@ -290,3 +291,62 @@ def shorthand_task(cycle: Cycle) -> Task | None:
         return None
     return Task(first.displacement, first.duration, dwell=dwell or 0.0,
                 return_move=len(moves) == 2, linear=cycle.linear)
+
+
+SHAPE_TOLERANCE = 1e-6
+"""A move between boundary speeds by a law of fixed shape (a law defined by data, e.g. the
+span of a cam table: :func:`fixed_shape`): its normalized end slopes q_N'(0), q_N'(1) must
+equal s0 = v0 T/h and s1 = v1 T/h (and its end accelerations q_N''(0), q_N''(1) the
+boundary accelerations a T^2/h where the move gives them) within this share of
+max(1, |s|): an exported table's ends are the sized move's to rounding."""
+
+
+def fixed_shape(law: MotionLaw) -> bool:
+    """Whether ``law`` (a MotionLaw) has no form between boundary speeds
+    (sizer.laws.boundary_speeds): its shape is its own, not a function of the move's
+    duration, so a move between boundary speeds takes it only at a fixed duration that
+    its end slopes fit (:func:`shape_mismatch`)."""
+    from sizer.laws.boundary_speeds import boundary_form
+
+    # the law object first (its family: no spec to read), its spec where that says none
+    return boundary_form(law) is None and boundary_form(law.spec) is None
+
+
+def shape_ends(law: MotionLaw, order: int) -> tuple[float, float]:
+    """q_N^(order) of ``law`` at tau = 0 (its first piece) and tau = 1 (its last)."""
+    return (float(law.piece_derivative(0, 0.0, order)),
+            float(law.piece_derivative(len(law.pieces) - 1, 1.0, order)))
+
+
+def shape_mismatch(move: Move, law: MotionLaw, duration: float, linear: bool = True
+                   ) -> str | None:
+    """Why ``law`` (of fixed shape) cannot be ``move`` over ``duration`` (s), or None: its
+    end position must be 1 (a displacement, not a curve that returns), its end slopes
+    s0 = v0 T/h and s1 = v1 T/h, and its end accelerations a T^2/h where the move gives
+    non-zero ones, each within SHAPE_TOLERANCE (the numbers said, in SI units of a
+    ``linear`` axis or a rotary one)."""
+    length = "m" if linear else "rad"
+    h, T = move.displacement, duration
+    end = shape_ends(law, 0)[1]
+    if abs(end - 1.0) > SHAPE_TOLERANCE:
+        return (f"the law returns to its start (q_N(1) = {end:.6g}): a move's law must end "
+                f"at its displacement")
+    wanted: list[tuple[str, int, tuple[float, float], str, tuple[float, float]]] = [
+        ("slope", 1, (move.start_speed * T / h, move.end_speed * T / h),
+               "v T/h", (move.start_speed, move.end_speed))]
+    if move.start_acceleration or move.end_acceleration:
+        wanted.append(("acceleration", 2, (move.start_acceleration * T * T / h,
+                                           move.end_acceleration * T * T / h), "a T^2/h",
+                       (move.start_acceleration, move.end_acceleration)))
+    for what, order, expected, formula, given in wanted:
+        ends = shape_ends(law, order)
+        for i in [0, 1] if order == 1 else [i for i in (0, 1) if given[i] != 0.0]:
+            if abs(ends[i] - expected[i]) > SHAPE_TOLERANCE * max(1.0, abs(expected[i])):
+                side = ("start", "end")[i]
+                return (f"the law's normalized {side} {what} q_N{chr(39) * order}({i}) = "
+                        f"{ends[i]:.9g} must equal {formula} = {expected[i]:.9g} (the move's "
+                        f"{side} {'speed' if order == 1 else 'acceleration'} {given[i]:.9g} "
+                        f"{length}/s{'' if order == 1 else '^2'}, duration T = {T:.9g} s, "
+                        f"displacement h = {h:.9g} {length}) within {SHAPE_TOLERANCE:g} of "
+                        f"max(1, |{formula}|)")
+    return None

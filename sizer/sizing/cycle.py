@@ -12,7 +12,10 @@ segment is evaluated exactly and the cycle's requirements combine them (DESIGN.m
 
 A rest-to-rest move is one move of the single-law engine (sizer.sizing.move); a move
 with boundary speeds is a piecewise polynomial of each candidate's duration
-(sizer.laws.boundary_speeds), evaluated exactly by sizer.sizing.move.polynomial_move. A run
+(sizer.laws.boundary_speeds), evaluated exactly by sizer.sizing.move.polynomial_move; a
+move between boundary speeds by a law of fixed shape (a table's span, at its fixed
+duration: :meth:`SegmentCycle._shaped_move`) is the law's own pieces scaled by h/T^k,
+through polynomial_move where they are polynomials. A run
 has a constant torque; a dwell holds its constant load (holding counts as driving, as
 in the single-law engine).
 
@@ -31,7 +34,16 @@ import numpy as np
 from sizer.errors import UserError
 from sizer.laws import LawChoice, MotionLaw, law_choice, make_law
 from sizer.mechanics import Drive
-from sizer.model.cycle import Cycle, Dwell, Move, Run, Segment, boundary_laws, shorthand_task
+from sizer.model.cycle import (
+    Cycle,
+    Dwell,
+    Move,
+    Run,
+    Segment,
+    boundary_laws,
+    fixed_shape,
+    shorthand_task,
+)
 from sizer.model.domain import Design, Limits, Load, Task, ThermalSpeedRule
 from sizer.sizing.candidates import MotorArrays
 from sizer.sizing.checks import TOLERANCE, evaluate_checks, worst_slack
@@ -578,7 +590,43 @@ class SegmentCycle:
         if move.rest_to_rest:
             assert law is not None
             return self._rest_move(move, law, drive, T, peaks, model)
+        if law is not None and fixed_shape(law):
+            return self._shaped_move(move, law, drive, T, peaks)
         return self._boundary_move(move, law, drive, T)
+
+    def _shaped_move(self, move: Move, law: MotionLaw, drive: Drive, T: np.ndarray,
+                     peaks: bool) -> SegmentFigures:
+        """A move between boundary speeds by a law of fixed shape at its fixed duration
+        (sizer.io.cycle: a cam table's span whose end slopes are v T/h): the law's figures
+        scale with h/T^k. Polynomial pieces (a PieceTable: a quintic Hermite table, a
+        spline, a fitted table) exactly by polynomial_move on the law's own coefficients
+        scaled by h/T^k, as a move with a boundary form; another curve (coefficient
+        segments with sines) as the rest-to-rest path evaluates a law (the single-law
+        engine on its grid), its jerk bounded unless the acceleration jumps inside (its
+        ends join its neighbours: :meth:`_join_steps`)."""
+        h = move.displacement
+        table = law.piece_table()
+        last = len(law.pieces) - 1
+        with np.errstate(over="ignore", invalid="ignore"):
+            ends = (h * law.piece_derivative(0, 0.0, 2) / T / T,
+                    h * law.piece_derivative(last, 1.0, 2) / T / T)
+        if table is None:
+            grid = self._rest_move(move, law, drive, T, peaks)
+            c = law.coefficients
+            inside = any(0.0 < jump.tau < 1.0 for jump in c.acceleration_jumps)
+            with np.errstate(over="ignore", invalid="ignore"):
+                jerk = (np.full_like(T, np.inf) if inside or not math.isfinite(c.C_j)
+                        else c.C_j * abs(h) / T / T / T)
+            return replace(grid, load_jerk=jerk, rms_model=None, end_accelerations=ends)
+        local = table.rows[0] / table.size  # (P, d+1) in u = tau - start
+        local[:, 0] -= table.offset / table.size
+        powers = np.arange(local.shape[1])
+        with np.errstate(over="ignore", invalid="ignore"):
+            coefficients = h * local[None] / T[:, None, None] ** powers
+            breaks = T[:, None] * np.append(table.starts, 1.0)[None, :]
+        exact = polynomial_move(breaks, coefficients, drive, self.motors,
+                                1.0 if h >= 0 else -1.0)
+        return SegmentFigures(**vars(exact), duration=T, end_accelerations=ends)
 
     def _rest_move(self, move: Move, law: MotionLaw, drive: Drive, T: np.ndarray,
                    peaks: bool, model: bool = False) -> SegmentFigures:
@@ -822,7 +870,7 @@ def _move_samples(move: Move, law: MotionLaw, T: np.ndarray, samples: int):
     speed and acceleration (n, samples) of a move in durations T: a move from rest on its
     law's grid, a move with boundary speeds on each candidate's own polynomial."""
     h, Tc = move.displacement, T[:, None]
-    if move.rest_to_rest:
+    if move.rest_to_rest or fixed_shape(law):  # its own shape: on its grid, at its T
         u, q_n, v_n, a_n = law_samples(law, samples)
         return u, h * q_n, h * v_n[None] / Tc, h * a_n[None] / (Tc * Tc)
     from sizer.laws.boundary_speeds import boundary_form
