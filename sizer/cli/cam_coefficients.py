@@ -50,6 +50,7 @@ def export_coefficients(target: Target, law: MotionLaw, h: float, T: float, line
         raise UserError(f"{target.name} writes segments, not a point table: leave out "
                         f"--points (--tolerance bounds the fitted pieces)", field="--points")
     tol = default_tolerance if tolerance is None else tolerance
+    cycle = profile is not None  # a design's cycle of segments, made by the caller
     if profile is None:
         profile = move_profile(law, h, T, linear, master_range, task)
     export = export_segments(profile, tol, target.limit)
@@ -64,8 +65,13 @@ def export_coefficients(target: Target, law: MotionLaw, h: float, T: float, line
     text = format_segments(export.segments, comments, mu, su)
     write_text_atomically(output, text, "--output")
     export = with_segments(export, parse_segments(text, str(output)).segments)
-    resized, skipped = None, None
-    if pair is not None and design is not None and task is None:
+    resized, skipped, specs = None, None, None
+    if cycle and pair is not None and design is not None:
+        from sizer.cli.cam_cycle import resized_cycle
+
+        resized, specs = resized_cycle(design, catalog, pair, profile,
+                                       lambda span: segments_spec(output, span))
+    elif pair is not None and design is not None and task is None:
         resized = _resized(design, catalog, pair, output)
     elif pair is None:
         skipped = "a law alone: no motor to size"
@@ -73,6 +79,10 @@ def export_coefficients(target: Target, law: MotionLaw, h: float, T: float, line
         skipped = ("--cycle: the segments are the whole machine cycle, not the move the "
                    "motor was sized for; export the move alone for its torques")
     record = certificate_record(export, target, output, pair, T, resized, skipped)
+    if cycle:
+        from sizer.cli.cam_cycle import with_cycle
+
+        record = with_cycle(record, profile, T, specs)
     typer.echo("\n".join(printable(line) for line in certificate_text(record)))
     if certificate is not None:
         write_text_atomically(certificate, json.dumps(record, indent=2) + "\n",
@@ -91,9 +101,11 @@ def export_coefficients(target: Target, law: MotionLaw, h: float, T: float, line
         raise typer.Exit(ExitCode.CHECK_FAILED)
 
 
-def segments_spec(path: Path) -> str:
-    """The law spec that reads the written segments back."""
-    return f"{{kind: cam_segments, file: {json.dumps(str(path))}}}"
+def segments_spec(path: Path, span: tuple[float, float] | None = None) -> str:
+    """The law spec that reads the written segments back (with ``span``, the segments
+    between those X: one move of a cycle)."""
+    rows = "" if span is None else f", span: [{span[0]!r}, {span[1]!r}]"
+    return f"{{kind: cam_segments, file: {json.dumps(str(path))}{rows}}}"
 
 
 def _resized(design: Path, catalog: list[str] | None, pair: CandidateResult, output: Path

@@ -46,7 +46,13 @@ def export_smooth(target: Target, law: MotionLaw, h: float, T: float, linear: bo
     write_text_atomically(output, write(table), "--output")
     resized = None
     skipped = None
-    if profile is not None:
+    specs = None
+    if profile is not None and pair is not None and design is not None:
+        from sizer.cli.cam_cycle import resized_cycle
+
+        resized, specs = resized_cycle(design, catalog, pair, profile,
+                                       lambda span: cam_table_spec(output, span))
+    elif profile is not None:
         skipped = CYCLE_NOT_RESIZED
     elif pair is not None and design is not None and task is None:
         resized = _resized(design, catalog, pair, output)
@@ -59,7 +65,7 @@ def export_smooth(target: Target, law: MotionLaw, h: float, T: float, linear: bo
     if profile is not None:
         from sizer.cli.cam_cycle import with_cycle
 
-        record = with_cycle(record, profile, T)
+        record = with_cycle(record, profile, T, specs)
     typer.echo("\n".join(printable(line) for line in certificate_text(record)))
     if certificate is not None:
         write_text_atomically(certificate, json.dumps(record, indent=2) + "\n",
@@ -78,11 +84,7 @@ def export_smooth(target: Target, law: MotionLaw, h: float, T: float, linear: bo
         raise typer.Exit(ExitCode.CHECK_FAILED)
 
 
-CYCLE_NOT_RESIZED = (
-    "torques not re-sized: sizer reads a written table back as one rest-to-rest cam_table "
-    "law, and a cycle's moves between boundary speeds have no such form for the sizing "
-    "(sizer.laws.boundary_speeds), so no faithful re-sizing of this cycle's table exists; "
-    "the torques are the sizing's of the cycle, not of the table")
+CYCLE_NOT_RESIZED = "a cycle without a sized pair: no motor to size"
 
 
 def _table(law: MotionLaw, h: float, T: float, linear: bool, master_range: float | None,
@@ -119,10 +121,12 @@ def _resized(design: Path, catalog: list[str] | None, pair: CandidateResult, out
     return resize(api.load(design, catalog or ()), pair, spec)
 
 
-def cam_table_spec(path: Path) -> str:
-    """The law spec that reads the written XYVA table back."""
+def cam_table_spec(path: Path, span: tuple[float, float] | None = None) -> str:
+    """The law spec that reads the written XYVA table back (with ``span``, the rows
+    between those X: one move of a cycle)."""
+    rows = "" if span is None else f", span: [{span[0]!r}, {span[1]!r}]"
     return (f"{{kind: cam_table, file: {json.dumps(str(path))}, "
-            f"interpolation: quintic_hermite}}")
+            f"interpolation: quintic_hermite{rows}}}")
 
 
 # ------------------------------------------------------------------- certificate

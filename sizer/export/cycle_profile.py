@@ -117,7 +117,7 @@ def cycle_profile(design: Design, law: MotionLaw | None, duration: float,
     The profile's ``law`` is ``law`` (or the first move's), its ``stroke`` the cycle's
     travel (the largest position less the smallest): the reference of the tolerance."""
     from sizer.laws.boundary_speeds import boundary_form
-    from sizer.model.cycle import Dwell, Move, Run
+    from sizer.model.cycle import Dwell, Move, Run, fixed_shape
     from sizer.sizing.cycle import cycle_laws, normalized_move
 
     cycle = design.machine_cycle
@@ -147,7 +147,12 @@ def cycle_profile(design: Design, law: MotionLaw | None, duration: float,
             assert isinstance(segment, Move) and the_law is not None
             stroke = segment.displacement * factor
             shape = the_law
-            if not segment.rest_to_rest:
+            if not segment.rest_to_rest and fixed_shape(the_law):
+                # a law of its own shape at the fixed duration (a span of an exported
+                # file: sizer.model.cycle.shape_mismatch checked its end slopes)
+                speeds = (segment.start_speed * factor / scale,
+                          segment.end_speed * factor / scale)
+            elif not segment.rest_to_rest:
                 basis = boundary_form(the_law.spec)
                 if basis is None:
                     raise ValueError(f"{the_law.spec} has no form between boundary speeds "

@@ -7,6 +7,15 @@ transmission (the ratio or gearbox the sizing chose, fixed) and the same duratio
 sized one, fixed also when the design minimizes it): the same computation as
 ``sizer size`` of the design with ``laws: [that spec]``. No files here: the caller reads
 the law.
+
+A design's cycle of segments (:func:`resize_cycle`): the design's cycle with each move's
+law replaced by the written file's span of that move (``{kind: cam_table, file: F,
+interpolation: ..., span: [x0, x1]}`` or ``{kind: cam_segments, file: F, span: [x0,
+x1]}``, normalized to its own stroke and duration), every move and dwell at the duration
+the sizing gave it (fixed; runs unchanged), sized for the pair: the same computation as
+``sizer size`` of that cycle written out. A move between boundary speeds takes its span at
+that fixed duration, its end slopes checked against the move's speeds
+(sizer.model.cycle.shape_mismatch) and evaluated exactly (sizer.sizing.cycle).
 """
 
 from __future__ import annotations
@@ -15,6 +24,8 @@ from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     from sizer.model.domain import Design
     from sizer.sizing.results import CandidateResult
 
@@ -59,4 +70,56 @@ def resize(design: Design, result: CandidateResult, spec: str) -> Resized:
 
     fixed = replace(fixed_design(design, result), laws=(law_choice(spec),))
     exported = size_design(fixed).results[0]
+    return Resized(result, exported)
+
+
+def cycle_design(design: Design, result: CandidateResult, specs: Sequence[str | None]
+                 ) -> Design:
+    """``design`` with the pair fixed (:func:`fixed_design`) and its cycle's moves by the
+    laws ``specs`` (one per segment, None for a run or a dwell), each move and dwell at
+    the duration the sizing gave it (sizer.export.cycle_profile.segment_durations), no
+    duration free and no cycle-time target. ValueError where a move's law does not meet
+    its boundary speeds at that duration (the message says the numbers)."""
+    from sizer.export.cycle_profile import segment_durations
+    from sizer.laws.choice import law_choice
+    from sizer.model.cycle import Dwell, Move, Segment, fixed_shape, shape_mismatch
+
+    cycle = design.machine_cycle
+    if result.duration is None:
+        raise ValueError("the pair has no sized duration")
+    durations = segment_durations(design, result.duration)
+    segments: list[Segment] = []
+    for segment, duration, spec in zip(cycle.segments, durations, specs, strict=True):
+        if isinstance(segment, Move):
+            if spec is None:
+                raise ValueError(f"no law for move {segment.name!r}")
+            choice = law_choice(spec)
+            moved = replace(segment, duration=duration, law=choice)
+            if not moved.rest_to_rest and fixed_shape(choice.law):
+                reason = shape_mismatch(moved, choice.law, duration, cycle.linear)
+                if reason is not None:
+                    raise ValueError(f"move {segment.name!r}: {reason}")
+            segments.append(moved)
+        elif isinstance(segment, Dwell):
+            segments.append(replace(segment, duration=duration))
+        else:
+            segments.append(segment)
+    fixed = replace(cycle, segments=tuple(segments), cycle_time=None,
+                    minimize_segment=None, shorthand=None)
+    out = replace(design, machine_cycle=fixed, motors=(result.motor_object,),
+                  chosen_motor=None, chosen_law=None)
+    if design.ratio_choice is not None:
+        out = replace(out, ratio_choice=None, transmission=result.transmission)
+    if result.drive_object is not None:
+        out = replace(out, drives=(result.drive_object,))
+    return out
+
+
+def resize_cycle(design: Design, result: CandidateResult, specs: Sequence[str | None]
+                 ) -> Resized:
+    """The design's cycle with each move's law ``specs[i]`` (the exported file's span of
+    that move), sized for ``result``'s pair at the sized durations (:func:`cycle_design`)."""
+    from sizer.sizing import size_design
+
+    exported = size_design(cycle_design(design, result, specs)).results[0]
     return Resized(result, exported)
