@@ -13,6 +13,7 @@ To add a target, write ``read_<target>(text) -> Curve`` here and add a row to
 
 from __future__ import annotations
 
+import itertools
 import math
 import re
 from collections.abc import Callable
@@ -34,6 +35,10 @@ class Curve:
     evaluate: Evaluate
     slave: np.ndarray
     """The slave position at each knot, as written."""
+    terms: Callable[[int], float] | None = None
+    """For a file of coefficients: the largest sum of the magnitudes of the terms of the
+    ``order``-th derivative over a segment (at its ends), what double-precision rounding
+    of the coefficients and of their evaluation is relative to (None: a table)."""
 
 
 # ----------------------------------------------------------------- linear tables
@@ -197,22 +202,141 @@ def twincat_points(text: str) -> list[MotionFunctionPoint]:
     return points
 
 
+END_CONDITIONS = ("SlaveVelocity", "SlaveAcceleration", "SlaveJerk")
+"""The derivatives of orders 1, 2, 3 a MotionFunctionPoint may give (slave units per
+master unit^k); left out: 0."""
+
+
+def hermite_polynomial(start: MotionFunctionPoint, end: MotionFunctionPoint, degree: int
+                       ) -> Callable[[np.ndarray, int], np.ndarray]:
+    """PolynomialN (N = 2m + 1) between end conditions: the one polynomial with the two
+    points' positions and derivatives of orders 1..m (END_CONDITIONS, 0 where left out),
+    solved by numpy in u = (X - X_start) / span in [0, 1] (conditioned: the derivatives
+    scaled by span^k); returns (u, order) -> d^order Y / du^order."""
+    m = (degree - 1) // 2
+    span = end.master - start.master
+    rows, rhs = [], []
+    for point, u in ((start, 0.0), (end, 1.0)):
+        for k in range(m + 1):
+            rows.append([math.perm(j, k) * u ** (j - k) if j >= k else 0.0
+                         for j in range(degree + 1)])
+            value = point.slave if k == 0 else point.fields.get(END_CONDITIONS[k - 1], 0.0)
+            rhs.append(value * span ** k)
+    c = np.linalg.solve(np.array(rows), np.array(rhs))
+    return _poly(dict(enumerate(float(v) for v in c)))
+
+
 def read_twincat_mc3(text: str) -> Curve:
     """`twincat-mc3`: each segment [point i, point i+1] runs point i's FunctionType,
-    scaled to its rise over its master span."""
+    scaled to its rise over its master span; a Polynomial3/5/7 whose points write a
+    non-zero end condition (a move between boundary speeds) is the polynomial those
+    conditions fix (:func:`hermite_polynomial`), else the rest-to-rest closed form."""
     points = twincat_points(text)
     x = np.array([p.master for p in points])
     y = np.array([p.slave for p in points])
     assert np.all(np.diff(x) > 0.0)
     types = [p.function_type for p in points[:-1]]
+    between: dict[int, Callable[[np.ndarray, int], np.ndarray]] = {}
+    for k, kind in enumerate(types):
+        if kind.startswith("Polynomial") and any(
+                p.fields.get(name, 0.0) != 0.0 for p in points[k:k + 2]
+                for name in END_CONDITIONS):
+            between[k] = hermite_polynomial(points[k], points[k + 1], int(kind[-1]))
 
     def evaluate(t: np.ndarray, order: int, interval: np.ndarray) -> np.ndarray:
         out = np.empty_like(t)
         for k in np.unique(interval):
             mask = interval == k
             span, rise = x[k + 1] - x[k], y[k + 1] - y[k]
-            q = FUNCTION_TYPES[types[k]]((t[mask] - x[k]) / span, order)
+            u = (t[mask] - x[k]) / span
+            if k in between:
+                out[mask] = between[k](u, order) / span ** order
+                continue
+            q = FUNCTION_TYPES[types[k]](u, order)
             out[mask] = rise / span ** order * q + (y[k] if order == 0 else 0.0)
         return out
 
     return Curve("segment-exact", x, (0, 1, 2), evaluate, y)
+
+
+# ------------------------------------------- Siemens Technology CPU: coefficient segments
+SIEMENS_HEADER = "Type;Reserve;X1;Y1;X2;Y2;A0;A1;A2;A3;A4;A5;A6;B0;B1;B2"
+
+
+@dataclass(frozen=True)
+class CoefficientSegment:
+    """One MC_CamSectorAdd polynomial data block: Y = sum a[i] X^i + b0 sin(b1 X + b2)
+    on [x1, x2], X the absolute master coordinate."""
+
+    x1: float
+    y1: float
+    x2: float
+    y2: float
+    a: tuple[float, ...]
+    b: tuple[float, float, float]
+
+    def derivative(self, x: np.ndarray, order: int) -> np.ndarray:
+        """d^order Y / dX^order: the powers summed term by term, the sine's derivative
+        sin(b1 X + b2 + order pi/2) times b0 b1^order."""
+        out = np.zeros_like(x)
+        for power, c in enumerate(self.a):
+            if power >= order and c != 0.0:
+                out = out + c * math.perm(power, order) * x ** (power - order)
+        b0, b1, b2 = self.b
+        if b0 != 0.0:
+            out = out + b0 * b1 ** order * np.sin(b1 * x + b2 + order * math.pi / 2)
+        return out
+
+    def terms(self, x: np.ndarray, order: int) -> np.ndarray:
+        """sum |a[i] d^order X^i/dX^order| + |b0 b1^order| (1 + |b1 x| + |b2|) at x: the
+        scale of the rounding of ``derivative`` (absolute X: the terms cancel far from
+        X = 0; the sine's argument is rounded relative to its size)."""
+        b0, b1, b2 = self.b
+        out = abs(b0 * b1 ** order) * (1.0 + np.abs(b1 * x) + abs(b2))
+        for power, c in enumerate(self.a):
+            if power >= order:
+                out = out + abs(c) * math.perm(power, order) * np.abs(x) ** (power - order)
+        return out
+
+
+def siemens_segments(text: str) -> tuple[dict[str, str], list[CoefficientSegment]]:
+    """`siemens-tcpu`: '#' comments (among them `# master_unit: U`, `# slave_unit: U`),
+    the header Type;Reserve;X1;Y1;X2;Y2;A0..A6;B0;B1;B2, then one line per segment
+    (Type 0, polynomial; Reserve 0), numbers with a decimal point."""
+    lines = text.splitlines()
+    units = dict(re.findall(r"^# (master_unit|slave_unit): (\S+)$", text, re.M))
+    body = [line for line in lines if not line.startswith("#")]
+    assert body[0] == SIEMENS_HEADER, body[0]
+    rows = [line.split(";") for line in body[1:]]
+    assert rows and all(len(r) == 16 and r[0] == "0" and r[1] == "0" for r in rows), rows[:2]
+    segments = []
+    for r in rows:
+        v = [float(cell) for cell in r[2:]]
+        assert all(math.isfinite(c) for c in v)
+        segments.append(CoefficientSegment(v[0], v[1], v[2], v[3], tuple(v[4:11]),
+                                           (v[11], v[12], v[13])))
+    return units, segments
+
+
+def read_siemens_tcpu(text: str) -> Curve:
+    """`siemens-tcpu`: the segments run as their formula says, in the absolute X (the
+    docs' inference; B1 in rad per master unit); they join end to end (each X1 the
+    previous X2: no gap for MC_CamInterpolate to close)."""
+    _, segments = siemens_segments(text)
+    x = np.array([s.x1 for s in segments] + [segments[-1].x2])
+    assert all(a.x2 == b.x1 for a, b in itertools.pairwise(segments))
+    assert np.all(np.diff(x) > 0.0)
+
+    def evaluate(t: np.ndarray, order: int, interval: np.ndarray) -> np.ndarray:
+        out = np.empty_like(t)
+        for k in np.unique(interval):
+            mask = interval == k
+            out[mask] = segments[int(k)].derivative(t[mask], order)
+        return out
+
+    def terms(order: int) -> float:
+        return max(float(np.max(s.terms(np.array([s.x1, s.x2]), order)))
+                   for s in segments)
+
+    y = np.array([s.y1 for s in segments] + [segments[-1].y2])
+    return Curve("coefficient-segments", x, (0, 1, 2), evaluate, y, terms)
