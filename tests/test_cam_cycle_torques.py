@@ -45,8 +45,9 @@ def export(tmp_path: Path, capsys, target: str, law: str, name: str) -> dict:
     out_file, cert = tmp_path / name, tmp_path / f"{name}.json"
     code, text = cam([str(SAW), "--to", target, "--law", law, "-o", str(out_file),
                       "--certificate", str(cert)], capsys)
-    assert code == 0, text
     record = json.loads(cert.read_text())
+    real = record.get("single_precision_estimate", {"within_tolerance": True})
+    assert code == (0 if real["within_tolerance"] else 1), text  # REAL data: exit 1
     assert record["torques"]["computed"], record["torques"]
     return record
 

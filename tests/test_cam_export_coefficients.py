@@ -85,8 +85,11 @@ def export(tmp_path: Path, capsys, spec: str, *extra: str) -> tuple[list, dict]:
     code, out, err = run_cam([spec, "--displacement", "90 deg", "--duration", "0.25 s",
                               "--to", "siemens-tcpu", "-o", str(out_file),
                               "--certificate", str(cert), *extra], capsys)
-    assert code == 0, out + err
-    return read_segments(out_file.read_text()), json.loads(cert.read_text())
+    record = json.loads(cert.read_text())
+    # exit 1 only where the single-precision estimate is over the tolerance (REAL data)
+    assert code == (0 if record["single_precision_estimate"]["within_tolerance"] else 1), \
+        out + err
+    return read_segments(out_file.read_text()), record
 
 
 @pytest.mark.parametrize(("spec", "closed"), LAWS)

@@ -3,8 +3,9 @@
 and the motor's torques re-computed on the written segments read back
 (sizer.export.coefficient_segments, docs/cam-coefficients.md).
 
-Exit codes: 0 written, tolerance met and every check the law passed still passed; 1
-written but the tolerance is not met within the segment cap, or the exported profile
+Exit codes: 0 written, tolerance met (in double and, by the estimate, in single
+precision) and every check the law passed still passed; 1 written but the tolerance is
+not met within the segment cap or by the single-precision estimate, or the exported profile
 fails a check the law passed; 2 bad input.
 """
 
@@ -91,6 +92,14 @@ def export_coefficients(target: Target, law: MotionLaw, h: float, T: float, line
     if not export.met:
         typer.echo(printable(f"{output}: the tolerance {tol:g} is not met: splitting "
                              f"stopped (the certificate's note says why)"), err=True)
+        failed = True
+    if not export.met_in_single_precision:  # the data block is REAL (p. 6-181)
+        real = export.real_position.max / abs(export.profile.stroke)
+        typer.echo(printable(f"{output}: in single precision (REAL, the data block's type) "
+                             f"the position error is about {real:.2g} of the stroke, over "
+                             f"the tolerance {tol:g}: the coefficients of absolute X "
+                             f"cancel; export a shorter span (a move alone) or check on "
+                             f"the controller"), err=True)
         failed = True
     if resized is not None and resized.newly_failed:
         typer.echo(printable(f"{output}: the exported profile fails "
@@ -198,6 +207,7 @@ def certificate_record(export: SegmentExport, target: Target, output: Path, pair
                     "the evaluation in IEEE single precision (REAL), on a grid of points",
             "position": {"max": export.real_position.max, "at": export.real_position.at,
                          "unit": su, "of_stroke": export.real_position.max / stroke},
+            "within_tolerance": export.met_in_single_precision,
             "amplification": export.amplification,
             "amplification_note": "largest sum |A_i X^i| + |B0| over a segment, in "
                                   "strokes: a relative rounding r of the coefficients can "

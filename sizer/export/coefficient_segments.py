@@ -113,6 +113,11 @@ class SegmentExport:
         return self.relative_position_error <= self.tolerance
 
     @property
+    def met_in_single_precision(self) -> bool:
+        """The single-precision estimate (the data block's REAL) within the tolerance."""
+        return self.real_position.max / abs(self.profile.stroke) <= self.tolerance
+
+    @property
     def fitted_pieces(self) -> int:
         return len({w.piece for w in self.written if not w.exact})
 
