@@ -18,6 +18,12 @@ from typing import TYPE_CHECKING, Any
 
 import typer
 
+from sizer.cli.cam_torques import (
+    newly_failed_message,
+    resized_export,
+    torque_lines,
+    torques_record,
+)
 from sizer.cli.exit_codes import ExitCode
 from sizer.errors import UserError
 from sizer.report.output import write_text_atomically
@@ -29,7 +35,6 @@ if TYPE_CHECKING:
     from sizer.export.resized import Resized
     from sizer.export.targets import Target
     from sizer.laws.base import MotionLaw
-    from sizer.sizing.results import CandidateResult
 
 FORMULA = "Y = A0 + A1*X + A2*X^2 + A3*X^3 + A4*X^4 + A5*X^5 + A6*X^6 + B0*sin(B1*X + B2)"
 
@@ -66,19 +71,10 @@ def export_coefficients(target: Target, law: MotionLaw, h: float, T: float, line
     text = format_segments(export.segments, comments, mu, su)
     write_text_atomically(output, text, "--output")
     export = with_segments(export, parse_segments(text, str(output)).segments)
-    resized, skipped, specs = None, None, None
-    if cycle and pair is not None and design is not None:
-        from sizer.cli.cam_cycle import resized_cycle
-
-        resized, specs = resized_cycle(design, catalog, pair, profile,
-                                       lambda span: segments_spec(output, span))
-    elif pair is not None and design is not None and task is None:
-        resized = _resized(design, catalog, pair, output)
-    elif pair is None:
-        skipped = "a law alone: no motor to size"
-    else:
-        skipped = ("--cycle: the segments are the whole machine cycle, not the move the "
-                   "motor was sized for; export the move alone for its torques")
+    resized, skipped, specs = resized_export(
+        lambda span: segments_spec(output, span), what="segments",
+        cycle=profile if cycle else None, task=task, pair=pair, design=design,
+        catalog=catalog)
     record = certificate_record(export, target, output, pair, T, resized, skipped)
     if cycle:
         from sizer.cli.cam_cycle import with_cycle
@@ -101,10 +97,9 @@ def export_coefficients(target: Target, law: MotionLaw, h: float, T: float, line
                              f"cancel; export a shorter span (a move alone) or check on "
                              f"the controller"), err=True)
         failed = True
-    if resized is not None and resized.newly_failed:
-        typer.echo(printable(f"{output}: the exported profile fails "
-                             f"{', '.join(resized.newly_failed)}, which the sized law "
-                             f"passed"), err=True)
+    message = newly_failed_message(output, resized)
+    if message is not None:
+        typer.echo(message, err=True)
         failed = True
     if failed:
         raise typer.Exit(ExitCode.CHECK_FAILED)
@@ -117,27 +112,7 @@ def segments_spec(path: Path, span: tuple[float, float] | None = None) -> str:
     return f"{{kind: cam_segments, file: {json.dumps(str(path))}{rows}}}"
 
 
-def _resized(design: Path, catalog: list[str] | None, pair: CandidateResult, output: Path
-             ) -> Resized:
-    """The written segments read back as a user would ({kind: cam_segments, file}) and
-    sized for the same pair."""
-    from sizer import api
-    from sizer.export.resized import resize
-    from sizer.laws import make_law
-
-    spec = segments_spec(output)
-    make_law(spec)  # read back here: a file that does not read is said before sizing
-    return resize(api.load(design, catalog or ()), pair, spec)
-
-
 # ------------------------------------------------------------------- certificate
-def _figures(result: CandidateResult) -> dict[str, Any]:
-    return {"feasible": result.feasible,
-            "peak_torque_Nm": result.peak_torque, "rms_torque_Nm": result.rms_torque,
-            "margins": {str(c.name): {"margin": c.margin, "required": c.required,
-                                      "passed": c.passed} for c in result.checks}}
-
-
 def certificate_record(export: SegmentExport, target: Target, output: Path, pair: Any,
                        duration: float, resized: Resized | None, skipped: str | None
                        ) -> dict[str, Any]:
@@ -155,14 +130,7 @@ def certificate_record(export: SegmentExport, target: Target, output: Path, pair
     notes.append("the manual advises polynomials up to the 3rd order only: REAL "
                  "coefficients of higher orders may be inaccurate, and the CPU recomputes "
                  "the coefficients (S7T Config may show others, start and end Y swapped)")
-    torques: dict[str, Any]
-    if resized is None:
-        torques = {"computed": False, "why": skipped}
-    else:
-        torques = {"computed": True, "law": _figures(resized.law),
-                   "exported": _figures(resized.exported),
-                   "exported_spec": segments_spec(output),
-                   "newly_failed": list(resized.newly_failed)}
+    torques = torques_record(resized, skipped, segments_spec(output))
     how: dict[str, int] = {}
     for w in export.written:
         how[w.how] = how.get(w.how, 0) + 1
@@ -235,23 +203,7 @@ def certificate_text(record: dict[str, Any]) -> list[str]:
              f"{real['position']['max']:.3g} {real['position']['unit']} "
              f"({real['position']['of_stroke']:.3g} of the stroke); coefficient "
              f"amplification {real['amplification']:.3g} strokes"]
-    torques = record["torques"]
-    if not torques["computed"]:
-        lines.append(f"torques: not re-computed ({torques['why']})")
-    else:
-        for name, figures in (("sized law", torques["law"]),
-                              ("exported segments", torques["exported"])):
-            margins = ", ".join(f"{k} {100 * m['margin']:.4g} %"
-                                + ("" if m["passed"] else " FAILS")
-                                for k, m in figures["margins"].items())
-            lines.append(f"{name}: peak torque {_nm(figures['peak_torque_Nm'])}, RMS "
-                         f"{_nm(figures['rms_torque_Nm'])}; margins: {margins}")
-        if torques["newly_failed"]:
-            lines.append("the exported segments FAIL " + ", ".join(torques["newly_failed"])
-                         + ", which the sized law passed")
+    lines += torque_lines(record["torques"], "exported segments")
     lines += [f"note: {n}" for n in record["notes"]]
     return lines
 
-
-def _nm(value: float | None) -> str:
-    return "-" if value is None else f"{value:.6g} N*m"

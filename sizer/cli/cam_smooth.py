@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any, cast
 
 import typer
 
+from sizer.cli.cam_torques import newly_failed_message, torque_lines, torques_record
 from sizer.cli.exit_codes import ExitCode
 from sizer.errors import UserError
 from sizer.report.output import write_text_atomically
@@ -29,7 +30,6 @@ if TYPE_CHECKING:
     from sizer.export.resized import Resized
     from sizer.export.targets import Target
     from sizer.laws.base import MotionLaw
-    from sizer.sizing.results import CandidateResult
 
 
 def export_smooth(target: Target, law: MotionLaw, h: float, T: float, linear: bool,
@@ -44,23 +44,11 @@ def export_smooth(target: Target, law: MotionLaw, h: float, T: float, linear: bo
                    default_tolerance, profile)
     write = cast("Callable[[Any], str]", target.write)  # a smooth target writes this table
     write_text_atomically(output, write(table), "--output")
-    resized = None
-    skipped = None
-    specs = None
-    if profile is not None and pair is not None and design is not None:
-        from sizer.cli.cam_cycle import resized_cycle
+    from sizer.cli.cam_torques import resized_export
 
-        resized, specs = resized_cycle(design, catalog, pair, profile,
-                                       lambda span: cam_table_spec(output, span))
-    elif profile is not None:
-        skipped = CYCLE_NOT_RESIZED
-    elif pair is not None and design is not None and task is None:
-        resized = _resized(design, catalog, pair, output)
-    elif pair is None:
-        skipped = "a law alone: no motor to size"
-    else:
-        skipped = ("--cycle: the table is the whole machine cycle, not the move the motor "
-                   "was sized for; export the move alone for its torques")
+    resized, skipped, specs = resized_export(
+        lambda span: cam_table_spec(output, span), what="table", cycle=profile, task=task,
+        pair=pair, design=design, catalog=catalog)
     record = certificate_record(table, target, output, pair, T, resized, skipped)
     if profile is not None:
         from sizer.cli.cam_cycle import with_cycle
@@ -75,16 +63,12 @@ def export_smooth(target: Target, law: MotionLaw, h: float, T: float, linear: bo
         typer.echo(printable(f"{output}: the tolerance {table.tolerance:g} is not met within "
                              f"{target.name}'s limit of {table.limit} points"), err=True)
         failed = True
-    if resized is not None and resized.newly_failed:
-        typer.echo(printable(f"{output}: the exported profile fails "
-                             f"{', '.join(resized.newly_failed)}, which the sized law "
-                             f"passed"), err=True)
+    message = newly_failed_message(output, resized)
+    if message is not None:
+        typer.echo(message, err=True)
         failed = True
     if failed:
         raise typer.Exit(ExitCode.CHECK_FAILED)
-
-
-CYCLE_NOT_RESIZED = "a cycle without a sized pair: no motor to size"
 
 
 def _table(law: MotionLaw, h: float, T: float, linear: bool, master_range: float | None,
@@ -108,19 +92,6 @@ def _table(law: MotionLaw, h: float, T: float, linear: bool, master_range: float
                                else tolerance, target.limit)
 
 
-def _resized(design: Path, catalog: list[str] | None, pair: CandidateResult, output: Path
-             ) -> Resized:
-    """The written table read back as a user would ({kind: cam_table, file, interpolation:
-    quintic_hermite}) and sized for the same pair."""
-    from sizer import api
-    from sizer.export.resized import resize
-    from sizer.laws import make_law
-
-    spec = cam_table_spec(output)
-    make_law(spec)  # read back here: a file that does not read is said before sizing
-    return resize(api.load(design, catalog or ()), pair, spec)
-
-
 def cam_table_spec(path: Path, span: tuple[float, float] | None = None) -> str:
     """The law spec that reads the written XYVA table back (with ``span``, the rows
     between those X: one move of a cycle)."""
@@ -130,13 +101,6 @@ def cam_table_spec(path: Path, span: tuple[float, float] | None = None) -> str:
 
 
 # ------------------------------------------------------------------- certificate
-def _figures(result: CandidateResult) -> dict[str, Any]:
-    return {"feasible": result.feasible,
-            "peak_torque_Nm": result.peak_torque, "rms_torque_Nm": result.rms_torque,
-            "margins": {str(c.name): {"margin": c.margin, "required": c.required,
-                                      "passed": c.passed} for c in result.checks}}
-
-
 def certificate_record(table: HermiteTable, target: Target, output: Path, pair: Any,
                        duration: float, resized: Resized | None, skipped: str | None
                        ) -> dict[str, Any]:
@@ -149,14 +113,7 @@ def certificate_record(table: HermiteTable, target: Target, output: Path, pair: 
         notes.append(f"clipped to {table.limit} points, {target.name}'s limit; the "
                      f"tolerance needs {needed}: NOT met")
     peak_a = profile.peak_acceleration
-    torques: dict[str, Any]
-    if resized is None:
-        torques = {"computed": False, "why": skipped}
-    else:
-        torques = {"computed": True, "law": _figures(resized.law),
-                   "exported": _figures(resized.exported),
-                   "exported_spec": cam_table_spec(output),
-                   "newly_failed": list(resized.newly_failed)}
+    torques = torques_record(resized, skipped, cam_table_spec(output))
     return {
         "target": target.name,
         "title": target.title,
@@ -201,23 +158,7 @@ def certificate_text(record: dict[str, Any]) -> list[str]:
     lines = [*certificate_head(record),
              f"acceleration error: {acc['max']:.6g} {acc['unit']}{acc_share} at "
              f"{acc['at']:.6g} {mu}"]
-    torques = record["torques"]
-    if not torques["computed"]:
-        lines.append(f"torques: not re-computed ({torques['why']})")
-    else:
-        for name, figures in (("sized law", torques["law"]),
-                              ("exported table", torques["exported"])):
-            margins = ", ".join(f"{k} {100 * m['margin']:.4g} %"
-                                + ("" if m["passed"] else " FAILS")
-                                for k, m in figures["margins"].items())
-            lines.append(f"{name}: peak torque {_nm(figures['peak_torque_Nm'])}, RMS "
-                         f"{_nm(figures['rms_torque_Nm'])}; margins: {margins}")
-        if torques["newly_failed"]:
-            lines.append("the exported table FAILS " + ", ".join(torques["newly_failed"])
-                         + ", which the sized law passed")
+    lines += torque_lines(record["torques"], "exported table")
     lines += [f"note: {n}" for n in record["notes"]]
     return lines
 
-
-def _nm(value: float | None) -> str:
-    return "-" if value is None else f"{value:.6g} N*m"
