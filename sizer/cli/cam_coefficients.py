@@ -26,6 +26,7 @@ from sizer.cli.cam_torques import (
 )
 from sizer.cli.exit_codes import ExitCode
 from sizer.errors import UserError
+from sizer.report.cam_certificate import record_head, segment_records
 from sizer.report.output import write_text_atomically
 from sizer.report.printable import printable
 
@@ -135,17 +136,9 @@ def certificate_record(export: SegmentExport, target: Target, output: Path, pair
     for w in export.written:
         how[w.how] = how.get(w.how, 0) + 1
     return {
-        "target": target.name,
-        "title": target.title,
-        "file": str(output),
-        "law": profile.law.spec,
-        "motor": None if pair is None else pair.motor,
-        "stroke": profile.stroke,
-        "slave_unit": su,
-        "master": {"kind": "time" if profile.over_time else "master position",
-                   "span": profile.span, "unit": mu, "move_duration_s": duration},
-        "segments": [{"name": s.name, "start": s.start, "span": s.span,
-                      "stroke": s.stroke} for s in profile.segments],
+        **record_head(target.name, target.title, str(output), profile,
+                      None if pair is None else pair.motor, duration),
+        "segments": segment_records(profile),
         "points": len(export.written) + 1,
         "coefficient_segments": len(export.written),
         "limit": target.limit,

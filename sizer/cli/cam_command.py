@@ -18,6 +18,7 @@ import typer
 from sizer.cli.catalog_option import CatalogOption
 from sizer.cli.exit_codes import ExitCode
 from sizer.errors import UserError
+from sizer.report.cam_certificate import record_head, segment_records
 from sizer.report.output import write_text_atomically
 from sizer.report.printable import printable
 
@@ -303,18 +304,9 @@ def certificate_record(table: PointTable, target: Target, output: Path, pair: An
         notes.append(f"clipped to {table.limit} points, {target.name}'s limit; the "
                      f"tolerance needs {needed}: NOT met")
     return {
-        "target": target.name,
-        "title": target.title,
-        "file": str(output),
-        "law": profile.law.spec,
-        "motor": None if pair is None else pair.motor,
-        "stroke": profile.stroke,
-        "slave_unit": profile.slave_unit,
-        "master": {"kind": "time" if profile.over_time else "master position",
-                   "span": profile.span, "unit": profile.master_unit,
-                   "move_duration_s": duration},
-        "segments": [{"name": s.name, "start": s.start, "span": s.span,
-                      "stroke": s.stroke} for s in profile.segments],
+        **record_head(target.name, target.title, str(output), profile,
+                      None if pair is None else pair.motor, duration),
+        "segments": segment_records(profile),
         "points": table.points,
         "limit": None if table.limit >= MAX_POINTS else table.limit,
         "clipped": table.clipped,

@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 import typer
 
 from sizer.errors import UserError
+from sizer.report.cam_certificate import record_head
 from sizer.report.printable import printable
 
 if TYPE_CHECKING:
@@ -99,15 +100,9 @@ def certificate_record(profile: CamProfile, functions: Any, errors: Any, named: 
     mu, su = profile.master_unit, profile.slave_unit
     peak_v, peak_a = profile.peak_velocity, profile.peak_acceleration
     return {
-        "target": name,
-        "title": "TwinCAT 3 MC3 motion functions (IEC 61131-3 initialisation code)",
-        "file": str(output),
-        "law": profile.law.spec,
-        "motor": None if pair is None else pair.motor,
-        "stroke": profile.stroke,
-        "slave_unit": su,
-        "master": {"kind": "time" if profile.over_time else "master position",
-                   "span": profile.span, "unit": mu, "move_duration_s": duration},
+        **record_head(name, "TwinCAT 3 MC3 motion functions (IEC 61131-3 initialisation "
+                      "code)", str(output), profile, None if pair is None else pair.motor,
+                      duration),
         "segments": [{"name": s.name, "start": s.start, "span": s.span, "stroke": s.stroke,
                       "function_type": p.function_type}
                      for s, p in zip(profile.segments, functions, strict=False)],

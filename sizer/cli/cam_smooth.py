@@ -19,6 +19,7 @@ import typer
 from sizer.cli.cam_torques import newly_failed_message, torque_lines, torques_record
 from sizer.cli.exit_codes import ExitCode
 from sizer.errors import UserError
+from sizer.report.cam_certificate import record_head, segment_records
 from sizer.report.output import write_text_atomically
 from sizer.report.printable import printable
 
@@ -115,17 +116,9 @@ def certificate_record(table: HermiteTable, target: Target, output: Path, pair: 
     peak_a = profile.peak_acceleration
     torques = torques_record(resized, skipped, cam_table_spec(output))
     return {
-        "target": target.name,
-        "title": target.title,
-        "file": str(output),
-        "law": profile.law.spec,
-        "motor": None if pair is None else pair.motor,
-        "stroke": profile.stroke,
-        "slave_unit": su,
-        "master": {"kind": "time" if profile.over_time else "master position",
-                   "span": profile.span, "unit": mu, "move_duration_s": duration},
-        "segments": [{"name": s.name, "start": s.start, "span": s.span,
-                      "stroke": s.stroke} for s in profile.segments],
+        **record_head(target.name, target.title, str(output), profile,
+                      None if pair is None else pair.motor, duration),
+        "segments": segment_records(profile),
         "points": table.points,
         "limit": table.limit,
         "clipped": table.clipped,

@@ -29,3 +29,28 @@ def certificate_head(record: dict[str, Any]) -> list[str]:
         f"velocity error: {vel['max']:.6g} {vel['unit']} ({vel['of_peak']:.3g} of the peak "
         f"velocity) at {vel['at']:.6g} {mu}",
     ]
+
+
+def record_head(name: str, title: str, file: str, profile: Any, motor: str | None,
+                duration: float) -> dict[str, Any]:
+    """The keys every cam certificate's JSON starts with: the target, what was written
+    and where, the law, the motor, the stroke and the master (``profile``: the exported
+    sizer.export.profile.CamProfile; ``duration``: the sized move's, s)."""
+    return {
+        "target": name,
+        "title": title,
+        "file": file,
+        "law": profile.law.spec,
+        "motor": motor,
+        "stroke": profile.stroke,
+        "slave_unit": profile.slave_unit,
+        "master": {"kind": "time" if profile.over_time else "master position",
+                   "span": profile.span, "unit": profile.master_unit,
+                   "move_duration_s": duration},
+    }
+
+
+def segment_records(profile: Any) -> list[dict[str, Any]]:
+    """The exported profile's segments as the certificate lists them."""
+    return [{"name": s.name, "start": s.start, "span": s.span, "stroke": s.stroke}
+            for s in profile.segments]
