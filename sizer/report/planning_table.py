@@ -127,16 +127,9 @@ class PlanningDocument:
         })
 
     def render(self, fmt: Format) -> str:
-        from sizer.report.markdown_table import render_markdown_table
-        from sizer.report.text_table import render_text_table
+        from sizer.report.document import render_text
 
-        if fmt is Format.CSV:
-            return self.csv()
-        if fmt is Format.JSON:
-            return self.json()
-        if fmt is Format.MD:
-            return render_markdown_table(self.table())
-        return render_text_table(self.table())
+        return render_text(self, fmt)
 
 
 def _plan_json(result: PlanningResult, rank: str, plan: LawPlan) -> dict[str, Any]:
