@@ -13,16 +13,19 @@ from typing import Any
 
 from sizer.bounded_yaml import format_path
 from sizer.errors import UserError
-from sizer.io.schema.transmission_inputs import FourBarInput, SliderCrankInput
+from sizer.io.schema.transmission_inputs import DiscCamInput, FourBarInput, SliderCrankInput
 from sizer.io.yaml_source import YamlSource
 from sizer.mechanics.linkages.of_stage import linkage_of, linkages_of
 from sizer.model.cycle import Cycle
 from sizer.model.domain import LinkageStage
 
 
-def linkage_stage(item: SliderCrankInput | FourBarInput, source: YamlSource,
+def linkage_stage(item: SliderCrankInput | FourBarInput | DiscCamInput, source: YamlSource,
                   at: tuple[Any, ...]) -> LinkageStage:
-    """The LinkageStage of a ``slider_crank`` or ``four_bar`` item, its geometry built."""
+    """The LinkageStage of a ``slider_crank``, ``four_bar`` or ``disc_cam`` item, its
+    geometry built (a cam's is made per law, from the cycle: sizer.mechanics.disc_cam)."""
+    if isinstance(item, DiscCamInput):
+        return cam_stage(item, source, at)
     common: dict[str, Any] = {
         "law_on": item.law_on, "start_angle": item.start_angle,
         "direction": 1 if item.direction == "positive" else -1,
@@ -43,6 +46,109 @@ def linkage_stage(item: SliderCrankInput | FourBarInput, source: YamlSource,
     return stage
 
 
+def cam_stage(item: DiscCamInput, source: YamlSource, at: tuple[Any, ...]) -> LinkageStage:
+    """The CamStage of a ``disc_cam`` item (sizer.mechanics.disc_cam): the law is on the
+    follower (its lift over the cam angle); its speed and lift are made per law from the
+    cycle (sizer.sizing.linkage_move.cam_design; the cycle checked by :func:`cam_cycle`).
+    A spring (force-closed) is its preload and its force (or, oscillating, torque) at the
+    top; an oscillating follower is its pivot distance and arm length."""
+    import math
+
+    from sizer.mechanics.disc_cam import CamStage, fits
+
+    oscillating = item.follower == "oscillating_roller"
+    fields = ("pivot_distance", "arm_length")
+    spring = ("spring_torque_preload", "spring_torque_at_top") if oscillating else \
+        ("spring_preload", "spring_force_at_top")
+    wrong = ("spring_preload", "spring_force_at_top") if oscillating else \
+        ("spring_torque_preload", "spring_torque_at_top", *fields)
+    for name in wrong:
+        if getattr(item, name) is not None:
+            what = "an oscillating follower's spring acts on its arm: give spring_torque_" \
+                "preload and spring_torque_at_top" if oscillating and "spring" in name else \
+                f"{name} is a field of an oscillating follower (follower: oscillating_roller)"
+            raise source.error(what, (*at, name))
+    arm: tuple[float, float] | None = None
+    if oscillating:
+        for name in fields:
+            if getattr(item, name) is None:
+                raise source.error(f"an oscillating follower needs its {name}", (*at, "follower"))
+        if item.offset:
+            raise source.error("an oscillating follower has no offset: its pivot_distance and "
+                               "arm_length place it", (*at, "offset"))
+        assert item.pivot_distance is not None and item.arm_length is not None
+        arm = (item.pivot_distance, item.arm_length)
+    if item.base_radius is not None and \
+            not fits(item.base_radius + item.roller_radius, item.offset, arm):
+        reach = f"larger than the offset ({abs(item.offset):g} m)" if arm is None else \
+            f"between |pivot_distance - arm_length| and their sum ({abs(arm[0] - arm[1]):g} " \
+            f"and {arm[0] + arm[1]:g} m: the arm reaches it)"
+        raise source.error(f"the prime circle (base radius + roller radius, "
+                           f"{item.base_radius + item.roller_radius:g} m) must be {reach}",
+                           (*at, "base_radius"))
+    preload, top = (getattr(item, name) for name in spring)
+    unit = "N*m" if oscillating else "N"
+    if top is not None and preload is None:
+        raise source.error(f"a spring's {spring[1].split('_')[1]} at the top needs its "
+                           f"preload ({spring[0]})", (*at, spring[1]))
+    if top is not None and preload is not None and top < preload:
+        raise source.error(f"a spring pushes harder when compressed: its value at the top "
+                           f"({top:g} {unit}) must be at least its preload ({preload:g} "
+                           f"{unit})", (*at, spring[1]))
+    limit = item.pressure_angle if item.pressure_angle is not None else \
+        math.radians(45.0 if oscillating else 30.0)
+    return CamStage("disc_cam", (item.base_radius or 0.0, item.offset, item.roller_radius),
+                    law_on="output", crank_inertia=item.cam_inertia,
+                    link_mass_at_output=item.follower_mass, name=item.name or "",
+                    base_radius=item.base_radius, offset=item.offset,
+                    roller_radius=item.roller_radius, pressure_angle=limit,
+                    force_closed=preload is not None, spring_preload=preload or 0.0,
+                    spring_force_at_top=top, arm=arm)
+
+
+def cam_cycle(cycle: Cycle, stage: LinkageStage, source: YamlSource) -> Cycle:
+    """The cycle of a design through a disc cam, checked: every segment a move from rest
+    to rest or a dwell, each of a fixed duration (the cam's geometry is made from their
+    ratios: it turns once per machine cycle at constant speed), the displacements lengths
+    (the follower's lift) summing to 0 (the follower comes back: a task needs its
+    ``return``). The cam's speed and lift are made per law (sizer.sizing.linkage_move.
+    cam_design)."""
+    from sizer.model.cycle import Dwell, Move, from_task
+
+    task = cycle.shorthand
+    if task is not None and not task.return_move:
+        raise source.error("a cam's follower comes back every turn: give the task's return "
+                           "(return: true) or a cycle whose moves sum to 0", ("task",))
+    if task is not None and task.duration is None:
+        raise source.error("a cam's geometry is made from the moves' durations: give the "
+                           "task's duration (not minimize)", ("task", "duration"))
+    full = from_task(task) if task is not None else cycle
+    where: tuple[Any, ...] = ("task", "displacement") if task is not None else ("cycle",)
+    if full.linear != stage.output_linear:
+        what = "a length like '20 mm'" if stage.output_linear else \
+            "an angle like '15 deg' (the arm's swing)"
+        raise source.error(f"through a disc cam a displacement is the follower's lift, "
+                           f"{what}", where)
+    free = full.free
+    lift, travel = 0.0, 0.0
+    for i, segment in enumerate(full.segments):
+        where = ("task",) if task is not None else ("cycle", "segments", i)
+        if not isinstance(segment, Move | Dwell) or (
+                isinstance(segment, Move) and not segment.rest_to_rest):
+            raise source.error("through a disc cam every segment is a move from rest to rest "
+                               "or a dwell (the cam turns at constant speed)", where)
+        if segment.duration is None or i in free:
+            raise source.error("through a disc cam every segment needs its own duration (the "
+                               "cam's geometry is made from them)", where)
+        lift += segment.displacement
+        travel = max(travel, abs(segment.displacement))
+    if abs(lift) > 1e-9 * travel:
+        unit = "m" if stage.output_linear else "rad"
+        raise source.error(f"a cam's follower comes back every turn: the displacements sum "
+                           f"to {lift:g} {unit}, not 0", ("cycle",))
+    return cycle
+
+
 def linkage_cycle(cycle: Cycle, stage: LinkageStage, source: YamlSource,
                   start_at: tuple[Any, ...] = ()) -> Cycle:
     """The cycle of a design whose transmission ends in a linkage, on its
@@ -59,6 +165,8 @@ def linkage_cycle(cycle: Cycle, stage: LinkageStage, source: YamlSource,
 
     from sizer.model.cycle import Move, Run
 
+    if stage.kind == "disc_cam":
+        return cam_cycle(cycle, stage, source)
     task = cycle.shorthand
     if task is not None:
         moves: list[tuple[float, tuple[Any, ...]]] = [(task.displacement,
@@ -156,6 +264,8 @@ def output_linear(items: Any, linear: bool) -> bool:
     items = items if isinstance(items, list) else [items] if items is not None else []
     for item in reversed(items):
         kind = getattr(item, "type", None)
+        if kind == "disc_cam":
+            return getattr(item, "follower", None) != "oscillating_roller"
         if kind in ("slider_crank", "four_bar"):
             return kind == "slider_crank" and getattr(item, "output", None) in (
                 None, "slider_position")

@@ -23,6 +23,7 @@ from sizer.io.schema.transmission_inputs import (
     BallScrewInput,
     BeltInput,
     DirectInput,
+    DiscCamInput,
     FourBarInput,
     GearboxCatalogFile,
     GearboxInput,
@@ -61,12 +62,12 @@ def build_transmission(items: Sequence[Any] | None, source: YamlSource, folder: 
     for index, item in enumerate(items):
         if isinstance(item, DirectInput):
             continue
-        if isinstance(item, SliderCrankInput | FourBarInput):
+        if isinstance(item, SliderCrankInput | FourBarInput | DiscCamInput):
             if index != moving[-1]:
                 raise source.error(f"a {item.type} must be the last stage of the "
                                    f"transmission: its output is the load", at(index, "type"))
             linkage = linkage_stage(item, source, at(index))
-            linkage_at = at(index, "start_angle")
+            linkage_at = at(index, "start_angle") if item.type != "disc_cam" else at(index)
             continue
         last = index == moving[-1]
         if item.type in ("ball_screw", "rack_pinion") and not linear:

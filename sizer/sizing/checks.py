@@ -55,6 +55,9 @@ class CheckName(StrEnum):
     BRAKING_RESISTOR_POWER = "braking_resistor_power"
     WINDING_TEMPERATURE_RISE = "winding_temperature_rise"
     DEAD_POINT = "dead_point"
+    PRESSURE_ANGLE = "pressure_angle"
+    CAM_CURVATURE = "cam_curvature"
+    CAM_CONTACT = "cam_contact"
 
 
 @dataclass(frozen=True, eq=False)
@@ -259,8 +262,13 @@ WINDING_TEMPERATURE_RISE = OwnCheckKind(CheckName.WINDING_TEMPERATURE_RISE, "K")
 """The winding's temperature rise (sizer.sizing.energy_check)."""
 DEAD_POINT = OwnCheckKind(CheckName.DEAD_POINT, "")
 """A linkage's dead-point rules (sizer.sizing.linkage_move)."""
+PRESSURE_ANGLE = OwnCheckKind(CheckName.PRESSURE_ANGLE, "rad")
+CAM_CURVATURE = OwnCheckKind(CheckName.CAM_CURVATURE, "m")
+CAM_CONTACT = OwnCheckKind(CheckName.CAM_CONTACT, "N")
+"""A disc cam's checks (:func:`cam_checks`, docs/disc-cams.md)."""
 OWN_CHECKS = (HOLDING_BRAKE, DRIVE_PEAK_CURRENT, DRIVE_RMS_CURRENT, RESIDUAL_VIBRATION,
-              BRAKING_RESISTOR_POWER, WINDING_TEMPERATURE_RISE, DEAD_POINT)
+              BRAKING_RESISTOR_POWER, WINDING_TEMPERATURE_RISE, DEAD_POINT, PRESSURE_ANGLE,
+              CAM_CURVATURE, CAM_CONTACT)
 """The kinds evaluated by their own code, in the order results list them."""
 
 
@@ -274,7 +282,34 @@ def evaluate_checks(metrics: CycleMetrics, motors: MotorArrays, drive: Drive,
     brake = holding_brake_check(x)
     if brake is not None:
         checks.append(brake)
+    checks.extend(cam_checks(x))
     return checks
+
+
+def cam_checks(x: CheckInput) -> list[CheckArrays]:
+    """A disc cam's checks (sizer.mechanics.disc_cam), the same for every candidate (the
+    cam's geometry and speed are the design's, per law), with no further margin:
+
+    - ``pressure_angle``: the largest |phi| over the turn against the design's limit (rad);
+    - ``cam_curvature``: the roller's radius against the pitch curve's smallest radius of
+      curvature where convex (m): the roller does not undercut the cam when it is smaller;
+    - ``cam_contact`` (a force-closed follower): the spring preload the contact needs at
+      the design speed (the follower never leaves the cam) against the given preload (N).
+
+    None for a design without a cam."""
+    from sizer.mechanics.disc_cam import CamStage
+
+    stage = x.drive.transmission.linkage
+    if not isinstance(stage, CamStage) or stage.figures is None:
+        return []
+    f, ones = stage.figures, x.ones
+    out = [PRESSURE_ANGLE.arrays(f.max_pressure_angle * ones, stage.pressure_angle * ones,
+                                 0.0),
+           CAM_CURVATURE.arrays(stage.roller_radius * ones, f.min_convex_radius * ones, 0.0)]
+    if stage.force_closed:
+        out.append(CAM_CONTACT.arrays(max(f.needed_preload, 0.0) * ones,
+                                      stage.spring_preload * ones, 0.0))
+    return out
 
 
 def holding_brake_check(x: CheckInput) -> CheckArrays | None:

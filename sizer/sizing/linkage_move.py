@@ -39,6 +39,7 @@ from sizer.envelope import RegionTable
 from sizer.errors import UserError
 from sizer.laws import MotionLaw
 from sizer.laws.quadrature import gauss_legendre
+from sizer.mechanics.disc_cam import CamStage
 from sizer.mechanics.drive import Drive
 from sizer.model.cycle import Move, Run, from_task, shorthand_task
 from sizer.model.domain import Design, Limits, LinkageStage, Load, Task
@@ -94,7 +95,7 @@ class LinkageProfile:
     issues: tuple[str, ...]
 
 
-def _grid(law: MotionLaw | FixedShape) -> tuple[np.ndarray, np.ndarray]:
+def _grid(law: MotionLaw | FixedShape | CamTurn) -> tuple[np.ndarray, np.ndarray]:
     """Sample points of [0, 1] and their quadrature weights (0 for the peak-only ones)."""
     cuts = np.unique(np.concatenate((law.breakpoints, np.linspace(0.0, 1.0, GAUSS_PIECES + 1))))
     x, w = gauss_legendre(GAUSS_NODES)
@@ -143,7 +144,7 @@ class FixedShape:
 
 @lru_cache(maxsize=256)
 def profile_of(stage: LinkageStage, load: Load, h: float, duration: float | None,
-               law: MotionLaw | FixedShape) -> LinkageProfile:
+               law: MotionLaw | FixedShape | CamTurn) -> LinkageProfile:
     """The profile of a move of ``h`` by ``law`` from the stage's start angle (cached)."""
     from sizer.mechanics.linkages.dynamics import LinkageDynamics, LinkageMasses
     from sizer.mechanics.linkages.inverse_motion import input_motion, output_motion
@@ -170,10 +171,12 @@ def profile_of(stage: LinkageStage, load: Load, h: float, duration: float | None
     with np.errstate(all="ignore"):
         s = x if given is views.output else list(output_motion(views.output, *theta))
         motor = theta if views.crank_driven else list(output_motion(views.motor, *theta))
+    spring = (getattr(stage, "spring_rate", 0.0), getattr(stage, "spring_preload", 0.0))
     masses = LinkageMasses(crank_inertia=stage.crank_inertia, output_inertia=load.inertia,
                            link_mass_at_crank=stage.link_mass_at_crank,
                            link_mass_at_output=stage.link_mass_at_output,
-                           load=load.torque, friction=load.friction, damping=load.damping)
+                           load=load.torque, friction=load.friction, damping=load.damping,
+                           spring_rate=spring[0], spring_preload=spring[1])
     crank_radius = stage.lengths[0]
     rocker_length = None if stage.kind == "slider_crank" else stage.lengths[2]
     joint = None if views.joint == views.output else views.joint
@@ -183,7 +186,10 @@ def profile_of(stage: LinkageStage, load: Load, h: float, duration: float | None
         parts = dynamics.time_scaling_parts(theta[0], theta[1], theta[2])
     inertial, damping, steady = parts.inertial, parts.damping, parts.steady
     end = theta[0][-1:]  # u is in time order
-    hold = float(views.output.output(end, 1)[0] * load.torque)
+    held = load.torque
+    if spring[0] or spring[1]:  # a cam's follower spring (sizer.mechanics.disc_cam)
+        held = held + spring[1] + spring[0] * float(views.output.output(end, 0)[0])
+    hold = float(views.output.output(end, 1)[0] * held)
     grid = np.linspace(-np.pi, np.pi, 721)
     max_inertia = float(np.max(dynamics.inertia(grid)))
     if views.crank_driven:
@@ -618,7 +624,10 @@ def crank_drive(design: Design, drive: Drive, profile: LinkageProfile) -> Drive:
     the crank as their load (for the inertia ratio: the worst over a turn)."""
     load = replace(design.load, inertia=profile.max_inertia, damping=0.0, friction=0.0,
                    torque=0.0)
-    return Drive(load, drive.transmissions, drive.option)
+    stage = design.transmission.linkage
+    options = tuple(t if t.linkage is stage else replace(t, linkage=stage)
+                    for t in drive.transmissions)  # a cam's, resolved per law
+    return Drive(load, options, drive.option)
 
 
 def linkage_calculator(design: Design, law: MotionLaw, motors: MotorArrays, drive: Drive
@@ -626,6 +635,7 @@ def linkage_calculator(design: Design, law: MotionLaw, motors: MotorArrays, driv
     """The calculator the engine sizes a linkage design with: one move and its dwell, or
     the cycle (a task with a return is the cycle it means)."""
     task = shorthand_task(design.machine_cycle)
+    design = cam_design(design, law)
     if task is None or task.return_move:
         # a task with a return move is the cycle it means: the way back starts where the
         # way out stopped
@@ -636,6 +646,60 @@ def linkage_calculator(design: Design, law: MotionLaw, motors: MotorArrays, driv
     profile = profile_of(stage, design.load, task.displacement, task.duration, law)
     return LinkageCalculator(profile, task, crank_drive(design, drive, profile),
                              motors, design.limits.thermal_speed, law)
+
+
+def cam_design(design: Design, law: MotionLaw | None) -> Design:
+    """The design with its cam's lift (the follower's cycle over one turn of the cam,
+    each segment by its law: ``law`` where it names none) and base radius (``auto``: the
+    smallest that keeps the geometry checks) resolved; any other design as it is."""
+    from sizer.mechanics.disc_cam import cam_lift
+
+    stage = design.transmission.linkage
+    if not isinstance(stage, CamStage) or stage.lift is not None:
+        return design
+    task = shorthand_task(design.machine_cycle)
+    cycle = design.machine_cycle if task is None else from_task(task)
+    laws = cycle_laws(cycle, law)
+    lift = cam_lift([(s.displacement, float(s.duration or 0.0), own if isinstance(
+        s, Move) else None) for s, own in zip(cycle.segments, laws, strict=True)])
+    total = math.fsum(float(s.duration or 0.0) for s in cycle.segments)
+    load = design.load
+    cam = _resolved(stage, lift, 2.0 * math.pi / total,
+                    (load.inertia, load.torque, load.friction, load.damping))
+    return replace(design, transmission=replace(design.transmission, linkage=cam),
+                   machine_cycle=cycle)
+
+
+@lru_cache(maxsize=64)
+def _resolved(stage: CamStage, lift: Any, speed: float,
+              load: tuple[float, float, float, float]) -> CamStage:
+    """sizer.mechanics.disc_cam.resolved, once per cam, lift and load (an ``auto`` base
+    radius is a search)."""
+    from sizer.mechanics.disc_cam import resolved
+
+    return resolved(stage, lift, speed, load)
+
+
+@dataclass(frozen=True)
+class CamTurn:
+    """The cam's turn through a segment at its constant speed (q_N = u), sampled at the
+    follower's law's breakpoints too (``breaks``; None: a dwell)."""
+
+    breaks: np.ndarray | None = None
+
+    @property
+    def breakpoints(self) -> np.ndarray:
+        return np.array([0.0, 1.0]) if self.breaks is None else np.asarray(self.breaks)
+
+    def derivative(self, u: np.ndarray, order: int = 0) -> np.ndarray:
+        u = np.asarray(u, dtype=float)
+        return u.copy() if order == 0 else np.full(u.shape, float(order == 1))
+
+    def __hash__(self) -> int:
+        return hash(None if self.breaks is None else tuple(np.asarray(self.breaks).tolist()))
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, CamTurn) and hash(self) == hash(other)
 
 
 def result_calculator(design: Design, motor, law: MotionLaw, transmission=None
@@ -662,6 +726,8 @@ def dead_points(stage: LinkageStage) -> dict[str, float]:
     rocker's (crank and coupler in line)."""
     from sizer.mechanics.linkages.of_stage import linkages_of, output_name
 
+    if isinstance(stage, CamStage):
+        return {}  # the cam turns on at constant speed: no inverse kinematics
     views = linkages_of(stage)
     out: dict[str, float] = {}
     if not views.crank_driven:
@@ -716,9 +782,17 @@ class LinkageCycle:
         self.parts: list[LinkageProfile | HeldDwell] = []
         self.known: dict[int, dict[str, Any]] = {}  # fixed moves: figures; free: speeds
         theta = stage.start_angle
+        cam = stage if isinstance(stage, CamStage) and stage.lift is not None else None
         for i, (segment, own) in enumerate(zip(cycle.segments, self.laws, strict=True)):
             load = segment_load(design.load, segment)
-            if isinstance(segment, Move | Run):
+            if cam is not None:  # the cam turns on at its speed; the law is the lift's
+                fixed = float(self.fixed[i])
+                profile = profile_of(replace(cam, start_angle=theta, law_on="crank"), load,
+                                     cam.speed * fixed, fixed,
+                                     CamTurn(own.breakpoints if own is not None else None))
+                self.parts.append(profile)
+                theta = float(profile.theta[-1])
+            elif isinstance(segment, Move | Run):
                 duration = None if np.isnan(self.fixed[i]) else float(self.fixed[i])
                 shape = _shape(segment, own, duration)
                 profile = profile_of(replace(stage, start_angle=theta), load,

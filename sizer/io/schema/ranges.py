@@ -184,6 +184,18 @@ RANGES: dict[str, Range] = {
                     "0 = negligible", zero=True),
     "crank_angle": _r("angle", 1e-9, 1e3, "the crank's angle at the start of the move, "
                       "from the slider line or the ground link", zero=True, signed=True),
+    "cam_radius": _r("length", 1e-4, 10.0, "0.1 mm to 10 m: a cam's base circle or its "
+                     "roller"),
+    "cam_offset": _r("length", 1e-9, 10.0, "the follower's axis from the cam's centre; "
+                     "0 = in line", zero=True, signed=True),
+    "pressure_angle": _r("angle", 1e-3, 1.5, "a cam's largest pressure angle, below 86 deg "
+                         "(30 deg for a translating follower)"),
+    "follower_mass": _r("mass", 1e-6, 1e4, "a cam follower's own mass; 0 = in the load",
+                        zero=True),
+    "spring_force": _r("force", 1e-9, 1e7, "a cam follower's spring force; 0 = none",
+                       zero=True),
+    "spring_torque": _r("torque", 1e-9, 1e6, "an oscillating cam follower's spring torque; "
+                        "0 = none", zero=True),
     "pitch_radius": _r("length", 1e-4, 10.0, "0.1 mm to 10 m: ratio 1/r in [0.1, 10,000] "
                        "rad/m (r = 1 mm is 1000 rad/m)"),
     "pitch_diameter": _r("length", 2e-4, 20.0, "twice the pitch radius"),

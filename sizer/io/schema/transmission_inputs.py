@@ -252,6 +252,61 @@ class FourBarInput(_LinkageInput):
     coupler_mass_at_rocker: LinkMass = 0.0
 
 
+def _base_radius(value: Any) -> float | None:
+    """``auto`` (None: the smallest that keeps the checks) or a length in its range."""
+    if isinstance(value, str) and value.strip().lower() == "auto":
+        return None
+    return convert_in(value, "cam_radius")
+
+
+CamBaseRadius = Annotated[Any, BeforeValidator(_base_radius), WithJsonSchema({
+    "anyOf": [{"type": "number", "minimum": RANGES["cam_radius"].low,
+               "maximum": RANGES["cam_radius"].high}, quantity_text(),
+               {"type": "string", "enum": ["auto"]}],
+    "description": "the base circle's radius of the cam's profile, or 'auto' (the smallest "
+                   "that keeps the pressure angle and curvature checks)"}),
+    RangeRef("cam_radius")]
+"""A cam's base radius: a length or ``auto``."""
+
+
+class DiscCamInput(Strict):
+    """A disc cam with a translating or oscillating roller follower (docs/disc-cams.md):
+    the motor turns the cam (one turn per machine cycle, at constant speed); the output
+    is the follower, whose lift over the cam angle is the task's or cycle's motion (a
+    length, or an angle for an oscillating follower)."""
+
+    type: Literal["disc_cam"]
+    follower: Literal["translating_roller", "oscillating_roller"] = Field(
+        "translating_roller", description="the follower: translating_roller (default) or "
+                                          "oscillating_roller (an arm on a pivot)")
+    base_radius: CamBaseRadius
+    roller_radius: Annotated[float, Ranged("cam_radius")]
+    offset: Annotated[float, Ranged("cam_offset")] = 0.0
+    pivot_distance: Annotated[float, Ranged("cam_radius")] | None = Field(
+        None, description="an oscillating follower: its pivot's distance from the cam's "
+                          "centre")
+    arm_length: Annotated[float, Ranged("cam_radius")] | None = Field(
+        None, description="an oscillating follower: from its pivot to the roller's centre")
+    pressure_angle: Annotated[float, Ranged("pressure_angle")] | None = Field(
+        None, description="the pressure angle's limit (default 30 deg translating, 45 deg "
+                          "oscillating)")
+    follower_mass: Annotated[float, Ranged("follower_mass")] = 0.0
+    cam_inertia: Inertia = 0.0
+    spring_preload: Annotated[float, Ranged("spring_force")] | None = Field(
+        None, description="a force-closed translating follower: the spring's force with "
+                          "the follower on the base circle (its lowest)")
+    spring_force_at_top: Annotated[float, Ranged("spring_force")] | None = Field(
+        None, description="the spring's force at the follower's highest lift (default: the "
+                          "preload, a constant force)")
+    spring_torque_preload: Annotated[float, Ranged("spring_torque")] | None = Field(
+        None, description="a force-closed oscillating follower: the spring's torque on the "
+                          "arm with the roller on the base circle")
+    spring_torque_at_top: Annotated[float, Ranged("spring_torque")] | None = Field(
+        None, description="the spring's torque at the arm's largest swing (default: the "
+                          "preload)")
+    name: Text | None = None
+
+
 class DirectInput(Strict):
     """Direct drive: the motor turns (or, a linear motor, moves) the load (no stage)."""
 
@@ -261,15 +316,16 @@ class DirectInput(Strict):
 
 TransmissionStageInput = Annotated[
     GearboxInput | BeltInput | BallScrewInput | RackPinionInput | DirectInput
-    | SliderCrankInput | FourBarInput,
+    | SliderCrankInput | FourBarInput | DiscCamInput,
     Field(discriminator="type"),
 ]
 """One transmission stage, told apart by ``type``."""
 
 TRANSMISSION_TYPES: tuple[str, ...] = ("gearbox", "belt", "ball_screw", "rack_pinion", "direct",
-                                       "slider_crank", "four_bar")
-LINEAR_OUTPUT_TYPES: tuple[str, ...] = ("ball_screw", "rack_pinion", "belt", "slider_crank")
-LINKAGE_TYPES: tuple[str, ...] = ("slider_crank", "four_bar")
+                                       "slider_crank", "four_bar", "disc_cam")
+LINEAR_OUTPUT_TYPES: tuple[str, ...] = ("ball_screw", "rack_pinion", "belt", "slider_crank",
+                                        "disc_cam")
+LINKAGE_TYPES: tuple[str, ...] = ("slider_crank", "four_bar", "disc_cam")
 
 # ------------------------------------------------------------ gearbox catalog
 

@@ -60,6 +60,9 @@ class LinkageMasses:
     - ``friction``: Coulomb friction on the output (N or N*m, a magnitude >= 0) opposing
       its speed (none while the output is at rest, e.g. at a dead point).
     - ``damping``: viscous damping on the output (N*s/m or N*m*s/rad, >= 0).
+    - ``spring_rate``, ``spring_preload``: a spring on the output pushing against a
+      positive output, with the force P + k s (a cam's follower held on the cam:
+      sizer.mechanics.disc_cam; N/m and N, or on a rotary output N*m/rad and N*m).
     """
 
     crank_inertia: float = 0.0
@@ -69,10 +72,12 @@ class LinkageMasses:
     load: float = 0.0
     friction: float = 0.0
     damping: float = 0.0
+    spring_rate: float = 0.0
+    spring_preload: float = 0.0
 
     def __post_init__(self) -> None:
         for name in ("crank_inertia", "output_inertia", "link_mass_at_crank",
-                     "link_mass_at_output", "friction", "damping"):
+                     "link_mass_at_output", "friction", "damping", "spring_rate"):
             value = getattr(self, name)
             if not _finite(value) or value < 0.0:
                 raise UserError(f"must be a finite value >= 0, got {value!r}", field=name)
@@ -247,6 +252,9 @@ class LinkageDynamics:
         m = self.masses
         damping = m.damping * s1 * out_speed
         steady = s1 * (m.load + m.friction * np.sign(out_speed))
+        if m.spring_rate or m.spring_preload:
+            steady = steady + s1 * (m.spring_preload
+                                    + m.spring_rate * self.linkage.output(theta, 0))
         inertial, damping, steady, acceleration = np.broadcast_arrays(
             inertial, damping, steady, acceleration)
         return TorqueParts(inertial, damping, steady, acceleration)

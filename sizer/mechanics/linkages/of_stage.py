@@ -22,7 +22,8 @@ from sizer.model.domain import LinkageStage
 
 DEFAULT_OUTPUT = {("slider_crank", "crank"): "slider_position",
                   ("four_bar", "crank"): "rocker_angle",
-                  ("four_bar", "rocker"): "crank_angle"}
+                  ("four_bar", "rocker"): "crank_angle",
+                  ("disc_cam", "crank"): "follower_lift"}
 """The output coordinate of a stage that names none, by its kind and driven link."""
 
 OUTPUTS = {("slider_crank", "crank"): ("slider_position", "rod_angle"),
@@ -54,6 +55,10 @@ def linkages_of(stage: LinkageStage) -> StageLinkages:
     an output its driven link does not give (field "output")."""
     from sizer.errors import UserError
 
+    if stage.kind == "disc_cam":  # the follower's lift over the cam angle, set per law
+        lift = getattr(stage, "lift", None)
+        assert lift is not None, "a cam's lift is set per law (sizer.mechanics.disc_cam)"
+        return StageLinkages(CrankAngle(), lift, lift, True)
     key = (stage.kind, stage.driven_link)
     if key not in OUTPUTS:
         raise UserError(f"a {stage.kind} is driven from its crank, not its "
