@@ -46,6 +46,9 @@ def main() -> int:
     print(f"{reference:45s} {'':>11s} {'':>6s} {wall:11.3f} {cpu:6.3f}", flush=True)
     for path in examples:
         name = str(path.relative_to(ROOT))
+        if not (options.before / name).exists():  # new in this tree: nothing to compare
+            print(f"{name:45s} {'(new)':>11s}", flush=True)
+            continue
         before = timed(options.before, ["-m", "sizer", "size", name])
         after = timed(ROOT, ["-m", "sizer", "size", name])
         print(f"{name:45s} {before[0]:11.3f} {before[1]:6.3f} {after[0]:11.3f} "
