@@ -307,7 +307,7 @@ BAD_CASES = [
      "slider_crank, four_bar"),
     ("  type: gearbox\n", "", "transmission:", "transmission.type",
      "required field is missing (one of: gearbox, belt, ball_screw, rack_pinion, direct, "
-     "slider_crank, four_bar)"),
+     "slider_crank, four_bar, disc_cam)"),
     ("  ratio: 10\n", "", "transmission:", "transmission.ratio", "required field is missing"),
     ("  ratio: 10\n", "  ratio: 0\n", "ratio: 0", "transmission.ratio", "must be in [0.001, 1e5]"),
     ("  ratio: 10\n", "  ratio: -10\n", "ratio: -10", "transmission.ratio",
