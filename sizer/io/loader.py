@@ -62,11 +62,14 @@ from sizer.mechanics import linear_load
 from sizer.model.domain import (
     Design,
     FigureSources,
+    GravityLoad,
     Limits,
     Load,
     Motor,
     Provenance,
     ServoDrive,
+    SpringLoad,
+    Transmission,
 )
 from sizer.vibration.elastic_load import ElasticLoad
 
@@ -444,6 +447,7 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
     if default_motors and model.motors is None and not extra:
         extra = list(default_catalogs().values())
     transmission = replace(transmission, efficiency_applies_to=model.efficiency_applies_to)
+    _check_position_drive(model, source, transmission)
     catalog_drives: list[_LocatedDrive] = []
     motors = _design_motors(model, source, folder, extra, warnings, files, catalog_drives)
     drives = _design_drives(model, source, folder, catalog_drives, motors, files)
@@ -548,7 +552,56 @@ def _load(model: DesignFile, source: YamlSource, linear: bool) -> Load:
             force=quantity(torque_key),
             damping=quantity("damping"),
         )
-    return replace(load, elastic=_elastic(model, source))
+    gravity, spring = _position_terms(model, source, linear)
+    return replace(load, elastic=_elastic(model, source), gravity=gravity, spring=spring)
+
+
+def _position_terms(model: DesignFile, source: YamlSource, linear: bool
+                    ) -> tuple[GravityLoad | None, SpringLoad | None]:
+    """The load's terms of its position (docs/position-loads.md): gravity on an arm and a
+    spring, on a rotary axis, for one move (``task:`` without a return)."""
+    given = model.load
+    if given.gravity is None and given.spring is None:
+        return None, None
+    key = "gravity" if given.gravity is not None else "spring"
+    if linear:
+        what = ("gravity on a linear axis is its constant force: give load.incline" if key ==
+                "gravity" else "a spring on a linear axis is not supported yet")
+        raise source.error(f"{what} (gravity and spring terms are for rotary axes)",
+                           ("load", key))
+    task = model.task
+    if task is None or task.return_move:
+        raise source.error("a load term of the position needs a single move: `task:` "
+                           "without a return move (cycles come later)", ("load", key))
+    gravity = spring = None
+    if given.gravity is not None:
+        arm = given.gravity
+        gravity = GravityLoad(moment=arm.mass * arm.radius, offset=arm.offset or 0.0,
+                              g=9.80665 if arm.g is None else arm.g)
+    if given.spring is not None:
+        sp = given.spring
+        spring = SpringLoad(stiffness=sp.stiffness, preload=sp.preload or 0.0,
+                            free_position=sp.free_position or 0.0)
+    return gravity, spring
+
+
+def _check_position_drive(model: DesignFile, source: YamlSource,
+                          transmission: Transmission) -> None:
+    """Refuse the drives the position-load engine does not model (sizer.sizing.linkage_move):
+    a linkage, a stage's preload torque, the steady-load efficiency rule."""
+    given = model.load
+    if given.gravity is None and given.spring is None:
+        return
+    at = ("load", "gravity" if given.gravity is not None else "spring")
+    if transmission.linkage is not None:
+        raise source.error("a load term of the position is not supported through a linkage "
+                           "or a cam yet (its output's load is the linkage's)", at)
+    if transmission.efficiency_applies_to == "steady_load":
+        raise source.error("a load term of the position needs efficiency_applies_to: "
+                           "power_flow", at)
+    if any(stage.preload_torque for stage in transmission.stages):
+        raise source.error("a load term of the position is not supported with a stage's "
+                           "preload torque yet", at)
 
 
 def _elastic(model: DesignFile, source: YamlSource) -> ElasticLoad | None:

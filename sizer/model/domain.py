@@ -61,6 +61,73 @@ class Load:
     elastic: ElasticLoad | None = None
     """The load's mode of vibration (sec. 7.1.1) where the design gives one: each move's
     residual vibration is then computed (sizer.sizing.vibration_check)."""
+    gravity: GravityLoad | None = None
+    """Gravity on an arm, a torque of the load's position (sec. 5.2.2, docs/position-loads.md)."""
+    spring: SpringLoad | None = None
+    """A spring on the load, a torque or force of its position (docs/position-loads.md)."""
+
+    @property
+    def position_dependent(self) -> bool:
+        """Whether a term of the load depends on its position (gravity on an arm, a spring)."""
+        return any(t is not None and t.active for t in (self.gravity, self.spring))
+
+    def position_torque(self, q):
+        """The load's torque (force) of its position q (rad or m from the start of the
+        move), positive opposing a positive move: the sum of its position terms (0 without)."""
+        import numpy as np
+
+        q = np.asarray(q, dtype=float)
+        out = np.zeros(q.shape)
+        for term in (self.gravity, self.spring):
+            if term is not None:
+                out = out + term.torque(q)
+        return out
+
+
+@dataclass(frozen=True)
+class GravityLoad:
+    """Gravity on an arm (book sec. 5.2.2, the g(q) of eq. 5.13): tau = m g r cos(q + q0).
+
+    ``moment`` is m r (kg*m) of the arm and payload about the axis, ``offset`` q0 the
+    arm's angle above the horizontal at the start of the move (rad), ``g`` m/s^2. q is
+    the load's rotation from the start of the move: at q + q0 = 0 the arm is horizontal
+    and gravity opposes a positive (upward) move with its largest torque m g r."""
+
+    moment: float
+    offset: float = 0.0
+    g: float = 9.80665
+
+    @property
+    def active(self) -> bool:
+        return self.moment * self.g != 0.0
+
+    def torque(self, q):
+        import numpy as np
+
+        return self.moment * self.g * np.cos(np.asarray(q, dtype=float) + self.offset)
+
+
+@dataclass(frozen=True)
+class SpringLoad:
+    """A spring on the load: tau = k (q - q_free) + preload, positive opposing a
+    positive move (a spring stretched by a positive move pulls back).
+
+    ``stiffness`` k (N*m/rad or N/m), ``preload`` its torque (force) at the free position
+    (N*m or N), ``free_position`` q_free, the load's position (rad or m, from the start
+    of the move) where the spring gives the preload alone."""
+
+    stiffness: float
+    preload: float = 0.0
+    free_position: float = 0.0
+
+    @property
+    def active(self) -> bool:
+        return self.stiffness != 0.0 or self.preload != 0.0
+
+    def torque(self, q):
+        import numpy as np
+
+        return self.stiffness * (np.asarray(q, dtype=float) - self.free_position) + self.preload
 
 
 @dataclass(frozen=True)

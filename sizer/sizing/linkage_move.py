@@ -1324,3 +1324,114 @@ def _shape(segment: Move | Run, law: MotionLaw | None,
     return FixedShape(law.spec, segment.start_speed * T / h, segment.end_speed * T / h,
                       segment.start_acceleration * T * T / h,
                       segment.end_acceleration * T * T / h)
+
+
+# ------------------------------------------------------ loads that depend on position
+# A move against loads of the load's position (book sec. 5.2.2, eqs. 5.13-5.19): gravity
+# on an arm, a spring (sizer.model.domain.GravityLoad, SpringLoad). The load's torque
+# along a move of h by q_N over u = t/T is tau_l(u; T) = J_l h q_N''/T^2 + B_l h q_N'/T
+# + g(q(u)), g(q) = F s + tau_ext + gravity(q) + spring(q), q measured from the move's
+# start: eq. 5.15, tau_s (scaling as 1/T^2 and 1/T, eq. 5.18) plus the position terms
+# tau_p = g(q), which do not scale. That is the form of a move through a linkage
+# (A(u)/T^2 + D(u)/T + B(u)) with the identity as the linkage (ratio 1), so the move is
+# sized by this engine unchanged: its grid, torque, peak floor and RMS model. The dwell
+# holds the static load at the end position, g(h) without the friction. One move
+# (``task:`` without a return); stages' preload torques and the steady-load efficiency
+# rule are refused. docs/position-loads.md.
+
+def profile_grid(law: MotionLaw) -> tuple[np.ndarray, np.ndarray]:
+    """Sample points of [0, 1] in time order and their quadrature weights (0 for the
+    peak-only points): the linkage engine's grid (composite Gauss-Legendre split at the
+    law's breakpoints, and the uniform peak grid with the breakpoints)."""
+    cuts = np.unique(np.concatenate((law.breakpoints, np.linspace(0.0, 1.0, GAUSS_PIECES + 1))))
+    x, w = gauss_legendre(GAUSS_NODES)
+    left, width = cuts[:-1, None], np.diff(cuts)[:, None]
+    nodes = (left + 0.5 * width * (x + 1.0)).ravel()
+    weights = (0.5 * width * w).ravel()
+    peaks = np.unique(np.concatenate((np.linspace(0.0, 1.0, PEAK_POINTS), law.breakpoints)))
+    u = np.concatenate((nodes, peaks))
+    order = np.argsort(u, kind="stable")
+    return u[order], np.concatenate((weights, np.zeros(len(peaks))))[order]
+
+
+def position_profile(load: Load, displacement: float, law: MotionLaw) -> LinkageProfile:
+    """The move of ``displacement`` (signed, rad or m) by ``law`` against ``load`` as the
+    linkage engine's profile at T = 1 (module docs)."""
+    u, weights = profile_grid(law)
+    h = float(displacement)
+    direction = 1.0 if h >= 0.0 else -1.0
+    q = [h * law.derivative(u, k) for k in range(4)]
+    sense = np.where(q[1] > 0.0, 1.0, np.where(q[1] < 0.0, -1.0, direction))
+    inertial = load.inertia * q[2]
+    damping = load.damping * q[1]
+    steady = load.friction * sense + load.torque + load.position_torque(q[0])
+    hold = float(load.torque + load.position_torque(np.array([h]))[0])
+    return LinkageProfile(u, weights, q[0], np.ones_like(u), q[0], q[1], q[2], q[1], q[2],
+                          q[3], inertial, damping, steady, hold, abs(h), load.inertia, load,
+                          load.inertia, ())
+
+
+class PositionCalculator(LinkageCalculator):
+    """One move and its dwell against position-dependent loads (module docs): the
+    linkage engine's calculator with the load's own force reported and the dwell's
+    held load the static load at the end position."""
+
+    def dead_point_issues(self) -> None:  # type: ignore[override]  # CycleModel allows None
+        return None  # no linkage: no dead-point check (as sizer.sizing.move)
+
+    def segments(self, T: np.ndarray) -> list[LinkagePart]:
+        p = self.profile
+        move = PositionCalculator(p, Task(0.0, None), self.drive, self.motors,
+                                  self.thermal_rule, self.law)
+        out = [LinkagePart("move", "move", self.law, p, T, move)]
+        if self.task.dwell > 0.0:
+            out.append(LinkagePart("dwell", "dwell", None, HeldDwell(p.hold, abs(p.hold)),
+                                   np.full_like(T, self.task.dwell), None))
+        return out
+
+    def take(self, index: np.ndarray) -> PositionCalculator:
+        return PositionCalculator(self.profile, self.task, self.drive.take(index),
+                                  self.motors.subset(index), self.thermal_rule, self.law)
+
+    def sampled(self, duration: np.ndarray
+                ) -> tuple[CycleMetrics, np.ndarray, np.ndarray]:
+        """The linkage engine's figures, the load's torque (force) with its position terms
+        and, with a dwell, the static load it holds."""
+        metrics, speed, torque = super().sampled(duration)
+        p = self.profile
+        T = np.broadcast_to(np.asarray(duration, dtype=float), (len(self.motors),))[:, None]
+        force = p.inertial / T**2 + p.damping / T + p.steady
+        load_torque = np.max(np.abs(force), axis=1)
+        if self.task.dwell > 0.0:
+            load_torque = np.maximum(load_torque, abs(p.hold))
+        # the peak ratio refined as the peak torque is (the samples alone read a smooth
+        # peak 1e-7 low: T_min would be that much short)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            limit = self.motors.intermittent.limit_clipped(np.abs(speed))
+            ratio = np.where(limit > 0.0, np.abs(torque) / limit,
+                             np.where(torque == 0.0, 0.0, np.inf))
+        ratio = np.where(np.isnan(ratio), np.inf, ratio)
+        peak_ratio = np.maximum(metrics.peak_ratio, refined_max(ratio, p.u))
+        return replace(metrics, load_torque=load_torque, peak_ratio=peak_ratio), speed, torque
+
+
+def check_position_drive(drive: Drive) -> None:
+    """Refuse what the position-load engine does not model (module docs)."""
+    if drive.steady_load_efficiency:
+        raise UserError("load.gravity/load.spring: the steady-load efficiency rule is not "
+                        "supported with position-dependent loads (use power_flow)")
+    if any(bool(np.any(np.asarray(s.preload_torque) != 0.0)) for s in drive.stages):
+        raise UserError("load.gravity/load.spring: a stage's preload torque is not "
+                        "supported with position-dependent loads yet")
+
+
+def position_calculator(task: Task, law: MotionLaw, load: Load, drive: Drive,
+                        motors: MotorArrays, thermal_rule: str = "max") -> PositionCalculator:
+    """The calculator the engine sizes a one-move task against position-dependent loads
+    with (a sizer.sizing.evaluation.CycleModel)."""
+    if task.return_move:
+        raise UserError("load.gravity/load.spring: a task with a return move is not "
+                        "supported with position-dependent loads yet (one move and its dwell)")
+    check_position_drive(drive)
+    profile = position_profile(load, task.displacement, law)
+    return PositionCalculator(profile, task, drive, motors, thermal_rule, law)

@@ -115,6 +115,7 @@ from functools import cached_property, lru_cache
 
 import numpy as np
 
+from sizer.errors import UserError
 from sizer.laws import MotionLaw
 from sizer.laws.linear_peaks import LinearPeak, piece_values
 from sizer.laws.quadrature import PieceIntervals, Resolution, gauss_legendre, law_intervals
@@ -928,6 +929,11 @@ class CycleCalculator:
 
     def __init__(self, grid: LawGrid | None, task: Task, drive: Drive, motors: MotorArrays,
                  thermal_speed: ThermalSpeedRule = "max", law=None) -> None:
+        if drive.load.position_dependent:  # never sized as if the terms were absent
+            raise UserError("load.gravity and load.spring (loads of the position) are "
+                            "sized in one move with its dwell and a given transmission "
+                            "(sizer.sizing.linkage_move; docs/position-loads.md), not in "
+                            "this case (a cycle, a return or a ratio search)", field="load")
         self._grid = grid
         self.law = grid.law if grid is not None else law
         self.task = task

@@ -39,7 +39,12 @@ from sizer.sizing.evaluation import (
     CyclePiece,
     SegmentedModel,
 )
-from sizer.sizing.linkage_move import dead_points, result_calculator
+from sizer.sizing.linkage_move import (
+    PositionCalculator,
+    dead_points,
+    position_calculator,
+    result_calculator,
+)
 from sizer.sizing.move import CycleCalculator
 
 CURVE_SAMPLES = 401
@@ -161,6 +166,8 @@ def _result(design: Design, motor: Motor, law: MotionLaw,
     task = shorthand_task(design.machine_cycle)
     if task is None or design.transmission.linkage is not None:
         return _segmented(design, motor, law, transmission)
+    if design.load.position_dependent:  # a load of the position: one move
+        return _position(design, motor, law, transmission)
     return CycleCalculator(None, task, Drive(design.load, transmission or design.transmission),
                            MotorArrays.of([motor], design.limits.envelope),
                            design.limits.thermal_speed, law=law)
@@ -171,10 +178,24 @@ def _segmented(design: Design, motor: Motor, law: MotionLaw,
     """The same as a cycle of segments (the task shorthand as the cycle it means)."""
     if design.transmission.linkage is not None:
         return result_calculator(design, motor, law, transmission)
+    if design.load.position_dependent:  # a load of the position: one move (and its dwell)
+        return _position(design, motor, law, transmission)
     return SegmentCycle(design.machine_cycle, law,
                         Drive(design.load, transmission or design.transmission),
                         MotorArrays.of([motor], design.limits.envelope),
                         design.limits.thermal_speed)
+
+
+def _position(design: Design, motor: Motor, law: MotionLaw,
+              transmission: Transmission | None) -> PositionCalculator:
+    """The move against loads of the position (the loader allows one move and its
+    dwell: sizer.sizing.linkage_move.position_calculator)."""
+    task = shorthand_task(design.machine_cycle)
+    assert task is not None, "a load of the position is sized in a task"
+    return position_calculator(task, law, design.load,
+                               Drive(design.load, transmission or design.transmission),
+                               MotorArrays.of([motor], design.limits.envelope),
+                               design.limits.thermal_speed)
 
 
 def _one_linkage_move(design: Design) -> bool:

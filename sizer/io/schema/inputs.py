@@ -353,6 +353,34 @@ class TaskInput(Strict):
         return data
 
 
+class GravityInput(Strict):
+    """Gravity on an arm (rotary axis): tau = m g r cos(q + q0), q the load's rotation from
+    the start of the move (docs/position-loads.md)."""
+
+    mass: Annotated[float, Ranged("arm_mass", note="m: the arm's and payload's mass")]
+    radius: Annotated[float, Ranged("arm_radius", note="r: from the axis to their centre of "
+                                                       "mass")]
+    offset: Annotated[float, Ranged("arm_angle", note="q0: the arm's angle above the "
+                                                      "horizontal at the start, e.g. "
+                                                      "'-30 deg'; default 0")] | None = None
+    g: Annotated[float, Ranged("gravity", note="default 9.80665 m/s^2")] | None = None
+
+
+class SpringInput(Strict):
+    """A spring on the load (rotary axis): tau = k (q - q_free) + preload, positive
+    opposing a positive move (docs/position-loads.md)."""
+
+    stiffness: Annotated[float, Ranged("spring_rotary_stiffness", note="k, e.g. "
+                                                                      "'2 N*m/rad'")]
+    preload: Annotated[float, Ranged("spring_rotary_preload", note="its torque at the free "
+                                                                   "position; default 0")
+                       ] | None = None
+    free_position: Annotated[float, Ranged("spring_free_angle", note="q_free, from the "
+                                                                     "start of the move; "
+                                                                     "default 0")
+                             ] | None = None
+
+
 class LoadInput(Strict):
     """The load at the load side; rotary fields or linear ones, per the displacement."""
 
@@ -384,6 +412,12 @@ class LoadInput(Strict):
                                   "gives each move's residual vibration")] | None = None
     damping_ratio: Annotated[float, Ranged(
         "damping_ratio", note="of that mode, delta in [0, 1); default 0")] | None = None
+    gravity: GravityInput | None = Field(
+        None, description="rotary axis: gravity on an arm, m g r cos(q + q0) "
+                          "(docs/position-loads.md)")
+    spring: SpringInput | None = Field(
+        None, description="rotary axis: a spring, k (q - q_free) + preload "
+                          "(docs/position-loads.md)")
 
 
 def _motor_ref_tag(value: Any) -> str:

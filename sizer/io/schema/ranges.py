@@ -259,6 +259,20 @@ RANGES: dict[str, Range] = {
                          "at the load (sec. 7.2)"),
     "residual_length": _r("length", 1e-12, 10.0, "the amplitude of the vibration a move "
                           "leaves at the load (sec. 7.2)"),
+    # loads of the load's position (docs/position-loads.md)
+    "arm_mass": _r("mass", 1e-6, 1e7, "as the load's mass; 0 = no gravity term", zero=True),
+    "arm_radius": _r("length", 1e-6, 1e3, "the distance from the axis to the arm's centre "
+                     "of mass: 1 um to 1 km"),
+    "arm_angle": _r("angle", 1e-9, 2.0 * math.pi, "the arm's angle above the horizontal "
+                    "at the start of the move, either sign", zero=True, signed=True),
+    "gravity": _r("linear_acceleration", 1e-3, 1e3, "9.80665 m/s^2 on Earth (the default), "
+                  "1.62 on the Moon, up to a centrifuge's"),
+    "spring_rotary_stiffness": _r("torque", 1e-9, 1e9, "N*m/rad (written '2 N*m/rad' or "
+                                  "'0.1 N*m/deg'); 0 = none", zero=True),
+    "spring_rotary_preload": _r("torque", 1e-9, 1e8, "as the load's torque, either sign",
+                                zero=True, signed=True),
+    "spring_free_angle": _r("angle", 1e-9, 1e3, "from the start of the move, either sign",
+                            zero=True, signed=True),
 }
 """Every range of the input files, by name (the fields name them)."""
 
