@@ -168,12 +168,14 @@ def scale_warnings(laws: Sequence[LocatedLaw], h: float, linear: bool,
 def oscillation_warnings(laws: Sequence[LocatedLaw], source: YamlSource) -> list[str]:
     """A warning at each data law whose report measures an oscillating curve (the
     polynomials through points of book sec. 4.1-4.2: Runge's phenomenon, Fig. 4.5)."""
-    from sizer.laws.multipoint.interpolating_polynomial import oscillation_warning
-
     out = []
     for law in laws:
         report = getattr(law.data, "report", None)
-        message = oscillation_warning(report) if report else None
+        if not report or not {"overshoot", "lebesgue_constant"} & set(report):  # no measure
+            continue
+        from sizer.laws.multipoint.interpolating_polynomial import oscillation_warning
+
+        message = oscillation_warning(report)
         if message is not None:
             out.append(warning_text(source, law.at, message))
     return out
