@@ -1339,25 +1339,10 @@ def _shape(segment: Move | Run, law: MotionLaw | None,
 # (``task:`` without a return); stages' preload torques and the steady-load efficiency
 # rule are refused. docs/position-loads.md.
 
-def profile_grid(law: MotionLaw) -> tuple[np.ndarray, np.ndarray]:
-    """Sample points of [0, 1] in time order and their quadrature weights (0 for the
-    peak-only points): the linkage engine's grid (composite Gauss-Legendre split at the
-    law's breakpoints, and the uniform peak grid with the breakpoints)."""
-    cuts = np.unique(np.concatenate((law.breakpoints, np.linspace(0.0, 1.0, GAUSS_PIECES + 1))))
-    x, w = gauss_legendre(GAUSS_NODES)
-    left, width = cuts[:-1, None], np.diff(cuts)[:, None]
-    nodes = (left + 0.5 * width * (x + 1.0)).ravel()
-    weights = (0.5 * width * w).ravel()
-    peaks = np.unique(np.concatenate((np.linspace(0.0, 1.0, PEAK_POINTS), law.breakpoints)))
-    u = np.concatenate((nodes, peaks))
-    order = np.argsort(u, kind="stable")
-    return u[order], np.concatenate((weights, np.zeros(len(peaks))))[order]
-
-
 def position_profile(load: Load, displacement: float, law: MotionLaw) -> LinkageProfile:
     """The move of ``displacement`` (signed, rad or m) by ``law`` against ``load`` as the
     linkage engine's profile at T = 1 (module docs)."""
-    u, weights = profile_grid(law)
+    u, weights = _grid(law)  # the linkage engine's grid
     h = float(displacement)
     direction = 1.0 if h >= 0.0 else -1.0
     q = [h * law.derivative(u, k) for k in range(4)]
