@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 
 import typer
 
+from sizer.cli.cam_output import publish_certificate
 from sizer.cli.cam_torques import (
     newly_failed_message,
     resized_export,
@@ -81,10 +82,7 @@ def export_coefficients(target: Target, law: MotionLaw, h: float, T: float, line
         from sizer.cli.cam_cycle import with_cycle
 
         record = with_cycle(record, profile, T, specs)
-    typer.echo("\n".join(printable(line) for line in certificate_text(record)))
-    if certificate is not None:
-        write_text_atomically(certificate, json.dumps(record, indent=2) + "\n",
-                              "--certificate")
+    publish_certificate(record, certificate_text(record), certificate)
     failed = False
     if not export.met:
         typer.echo(printable(f"{output}: the tolerance {tol:g} is not met: splitting "

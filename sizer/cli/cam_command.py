@@ -8,13 +8,13 @@ and the tolerance not met; 2 bad input.
 
 from __future__ import annotations
 
-import json
 import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
+from sizer.cli.cam_output import publish_certificate
 from sizer.cli.catalog_option import CatalogOption
 from sizer.cli.exit_codes import ExitCode
 from sizer.errors import UserError
@@ -172,10 +172,7 @@ def cam(
         from sizer.cli.cam_cycle import with_cycle
 
         record = with_cycle(record, profile, T)
-    typer.echo("\n".join(printable(line) for line in certificate_text(record)))
-    if certificate is not None:
-        write_text_atomically(certificate, json.dumps(record, indent=2) + "\n",
-                              "--certificate")
+    publish_certificate(record, certificate_text(record), certificate)
     if not table.met:
         typer.echo(printable(f"{output}: the tolerance {table.tolerance:g} is not met within "
                              f"{target.name}'s limit of {table.limit} points"), err=True)

@@ -7,15 +7,12 @@ nothing the export layer does not.
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import typer
-
+from sizer.cli.cam_output import publish_certificate
 from sizer.errors import UserError
 from sizer.report.cam_certificate import record_head
-from sizer.report.printable import printable
 
 if TYPE_CHECKING:
     from sizer.export.profile import CamProfile
@@ -59,10 +56,7 @@ def export_segments(name: str, law: MotionLaw, h: float, T: float, linear: bool,
     lines = certificate_text(record)
     write_text_atomically(output, twincat_mc3.write(functions, ["sizer cam", *lines]),
                           "--output")
-    typer.echo("\n".join(printable(line) for line in lines))
-    if certificate is not None:
-        write_text_atomically(certificate, json.dumps(record, indent=2) + "\n",
-                              "--certificate")
+    publish_certificate(record, lines, certificate)
 
 
 def _is_segment_cycle(profile: CamProfile) -> bool:

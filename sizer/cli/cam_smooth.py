@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any, cast
 
 import typer
 
+from sizer.cli.cam_output import publish_certificate
 from sizer.cli.cam_torques import newly_failed_message, torque_lines, torques_record
 from sizer.cli.exit_codes import ExitCode
 from sizer.errors import UserError
@@ -55,10 +56,7 @@ def export_smooth(target: Target, law: MotionLaw, h: float, T: float, linear: bo
         from sizer.cli.cam_cycle import with_cycle
 
         record = with_cycle(record, profile, T, specs)
-    typer.echo("\n".join(printable(line) for line in certificate_text(record)))
-    if certificate is not None:
-        write_text_atomically(certificate, json.dumps(record, indent=2) + "\n",
-                              "--certificate")
+    publish_certificate(record, certificate_text(record), certificate)
     failed = False
     if not table.met:
         typer.echo(printable(f"{output}: the tolerance {table.tolerance:g} is not met within "
