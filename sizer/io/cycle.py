@@ -94,6 +94,7 @@ class _Axis:
 
     def __init__(self, source: YamlSource, linear: bool, first: Path_) -> None:
         self.source, self.linear, self.first = source, linear, first
+        self.friction_coefficient, self.incline = _guides(source) if linear else (0.0, 0.0)
         self.name = "linear" if linear else "rotary"
         self.why = (f"a {self.name} axis: the first move's displacement "
                     f"({format_path(first)}) is {'a length' if linear else 'an angle'}")
@@ -122,7 +123,62 @@ class _Axis:
             value = getattr(given, right)
             values[key] = 0.0 if value is None else self.quantity(model, right, value,
                                                                   (*at, right))
-        return SegmentLoad(inertia=values.get("inertia", 0.0), torque=values.get("torque", 0.0))
+        return SegmentLoad(inertia=values.get("inertia", 0.0), torque=values.get("torque", 0.0),
+                           friction_coefficient=self.friction_coefficient, incline=self.incline)
+
+
+WEIGHT_MATCH = 0.02
+"""A segment's force within this share of its part's weight along the axis looks like it."""
+
+
+def weight_twice_warnings(cycle: Cycle, source: YamlSource) -> list[str]:
+    """A located warning per move or run of a linear, inclined axis whose added ``mass``
+    comes with a ``force`` equal to that mass's weight along the axis: the weight follows
+    from the design's incline (SegmentLoad), so it would count twice.
+
+    Not yet among :func:`motion_of`'s warnings: examples/vertical-pick-and-place.yaml
+    still gives its part's weight as a force (and a test asserts it loads without a
+    warning); once the example drops it, add these to the warnings there."""
+    from sizer.io.plausibility import warning_text
+    from sizer.mechanics.loads import GRAVITY
+
+    out = []
+    for i, segment in enumerate(cycle.segments):
+        if isinstance(segment, Dwell) or not cycle.linear:
+            continue
+        added = segment.load
+        weight = added.inertia * GRAVITY * math.sin(added.incline)
+        if added.inertia <= 0.0 or weight == 0.0 or added.torque == 0.0:
+            continue
+        if abs(added.torque - weight) > WEIGHT_MATCH * abs(weight):
+            continue
+        kind = "move" if isinstance(segment, Move) else "run"
+        out.append(warning_text(source, ("cycle", "segments", i, kind, "force"), (
+            f"{number_text(added.torque)} N is the added {number_text(added.inertia)} kg's "
+            f"weight along the axis, m g sin(incline) = {number_text(weight)} N, which the "
+            f"mass already brings with the design's incline (and its friction with the "
+            f"design's friction_coefficient): give `force` only for what acts on top, or the "
+            f"weight counts twice (docs/machine-cycles.md)")))
+    return out
+
+
+def _guides(source: YamlSource) -> tuple[float, float]:
+    """The design's friction coefficient and incline (``load:``, 0 if not given): a part
+    a segment picks up on a linear axis rides the same guides (SegmentLoad). The section
+    was validated with the design; a document without one (a cycle alone) gives 0."""
+    from pydantic import ValidationError
+
+    from sizer.io.schema.inputs import LoadInput
+
+    data = source.data.get("load") if isinstance(source.data, dict) else None
+    if not isinstance(data, dict):
+        return 0.0, 0.0
+    keys = ("friction_coefficient", "incline")
+    try:  # the two fields alone: their units and ranges, as the design read them
+        given = LoadInput.model_validate({k: data[k] for k in keys if k in data})
+    except ValidationError:  # not reached: the design's load was validated before
+        return 0.0, 0.0
+    return given.friction_coefficient or 0.0, given.incline or 0.0
 
 
 def displacement_of(given: Any, source: YamlSource, at: Path_, *, zero_note: str,
@@ -213,7 +269,8 @@ def motion_of(task: TaskInput | None, cycle: CycleInput | None, laws: list[Locat
         _check_law_list(built, laws, source)
         from sizer.io.force_sign import force_sign_warnings
 
-        return built, force_sign_warnings(built, source)
+        return built, [*force_sign_warnings(built, source),
+                       *weight_twice_warnings(built, source)]
     assert task is not None  # a task or a cycle (DesignFile)
     shorthand, noted = _task_of(task, laws, source)
     return from_task(shorthand), noted

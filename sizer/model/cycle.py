@@ -69,10 +69,19 @@ class SegmentLoad:
     ``inertia``: added inertia (kg*m^2) or mass (kg, linear axis), >= 0. ``torque``:
     added external torque (N*m) or force (N), signed like ``Load.torque`` (positive
     opposes a positive move).
+
+    On a linear axis an added mass rides the design's guides: ``friction_coefficient``
+    and ``incline`` are the design's (``load:``; the reader copies them in), and the
+    part's weight adds mu m g cos(incline) of Coulomb friction and m g sin(incline) of
+    gravity along the axis (sizer.mechanics.loads.linear_load, as for the design's own
+    mass). Both are 0 on a rotary axis: an added inertia changes nothing else. They
+    describe the axis, not what the segment adds, so equality ignores them.
     """
 
     inertia: float = 0.0
     torque: float = 0.0
+    friction_coefficient: float = field(default=0.0, compare=False)
+    incline: float = field(default=0.0, compare=False)
 
     @property
     def is_zero(self) -> bool:

@@ -34,6 +34,7 @@ import numpy as np
 from sizer.errors import UserError
 from sizer.laws import LawChoice, MotionLaw, law_choice, make_law
 from sizer.mechanics import Drive
+from sizer.mechanics.loads import linear_load
 from sizer.model.cycle import (
     Cycle,
     Dwell,
@@ -190,11 +191,22 @@ def rms_floor(rates: list[np.ndarray], fixed: np.ndarray, weights: np.ndarray,
 
 
 def segment_load(base: Load, segment: Segment) -> Load:
-    """The design's load with the segment's added inertia (or mass) and torque (force)."""
-    if segment.load.is_zero:
+    """The design's load with the segment's added inertia (or mass) and torque (force).
+
+    The added load is built as the design's own linear load is (one formula,
+    :func:`sizer.mechanics.loads.linear_load`): on a linear axis a picked-up part's
+    weight adds mu m g cos(incline) of friction and m g sin(incline) of gravity, with the
+    design's coefficient and incline (the segment's ``SegmentLoad``); on a rotary axis
+    both are 0 and only the inertia and torque add.
+    """
+    added = segment.load
+    if added.is_zero:
         return base
-    return replace(base, inertia=base.inertia + segment.load.inertia,
-                   torque=base.torque + segment.load.torque)
+    extra = linear_load(added.inertia, incline=added.incline,
+                        friction_coefficient=added.friction_coefficient, force=added.torque)
+    return replace(base, inertia=base.inertia + extra.inertia,
+                   friction=base.friction + extra.friction,
+                   torque=base.torque + extra.torque)
 
 
 def normalized_move(basis, move: Move, T: np.ndarray) -> np.ndarray:
