@@ -35,6 +35,7 @@ from sizer.cli import (
     report_command,
     schema_command,
     segments_command,
+    sensitivity_command,
     size_command,
     spectrum_command,
     vibration_command,
@@ -53,7 +54,8 @@ EXIT_CODES_HELP = ("Exit codes: 0 ok; 1 a check failed (sizer check: a limit not
 
 COMMAND_MODULES = (laws_command, law_command, size_command, check_command, schema_command,
                    catalog_command, plot_command, report_command, segments_command,
-                   spectrum_command, vibration_command, cam_command, idta_command, diff_command)
+                   spectrum_command, vibration_command, cam_command, idta_command, diff_command,
+                   sensitivity_command)
 
 app = typer.Typer(
     name="sizer",
