@@ -433,7 +433,7 @@ def test_every_field_of_the_input_files_has_a_case():
     from test_ball_screw_checks import FIELD_CASES as SCREW_CASES  # a screw's ratings
     from test_cam_follower import FIELD_CASES as CAM_CASES  # a disc cam's fields
     from test_cycle_input import CASES as CYCLE_CASES  # the fields of `cycle:`
-    from test_position_loads import FIELD_CASES as POSITION_CASES  # gravity, spring
+    from test_position_tables import POSITION_FIELD_CASES as POSITION_CASES  # position terms
 
     named = {f for c in (*CASES, *CATALOG_CASES, *CYCLE_CASES, *MACHINE_CASES, *SCREW_CASES,
                          *CAM_CASES, *POSITION_CASES) for f in c.fields}

@@ -69,6 +69,7 @@ from sizer.model.domain import (
     Provenance,
     ServoDrive,
     SpringLoad,
+    TableLoad,
     Transmission,
 )
 from sizer.vibration.elastic_load import ElasticLoad
@@ -435,8 +436,9 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
     linear = cycle.linear
     warnings = [*bare_number_warnings(source, linear), *noted,
                 *oscillation_warnings(laws, source)]
-    load = _load(model, source, output_linear(model.transmission, linear))
+    load = _load(model, source, output_linear(model.transmission, linear), folder)
     files = list(files)
+    files += _position_table_files(model, folder)  # never written over (output guard)
     transmission, ratio_choice, linkage_at = build_transmission(
         model.transmission, source, folder, linear, files)
     if transmission.linkage is not None:
@@ -512,7 +514,8 @@ def _located_laws(model: DesignFile) -> list[LocatedLaw]:
     return locate_laws(laws)
 
 
-def _load(model: DesignFile, source: YamlSource, linear: bool) -> Load:
+def _load(model: DesignFile, source: YamlSource, linear: bool,
+          folder: Path | None = None) -> Load:
     given = model.load
     axis = ("a linear axis (the displacement is a length)" if linear
             else "a rotary axis (the displacement is an angle)")
@@ -553,7 +556,10 @@ def _load(model: DesignFile, source: YamlSource, linear: bool) -> Load:
             damping=quantity("damping"),
         )
     gravity, spring = _position_terms(model, source, linear)
-    return replace(load, elastic=_elastic(model, source), gravity=gravity, spring=spring)
+    table = _position_table(model, source, folder if folder is not None else Path.cwd(),
+                            linear)
+    return replace(load, elastic=_elastic(model, source), gravity=gravity, spring=spring,
+                   table=table)
 
 
 def _position_terms(model: DesignFile, source: YamlSource, linear: bool
@@ -561,14 +567,22 @@ def _position_terms(model: DesignFile, source: YamlSource, linear: bool
     """The load's terms of its position (docs/position-loads.md): gravity on an arm and a
     spring, on a rotary axis, for one move (``task:`` without a return)."""
     given = model.load
-    if given.gravity is None and given.spring is None:
+    key = _position_key(given)
+    if key is None:
         return None, None
-    key = "gravity" if given.gravity is not None else "spring"
     if linear:
-        what = ("gravity on a linear axis is its constant force: give load.incline" if key ==
-                "gravity" else "a spring on a linear axis is not supported yet")
-        raise source.error(f"{what} (gravity and spring terms are for rotary axes)",
-                           ("load", key))
+        for term, what in (("gravity", "gravity on a linear axis is its constant force: give "
+                                       "load.incline"),
+                           ("spring", "a spring on a linear axis is not supported yet")):
+            if getattr(given, term) is not None:
+                raise source.error(f"{what} (gravity and spring terms are for rotary axes)",
+                                   ("load", term))
+    right, wrong = ("force_table", "torque_table") if linear else ("torque_table",
+                                                                   "force_table")
+    if getattr(given, wrong) is not None:
+        axis = ("a linear axis (the displacement is a length)" if linear
+                else "a rotary axis (the displacement is an angle)")
+        raise source.error(f"{axis} takes '{right}', not '{wrong}'", ("load", wrong))
     task = model.task
     if task is None or task.return_move:
         raise source.error("a load term of the position needs a single move: `task:` "
@@ -585,14 +599,119 @@ def _position_terms(model: DesignFile, source: YamlSource, linear: bool
     return gravity, spring
 
 
+def _position_key(given: LoadInput) -> str | None:
+    """The first position term the load gives (None: none), where messages point."""
+    for key in ("gravity", "spring", "torque_table", "force_table"):
+        if getattr(given, key) is not None:
+            return key
+    return None
+
+
+def _position_table(model: DesignFile, source: YamlSource, folder: Path, linear: bool
+                    ) -> TableLoad | None:
+    """``load.torque_table`` (rotary) or ``load.force_table`` (linear): inline ``points``
+    or a CSV ``file`` (read as a cam table is: sizer.io.cam_table, its header giving the
+    units), q strictly increasing, at least two points, covering the move
+    (docs/position-loads.md). :func:`_position_terms` has refused the other axis's."""
+    key = "force_table" if linear else "torque_table"
+    given = getattr(model.load, key)
+    if given is None:
+        return None
+    at = ("load", key)
+    unit = "m" if linear else "rad"
+    if (given.points is None) == (given.file is None):
+        raise source.error("give the table's points or its file (one of them)", at)
+    if given.points is not None:
+        points = given.points
+        if len(points) < 2:
+            raise source.error(f"has {len(points)} point: a table needs at least 2",
+                               (*at, "points"))
+        for i in range(1, len(points)):
+            if not points[i][0] > points[i - 1][0]:
+                raise source.error(f"q must increase strictly: {points[i][0]:g} {unit} "
+                                   f"follows {points[i - 1][0]:g} {unit}", (*at, "points", i))
+        x = tuple(p[0] for p in points)
+        tau = tuple(p[1] for p in points)
+    else:
+        x, tau = _position_table_file(folder, given.file or "", linear, source, (*at, "file"))
+    table = TableLoad(x, tau, offset=given.offset or 0.0)
+    task = model.task
+    if task is not None and task.displacement is not None:
+        from sizer.units import parse_displacement
+
+        h, _ = parse_displacement(task.displacement, field="task.displacement")
+        ends = sorted((table.offset, table.offset + h))
+        slack = 1e-9 * (x[-1] - x[0])
+        if ends[0] < x[0] - slack or ends[1] > x[-1] + slack:
+            raise source.error(f"the move covers q = {ends[0]:.6g} to {ends[1]:.6g} {unit} "
+                               f"of the table (its offset {table.offset:.6g} {unit} and the "
+                               f"displacement): the table covers {x[0]:.6g} to {x[-1]:.6g} "
+                               f"{unit}; extend it or check its offset", at)
+    return table
+
+
+def _position_table_files(model: DesignFile, folder: Path) -> list[Path]:
+    """The CSV files the load's position tables read (relative to the design's folder)."""
+    out = []
+    for key in ("torque_table", "force_table"):
+        given = getattr(model.load, key, None)
+        if given is not None and given.file is not None and given.file.strip():
+            path = Path(given.file)
+            out.append(path if path.is_absolute() else folder / path)
+    return out
+
+
+def _position_table_file(folder: Path, name: str, linear: bool, source: YamlSource,
+                         at: tuple[str, ...]) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """The (q, tau) in SI of a position table's CSV: its first two columns, their units in
+    its header (``q [deg],tau [N*m]``; ``s [mm],F [N]`` on a linear axis)."""
+    from sizer.io.cam_table import read_cam_table
+    from sizer.units import to_si
+
+    if not name.strip():
+        raise source.error("must be the path of a CSV file", at)
+    path = Path(name)
+    if not path.is_absolute():
+        path = folder / path
+    try:
+        table = read_cam_table(path)
+    except UserError as error:
+        raise source.relocate(error, at) from None
+    file = str(path)
+    kinds = (("length", "a length", "mm or m"), ("force", "a force", "N")) if linear else \
+        (("angle", "an angle", "deg or rad"), ("torque", "a torque", "N*m"))
+    scales = []
+    for i, (kind, what, example) in enumerate(kinds):
+        unit = table.units[i]
+        column = table.column_name(i)
+        if unit is None:
+            header = "s [mm],F [N]" if linear else "q [deg],tau [N*m]"
+            raise UserError(f"{column} has no unit: the header gives each column's unit in "
+                            f"brackets, e.g. '{header}'", file=file,
+                            line=table.header_line or int(table.lines[0]), field=column)
+        try:
+            scales.append(to_si(f"1 {unit}", kind, field=column))
+        except UserError:
+            raise UserError(f"[{unit}] is not {what} unit (e.g. {example})", file=file,
+                            line=table.header_line, field=column) from None
+    bad = np.flatnonzero(np.diff(table.x) <= 0.0)
+    if bad.size:
+        i = int(bad[0]) + 1
+        raise UserError(f"q must increase strictly: {table.x[i]:g} follows "
+                        f"{table.x[i - 1]:g}", file=file, line=int(table.lines[i]),
+                        field=table.column_name(0))
+    return tuple(float(v) for v in table.x * scales[0]), \
+        tuple(float(v) for v in table.q * scales[1])
+
+
 def _check_position_drive(model: DesignFile, source: YamlSource,
                           transmission: Transmission) -> None:
     """Refuse the drives the position-load engine does not model (sizer.sizing.linkage_move):
     a linkage, a stage's preload torque, the steady-load efficiency rule."""
-    given = model.load
-    if given.gravity is None and given.spring is None:
+    key = _position_key(model.load)
+    if key is None:
         return
-    at = ("load", "gravity" if given.gravity is not None else "spring")
+    at = ("load", key)
     if transmission.linkage is not None:
         raise source.error("a load term of the position is not supported through a linkage "
                            "or a cam yet (its output's load is the linkage's)", at)

@@ -65,11 +65,20 @@ class Load:
     """Gravity on an arm, a torque of the load's position (sec. 5.2.2, docs/position-loads.md)."""
     spring: SpringLoad | None = None
     """A spring on the load, a torque or force of its position (docs/position-loads.md)."""
+    table: TableLoad | None = None
+    """A torque of the load's position given as a table (docs/position-loads.md)."""
 
     @property
     def position_dependent(self) -> bool:
-        """Whether a term of the load depends on its position (gravity on an arm, a spring)."""
-        return any(t is not None and t.active for t in (self.gravity, self.spring))
+        """Whether a term of the load depends on its position (gravity on an arm, a
+        spring, a table)."""
+        return any(t is not None and t.active for t in (self.gravity, self.spring, self.table))
+
+    @property
+    def position_knots(self) -> tuple[float, ...]:
+        """The positions q (from the start of the move) where a position term has a kink:
+        a table's knots (empty without)."""
+        return self.table.knots if self.table is not None else ()
 
     def position_torque(self, q):
         """The load's torque (force) of its position q (rad or m from the start of the
@@ -78,7 +87,7 @@ class Load:
 
         q = np.asarray(q, dtype=float)
         out = np.zeros(q.shape)
-        for term in (self.gravity, self.spring):
+        for term in (self.gravity, self.spring, self.table):
             if term is not None:
                 out = out + term.torque(q)
         return out
@@ -128,6 +137,34 @@ class SpringLoad:
         import numpy as np
 
         return self.stiffness * (np.asarray(q, dtype=float) - self.free_position) + self.preload
+
+
+@dataclass(frozen=True)
+class TableLoad:
+    """A torque of the load's position as a table (a measured process torque): points
+    (x_i, tau_i), x strictly increasing, linear between them; tau positive opposing a
+    positive move. ``offset`` x0 is the table's position at the start of the move (as
+    gravity's q0): at the load's position q (from the start) the torque is tau(q + x0).
+    Outside the table it holds the end values (the engine refuses a move that leaves it:
+    sizer.sizing.linkage_move.position_profile)."""
+
+    x: tuple[float, ...]
+    tau: tuple[float, ...]
+    offset: float = 0.0
+
+    @property
+    def active(self) -> bool:
+        return any(t != 0.0 for t in self.tau)
+
+    @property
+    def knots(self) -> tuple[float, ...]:
+        """The table's points as positions from the start of the move."""
+        return tuple(x - self.offset for x in self.x)
+
+    def torque(self, q):
+        import numpy as np
+
+        return np.interp(np.asarray(q, dtype=float) + self.offset, self.x, self.tau)
 
 
 @dataclass(frozen=True)

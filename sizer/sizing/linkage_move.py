@@ -95,14 +95,18 @@ class LinkageProfile:
     issues: tuple[str, ...]
 
 
-def _grid(law: MotionLaw | FixedShape | CamTurn) -> tuple[np.ndarray, np.ndarray]:
-    """Sample points of [0, 1] and their quadrature weights (0 for the peak-only ones)."""
-    cuts = np.unique(np.concatenate((law.breakpoints, np.linspace(0.0, 1.0, GAUSS_PIECES + 1))))
+def _grid(law: MotionLaw | FixedShape | CamTurn, extra: np.ndarray | None = None
+          ) -> tuple[np.ndarray, np.ndarray]:
+    """Sample points of [0, 1] and their quadrature weights (0 for the peak-only ones);
+    ``extra`` breakpoints (a position table's knot crossings) split the quadrature and are
+    peak samples as the law's are."""
+    breaks = law.breakpoints if extra is None else np.concatenate((law.breakpoints, extra))
+    cuts = np.unique(np.concatenate((breaks, np.linspace(0.0, 1.0, GAUSS_PIECES + 1))))
     x, w = gauss_legendre(GAUSS_NODES)
     left, width = cuts[:-1, None], np.diff(cuts)[:, None]
     nodes = (left + 0.5 * width * (x + 1.0)).ravel()
     weights = (0.5 * width * w).ravel()
-    peaks = np.unique(np.concatenate((np.linspace(0.0, 1.0, PEAK_POINTS), law.breakpoints)))
+    peaks = np.unique(np.concatenate((np.linspace(0.0, 1.0, PEAK_POINTS), breaks)))
     u = np.concatenate((nodes, peaks))
     order = np.argsort(u, kind="stable")  # in time order, as the inverse kinematics needs
     return u[order], np.concatenate((weights, np.zeros(len(peaks))))[order]
@@ -1339,21 +1343,102 @@ def _shape(segment: Move | Run, law: MotionLaw | None,
 # (``task:`` without a return); stages' preload torques and the steady-load efficiency
 # rule are refused. docs/position-loads.md.
 
-def position_profile(load: Load, displacement: float, law: MotionLaw) -> LinkageProfile:
+@dataclass(frozen=True)
+class PositionProfile(LinkageProfile):
+    """:class:`LinkageProfile` with ``kinks``: the samples (a mask over u) where a
+    position table's knot is crossed, the torque's kinks (none without a table)."""
+
+    kinks: np.ndarray | None = None
+
+
+TABLE_SLACK = 1e-9
+"""How far (relative to the table's span) a move may pass a table's end: rounding."""
+
+
+def knot_crossings(law: MotionLaw, h: float, knots: tuple[float, ...]) -> np.ndarray:
+    """The u in (0, 1) where the move's position h q_N(u) crosses a knot: each sign
+    change of h q_N(u) - knot on a fine grid, bisected to rounding."""
+    if not knots:
+        return np.empty(0)
+    u = np.unique(np.concatenate((np.linspace(0.0, 1.0, PEAK_POINTS), law.breakpoints)))
+    f = h * law.derivative(u, 0)[None, :] - np.asarray(knots, dtype=float)[:, None]
+    k, i = np.nonzero(np.sign(f[:, :-1]) * np.sign(f[:, 1:]) <= 0.0)
+    lo, hi = u[i], u[i + 1]
+    flo = f[k, i]
+    target = np.asarray(knots, dtype=float)[k]
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        fmid = h * law.derivative(mid, 0) - target
+        left = np.sign(fmid) * np.sign(flo) <= 0.0
+        hi, lo = np.where(left, mid, hi), np.where(left, lo, mid)
+        flo = np.where(left, flo, fmid)
+    roots = np.where(f[k, i] == 0.0, u[i], np.where(f[k, i + 1] == 0.0, u[i + 1], lo))
+    return np.unique(roots[(roots > 0.0) & (roots < 1.0)])
+
+
+def _check_table_span(load: Load, q: np.ndarray, linear: bool) -> None:
+    """A move that leaves its position table is the user's mistake (a located message)."""
+    table = load.table
+    if table is None or not table.active:
+        return
+    x = np.asarray(q, dtype=float) + table.offset
+    lo, hi = table.x[0], table.x[-1]
+    slack = TABLE_SLACK * (hi - lo)
+    if np.min(x) < lo - slack or np.max(x) > hi + slack:
+        raise UserError(f"the move reaches the table's positions {np.min(x):.6g} to "
+                        f"{np.max(x):.6g} (SI, with its offset): the table covers {lo:.6g} "
+                        f"to {hi:.6g}; extend it or check its offset",
+                        field="load.force_table" if linear else "load.torque_table")
+
+
+def position_profile(load: Load, displacement: float, law: MotionLaw,
+                     linear: bool = False) -> LinkageProfile:
     """The move of ``displacement`` (signed, rad or m) by ``law`` against ``load`` as the
-    linkage engine's profile at T = 1 (module docs)."""
-    u, weights = _grid(law)  # the linkage engine's grid
+    linkage engine's profile at T = 1 (module docs). A position table's knot crossings
+    are breakpoints of the grid: the torque's kinks are sampled, the quadrature split
+    there (exact peaks and RMS for the piecewise-linear term)."""
     h = float(displacement)
+    crossings = knot_crossings(law, h, load.position_knots) if load.table is not None \
+        and load.table.active else None
+    u, weights = _grid(law, crossings)  # the linkage engine's grid
     direction = 1.0 if h >= 0.0 else -1.0
     q = [h * law.derivative(u, k) for k in range(4)]
+    _check_table_span(load, q[0], linear)
     sense = np.where(q[1] > 0.0, 1.0, np.where(q[1] < 0.0, -1.0, direction))
     inertial = load.inertia * q[2]
     damping = load.damping * q[1]
     steady = load.friction * sense + load.torque + load.position_torque(q[0])
     hold = float(load.torque + load.position_torque(np.array([h]))[0])
-    return LinkageProfile(u, weights, q[0], np.ones_like(u), q[0], q[1], q[2], q[1], q[2],
-                          q[3], inertial, damping, steady, hold, abs(h), load.inertia, load,
-                          load.inertia, ())
+    kinks = None
+    if crossings is not None:
+        kinks = np.isin(u, np.concatenate((crossings, law.breakpoints)))
+    return PositionProfile(u, weights, q[0], np.ones_like(u), q[0], q[1], q[2], q[1], q[2],
+                           q[3], inertial, damping, steady, hold, abs(h), load.inertia, load,
+                           load.inertia, (), kinks)
+
+
+def refined_max_kinked(values: np.ndarray, u: np.ndarray, kinks: np.ndarray) -> np.ndarray:
+    """:func:`refined_max` where the samples ``kinks`` (a mask) are kinks of the values: a
+    parabola is read only through three samples whose middle one is not a kink (smooth
+    between them), centred on the largest sample or either neighbour (a smooth peak
+    beside a kink)."""
+    m = values.shape[1]
+    rows = np.arange(values.shape[0])
+    best = np.max(values, axis=1)
+    top_i = np.argmax(values, axis=1)
+    for shift in (-1, 0, 1):
+        i = np.clip(top_i + shift, 1, m - 2)
+        x0, x1, x2 = u[i - 1], u[i], u[i + 1]
+        f0, f1, f2 = values[rows, i - 1], values[rows, i], values[rows, i + 1]
+        d01 = (f1 - f0) / (x1 - x0)
+        curvature = ((f2 - f1) / (x2 - x1) - d01) / (x2 - x0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            vertex = 0.5 * (x0 + x1) - d01 / (2.0 * curvature)
+            top = f0 + d01 * (vertex - x0) + curvature * (vertex - x0) * (vertex - x1)
+        inside = (curvature < 0.0) & (vertex > x0) & (vertex < x2) & np.isfinite(top) \
+            & ~kinks[i]
+        best = np.where(inside, np.maximum(best, top), best)
+    return best
 
 
 class PositionCalculator(LinkageCalculator):
@@ -1396,8 +1481,17 @@ class PositionCalculator(LinkageCalculator):
             ratio = np.where(limit > 0.0, np.abs(torque) / limit,
                              np.where(torque == 0.0, 0.0, np.inf))
         ratio = np.where(np.isnan(ratio), np.inf, ratio)
-        peak_ratio = np.maximum(metrics.peak_ratio, refined_max(ratio, p.u))
-        return replace(metrics, load_torque=load_torque, peak_ratio=peak_ratio), speed, torque
+        kinks = getattr(p, "kinks", None)
+        if kinks is None:
+            peak_ratio = np.maximum(metrics.peak_ratio, refined_max(ratio, p.u))
+            return replace(metrics, load_torque=load_torque, peak_ratio=peak_ratio), speed, \
+                torque
+        # a position table: the torque has kinks at its knots, where a parabola through
+        # the largest sample would overshoot
+        peak_ratio = np.maximum(metrics.peak_ratio, refined_max_kinked(ratio, p.u, kinks))
+        peak = refined_max_kinked(np.abs(torque), p.u, kinks)
+        return replace(metrics, load_torque=load_torque, peak_ratio=peak_ratio,
+                       peak_torque=peak), speed, torque
 
 
 def check_position_drive(drive: Drive) -> None:
@@ -1418,5 +1512,5 @@ def position_calculator(task: Task, law: MotionLaw, load: Load, drive: Drive,
         raise UserError("load.gravity/load.spring: a task with a return move is not "
                         "supported with position-dependent loads yet (one move and its dwell)")
     check_position_drive(drive)
-    profile = position_profile(load, task.displacement, law)
+    profile = position_profile(load, task.displacement, law, task.linear)
     return PositionCalculator(profile, task, drive, motors, thermal_rule, law)

@@ -381,6 +381,46 @@ class SpringInput(Strict):
                              ] | None = None
 
 
+TablePoint = tuple[Annotated[float, Ranged("table_angle")],
+                   Annotated[float, Ranged("table_torque")]]
+"""A torque table's point [q, tau], each a number (SI) or a text with its unit."""
+
+
+class TorqueTableInput(Strict):
+    """A torque of the load's position (rotary axis) as a table, linear between its points,
+    positive opposing a positive move (docs/position-loads.md): ``points`` or ``file``."""
+
+    points: Annotated[list[TablePoint], RangeRef("table_angle"),
+                      RangeRef("table_torque")] | None = Field(
+        None, description="[[q, tau], ...], e.g. [[0 deg, 1.5 N*m], [30 deg, 2.2 N*m]], q "
+                          "strictly increasing")
+    file: str | None = Field(
+        None, description="a CSV file (relative to the design): its first two columns q "
+                          "and tau, units in the header, e.g. 'q [deg],tau [N*m]'")
+    offset: Annotated[float, Ranged("table_angle", note="the table's q at the start of the "
+                                                        "move; default 0")] | None = None
+
+
+ForcePoint = tuple[Annotated[float, Ranged("table_length")],
+                   Annotated[float, Ranged("table_force")]]
+"""A force table's point [s, F], each a number (SI) or a text with its unit."""
+
+
+class ForceTableInput(Strict):
+    """A force of the load's position (linear axis) as a table, linear between its points,
+    positive opposing a positive move (docs/position-loads.md): ``points`` or ``file``."""
+
+    points: Annotated[list[ForcePoint], RangeRef("table_length"),
+                      RangeRef("table_force")] | None = Field(
+        None, description="[[s, F], ...], e.g. [[0 mm, 20 N], [50 mm, 180 N]], s strictly "
+                          "increasing")
+    file: str | None = Field(
+        None, description="a CSV file (relative to the design): its first two columns s "
+                          "and F, units in the header, e.g. 's [mm],F [N]'")
+    offset: Annotated[float, Ranged("table_length", note="the table's s at the start of the "
+                                                         "move; default 0")] | None = None
+
+
 class LoadInput(Strict):
     """The load at the load side; rotary fields or linear ones, per the displacement."""
 
@@ -418,6 +458,12 @@ class LoadInput(Strict):
     spring: SpringInput | None = Field(
         None, description="rotary axis: a spring, k (q - q_free) + preload "
                           "(docs/position-loads.md)")
+    torque_table: TorqueTableInput | None = Field(
+        None, description="rotary axis: a torque of the position as a table, linear between "
+                          "its points (docs/position-loads.md)")
+    force_table: ForceTableInput | None = Field(
+        None, description="linear axis: a force of the position as a table, linear between "
+                          "its points (docs/position-loads.md)")
 
 
 def _motor_ref_tag(value: Any) -> str:

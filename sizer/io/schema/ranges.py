@@ -273,6 +273,16 @@ RANGES: dict[str, Range] = {
                                 zero=True, signed=True),
     "spring_free_angle": _r("angle", 1e-9, 1e3, "from the start of the move, either sign",
                             zero=True, signed=True),
+    "table_angle": _r("angle", 1e-9, 1e3, "a torque table's position (its offset: the "
+                      "table's position at the start of the move), either sign",
+                      zero=True, signed=True),
+    "table_torque": _r("torque", 1e-9, 1e8, "a torque table's torque, positive opposing a "
+                       "positive move, either sign", zero=True, signed=True),
+    "table_length": _r("length", 1e-9, 1e4, "a force table's position (its offset: the "
+                       "table's position at the start of the move), either sign",
+                       zero=True, signed=True),
+    "table_force": _r("force", 1e-9, 1e9, "a force table's force, positive opposing a "
+                      "positive move, either sign", zero=True, signed=True),
 }
 """Every range of the input files, by name (the fields name them)."""
 
