@@ -349,9 +349,10 @@ def test_bad_torque_table_field(case, tmp_path):
 
 def _position_cases() -> list[Case]:
     """Every position term's field cases (tests/test_bad_inputs_fields.py reads them)."""
+    from test_position_inertia import FIELD_CASES as INERTIA
     from test_position_loads import FIELD_CASES as TERMS
 
-    return [*TERMS, *FIELD_CASES]
+    return [*TERMS, *FIELD_CASES, *INERTIA]
 
 
 POSITION_FIELD_CASES = _position_cases()

@@ -63,6 +63,7 @@ from sizer.model.domain import (
     Design,
     FigureSources,
     GravityLoad,
+    InertiaTableLoad,
     Limits,
     Load,
     Motor,
@@ -558,8 +559,13 @@ def _load(model: DesignFile, source: YamlSource, linear: bool,
     gravity, spring = _position_terms(model, source, linear)
     table = _position_table(model, source, folder if folder is not None else Path.cwd(),
                             linear)
+    inertia_table = _inertia_table(model, source, linear,
+                                   folder if folder is not None else Path.cwd())
+    if inertia_table is not None and not inertia_table.varies:  # a constant: no term
+        load = replace(load, inertia=load.inertia + inertia_table.inertia[0])
+        inertia_table = None
     return replace(load, elastic=_elastic(model, source), gravity=gravity, spring=spring,
-                   table=table)
+                   table=table, inertia_table=inertia_table)
 
 
 def _position_terms(model: DesignFile, source: YamlSource, linear: bool
@@ -577,12 +583,13 @@ def _position_terms(model: DesignFile, source: YamlSource, linear: bool
             if getattr(given, term) is not None:
                 raise source.error(f"{what} (gravity and spring terms are for rotary axes)",
                                    ("load", term))
-    right, wrong = ("force_table", "torque_table") if linear else ("torque_table",
-                                                                   "force_table")
-    if getattr(given, wrong) is not None:
-        axis = ("a linear axis (the displacement is a length)" if linear
-                else "a rotary axis (the displacement is an angle)")
-        raise source.error(f"{axis} takes '{right}', not '{wrong}'", ("load", wrong))
+    for right, wrong in (("force_table", "torque_table"), ("mass_table", "inertia_table")):
+        if not linear:
+            right, wrong = wrong, right
+        if getattr(given, wrong) is not None:
+            axis = ("a linear axis (the displacement is a length)" if linear
+                    else "a rotary axis (the displacement is an angle)")
+            raise source.error(f"{axis} takes '{right}', not '{wrong}'", ("load", wrong))
     task = model.task
     if task is None or task.return_move:
         raise source.error("a load term of the position needs a single move: `task:` "
@@ -601,10 +608,62 @@ def _position_terms(model: DesignFile, source: YamlSource, linear: bool
 
 def _position_key(given: LoadInput) -> str | None:
     """The first position term the load gives (None: none), where messages point."""
-    for key in ("gravity", "spring", "torque_table", "force_table"):
+    for key in ("gravity", "spring", "torque_table", "force_table", "inertia_table",
+                "mass_table"):
         if getattr(given, key) is not None:
             return key
     return None
+
+
+def _inertia_table(model: DesignFile, source: YamlSource, linear: bool, folder: Path
+                   ) -> InertiaTableLoad | None:
+    """``load.inertia_table`` (rotary) or ``load.mass_table`` (linear; :func:`_position_terms`
+    has refused the other axis's and a task that is no single move): inline points, q
+    strictly increasing, at least two, covering the move (docs/position-loads.md); or a CSV
+    ``file`` read as a torque table's (its header ``q [deg],J [kg*m^2]``)."""
+    key = "mass_table" if linear else "inertia_table"
+    given = getattr(model.load, key)
+    if given is None:
+        return None
+    at = ("load", key)
+    if linear and (model.load.incline or model.load.friction_coefficient):
+        raise source.error("a mass table is inertia only: its weight on an incline and its "
+                           "friction (mu m g) are not modelled yet; give them as "
+                           "load.force_table and load.friction", at)
+    unit = "m" if linear else "rad"
+    if (given.points is None) == (given.file is None):
+        raise source.error("give the table's points or its file (one of them)", at)
+    if given.points is not None:
+        points = given.points
+        if len(points) < 2:
+            raise source.error(f"has {len(points)} point: a table needs at least 2",
+                               (*at, "points"))
+        for i in range(1, len(points)):
+            if not points[i][0] > points[i - 1][0]:
+                raise source.error(f"q must increase strictly: {points[i][0]:g} {unit} "
+                                   f"follows {points[i - 1][0]:g} {unit}", (*at, "points", i))
+        x = tuple(p[0] for p in points)
+        values = tuple(p[1] for p in points)
+    else:
+        kinds = (("length", "a length", "mm or m"), ("mass", "a mass", "kg")) if linear else \
+            (("angle", "an angle", "deg or rad"), ("inertia", "an inertia", "kg*m^2"))
+        header = "s [mm],m [kg]" if linear else "q [deg],J [kg*m^2]"
+        x, values = _position_table_file(folder, given.file or "", linear, source,
+                                         (*at, "file"), (kinds, header))
+    table = InertiaTableLoad(x, values, offset=given.offset or 0.0)
+    task = model.task
+    if task is not None and task.displacement is not None:
+        from sizer.units import parse_displacement
+
+        h, _ = parse_displacement(task.displacement, field="task.displacement")
+        ends = sorted((table.offset, table.offset + h))
+        slack = 1e-9 * (x[-1] - x[0])
+        if ends[0] < x[0] - slack or ends[1] > x[-1] + slack:
+            raise source.error(f"the move covers q = {ends[0]:.6g} to {ends[1]:.6g} {unit} "
+                               f"of the table (its offset {table.offset:.6g} {unit} and the "
+                               f"displacement): the table covers {x[0]:.6g} to {x[-1]:.6g} "
+                               f"{unit}; extend it or check its offset", at)
+    return table
 
 
 def _position_table(model: DesignFile, source: YamlSource, folder: Path, linear: bool
@@ -653,7 +712,7 @@ def _position_table(model: DesignFile, source: YamlSource, folder: Path, linear:
 def _position_table_files(model: DesignFile, folder: Path) -> list[Path]:
     """The CSV files the load's position tables read (relative to the design's folder)."""
     out = []
-    for key in ("torque_table", "force_table"):
+    for key in ("torque_table", "force_table", "inertia_table", "mass_table"):
         given = getattr(model.load, key, None)
         if given is not None and given.file is not None and given.file.strip():
             path = Path(given.file)
@@ -662,9 +721,11 @@ def _position_table_files(model: DesignFile, folder: Path) -> list[Path]:
 
 
 def _position_table_file(folder: Path, name: str, linear: bool, source: YamlSource,
-                         at: tuple[str, ...]) -> tuple[tuple[float, ...], tuple[float, ...]]:
+                         at: tuple[str, ...], columns: tuple[Any, str] | None = None
+                         ) -> tuple[tuple[float, ...], tuple[float, ...]]:
     """The (q, tau) in SI of a position table's CSV: its first two columns, their units in
-    its header (``q [deg],tau [N*m]``; ``s [mm],F [N]`` on a linear axis)."""
+    its header (``q [deg],tau [N*m]``; ``s [mm],F [N]`` on a linear axis); ``columns``
+    (the two columns' (kind, what, example) and the header's example) for other tables."""
     from sizer.io.cam_table import read_cam_table
     from sizer.units import to_si
 
@@ -680,12 +741,16 @@ def _position_table_file(folder: Path, name: str, linear: bool, source: YamlSour
     file = str(path)
     kinds = (("length", "a length", "mm or m"), ("force", "a force", "N")) if linear else \
         (("angle", "an angle", "deg or rad"), ("torque", "a torque", "N*m"))
+    if columns is not None:
+        kinds = columns[0]
     scales = []
     for i, (kind, what, example) in enumerate(kinds):
         unit = table.units[i]
         column = table.column_name(i)
         if unit is None:
             header = "s [mm],F [N]" if linear else "q [deg],tau [N*m]"
+            if columns is not None:
+                header = columns[1]
             raise UserError(f"{column} has no unit: the header gives each column's unit in "
                             f"brackets, e.g. '{header}'", file=file,
                             line=table.header_line or int(table.lines[0]), field=column)

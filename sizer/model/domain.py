@@ -67,18 +67,27 @@ class Load:
     """A spring on the load, a torque or force of its position (docs/position-loads.md)."""
     table: TableLoad | None = None
     """A torque of the load's position given as a table (docs/position-loads.md)."""
+    inertia_table: InertiaTableLoad | None = None
+    """An inertia of the load's position given as a table, added to ``inertia``
+    (docs/position-loads.md)."""
 
     @property
     def position_dependent(self) -> bool:
         """Whether a term of the load depends on its position (gravity on an arm, a
-        spring, a table)."""
-        return any(t is not None and t.active for t in (self.gravity, self.spring, self.table))
+        spring, a table, an inertia table)."""
+        return any(t is not None and t.active for t in (self.gravity, self.spring, self.table,
+                                                        self.inertia_table))
 
     @property
     def position_knots(self) -> tuple[float, ...]:
         """The positions q (from the start of the move) where a position term has a kink:
-        a table's knots (empty without)."""
-        return self.table.knots if self.table is not None else ()
+        a table's knots, an inertia table's (empty without)."""
+        out: tuple[float, ...] = ()
+        if self.table is not None and self.table.active:
+            out = self.table.knots
+        if self.inertia_table is not None and self.inertia_table.varies:
+            out = out + self.inertia_table.knots
+        return tuple(sorted(set(out)))
 
     def position_torque(self, q):
         """The load's torque (force) of its position q (rad or m from the start of the
@@ -165,6 +174,94 @@ class TableLoad:
         import numpy as np
 
         return np.interp(np.asarray(q, dtype=float) + self.offset, self.x, self.tau)
+
+
+@dataclass(frozen=True)
+class InertiaTableLoad:
+    """An inertia of the load's position as a table (a lever, a linkage measured or taken
+    from CAD): points (x_i, J_i), x strictly increasing, J >= 0, interpolated by the
+    monotone piecewise cubic (PCHIP, Fritsch-Carlson with scipy's weighted harmonic mean
+    and end slopes): J and J' continuous (the velocity term 1/2 J'(q) q'^2 has no jump),
+    each interval monotone (J never leaves its neighbouring points' range: no invented
+    peak, never negative). ``offset`` x0 as a torque table's: at the load's position q
+    the inertia is J(q + x0), added to ``Load.inertia``. Outside the table it holds the
+    end values (the engine refuses a move that leaves it)."""
+
+    x: tuple[float, ...]
+    inertia: tuple[float, ...]
+    offset: float = 0.0
+
+    @property
+    def active(self) -> bool:
+        """A table of zeros is no term (a constant one is: the loader folds it into
+        ``Load.inertia``, so a design file's sizes as that constant inertia)."""
+        return any(j != 0.0 for j in self.inertia)
+
+    @property
+    def varies(self) -> bool:
+        """Whether J changes along the table (else J' = 0 and no knot is a kink)."""
+        return any(j != self.inertia[0] for j in self.inertia)
+
+    @property
+    def knots(self) -> tuple[float, ...]:
+        """The table's points as positions from the start of the move."""
+        return tuple(x - self.offset for x in self.x)
+
+    def slopes(self):
+        """PCHIP's slopes dJ/dx at the points (as scipy.interpolate.PchipInterpolator)."""
+        import numpy as np
+
+        x, y = np.asarray(self.x, dtype=float), np.asarray(self.inertia, dtype=float)
+        h = np.diff(x)
+        m = np.diff(y) / h
+        if len(x) == 2:
+            return np.array([m[0], m[0]])
+        d = np.zeros(len(x))
+        w1, w2 = 2.0 * h[1:] + h[:-1], h[1:] + 2.0 * h[:-1]
+        flat = (np.sign(m[1:]) != np.sign(m[:-1])) | (m[1:] == 0.0) | (m[:-1] == 0.0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            mean = (w1 / m[:-1] + w2 / m[1:]) / (w1 + w2)
+            d[1:-1] = np.where(flat, 0.0, 1.0 / mean)
+
+        def edge(h0: float, h1: float, m0: float, m1: float) -> float:
+            e = ((2.0 * h0 + h1) * m0 - h0 * m1) / (h0 + h1)
+            if np.sign(e) != np.sign(m0):
+                return 0.0
+            if np.sign(m0) != np.sign(m1) and abs(e) > 3.0 * abs(m0):
+                return 3.0 * m0
+            return float(e)
+
+        d[0] = edge(h[0], h[1], m[0], m[1])
+        d[-1] = edge(h[-1], h[-2], m[-1], m[-2])
+        return d
+
+    def values(self, q, order: int = 0):
+        """J (``order`` 0) or dJ/dq (1) at the load's positions q (from the start),
+        beyond the table its end values (J) and end slopes (J', within rounding)."""
+        import numpy as np
+
+        x, y = np.asarray(self.x, dtype=float), np.asarray(self.inertia, dtype=float)
+        d = self.slopes()
+        xs = np.asarray(q, dtype=float) + self.offset
+        inside = np.clip(xs, x[0], x[-1])
+        i = np.clip(np.searchsorted(x, inside, side="right") - 1, 0, len(x) - 2)
+        h = x[i + 1] - x[i]
+        t = (inside - x[i]) / h
+        y0, y1, d0, d1 = y[i], y[i + 1], d[i] * h, d[i + 1] * h
+        if order == 0:
+            return (2 * t**3 - 3 * t**2 + 1) * y0 + (t**3 - 2 * t**2 + t) * d0 \
+                + (-2 * t**3 + 3 * t**2) * y1 + (t**3 - t**2) * d1
+        slope = ((6 * t**2 - 6 * t) * y0 + (3 * t**2 - 4 * t + 1) * d0
+                 + (-6 * t**2 + 6 * t) * y1 + (3 * t**2 - 2 * t) * d1) / h
+        return slope  # at the end points beyond them (a move past a table is refused)
+
+    def largest(self, q_low: float, q_high: float) -> float:
+        """The largest J over the positions q_low..q_high (from the start): each interval
+        is monotone, so at an end or a point between."""
+        inner = [j for x, j in zip(self.knots, self.inertia, strict=True)
+                 if q_low <= x <= q_high]
+        ends = self.values([q_low, q_high])
+        return float(max([*inner, *(float(v) for v in ends)]))
 
 
 @dataclass(frozen=True)

@@ -1341,7 +1341,9 @@ def _shape(segment: Move | Run, law: MotionLaw | None,
 # sized by this engine unchanged: its grid, torque, peak floor and RMS model. The dwell
 # holds the static load at the end position, g(h) without the friction. One move
 # (``task:`` without a return); stages' preload torques and the steady-load efficiency
-# rule are refused. docs/position-loads.md.
+# rule are refused. An inertia table J(q) (added to J_l) puts J(q) q'' + 1/2 J'(q) q'^2 in
+# the inertial part (both as 1/T^2); the ratio check reads the largest inertia over the
+# move (position_calculator's drive). docs/position-loads.md.
 
 @dataclass(frozen=True)
 class PositionProfile(LinkageProfile):
@@ -1378,17 +1380,19 @@ def knot_crossings(law: MotionLaw, h: float, knots: tuple[float, ...]) -> np.nda
 
 def _check_table_span(load: Load, q: np.ndarray, linear: bool) -> None:
     """A move that leaves its position table is the user's mistake (a located message)."""
-    table = load.table
-    if table is None or not table.active:
-        return
-    x = np.asarray(q, dtype=float) + table.offset
-    lo, hi = table.x[0], table.x[-1]
-    slack = TABLE_SLACK * (hi - lo)
-    if np.min(x) < lo - slack or np.max(x) > hi + slack:
-        raise UserError(f"the move reaches the table's positions {np.min(x):.6g} to "
-                        f"{np.max(x):.6g} (SI, with its offset): the table covers {lo:.6g} "
-                        f"to {hi:.6g}; extend it or check its offset",
-                        field="load.force_table" if linear else "load.torque_table")
+    for table, field in ((load.table, "load.force_table" if linear else "load.torque_table"),
+                         (load.inertia_table,
+                          "load.mass_table" if linear else "load.inertia_table")):
+        if table is None or not table.active:
+            continue
+        x = np.asarray(q, dtype=float) + table.offset
+        lo, hi = table.x[0], table.x[-1]
+        slack = TABLE_SLACK * (hi - lo)
+        if np.min(x) < lo - slack or np.max(x) > hi + slack:
+            raise UserError(f"the move reaches the table's positions {np.min(x):.6g} to "
+                            f"{np.max(x):.6g} (SI, with its offset): the table covers "
+                            f"{lo:.6g} to {hi:.6g}; extend it or check its offset",
+                            field=field)
 
 
 def position_profile(load: Load, displacement: float, law: MotionLaw,
@@ -1398,14 +1402,19 @@ def position_profile(load: Load, displacement: float, law: MotionLaw,
     are breakpoints of the grid: the torque's kinks are sampled, the quadrature split
     there (exact peaks and RMS for the piecewise-linear term)."""
     h = float(displacement)
-    crossings = knot_crossings(law, h, load.position_knots) if load.table is not None \
-        and load.table.active else None
+    knots = load.position_knots
+    crossings = knot_crossings(law, h, knots) if knots else None
     u, weights = _grid(law, crossings)  # the linkage engine's grid
     direction = 1.0 if h >= 0.0 else -1.0
     q = [h * law.derivative(u, k) for k in range(4)]
     _check_table_span(load, q[0], linear)
     sense = np.where(q[1] > 0.0, 1.0, np.where(q[1] < 0.0, -1.0, direction))
     inertial = load.inertia * q[2]
+    largest = load.inertia
+    table = load.inertia_table
+    if table is not None and table.active:  # J(q) q'' + 1/2 J'(q) q'^2, both as 1/T^2
+        inertial = inertial + table.values(q[0]) * q[2] + 0.5 * table.values(q[0], 1) * q[1]**2
+        largest = load.inertia + table.largest(float(np.min(q[0])), float(np.max(q[0])))
     damping = load.damping * q[1]
     steady = load.friction * sense + load.torque + load.position_torque(q[0])
     hold = float(load.torque + load.position_torque(np.array([h]))[0])
@@ -1414,19 +1423,22 @@ def position_profile(load: Load, displacement: float, law: MotionLaw,
         kinks = np.isin(u, np.concatenate((crossings, law.breakpoints)))
     return PositionProfile(u, weights, q[0], np.ones_like(u), q[0], q[1], q[2], q[1], q[2],
                            q[3], inertial, damping, steady, hold, abs(h), load.inertia, load,
-                           load.inertia, (), kinks)
+                           largest, (), kinks)
 
 
 def refined_max_kinked(values: np.ndarray, u: np.ndarray, kinks: np.ndarray) -> np.ndarray:
     """:func:`refined_max` where the samples ``kinks`` (a mask) are kinks of the values: a
     parabola is read only through three samples whose middle one is not a kink (smooth
     between them), centred on the largest sample or either neighbour (a smooth peak
-    beside a kink)."""
+    beside a kink). The parabola centred on the largest sample where it is valid (its
+    neighbours' extrapolate: each overshoots by about the third derivative times the
+    spacing cubed, and the largest of them would be kept)."""
     m = values.shape[1]
     rows = np.arange(values.shape[0])
     best = np.max(values, axis=1)
     top_i = np.argmax(values, axis=1)
-    for shift in (-1, 0, 1):
+    centred = np.zeros(len(rows), dtype=bool)
+    for shift in (0, -1, 1):
         i = np.clip(top_i + shift, 1, m - 2)
         x0, x1, x2 = u[i - 1], u[i], u[i + 1]
         f0, f1, f2 = values[rows, i - 1], values[rows, i], values[rows, i + 1]
@@ -1436,8 +1448,10 @@ def refined_max_kinked(values: np.ndarray, u: np.ndarray, kinks: np.ndarray) -> 
             vertex = 0.5 * (x0 + x1) - d01 / (2.0 * curvature)
             top = f0 + d01 * (vertex - x0) + curvature * (vertex - x0) * (vertex - x1)
         inside = (curvature < 0.0) & (vertex > x0) & (vertex < x2) & np.isfinite(top) \
-            & ~kinks[i]
+            & ~kinks[i] & ~centred
         best = np.where(inside, np.maximum(best, top), best)
+        if shift == 0:
+            centred = inside
     return best
 
 
@@ -1513,4 +1527,8 @@ def position_calculator(task: Task, law: MotionLaw, load: Load, drive: Drive,
                         "supported with position-dependent loads yet (one move and its dwell)")
     check_position_drive(drive)
     profile = position_profile(load, task.displacement, law, task.linear)
+    if profile.max_inertia != drive.load.inertia:  # an inertia table: the ratio check and
+        # the inertia figures read the largest inertia over the move
+        drive = Drive(replace(drive.load, inertia=profile.max_inertia), drive.transmissions,
+                      drive.option)
     return PositionCalculator(profile, task, drive, motors, thermal_rule, law)

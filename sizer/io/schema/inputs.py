@@ -421,6 +421,46 @@ class ForceTableInput(Strict):
                                                          "move; default 0")] | None = None
 
 
+InertiaPoint = tuple[Annotated[float, Ranged("table_angle")],
+                     Annotated[float, Ranged("table_inertia")]]
+"""An inertia table's point [q, J], each a number (SI) or a text with its unit."""
+
+
+class InertiaTableInput(Strict):
+    """An inertia of the load's position (rotary axis) as a table, added to load.inertia,
+    a monotone cubic (PCHIP) between its points (docs/position-loads.md)."""
+
+    points: Annotated[list[InertiaPoint], RangeRef("table_angle"),
+                      RangeRef("table_inertia")] | None = Field(
+        None, description="[[q, J], ...], e.g. [[0 deg, 0.02 kg*m^2], [90 deg, "
+                          "0.08 kg*m^2]], q strictly increasing")
+    file: str | None = Field(
+        None, description="a CSV file (relative to the design): its first two columns, "
+                          "units in the header, e.g. 'q [deg],J [kg*m^2]'")
+    offset: Annotated[float, Ranged("table_angle", note="the table's q at the start of the "
+                                                        "move; default 0")] | None = None
+
+
+MassPoint = tuple[Annotated[float, Ranged("table_length")],
+                  Annotated[float, Ranged("table_mass")]]
+"""A mass table's point [s, m], each a number (SI) or a text with its unit."""
+
+
+class MassTableInput(Strict):
+    """A mass of the load's position (linear axis) as a table, added to load.mass, a
+    monotone cubic (PCHIP) between its points (docs/position-loads.md)."""
+
+    points: Annotated[list[MassPoint], RangeRef("table_length"),
+                      RangeRef("table_mass")] | None = Field(
+        None, description="[[s, m], ...], e.g. [[0 mm, 2 kg], [200 mm, 5 kg]], s strictly "
+                          "increasing")
+    file: str | None = Field(
+        None, description="a CSV file (relative to the design): its first two columns, "
+                          "units in the header, e.g. 's [mm],m [kg]'")
+    offset: Annotated[float, Ranged("table_length", note="the table's s at the start of the "
+                                                         "move; default 0")] | None = None
+
+
 class LoadInput(Strict):
     """The load at the load side; rotary fields or linear ones, per the displacement."""
 
@@ -464,6 +504,13 @@ class LoadInput(Strict):
     force_table: ForceTableInput | None = Field(
         None, description="linear axis: a force of the position as a table, linear between "
                           "its points (docs/position-loads.md)")
+    inertia_table: InertiaTableInput | None = Field(
+        None, description="rotary axis: an inertia of the position as a table, added to "
+                          "inertia, with its velocity term 1/2 J'(q) q'^2 "
+                          "(docs/position-loads.md)")
+    mass_table: MassTableInput | None = Field(
+        None, description="linear axis: a mass of the position as a table, added to mass, "
+                          "with its velocity term 1/2 m'(s) s'^2 (docs/position-loads.md)")
 
 
 def _motor_ref_tag(value: Any) -> str:

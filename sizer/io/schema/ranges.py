@@ -283,6 +283,10 @@ RANGES: dict[str, Range] = {
                        zero=True, signed=True),
     "table_force": _r("force", 1e-9, 1e9, "a force table's force, positive opposing a "
                       "positive move, either sign", zero=True, signed=True),
+    "table_inertia": _r("inertia", 1e-12, 1e8, "an inertia table's inertia, added to the "
+                        "load's: as the load's inertia, 0 allowed", zero=True),
+    "table_mass": _r("mass", 1e-9, 1e7, "a mass table's mass, added to the load's: as the "
+                     "load's mass, 0 allowed", zero=True),
 }
 """Every range of the input files, by name (the fields name them)."""
 
