@@ -249,7 +249,7 @@ def test_schema_names_the_sections():
     schema = design_schema()
     assert {"load"} <= set(schema["required"])  # and task or cycle: see test_cycle_input.py
     assert {"name", "task", "cycle", "load", "transmission", "laws", "motors", "drives",
-            "check", "limits", "efficiency_applies_to"} == set(schema["properties"])
+            "check", "limits", "tolerances", "efficiency_applies_to"} == set(schema["properties"])
     assert "return" in schema["$defs"]["TaskInput"]["properties"]
 
 

@@ -86,6 +86,11 @@ def size(
     jobs: JobsOption = None,
     front: FrontOption = False,
     front_by: FrontByOption = None,
+    robust: Annotated[bool, typer.Option(
+        "--robust",
+        help="Also size every pair at the corners of the design's 'tolerances:' and show "
+             "its worst-case margin; the pairs feasible at every corner rank first "
+             "(docs/robust.md).")] = False,
 ) -> None:
     """Size a design: every motor with every motion law, feasible pairs ranked.
 
@@ -127,6 +132,9 @@ def size(
     front_key = check_front_key(front_by)
     check_laws(law or ())
     check_output(output, [design, *(catalog or ())])
+    if robust and (is_machine(design) or front or front_by):
+        raise UserError("not with a machine file or --front (size one design's pairs "
+                        "robustly)", field="--robust")
     if is_machine(design):
         if law:
             raise UserError("not for a machine file: each axis names its laws",
@@ -143,14 +151,40 @@ def size(
 
     if plans_without_motor(loaded):  # `motors: []` with the load's limits
         _plan(design, loaded, refused=((rank_by, "--rank-by"), (front, "--front"),
-                                       (front_by, "--front-by"), (envelope, "--envelope")),
+                                       (front_by, "--front-by"), (envelope, "--envelope"),
+                                       (robust, "--robust")),
               top=top, fmt=fmt, output=output)
+        return
+    if robust:
+        _size_robust(design, loaded, rank_by, top, show_all, fmt, output, jobs, law)
         return
     sizing = size_loaded(design, loaded, rank_by, workers=jobs, laws=law)
     document = SizingDocument(sizing, loaded, rank_by=rank_by, top=top,
                               include_infeasible=show_all,
                               front=front_of(sizing, front_key, design), front_only=front)
     publish_sizing(document, fmt, output)
+
+
+def _size_robust(path: Path, loaded: Design, rank_by: str | None, top: int | None,
+                 show_all: bool, fmt: Format, output: Path | None, jobs: int | None,
+                 law: Sequence[str] | None) -> None:
+    """``sizer size --robust``: the sizing, then every pair at the corners of the design's
+    tolerances (sizer.robust)."""
+    from sizer.report.robust_table import RobustDocument
+    from sizer.report.sizing_table import publish_sizing
+    from sizer.robust import check_tolerances, robust_sizing
+
+    try:
+        check_tolerances(loaded)
+    except UserError as error:
+        raise (error if error.field == "--robust" else error.located(file=str(path))) from None
+    sizing = size_loaded(path, loaded, rank_by, workers=jobs, laws=law)
+    try:
+        robust = robust_sizing(loaded, sizing, rank_by=rank_by, workers=jobs)
+    except UserError as error:
+        raise error.located(file=str(path)) from None
+    publish_sizing(RobustDocument(robust, loaded, rank_by=rank_by, top=top,
+                                  include_infeasible=show_all), fmt, output)
 
 
 def _size_machine(path: Path, catalog: Sequence[str] | None, motor: Sequence[str] | None,

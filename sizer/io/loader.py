@@ -478,7 +478,44 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
         files=tuple(files),
         machine_cycle=cycle,
         drives=drives,
+        tolerances=_tolerances(model, source, linear),
     )
+
+
+TOLERANCE_KEYS = {
+    "load.inertia": False, "load.mass": True, "load.friction": None, "load.damping": None,
+    "load.torque": False, "load.force": True, "transmission.efficiency": None,
+    "motor.continuous_torque": None, "motor.peak_torque": None, "motor.rated_speed": None,
+    "motor.inertia": None}
+"""The inputs a ``tolerances:`` section may name (docs/robust.md), and whether the name
+is for a linear axis (True), a rotary one (False) or both (None)."""
+
+
+def _tolerances(model: DesignFile, source: YamlSource, linear: bool
+                ) -> tuple[tuple[str, float], ...]:
+    """The design's ``tolerances:`` as (input, fraction) pairs: each key a known input of
+    the axis, each value a fraction in (0, 100 %] (below 100 % where the input must stay
+    positive)."""
+    from sizer.units import to_si
+
+    out = []
+    for key, value in (model.tolerances or {}).items():
+        at = ("tolerances", key)
+        axis = TOLERANCE_KEYS.get(key, "unknown")
+        if axis == "unknown" or (axis is not None and axis != linear):
+            known = [k for k, a in TOLERANCE_KEYS.items() if a is None or a == linear]
+            raise source.error(f"not an input a tolerance can name; one of: "
+                               f"{', '.join(known)}", at)
+        try:
+            fraction = to_si(value, "fraction", field=f"tolerances.{key}")
+        except UserError as error:
+            raise source.relocate(error, at) from None
+        zero_ok = key in ("load.friction", "load.damping", "load.torque", "load.force")
+        if not (0.0 < fraction < 1.0 or (zero_ok and fraction == 1.0)):
+            bound = "(0, 100 %]" if zero_ok else "(0, 100 %)"
+            raise source.error(f"a relative tolerance must be in {bound}, got {value!r}", at)
+        out.append((key, fraction))
+    return tuple(out)
 
 
 def design_of_source(source: YamlSource, folder: Path, name: str,

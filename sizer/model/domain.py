@@ -606,6 +606,9 @@ class Design:
     drives: tuple[ServoDrive, ...]
     """The drives (amplifiers) to pair with the motors; empty: motors alone. With drives,
     a candidate is a motor with one of its compatible drives (sizer.sizing.drives)."""
+    tolerances: tuple[tuple[str, float], ...]
+    """Relative tolerances of inputs, (name, fraction) as the design's ``tolerances:``
+    gives them (``sizer size --robust``, sizer.robust); they never change the sizing."""
 
     def __init__(self, task: Task | None = None, load: Load | None = None,
                  transmission: Transmission = Transmission(),
@@ -615,7 +618,8 @@ class Design:
                  name: str = "", ratio_choice: RatioChoice | None = None,
                  warnings: tuple[str, ...] = (), files: tuple[Path, ...] = (),
                  drives: tuple[ServoDrive, ...] = (), cycle: Cycle | None = None,
-                 machine_cycle: Cycle | None = None) -> None:
+                 machine_cycle: Cycle | None = None,
+                 tolerances: tuple[tuple[str, float], ...] = ()) -> None:
         from sizer.laws.choice import law_choice  # lazy: the law families load with a law
 
         given = dict(locals(), machine_cycle=cycle or (from_task(task) if task is not None

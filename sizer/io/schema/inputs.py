@@ -634,6 +634,10 @@ class DesignFile(Strict):
                     "each motor is paired with each compatible drive")
     check: CheckInput | None = None
     limits: LimitsInput = Field(default_factory=lambda: LimitsInput.model_validate({}))
+    tolerances: dict[str, Text] | None = Field(
+        None, description="relative tolerances of inputs for `sizer size --robust` "
+                          "(docs/robust.md), e.g. {load.inertia: 20 %, motor.peak_torque: "
+                          "10 %}: each input is sized at value x (1 - t) and x (1 + t)")
     efficiency_applies_to: Annotated[
         Literal["power_flow", "steady_load"],
         BeforeValidator(_efficiency_rule),
