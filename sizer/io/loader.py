@@ -655,9 +655,8 @@ def _position_key(given: LoadInput) -> str | None:
 def _inertia_table(model: DesignFile, source: YamlSource, linear: bool, folder: Path
                    ) -> InertiaTableLoad | None:
     """``load.inertia_table`` (rotary) or ``load.mass_table`` (linear; :func:`_position_terms`
-    has refused the other axis's and a task that is no single move): inline points, q
-    strictly increasing, at least two, covering the move (docs/position-loads.md); or a CSV
-    ``file`` read as a torque table's (its header ``q [deg],J [kg*m^2]``)."""
+    has refused the other axis's and a task that is no single move): as a torque table
+    (:func:`_table_points`), its CSV header ``q [deg],J [kg*m^2]`` (docs/position-loads.md)."""
     key = "mass_table" if linear else "inertia_table"
     given = getattr(model.load, key)
     if given is None:
@@ -667,6 +666,34 @@ def _inertia_table(model: DesignFile, source: YamlSource, linear: bool, folder: 
         raise source.error("a mass table is inertia only: its weight on an incline and its "
                            "friction (mu m g) are not modelled yet; give them as "
                            "load.force_table and load.friction", at)
+    kinds = (("length", "a length", "mm or m"), ("mass", "a mass", "kg")) if linear else \
+        (("angle", "an angle", "deg or rad"), ("inertia", "an inertia", "kg*m^2"))
+    header = "s [mm],m [kg]" if linear else "q [deg],J [kg*m^2]"
+    x, values = _table_points(model, given, source, folder, linear, at, (kinds, header))
+    return InertiaTableLoad(x, values, offset=given.offset or 0.0)
+
+
+def _position_table(model: DesignFile, source: YamlSource, folder: Path, linear: bool
+                    ) -> TableLoad | None:
+    """``load.torque_table`` (rotary) or ``load.force_table`` (linear): inline ``points``
+    or a CSV ``file`` (read as a cam table is: sizer.io.cam_table, its header giving the
+    units) (docs/position-loads.md). :func:`_position_terms` has refused the other axis's."""
+    key = "force_table" if linear else "torque_table"
+    given = getattr(model.load, key)
+    if given is None:
+        return None
+    x, tau = _table_points(model, given, source, folder, linear, ("load", key))
+    return TableLoad(x, tau, offset=given.offset or 0.0)
+
+
+def _table_points(model: DesignFile, given: Any, source: YamlSource, folder: Path,
+                  linear: bool, at: tuple[str, ...],
+                  columns: tuple[Any, str] | None = None
+                  ) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """A table of the load's position (x, value) in SI: its inline ``points`` (q strictly
+    increasing, at least two) or its CSV ``file`` (:func:`_position_table_file`, with the
+    ``columns`` it expects); the move (from ``offset`` over the task's displacement) must
+    lie within it."""
     unit = "m" if linear else "rad"
     if (given.points is None) == (given.file is None):
         raise source.error("give the table's points or its file (one of them)", at)
@@ -682,68 +709,22 @@ def _inertia_table(model: DesignFile, source: YamlSource, linear: bool, folder: 
         x = tuple(p[0] for p in points)
         values = tuple(p[1] for p in points)
     else:
-        kinds = (("length", "a length", "mm or m"), ("mass", "a mass", "kg")) if linear else \
-            (("angle", "an angle", "deg or rad"), ("inertia", "an inertia", "kg*m^2"))
-        header = "s [mm],m [kg]" if linear else "q [deg],J [kg*m^2]"
         x, values = _position_table_file(folder, given.file or "", linear, source,
-                                         (*at, "file"), (kinds, header))
-    table = InertiaTableLoad(x, values, offset=given.offset or 0.0)
+                                         (*at, "file"), columns)
+    offset = given.offset or 0.0
     task = model.task
     if task is not None and task.displacement is not None:
         from sizer.units import parse_displacement
 
         h, _ = parse_displacement(task.displacement, field="task.displacement")
-        ends = sorted((table.offset, table.offset + h))
+        ends = sorted((offset, offset + h))
         slack = 1e-9 * (x[-1] - x[0])
         if ends[0] < x[0] - slack or ends[1] > x[-1] + slack:
             raise source.error(f"the move covers q = {ends[0]:.6g} to {ends[1]:.6g} {unit} "
-                               f"of the table (its offset {table.offset:.6g} {unit} and the "
+                               f"of the table (its offset {offset:.6g} {unit} and the "
                                f"displacement): the table covers {x[0]:.6g} to {x[-1]:.6g} "
                                f"{unit}; extend it or check its offset", at)
-    return table
-
-
-def _position_table(model: DesignFile, source: YamlSource, folder: Path, linear: bool
-                    ) -> TableLoad | None:
-    """``load.torque_table`` (rotary) or ``load.force_table`` (linear): inline ``points``
-    or a CSV ``file`` (read as a cam table is: sizer.io.cam_table, its header giving the
-    units), q strictly increasing, at least two points, covering the move
-    (docs/position-loads.md). :func:`_position_terms` has refused the other axis's."""
-    key = "force_table" if linear else "torque_table"
-    given = getattr(model.load, key)
-    if given is None:
-        return None
-    at = ("load", key)
-    unit = "m" if linear else "rad"
-    if (given.points is None) == (given.file is None):
-        raise source.error("give the table's points or its file (one of them)", at)
-    if given.points is not None:
-        points = given.points
-        if len(points) < 2:
-            raise source.error(f"has {len(points)} point: a table needs at least 2",
-                               (*at, "points"))
-        for i in range(1, len(points)):
-            if not points[i][0] > points[i - 1][0]:
-                raise source.error(f"q must increase strictly: {points[i][0]:g} {unit} "
-                                   f"follows {points[i - 1][0]:g} {unit}", (*at, "points", i))
-        x = tuple(p[0] for p in points)
-        tau = tuple(p[1] for p in points)
-    else:
-        x, tau = _position_table_file(folder, given.file or "", linear, source, (*at, "file"))
-    table = TableLoad(x, tau, offset=given.offset or 0.0)
-    task = model.task
-    if task is not None and task.displacement is not None:
-        from sizer.units import parse_displacement
-
-        h, _ = parse_displacement(task.displacement, field="task.displacement")
-        ends = sorted((table.offset, table.offset + h))
-        slack = 1e-9 * (x[-1] - x[0])
-        if ends[0] < x[0] - slack or ends[1] > x[-1] + slack:
-            raise source.error(f"the move covers q = {ends[0]:.6g} to {ends[1]:.6g} {unit} "
-                               f"of the table (its offset {table.offset:.6g} {unit} and the "
-                               f"displacement): the table covers {x[0]:.6g} to {x[-1]:.6g} "
-                               f"{unit}; extend it or check its offset", at)
-    return table
+    return x, values
 
 
 def _position_table_files(model: DesignFile, folder: Path) -> list[Path]:
