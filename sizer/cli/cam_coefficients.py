@@ -16,20 +16,16 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import typer
-
-from sizer.cli.cam_output import publish_certificate
+from sizer.cli.cam_output import exit_on_failures, publish_certificate
 from sizer.cli.cam_torques import (
     newly_failed_message,
     resized_export,
     torque_lines,
     torques_record,
 )
-from sizer.cli.exit_codes import ExitCode
 from sizer.errors import UserError
 from sizer.report.cam_certificate import record_head, segment_records
 from sizer.report.output import write_text_atomically
-from sizer.report.printable import printable
 
 if TYPE_CHECKING:
     from sizer.export.coefficient_segments import SegmentExport
@@ -83,25 +79,16 @@ def export_coefficients(target: Target, law: MotionLaw, h: float, T: float, line
 
         record = with_cycle(record, profile, T, specs)
     publish_certificate(record, certificate_text(record), certificate)
-    failed = False
-    if not export.met:
-        typer.echo(printable(f"{output}: the tolerance {tol:g} is not met: splitting "
-                             f"stopped (the certificate's note says why)"), err=True)
-        failed = True
-    if not export.met_in_single_precision:  # the data block is REAL (p. 6-181)
-        real = export.real_position.max / abs(export.profile.stroke)
-        typer.echo(printable(f"{output}: in single precision (REAL, the data block's type) "
-                             f"the position error is about {real:.2g} of the stroke, over "
-                             f"the tolerance {tol:g}: the coefficients of absolute X "
-                             f"cancel; export a shorter span (a move alone) or check on "
-                             f"the controller"), err=True)
-        failed = True
-    message = newly_failed_message(output, resized)
-    if message is not None:
-        typer.echo(message, err=True)
-        failed = True
-    if failed:
-        raise typer.Exit(ExitCode.CHECK_FAILED)
+    real = export.real_position.max / abs(export.profile.stroke)
+    exit_on_failures(
+        None if export.met else (f"{output}: the tolerance {tol:g} is not met: splitting "
+                                 f"stopped (the certificate's note says why)"),
+        None if export.met_in_single_precision else (  # the data block is REAL (p. 6-181)
+            f"{output}: in single precision (REAL, the data block's type) the position "
+            f"error is about {real:.2g} of the stroke, over the tolerance {tol:g}: the "
+            f"coefficients of absolute X cancel; export a shorter span (a move alone) or "
+            f"check on the controller"),
+        newly_failed_message(output, resized))
 
 
 def segments_spec(path: Path, span: tuple[float, float] | None = None) -> str:

@@ -14,9 +14,8 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from sizer.cli.cam_output import publish_certificate
+from sizer.cli.cam_output import exit_on_failures, publish_certificate
 from sizer.cli.catalog_option import CatalogOption
-from sizer.cli.exit_codes import ExitCode
 from sizer.errors import UserError
 from sizer.report.cam_certificate import record_head, segment_records
 from sizer.report.output import write_text_atomically
@@ -173,10 +172,9 @@ def cam(
 
         record = with_cycle(record, profile, T)
     publish_certificate(record, certificate_text(record), certificate)
-    if not table.met:
-        typer.echo(printable(f"{output}: the tolerance {table.tolerance:g} is not met within "
-                             f"{target.name}'s limit of {table.limit} points"), err=True)
-        raise typer.Exit(ExitCode.CHECK_FAILED)
+    exit_on_failures(None if table.met else (
+        f"{output}: the tolerance {table.tolerance:g} is not met within {target.name}'s "
+        f"limit of {table.limit} points"))
 
 
 def register(app: typer.Typer) -> None:

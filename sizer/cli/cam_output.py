@@ -21,3 +21,15 @@ def publish_certificate(record: dict[str, Any], lines: list[str],
     if certificate is not None:
         write_text_atomically(certificate, json.dumps(record, indent=2) + "\n",
                               "--certificate")
+
+
+def exit_on_failures(*messages: str | None) -> None:
+    """Say each failure (the messages not None) on stderr and exit 1 when there is one: the
+    file is written, but the tolerance or a check the law passed is not met."""
+    from sizer.cli.exit_codes import ExitCode
+
+    said = [m for m in messages if m is not None]
+    for message in said:
+        typer.echo(printable(message), err=True)
+    if said:
+        raise typer.Exit(ExitCode.CHECK_FAILED)

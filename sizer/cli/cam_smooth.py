@@ -14,15 +14,16 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, cast
 
-import typer
-
-from sizer.cli.cam_output import publish_certificate
-from sizer.cli.cam_torques import newly_failed_message, torque_lines, torques_record
-from sizer.cli.exit_codes import ExitCode
+from sizer.cli.cam_output import exit_on_failures, publish_certificate
+from sizer.cli.cam_torques import (
+    newly_failed_message,
+    resized_export,
+    torque_lines,
+    torques_record,
+)
 from sizer.errors import UserError
 from sizer.report.cam_certificate import record_head, segment_records
 from sizer.report.output import write_text_atomically
-from sizer.report.printable import printable
 
 if TYPE_CHECKING:
     from collections.abc import Callable
@@ -46,8 +47,6 @@ def export_smooth(target: Target, law: MotionLaw, h: float, T: float, linear: bo
                    default_tolerance, profile)
     write = cast("Callable[[Any], str]", target.write)  # a smooth target writes this table
     write_text_atomically(output, write(table), "--output")
-    from sizer.cli.cam_torques import resized_export
-
     resized, skipped, specs = resized_export(
         lambda span: cam_table_spec(output, span), what="table", cycle=profile, task=task,
         pair=pair, design=design, catalog=catalog)
@@ -57,17 +56,10 @@ def export_smooth(target: Target, law: MotionLaw, h: float, T: float, linear: bo
 
         record = with_cycle(record, profile, T, specs)
     publish_certificate(record, certificate_text(record), certificate)
-    failed = False
-    if not table.met:
-        typer.echo(printable(f"{output}: the tolerance {table.tolerance:g} is not met within "
-                             f"{target.name}'s limit of {table.limit} points"), err=True)
-        failed = True
-    message = newly_failed_message(output, resized)
-    if message is not None:
-        typer.echo(message, err=True)
-        failed = True
-    if failed:
-        raise typer.Exit(ExitCode.CHECK_FAILED)
+    exit_on_failures(
+        None if table.met else (f"{output}: the tolerance {table.tolerance:g} is not met "
+                                f"within {target.name}'s limit of {table.limit} points"),
+        newly_failed_message(output, resized))
 
 
 def _table(law: MotionLaw, h: float, T: float, linear: bool, master_range: float | None,

@@ -76,6 +76,8 @@ class NamedLaw:
 
 
 POLYNOMIALS = {3: "Polynomial3", 5: "Polynomial5", 7: "Polynomial7"}
+POLYNOMIAL_DEGREES = {name: degree for degree, name in POLYNOMIALS.items()}
+"""The degree of each polynomial function type."""
 SUPPORTED = ("polynomial(degree=3) (poly3)", "polynomial(degree=5) (poly5)",
              "polynomial(degree=7) (poly7)", "cycloidal", "modified_sinusoidal")
 
@@ -168,7 +170,7 @@ def _segment_ends(segment, function_type: str) -> Ends:
         v0, v1 = segment.end_speeds or tuple(H / X * s for s in law.speeds)
         if law.is_run:
             return (v0, 0.0, 0.0), (v1, 0.0, 0.0)
-        degree = {v: k for k, v in POLYNOMIALS.items()}[function_type]
+        degree = POLYNOMIAL_DEGREES[function_type]
         # degree 2m+1 fixes the derivatives of orders 1..m at both ends
         a0, a1 = ((H / X ** 2 * r for r in law.accelerations) if degree >= 5
                   else (None, None))
@@ -237,7 +239,7 @@ def motion_functions(profile: CamProfile) -> tuple[MotionFunctionPoint, ...]:
     for k, segment in enumerate(segments):
         if not isinstance(segment.law, FrozenShape) or segment.law.is_run:
             continue
-        degree = {v: d for d, v in POLYNOMIALS.items()}[types[k]]
+        degree = POLYNOMIAL_DEGREES[types[k]]
         for p, side in ((points[k], "start"), (points[k + 1], "end")):
             if (degree >= 5 and p.acceleration is None) or (degree == 7 and p.jerk is None):
                 raise UnnamedLawError(
@@ -328,7 +330,7 @@ def _hermite(a: MotionFunctionPoint, b: MotionFunctionPoint, function_type: str,
     (a condition left out read as 0) at both ends: the 2m+2 conditions fix it. In the
     segment's own variable t (d/dt = span d/dx), solved as a dense linear system in the
     monomial basis 1, t, ..., t^(2m+1) (independently of sizer.laws.boundary_speeds)."""
-    degree = {v: d for d, v in POLYNOMIALS.items()}[function_type]
+    degree = POLYNOMIAL_DEGREES[function_type]
     m = (degree - 1) // 2
     span = b.master - a.master
     rows, rhs = [], []
