@@ -9,7 +9,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Literal, get_args
+from typing import Any, Literal, get_args
+
+import numpy as np
 
 from sizer.model.domain import Stage
 
@@ -117,13 +119,16 @@ def screw_buckling_load(root_diameter: float, length: float, mounting: str) -> f
     return factor * (root_diameter * 1e3) ** 4 / (length * 1e3) ** 2 * 1e4
 
 
-def screw_rated_life(dynamic_load_rating: float, mean_load: float,
-                     load_factor: float = 1.0) -> float:
+def screw_rated_life(dynamic_load_rating: float, mean_load: Any,
+                     load_factor: float = 1.0) -> Any:
     """The rated life L_10 of a ball screw in revolutions: (C_a / (f_w F_m))^3 1e6 (THK,
-    General Catalog, Ball Screw, "Studying the Service Life"); inf with no load."""
-    if mean_load <= 0.0:
-        return math.inf
-    return (dynamic_load_rating / (load_factor * mean_load)) ** 3 * 1e6
+    General Catalog, Ball Screw, "Studying the Service Life"), for a mean load F_m or an
+    array of them; inf with no load."""
+    load = np.asarray(mean_load, dtype=float)
+    with np.errstate(divide="ignore", over="ignore"):
+        life = np.where(load > 0.0, (dynamic_load_rating / (load_factor * load)) ** 3 * 1e6,
+                        np.inf)
+    return float(life) if life.ndim == 0 else life
 
 
 @dataclass(frozen=True)

@@ -34,7 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from sizer.mechanics import Drive
-from sizer.mechanics.stages import ScrewRatings
+from sizer.mechanics.stages import ScrewRatings, screw_rated_life
 from sizer.numerics.roots import illinois
 from sizer.sizing.checks import (
     TOLERANCE,
@@ -97,9 +97,9 @@ def rated_life_time(screw: ScrewRatings, cycle: ScrewCycle) -> np.ndarray:
     """L_10 in seconds per candidate: (C_a / (f_w F_m))^3 1e6 revolutions at the cycle's
     mean speed; inf where the screw carries no load or does not turn."""
     assert screw.dynamic_load_rating is not None
+    revolutions = screw_rated_life(screw.dynamic_load_rating, cycle.mean_load,
+                                   screw.load_factor)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        revolutions = (screw.dynamic_load_rating / (screw.load_factor * cycle.mean_load)) ** 3 \
-            * 1e6
         life = revolutions * cycle.cycle_time / cycle.revolutions
     return np.where((cycle.mean_load > 0.0) & (cycle.revolutions > 0.0), life, np.inf)
 
