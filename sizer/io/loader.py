@@ -59,6 +59,7 @@ from sizer.io.yaml_source import (
     read_yaml,
 )
 from sizer.mechanics import linear_load
+from sizer.mechanics.loads import GRAVITY
 from sizer.model.domain import (
     Design,
     FigureSources,
@@ -635,7 +636,7 @@ def _position_terms(model: DesignFile, source: YamlSource, linear: bool
     if given.gravity is not None:
         arm = given.gravity
         gravity = GravityLoad(moment=arm.mass * arm.radius, offset=arm.offset or 0.0,
-                              g=9.80665 if arm.g is None else arm.g)
+                              g=GRAVITY if arm.g is None else arm.g)
     if given.spring is not None:
         sp = given.spring
         spring = SpringLoad(stiffness=sp.stiffness, preload=sp.preload or 0.0,
