@@ -257,6 +257,28 @@ def test_sizer_sizes_a_gravity_arm_end_to_end(tmp_path):
     assert row.rms_torque == pytest.approx(ref.rms(0.45, motor.inertia, 0.3), rel=1e-9)
 
 
+def test_the_segment_breakdown_of_a_gravity_arm(tmp_path):
+    """sizer segments of a gravity arm goes through the position engine (its cycle RMS is
+    the sizing's): the move and the dwell, and the same RMS torque as sizer size."""
+    import json
+
+    from cli_run import run_cli
+
+    text = edited("book/ex6_1-6_2.yaml", set={
+        "task.displacement": "90 deg", "task.duration": "0.45 s", "task.dwell": "0.3 s",
+        "load": {"inertia": "0.05 kg*m^2", "friction": "0.2 N*m",
+                 "gravity": {"mass": "2 kg", "radius": "250 mm", "offset": "-30 deg"}},
+        "transmission": {"type": "gearbox", "ratio": 10, "efficiency": 0.9},
+        "laws": ["cycloidal"], "check": {"motor": "ex6_3", "law": "cycloidal"}})
+    path = tmp_path / "arm.yaml"
+    path.write_text(text, encoding="utf-8")
+    result = run_cli("segments", str(path))
+    assert result.returncode == 0, result.stderr
+    sized = json.loads(run_cli("size", str(path), "--all", "--format", "json").stdout)
+    row = next(r for r in sized["results"] if r["motor"] == "ex6_3")
+    assert f"cycle rms torque {row['rms_torque']:.4g} N*m" in result.stdout
+
+
 def test_the_law_move_engine_never_ignores_a_position_term():
     drive = Drive(ARM, Transmission())
     motors = MotorArrays.of((_motor(0, 3.0, 1.0),), "electrical")
