@@ -111,6 +111,15 @@ def test_the_diff_equals_two_separate_runs_compared_field_by_field():
     assert PairKey("ex6_1", "", "cycloidal") in regressed
     cyc = diff.pair(PairKey("ex6_1", "", "cycloidal"))
     assert cyc is not None and cyc.after is not None and cyc.after["limiting"] == "rms"
+    # the RMS torque of tau = J a + B v (the cross term integrates to 0 over a rest-to-rest
+    # move): sqrt((J C_a_rms h/T^2)^2 + (B C_v_rms h/T)^2), cycloidal C_a_rms = pi sqrt 2,
+    # C_v_rms = sqrt(3/2); h = 15 rad, T = 3 s, B = 0.3 N*m*s/rad, J = 1 then 1.2 kg*m^2
+    rms = cyc.change("rms_torque")
+    assert rms is not None
+    for inertia, value in ((1.0, rms.before), (1.2, rms.after)):
+        expected = math.hypot(inertia * math.pi * math.sqrt(2) * 15 / 9,
+                              0.3 * math.sqrt(1.5) * 15 / 3)
+        assert value == pytest.approx(expected, rel=1e-9)
     assert [c.field for c in diff.design] == ["load.inertia", "laws", "check"]
 
 
