@@ -43,6 +43,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from sizer.export.extremes import Extreme, largest_difference
 from sizer.export.profile import CamProfile
 from sizer.laws.pieces import TrigPolyForm
 from sizer.laws.segment_table import DEGREE, CoefficientSegment
@@ -57,12 +58,6 @@ SAMPLES = 32
 """Samples of e^(k+1) per segment (sign changes bracket the extrema of e^(k))."""
 REAL_SAMPLES = 256
 """Grid points per segment of the single-precision estimate."""
-
-
-@dataclass(frozen=True)
-class Extreme:
-    max: float
-    at: float
 
 
 @dataclass(frozen=True)
@@ -304,35 +299,11 @@ def _difference(profile: CamProfile, written: Sequence[Written], x: np.ndarray,
 def _extreme(profile: CamProfile, written: Sequence[Written], order: int) -> Extreme:
     lo = np.array([w.segment.x1 for w in written])
     hi = np.array([w.segment.x2 for w in written])
-    count = len(written)
-    ends = np.concatenate([lo, hi])
-    both = np.concatenate([np.arange(count)] * 2)
-    where = [ends]
-    values = [np.abs(_difference(profile, written, ends, both, order))]
-    fractions = np.linspace(0.0, 1.0, SAMPLES + 1)
-    grid = lo[:, None] + (hi - lo)[:, None] * fractions[None, :]
-    cells = np.broadcast_to(np.arange(count)[:, None], grid.shape)
-    slope = _difference(profile, written, grid.ravel(), cells.ravel(),
-                        order + 1).reshape(grid.shape)
-    change = slope[:, :-1] * slope[:, 1:] < 0.0
-    if change.any():
-        row, col = np.nonzero(change)
-        roots = _roots(lambda t, i: _difference(profile, written, t, i.astype(int),
-                                                order + 1),
-                       grid[row, col], grid[row, col + 1], row)
-        where.append(roots)
-        values.append(np.abs(_difference(profile, written, roots, row, order)))
-    x, err = np.concatenate(where), np.concatenate(values)
-    k = int(np.argmax(err))
-    return Extreme(float(err[k]), float(x[k]))
 
+    def on_cells(t: np.ndarray, cell: np.ndarray, k: int) -> np.ndarray:
+        return _difference(profile, written, t, cell, k)
 
-def _roots(f, a: np.ndarray, b: np.ndarray, which: np.ndarray) -> np.ndarray:
-    """The root of f(t, which) in each bracket [a, b] (a sign change), vectorized."""
-    from scipy.optimize.elementwise import find_root  # lazy: scipy is heavy
-
-    result = find_root(f, (a, b), args=(np.asarray(which, dtype=float),))
-    return np.clip(np.asarray(result.x, dtype=float), a, b)
+    return largest_difference(on_cells, lo, hi, order, SAMPLES)
 
 
 def segment_errors(profile: CamProfile, written: Sequence[Written]) -> SegmentErrors:

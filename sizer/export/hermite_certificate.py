@@ -30,21 +30,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from sizer.export.extremes import Extreme, largest_difference
 from sizer.export.profile import CamProfile
 from sizer.export.sampling import MAX_POINTS
 from sizer.laws.cam_interpolation import interpolated_curve
 
 SAMPLES = 32
 """Samples of e^(k+1) per cell (sign changes between them bracket the extrema of e^(k))."""
-
-
-
-@dataclass(frozen=True)
-class Extreme:
-    """The largest |error| of one derivative and the master value where it is."""
-
-    max: float
-    at: float
 
 
 @dataclass(frozen=True)
@@ -113,45 +105,11 @@ def hermite_errors(profile: CamProfile, x: np.ndarray, y: np.ndarray, v: np.ndar
             poly = poly * dt + factor * c[j]
         return profile.derivative(t, order, p) - poly
 
-    fractions = np.linspace(0.0, 1.0, SAMPLES + 1)
-    grid = lo[:, None] + (hi - lo)[:, None] * fractions[None, :]
-    shape = grid.shape
-    cells = np.broadcast_to(np.arange(len(lo))[:, None], shape).ravel()
-    results = []
-    for order in (0, 1, 2):
-        ends = np.concatenate([lo, hi])
-        both = np.concatenate([np.arange(len(lo))] * 2)
-        candidates = [ends]
-        values = [np.abs(difference(ends, piece[both], interval[both], order))]
-        slope = difference(grid.ravel(), piece[cells], interval[cells],
-                           order + 1).reshape(shape)
-        change = slope[:, :-1] * slope[:, 1:] < 0.0
-        if change.any():
-            row, col = np.nonzero(change)
-            left, right = grid[row, col], grid[row, col + 1]
-            p, i = piece[row], interval[row]
-            def rate(t: np.ndarray, pp: np.ndarray, ii: np.ndarray,
-                     m: int = order + 1) -> np.ndarray:
-                return difference(t, pp, ii, m)
+    def on_cells(t: np.ndarray, cell: np.ndarray, order: int) -> np.ndarray:
+        return difference(t, piece[cell], interval[cell], order)
 
-            roots = _roots(rate, left, right, p, i)
-            candidates.append(roots)
-            values.append(np.abs(difference(roots, p, i, order)))
-        where, err = np.concatenate(candidates), np.concatenate(values)
-        k = int(np.argmax(err))
-        results.append(Extreme(float(err[k]), float(where[k])))
-    return HermiteErrors(*results)
-
-
-def _roots(f, a: np.ndarray, b: np.ndarray, *args: np.ndarray) -> np.ndarray:
-    """The root of f(t, *args) in each bracket [a, b] (a sign change), vectorized."""
-    from scipy.optimize.elementwise import find_root  # lazy: scipy is heavy
-
-    def g(t: np.ndarray, p: np.ndarray, i: np.ndarray) -> np.ndarray:
-        return f(t, p.astype(int), i.astype(int))
-
-    result = find_root(g, (a, b), args=tuple(np.asarray(v, dtype=float) for v in args))
-    return np.clip(np.asarray(result.x, dtype=float), a, b)
+    return HermiteErrors(*(largest_difference(on_cells, lo, hi, order, SAMPLES)
+                           for order in (0, 1, 2)))
 
 
 def master_values(profile: CamProfile, points: int) -> np.ndarray:

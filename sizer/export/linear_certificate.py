@@ -26,6 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from sizer.export.extremes import bracketed_roots
 from sizer.export.profile import CamProfile
 
 SUBDIVISIONS = 4
@@ -67,7 +68,7 @@ def linear_errors(profile: CamProfile, x: np.ndarray, y: np.ndarray) -> LinearEr
     acc_b = profile.derivative(b, 2, piece)
     change = acc_a * acc_b < 0.0
     if change.any():
-        roots = _roots(lambda t, p: profile.derivative(t, 2, p),
+        roots = bracketed_roots(lambda t, p: profile.derivative(t, 2, p),
                        a[change], b[change], piece[change])
         edges = np.unique(np.concatenate([edges, roots]))
         a, b, piece = _cells(profile, edges)
@@ -95,7 +96,7 @@ def linear_errors(profile: CamProfile, x: np.ndarray, y: np.ndarray) -> LinearEr
         def chord(t: np.ndarray, p: np.ndarray, sl: np.ndarray) -> np.ndarray:
             return profile.derivative(t, 1, p) - sl
 
-        roots = _roots(chord, a[change], b[change], piece[change], s[change])
+        roots = bracketed_roots(chord, a[change], b[change], piece[change], s[change])
         candidates.append(roots)
         errors.append(error(roots, piece[change], interval[change]))
     where, err = np.concatenate(candidates), np.concatenate(errors)
@@ -115,14 +116,3 @@ def _cells(profile: CamProfile, edges: np.ndarray
     keep = b > a
     a, b = a[keep], b[keep]
     return a, b, profile.piece_of(0.5 * (a + b))
-
-
-def _roots(f, a: np.ndarray, b: np.ndarray, *args: np.ndarray) -> np.ndarray:
-    """The root of f(t, *args) in each bracket [a, b] (a sign change), vectorized."""
-    from scipy.optimize.elementwise import find_root  # lazy: scipy is heavy
-
-    def g(t: np.ndarray, *given: np.ndarray) -> np.ndarray:
-        return f(t, *given)
-
-    result = find_root(g, (a, b), args=tuple(np.asarray(v, dtype=float) for v in args))
-    return np.clip(np.asarray(result.x, dtype=float), a, b)
