@@ -140,7 +140,7 @@ def cam(
         # a cycle of segments (task is its Design): always the whole cycle (--cycle implied)
         from sizer.cli.cam_cycle import sized_cycle
 
-        profile = sized_cycle(task, the_law, T, span_master, Path(source))
+        profile = sized_cycle(task, the_law, T, span_master, Path(source), pair)
         whole_cycle = True
     if target.interpolation == "segment-exact":  # the law itself (twincat-mc3)
         from sizer.cli.cam_segment_exact import export_segments

@@ -24,12 +24,14 @@ if TYPE_CHECKING:
 
 
 def sized_cycle(design: Design, law: MotionLaw, duration: float,
-                master_range: float | None, source: Path) -> CamProfile:
-    """The whole cycle of the design at the result's cycle time ``duration``."""
+                master_range: float | None, source: Path,
+                pair: CandidateResult | None = None) -> CamProfile:
+    """The whole cycle of the design at the result's cycle time ``duration`` (the
+    ``pair``'s own split where the share is chosen per motor)."""
     from sizer.export.cycle_profile import cycle_profile
 
     try:
-        return cycle_profile(design, law, duration, master_range)
+        return cycle_profile(design, law, duration, master_range, pair)
     except ValueError as error:
         raise UserError(str(error), file=str(source), field="cycle") from None
 

@@ -35,6 +35,7 @@ from sizer.laws.pieces import trig_poly_piece
 
 if TYPE_CHECKING:
     from sizer.model.domain import Design
+    from sizer.sizing.results import CandidateResult
 
 
 class FrozenShape(MotionLaw):
@@ -90,13 +91,22 @@ def run_shape() -> FrozenShape:
                        np.array([[0.0, 1.0]]), None, (1.0, 1.0))
 
 
-def segment_durations(design: Design, duration: float) -> list[float]:
+def segment_durations(design: Design, duration: float,
+                      pair: CandidateResult | None = None) -> list[float]:
     """Each segment's duration (s) at the result's reported ``duration``: the cycle time
     of a cycle of segments (the move duration T for the task shorthand), as the sizing
-    scaled it (sizer.sizing.samples.scale_of, SegmentCycle.durations)."""
-    from sizer.sizing.samples import scale_of
+    scaled it (sizer.sizing.samples.scale_of, SegmentCycle.durations). A split chosen per
+    motor (``share: {optimize: ...}``) is the sized ``pair``'s own
+    (sizer.sizing.samples.pair_durations); ValueError without the pair."""
+    from sizer.sizing.samples import pair_durations, scale_of
 
     cycle = design.machine_cycle
+    if cycle.share.goal is not None:
+        if pair is None:
+            raise ValueError(f"share: {{{cycle.share.value}}} splits the cycle time for "
+                             "each motor: export a sized pair")
+        return pair_durations(design, pair.motor_object, pair.law_object, duration,
+                              pair.transmission)
     s = scale_of(design, duration)
     free, weights = cycle.free, cycle.weights()
     out = []
@@ -109,7 +119,8 @@ def segment_durations(design: Design, duration: float) -> list[float]:
 
 
 def cycle_profile(design: Design, law: MotionLaw | None, duration: float,
-                  master_range: float | None = None) -> CamProfile:
+                  master_range: float | None = None,
+                  pair: CandidateResult | None = None) -> CamProfile:
     """The design's whole machine cycle at the result's reported ``duration`` (s),
     moves by their own ``law:`` or ``law`` (the ranked one); the slave in mm (linear
     axis) or deg, the master in s or, with ``master_range`` (deg), spanning the cycle.
@@ -121,7 +132,7 @@ def cycle_profile(design: Design, law: MotionLaw | None, duration: float,
     from sizer.sizing.cycle import cycle_laws, normalized_move
 
     cycle = design.machine_cycle
-    durations = segment_durations(design, duration)
+    durations = segment_durations(design, duration, pair)
     total = math.fsum(durations)
     if not (math.isfinite(total) and total > 0.0):
         raise ValueError(f"the cycle has no positive duration (got {total!r} s)")

@@ -87,7 +87,7 @@ def cycle_design(design: Design, result: CandidateResult, specs: Sequence[str | 
     cycle = design.machine_cycle
     if result.duration is None:
         raise ValueError("the pair has no sized duration")
-    durations = segment_durations(design, result.duration)
+    durations = segment_durations(design, result.duration, result)
     segments: list[Segment] = []
     for segment, duration, spec in zip(cycle.segments, durations, specs, strict=True):
         if isinstance(segment, Move):

@@ -235,7 +235,7 @@ def build_cycle(given: CycleInput, source: YamlSource) -> Cycle:
     _, linear = displacement_of(first_move.displacement, source, (*at[first], "displacement"),
                                 zero_note="a segment without motion is a `dwell:`")
     axis = _Axis(source, linear, (*at[first], "displacement"))
-    share = ShareRule(given.share)
+    share = ShareRule(given.share)  # a rule's name or "optimize: GOAL" (cycle_inputs)
     segments: list[Segment] = []
     for i, item in enumerate(given.segments):
         if item.move is not None:
@@ -254,6 +254,7 @@ def build_cycle(given: CycleInput, source: YamlSource) -> Cycle:
     cycle = Cycle(tuple(segments), share=share, cycle_time=cycle_time,
                   minimize_segment=given.minimize, closed=given.closed, linear=linear)
     _check_minimize(cycle, source, base, at)
+    _check_optimized_share(cycle, source, base)
     _check_time(cycle, source, base, at, "rate" if given.rate is not None else "cycle_time")
     return cycle
 
@@ -557,6 +558,23 @@ def _check_minimize(cycle: Cycle, source: YamlSource, base: Path_, at: list[Path
             raise source.error(f"with `minimize: {name}` every other segment has a fixed "
                                f"duration; {_label(cycle.segments[i], at[i])} is free",
                                (*at[i], "duration"))
+
+
+def _check_optimized_share(cycle: Cycle, source: YamlSource, base: Path_) -> None:
+    """``share: {optimize: GOAL}`` splits a given cycle time (sizer.allocation): it needs
+    ``cycle_time`` or ``rate`` and no ``minimize``."""
+    goal = cycle.share.goal
+    if goal is None:
+        return
+    if cycle.minimize_segment is not None:
+        raise source.error(f"`share: {{optimize: {goal}}}` splits a given cycle time among "
+                           f"the free moves; with `minimize` one segment is free and there "
+                           f"is nothing to split: remove one of them", (*base, "share"))
+    if cycle.cycle_time is None and cycle.free:
+        raise source.error(f"`share: {{optimize: {goal}}}` splits a given cycle time among "
+                           f"the free moves: give `cycle_time` (or `rate`); without one the "
+                           f"cycle is minimized by one scale of a fixed rule (equal, "
+                           f"sqrt_displacement, ...)", (*base, "share"))
 
 
 def names_index(cycle: Cycle, name: str) -> int:

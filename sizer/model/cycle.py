@@ -10,7 +10,10 @@ shorthand :func:`from_task` expands.
 Durations: a segment's duration is fixed (``duration``) or free (None). Free durations
 are one scale s times each segment's weight, T_i = w_i * s (book sec. 5.2: time scaling
 keeps the shape of every free segment); the weights come from ``ShareRule``. Minimize
-is the smallest s; a cycle time target fixes s.
+is the smallest s; a cycle time target fixes s. An optimized rule (``optimize: rms`` or
+``energy``, a cycle time given) gives each candidate motor its own weights
+(sizer.allocation); :meth:`Cycle.weights` is then the sqrt_displacement rule's (the
+optimum of purely inertial moves by one law), their start.
 """
 
 from __future__ import annotations
@@ -60,6 +63,17 @@ class ShareRule(enum.Enum):
     """In proportion to sqrt(|h|): with the same law, the same peak acceleration."""
     WEIGHTS = "weights"
     """The ``weight`` each free segment gives."""
+    OPTIMIZE_RMS = "optimize: rms"
+    """Chosen per candidate motor to minimize the cycle's RMS motor torque at the given
+    cycle time (sizer.allocation; the engine's figures): no weights shared by all."""
+    OPTIMIZE_ENERGY = "optimize: energy"
+    """Chosen per candidate motor to minimize the electrical energy per cycle (shaft work
+    plus copper loss; the RMS goal where a motor lacks k_t or R): sizer.allocation."""
+
+    @property
+    def goal(self) -> str | None:
+        """What an optimized split minimizes ("rms", "energy"), None for a fixed rule."""
+        return self.value.partition(": ")[2] or None
 
 
 @dataclass(frozen=True)
@@ -223,7 +237,7 @@ class Cycle:
                 raise ValueError("a free dwell needs the `weights` share rule")
             elif self.share is ShareRule.DISPLACEMENT:
                 out.append(abs(s.displacement))
-            else:
+            else:  # an optimized split starts from it (each candidate has its own)
                 out.append(math.sqrt(abs(s.displacement)))
         return tuple(out)
 
@@ -272,7 +286,8 @@ def shorthand_task(cycle: Cycle) -> Task | None:
     closed-form single-law path (sizer.sizing.move.CycleCalculator)."""
     if cycle.shorthand is not None:
         return cycle.shorthand
-    if cycle.minimize_segment is not None or cycle.cycle_time is not None:
+    if (cycle.minimize_segment is not None or cycle.cycle_time is not None
+            or cycle.share.goal):
         return None
     segments = cycle.segments
     moves = [s for s in segments if isinstance(s, Move)]

@@ -10,6 +10,10 @@ segment is evaluated exactly and the cycle's requirements combine them (DESIGN.m
 - the RMS torque is the square root of the sum of the segments' integrals of tau^2 over
   the cycle time (the same for each stage output and for the RMS speed).
 
+The weights w_i may be each candidate's own (an array (candidates, segments)): with
+``share: {optimize: rms | energy}`` and a cycle time, the split that minimizes the goal
+for each motor (sizer.allocation, from this module's figures of each free move).
+
 A rest-to-rest move is one move of the single-law engine (sizer.sizing.move); a move
 with boundary speeds is a piecewise polynomial of each candidate's duration
 (sizer.laws.boundary_speeds), evaluated exactly by sizer.sizing.move.polynomial_move; a
@@ -239,13 +243,19 @@ class SegmentCycle:
     segmented = True
 
     def __init__(self, cycle: Cycle, law: MotionLaw | None, drive: Drive,
-                 motors: MotorArrays, thermal_speed: ThermalSpeedRule = "max") -> None:
+                 motors: MotorArrays, thermal_speed: ThermalSpeedRule = "max",
+                 weights: np.ndarray | None = None) -> None:
         self.cycle = cycle
         self.law = law
         self.laws = cycle_laws(cycle, law)
         self.motors = motors
         self.thermal_rule = thermal_speed
         self.weights = np.array(cycle.weights())
+        self.split: np.ndarray | None = None
+        """Each candidate's own weights (candidates, segments), or None: ``weights`` (the
+        rule's, shared by all). Rows sum as the rule's weights do, so a scale gives every
+        candidate the same cycle time; an optimized share (``share: {optimize: ...}``)
+        computes them (:meth:`_optimized_split`)."""
         free = cycle.free
         self.fixed = np.array([np.nan if s.duration is None or i in free else s.duration
                                for i, s in enumerate(cycle.segments)], dtype=float)
@@ -260,12 +270,69 @@ class SegmentCycle:
         self._base = drive
         self._fixed: dict[tuple[int, bool], SegmentFigures] = {}
         self._parent: tuple[SegmentCycle, np.ndarray] | None = None
+        if weights is not None:
+            split = np.array(np.broadcast_to(weights, (len(motors), len(cycle.segments))),
+                             dtype=float)
+            if not np.allclose(split.sum(axis=1), self.weights.sum(), rtol=1e-12, atol=0.0):
+                raise ValueError("each candidate's weights must sum as the cycle's do")
+            self.split = split
+        elif cycle.share.goal is not None and cycle.cycle_time is not None:
+            self.split = self._optimized_split(cycle.share.goal)
 
     # ------------------------------------------------------------------ public
     def durations(self, s: np.ndarray) -> list[np.ndarray]:
-        """Each segment's duration per candidate at scales s."""
+        """Each segment's duration per candidate at scales s (each candidate's own
+        weights where it has them: :attr:`split`)."""
+        weights = self.weights if self.split is None else self.split.T
         return [np.full_like(s, fixed) if np.isfinite(fixed) else w * s
-                for fixed, w in zip(self.fixed, self.weights, strict=True)]
+                for fixed, w in zip(self.fixed, weights, strict=True)]
+
+    def _optimized_split(self, goal: str) -> np.ndarray:
+        """Each candidate's weights (candidates, segments) whose durations at the given
+        cycle time minimize ``goal`` ("rms": the integral of tau^2 over the free moves;
+        "energy": their shaft work plus copper loss, the RMS goal where the motor lacks
+        k_t or R), found by sizer.allocation from each free move's figures for any
+        candidates at any durations; each move by its own law or the ranked one."""
+        from sizer.allocation import allocate  # lazy: the cycle-time allocation
+
+        free = [i for i, w in enumerate(self.weights) if w > 0.0]
+        n, s = len(self.motors), given_scale(self.cycle)
+        split = np.tile(self.weights, (n, 1))
+        if len(free) < 2 or n == 0:
+            return split
+        if not all(isinstance(self.cycle.segments[i], Move) for i in free):
+            raise ValueError("an optimized share splits the time among free moves only")
+        copper = self._copper_factor() if goal == "energy" else np.full(n, np.nan)
+
+        def cost(j: int, T: np.ndarray, rows: np.ndarray) -> np.ndarray:
+            i = free[j]
+            move = self.cycle.segments[i]
+            assert isinstance(move, Move)
+            sub = self.take(rows)
+            f = sub._move(move, self.laws[i], sub.drives[i], np.asarray(T, dtype=float),
+                          peaks=False, model=False)
+            k = copper[rows]
+            return np.where(np.isfinite(k), f.energy + k * f.torque_square, f.torque_square)
+
+        found = allocate(cost, np.full(n, s * float(np.sum(self.weights))),
+                         np.tile(self.weights[free], (n, 1)))  # from sqrt_displacement
+        split[:, free] = found.durations / s
+        return split
+
+    def _copper_factor(self) -> np.ndarray:
+        """f R / k_t^2 per candidate (the copper loss per N^2 m^2 of torque squared, W, as
+        the energy check reads it: sizer.energy.copper_loss, R line to line); NaN where the
+        motor lacks k_t or R."""
+        from sizer.energy import copper_loss
+        from sizer.sizing.candidates import catalog_facts
+
+        facts = catalog_facts(self.motors.catalog)
+        k_t = facts.column("torque_constant")[self.motors.index]
+        R = facts.column("winding_resistance")[self.motors.index]
+        known = np.isfinite(k_t) & np.isfinite(R) & (k_t > 0.0)
+        out = np.full(len(k_t), np.nan)
+        out[known] = copper_loss(1.0, k_t[known], R[known])
+        return out
 
     def reported(self, metrics: CycleMetrics) -> np.ndarray:
         """The duration a result reports: the one :meth:`evaluate` gives."""
@@ -298,6 +365,8 @@ class SegmentCycle:
         out._base = self._base.take(index)
         out._fixed = {}
         out._parent = (self, np.asarray(index))
+        if self.split is not None:
+            out.split = self.split[np.asarray(index)]
         return out
 
     def initial_guess(self) -> np.ndarray:
@@ -358,6 +427,8 @@ class SegmentCycle:
         square of its largest positive constant torque), a dwell's holding torque and a
         run's constant torque squared (exact), 0 for a move with boundary speeds; the
         cycle's from them (:func:`rms_floor`)."""
+        if self.split is not None:
+            return None  # the floor reads one rule's weights (each candidate has its own)
         n = len(self.motors)
         ones = np.ones(n)
         rates = []
@@ -581,6 +652,8 @@ class SegmentCycle:
         return steps
 
     def _rms_model(self, parts: list[SegmentFigures]):
+        if self.split is not None:
+            return None  # the model scales one rule's weights (each candidate has its own)
         moves, n = [], len(self.motors)
         constant, hold_rate = np.zeros(n), np.zeros(n)
         for segment, w, f in zip(self.cycle.segments, self.weights, parts, strict=True):

@@ -213,6 +213,11 @@ def _check_plannable(cycle: Cycle) -> None:
     if not cycle.moves:
         raise UserError("nothing to plan without a motor: the cycle has no move",
                         field="cycle")
+    if cycle.share.goal is not None:
+        raise UserError(f"share: {{{cycle.share.value}}} splits the cycle time for each "
+                        "motor (its RMS torque or energy): without motors give a share rule "
+                        "(equal, displacement, sqrt_displacement or weights)",
+                        field="cycle.share")
     for index, segment in enumerate(cycle.segments):
         name = segment.name or f"segment {index + 1}"
         if isinstance(segment, Run):

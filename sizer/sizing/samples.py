@@ -186,6 +186,16 @@ def _segmented(design: Design, motor: Motor, law: MotionLaw,
                         design.limits.thermal_speed)
 
 
+def pair_durations(design: Design, motor: Motor, law: MotionLaw, duration: float,
+                   transmission: Transmission | None = None) -> list[float]:
+    """Each segment's duration (s) of a cycle of segments as the sizing gave it to this
+    motor, law and transmission at its reported cycle time ``duration``: its own split
+    where the cycle's share is chosen per motor (SegmentCycle.split)."""
+    model = _segmented(design, motor, law, transmission)
+    assert isinstance(model, SegmentCycle), "a cycle of segments without a linkage"
+    return [float(T[0]) for T in model.durations(np.array([scale_of(design, duration)]))]
+
+
 def _position(design: Design, motor: Motor, law: MotionLaw,
               transmission: Transmission | None) -> PositionCalculator:
     """The move against loads of the position (the loader allows one move and its

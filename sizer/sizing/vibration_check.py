@@ -78,10 +78,13 @@ class CycleVibration:
         return [np.full_like(s, fixed) if math.isfinite(fixed) else w * s
                 for fixed, w in zip(self._fixed, weights, strict=True)]
 
-    def residuals(self, s: np.ndarray) -> np.ndarray:
-        """(moves, candidates): each move's residual amplitude at the load (m or rad)."""
+    def residuals(self, s: np.ndarray, durations: list[np.ndarray] | None = None
+                  ) -> np.ndarray:
+        """(moves, candidates): each move's residual amplitude at the load (m or rad), at
+        the scales s or at each candidate's own ``durations`` (a split per motor:
+        sizer.sizing.cycle.SegmentCycle.split)."""
         s = np.asarray(s, dtype=float)
-        durations = self.durations(s)
+        durations = self.durations(s) if durations is None else durations
         state = np.zeros(s.shape, dtype=complex)
         ends: list[np.ndarray] = []
         for segment, law, T in zip(self.cycle.segments, self.laws, durations, strict=True):
@@ -128,9 +131,9 @@ class CycleVibration:
         return polynomial_increment(acceleration, basis.breaks, flat, self.load).reshape(
             T.shape)
 
-    def worst(self, s: np.ndarray) -> np.ndarray:
-        """The largest residual over the moves, per scale."""
-        residuals = self.residuals(s)
+    def worst(self, s: np.ndarray, durations: list[np.ndarray] | None = None) -> np.ndarray:
+        """The largest residual over the moves, per scale (or at ``durations``)."""
+        residuals = self.residuals(s, durations)
         return residuals.max(axis=0) if len(residuals) else np.zeros(np.shape(s))
 
 
@@ -171,7 +174,8 @@ class ResidualLimit:
 
     def at(self, calculator: CycleModel, s: np.ndarray, metrics: CycleMetrics,
            known: np.ndarray) -> LaterChecks:
-        worst = self.vibration.worst(np.where(known, s, 1.0))
+        at = np.where(known, s, 1.0)
+        worst = self.vibration.worst(at, own_durations(calculator, at))
         figures = {RESIDUAL: np.where(known, worst, np.nan)}
         if self.limit is None:
             return LaterChecks([], np.ones(len(known), dtype=bool), figures)
@@ -184,6 +188,16 @@ class ResidualLimit:
                       found: LaterChecks) -> np.ndarray:
         assert self.limit is not None, "a check fails only against a limit"
         return admissible_scale(self.vibration, s, self.limit)
+
+
+def own_durations(calculator: CycleModel, s: np.ndarray) -> list[np.ndarray] | None:
+    """Each segment's durations at the scales s where the candidates split the cycle time
+    each their own way (``share: {optimize: ...}``: SegmentCycle.split), else None (the
+    cycle's rule, the same for all: CycleVibration.durations)."""
+    if getattr(calculator, "split", None) is None:
+        return None
+    durations: list[np.ndarray] = calculator.durations(s)  # type: ignore[attr-defined]
+    return durations
 
 
 def residual_limit(design: Design, law: MotionLaw) -> ResidualLimit | None:
