@@ -38,9 +38,11 @@ RANK_HELP = ("Rank the feasible pairs by size (alias power: the smallest motor f
              "rated power tau_c*v_n), duration (shortest first), margin (most room left at "
              "the tightest limit first), rms or peak (smallest motor torque first), price "
              "or mass (cheapest or lightest motor first), vibration (smallest residual "
-             "vibration first, with the load's natural_frequency); ties go to the next criteria "
-             "(size, margin, rotor inertia, finally motor id, law spec, ratio). Default: "
-             "duration with 'duration: minimize', size otherwise.")
+             "vibration first, with the load's natural_frequency), worst_margin (alias "
+             "robust; with --robust: the largest worst-case margin over the tolerances "
+             "first); ties go to the next criteria (size, margin, rotor inertia, finally "
+             "motor id, law spec, ratio). Default: duration with 'duration: minimize', size "
+             "otherwise.")
 
 LawsOption = Annotated[list[str] | None, typer.Option(
     "--law", "-l", metavar="SPEC",
@@ -91,6 +93,16 @@ def size(
         help="Also size every pair at the corners of the design's 'tolerances:' and show "
              "its worst-case margin; the pairs feasible at every corner rank first "
              "(docs/robust.md).")] = False,
+    samples: Annotated[int | None, typer.Option(
+        "--samples", metavar="N",
+        help="With --robust (implied): also size every pair at N builds drawn from the "
+             "tolerances' distributions and show the share that passes, with its 95 % "
+             "interval; with more than 10 tolerances, instead of the corners.",
+        show_default=False)] = None,
+    seed: Annotated[int | None, typer.Option(
+        "--seed", metavar="S",
+        help="The seed of --samples (default 0: the same builds, the same output).",
+        show_default=False)] = None,
 ) -> None:
     """Size a design: every motor with every motion law, feasible pairs ranked.
 
@@ -129,6 +141,8 @@ def size(
     from sizer.report.sizing_table import SizingDocument, publish_sizing
 
     check_rank_key(rank_by)
+    robust = robust or samples is not None
+    check_robust_options(robust, rank_by, samples, seed)
     front_key = check_front_key(front_by)
     check_laws(law or ())
     check_output(output, [design, *(catalog or ())])
@@ -156,7 +170,8 @@ def size(
               top=top, fmt=fmt, output=output)
         return
     if robust:
-        _size_robust(design, loaded, rank_by, top, show_all, fmt, output, jobs, law)
+        _size_robust(design, loaded, rank_by, top, show_all, fmt, output, jobs, law,
+                     samples=samples or 0, seed=seed)
         return
     sizing = size_loaded(design, loaded, rank_by, workers=jobs, laws=law)
     document = SizingDocument(sizing, loaded, rank_by=rank_by, top=top,
@@ -165,25 +180,50 @@ def size(
     publish_sizing(document, fmt, output)
 
 
+def check_robust_options(robust: bool, rank_by: str | None, samples: int | None,
+                         seed: int | None) -> None:
+    """UserErrors naming the option: a robust --rank-by key without --robust, a negative
+    --samples, --seed without --samples."""
+    if rank_by is not None and not robust:
+        from sizer.sizing.ranking import is_robust_key
+
+        if is_robust_key(rank_by):
+            raise UserError(f"{rank_by!r} ranks by the worst-case margin over the design's "
+                            f"tolerances: add --robust", field="--rank-by")
+    if samples is not None:
+        from sizer.robust import MAX_SAMPLES
+
+        if not 1 <= samples <= MAX_SAMPLES:
+            raise UserError(f"the number of samples must be in [1, {MAX_SAMPLES}], got "
+                            f"{samples}", field="--samples")
+    if seed is not None and samples is None:
+        raise UserError("the seed of the samples: only with --samples N", field="--seed")
+
+
 def _size_robust(path: Path, loaded: Design, rank_by: str | None, top: int | None,
                  show_all: bool, fmt: Format, output: Path | None, jobs: int | None,
-                 law: Sequence[str] | None) -> None:
+                 law: Sequence[str] | None, *, samples: int = 0,
+                 seed: int | None = None) -> None:
     """``sizer size --robust``: the sizing, then every pair at the corners of the design's
-    tolerances (sizer.robust)."""
+    tolerances and at ``samples`` builds drawn from them (sizer.robust)."""
     from sizer.report.robust_table import RobustDocument
     from sizer.report.sizing_table import publish_sizing
-    from sizer.robust import check_tolerances, robust_sizing
+    from sizer.robust import DEFAULT_SEED, check_tolerances, robust_sizing
+    from sizer.sizing.ranking import nominal_rank_by
 
     try:
-        check_tolerances(loaded)
+        check_tolerances(loaded, samples)
     except UserError as error:
-        raise (error if error.field == "--robust" else error.located(file=str(path))) from None
-    sizing = size_loaded(path, loaded, rank_by, workers=jobs, laws=law)
+        raise (error if (error.field or "").startswith("--")
+               else error.located(file=str(path))) from None
+    nominal_key = nominal_rank_by(rank_by)
+    sizing = size_loaded(path, loaded, nominal_key, workers=jobs, laws=law)
     try:
-        robust = robust_sizing(loaded, sizing, rank_by=rank_by, workers=jobs)
+        robust = robust_sizing(loaded, sizing, rank_by=rank_by, workers=jobs,
+                               samples=samples, seed=DEFAULT_SEED if seed is None else seed)
     except UserError as error:
         raise error.located(file=str(path)) from None
-    publish_sizing(RobustDocument(robust, loaded, rank_by=rank_by, top=top,
+    publish_sizing(RobustDocument(robust, loaded, rank_by=nominal_key, top=top,
                                   include_infeasible=show_all), fmt, output)
 
 

@@ -74,6 +74,7 @@ from sizer.model.domain import (
     TableLoad,
     Transmission,
 )
+from sizer.model.tolerance import DEFAULT_SIGMAS, Tolerance
 from sizer.vibration.elastic_load import ElasticLoad
 
 PathLike = str | Path
@@ -492,30 +493,75 @@ TOLERANCE_KEYS = {
 is for a linear axis (True), a rotary one (False) or both (None)."""
 
 
+TOLERANCE_KINDS: dict[str, tuple[str, str] | None] = {
+    "load.inertia": ("inertia", "inertia"), "load.mass": ("mass", "mass"),
+    "load.friction": ("torque", "force"),
+    "load.damping": ("rotary_damping", "linear_damping"),
+    "load.torque": ("torque", "torque"), "load.force": ("force", "force"),
+    "transmission.efficiency": None,
+    "motor.continuous_torque": ("torque", "torque"), "motor.peak_torque": ("torque", "torque"),
+    "motor.rated_speed": ("angular_speed", "angular_speed"),
+    "motor.inertia": ("inertia", "inertia")}
+"""The kind of an absolute tolerance of each input (rotary, linear axis); None: relative
+only (an efficiency's tolerance is a fraction of it)."""
+
+
 def _tolerances(model: DesignFile, source: YamlSource, linear: bool
-                ) -> tuple[tuple[str, float], ...]:
-    """The design's ``tolerances:`` as (input, fraction) pairs: each key a known input of
-    the axis, each value a fraction in (0, 100 %] (below 100 % where the input must stay
-    positive)."""
-    from sizer.units import to_si
+                ) -> tuple[Tolerance, ...]:
+    """The design's ``tolerances:`` (sizer.model.tolerance.Tolerance): each key a known
+    input of the axis; each value a fraction (relative: in (0, 100 %], below 100 % where
+    the input must stay positive) or a positive quantity of the input's kind (absolute),
+    uniform over +-it or normal with that sigma, truncated at ``truncate`` sigmas (the
+    corners at +-truncate sigma, within the same bounds)."""
+    from sizer.units import KINDS, to_si
 
     out = []
-    for key, value in (model.tolerances or {}).items():
-        at = ("tolerances", key)
+    for key, given in (model.tolerances or {}).items():
+        at: tuple[str, ...] = ("tolerances", key)
         axis = TOLERANCE_KEYS.get(key, "unknown")
         if axis == "unknown" or (axis is not None and axis != linear):
             known = [k for k, a in TOLERANCE_KEYS.items() if a is None or a == linear]
             raise source.error(f"not an input a tolerance can name; one of: "
                                f"{', '.join(known)}", at)
+        normal = given.distribution == "normal"
+        value = given.sigma if normal else given.plus_minus
+        if normal:
+            at = (*at, "sigma")
+        elif "distribution" in given.model_fields_set:
+            at = (*at, "plus_minus")
+        field = ".".join(at)
+        kinds = TOLERANCE_KINDS[key]
+        absolute = False
         try:
-            fraction = to_si(value, "fraction", field=f"tolerances.{key}")
+            fraction = to_si(value, "fraction", field=field)
         except UserError as error:
-            raise source.relocate(error, at) from None
-        zero_ok = key in ("load.friction", "load.damping", "load.torque", "load.force")
-        if not (0.0 < fraction < 1.0 or (zero_ok and fraction == 1.0)):
-            bound = "(0, 100 %]" if zero_ok else "(0, 100 %)"
-            raise source.error(f"a relative tolerance must be in {bound}, got {value!r}", at)
-        out.append((key, fraction))
+            if kinds is None:
+                raise source.relocate(error, at) from None
+            kind = KINDS[kinds[linear]]
+            try:
+                fraction, absolute = to_si(value, kind.name, field=field), True
+            except UserError:
+                raise source.error(
+                    f"expected a fraction like '10 %' (relative) or an absolute "
+                    f"{kind.name.replace('_', ' ')} like {kind.example!r}, got "
+                    f"{value!r}", at) from None
+        sigmas = (given.truncate or DEFAULT_SIGMAS) if normal else None
+        width = fraction * (sigmas or 1.0)
+        if absolute:
+            if not fraction > 0.0:
+                raise source.error(f"an absolute tolerance must be positive, got {value!r}",
+                                   at)
+        else:
+            zero_ok = key in ("load.friction", "load.damping", "load.torque", "load.force")
+            if not (0.0 < width < 1.0 or (zero_ok and width == 1.0)):
+                bound = "(0, 100 %]" if zero_ok else "(0, 100 %)"
+                what = (f"truncate x sigma ({sigmas:g} x {value!r})" if normal
+                        else repr(value))
+                raise source.error(f"a relative tolerance must be in {bound}, got {what}",
+                                   at)
+        out.append(Tolerance(key, width, absolute=absolute,
+                             distribution="normal" if normal else "uniform",
+                             sigmas=sigmas))
     return tuple(out)
 
 

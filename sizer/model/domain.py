@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Literal
 
 from sizer.model.cycle import Cycle, Task, from_task
+from sizer.model.tolerance import Tolerance, tolerance_of
 from sizer.vibration.elastic_load import ElasticLoad
 
 if TYPE_CHECKING:
@@ -606,9 +607,11 @@ class Design:
     drives: tuple[ServoDrive, ...]
     """The drives (amplifiers) to pair with the motors; empty: motors alone. With drives,
     a candidate is a motor with one of its compatible drives (sizer.sizing.drives)."""
-    tolerances: tuple[tuple[str, float], ...]
-    """Relative tolerances of inputs, (name, fraction) as the design's ``tolerances:``
-    gives them (``sizer size --robust``, sizer.robust); they never change the sizing."""
+    tolerances: tuple[Tolerance, ...]
+    """The tolerances of inputs the design's ``tolerances:`` gives (relative or absolute,
+    uniform or normal: sizer.model.tolerance; a plain (name, fraction) pair given to the
+    constructor is a relative uniform one), for ``sizer size --robust`` (sizer.robust);
+    they never change the sizing."""
 
     def __init__(self, task: Task | None = None, load: Load | None = None,
                  transmission: Transmission = Transmission(),
@@ -619,13 +622,14 @@ class Design:
                  warnings: tuple[str, ...] = (), files: tuple[Path, ...] = (),
                  drives: tuple[ServoDrive, ...] = (), cycle: Cycle | None = None,
                  machine_cycle: Cycle | None = None,
-                 tolerances: tuple[tuple[str, float], ...] = ()) -> None:
+                 tolerances: Sequence[Tolerance | tuple[str, float]] = ()) -> None:
         from sizer.laws.choice import law_choice  # lazy: the law families load with a law
 
         given = dict(locals(), machine_cycle=cycle or (from_task(task) if task is not None
                                                        else machine_cycle),
                      laws=tuple(law_choice(s) for s in laws),
-                     chosen_law=None if chosen_law is None else law_choice(chosen_law))
+                     chosen_law=None if chosen_law is None else law_choice(chosen_law),
+                     tolerances=tuple(tolerance_of(t) for t in tolerances))
         if given["machine_cycle"] is None or load is None:
             raise TypeError("a Design needs a task or a cycle, and a load")
         for f in fields(self):

@@ -15,6 +15,9 @@ differ in nothing the user can see is then harmless).
   next smallest..., then size.
 - ``rms``, ``peak``: the smallest motor torque the task needs; ``price``, ``mass``: the
   cheapest or lightest motor (unknown values last); each then size and margin.
+- ``worst_margin`` (alias ``robust``): only with the design's tolerances (``sizer size
+  --robust``, sizer.robust): the largest worst-case margin over the builds first; the
+  nominal sizing it reorders ranks by ``margin``.
 """
 
 from __future__ import annotations
@@ -45,9 +48,15 @@ class RankKey(StrEnum):
     PRICE = "price"
     MASS = "mass"
     VIBRATION = "vibration"
+    WORST_MARGIN = "worst_margin"
 
 
-RANK_ALIASES: dict[str, RankKey] = {"power": RankKey.SIZE}
+ROBUST_KEYS: frozenset[RankKey] = frozenset({RankKey.WORST_MARGIN})
+"""Keys only a robust sizing orders by (``sizer size --robust``, sizer.robust): its
+nominal sizing (and every build's) ranks by :func:`nominal_rank_by` of the key."""
+
+
+RANK_ALIASES: dict[str, RankKey] = {"power": RankKey.SIZE, "robust": RankKey.WORST_MARGIN}
 """Other names accepted for a key (``power`` is the rated power, the ``size`` key)."""
 
 RANK_KEYS: tuple[str, ...] = tuple(k.value for k in RankKey)
@@ -165,6 +174,10 @@ RULES: dict[RankKey, RankRule] = {rule.key: rule for rule in (
              "lightest motor first (unknown masses last)" + _THEN_TEXT),
     RankRule(RankKey.VIBRATION, (_figure(RESIDUAL), *_THEN),
              "smallest residual vibration first" + _THEN_TEXT),
+    RankRule(RankKey.WORST_MARGIN, (_MARGIN, *_SIZE, _INERTIA),
+             "largest worst-case margin over the design's tolerances first (sizer size "
+             "--robust, which orders by it; a sizing of one machine has only its nominal "
+             "margin, and orders by that), then the smallest motor (rated power tau_c*v_n)"),
 )}
 
 
@@ -182,6 +195,17 @@ def rank_key(rank_by: str) -> RankKey | None:
 
 RANK_CHOICES = ", ".join((*RANK_KEYS, *RANK_ALIASES))
 """The keys and aliases, in words (the message of an unknown key)."""
+
+
+def is_robust_key(rank_by: str) -> bool:
+    """Whether ``rank_by`` names a key of :data:`ROBUST_KEYS` (or an alias of one)."""
+    return rank_key(rank_by) in ROBUST_KEYS
+
+
+def nominal_rank_by(rank_by: str | None) -> str | None:
+    """The key a robust sizing's nominal sizing ranks by: ``margin`` for worst_margin (the
+    worst case's nominal counterpart, ordering its ties), else ``rank_by`` itself."""
+    return RankKey.MARGIN.value if rank_by is not None and is_robust_key(rank_by) else rank_by
 
 
 def rank_rule(rank_by: str | None, mode: Mode) -> RankRule:

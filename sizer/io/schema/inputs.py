@@ -52,6 +52,7 @@ from sizer.io.schema.provenance import (
     check_provenance,
 )
 from sizer.io.schema.ranges import RANGES
+from sizer.io.schema.tolerance_inputs import ToleranceValue
 from sizer.io.schema.transmission_inputs import TransmissionStageInput
 from sizer.model.domain import DEFAULT_ENVELOPE, EnvelopeRule
 
@@ -634,10 +635,11 @@ class DesignFile(Strict):
                     "each motor is paired with each compatible drive")
     check: CheckInput | None = None
     limits: LimitsInput = Field(default_factory=lambda: LimitsInput.model_validate({}))
-    tolerances: dict[str, Text] | None = Field(
-        None, description="relative tolerances of inputs for `sizer size --robust` "
-                          "(docs/robust.md), e.g. {load.inertia: 20 %, motor.peak_torque: "
-                          "10 %}: each input is sized at value x (1 - t) and x (1 + t)")
+    tolerances: dict[str, ToleranceValue] | None = Field(
+        None, description="tolerances of inputs for `sizer size --robust` (docs/robust.md), "
+                          "e.g. {load.inertia: 20 %, load.friction: 2 N*m, "
+                          "motor.peak_torque: {distribution: normal, sigma: 5 %}}: relative "
+                          "or absolute, uniform or normal (truncated)")
     efficiency_applies_to: Annotated[
         Literal["power_flow", "steady_load"],
         BeforeValidator(_efficiency_rule),
