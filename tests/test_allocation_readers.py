@@ -9,6 +9,7 @@ and sized alone; its residual vibration must equal the optimized design's for th
 from __future__ import annotations
 
 import copy
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -23,6 +24,7 @@ def _residual(design: dict, motor: str) -> float:
     return next(r.residual_vibration for r in result.results
                 if r.motor == motor and r.spec == "cycloidal")
 
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 MODE = {"natural_frequency": "9 Hz", "damping_ratio": 0.03}
 
 
@@ -70,3 +72,18 @@ def test_the_cam_export_of_a_cycle_writes_the_motors_own_split(tmp_path, row, mo
     expected = _durations(design)[row]
     np.testing.assert_allclose([spans[0], spans[2], spans[3]], expected, rtol=1e-12)
     assert spans[1] == pytest.approx(0.2) and spans[4] == pytest.approx(0.1)
+
+
+def test_a_linkage_cycle_refuses_a_split_chosen_per_motor(tmp_path) -> None:
+    """The linkage cycle engine reads one rule's weights: the rule is refused, exit 2."""
+    import yaml
+    from cli_run import assert_user_error, run_cli
+
+    design = yaml.safe_load((EXAMPLES / "press-slider-crank-cycle.yaml").read_text())
+    design["cycle"]["segments"][3]["dwell"]["duration"] = "0.2 s"
+    design["cycle"]["segments"][0]["move"].pop("duration")
+    design["cycle"].update({"share": {"optimize": "rms"}, "cycle_time": "1.2 s"})
+    design["motors"] = [MOTOR]
+    path = tmp_path / "press.yaml"
+    path.write_text(yaml.safe_dump(design))
+    assert_user_error(run_cli("size", str(path)), "cycle.share", "one rule")

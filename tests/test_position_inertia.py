@@ -384,8 +384,6 @@ FIELD_CASES = [
     case("load-mass-table-on-an-incline", {**masses(points=MASSES), **POWER_FLOW,
                                            "load.incline": "30 deg"},
          ("load.mass_table", "inertia only"), ("load.mass_table",), LINEAR),
-    case("load-inertia-table-with-a-return-move", {**table(points=POINTS), "task.return": True},
-         ("load.inertia_table", "single move"), ()),
 ]
 
 

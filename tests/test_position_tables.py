@@ -337,8 +337,6 @@ FIELD_CASES = [
          files={"f.csv": "s [deg],F [N]\n0,1\n400,2\n"}, where="f.csv"),
     case("load-force-table-short", {**forces(points=FORCES[:2]), **POWER_FLOW},
          ("load.force_table", "table covers"), ("load.force_table",), LINEAR),
-    case("load-torque-table-with-a-return-move", {**table(points=POINTS), "task.return": True},
-         ("load.torque_table", "single move"), ()),
 ]
 
 

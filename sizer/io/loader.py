@@ -60,6 +60,7 @@ from sizer.io.yaml_source import (
 )
 from sizer.mechanics import linear_load
 from sizer.mechanics.loads import GRAVITY
+from sizer.model.cycle import Cycle, Move, Run
 from sizer.model.domain import (
     Design,
     FigureSources,
@@ -439,7 +440,7 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
     linear = cycle.linear
     warnings = [*bare_number_warnings(source, linear), *noted,
                 *oscillation_warnings(laws, source)]
-    load = _load(model, source, output_linear(model.transmission, linear), folder)
+    load = _load(model, source, output_linear(model.transmission, linear), folder, cycle)
     files = list(files)
     files += _position_table_files(model, folder)  # never written over (output guard)
     transmission, ratio_choice, linkage_at = build_transmission(
@@ -600,7 +601,7 @@ def _located_laws(model: DesignFile) -> list[LocatedLaw]:
 
 
 def _load(model: DesignFile, source: YamlSource, linear: bool,
-          folder: Path | None = None) -> Load:
+          folder: Path | None = None, cycle: Cycle | None = None) -> Load:
     given = model.load
     axis = ("a linear axis (the displacement is a length)" if linear
             else "a rotary axis (the displacement is an angle)")
@@ -640,11 +641,12 @@ def _load(model: DesignFile, source: YamlSource, linear: bool,
             force=quantity(torque_key),
             damping=quantity("damping"),
         )
-    gravity, spring = _position_terms(model, source, linear)
+    gravity, spring = _position_terms(model, source, linear, cycle)
+    reach = _reach(model, cycle)
     table = _position_table(model, source, folder if folder is not None else Path.cwd(),
-                            linear)
+                            linear, reach)
     inertia_table = _inertia_table(model, source, linear,
-                                   folder if folder is not None else Path.cwd())
+                                   folder if folder is not None else Path.cwd(), reach)
     if inertia_table is not None and not inertia_table.varies:  # a constant: no term
         load = replace(load, inertia=load.inertia + inertia_table.inertia[0])
         inertia_table = None
@@ -652,10 +654,13 @@ def _load(model: DesignFile, source: YamlSource, linear: bool,
                    table=table, inertia_table=inertia_table)
 
 
-def _position_terms(model: DesignFile, source: YamlSource, linear: bool
+def _position_terms(model: DesignFile, source: YamlSource, linear: bool,
+                    cycle: Cycle | None = None
                     ) -> tuple[GravityLoad | None, SpringLoad | None]:
     """The load's terms of its position (docs/position-loads.md): gravity on an arm and a
-    spring, on a rotary axis, for one move (``task:`` without a return)."""
+    spring, on a rotary axis, in a task (with or without its return) or a cycle of
+    segments (each move with boundary speeds of its own duration: its shape depends on
+    it, the time scaling of free durations does not hold for it)."""
     given = model.load
     key = _position_key(given)
     if key is None:
@@ -674,10 +679,13 @@ def _position_terms(model: DesignFile, source: YamlSource, linear: bool
             axis = ("a linear axis (the displacement is a length)" if linear
                     else "a rotary axis (the displacement is an angle)")
             raise source.error(f"{axis} takes '{right}', not '{wrong}'", ("load", wrong))
-    task = model.task
-    if task is None or task.return_move:
-        raise source.error("a load term of the position needs a single move: `task:` "
-                           "without a return move (cycles come later)", ("load", key))
+    free = cycle.free if cycle is not None else ()
+    for i, segment in enumerate(cycle.segments if cycle is not None else ()):
+        if isinstance(segment, Move) and not segment.rest_to_rest and (
+                segment.duration is None or i in free):
+            raise source.error("a load term of the position with a move between boundary "
+                               "speeds or accelerations needs that move's own duration (its "
+                               "shape depends on it)", ("cycle", "segments", i))
     gravity = spring = None
     if given.gravity is not None:
         arm = given.gravity
@@ -699,8 +707,29 @@ def _position_key(given: LoadInput) -> str | None:
     return None
 
 
-def _inertia_table(model: DesignFile, source: YamlSource, linear: bool, folder: Path
-                   ) -> InertiaTableLoad | None:
+def _reach(model: DesignFile, cycle: Cycle | None) -> tuple[float, float] | None:
+    """The least and largest position the load reaches over the cycle, at the moves' and
+    runs' ends from where it starts (0); None where the cycle's displacements are not the
+    load's (through a linkage with the law on its crank: the engine checks the tables
+    against the output's positions) or no cycle is given."""
+    if cycle is None:
+        return None
+    items = model.transmission if isinstance(model.transmission, list) else \
+        [model.transmission] if model.transmission is not None else []
+    last = items[-1] if items else None
+    if getattr(last, "type", None) in ("slider_crank", "four_bar", "disc_cam") and \
+            getattr(last, "law_on", "crank") != "output":
+        return None
+    x, lo, hi = 0.0, 0.0, 0.0
+    for segment in cycle.segments:
+        if isinstance(segment, Move | Run):
+            x += segment.displacement
+            lo, hi = min(lo, x), max(hi, x)
+    return lo, hi
+
+
+def _inertia_table(model: DesignFile, source: YamlSource, linear: bool, folder: Path,
+                   reach: tuple[float, float] | None = None) -> InertiaTableLoad | None:
     """``load.inertia_table`` (rotary) or ``load.mass_table`` (linear; :func:`_position_terms`
     has refused the other axis's and a task that is no single move): as a torque table
     (:func:`_table_points`), its CSV header ``q [deg],J [kg*m^2]`` (docs/position-loads.md)."""
@@ -716,12 +745,13 @@ def _inertia_table(model: DesignFile, source: YamlSource, linear: bool, folder: 
     kinds = (("length", "a length", "mm or m"), ("mass", "a mass", "kg")) if linear else \
         (("angle", "an angle", "deg or rad"), ("inertia", "an inertia", "kg*m^2"))
     header = "s [mm],m [kg]" if linear else "q [deg],J [kg*m^2]"
-    x, values = _table_points(model, given, source, folder, linear, at, (kinds, header))
+    x, values = _table_points(model, given, source, folder, linear, at, (kinds, header),
+                              reach)
     return InertiaTableLoad(x, values, offset=given.offset or 0.0)
 
 
-def _position_table(model: DesignFile, source: YamlSource, folder: Path, linear: bool
-                    ) -> TableLoad | None:
+def _position_table(model: DesignFile, source: YamlSource, folder: Path, linear: bool,
+                    reach: tuple[float, float] | None = None) -> TableLoad | None:
     """``load.torque_table`` (rotary) or ``load.force_table`` (linear): inline ``points``
     or a CSV ``file`` (read as a cam table is: sizer.io.cam_table, its header giving the
     units) (docs/position-loads.md). :func:`_position_terms` has refused the other axis's."""
@@ -729,18 +759,19 @@ def _position_table(model: DesignFile, source: YamlSource, folder: Path, linear:
     given = getattr(model.load, key)
     if given is None:
         return None
-    x, tau = _table_points(model, given, source, folder, linear, ("load", key))
+    x, tau = _table_points(model, given, source, folder, linear, ("load", key), None, reach)
     return TableLoad(x, tau, offset=given.offset or 0.0)
 
 
 def _table_points(model: DesignFile, given: Any, source: YamlSource, folder: Path,
                   linear: bool, at: tuple[str, ...],
-                  columns: tuple[Any, str] | None = None
+                  columns: tuple[Any, str] | None = None,
+                  reach: tuple[float, float] | None = None
                   ) -> tuple[tuple[float, ...], tuple[float, ...]]:
     """A table of the load's position (x, value) in SI: its inline ``points`` (q strictly
     increasing, at least two) or its CSV ``file`` (:func:`_position_table_file`, with the
-    ``columns`` it expects); the move (from ``offset`` over the task's displacement) must
-    lie within it."""
+    ``columns`` it expects); the positions the cycle reaches (``reach``, from ``offset``)
+    must lie within it."""
     unit = "m" if linear else "rad"
     if (given.points is None) == (given.file is None):
         raise source.error("give the table's points or its file (one of them)", at)
@@ -759,18 +790,15 @@ def _table_points(model: DesignFile, given: Any, source: YamlSource, folder: Pat
         x, values = _position_table_file(folder, given.file or "", linear, source,
                                          (*at, "file"), columns)
     offset = given.offset or 0.0
-    task = model.task
-    if task is not None and task.displacement is not None:
-        from sizer.units import parse_displacement
-
-        h, _ = parse_displacement(task.displacement, field="task.displacement")
-        ends = sorted((offset, offset + h))
+    if reach is not None:
+        ends = (offset + reach[0], offset + reach[1])
         slack = 1e-9 * (x[-1] - x[0])
         if ends[0] < x[0] - slack or ends[1] > x[-1] + slack:
-            raise source.error(f"the move covers q = {ends[0]:.6g} to {ends[1]:.6g} {unit} "
+            what = "move" if model.cycle is None else "cycle"
+            raise source.error(f"the {what} covers q = {ends[0]:.6g} to {ends[1]:.6g} {unit} "
                                f"of the table (its offset {offset:.6g} {unit} and the "
-                               f"displacement): the table covers {x[0]:.6g} to {x[-1]:.6g} "
-                               f"{unit}; extend it or check its offset", at)
+                               f"displacements): the table covers {x[0]:.6g} to "
+                               f"{x[-1]:.6g} {unit}; extend it or check its offset", at)
     return x, values
 
 
@@ -842,9 +870,21 @@ def _check_position_drive(model: DesignFile, source: YamlSource,
     if key is None:
         return
     at = ("load", key)
-    if transmission.linkage is not None:
-        raise source.error("a load term of the position is not supported through a linkage "
-                           "or a cam yet (its output's load is the linkage's)", at)
+    stage = transmission.linkage
+    if stage is not None:
+        given = model.load
+        others = [k for k in ("gravity", "spring", "inertia_table", "mass_table")
+                  if getattr(given, k) is not None]
+        if others:
+            raise source.error("a load term of the position through a linkage or a cam is a "
+                               "force (torque) table of its output's position only "
+                               "(load.force_table, load.torque_table)", ("load", others[0]))
+        if stage.kind == "disc_cam" or (stage.law_on == "crank"
+                                        and stage.driven_link != "crank"):
+            raise source.error("a table of the output's position needs a slider-crank or "
+                               "four-bar whose crank the motor turns, or the law on its "
+                               "output (not through a disc cam, nor with the law on a "
+                               "driven rocker)", at)
     if transmission.efficiency_applies_to == "steady_load":
         raise source.error("a load term of the position needs efficiency_applies_to: "
                            "power_flow", at)

@@ -226,7 +226,7 @@ def evaluate_fixed_law(design: Design, law: MotionLaw, candidates: Candidates,
     torques and ratios are left at zero: their checks pass."""
     task = shorthand_task(design.machine_cycle)
     if design.transmission.linkage is not None or design.load.position_dependent:
-        moves = len(design.machine_cycle.moves) if task is None else 1
+        moves = len(design.machine_cycle.moves) if task is None else task.moves_per_cycle
         size = candidates_per_chunk(LINKAGE_SAMPLES * moves)
     elif task is None:
         size = chunk_size(law, len(design.machine_cycle.moves))
@@ -275,11 +275,10 @@ def cycle_model(design: Design, law: MotionLaw, candidates: Candidates) -> Cycle
         return linkage_calculator(design, law, candidates.motors, candidates.drive)
     cycle, motors, rule = design.machine_cycle, candidates.motors, design.limits.thermal_speed
     task = shorthand_task(cycle)
-    if design.load.position_dependent:  # one move (the loader says so)
-        from sizer.sizing.linkage_move import position_calculator  # lazy: start-up
+    if design.load.position_dependent:  # one move, a return or a cycle of segments
+        from sizer.sizing.linkage_move import position_model  # lazy: start-up
 
-        assert task is not None, "a load of the position is sized in a task"
-        return position_calculator(task, law, design.load, candidates.drive, motors, rule)
+        return position_model(cycle, law, design.load, candidates.drive, motors, rule)
     if task is None:
         return SegmentCycle(cycle, law, candidates.drive, motors, rule)
     return CycleCalculator(None, task, candidates.drive, motors, rule, law=law)

@@ -31,7 +31,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 from functools import lru_cache
-from typing import Any, NamedTuple
+from typing import Any, NamedTuple, Self
 
 import numpy as np
 
@@ -41,7 +41,7 @@ from sizer.laws import MotionLaw
 from sizer.laws.quadrature import gauss_legendre
 from sizer.mechanics.disc_cam import CamStage
 from sizer.mechanics.drive import Drive
-from sizer.model.cycle import Move, Run, from_task, shorthand_task
+from sizer.model.cycle import Cycle, Move, Run, from_task, shorthand_task
 from sizer.model.domain import Design, Limits, LinkageStage, Load, Task
 from sizer.numerics.roots import quadratic_roots
 from sizer.sizing.candidates import MotorArrays
@@ -64,6 +64,9 @@ GAUSS_PIECES = 128
 """Composite Gauss-Legendre: sub-intervals of [0, 1] (split at the law's breakpoints)."""
 GAUSS_NODES = 8
 """Nodes per sub-interval: exact for polynomials of degree 15 in each."""
+EXTRA_GAP = 1e-12
+"""An extra breakpoint (a table's knot crossed) this close (in u) to another cut is that
+cut: a kink at rounding's distance from a sample is sampled."""
 
 
 @dataclass(frozen=True)
@@ -100,7 +103,14 @@ def _grid(law: MotionLaw | FixedShape | CamTurn, extra: np.ndarray | None = None
     """Sample points of [0, 1] and their quadrature weights (0 for the peak-only ones);
     ``extra`` breakpoints (a position table's knot crossings) split the quadrature and are
     peak samples as the law's are."""
-    breaks = law.breakpoints if extra is None else np.concatenate((law.breakpoints, extra))
+    breaks = law.breakpoints
+    if extra is not None and extra.size:  # none within rounding of another cut: no
+        # piece of zero width (a knot reached at a move's end up to rounding)
+        base = np.unique(np.concatenate((breaks, np.linspace(0.0, 1.0, GAUSS_PIECES + 1))))
+        extra = np.unique(extra)
+        near = np.abs(extra[:, None] - base[None, :]).min(axis=1) <= EXTRA_GAP
+        apart = np.concatenate(([True], np.diff(extra) > EXTRA_GAP))
+        breaks = np.concatenate((breaks, extra[~near & apart]))
     cuts = np.unique(np.concatenate((breaks, np.linspace(0.0, 1.0, GAUSS_PIECES + 1))))
     x, w = gauss_legendre(GAUSS_NODES)
     left, width = cuts[:-1, None], np.diff(cuts)[:, None]
@@ -155,13 +165,18 @@ def profile_of(stage: LinkageStage, load: Load, h: float, duration: float | None
     from sizer.mechanics.linkages.of_stage import linkages_of
 
     views = linkages_of(stage)
-    u, weights = _grid(law)
-    q = [law.derivative(u, k) for k in range(4)]
     theta0 = stage.start_angle
-    issues: tuple[str, ...] = ()
     # the coordinate the law is on: the driven link's (law_on: crank) or the load's
     given = views.motor if stage.law_on == "crank" else views.output
     x0 = float(given.output(np.array([theta0]))[0])
+    table = load.table if load.table is not None and load.table.active else None
+    crossings = None
+    if table is not None:  # its knots' crossings are breakpoints (output_table_load)
+        crossings = crossings_of(_output_position(views, given, x0, h, law, theta0),
+                                 law.breakpoints, table.knots)
+    u, weights = _grid(law, crossings)
+    q = [law.derivative(u, k) for k in range(4)]
+    issues: tuple[str, ...] = ()
     x = [x0 + h * q[0], h * q[1], h * q[2], h * q[3]]
     if not given.dead_points().size:  # the law is on the crank angle itself
         theta = x
@@ -191,6 +206,11 @@ def profile_of(stage: LinkageStage, load: Load, h: float, duration: float | None
     inertial, damping, steady = parts.inertial, parts.damping, parts.steady
     end = theta[0][-1:]  # u is in time order
     held = load.torque
+    if table is not None:  # the output's force of its position, F(s) ds/dtheta
+        _check_table_span(load, np.asarray(s[0]), views.output.output_linear)
+        with np.errstate(all="ignore"):
+            steady = steady + views.output.output(theta[0], 1) * table.torque(s[0])
+        held = held + float(table.torque(views.output.output(end, 0))[0])
     if spring[0] or spring[1]:  # a cam's follower spring (sizer.mechanics.disc_cam)
         held = held + spring[1] + spring[0] * float(views.output.output(end, 0)[0])
     hold = float(views.output.output(end, 1)[0] * held)
@@ -204,17 +224,51 @@ def profile_of(stage: LinkageStage, load: Load, h: float, duration: float | None
         issues += _rocker_issues(u, g1, (inertial, damping, steady), hold,
                                  float(views.motor.output(end, 1)[0]), duration)
         inertial, damping, steady = (_over(x, g1) for x in (inertial, damping, steady))
-        hold = static_torque(stage, load.torque, float(end[0]))
+        hold = static_torque(stage, held, float(end[0]))
         hold = hold if math.isfinite(hold) else 0.0  # unbounded: the issue says so
         turn = float(np.sum(np.abs(np.diff(motor[0]))))
         ratio = _over(views.output.output(_finite(theta[0]), 1), g1)
         with np.errstate(all="ignore"):
             reflected = dynamics.inertia(theta[0]) / g1**2
         max_inertia = float(np.max(reflected[np.isfinite(reflected)], initial=0.0))
-    return LinkageProfile(u, weights, _finite(theta[0]), _finite(ratio), s[0],
-                          _finite(motor[1]), _finite(motor[2]), s[1], s[2], s[3],
-                          _finite(inertial), _finite(damping), _finite(steady), hold, turn,
-                          dynamics.output_side_inertia, load, max_inertia, issues)
+    fields = (u, weights, _finite(theta[0]), _finite(ratio), s[0], _finite(motor[1]),
+              _finite(motor[2]), s[1], s[2], s[3], _finite(inertial), _finite(damping),
+              _finite(steady), hold, turn, dynamics.output_side_inertia, load, max_inertia,
+              issues)
+    if crossings is not None:  # the force's kinks: no parabola through them (peaks)
+        return PositionProfile(*fields, np.isin(u, np.concatenate((crossings,
+                                                                   law.breakpoints))))
+    return LinkageProfile(*fields)
+
+
+def _output_position(views: Any, given: Any, x0: float, h: float,
+                     law: MotionLaw | FixedShape | CamTurn, theta0: float) -> Any:
+    """The output's position over normalized time u of a move of ``h`` from the crank
+    angle theta0: the law's coordinate itself (law_on: output), else the output of the
+    crank at theta0 + h q_N(u) (a crank turned by the motor: output_table_load refuses a
+    table with the law on a driven rocker)."""
+    if given is views.output:
+        return lambda u: x0 + h * law.derivative(u, 0)
+    return lambda u: views.output.output(theta0 + h * law.derivative(u, 0), 0)
+
+
+def output_table_load(stage: LinkageStage, load: Load) -> Load:
+    """The load with its force (torque) table of the output's position (docs/position-
+    loads.md: the output's travel from where the cycle starts, at the stage's start
+    angle, plus the table's offset) read at the output's own coordinate (its offset
+    less the output's position at the start), as the profiles read it. A table needs the
+    crank turned by the motor or the law on the output."""
+    table = load.table
+    if table is None or not table.active:
+        return load
+    from sizer.mechanics.linkages.of_stage import linkages_of
+
+    if isinstance(stage, CamStage) or (stage.law_on == "crank"
+                                       and stage.driven_link != "crank"):
+        raise UserError("a table of the output's position through a disc cam, or with the "
+                        "law on a driven rocker, is not supported", field="load")
+    start = float(linkages_of(stage).output.output(np.array([stage.start_angle]), 0)[0])
+    return replace(load, table=replace(table, offset=table.offset - start))
 
 
 def static_torque(stage: LinkageStage, torque: float, theta: float) -> float:
@@ -511,10 +565,14 @@ class LinkageCalculator:
         load = p.load
         force = (p.output_mass * p.s2 / T**2 + load.damping * p.s1 / T + load.torque
                  + load.friction * np.sign(p.s1))
+        kinks = getattr(p, "kinks", None)
+        if kinks is not None and load.table is not None:  # a force table at the output
+            force = force + load.table.torque(p.s)
         stage_torque, stage_speed = self._stages(crank, T)
         metrics = CycleMetrics(
             duration=T[:, 0], max_speed=refined_max(np.abs(speed), p.u),
-            peak_torque=refined_max(np.abs(torque), p.u),
+            peak_torque=refined_max(np.abs(torque), p.u) if kinks is None
+            else refined_max_kinked(np.abs(torque), p.u, kinks),
             peak_ratio=peak_ratio(motors, torque, speed),
             rms_torque=np.sqrt(square / cycle), thermal_speed=self.thermal_speed(T[:, 0]),
             load_speed=np.max(np.abs(p.s1)) / T[:, 0],
@@ -640,13 +698,14 @@ def linkage_calculator(design: Design, law: MotionLaw, motors: MotorArrays, driv
     the cycle (a task with a return is the cycle it means)."""
     task = shorthand_task(design.machine_cycle)
     design = cam_design(design, law)
+    stage = design.transmission.linkage
+    assert stage is not None, "a linkage design"
+    design = replace(design, load=output_table_load(stage, design.load))
     if task is None or task.return_move:
         # a task with a return move is the cycle it means: the way back starts where the
         # way out stopped
         cyc = design if task is None else replace(design, machine_cycle=from_task(task))
         return LinkageCycle(cyc, law, drive, motors, design.limits.thermal_speed)
-    stage = design.transmission.linkage
-    assert stage is not None, "a linkage design"
     profile = profile_of(stage, design.load, task.displacement, task.duration, law)
     return LinkageCalculator(profile, task, crank_drive(design, drive, profile),
                              motors, design.limits.thermal_speed, law)
@@ -776,15 +835,7 @@ class LinkageCycle:
         cycle = design.machine_cycle
         stage = design.transmission.linkage
         assert stage is not None
-        self.cycle, self.motors, self.thermal_rule = cycle, motors, thermal_rule
-        self.law = law
-        self.laws = cycle_laws(cycle, law)
-        self.weights = np.array(cycle.weights())
-        free = cycle.free
-        self.fixed = np.array([np.nan if s.duration is None or i in free else s.duration
-                               for i, s in enumerate(cycle.segments)], dtype=float)
-        self.parts: list[LinkageProfile | HeldDwell] = []
-        self.known: dict[int, dict[str, Any]] = {}  # fixed moves: figures; free: speeds
+        self._setup(cycle, law, motors, thermal_rule)
         theta = stage.start_angle
         cam = stage if isinstance(stage, CamStage) and stage.lift is not None else None
         for i, (segment, own) in enumerate(zip(cycle.segments, self.laws, strict=True)):
@@ -804,12 +855,37 @@ class LinkageCycle:
                 self.parts.append(profile)
                 theta = float(profile.theta[-1])
             else:
-                self.parts.append(HeldDwell(static_torque(stage, load.torque, theta),
-                                            abs(load.torque)))
+                force = load.torque
+                if load.table is not None and load.table.active:  # F(s) where it rests
+                    from sizer.mechanics.linkages.of_stage import linkages_of
+
+                    force = force + float(load.table.torque(
+                        linkages_of(stage).output.output(np.array([theta]), 0))[0])
+                self.parts.append(HeldDwell(static_torque(stage, force, theta), abs(force)))
         profiles = [p for p in self.parts if isinstance(p, LinkageProfile)]
         heaviest = max(profiles, key=lambda p: p.max_inertia)
         self.drive = crank_drive(design, drive, heaviest)
-        self.task = Task(cycle.moves[0].displacement, None, linear=cycle.linear)
+
+    def _setup(self, cycle: Cycle, law: MotionLaw | None, motors: MotorArrays,
+               thermal_rule: str) -> None:
+        """What every cycle keeps besides its parts and drive: the segments' laws, free
+        weights and fixed durations."""
+        if cycle.share.goal is not None:
+            raise UserError(f"share: {{{cycle.share.value}}} splits the cycle time for each "
+                            "motor; a cycle through a linkage or against loads of the "
+                            "position shares it by one rule (equal, displacement, "
+                            "sqrt_displacement or weights)", field="cycle.share")
+        self.cycle, self.motors, self.thermal_rule = cycle, motors, thermal_rule
+        self.law = law
+        self.laws = cycle_laws(cycle, law)
+        self.weights = np.array(cycle.weights())
+        free = cycle.free
+        self.fixed = np.array([np.nan if s.duration is None or i in free else s.duration
+                               for i, s in enumerate(cycle.segments)], dtype=float)
+        self.parts: list[LinkageProfile | HeldDwell] = []
+        self.known: dict[int, dict[str, Any]] = {}  # fixed moves: figures; free: speeds
+        self.task = Task(cycle.moves[0].displacement if cycle.moves else 0.0, None,
+                         linear=cycle.linear)
         self._start: tuple[Limits, np.ndarray] | None = None  # search_start's
 
     def dead_point_issues(self) -> tuple[str, ...]:
@@ -885,8 +961,8 @@ class LinkageCycle:
                                           np.full(len(self.motors), self.fixed[i]))
         return self.known[i]
 
-    def take(self, index: np.ndarray) -> LinkageCycle:
-        out = object.__new__(LinkageCycle)
+    def take(self, index: np.ndarray) -> Self:
+        out = object.__new__(type(self))  # a PositionCycle's too
         out.__dict__.update(self.__dict__)
         out.motors = self.motors.subset(index)
         out.drive = self.drive.take(index)
@@ -922,7 +998,7 @@ class LinkageCycle:
                 fixed = self.fixed_figures(i)["peak_ratio"]
             else:
                 move = move_calculator(self, part)
-                floor = np.maximum(floor, peak_floor(move, limits, move.speed_bound(limits)) / w)
+                floor = np.maximum(floor, move.search_start(limits) / w)
                 continue
             floor = np.where(fixed > grip, np.inf, floor)
         return floor
@@ -1253,7 +1329,11 @@ def _move_figures(calc: LinkageCalculator, T: np.ndarray) -> dict[str, Any]:
 
 def move_calculator(calculator: LinkageCalculator | LinkageCycle,
                     profile: LinkageProfile) -> LinkageCalculator:
-    """The calculator of one move of the cycle (no dwell): ``profile`` at its durations."""
+    """The calculator of one move of the cycle (no dwell): ``profile`` at its durations
+    (against position-dependent loads, :class:`PositionCalculator`: their load and peaks)."""
+    if isinstance(calculator, PositionCycle):
+        return PositionCalculator(profile, Task(0.0, None), calculator.drive,
+                                  calculator.motors, calculator.thermal_rule, calculator.law)
     return LinkageCalculator(profile, Task(0.0, None), calculator.drive, calculator.motors,
                              calculator.thermal_rule, calculator.law)
 
@@ -1357,20 +1437,29 @@ TABLE_SLACK = 1e-9
 """How far (relative to the table's span) a move may pass a table's end: rounding."""
 
 
-def knot_crossings(law: MotionLaw, h: float, knots: tuple[float, ...]) -> np.ndarray:
+def knot_crossings(law: MotionLaw | FixedShape, h: float, knots: tuple[float, ...]
+                   ) -> np.ndarray:
     """The u in (0, 1) where the move's position h q_N(u) crosses a knot: each sign
     change of h q_N(u) - knot on a fine grid, bisected to rounding."""
+    return crossings_of(lambda u: h * law.derivative(u, 0), law.breakpoints, knots)
+
+
+def crossings_of(position: Any, breakpoints: np.ndarray, knots: tuple[float, ...]
+                 ) -> np.ndarray:
+    """The u in (0, 1) where ``position(u)`` (a move's position over normalized time)
+    crosses a knot: each sign change of position(u) - knot on a fine grid (with the
+    law's ``breakpoints``), bisected to rounding."""
     if not knots:
         return np.empty(0)
-    u = np.unique(np.concatenate((np.linspace(0.0, 1.0, PEAK_POINTS), law.breakpoints)))
-    f = h * law.derivative(u, 0)[None, :] - np.asarray(knots, dtype=float)[:, None]
+    u = np.unique(np.concatenate((np.linspace(0.0, 1.0, PEAK_POINTS), breakpoints)))
+    f = position(u)[None, :] - np.asarray(knots, dtype=float)[:, None]
     k, i = np.nonzero(np.sign(f[:, :-1]) * np.sign(f[:, 1:]) <= 0.0)
     lo, hi = u[i], u[i + 1]
     flo = f[k, i]
     target = np.asarray(knots, dtype=float)[k]
     for _ in range(60):
         mid = 0.5 * (lo + hi)
-        fmid = h * law.derivative(mid, 0) - target
+        fmid = position(mid) - target
         left = np.sign(fmid) * np.sign(flo) <= 0.0
         hi, lo = np.where(left, mid, hi), np.where(left, lo, mid)
         flo = np.where(left, flo, fmid)
@@ -1395,18 +1484,20 @@ def _check_table_span(load: Load, q: np.ndarray, linear: bool) -> None:
                             field=field)
 
 
-def position_profile(load: Load, displacement: float, law: MotionLaw,
-                     linear: bool = False) -> LinkageProfile:
-    """The move of ``displacement`` (signed, rad or m) by ``law`` against ``load`` as the
+def position_profile(load: Load, displacement: float, law: MotionLaw | FixedShape,
+                     linear: bool = False, start: float = 0.0) -> LinkageProfile:
+    """The move of ``displacement`` (signed, rad or m) by ``law`` from the load's position
+    ``start`` (from where the cycle starts: 0 for its first move) against ``load`` as the
     linkage engine's profile at T = 1 (module docs). A position table's knot crossings
     are breakpoints of the grid: the torque's kinks are sampled, the quadrature split
     there (exact peaks and RMS for the piecewise-linear term)."""
     h = float(displacement)
-    knots = load.position_knots
+    knots = tuple(k - start for k in load.position_knots)
     crossings = knot_crossings(law, h, knots) if knots else None
     u, weights = _grid(law, crossings)  # the linkage engine's grid
     direction = 1.0 if h >= 0.0 else -1.0
     q = [h * law.derivative(u, k) for k in range(4)]
+    q[0] = start + q[0]
     _check_table_span(load, q[0], linear)
     sense = np.where(q[1] > 0.0, 1.0, np.where(q[1] < 0.0, -1.0, direction))
     inertial = load.inertia * q[2]
@@ -1417,7 +1508,7 @@ def position_profile(load: Load, displacement: float, law: MotionLaw,
         largest = load.inertia + table.largest(float(np.min(q[0])), float(np.max(q[0])))
     damping = load.damping * q[1]
     steady = load.friction * sense + load.torque + load.position_torque(q[0])
-    hold = float(load.torque + load.position_torque(np.array([h]))[0])
+    hold = float(load.torque + load.position_torque(np.array([start + h]))[0])
     kinks = None
     if crossings is not None:
         kinks = np.isin(u, np.concatenate((crossings, law.breakpoints)))
@@ -1473,6 +1564,15 @@ class PositionCalculator(LinkageCalculator):
                                    np.full_like(T, self.task.dwell), None))
         return out
 
+    def search_start(self, limits: Limits) -> np.ndarray:
+        """:meth:`LinkageCalculator.search_start` with the peak floor moved up to where
+        the peak ratio as :meth:`sampled` reads it (refined between the samples) meets
+        1 - torque margin (:func:`refined_floor`)."""
+        if self._start is None or self._start[0] is not limits:
+            floor = peak_floor(self, limits, self.speed_bound(limits))
+            self._start = (limits, refined_floor(self, limits, floor))
+        return self._start[1]
+
     def take(self, index: np.ndarray) -> PositionCalculator:
         return PositionCalculator(self.profile, self.task, self.drive.take(index),
                                   self.motors.subset(index), self.thermal_rule, self.law)
@@ -1508,6 +1608,66 @@ class PositionCalculator(LinkageCalculator):
                        peak_torque=peak), speed, torque
 
 
+FLOOR_STEPS = 40
+"""Secant (Illinois) steps of :func:`refined_floor` at most; a few suffice."""
+
+
+def refined_floor(calculator: PositionCalculator, limits: Limits, floor: np.ndarray
+                  ) -> np.ndarray:
+    """The peak floor of :func:`peak_floor`, read on the samples (a smooth peak between
+    two of them is read up to 1e-7 low), moved up where the refined peak ratio exceeds
+    1 - torque margin there: to where it meets it, by the Illinois method on T from the
+    floor (the ratio falls with T past the floor). Where no bracket is found the floor
+    stays (the engine's search goes on from it)."""
+    grip = 1.0 - limits.torque_margin
+    out = np.array(floor, dtype=float)
+    rows = np.flatnonzero(np.isfinite(out) & (out > 0.0))
+    if not rows.size:
+        return out
+    calc = calculator.take(rows)
+
+    def excess(T: np.ndarray) -> np.ndarray:
+        return calc.sampled(T)[0].peak_ratio - grip
+
+    lo = out[rows]
+    f_lo = excess(lo)
+    open_ = f_lo > 0.0
+    if not open_.any():
+        return out
+    hi, f_hi = lo.copy(), f_lo.copy()
+    step = 1e-6
+    for _ in range(6):  # a bracket: the ratio falls below the grip past the floor
+        need = open_ & (f_hi > 0.0)
+        if not need.any():
+            break
+        hi = np.where(need, lo * (1.0 + step), hi)
+        f_hi = np.where(need, excess(hi), f_hi)
+        step *= 10.0
+    open_ &= f_hi <= 0.0
+    side = 0
+    for _ in range(FLOOR_STEPS):
+        if not open_.any():
+            break
+        with np.errstate(divide="ignore", invalid="ignore"):
+            x = np.where(open_, hi - f_hi * (hi - lo) / (f_hi - f_lo), hi)
+        x = np.where(np.isfinite(x) & (x > lo) & (x < hi), x, 0.5 * (lo + hi))
+        f = np.where(open_, excess(x), f_hi)
+        right = f <= 0.0
+        new_side = 1 if np.all(right[open_]) else -1 if not np.any(right[open_]) else 0
+        f_lo = np.where(open_ & ~right, f, f_lo)
+        lo = np.where(open_ & ~right, x, lo)
+        f_hi = np.where(open_ & right, f, f_hi)
+        hi = np.where(open_ & right, x, hi)
+        if new_side and new_side == side:  # Illinois: halve the stale end's value
+            f_lo = np.where(open_ & right, 0.5 * f_lo, f_lo)
+            f_hi = np.where(open_ & ~right, 0.5 * f_hi, f_hi)
+        side = new_side
+        open_ &= hi - lo > 1e-14 * hi
+    done = f_hi <= 0.0
+    out[rows] = np.where(done & (f_lo > 0.0), hi, out[rows])
+    return out
+
+
 def check_position_drive(drive: Drive) -> None:
     """Refuse what the position-load engine does not model (module docs)."""
     if drive.steady_load_efficiency:
@@ -1532,3 +1692,61 @@ def position_calculator(task: Task, law: MotionLaw, load: Load, drive: Drive,
         drive = Drive(replace(drive.load, inertia=profile.max_inertia), drive.transmissions,
                       drive.option)
     return PositionCalculator(profile, task, drive, motors, thermal_rule, law)
+
+
+class PositionCycle(LinkageCycle):
+    """A cycle of segments (or a task with a return move, the cycle it means) against
+    position-dependent loads: the linkage engine's cycle with the identity as the
+    linkage. Each move or run starts at the cycle's running position (the sum of the
+    displacements before it: a return starts at h and goes back to 0), its profile the
+    load's terms at its true positions (:func:`position_profile`); a dwell holds the
+    static load at the position where it rests, tau_ext + g(x) without friction. The
+    segments' own loads (a picked-up part) add as in any cycle (segment_load)."""
+
+    def __init__(self, cycle: Cycle, law: MotionLaw | None, load: Load, drive: Drive,
+                 motors: MotorArrays, thermal_rule: str) -> None:
+        self._setup(cycle, law, motors, thermal_rule)
+        position = 0.0
+        for i, (segment, own) in enumerate(zip(cycle.segments, self.laws, strict=True)):
+            here = segment_load(load, segment)
+            if isinstance(segment, Move | Run):
+                duration = None if np.isnan(self.fixed[i]) else float(self.fixed[i])
+                self.parts.append(position_profile(here, segment.displacement,
+                                                   _shape(segment, own, duration),
+                                                   cycle.linear, position))
+                position += segment.displacement
+            else:
+                hold = float(here.torque + here.position_torque(np.array([position]))[0])
+                self.parts.append(HeldDwell(hold, abs(hold)))
+        largest = max(p.max_inertia for p in self.parts if isinstance(p, LinkageProfile))
+        if largest != drive.load.inertia:  # a picked-up part, an inertia table: the ratio
+            # check and the inertia figures read the largest inertia over the cycle
+            drive = Drive(replace(drive.load, inertia=largest), drive.transmissions,
+                          drive.option)
+        self.drive = drive
+
+    def dead_point_issues(self) -> None:  # type: ignore[override]  # CycleModel allows None
+        return None  # no linkage: no dead-point check
+
+    def pieces(self, s: np.ndarray, samples: int | None = None) -> list[CyclePiece]:
+        """:func:`linkage_pieces`, each dwell's torque with the sign of the static load it
+        holds (gravity may hold either way)."""
+        out = linkage_pieces(self, s, samples)
+        return [replace(p, torque=p.torque * np.sign(part.hold))
+                if isinstance(part, HeldDwell) else p
+                for p, part in zip(out, self.parts, strict=True)]
+
+
+def position_model(cycle: Cycle, law: MotionLaw, load: Load, drive: Drive,
+                   motors: MotorArrays, thermal_rule: str = "max"
+                   ) -> PositionCalculator | PositionCycle:
+    """The model the engine sizes a design with position-dependent loads on (a
+    sizer.sizing.evaluation.CycleModel): one move and its dwell
+    (:func:`position_calculator`), else the cycle of segments, or the cycle a task with a
+    return move means (:class:`PositionCycle`)."""
+    task = shorthand_task(cycle)
+    if task is not None and not task.return_move:
+        return position_calculator(task, law, load, drive, motors, thermal_rule)
+    check_position_drive(drive)
+    return PositionCycle(cycle if task is None else from_task(task), law, load, drive,
+                         motors, thermal_rule)

@@ -41,8 +41,9 @@ from sizer.sizing.evaluation import (
 )
 from sizer.sizing.linkage_move import (
     PositionCalculator,
+    PositionCycle,
     dead_points,
-    position_calculator,
+    position_model,
     result_calculator,
 )
 from sizer.sizing.move import CycleCalculator
@@ -166,7 +167,7 @@ def _result(design: Design, motor: Motor, law: MotionLaw,
     task = shorthand_task(design.machine_cycle)
     if task is None or design.transmission.linkage is not None:
         return _segmented(design, motor, law, transmission)
-    if design.load.position_dependent:  # a load of the position: one move
+    if design.load.position_dependent:  # a load of the position
         return _position(design, motor, law, transmission)
     return CycleCalculator(None, task, Drive(design.load, transmission or design.transmission),
                            MotorArrays.of([motor], design.limits.envelope),
@@ -178,7 +179,7 @@ def _segmented(design: Design, motor: Motor, law: MotionLaw,
     """The same as a cycle of segments (the task shorthand as the cycle it means)."""
     if design.transmission.linkage is not None:
         return result_calculator(design, motor, law, transmission)
-    if design.load.position_dependent:  # a load of the position: one move (and its dwell)
+    if design.load.position_dependent:  # a load of the position
         return _position(design, motor, law, transmission)
     return SegmentCycle(design.machine_cycle, law,
                         Drive(design.load, transmission or design.transmission),
@@ -197,15 +198,13 @@ def pair_durations(design: Design, motor: Motor, law: MotionLaw, duration: float
 
 
 def _position(design: Design, motor: Motor, law: MotionLaw,
-              transmission: Transmission | None) -> PositionCalculator:
-    """The move against loads of the position (the loader allows one move and its
-    dwell: sizer.sizing.linkage_move.position_calculator)."""
-    task = shorthand_task(design.machine_cycle)
-    assert task is not None, "a load of the position is sized in a task"
-    return position_calculator(task, law, design.load,
-                               Drive(design.load, transmission or design.transmission),
-                               MotorArrays.of([motor], design.limits.envelope),
-                               design.limits.thermal_speed)
+              transmission: Transmission | None) -> PositionCalculator | PositionCycle:
+    """The cycle against loads of the position: one move and its dwell, a task with its
+    return, a cycle of segments (sizer.sizing.linkage_move.position_model)."""
+    return position_model(design.machine_cycle, law, design.load,
+                          Drive(design.load, transmission or design.transmission),
+                          MotorArrays.of([motor], design.limits.envelope),
+                          design.limits.thermal_speed)
 
 
 def _one_linkage_move(design: Design) -> bool:
