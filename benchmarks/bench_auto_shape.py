@@ -2,12 +2,17 @@
 
     python benchmarks/bench_auto_shape.py --motors 200 --searched 64 4 2
 
-Searched shapes (issue 34): the load has friction, so no closed form applies and each
-auto parameter is searched by sizer.sizing.choices.search_shape, every point a T_min
-search: trapezoidal(alpha=auto) on 64 motors, double_s(alpha=auto, beta=auto) on 4 and
-fifteen_segments with three auto parameters on 2 (fewer motors: they are slower), each
-printed as the ratio of size_design with the auto spec to size_design with one fixed law
-of the family (best of 3) on the same motors.
+With friction (issue 34): the load has Coulomb friction (0.5 N*m), trapezoidal(alpha=auto)
+on 64 motors, double_s(alpha=auto, beta=auto) on 4 and fifteen_segments with three auto
+parameters on 2 (fewer motors: they are slower), each printed as the ratio of size_design
+with the auto spec to size_design with one fixed law of the family (best of 3) on the same
+motors. Through the ideal gearbox the friction is a constant torque per move, so the
+trapezoid and the double S take the closed forms with constant torques
+(sizer.sizing.optimal_shapes.exact_time_optimal; fixed laws likewise,
+sizer.sizing.shortest_duration.closed_form_duration); fifteen_segments has none and is
+searched (sizer.sizing.choices.search_shape, every point a T_min search). The same rows
+with a gearbox efficiency of 0.9 (power flow: the motor torque is no longer linear, no
+closed form) are searched throughout: the gap that remains.
 
 The book's case of eq. (6.2) (rectangular regions, purely inertial load, ideal gearbox),
 minimize mode, synthetic motors (a geometric family of ratings, NOT datasheet figures),
@@ -22,6 +27,7 @@ from __future__ import annotations
 import argparse
 import math
 import time
+from functools import partial
 
 from sizer.laws import resolve
 from sizer.model import Design, Limits, Load, Motor, Stage, Task, Transmission
@@ -49,14 +55,19 @@ SEARCHED = (("trapezoidal(alpha=auto)", "trapezoidal(alpha=1/3)"),
              "fifteen_segments(alpha=1/3, beta=1/4, gamma=1/4)"))
 
 
-def design(count: int, spec: str, friction: float = 0.0) -> Design:
+def design(count: int, spec: str, friction: float = 0.0, efficiency: float = 1.0) -> Design:
     """The trapezoid has jerk impulses: the jerk limit only for the others."""
     task = Task(math.pi / 2, None, dwell=0.15, return_move=True)
     jerk = None if spec.startswith("trapezoidal") else 2e4
     return Design(task, Load(0.35, friction=friction),
-                  Transmission((Stage("gearbox", 10.0, 1.0, 1.2e-4),)),
+                  Transmission((Stage("gearbox", 10.0, efficiency, 1.2e-4),)),
                   laws=(spec,), motors=rectangular_motors(count),
                   limits=Limits(torque_margin=0.1, max_jerk=jerk))
+
+
+def with_friction(count: int, spec: str, efficiency: float) -> None:
+    """size_design of the design with friction 0.5 N*m and the gearbox's efficiency."""
+    size_design(design(count, spec, 0.5, efficiency))
 
 
 def timed(function, repeat: int = 1) -> float:
@@ -85,13 +96,15 @@ def main() -> None:
         whole = timed(lambda: size_design(d))  # noqa: B023
         one = timed(lambda: size_design(design(args.motors, fixed)))  # noqa: B023
         print(f"{auto:32s} {args.motors:6d} {1000 * choose:11.1f} {whole:13.2f} {one:14.2f}")
-    print(f"\nsearched (friction 0.5 N*m), CPU time\n{'family':52s} {'motors':>6s} "
-          f"{'auto [s]':>9s} {'fixed [s]':>9s} {'ratio':>7s}")
-    for (auto, fixed), count in zip(SEARCHED, args.searched, strict=True):
-        if count:
-            whole = timed(lambda: size_design(design(count, auto, 0.5)))  # noqa: B023
-            one = timed(lambda: size_design(design(count, fixed, 0.5)), 3)  # noqa: B023
-            print(f"{auto:52s} {count:6d} {whole:9.3f} {one:9.4f} {whole / one:7.1f}")
+    for efficiency in (1.0, 0.9):
+        print(f"\nfriction 0.5 N*m, gearbox efficiency {efficiency:g}, CPU time\n"
+              f"{'family':52s} {'motors':>6s} {'auto [s]':>9s} {'fixed [s]':>9s} "
+              f"{'ratio':>7s}")
+        for (auto, fixed), count in zip(SEARCHED, args.searched, strict=True):
+            if count:
+                whole = timed(partial(with_friction, count, auto, efficiency))
+                one = timed(partial(with_friction, count, fixed, efficiency), 3)
+                print(f"{auto:52s} {count:6d} {whole:9.3f} {one:9.4f} {whole / one:7.1f}")
 
 
 if __name__ == "__main__":

@@ -1489,7 +1489,6 @@ class CycleCalculator:
         c = self.law.coefficients
         motors, drive = self.motors, self.drive
         K = drive.ratio
-        peaks = self.law.linear_peaks
         certified = np.ones(n, dtype=bool)
 
         inertial = _inertial
@@ -1532,7 +1531,9 @@ class CycleCalculator:
         channels = [motor_terms, load_terms] + (stage_terms if self.stage_checks else [])
         # every function's highest and lowest point, all channels in one query
         functions = [f for co in channels if not inertial(co) for f in co]
-        solved = peaks.maximum(
+        # the law's linear peaks (its hull) only where a channel needs them: purely
+        # inertial channels read C_a alone
+        solved = self.law.linear_peaks.maximum(
             np.concatenate([sign * spread(P, n) for sign in (1.0, -1.0)
                             for P, _, _ in functions]),
             np.concatenate([sign * spread(Q, n) for sign in (1.0, -1.0)

@@ -2,21 +2,31 @@
 the book's case, exactly (sec. 3.2-3.4, 5.2, 6.2), for all motors at once
 (:func:`exact_time_optimal`, used by sizer.sizing.choices.choose_shape).
 
-With rectangular regions, a purely inertial load and an ideal transmission, T_min of a shape
-is the largest of the bounds of eq. (6.2), each a closed form in one coefficient:
+With rectangular regions, an ideal transmission of plain stages and no damping, T_min of a
+shape is the largest of the bounds of eq. (6.2), each a closed form in one coefficient:
 
     speed   T_V = C_v S_V            S_V = max(K h / v_lim, h / v_load)
-    torque  T_A = sqrt(C_a S_A)      S_A = max(K h J_t / tau_p, h / a_max)
-    RMS     T_R: T^3 (T + dwell) = (C_a_rms S_R)^2,  S_R = K h J_t / tau_c
+    torque  T_A = sqrt(C_a S_A)      S_A = max(K h J_t / (tau_p - max|c|), h / a_max)
+    RMS     T_R: T^3 (T + dwell') = (C_a_rms S_R)^2,  S_R = K h J_t / sqrt(tau_c^2 - mean c^2)
     jerk    T_J = cbrt(C_j S_J)      S_J = h / j_max
 
-(margins applied to the limits as in sizer.sizing.shortest_duration). The trapezoid's
-coefficients are C_v = 1/(1-a), C_a = 1/(a(1-a)), C_a_rms = sqrt(2/a)/(1-a) (a = alpha,
-sec. 6.2.1); each bound is monotone or unimodal in a (T_V increasing, T_A decreasing, T_R
-smallest at a = 1/3) and the sign of every difference of two bounds changes at most once
-on (0, 1/2]. The optimum is therefore among: the ends, a = 1/3, and the crossings of two
-bounds, each found to machine precision by a bracketed root; all candidates are
-evaluated and the best kept, for all motors at once.
+(margins applied to the limits as in sizer.sizing.shortest_duration). c are the load's
+constant torques at the motor, one per move (Coulomb friction against the motion, a
+constant external load), and dwell' = dwell (tau_c^2 - H^2) / (tau_c^2 - mean c^2) with H
+the torque held in the dwells: sizer.sizing.shortest_duration derives them (sec. 6.1.1,
+eq. 6.2); for a purely inertial load c = H = 0, S_A = K h J_t / tau_p, S_R = K h J_t /
+tau_c and dwell' = dwell, the book's case. The families' shapes are symmetric (max q_N''
+= -min q_N'' = C_a), so the peak bound keeps the form sqrt(C_a S_A) and every bound is
+still monotone in one coefficient: what follows holds unchanged with these scales.
+Motors the closed forms do not decide (an ill-conditioned crossing, a possible window of
+the RMS: DurationBounds.undecided) are left to the search (:func:`exact_time_optimal`).
+
+The trapezoid's coefficients are C_v = 1/(1-a), C_a = 1/(a(1-a)), C_a_rms = sqrt(2/a)/(1-a)
+(a = alpha, sec. 6.2.1); each bound is monotone or unimodal in a (T_V increasing, T_A
+decreasing, T_R smallest at a = 1/3) and the sign of every difference of two bounds changes
+at most once on (0, 1/2]. The optimum is therefore among: the ends, a = 1/3, and the
+crossings of two bounds, each found to machine precision by a bracketed root; all candidates
+are evaluated and the best kept, for all motors at once.
 
 The double S (a = alpha, b = beta) has C_a = 1/(a(1-a)(1-b)), C_j = 1/(a^2 b (1-a)(1-b)),
 C_a_rms = sqrt((6-8b)/(3a))/((1-a)(1-b)): in b, T_A and T_R increase and T_J decreases,
@@ -42,7 +52,13 @@ from sizer.numerics.golden import INV_PHI, golden_step, interior_points
 from sizer.sizing.candidates import Candidates
 from sizer.sizing.cycle import single_task
 from sizer.sizing.move import CycleCalculator
-from sizer.sizing.shortest_duration import beyond_flat_part, duration_bounds, is_purely_inertial
+from sizer.sizing.shortest_duration import (
+    DurationBounds,
+    beyond_flat_part,
+    duration_bounds,
+    has_constant_torques,
+    rms_duration,
+)
 
 SAMPLES = 65
 GOLDEN_WIDTH = 1e-13
@@ -55,20 +71,22 @@ class BoundScales:
 
     A zero scale means no such limit; ``feasible`` is False where no shape can work
     (e.g. a zero torque); checks that no shape changes (the inertia ratio) are left to
-    the verdict.
+    the verdict. ``dwell`` is the RMS bound's dwell', one for all motors or one per
+    motor (with constant torques; negative where the hold exceeds the rating).
     """
 
     speed: np.ndarray
     torque: np.ndarray
     rms: np.ndarray
     jerk: np.ndarray
-    dwell: float
+    dwell: float | np.ndarray
     feasible: np.ndarray
 
     def take(self, rows: np.ndarray) -> BoundScales:
         """The scales of the motors ``rows``."""
+        dwell = np.asarray(self.dwell)[rows] if np.ndim(self.dwell) else self.dwell
         return BoundScales(self.speed[rows], self.torque[rows], self.rms[rows],
-                           self.jerk[rows], self.dwell, self.feasible[rows])
+                           self.jerk[rows], dwell, self.feasible[rows])
 
 
 @dataclass(frozen=True)
@@ -93,13 +111,16 @@ def double_s_coefficients(a, b):
 
 
 # --------------------------------------------------------------------------- bounds
-def rms_time(x: np.ndarray, dwell: float) -> np.ndarray:
+def rms_time(x: np.ndarray, dwell: float | np.ndarray) -> np.ndarray:
     """The smallest T with T^3 (T + dwell) >= x^2 (x = C_a_rms S_R), vectorized.
 
     Newton's method from an upper bound (the quartic is convex and increasing for T > 0,
-    so the iterates decrease monotonically to the root).
+    so the iterates decrease monotonically to the root). A dwell per element (broadcast
+    with x) or a negative one: sizer.sizing.shortest_duration.rms_duration.
     """
     x = np.asarray(x, dtype=float)
+    if np.ndim(dwell) or dwell < 0.0:
+        return np.where(np.isnan(x), np.nan, rms_duration(x, dwell))
     target = x * x
     if dwell == 0.0:
         return np.sqrt(x)
@@ -128,7 +149,16 @@ def _scales_like(scales: BoundScales, shape: tuple[int, ...], rows=None):
     return out
 
 
-def _bounds(S, dwell: float, c_v, c_a, c_a_rms, c_j=None) -> list[np.ndarray]:
+def _dwell_like(scales: BoundScales, shape: tuple[int, ...], rows=None) -> float | np.ndarray:
+    """The dwell' of :func:`_scales_like`'s scales (one number where it is one)."""
+    if not np.ndim(scales.dwell):
+        return scales.dwell
+    d = np.asarray(scales.dwell)
+    full = np.broadcast_to(d.reshape((-1,) + (1,) * (len(shape) - 1)), shape)
+    return full if rows is None else full.reshape(-1)[rows]
+
+
+def _bounds(S, dwell: float | np.ndarray, c_v, c_a, c_a_rms, c_j=None) -> list[np.ndarray]:
     """T_V, T_A, T_R (and T_J) from coefficient arrays and scales S of the same shape."""
     out = [c_v * S[0], np.sqrt(c_a * S[1]), rms_time(c_a_rms * S[2], dwell)]
     if c_j is not None:
@@ -138,7 +168,9 @@ def _bounds(S, dwell: float, c_v, c_a, c_a_rms, c_j=None) -> list[np.ndarray]:
 
 def trapezoid_bounds(scales: BoundScales, a: np.ndarray) -> list[np.ndarray]:
     """T_V, T_A, T_R of the trapezoid at alpha = a (array (motors, k))."""
-    return _bounds(_scales_like(scales, np.shape(a)), scales.dwell, *trapezoid_coefficients(a))
+    shape = np.shape(a)
+    return _bounds(_scales_like(scales, shape), _dwell_like(scales, shape),
+                   *trapezoid_coefficients(a))
 
 
 def double_s_bounds(scales: BoundScales, a: np.ndarray, b: np.ndarray,
@@ -146,8 +178,9 @@ def double_s_bounds(scales: BoundScales, a: np.ndarray, b: np.ndarray,
     """T_V, T_A, T_R, T_J of the double S at (a, b) (arrays (motors, k), or flat arrays
     at the positions ``rows`` of such an array)."""
     shape = np.shape(a) if rows is None else rows[1]
-    S = _scales_like(scales, shape, None if rows is None else rows[0])
-    return _bounds(S, scales.dwell, *double_s_coefficients(a, b))
+    at = None if rows is None else rows[0]
+    S = _scales_like(scales, shape, at)
+    return _bounds(S, _dwell_like(scales, shape, at), *double_s_coefficients(a, b))
 
 
 def trapezoid_duration(scales: BoundScales, a: np.ndarray) -> np.ndarray:
@@ -197,7 +230,8 @@ def optimal_double_s(scales: BoundScales, low_a: float, low_b: float,
                  & (alpha <= high_a) & (beta >= low_b) & (beta <= high_b))
     if scales.rms.any() and exact.any():
         _, _, c_a_rms, _ = double_s_coefficients(alpha[exact], beta[exact])
-        exact[exact] = rms_time(c_a_rms * scales.rms[exact], scales.dwell) <= T[exact]
+        dwell = np.asarray(scales.dwell)[exact] if np.ndim(scales.dwell) else scales.dwell
+        exact[exact] = rms_time(c_a_rms * scales.rms[exact], dwell) <= T[exact]
     params = {"alpha": alpha, "beta": beta}
     rest = np.flatnonzero(scales.feasible & ~exact)
     if len(rest):
@@ -277,14 +311,18 @@ def best_beta(scales: BoundScales, a: np.ndarray, low: float, high: float = HALF
         b_aj = np.where(np.isinf(c), 1.0, 2.0 * c / (c + np.sqrt(c * c + 4.0 * c)))
     beta = np.clip(b_aj, low, high)
     if scales.rms.any():
+        dwell = np.broadcast_to(_dwell_like(scales, a.shape), a.shape).reshape(-1)
+
         def gap(b: np.ndarray, where: np.ndarray) -> np.ndarray:
             aa, bb = a.reshape(-1)[where], b
             _, _, c_a_rms, c_j = double_s_coefficients(aa, bb)
             T_j = np.cbrt(c_j * S_J.reshape(-1)[where])
-            # T_R > T_J exactly where T_J^3 (T_J + dwell) < (C_a_rms S_R)^2
-            with np.errstate(divide="ignore"):
-                return (2.0 * np.log(c_a_rms * S_R.reshape(-1)[where])
-                        - np.log(T_j**3 * (T_j + scales.dwell)))
+            # T_R > T_J exactly where T_J^3 (T_J + dwell) < (C_a_rms S_R)^2 (always where
+            # T_J <= -dwell: T_R lies above -dwell)
+            inner = T_j**3 * (T_j + dwell[where])
+            with np.errstate(divide="ignore", invalid="ignore"):
+                return np.where(inner > 0.0, 2.0 * np.log(c_a_rms * S_R.reshape(-1)[where])
+                                - np.log(inner), np.inf)
 
         every = np.arange(a.size)
         f_low = gap(np.full(a.size, low), every)
@@ -380,25 +418,30 @@ def _finish(scales: BoundScales, params: dict[str, np.ndarray], duration: np.nda
 
 
 # --------------------------------------------------------------------------- entry
-def bound_scales(calculator, limits) -> BoundScales:
+def bound_scales(calculator, limits, raw: DurationBounds | None = None) -> BoundScales:
     """The scales of the bounds for the candidates of a CycleCalculator (law unused):
-    those of eq. (6.2) in sizer.sizing.shortest_duration, zeroed where one is infinite (no shape
-    can meet it: ``feasible`` False)."""
-    raw = duration_bounds(calculator, limits)
+    those of eq. (6.2) in sizer.sizing.shortest_duration (``raw`` where known), zeroed
+    where one is infinite (no shape can meet it: ``feasible`` False) and where the closed
+    forms do not decide (DurationBounds.undecided: ``feasible`` False too, the caller
+    searches those)."""
+    raw = duration_bounds(calculator, limits) if raw is None else raw
     scales = (raw.speed, raw.torque, raw.rms, raw.jerk)
-    feasible = np.all(np.isfinite(np.stack(scales)), axis=0)
+    feasible = np.all(np.isfinite(np.stack(scales)), axis=0) & ~raw.undecided
     speed, torque, rms, jerk = (np.where(feasible, s, 0.0) for s in scales)
-    return BoundScales(speed, torque, rms, jerk, dwell=raw.dwell, feasible=feasible)
+    dwell = np.where(feasible, raw.dwell, 0.0) if np.ndim(raw.dwell) else raw.dwell
+    return BoundScales(speed, torque, rms, jerk, dwell=dwell, feasible=feasible)
 
 
 def exact_time_optimal(family: type[MotionLaw], fixed: dict[str, float],
                        ranges: dict[str, tuple[float, float]], design: Design,
                        candidates: Candidates) -> tuple[dict[str, np.ndarray], np.ndarray] | None:
-    """The exact optimum where it is known (minimize mode, book's case), else None.
+    """The exact optimum where it is known (minimize mode, the book's case with constant
+    torques: sizer.sizing.shortest_duration.has_constant_torques), else None.
 
     With it, the mask of the motors left to the search: those whose region goes on past
     the flat part the exact optimum sees, where the optimum reaches the end of it
-    (sizer.sizing.shortest_duration.beyond_flat_part).
+    (sizer.sizing.shortest_duration.beyond_flat_part), and those the closed forms with
+    constant torques do not decide (DurationBounds.undecided).
     """
     if not design.machine_cycle.minimize or family not in (Trapezoidal, DoubleS) \
             or design.transmission.linkage is not None:  # the book's case has no linkage
@@ -408,9 +451,10 @@ def exact_time_optimal(family: type[MotionLaw], fixed: dict[str, float],
     motors = candidates.motors
     calculator = CycleCalculator(None, single_task(design), candidates.drive, motors,
                                  design.limits.thermal_speed)
-    if not is_purely_inertial(calculator):
+    if not has_constant_torques(calculator):
         return None
-    scales = bound_scales(calculator, design.limits)
+    raw = duration_bounds(calculator, design.limits)
+    scales = bound_scales(calculator, design.limits, raw)
     if family is Trapezoidal:
         if design.limits.max_jerk is not None:  # infinite jerk: no alpha is feasible
             return {"alpha": np.full(len(motors), 1.0 / 3.0)}, np.zeros(len(motors), bool)
@@ -424,4 +468,5 @@ def exact_time_optimal(family: type[MotionLaw], fixed: dict[str, float],
     alpha = solution.params.get("alpha", np.full(len(motors), fixed.get("alpha", 0.0)))
     # C_v = 1/(1 - alpha) for both families (sec. 3.2, 3.4)
     beyond = beyond_flat_part(calculator, design.limits, solution.duration, 1.0 / (1.0 - alpha))
+    beyond |= raw.undecided
     return {name: solution.params[name] for name in ranges}, beyond

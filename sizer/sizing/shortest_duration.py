@@ -1,17 +1,17 @@
 """The shortest duration at which every check passes: T_min per candidate (book eq. 6.2).
 
-With the book's rectangular regions and a purely inertial load (no damping, friction or
-constant load, efficiency 1) T_min is the closed form of eq. (6.2), extended to a cycle
-with dwell: the RMS bound T^3 (T + t_dwell) >= (J_t k h C_a_rms / tau_c)^2 is solved
-exactly. Otherwise T_min starts from a lower bound, the largest duration below which a
-peak or speed check fails (the model's peak_bound): where the cycle is feasible
-there it is T_min; where the RMS check fails there, T_min is where the RMS reaches its
-limit, by rounds on the cycle's RMS model (:func:`rms_crossing`). What these leave (and
-the designs whose laws move backwards, where the bound does not hold) is found by a
-search on the worst slack, vectorized over candidates: a walk in log T up the slack
-until a feasible duration (or a golden-section search for the slack's maximum where it
-stops rising), then the Illinois method down to where the binding check reaches its
-limit, to a relative width of 1e-13; each step evaluates only the candidates still open.
+With the book's rectangular regions, an ideal transmission of plain stages and no damping
+T_min is a closed form (:func:`closed_form_duration`): eq. (6.2) for a purely inertial load,
+extended to a cycle with dwell and to the load's constant torques (Coulomb friction, a
+constant external load), derived below. Otherwise T_min starts from a lower bound, the
+largest duration below which a peak or speed check fails (the model's peak_bound): where the
+cycle is feasible there it is T_min; where the RMS check fails there, T_min is where the RMS
+reaches its limit, by rounds on the cycle's RMS model (:func:`rms_crossing`). What these
+leave (and the designs whose laws move backwards, where the bound does not hold) is found by
+a search on the worst slack, vectorized over candidates: a walk in log T up the slack until
+a feasible duration (or a golden-section search for the slack's maximum where it stops
+rising), then the Illinois method down to where the binding check reaches its limit, to a
+relative width of 1e-13; each step evaluates only the candidates still open.
 
 The checks this search does not see, the later limits (residual vibration, braking
 resistor, winding temperature: :class:`LaterLimit`), are settled in the same search
@@ -22,6 +22,53 @@ turns until none moves.
 Feasible means what it means everywhere (sizer.sizing.checks.feasible: every slack
 >= -TOLERANCE). T_min is where the binding check is exactly at its limit; only where no
 duration reaches slack 0 but some are within the tolerance, it is the shortest of those.
+
+The closed form with constant torques (book sec. 6.1.1, eq. 6.1 and 6.2). With an ideal
+drive (Drive.is_ideal: efficiencies 1, or on the steady load only), plain stages and no
+damping (load and motors), the motor torque along move i of a rest-to-rest cycle is
+
+    tau_i(t) = J_t K h q_N''(t/T) / T^2 + c_i,
+
+J_t = J_m + J_stages + J_l/K^2, and c_i the constant the drive reflects to the motor for
+that direction: the friction opposing the motion plus the constant external load, both
+from Drive.linear_chain (e.g. forward c = (F + G)/K, return c = (F - G)/K through an
+ideal gearbox, the torques along each move's own motion: the return's torque in the
+forward sense is -(J a) - F + G). In the dwells the motor holds H (Drive.holding_torques:
+the external load alone; zero for friction alone), and the peak check reads it too.
+
+Peak. max_t |tau_i| = max(P a_max + c_i, P |a_min| - c_i), P = J_t K h / T^2 and a_max,
+a_min the law's extreme q_N'' (both C_a for a symmetric law). So the peak check,
+|tau| <= tau_p' = (1 - margin) tau_p, holds iff T^2 >= a_max J_t K h / (tau_p' - c_i) and
+T^2 >= |a_min| J_t K h / (tau_p' + c_i) for every move: with up = max_i c_i and down =
+max_i (-c_i) the torque scale of a symmetric law is S_A = J_t K h / (tau_p' - max(up, down))
+= J_t K h / (tau_p' - max_i |c_i|), T_A = sqrt(C_a S_A) as in eq. (6.2), no duration where
+the denominator is <= 0. The load's acceleration limit adds T^2 >= C_a h / a_max as before.
+
+RMS. Over a rest-to-rest move int q_N'' = 0, so the cross term of tau_i^2 integrates to 0
+and int tau_i^2 dt = (J_t K h C_a_rms)^2 / T^3 + c_i^2 T. With n moves each followed by a
+dwell t_d holding H, RMS^2 = (sum_i int tau_i^2 dt + n t_d H^2) / (n (T + t_d))
+(sizer.sizing.move.CycleCalculator.evaluate), and the check RMS <= tau_c' = (1 - margin)
+tau_c (the continuous region's flat torque at the thermal speed, whatever the thermal
+rule, as long as the move stays on the flat part) reads, with m2 = mean_i c_i^2,
+
+    (J_t K h C_a_rms)^2 / T^3 <= T (tau_c'^2 - m2) + t_d (tau_c'^2 - H^2),
+
+i.e. where A = tau_c'^2 - m2 > 0: T^3 (T + t_d') >= (C_a_rms S_R')^2 with
+S_R' = J_t K h / sqrt(A) and t_d' = t_d (tau_c'^2 - H^2) / A (the book's S_R = J_t K h /
+tau_c' and t_d where c = H = 0). The left side rises for T > -t_d' (t_d' < 0 where the
+hold exceeds the rating: then T > -t_d' and the RMS still falls to sqrt(m2) as T grows),
+so the crossing is unique (:func:`rms_duration`). Where A <= 0 the RMS tends to sqrt(m2)
+>= tau_c': no duration if it also exceeds it in the dwell (or there is none), B = t_d
+(tau_c'^2 - H^2) <= 0; else a window of durations may pass where max_T T^3 (A T + B) =
+(27/256) B^4 / |A|^3 (at T = 3B / (4|A|)) reaches (J_t K h C_a_rms)^2, which needs at
+least (J_t K h)^2 12 (LEAST_SQUARE: no rest-to-rest law has C_a_rms^2 below the cubic's
+12): below that no law passes at any duration, otherwise the search looks.
+
+Where a denominator is within EDGE of 0 (the crossing ill-conditioned) or an RMS window
+may exist the closed form does not decide: those candidates are searched
+(DurationBounds.undecided); where a constant alone fails a check by more than the
+tolerance at every duration there is no duration (inf). Everything else the closed form
+gives is verified like any duration (:func:`minimum_duration`).
 
 Below which duration can no candidate be feasible (:func:`duration_floor`)? The peak and
 speed bound of sizer.sizing.move.peak_duration (book sec. 6.1.1, eq. 6.2 in the
@@ -92,8 +139,10 @@ def evaluate(calculator: CycleModel, limits: Limits, T: np.ndarray, peaks: bool 
     return metrics, checks
 
 
-def is_purely_inertial(calculator: CycleModel) -> bool:
-    """The case of eq. (6.2): inertial load, ideal transmission, plain stages.
+def has_constant_torques(calculator: CycleModel) -> bool:
+    """The case of the closed forms (module docs): ideal transmission, plain stages, no
+    damping; the load may have Coulomb friction and a constant torque, so the motor torque
+    along each move is its inertial part plus a constant.
 
     The motors' regions are read as their flat part (MotorArrays.flat_speed): exact for
     the book's rectangles, and for extended regions wherever the move's peak speed stays
@@ -103,8 +152,15 @@ def is_purely_inertial(calculator: CycleModel) -> bool:
     stages_plain = all(bool(np.all(s.preload_torque == 0.0)) and s.max_input_speed is None
                        and s.rated_output_torque is None and s.peak_output_torque is None
                        for s in drive.stages)
-    return (load.damping == 0.0 and load.friction == 0.0 and load.torque == 0.0
-            and drive.is_ideal and stages_plain and bool(np.all(motors.damping == 0.0)))
+    return (load.damping == 0.0 and drive.is_ideal and stages_plain
+            and bool(np.all(motors.damping == 0.0)))
+
+
+def is_purely_inertial(calculator: CycleModel) -> bool:
+    """The case of eq. (6.2) as the book has it: :func:`has_constant_torques` without
+    friction or a constant load (no constant torque at all)."""
+    load = calculator.drive.load
+    return load.friction == 0.0 and load.torque == 0.0 and has_constant_torques(calculator)
 
 
 def minimum_duration(calculator: CycleModel, limits: Limits) -> DurationSolution:
@@ -114,15 +170,17 @@ def minimum_duration(calculator: CycleModel, limits: Limits) -> DurationSolution
     model, or rounding beyond the tolerance) the search starts from it.
     """
     move = calculator.law_move()
-    if move is not None and is_purely_inertial(move):
-        # a law move rest-to-rest: its closed form (only its law has the coefficients)
-        T = closed_form_duration(move, limits)
+    if move is not None and has_constant_torques(move):
+        # a law move rest-to-rest: its closed form (only its law has the coefficients);
+        # where it does not decide (DurationBounds.undecided) the search
+        bounds = duration_bounds(move, limits)
+        T = closed_form_duration(move, limits, bounds)
         method = "closed form (eq. 6.2)"
         finite = np.isfinite(T)
         probe = np.where(finite, T, _largest_tried(calculator))
         metrics, checks = evaluate(calculator, limits, probe)
         missed = finite & ~feasible(checks)
-        beyond = beyond_flat_part(move, limits, T)
+        beyond = beyond_flat_part(move, limits, T) | bounds.undecided
         if not (missed | beyond).any():  # the closed form is the answer: no search
             ok = finite & feasible(checks)
             return DurationSolution(np.where(ok, probe, np.nan), ok, metrics, checks, method)
@@ -558,6 +616,53 @@ def _largest_tried(calculator: CycleModel) -> np.ndarray:
     return calculator.initial_guess() * 2.0**EXPANSIONS
 
 
+LEAST_SQUARE = 12.0
+"""The least int_0^1 q_N''^2 of a rest-to-rest law (the cubic's, q_N'' = 6 - 12 tau: the
+Euler-Lagrange equation of the integral makes q_N'' linear), so C_a_rms^2 >= 12."""
+
+EDGE = 1e-3
+"""Where a denominator of the closed forms with constant torques, tau_p' - c or tau_c'^2 -
+mean c^2, is at most EDGE times its first term the crossing is ill-conditioned (a check
+that barely moves with T, a relative error of about 1e-16/EDGE in T): the closed form
+leaves those candidates to the search (module docs)."""
+
+
+@dataclass(frozen=True)
+class ConstantTorques:
+    """The constant parts of the motor torque with :func:`has_constant_torques` (module
+    docs), per candidate: ``up`` = max_i c_i and ``down`` = max_i (-c_i) over the moves,
+    ``mean_square`` = mean_i c_i^2, ``hold`` the torque held in the dwells (0 without a
+    dwell)."""
+
+    up: np.ndarray
+    down: np.ndarray
+    mean_square: np.ndarray
+    hold: np.ndarray
+
+    @property
+    def none(self) -> np.ndarray:
+        """Where there is no constant torque at all: eq. (6.2) as the book has it."""
+        return (self.mean_square == 0.0) & (self.hold == 0.0)
+
+
+def constant_torques(calculator: CycleCalculator) -> ConstantTorques | None:
+    """The c_i of the task's moves, from the drive's own reflection of the load
+    (Drive.linear_chain for each move's direction: friction against the motion, the
+    external load with its sign) and the torque the dwells hold (Drive.holding_torques);
+    None where nothing constant is there to reflect (the book's case)."""
+    drive, n = calculator.drive, len(calculator.motors)
+    load = drive.load
+    if load.friction == 0.0 and load.torque == 0.0 \
+            and all(bool(np.all(s.preload_torque == 0.0)) for s in drive.stages):
+        return None
+    c = np.stack([np.broadcast_to(np.asarray(drive.linear_chain(d)[2], dtype=float), (n,))
+                  for d in calculator.directions])
+    hold = np.broadcast_to(np.asarray(drive.holding_torques()[0], dtype=float), (n,)) \
+        if calculator.task.dwell > 0.0 else np.zeros(n)
+    return ConstantTorques(c.max(axis=0), (-c).max(axis=0),
+                           np.square(c).sum(axis=0) / len(c), hold)
+
+
 @dataclass(frozen=True)
 class DurationBounds:
     """Per-candidate scales of the bounds of eq. (6.2), margins applied, SI.
@@ -567,44 +672,111 @@ class DurationBounds:
     cbrt(C_j*jerk). The load's own limits merge into the motor's: a load speed limit
     into ``speed`` (both multiply C_v), a load acceleration limit into ``torque``. 0 means
     no such limit; inf that no duration meets it.
+
+    With constant torques (module docs) ``torque`` is S_A = J_t K h / (tau_p' - max|c|)
+    (a symmetric law: max q_N'' = -min q_N'' = C_a), ``rise`` and ``fall`` its parts for
+    the accelerating and the braking stretches (J_t K h / (tau_p' - up), J_t K h /
+    (tau_p' - down)), which a law with max q_N'' = a and min q_N'' = -b bounds by
+    T^2 >= max(a rise, b fall, C_a acceleration), ``acceleration`` the load's limit's
+    scale h / a_max (0: none); ``rms`` is S_R' and ``dwell`` t_d' (per candidate where
+    a constant is not 0). ``undecided``: where the closed forms do not decide (module
+    docs): searched.
     """
 
     speed: np.ndarray
     torque: np.ndarray
     rms: np.ndarray
     jerk: np.ndarray
-    dwell: float
+    dwell: float | np.ndarray
+    rise: np.ndarray
+    fall: np.ndarray
+    acceleration: np.ndarray
+    undecided: np.ndarray
+    constant: bool
+    """Some candidate has a constant torque (else eq. 6.2 as the book has it)."""
 
 
 def duration_bounds(calculator: CycleCalculator, limits: Limits) -> DurationBounds:
-    """The scales of eq. (6.2) for the candidates of a calculator (its law unused)."""
+    """The scales of eq. (6.2) for the candidates of a calculator (its law unused), with
+    :func:`has_constant_torques` (module docs)."""
     drive, motors, task = calculator.drive, calculator.motors, calculator.task
-    k, h = drive.ratio, calculator.h
+    k, h, n = drive.ratio, calculator.h, len(motors)
     J_t = motors.inertia + drive.transmission_inertia + drive.reflected_load_inertia
     speed = motors.flat_speed * (1.0 - limits.speed_margin)
     tau_p = motors.intermittent.torques[:, 0] * (1.0 - limits.torque_margin)
     tau_c = motors.continuous.torques[:, 0] * (1.0 - limits.torque_margin)
+    const = constant_torques(calculator)
     with np.errstate(divide="ignore", invalid="ignore"):
         s_v = k * h / speed
-        s_a = k * h * J_t / tau_p
         s_r = J_t * k * h / tau_c
+        if const is None:  # eq. (6.2) as the book has it
+            rise = fall = k * h * J_t / tau_p
+        else:  # tau_p - 0 = tau_p where c = 0: the same numbers
+            rise = k * h * J_t / (tau_p - const.up)
+            fall = k * h * J_t / (tau_p - const.down)
+    undecided = np.zeros(n, dtype=bool)
+    dwell: float | np.ndarray = task.dwell
+    constant = const is not None and not bool(const.none.all())
+    if constant:
+        assert const is not None
+        plain = const.none
+        # the checks pass at value <= (1 - margin + TOLERANCE) limit: a constant above
+        # that (with a hair for rounding) fails them at every duration
+        relax = (1.0 - limits.torque_margin + TOLERANCE) * (1.0 + 1e-9)
+        top_p = motors.intermittent.torques[:, 0] * relax
+        top_c = motors.continuous.torques[:, 0] * relax
+        held = const.hold > motors.intermittent.limit(np.zeros(n)) * relax
+        sides, stopped = [], held.copy()  # stopped: no duration passes the peaks
+        for side, c in ((rise, const.up), (fall, const.down)):
+            blocked = (c > top_p) | held
+            undecided |= (c != 0.0) & ~blocked & ~(tau_p - c > EDGE * tau_p)
+            sides.append(np.where(blocked, np.inf, side))
+            stopped |= blocked
+        rise, fall = sides
+        room = tau_c * tau_c - const.mean_square  # A of the module docs
+        with np.errstate(divide="ignore", invalid="ignore"):
+            s_r = np.where(plain, s_r, J_t * k * h / np.sqrt(room))
+            dwell = np.where(plain, task.dwell,
+                             task.dwell * (tau_c * tau_c - const.hold**2) / room)
+        least = const.mean_square if task.dwell == 0.0 else \
+            np.minimum(const.mean_square, const.hold**2)
+        blocked = ~plain & (least > top_c * top_c)
+        # a window needs max_T T^3 (A T + B) = (27/256) B^4 / |A|^3 >= X (A < 0 < B, the
+        # limit relaxed), X at least (J_t K h)^2 12 for any law (module docs)
+        wide = top_c * top_c - const.mean_square
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            reach = 27.0 / 256.0 * (task.dwell * (top_c * top_c - const.hold**2)) ** 4 \
+                / np.abs(wide) ** 3
+        blocked |= ~plain & (wide < 0.0) & (reach < LEAST_SQUARE * (J_t * k * h) ** 2
+                                             * (1.0 - 1e-9))
+        undecided |= ~plain & ~blocked & ~(room > EDGE * tau_c * tau_c)
+        s_r = np.where(blocked, np.inf, s_r)
+        undecided &= ~(blocked | stopped)  # no duration at all: decided
+        dwell = np.where(blocked | undecided, 0.0, dwell)
+    s_a = np.maximum(rise, fall) if constant else rise
+    s_acc = np.zeros(n)
     if limits.max_speed is not None:
         s_v = np.maximum(s_v, h / limits.max_speed)
     if limits.max_acceleration is not None:
+        s_acc = np.full(n, h / limits.max_acceleration)
         s_a = np.maximum(s_a, h / limits.max_acceleration)
-    s_j = np.full(len(motors), h / limits.max_jerk if limits.max_jerk is not None else 0.0)
-    return DurationBounds(s_v, s_a, s_r, s_j, task.dwell)
+    s_j = np.full(n, h / limits.max_jerk if limits.max_jerk is not None else 0.0)
+    return DurationBounds(s_v, s_a, s_r, s_j, dwell, rise, fall, s_acc, undecided, constant)
 
 
-def closed_form_duration(calculator: CycleCalculator, limits: Limits) -> np.ndarray:
-    """Eq. (6.2) per candidate, with the dwell in the RMS and the user's load limits.
+def closed_form_duration(calculator: CycleCalculator, limits: Limits,
+                         bounds: DurationBounds | None = None) -> np.ndarray:
+    """Eq. (6.2) per candidate, with the dwell in the RMS, the user's load limits and
+    the constant torques (module docs); nan where it does not decide
+    (DurationBounds.undecided). ``bounds``: :func:`duration_bounds` where known.
 
     The bounds are those of the checks that depend on T (speed, peak, RMS, load speed,
     acceleration and jerk); a check no duration changes (the inertia ratio) is left to
-    the verdict at the bound.
+    the verdict at the bound. With a constant torque the peak bound reads the law's
+    largest and smallest q_N'' (its linear peaks, as the evaluation does).
     """
     c = calculator.law.coefficients
-    s = duration_bounds(calculator, limits)
+    s = duration_bounds(calculator, limits) if bounds is None else bounds
     rms = rms_duration(c.C_a_rms * s.rms, s.dwell)
     if limits.max_jerk is None:
         jerk = np.zeros_like(s.jerk)
@@ -612,12 +784,21 @@ def closed_form_duration(calculator: CycleCalculator, limits: Limits) -> np.ndar
         jerk = np.cbrt(c.C_j * s.jerk)
     else:
         jerk = np.full_like(s.jerk, np.inf)
-    return np.max(np.stack([c.C_v * s.speed, np.sqrt(c.C_a * s.torque), rms, jerk]), axis=0)
+    if s.constant:
+        extreme = calculator.law.linear_peaks.maximum(np.array([1.0, -1.0]), np.zeros(2))
+        most, least = (float(v) for v in extreme.value)  # max q_N'', -min q_N''
+        torque = np.sqrt(np.maximum(np.maximum(most * s.rise, least * s.fall),
+                                    c.C_a * s.acceleration))
+    else:
+        torque = np.sqrt(c.C_a * s.torque)
+    T = np.max(np.stack([c.C_v * s.speed, torque, rms, jerk]), axis=0)
+    return np.where(s.undecided, np.nan, T)
 
 
-def rms_duration(scale: np.ndarray, dwell: float) -> np.ndarray:
+def rms_duration(scale: np.ndarray, dwell: float | np.ndarray) -> np.ndarray:
     """Smallest T with T^3 (T + dwell) >= scale^2 per candidate (scale = J_t k h C_a_rms /
-    tau_c), vectorized.
+    tau_c), vectorized; ``dwell`` one number or one per candidate (t_d' of the module
+    docs, negative where the hold exceeds the rating: then T > -dwell).
 
     Solved on logarithms, so that no power leaves the float range (scale up to 1e308):
     in x = log T the excess f = 3x + log(e^x + dwell) - 2 log(scale) rises (slope
@@ -625,9 +806,17 @@ def rms_duration(scale: np.ndarray, dwell: float) -> np.ndarray:
     dwell)^2 > 0), so Newton's method started where f >= 0 (the smaller of the dwell-free
     bound sqrt(scale) and the dwell-dominated one cbrt(scale^2/dwell)) falls monotonically
     to the root, quadratically: five or six steps from within a factor of two. It stops
-    where a step no longer lowers x (rounding), a few ulps above the root at most.
+    where a step no longer lowers x (rounding), a few ulps above the root at most. A
+    negative dwell -D is solved in y = log(T - D): g = y + 3 log(e^y + D) - 2 log(scale)
+    rises (slope between 1 and 4) and is convex the same way, from y with e^y >=
+    max(D, 2^(1/4) sqrt(scale)) (there T^3 (T - D) >= (T - D)^4 >= scale^2).
     """
     scale = np.asarray(scale, dtype=float)
+    if np.ndim(dwell) > 0:
+        return _rms_durations(scale, np.asarray(dwell, dtype=float))
+    dwell = float(dwell)
+    if dwell < 0.0:
+        return _rms_durations(scale, np.full(scale.shape, dwell))
     out = np.where(np.isfinite(scale), 0.0, np.inf)
     if dwell == 0.0:
         with np.errstate(invalid="ignore"):
@@ -647,6 +836,38 @@ def rms_duration(scale: np.ndarray, dwell: float) -> np.ndarray:
         x = np.where(lower, new, x)
     out[solve] = np.exp(x)
     return out
+
+
+def _rms_durations(scale: np.ndarray, dwell: np.ndarray) -> np.ndarray:
+    """:func:`rms_duration` with a dwell per element (broadcast with ``scale``)."""
+    shape = np.broadcast_shapes(np.shape(scale), np.shape(dwell))
+    scale, dwell = (np.broadcast_to(x, shape).reshape(-1) for x in (scale, dwell))
+    out = np.where(np.isfinite(scale), np.maximum(-dwell, 0.0), np.inf)  # scale 0: T >= -dwell
+    solve = np.isfinite(scale) & (scale > 0.0) & np.isfinite(dwell)
+    with np.errstate(invalid="ignore"):
+        out[solve & (dwell == 0.0)] = np.sqrt(scale[solve & (dwell == 0.0)])
+    for positive in (True, False):
+        pick = solve & ((dwell > 0.0) if positive else (dwell < 0.0))
+        if not pick.any():
+            continue
+        d = dwell[pick]
+        log_target = 2.0 * np.log(scale[pick])
+        if positive:  # x = log T (rms_duration)
+            x = np.minimum(0.25 * log_target, (log_target - np.log(d)) / 3.0) + 1e-9
+        else:  # y = log(T - D), D = -d
+            x = np.maximum(np.log(-d), 0.25 * math.log(2.0) + 0.25 * log_target) + 1e-9
+        for _ in range(MAX_NEWTON):
+            e = np.exp(x)
+            if positive:
+                new = x - (3.0 * x + np.log(e + d) - log_target) / (3.0 + e / (e + d))
+            else:
+                new = x - (x + 3.0 * np.log(e - d) - log_target) / (1.0 + 3.0 * e / (e - d))
+            lower = new < x
+            if not lower.any():
+                break
+            x = np.where(lower, new, x)
+        out[pick] = np.exp(x) if positive else np.exp(x) - d
+    return out.reshape(shape)
 
 
 MAX_NEWTON = 60
