@@ -365,7 +365,10 @@ def _table(rows: list[dict[str, Any]], ids: list[str], columns: dict[str, Any],
               brake_inertia=numbers["brake_inertia"][i] or 0.0,
               thermal_time_constant=numbers["thermal_time_constant"][i],
               max_winding_temperature_rise=numbers["max_winding_temperature_rise"][i],
-              torque_current_curve=currents[i], provenance=row_provenance[i])
+              torque_current_curve=currents[i], radial_load=numbers["radial_load"][i],
+              axial_load=numbers["axial_load"][i],
+              radial_load_point=numbers["radial_load_point"][i],
+              provenance=row_provenance[i])
         for i in range(len(rows))]
     idealized = {m: is_idealized(m) for m in set(makers)}
     figures = Figures(*(columns[key] for key in ("inertia", "continuous_torque", "peak_torque",

@@ -631,7 +631,9 @@ def motor_of(item: Any) -> Motor:
         thermal_time_constant=item.thermal_time_constant,
         max_winding_temperature_rise=item.max_winding_temperature_rise,
         torque_current_curve=None if item.torque_current_curve is None else tuple(
-            (p.current, p.torque) for p in item.torque_current_curve))
+            (p.current, p.torque) for p in item.torque_current_curve),
+        radial_load=item.radial_load, axial_load=item.axial_load,
+        radial_load_point=item.radial_load_point)
 
 
 def line_to_line(winding: float | None, phase: float | None) -> float | None:

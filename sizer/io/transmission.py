@@ -34,7 +34,7 @@ from sizer.io.validation import validate
 from sizer.io.yaml_source import YamlSource, read_yaml
 from sizer.mechanics import ball_screw, belt, gearbox, rack_pinion
 from sizer.mechanics.stages import ScrewRatings
-from sizer.model.domain import GearboxOption, RatioChoice, Stage, Transmission
+from sizer.model.domain import GearboxOption, RatioChoice, ShaftLoad, Stage, Transmission
 
 
 def build_transmission(items: Sequence[Any] | None, source: YamlSource, folder: Path,
@@ -74,6 +74,10 @@ def build_transmission(items: Sequence[Any] | None, source: YamlSource, folder: 
             raise source.error(f"a {item.type} moves a linear axis, but the displacement is an "
                                f"angle (give it as a length, e.g. '200 mm')", at(index, "type"))
         stage, free = _stage(item, source, at, index, linear and last, folder, files)
+        shaft = _shaft_load(item, source, at(index), first=not stages,
+                            last=last and linear)
+        if shaft is not None:
+            stage = dataclasses.replace(stage, shaft_load=shaft)
         if free is not None:
             if choice is not None:
                 raise source.error(f"only one stage may have a free ratio (the one at line "
@@ -159,6 +163,51 @@ def _stage(item: Any, source: YamlSource, at, index: int, linear_output: bool,
         return rack_pinion(radius, inertia=item.inertia, efficiency=item.efficiency,
                            name=name), None
     raise AssertionError(f"unknown stage {item!r}")
+
+
+DEFAULT_PRESSURE_ANGLE = math.radians(20.0)
+"""A spur pinion's pressure angle unless given: the standard basic rack (ISO 53)."""
+
+
+def _shaft_load(item: Any, source: YamlSource, at: tuple[Any, ...], first: bool,
+                last: bool) -> ShaftLoad | None:
+    """What a belt, pinion or ball screw marked ``on_motor_shaft`` puts on the motor's
+    shaft (docs/shaft-loads.md), None for any other stage; the fields each kind needs."""
+    belt_only = ("pretension", "wrap_angle")
+    if isinstance(item, BeltInput):
+        given = [f for f in belt_only if getattr(item, f) is not None]
+        if given and not item.on_motor_shaft:
+            raise source.error(f"{given[0]} is for the belt's load on the motor shaft: add "
+                               f"on_motor_shaft: true", (*at, given[0]))
+    if isinstance(item, RackPinionInput) and item.pressure_angle is not None \
+            and not item.on_motor_shaft:
+        raise source.error("pressure_angle is for the pinion's load on the motor shaft: add "
+                           "on_motor_shaft: true", (*at, "pressure_angle"))
+    if not getattr(item, "on_motor_shaft", False):
+        return None
+    if not first:
+        raise source.error(f"on_motor_shaft: the {item.type} must be the first stage (on "
+                           f"the motor's shaft)", (*at, "on_motor_shaft"))
+    if isinstance(item, BeltInput):
+        if item.pretension is None:
+            raise source.error("a belt on the motor shaft needs its pretension (the static "
+                               "tension per strand as installed, e.g. '200 N')",
+                               (*at, "on_motor_shaft"))
+        if item.driver_diameter is None:
+            raise source.error("a belt on the motor shaft needs driver_diameter (its pull "
+                               "is the torque over d/2)", (*at, "on_motor_shaft"))
+        wrap = math.pi if item.wrap_angle is None else item.wrap_angle
+        return ShaftLoad("belt", item.driver_diameter, item.pretension, wrap)
+    if isinstance(item, RackPinionInput):
+        radius = item.pitch_radius if item.pitch_radius is not None \
+            else 0.5 * (item.pitch_diameter or 0.0)
+        angle = DEFAULT_PRESSURE_ANGLE if item.pressure_angle is None \
+            else item.pressure_angle
+        return ShaftLoad("pinion", 2.0 * radius, pressure_angle=angle)
+    if not last:
+        raise source.error("on_motor_shaft: a ball screw's axial force is the load's when "
+                           "it is the last stage of a linear axis", (*at, "on_motor_shaft"))
+    return ShaftLoad("screw")
 
 
 SHAFT_FIELDS = ("mounting", "root_diameter", "support_distance", "buckling_length",

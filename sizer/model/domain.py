@@ -290,6 +290,25 @@ class Stage:
     rated_output_torque: float | None = None
     peak_output_torque: float | None = None
     backlash: float | None = None
+    shaft_load: ShaftLoad | None = None
+    """What this stage puts on the motor's shaft when it sits on it (a belt's driver
+    pulley, a pinion, a ball screw coupled directly); None: nothing the motor's bearings
+    carry is known (sizer.mechanics.shaft_loads, docs/shaft-loads.md)."""
+
+
+@dataclass(frozen=True)
+class ShaftLoad:
+    """The first stage's loads on the motor's shaft (docs/shaft-loads.md): ``kind`` belt
+    (its driver pulley of pitch ``diameter`` m on the shaft, static tension ``pretension``
+    N per strand, ``wrap_angle`` rad on the pulley), pinion (pitch ``diameter``,
+    ``pressure_angle`` rad) or screw (a ball screw coupled directly whose axial force the
+    motor's bearing takes)."""
+
+    kind: Literal["belt", "pinion", "screw"]
+    diameter: float = 0.0
+    pretension: float = 0.0
+    wrap_angle: float = math.pi
+    pressure_angle: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -479,6 +498,13 @@ class Motor:
     torque_current_curve: tuple[tuple[float, float], ...] | None = None
     """(current A rms, torque N*m) points, both strictly increasing: torque vs current with
     saturation; None: torque = k_t * current."""
+    radial_load: float | None = None
+    """N: the permissible radial load on the shaft (the maker's rating; at
+    ``radial_load_point`` where it states one); None: not published."""
+    axial_load: float | None = None
+    """N: the permissible axial (thrust) load on the shaft; None: not published."""
+    radial_load_point: float | None = None
+    """m: from the flange to where ``radial_load`` acts, as the maker states it."""
     provenance: FigureSources | None = field(default=None, compare=False, repr=False)
     """Where each figure comes from (a catalog's ``sources:``); None: ungraded."""
 

@@ -19,7 +19,7 @@ although rounding leaves it one ulp above; a requirement 1e-6 (relative) above f
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from enum import StrEnum
 from functools import cached_property
@@ -28,7 +28,7 @@ import numpy as np
 
 from sizer.mechanics import Drive
 from sizer.mechanics.stages import BallScrewStage, ScrewRatings
-from sizer.model.domain import Limits
+from sizer.model.domain import Limits, Motor, ShaftLoad, Transmission
 from sizer.sizing.candidates import MotorArrays
 from sizer.sizing.evaluation import CycleMetrics
 
@@ -58,6 +58,8 @@ class CheckName(StrEnum):
     PRESSURE_ANGLE = "pressure_angle"
     CAM_CURVATURE = "cam_curvature"
     CAM_CONTACT = "cam_contact"
+    SHAFT_RADIAL = "shaft_radial"
+    SHAFT_AXIAL = "shaft_axial"
 
 
 @dataclass(frozen=True, eq=False)
@@ -266,9 +268,12 @@ PRESSURE_ANGLE = OwnCheckKind(CheckName.PRESSURE_ANGLE, "rad")
 CAM_CURVATURE = OwnCheckKind(CheckName.CAM_CURVATURE, "m")
 CAM_CONTACT = OwnCheckKind(CheckName.CAM_CONTACT, "N")
 """A disc cam's checks (:func:`cam_checks`, docs/disc-cams.md)."""
+SHAFT_RADIAL = OwnCheckKind(CheckName.SHAFT_RADIAL, "N")
+SHAFT_AXIAL = OwnCheckKind(CheckName.SHAFT_AXIAL, "N")
+"""The loads on the motor's shaft against its catalog ratings (:func:`shaft_checks`)."""
 OWN_CHECKS = (HOLDING_BRAKE, DRIVE_PEAK_CURRENT, DRIVE_RMS_CURRENT, RESIDUAL_VIBRATION,
               BRAKING_RESISTOR_POWER, WINDING_TEMPERATURE_RISE, DEAD_POINT, PRESSURE_ANGLE,
-              CAM_CURVATURE, CAM_CONTACT)
+              CAM_CURVATURE, CAM_CONTACT, SHAFT_RADIAL, SHAFT_AXIAL)
 """The kinds evaluated by their own code, in the order results list them."""
 
 
@@ -283,7 +288,77 @@ def evaluate_checks(metrics: CycleMetrics, motors: MotorArrays, drive: Drive,
     if brake is not None:
         checks.append(brake)
     checks.extend(cam_checks(x))
+    checks.extend(shaft_checks(x))
     return checks
+
+
+SHAFT_RATINGS = ((SHAFT_RADIAL, "radial_load", "radial"), (SHAFT_AXIAL, "axial_load", "axial"))
+"""Each shaft check, the Motor rating it reads and the ShaftForces figure it checks."""
+
+
+def shaft_checks(x: CheckInput) -> list[CheckArrays]:
+    """The loads the first stage puts on the motor's shaft (its ``shaft_load``: a belt's
+    pretension and pull, a pinion's tooth force, a directly coupled ball screw's axial
+    force; sizer.mechanics.shaft_loads) against the motor's catalog ratings, with no
+    further margin (the makers' ratings are the limits):
+
+    - ``shaft_radial``: the peak radial load against ``radial_load`` (N);
+    - ``shaft_axial``: the peak axial load against ``axial_load`` (N).
+
+    The torque is the motor's peak |torque| of the cycle, the screw's force the load's
+    peak |force| (the screw being the last stage). A check applies to the candidates whose
+    motor gives the rating; none where no motor gives it or no stage loads the shaft
+    (:func:`shaft_notes` says which)."""
+    from sizer.mechanics.shaft_loads import shaft_forces
+
+    load = first_shaft_load(x.drive)
+    if load is None:
+        return []
+    forces = shaft_forces(load, x.metrics.peak_torque, x.metrics.load_torque)
+    out = []
+    for kind, rating, figure in SHAFT_RATINGS:
+        force = getattr(forces, figure)
+        limit = _motor_rating(x.motors, rating)
+        has = np.isfinite(limit)
+        if force is None or not has.any():
+            continue
+        out.append(kind.arrays(np.broadcast_to(force, x.ones.shape).copy(),
+                               np.where(has, limit, 1.0), 0.0,
+                               None if has.all() else has))
+    return out
+
+
+def first_shaft_load(drive: Drive) -> ShaftLoad | None:
+    """The first stage's load on the motor's shaft (None: none known)."""
+    stages = drive.transmission.stages
+    return stages[0].shaft_load if stages else None
+
+
+def _motor_rating(motors: MotorArrays, name: str) -> np.ndarray:
+    """A motor rating per candidate, NaN where its catalog leaves it out."""
+    column = np.array([np.nan if (v := getattr(m, name)) is None else v
+                       for m in motors.catalog], dtype=float)
+    return column[motors.index]
+
+
+def shaft_notes(motors: Sequence[Motor], transmission: Transmission) -> list[str]:
+    """What the shaft checks left out: the motors whose catalogs give no rating for a load
+    the first stage puts on the shaft (no guessed limit: no check)."""
+    stages = transmission.stages
+    load = stages[0].shaft_load if stages else None
+    if load is None:
+        return []
+    out = []
+    for _, rating, figure in SHAFT_RATINGS:
+        if (figure == "axial") != (load.kind == "screw"):
+            continue
+        missing = [m.id for m in motors if getattr(m, rating) is None]
+        if missing:
+            shown = ", ".join(missing[:5]) + (f" and {len(missing) - 5} more"
+                                               if len(missing) > 5 else "")
+            out.append(f"no shaft_{figure} check for {shown}: the catalog gives no "
+                       f"{rating}")
+    return out
 
 
 def cam_checks(x: CheckInput) -> list[CheckArrays]:

@@ -43,7 +43,7 @@ from sizer.laws import LawChoice, MotionLaw, law_choice
 from sizer.model.cycle import Dwell
 from sizer.model.domain import Design, Motor
 from sizer.sizing.candidates import Candidates, MotorArrays
-from sizer.sizing.checks import TOLERANCE, CheckArrays, CheckName
+from sizer.sizing.checks import TOLERANCE, CheckArrays, CheckName, shaft_notes
 from sizer.sizing.checks import feasible as all_pass
 from sizer.sizing.choices import SharedByLaws, choose_shape
 from sizer.sizing.cycle import (
@@ -375,6 +375,7 @@ def assumptions(design: Design) -> tuple[str, ...]:
         else:
             notes.append("efficiency applied in the direction of power flow")
     notes.extend(energy_notes(design))
+    notes.extend(shaft_notes(design.motors, design.transmission))
     if design.limits.inertia_ratio is not None:
         if design.limits.inertia_ratio_of == "load":
             notes.append("inertia ratio: the load alone reflected to the motor, over the "

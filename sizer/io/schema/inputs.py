@@ -173,6 +173,15 @@ class MotorInput(Strict):
     torque_current_curve: list[TorqueCurrentPoint] | None = Field(
         None, description="torque vs current (saturation), [current, torque] points, both "
                           "strictly increasing; without it torque = k_t x current")
+    radial_load: Annotated[float, Ranged(
+        "shaft_load", note="the maker's permissible radial load on the shaft, e.g. "
+                           "'245 N' (docs/shaft-loads.md)")] | None = None
+    axial_load: Annotated[float, Ranged(
+        "shaft_load", note="the maker's permissible axial (thrust) load on the "
+                           "shaft")] | None = None
+    radial_load_point: Annotated[float, Ranged(
+        "shaft_load_point", note="from the flange to where radial_load acts, as the "
+                                 "maker states it")] | None = None
     figure_sources: FigureSourcesInput | None = None
     notes: Text | None = Field(None, description="free text, ignored by the tool")
 

@@ -198,6 +198,12 @@ RANGES: dict[str, Range] = {
                         "0 = none", zero=True),
     "pitch_radius": _r("length", 1e-4, 10.0, "0.1 mm to 10 m: ratio 1/r in [0.1, 10,000] "
                        "rad/m (r = 1 mm is 1000 rad/m)"),
+    "belt_pretension": _r("force", 1e-3, 1e7, "a belt's static tension per strand, as "
+                          "installed: 1 mN to 10 MN"),
+    "wrap_angle": _r("angle", 1e-3, 2.0 * math.pi, "the belt's arc of contact on the "
+                     "driver pulley, up to a full turn"),
+    "gear_pressure_angle": _r("angle", 1e-3, 1.0, "a spur pinion's pressure angle (20 deg "
+                              "standard, 14.5 deg old), below 57 deg"),
     "pitch_diameter": _r("length", 2e-4, 20.0, "twice the pitch radius"),
     # motors
     "motor_inertia": _r("inertia", 1e-12, 1e3, "a micro motor (1e-12 kg*m^2) to a 1000 "
@@ -229,6 +235,10 @@ RANGES: dict[str, Range] = {
     "supply_voltage": _r("voltage", 1.0, 1e4, "1 V to 10 kV AC, line to line (RMS)"),
     "brake_holding_torque": _r("torque", 1e-6, 1e6, "a holding brake's static friction torque "
                                "at the motor shaft, as the motors' torques"),
+    "shaft_load": _r("force", 1e-3, 1e7, "a motor shaft's permissible radial or axial "
+                     "load: 1 mN (a micro motor) to 10 MN"),
+    "shaft_load_point": _r("length", 1e-4, 10.0, "0.1 mm to 10 m from the flange",
+                           zero=True),
     "brake_inertia": _r("inertia", 1e-12, 1e3, "what the brake adds to the rotor's inertia; "
                         "0 = negligible", zero=True),
     "thermal_time_constant": _r("time", 0.1, 1e6, "0.1 s (a winding alone) to 11.6 days; "

@@ -130,6 +130,15 @@ class BeltInput(Strict):
     driven_inertia: Inertia = 0.0
     belt_mass: Annotated[float, Ranged("belt_mass")] = 0.0
     efficiency: Efficiency = 1.0
+    on_motor_shaft: bool = Field(
+        False, description="the driver pulley sits on the motor's shaft (the first stage): "
+                           "its radial load is checked against the motor's radial_load "
+                           "(needs pretension and driver_diameter)")
+    pretension: Annotated[float, Ranged(
+        "belt_pretension", note="static tension per strand as installed, e.g. "
+                                "'200 N'")] | None = None
+    wrap_angle: Annotated[float, Ranged(
+        "wrap_angle", note="on the driver pulley; 180 deg for equal pulleys")] | None = None
     name: Text | None = None
 
 
@@ -169,6 +178,10 @@ class BallScrewInput(Strict):
     load_factor: Annotated[float, Ranged("screw_load_factor")] = 1.0
     required_life: Annotated[float, Ranged(
         "screw_life", note="the L10 life the screw must reach, e.g. '20000 h'")] | None = None
+    on_motor_shaft: bool = Field(
+        False, description="the screw is coupled directly to the motor and the motor's "
+                           "bearing takes its axial force: checked against the motor's "
+                           "axial_load")
     name: Text | None = None
 
 
@@ -180,6 +193,11 @@ class RackPinionInput(Strict):
     pitch_diameter: Annotated[float, Ranged("pitch_diameter")] | None = None
     inertia: Inertia = 0.0
     efficiency: Efficiency = 1.0
+    on_motor_shaft: bool = Field(
+        False, description="the pinion sits on the motor's shaft (the only stage): its "
+                           "tooth force is checked against the motor's radial_load")
+    pressure_angle: Annotated[float, Ranged(
+        "gear_pressure_angle", note="default 20 deg (the standard basic rack)")] | None = None
     name: Text | None = None
 
 
