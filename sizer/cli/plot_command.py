@@ -21,7 +21,10 @@ from sizer.errors import UserError
 from sizer.report.printable import printable
 
 if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
     from sizer.model.domain import Design
+    from sizer.report.plots.cam_plots import CamView
     from sizer.sizing import CandidateResult
 
 FigureOutput = Annotated[
@@ -89,6 +92,16 @@ def plot(
         help="A design with a linkage (slider_crank, four_bar): draw its transmission "
              "ratio and the motor torque over the crank angle instead, dead points "
              "marked.")] = False,
+    over_cam: Annotated[bool, typer.Option(
+        "--cam",
+        help="A design with a disc_cam: draw the follower's lift, velocity, acceleration "
+             "and jerk over the cam angle and the cam's profile (pitch curve, profile, "
+             "base circle, roller) instead; each law its own cam.")] = False,
+    points: Annotated[Path | None, typer.Option(
+        "--points", dir_okay=False, metavar="FILE.csv",
+        help="With --cam: also write the cam's profile as points (x, y of the pitch curve "
+             "and of the profile in mm, every 0.1 deg of cam angle); one law.",
+        show_default=False)] = None,
     speed_unit: Annotated[str, typer.Option(
         "--speed-unit", metavar="rpm|rad/s", help="Unit of the speed axis.")] = "rpm",
     samples: Annotated[int, typer.Option(
@@ -112,7 +125,10 @@ def plot(
     the title gives the peak, rms and speed margins. --acceleration adds the
     speed-acceleration plane (Fig. 6.7). A cycle of segments ('cycle:') has the start of
     each segment marked on the task curve. --time draws motor torque and speed over time
-    instead, each segment of the cycle shaded and named.
+    instead, each segment of the cycle shaded and named. --cam (a design with a
+    disc_cam) draws the follower's lift, velocity, acceleration and jerk over the cam angle
+    and the cam's profile, each law's cam as the sizing resolved it; --points FILE.csv
+    also writes its profile as points (docs/disc-cams.md).
 
     Without --motor and --law: the design's `check` pair if it names one, else the
     best-ranked feasible pair.
@@ -127,6 +143,8 @@ def plot(
         --law 'trapezoidal(alpha=0.12732200375003505)' --speed-unit rad/s -o fig6_2.svg
 
         sizer plot examples/indexing-table-gearboxes.yaml --front -o front.png
+
+        sizer plot examples/disc-cam.yaml --cam -o cam.png --points cam.csv
     """
     from sizer.cli.output_guard import check_output, check_outputs
     from sizer.report.cycle_summary import duration_name as cycle_duration_name
@@ -143,9 +161,13 @@ def plot(
     if front or front_by is not None:
         _plot_front(design, output, catalog, motor, law, front_by,
                     refused={"--acceleration": acceleration, "--time": over_time,
-                             "--linkage": over_crank, "--front": not front},
+                             "--linkage": over_crank, "--cam": over_cam,
+                             "--points": points is not None, "--front": not front},
                     size=parse_size(size), dpi=dpi)
         return
+    _check_cam_options(over_cam, points, output,
+                       {"--linkage": over_crank, "--time": over_time,
+                        "--acceleration": acceleration})
     if over_crank and (over_time or acceleration):
         raise UserError("--linkage draws the ratio and torque over the crank angle; it "
                         "does not combine with --time or --acceleration", field="--linkage")
@@ -158,8 +180,13 @@ def plot(
     figure_size = parse_size(size)
     check_law_specs(law or [], "--law")
     check_output(output, [design, *(catalog or ())])
+    check_output(points, [design, *(catalog or ())], field="--points")
     loaded = load_design_file(design, catalog)
     check_outputs([output], loaded.files)
+    if points is not None:
+        check_outputs([points], loaded.files, field="--points")
+    if over_cam:
+        _check_cam_design(loaded, law or (), points is not None)
     try:
         results = plot_pairs(loaded, motor, law or ())
     except UserError as error:
@@ -179,7 +206,11 @@ def plot(
         raise UserError(f"{results[0].motor}: no law with a feasible duration, nothing to "
                         f"draw", file=str(design))
     duration_name = cycle_duration_name(loaded)
-    if over_crank:
+    if over_cam:
+        figure, written = _cam_outputs(loaded, drawn, figure_size, dpi, points)
+        what = ("follower's motion over the cam angle and the cam's profile"
+                + (f" (profile points: {points})" if written else ""))
+    elif over_crank:
         figure = _linkage_figure(loaded, drawn, figure_size, dpi)
         what = "transmission ratio and motor torque over the crank angle"
     elif over_time:
@@ -376,3 +407,91 @@ def _linkage_figure(design: Design, drawn: list[CandidateResult],
         torques[key] = np.interp(first.theta, curve.theta[order], curve.motor_torque[order])
     return linkage_figure(first.theta, first.ratio, torques, first.dead_points,
                           linear=first.linear, size=size, dpi=dpi, title=design.name)
+
+
+PROFILE_POINTS = 3601
+"""Points of ``--points`` over a turn of the cam (every 0.1 deg, the first again last)."""
+
+
+def _check_cam_options(over_cam: bool, points: Path | None, output: Path,
+                       refused: dict[str, bool]) -> None:
+    """--cam draws alone; --points needs --cam and is not the figure's file."""
+    if points is not None and not over_cam:
+        raise UserError("the profile's points are a disc cam's: give --cam too",
+                        field="--points")
+    if not over_cam:
+        return
+    for option, given in refused.items():
+        if given:
+            raise UserError(f"--cam draws the follower over the cam angle and the cam's "
+                            f"profile; it does not combine with {option}", field="--cam")
+    if points is not None:
+        if points.suffix.lower() != ".csv":
+            raise UserError("the profile's points are CSV: name the file *.csv",
+                            file=str(points), field="--points")
+        if points.resolve() == output.resolve():
+            raise UserError("the profile's points must not overwrite the figure",
+                            field="--points")
+
+
+def _check_cam_design(design: Design, laws: Sequence[str], points: bool) -> None:
+    """UserError (--cam) unless the design's last stage is a disc_cam; (--points) when
+    --points would have several cams to write."""
+    from sizer.mechanics.disc_cam import CamStage
+
+    if not isinstance(design.transmission.linkage, CamStage):
+        raise UserError("the design's transmission has no disc_cam stage: --cam draws a "
+                        "disc cam's follower and profile", field="--cam")
+    if points and len(set(laws)) > 1:
+        raise UserError("--points writes one cam's profile: give one --law",
+                        field="--points")
+
+
+def _cam_views(design: Design, drawn: list[CandidateResult]
+               ) -> tuple[list[CamView], list[tuple[str, float, float]]]:
+    """Each drawn result's cam as the sizing resolved it (its lift, speed and base
+    radius: sizer.sizing.linkage_move.cam_design), with its follower's motion and its
+    profile's points; and the cycle's segments as (name, start, end) in cam angle."""
+    from sizer.mechanics.disc_cam import CamStage, follower_motion, profile_points
+    from sizer.report.plots.cam_plots import CamView
+    from sizer.sizing.linkage_move import cam_design
+
+    views: list[CamView] = []
+    segments: list[tuple[str, float, float]] = []
+    for r in drawn:
+        resolved = cam_design(design, r.law_object)
+        stage = resolved.transmission.linkage
+        assert isinstance(stage, CamStage) and stage.lift is not None, "a resolved cam"
+        views.append(CamView(f"{r.motor}, {_label(r.spec)}", stage, follower_motion(stage),
+                             profile_points(stage, PROFILE_POINTS)))
+        if not segments:
+            # the design's own names (the cam's cycle may be the task it is a shorthand of)
+            own = resolved.machine_cycle.segments
+            given = design.machine_cycle.segments
+            if len(given) != len(own):
+                given = own
+            names = [a.name or b.name or "" for a, b in zip(given, own, strict=True)]
+            segments = [(name, p.start, p.start + p.angle)
+                        for name, p in zip(names, stage.lift.pieces, strict=True)]
+    return views, segments
+
+
+def _cam_outputs(design: Design, drawn: list[CandidateResult],
+                 size: tuple[float, float] | None, dpi: float, points: Path | None
+                 ) -> tuple[Figure, bool]:
+    """(the --cam figure, whether the --points file was written): the CSV is written
+    first, atomically."""
+    from sizer.report.cam_profile_csv import profile_csv
+    from sizer.report.output import write_text_atomically
+    from sizer.report.plots.cam_plots import cam_figure
+
+    views, segments = _cam_views(design, drawn)
+    if points is not None:
+        if len(views) > 1:
+            raise UserError("--points writes one cam's profile: give one --law",
+                            field="--points")
+        view = views[0]
+        write_text_atomically(points, profile_csv(view.stage, view.points, title=design.name,
+                                                  label=view.label), "--points")
+    return cam_figure(views, segments, size=size, dpi=dpi, title=design.name), \
+        points is not None

@@ -533,3 +533,30 @@ def profile_points(stage: CamStage, samples: int = 721) -> CamPoints:
     q = P + stage.roller_radius * inward
     return CamPoints(theta, c * P[0] + n * P[1], -n * P[0] + c * P[1],
                      c * q[0] + n * q[1], -n * q[0] + c * q[1])
+
+
+@dataclass(frozen=True)
+class FollowerMotion:
+    """The follower's motion over one turn of the resolved cam, at the cam angles
+    ``theta`` (rad, increasing from 0 to 2 pi; each piece's ends twice, approached from
+    inside, where a derivative may jump): its lift (m; an oscillating follower's swing,
+    rad) and the lift's time derivatives at the cam's constant speed omega (book eq. 5.4
+    with theta_dot constant: v = s' omega, a = s'' omega^2, j = s''' omega^3; m/s^k, or
+    rad/s^k); ``speed`` is omega (rad/s)."""
+
+    theta: np.ndarray
+    position: np.ndarray
+    velocity: np.ndarray
+    acceleration: np.ndarray
+    jerk: np.ndarray
+    speed: float
+
+
+def follower_motion(stage: CamStage, samples: int = CAM_SAMPLES) -> FollowerMotion:
+    """The resolved cam's :class:`FollowerMotion` on :meth:`CamLift.angles` (``samples``
+    per turn plus every piece's ends) and the turn's end, 2 pi."""
+    assert stage.lift is not None, "the cam resolved (resolved())"
+    theta = np.append(stage.lift.angles(samples), 2.0 * math.pi)
+    w = stage.speed
+    s, s1, s2, s3 = (stage.lift.output(theta, k) for k in range(4))
+    return FollowerMotion(theta, s, s1 * w, s2 * w * w, s3 * w**3, w)
