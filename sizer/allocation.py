@@ -26,6 +26,11 @@ they sum to F is found by the project's vectorized root finder
 is halved until the goal does not rise (the engine's values, not the model's), each
 T_j kept within a factor TRUST of its value. The rounds stop per candidate when no T_j
 moves by more than TOLERANCE of itself.
+
+A law per free move (:func:`allocate_laws`): every combination of the laws offered a row
+of that search where they are few, each candidate's best row taken; else laws and split
+chosen in turn. The largest residual vibration (:func:`minimax_split`): not a sum and not
+smooth, one split for all candidates, a coarse grid of the simplex then a pattern search.
 """
 
 from __future__ import annotations
@@ -167,3 +172,184 @@ def _model_split(T: np.ndarray, g: np.ndarray, H: np.ndarray, F: np.ndarray) -> 
     lam = illinois(gap, low, high, gap(low, *args), gap(high, *args), xtol=1e-15,
                    args=args)
     return split(lam, T, g, q, H_line, power, scale)
+
+
+# ------------------------------------------------------------------ minimax (vibration)
+GRID_POINTS = 4096
+"""At most this many splits on the coarse grid of the simplex (its compositions)."""
+KEEP = 8
+"""The refinement starts from this many of the grid's best splits."""
+REFINE_ROUNDS = 400
+"""At most this many steps (or halvings) of the refinement."""
+REFINE_TOLERANCE = 1e-12
+"""The refinement stops when its step is below this share of F."""
+
+
+def minimax_split(worst: Callable[[np.ndarray], np.ndarray], free_time: float,
+                  moves: int) -> np.ndarray:
+    """The split (moves,) of ``free_time`` that minimizes ``worst`` (the largest of some
+    figures over the cycle: ``worst(D)`` for splits D (k, moves), an array (k,)), one
+    split for every candidate (the goal does not depend on the motor).
+
+    A goal such as the largest residual vibration over the moves is not smooth (a max)
+    and has many local minima (it oscillates with each duration at the mode's period),
+    so the search is direct: every split of a coarse grid of the simplex (all
+    compositions of N steps into ``moves`` positive parts, N as large as GRID_POINTS
+    allows) in one call, then a pattern search from the KEEP best: each round every
+    transfer of a step h from one move to another, for all starts at once, the best that
+    lowers the goal taken, h halved where none does, until h < REFINE_TOLERANCE F. The
+    result is never worse than the grid's best split."""
+    F = float(free_time)
+    if moves < 2:
+        return np.full(moves, F)
+    N = _grid_steps(moves)
+    grid = _compositions(N, moves) * (F / N)
+    values = _finite(worst(grid))
+    order = np.argsort(values, kind="stable")[:KEEP]
+    D, best = grid[order], values[order]
+    pairs = np.array([(i, j) for i in range(moves) for j in range(moves) if i != j])
+    shift = np.zeros((len(pairs), moves))
+    shift[np.arange(len(pairs)), pairs[:, 0]] = 1.0
+    shift[np.arange(len(pairs)), pairs[:, 1]] = -1.0
+    h = np.full(len(D), F / N)
+    for _ in range(REFINE_ROUNDS):
+        open_ = np.flatnonzero(h > REFINE_TOLERANCE * F)
+        if not len(open_):
+            break
+        trial = (D[open_, None, :] + h[open_, None, None] * shift[None, :, :]).reshape(
+            -1, moves)
+        inside = (trial > 0.0).all(axis=1)
+        flat = np.full(len(trial), np.inf)
+        if inside.any():
+            flat[inside] = _finite(worst(trial[inside]))
+        got = flat.reshape(len(open_), len(pairs))
+        pick = np.argmin(got, axis=1)
+        better = got[np.arange(len(open_)), pick] < best[open_]
+        rows = open_[better]
+        D[rows] = D[rows] + h[rows, None] * shift[pick[better]]
+        D[rows] *= F / D[rows].sum(axis=1)[:, None]  # against the rounding's drift
+        best[rows] = got[better, pick[better]]
+        h[open_[~better]] *= 0.5
+    return D[int(np.argmin(best))]
+
+
+def _finite(x: np.ndarray) -> np.ndarray:
+    x = np.asarray(x, dtype=float)
+    return np.where(np.isnan(x), np.inf, x)
+
+
+def _grid_steps(moves: int) -> int:
+    """The largest N whose compositions into ``moves`` positive parts, C(N-1, moves-1),
+    are at most GRID_POINTS (at least ``moves``)."""
+    from math import comb
+
+    N = moves
+    while comb(N, moves - 1) <= GRID_POINTS:
+        N += 1
+    return N
+
+
+def _compositions(N: int, moves: int) -> np.ndarray:
+    """Every split of N into ``moves`` positive integers (k, moves)."""
+    from itertools import combinations
+
+    cuts = np.array(list(combinations(range(1, N), moves - 1)), dtype=float).reshape(
+        -1, moves - 1)
+    edges = np.hstack([np.zeros((len(cuts), 1)), cuts, np.full((len(cuts), 1), N)])
+    return np.diff(edges, axis=1)
+
+
+# ------------------------------------------------------------------ a law per move
+COMBINATIONS = 64
+"""At most this many law combinations are each given their own split (rows of one
+search); above it the laws and the split are chosen in turn."""
+LAW_ROUNDS = 10
+
+
+@dataclass(frozen=True)
+class LawSplit:
+    """Per candidate the free moves' durations (candidates, moves), the law of each free
+    move (candidates, moves; indices into the laws offered), the goal there
+    (candidates,) and whether the split converged."""
+
+    durations: np.ndarray
+    laws: np.ndarray
+    goal: np.ndarray
+    converged: np.ndarray
+
+
+LawCost = Callable[[int, int, np.ndarray, np.ndarray], np.ndarray]
+"""``cost(j, law, T, rows)``: free move j's term by law number ``law`` at durations T (k,)
+for the candidates ``rows`` (k,): an array (k,), inf where the law cannot move it."""
+
+
+def allocate_laws(cost: LawCost, laws: int, free_time: np.ndarray, start: np.ndarray
+                  ) -> LawSplit:
+    """The split of ``free_time`` (candidates,) and a law per free move (of ``laws``
+    offered) that minimize the sum of ``cost`` over the free moves, per candidate.
+
+    Where the combinations (laws ** moves) are at most COMBINATIONS, each combination is
+    its own row of one search (candidates x combinations rows, :func:`allocate`), and each
+    candidate takes its best row: the least over every combination of its optimal split.
+    Else the laws and the split are chosen in turn from each law for all moves (the best
+    of those rows): every free move the law of least cost at the current split, then the
+    split for those laws, until no law changes (at most LAW_ROUNDS), the goal never
+    rising (a local optimum, not the least over every combination)."""
+    F = np.asarray(free_time, dtype=float)
+    start = np.asarray(start, dtype=float)
+    n, m = start.shape
+    if laws ** m <= COMBINATIONS:
+        combos = np.array(np.meshgrid(*[np.arange(laws)] * m, indexing="ij")).reshape(m, -1).T
+        return _best_rows(cost, combos, F, start)
+    found = _best_rows(cost, np.repeat(np.arange(laws)[:, None], m, axis=1), F, start)
+    for _ in range(LAW_ROUNDS):
+        every = np.stack([np.stack([_finite(cost(j, law, found.durations[:, j], np.arange(n)))
+                                    for law in range(laws)], axis=1)
+                          for j in range(m)], axis=1)  # (candidates, moves, laws)
+        chosen = np.argmin(every, axis=2)
+        better = chosen != found.laws
+        kept = np.take_along_axis(every, found.laws[:, :, None], axis=2)[:, :, 0]
+        least = np.take_along_axis(every, chosen[:, :, None], axis=2)[:, :, 0]
+        chosen = np.where(better & (least < kept), chosen, found.laws)
+        if (chosen == found.laws).all():
+            break
+        rows = np.flatnonzero((chosen != found.laws).any(axis=1))
+        split = allocate(_by_law(cost, chosen[rows], rows), F[rows], found.durations[rows])
+        goal = _total(_by_law(cost, chosen[rows], rows), split.durations,
+                      np.arange(len(rows)))
+        durations, law_index = found.durations.copy(), found.laws.copy()
+        total, converged = found.goal.copy(), found.converged.copy()
+        durations[rows], law_index[rows] = split.durations, chosen[rows]
+        total[rows], converged[rows] = goal, split.converged
+        found = LawSplit(durations, law_index, total, converged)
+    return found
+
+
+def _best_rows(cost: LawCost, combos: np.ndarray, F: np.ndarray, start: np.ndarray
+               ) -> LawSplit:
+    """Each candidate's best of the law combinations ``combos`` (C, moves), each
+    combination's own split found for all (candidate, combination) rows at once."""
+    n, C = len(F), len(combos)
+    candidate = np.repeat(np.arange(n), C)
+    laws = np.tile(combos, (n, 1))
+    rows_cost = _by_law(cost, laws, candidate)
+    split = allocate(rows_cost, F[candidate], start[candidate])
+    goal = _finite(_total(rows_cost, split.durations, np.arange(n * C))).reshape(n, C)
+    best = np.argmin(goal, axis=1)
+    pick = np.arange(n) * C + best
+    return LawSplit(split.durations[pick], laws[pick], goal[np.arange(n), best],
+                    split.converged[pick])
+
+
+def _by_law(cost: LawCost, laws: np.ndarray, candidate: np.ndarray) -> Cost:
+    """The cost of rows whose move j goes by law ``laws[row, j]``, row r the candidate
+    ``candidate[r]``: one call of ``cost`` per law present."""
+    def rows_cost(j: int, T: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        out = np.empty(len(rows))
+        law = laws[rows, j]
+        for value in np.unique(law):
+            where = law == value
+            out[where] = cost(j, int(value), T[where], candidate[rows[where]])
+        return out
+
+    return rows_cost

@@ -562,7 +562,9 @@ def _check_minimize(cycle: Cycle, source: YamlSource, base: Path_, at: list[Path
 
 def _check_optimized_share(cycle: Cycle, source: YamlSource, base: Path_) -> None:
     """``share: {optimize: GOAL}`` splits a given cycle time (sizer.allocation): it needs
-    ``cycle_time`` or ``rate`` and no ``minimize``."""
+    ``cycle_time`` or ``rate`` and no ``minimize``; the vibration goal needs the load's
+    mode (``load.natural_frequency``: read from the file's data, the load is read
+    elsewhere)."""
     goal = cycle.share.goal
     if goal is None:
         return
@@ -575,6 +577,12 @@ def _check_optimized_share(cycle: Cycle, source: YamlSource, base: Path_) -> Non
                            f"the free moves: give `cycle_time` (or `rate`); without one the "
                            f"cycle is minimized by one scale of a fixed rule (equal, "
                            f"sqrt_displacement, ...)", (*base, "share"))
+    load = source.data.get("load") if isinstance(source.data, dict) else None
+    if goal == "vibration" and not (isinstance(load, dict)
+                                    and load.get("natural_frequency") is not None):
+        raise source.error("`share: {optimize: vibration}` minimizes the residual vibration "
+                           "of the load's mode: give load.natural_frequency (and "
+                           "damping_ratio), or optimize rms or energy", (*base, "share"))
 
 
 def names_index(cycle: Cycle, name: str) -> int:

@@ -69,10 +69,15 @@ class ShareRule(enum.Enum):
     OPTIMIZE_ENERGY = "optimize: energy"
     """Chosen per candidate motor to minimize the electrical energy per cycle (shaft work
     plus copper loss; the RMS goal where a motor lacks k_t or R): sizer.allocation."""
+    OPTIMIZE_VIBRATION = "optimize: vibration"
+    """Chosen to minimize the largest residual vibration over the moves (the load's mode,
+    ``load.natural_frequency``): one split for every motor, the residual depends on the
+    laws and durations only (sizer.allocation.minimax_split)."""
 
     @property
     def goal(self) -> str | None:
-        """What an optimized split minimizes ("rms", "energy"), None for a fixed rule."""
+        """What an optimized split minimizes ("rms", "energy", "vibration"), None for a
+        fixed rule."""
         return self.value.partition(": ")[2] or None
 
 

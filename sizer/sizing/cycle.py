@@ -30,8 +30,11 @@ What shape a machine cycle has, for the engine (issue 12): the task shorthand or
 
 from __future__ import annotations
 
+import functools
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -70,6 +73,9 @@ from sizer.sizing.move import (
     polynomial_move,
     rule_speed,
 )
+
+if TYPE_CHECKING:
+    from sizer.allocation import LawSplit
 
 
 def single_task(design: Design) -> Task:
@@ -302,22 +308,77 @@ class SegmentCycle:
             return split
         if not all(isinstance(self.cycle.segments[i], Move) for i in free):
             raise ValueError("an optimized share splits the time among free moves only")
-        copper = self._copper_factor() if goal == "energy" else np.full(n, np.nan)
+        if goal == "vibration":
+            split[:, free] = self._vibration_split(free, s * float(np.sum(self.weights))) / s
+            return split
+        move_cost = self._move_cost(goal, free)
 
         def cost(j: int, T: np.ndarray, rows: np.ndarray) -> np.ndarray:
-            i = free[j]
-            move = self.cycle.segments[i]
-            assert isinstance(move, Move)
-            sub = self.take(rows)
-            f = sub._move(move, self.laws[i], sub.drives[i], np.asarray(T, dtype=float),
-                          peaks=False, model=False)
-            k = copper[rows]
-            return np.where(np.isfinite(k), f.energy + k * f.torque_square, f.torque_square)
+            return move_cost(j, self.laws[free[j]], T, rows)
 
         found = allocate(cost, np.full(n, s * float(np.sum(self.weights))),
                          np.tile(self.weights[free], (n, 1)))  # from sqrt_displacement
         split[:, free] = found.durations / s
         return split
+
+    def _move_cost(self, goal: str, free: list[int]
+                   ) -> Callable[[int, MotionLaw | None, np.ndarray, np.ndarray], np.ndarray]:
+        """``cost(j, law, T, rows)``: free move j's term of ``goal`` ("rms" or "energy")
+        by ``law`` at durations T for the candidates ``rows`` (the engine's figures)."""
+        copper = (self._copper_factor() if goal == "energy"
+                  else np.full(len(self.motors), np.nan))
+
+        def cost(j: int, law: MotionLaw | None, T: np.ndarray, rows: np.ndarray
+                 ) -> np.ndarray:
+            i = free[j]
+            move = self.cycle.segments[i]
+            assert isinstance(move, Move)
+            sub = self.take(rows)
+            f = sub._move(move, law, sub.drives[i], np.asarray(T, dtype=float),
+                          peaks=False, model=False)
+            k = copper[rows]
+            return np.where(np.isfinite(k), f.energy + k * f.torque_square, f.torque_square)
+
+        return cost
+
+    def law_split(self, laws: tuple[MotionLaw, ...]) -> LawSplit:
+        """Each candidate's law per free move (of ``laws``, for the free moves that name
+        none, whose indices the result gives; a move's own law is kept, its index then
+        means nothing: the design's laws meet every move's boundary speeds,
+        sizer.sizing.cycle.ranked_laws) and its split of the cycle time that minimize the
+        share's goal ("rms" or "energy"): sizer.allocation.allocate_laws, every law
+        combination a row of one search where they are few. The law choice per move of
+        ``share: {optimize: ..., laws: per_move}``; the engine does not rank by it yet
+        (it needs the laws per row in every figure: see docs/allocation.md)."""
+        from sizer.allocation import allocate_laws
+
+        goal = self.cycle.share.goal
+        if goal not in ("rms", "energy") or self.cycle.cycle_time is None:
+            raise ValueError("a law per move is chosen for the rms or energy goal of a "
+                             "given cycle time")
+        free = [i for i, w in enumerate(self.weights) if w > 0.0]
+        if not all(isinstance(self.cycle.segments[i], Move) for i in free):
+            raise ValueError("an optimized share splits the time among free moves only")
+        n, s = len(self.motors), given_scale(self.cycle)
+        move_cost = self._move_cost(goal, free)
+        own = [getattr(self.cycle.segments[i], "law", None) for i in free]
+
+        def cost(j: int, k: int, T: np.ndarray, rows: np.ndarray) -> np.ndarray:
+            return move_cost(j, laws[k] if own[j] is None else self.laws[free[j]], T, rows)
+
+        return allocate_laws(cost, len(laws), np.full(n, s * float(np.sum(self.weights))),
+                             np.tile(self.weights[free], (n, 1)))
+
+    def _vibration_split(self, free: list[int], free_time: float) -> np.ndarray:
+        """The free moves' durations (moves,) that minimize the largest residual vibration
+        over the cycle's moves (sizer.vibration.cycle_residual.CycleVibration: the load's
+        mode, the laws of :attr:`laws`): one split for all candidates, the residual
+        depends on the laws and durations only (sizer.allocation.minimax_split)."""
+        elastic = self._base.load.elastic
+        if elastic is None:  # sizer.io refuses it at the share's line
+            raise UserError("`share: {optimize: vibration}` needs the load's mode: give "
+                            "load.natural_frequency", field="cycle.share")
+        return _vibration_split(elastic, self.cycle, self.laws, tuple(free), free_time)
 
     def _copper_factor(self) -> np.ndarray:
         """f R / k_t^2 per candidate (the copper loss per N^2 m^2 of torque squared, W, as
@@ -911,6 +972,30 @@ def first_crossing(f, lo: np.ndarray, hi: np.ndarray, f_lo: np.ndarray, f_hi: np
         lo[rows], f_lo[rows] = xs[j, k - 1], fs[j, k - 1]
         hi[rows], f_hi[rows] = xs[j, k], fs[j, k]
     return hi
+
+
+@functools.lru_cache(maxsize=32)
+def _vibration_split(elastic, cycle: Cycle, laws: tuple[MotionLaw | None, ...],
+                     free: tuple[int, ...], free_time: float) -> np.ndarray:
+    """:meth:`SegmentCycle._vibration_split`, kept: the same for every part of the
+    candidates and every evaluator the engine builds for one law (read only)."""
+    from sizer.allocation import minimax_split
+    from sizer.vibration.cycle_residual import CycleVibration
+
+    vibration = CycleVibration(elastic, cycle, laws)
+    fixed = [None if i in free else float(s.duration or 0.0)
+             for i, s in enumerate(cycle.segments)]
+    column = {i: j for j, i in enumerate(free)}
+
+    def worst(D: np.ndarray) -> np.ndarray:
+        k = len(D)
+        durations = [D[:, column[i]] if t is None else np.full(k, t)
+                     for i, t in enumerate(fixed)]
+        return vibration.worst(np.ones(k), durations)
+
+    found = minimax_split(worst, free_time, len(free))
+    found.setflags(write=False)
+    return found
 
 
 def _take_figures(f: SegmentFigures, index: np.ndarray) -> SegmentFigures:

@@ -41,19 +41,24 @@ SEGMENT_KINDS = ("move", "run", "dwell")
 SHARE_RULES = ("equal", "displacement", "sqrt_displacement", "weights")
 """The values of ``cycle.share`` (sizer.model.cycle.ShareRule) that are texts."""
 
-SHARE_GOALS = ("rms", "energy")
+SHARE_GOALS = ("rms", "energy", "vibration")
 """What ``share: {optimize: GOAL}`` may minimize (docs/allocation.md)."""
-GOALS_NOT_YET = ("vibration",)
+GOALS_NOT_YET: tuple[str, ...] = ()
 """Goals named in the issue that are not built yet: refused with "not yet"."""
 
 
 def _share(value: Any) -> str:
-    """``cycle.share``: a rule's name, or ``{optimize: rms | energy}`` (a split chosen per
-    candidate motor: sizer.allocation), as the ShareRule value ("optimize: rms")."""
+    """``cycle.share``: a rule's name, or ``{optimize: rms | energy | vibration}`` (a split
+    chosen per candidate motor, or for all: sizer.allocation), as the ShareRule value
+    ("optimize: rms")."""
     rules = ", ".join(SHARE_RULES)
     expected = f"one of {rules}, or {{optimize: {' | '.join(SHARE_GOALS)}}}"
     if isinstance(value, str) and value in SHARE_RULES:
         return value
+    if isinstance(value, dict) and set(value) == {"optimize", "laws"}:
+        raise ValueError("`laws: per_move` (a law chosen per move with the split) is not yet "
+                         "ranked: give {optimize: GOAL} alone, each of the design's laws is "
+                         "ranked in turn with its own splits (docs/allocation.md)")
     if isinstance(value, dict) and set(value) == {"optimize"}:
         goal = value["optimize"]
         if isinstance(goal, str) and goal in SHARE_GOALS:
@@ -78,9 +83,10 @@ Share = Annotated[
          "required": ["optimize"], "additionalProperties": False}],
         "description": "how free durations share the time: equal, in proportion to |h| "
                        "(displacement) or sqrt(|h|) (sqrt_displacement), by each segment's "
-                       "weight (weights), or {optimize: rms | energy}: each motor's own "
-                       "split of a given cycle time that minimizes its RMS torque or its "
-                       "energy per cycle (docs/allocation.md)"}),
+                       "weight (weights), or {optimize: rms | energy | vibration}: each "
+                       "motor's own split of a given cycle time that minimizes its RMS "
+                       "torque or its energy per cycle, or the split that minimizes the "
+                       "worst residual vibration (docs/allocation.md)"}),
 ]
 """``cycle.share``, as a sizer.model.cycle.ShareRule value."""
 
