@@ -13,6 +13,11 @@ with a 95 % Wilson interval, and a margin that is worse at a sample than at ever
 (not monotone) takes the sample's value. With more than MAX_TOLERANCES tolerances there
 are no corners: the samples alone give the worst case seen.
 
+A ratio choice (a free ratio, catalog gearboxes) is made at the nominal design, as the
+engineer buys one gearbox: each pair's builds are sized with the transmission its nominal
+sizing chose, fixed. In minimize mode each build is sized for its own T_min, and a pair's
+worst-case T_min is the largest over the corners (:class:`WorstDuration`).
+
 Every build (a corner or a sample) is a change of each input in its tolerance's terms (a
 fraction, or SI for an absolute tolerance). The motor's tolerances are candidate rows of
 one sizing (perturbed Motor copies, as in sizer.sensitivity, at most MAX_MOTOR_ROWS rows
@@ -83,6 +88,22 @@ def wilson_interval(passed: int, n: int, z: float = Z95) -> tuple[float, float]:
 
 
 @dataclass(frozen=True)
+class WorstDuration:
+    """In minimize mode, a pair's shortest duration T_min over the builds: ``worst`` the
+    largest (inf where some build has no T_min: a check fails at every duration), at
+    ``corner`` (``by``: the corners, a sample larger than every corner, or the nominal
+    machine); ``p95`` the samples' T_min's 95th percentile (nearest rank: the least T_min
+    that 95 % of the samples reach; nan without samples) and ``sampled_max`` their
+    largest."""
+
+    worst: float
+    corner: Corner
+    by: str
+    p95: float = math.nan
+    sampled_max: float = math.nan
+
+
+@dataclass(frozen=True)
 class RobustResult:
     """One pair: its nominal result, and per check its worst-case margin and the build
     that gives it (``by``: from the corners, or from a sample worse than every corner);
@@ -98,6 +119,7 @@ class RobustResult:
     passing: int = 0
     samples: int = 0
     by: dict[str, str] | None = None
+    duration: WorstDuration | None = None
 
     @property
     def margin(self) -> float:
@@ -132,7 +154,10 @@ class RobustSizing:
     in the nominal order, or by the worst-case margin with ``rank_by`` worst_margin), and
     each pair's robust result by its nominal result's id. ``corners`` is False where
     there were too many tolerances for corners (the samples alone); ``samples`` the
-    number of samples (0: corners only) and ``seed`` their seed."""
+    number of samples (0: corners only) and ``seed`` their seed. ``fixed_ratio``: the
+    design chooses the ratio; each pair's is the nominal sizing's, fixed at every build.
+    ``minimize``: each build sized for its T_min (:class:`WorstDuration`);
+    ``by_worst_duration``: each group ranked by the largest T_min, least first."""
 
     sizing: SizingResult
     tolerances: tuple[Tolerance, ...]
@@ -141,6 +166,9 @@ class RobustSizing:
     samples: int = 0
     seed: int = DEFAULT_SEED
     by_worst_margin: bool = False
+    fixed_ratio: bool = False
+    minimize: bool = False
+    by_worst_duration: bool = False
 
     def of(self, result: CandidateResult) -> RobustResult:
         return self._by_id[id(result)]
@@ -153,8 +181,8 @@ class RobustSizing:
 def check_tolerances(design: Design, samples: int = 0) -> None:
     """UserError where ``design`` cannot be sized robustly: no tolerances, too many for
     corners without ``samples``, a tolerance on an input the design does not have (or has
-    as zero) or an absolute one as wide as the value, ``minimize`` or a ratio choice (not
-    in this version)."""
+    as zero) or an absolute one as wide as the value, two laws of one family chosen at
+    each build."""
     given = [tolerance_of(t) for t in design.tolerances]
     if not given:
         raise UserError("the design gives no tolerances: add a 'tolerances:' section "
@@ -168,12 +196,6 @@ def check_tolerances(design: Design, samples: int = 0) -> None:
                         f"{MAX_TOLERANCES} (keep the inputs the margins depend on most: "
                         f"sizer sensitivity), or sample them instead (--samples N)",
                         field="tolerances")
-    if design.machine_cycle.minimize:
-        raise UserError("not yet with 'duration: minimize': give the duration to size at",
-                        field="--robust")
-    if design.ratio_choice is not None:
-        raise UserError("not yet with a ratio choice (a free ratio or a gearbox catalog): "
-                        "give the ratio", field="--robust")
     chosen = [c.family for c in design.laws if not c.is_fixed]
     if len(chosen) != len(set(chosen)):
         raise UserError("not yet with two laws of one family chosen at each duration "
@@ -309,32 +331,39 @@ def robust_sizing(design: Design, nominal: SizingResult, *, rank_by: str | None 
     for r in nominal.results:
         i = next(n for n, m in enumerate(design.motors) if m == r.motor_object)
         index[key(r, i)] = r
-    seen = {k_: _Tally(n_corners) for k_ in index}
+    minimize = bool(design.machine_cycle.minimize)
+    seen = {k_: _Tally(n_corners, minimize) for k_ in index}
     groups: dict[tuple[float, ...], list[int]] = {}
     for b, row in enumerate(builds):
         groups.setdefault(tuple(row[~is_motor].tolist()), []).append(b)
     sizing_rank = nominal_rank_by(rank_by)
-    per_sizing = max(1, MAX_MOTOR_ROWS // max(1, len(design.motors)))
-    batches = [(other, members[s:s + per_sizing]) for other, members in groups.items()
-               for s in range(0, len(members), per_sizing)]
-    designs: dict[tuple[float, ...], Design] = {}
-    for other, members in batches:
-        if other not in designs:
-            designs[other] = build_design(design, other_tol, other)
-        group_design = designs[other]
-        copies = [(i, b, build_motor(m, motor_tol, builds[b, is_motor]))
-                  for i, m in enumerate(design.motors) for b in members]
-        slot = {id(p): (i, b) for i, b, p in copies}
-        sized = api.size(group_design, motors=[p for _, _, p in copies],
-                         rank_by=sizing_rank, workers=workers)
-        for r in sized.results:
-            found = slot.get(id(r.motor_object))
-            if found is None:  # the engine copied the motor: find it by value
-                found = next((i, b) for i, b, p in copies if p == r.motor_object)
-            i, b = found
-            k_ = key(r, i)
-            if k_ in seen:
-                seen[k_].add(b, r)
+    fixed_ratio = design.ratio_choice is not None
+    for part, wanted, motors in _fixed_ratio_parts(design, index) if fixed_ratio else [
+            (design, None, list(range(len(design.motors))))]:
+        per_sizing = max(1, MAX_MOTOR_ROWS // max(1, len(motors)))
+        batches = [(other, members[s:s + per_sizing]) for other, members in groups.items()
+                   for s in range(0, len(members), per_sizing)]
+        designs: dict[tuple[float, ...], Design] = {}
+        for other, members in batches:
+            if other not in designs:
+                designs[other] = build_design(part, other_tol, other)
+            group_design = designs[other]
+            copies = [(i, b, build_motor(design.motors[i], motor_tol, builds[b, is_motor]))
+                      for i in motors for b in members]
+            slot = {id(p): (i, b) for i, b, p in copies}
+            sized = api.size(group_design, motors=[p for _, _, p in copies],
+                             rank_by=sizing_rank, workers=workers)
+            for r in sized.results:
+                found = slot.get(id(r.motor_object))
+                if found is None:  # the engine copied the motor: find it by value
+                    found = next((i, b) for i, b, p in copies if p == r.motor_object)
+                i, b = found
+                k_: tuple[object, ...] | None = key(r, i)
+                if wanted is not None:  # the nominal pair of this ratio (its gearbox's)
+                    k_ = next((w for w in wanted if k_ is not None and w[:3] == k_[:3]),
+                              None)
+                if k_ in seen:
+                    seen[k_].add(b, r)
 
     def corner(b: int) -> Corner:  # build -1: the nominal machine
         changes = builds[b] if b >= 0 else np.zeros(k)
@@ -343,10 +372,14 @@ def robust_sizing(design: Design, nominal: SizingResult, *, rank_by: str | None 
     results = [seen[k_].result(nominal_result, samples, corner)
                for k_, nominal_result in index.items()]
     by_id = {id(r.nominal): r for r in results}
-    by_margin = rank_by is not None and is_robust_key(rank_by)
+    by_duration = minimize and (rank_by is None or is_robust_key(rank_by))
+    by_margin = rank_by is not None and is_robust_key(rank_by) and not by_duration
 
     def order_key(r: CandidateResult) -> tuple[bool, float]:
         robust = by_id[id(r)]
+        if by_duration:
+            worst = robust.duration.worst if robust.duration is not None else math.inf
+            return (not robust.feasible, math.inf if math.isnan(worst) else worst)
         margin = robust.margin
         return (not robust.feasible,
                 -margin if by_margin and not math.isnan(margin) else
@@ -355,7 +388,37 @@ def robust_sizing(design: Design, nominal: SizingResult, *, rank_by: str | None 
     order = sorted(nominal.results, key=order_key)  # stable: the nominal order in ties
     reranked = replace(nominal, results=tuple(order), table=None)
     return RobustSizing(reranked, tolerances, tuple(by_id[id(r)] for r in order),
-                        with_corners, samples, seed, by_margin)
+                        with_corners, samples, seed, by_margin, fixed_ratio, minimize,
+                        by_duration)
+
+
+def _fixed_ratio_parts(design: Design, index: dict[tuple[object, ...], CandidateResult]
+                       ) -> list[tuple[Design, set[tuple[object, ...]], list[int]]]:
+    """The design with each ratio the nominal sizing chose (a free ratio, a catalog
+    gearbox) fixed: per transmission in place, that design (no ratio choice), the pairs'
+    keys that have it and their motors' indices; laws of fixed parameters other pairs
+    have are left out."""
+    parts: dict[int, tuple[Design, set[tuple[object, ...]], list[int]]] = {}
+    seen: list[Any] = []
+    for k_, r in index.items():
+        n = next((j for j, t in enumerate(seen) if t == r.transmission), None)
+        if n is None:
+            seen.append(r.transmission)
+            n = len(seen) - 1
+            parts[n] = (replace(design, ratio_choice=None, transmission=r.transmission),
+                        set(), [])
+        _, keys, motors = parts[n]
+        keys.add(k_)
+        i = k_[0]
+        assert isinstance(i, int)
+        if i not in motors:
+            motors.append(i)
+    out = []
+    for part, keys, motors in parts.values():
+        specs = {r.spec for k_, r in index.items() if k_ in keys}
+        laws = tuple(c for c in part.laws if not c.is_fixed or c.law.spec in specs)
+        out.append((replace(part, laws=laws), keys, sorted(motors)))
+    return out
 
 
 SAMPLE_BELOW = 1e-9
@@ -384,10 +447,13 @@ class _Tally:
     builds): the least margins over the corners and over the samples apart, the corners
     that fail, the samples that pass."""
 
-    def __init__(self, corners: int) -> None:
+    def __init__(self, corners: int, minimize: bool = False) -> None:
         self.corners = corners
         self.at_corners, self.at_samples = _Least(), _Least()
         self.corners_seen = self.failing = self.samples_seen = self.passing = 0
+        self.minimize = minimize
+        self.corner_durations: dict[int, float] = {}  # minimize: T_min per build
+        self.sample_durations: list[tuple[int, float]] = []
 
     def add(self, b: int, result: CandidateResult) -> None:
         if b < self.corners:
@@ -398,6 +464,33 @@ class _Tally:
             self.at_samples.add(b, result)
             self.samples_seen += 1
             self.passing += bool(result.feasible)
+        if self.minimize:
+            t = _duration(result)
+            if b < self.corners:
+                self.corner_durations[b] = t
+            else:
+                self.sample_durations.append((b, t))
+
+    def worst_duration(self, nominal: CandidateResult,
+                       corner: Callable[[int], Corner]) -> WorstDuration:
+        """The largest T_min over the corners (a corner not returned: none, inf), or a
+        sample's or the nominal machine's where larger (not monotone), with the build."""
+        at_corners = [(b, self.corner_durations.get(b, math.inf))
+                      for b in range(self.corners)]
+        sampled = sorted(self.sample_durations)
+        others = [(SAMPLES, b, t) for b, t in sampled] + [(NOMINAL, -1, _duration(nominal))]
+        if at_corners:
+            b, t = max(at_corners, key=lambda bt: bt[1])  # the first of equals
+            label, worst_b, worst = CORNERS, b, t
+            others = [o for o in others if o[2] > t * (1.0 + 1e-9)]  # not monotone
+        if others:
+            label, worst_b, worst = max(others, key=lambda o: o[2])
+        values = np.array([t for _, t in sampled], dtype=float)
+        # the nearest-rank 95th percentile (a T_min of some sample; inf where it has none)
+        p95 = (float(np.sort(values)[math.ceil(0.95 * values.size) - 1]) if values.size
+               else math.nan)
+        top = float(values.max()) if values.size else math.nan
+        return WorstDuration(worst, corner(worst_b), label, p95, top)
 
     def result(self, nominal: CandidateResult, samples: int,
                corner: Callable[[int], Corner]) -> RobustResult:
@@ -427,8 +520,15 @@ class _Tally:
                                                   corner(part.build[name]), label)
         failing = self.failing + (self.corners - self.corners_seen)
         feasible = failing == 0 and self.passing == samples and bool(nominal.feasible)
+        duration = self.worst_duration(nominal, corner) if self.minimize else None
         return RobustResult(nominal, worst, where, feasible, failing, self.corners,
-                            self.passing, samples, by)
+                            self.passing, samples, by, duration)
+
+
+def _duration(result: CandidateResult) -> float:
+    """A build's T_min: inf where the pair has none (a check fails at every duration)."""
+    t = result.duration
+    return float(t) if result.feasible and t is not None and math.isfinite(t) else math.inf
 
 
 def _lowest(found: list[tuple[str, _Least]], name: str) -> tuple[str, _Least]:

@@ -90,9 +90,10 @@ def size(
     front_by: FrontByOption = None,
     robust: Annotated[bool, typer.Option(
         "--robust",
-        help="Also size every pair at the corners of the design's 'tolerances:' and show "
-             "its worst-case margin; the pairs feasible at every corner rank first "
-             "(docs/robust.md).")] = False,
+        help="Also size every pair at the corners of the design's tolerances ('tolerances:' "
+             "or beside a value, '0.35 kg*m^2 +- 20 %') and show its worst-case margin "
+             "(with 'minimize': its worst-case T_min; a chosen ratio stays the nominal "
+             "pair's); the pairs feasible at every corner rank first (docs/robust.md).")] = False,
     samples: Annotated[int | None, typer.Option(
         "--samples", metavar="N",
         help="With --robust (implied): also size every pair at N builds drawn from the "
@@ -173,11 +174,25 @@ def size(
         _size_robust(design, loaded, rank_by, top, show_all, fmt, output, jobs, law,
                      samples=samples or 0, seed=seed)
         return
+    note_tolerances(loaded)
     sizing = size_loaded(design, loaded, rank_by, workers=jobs, laws=law)
     document = SizingDocument(sizing, loaded, rank_by=rank_by, top=top,
                               include_infeasible=show_all,
                               front=front_of(sizing, front_key, design), front_only=front)
     publish_sizing(document, fmt, output)
+
+
+def note_tolerances(loaded: Design) -> None:
+    """A line on stderr where the design gives tolerances (beside its values or in
+    ``tolerances:``) that a sizing without --robust leaves aside: the answer is the nominal
+    machine's, unchanged."""
+    if loaded.tolerances:
+        from sizer.model.tolerance import tolerance_of
+
+        names = ", ".join(tolerance_of(t).name for t in loaded.tolerances)
+        typer.echo(f"note: the design gives tolerances ({names}); this is the nominal "
+                   f"machine's sizing: add --robust to check the pairs at them "
+                   f"(docs/robust.md)", err=True)
 
 
 def check_robust_options(robust: bool, rank_by: str | None, samples: int | None,

@@ -514,8 +514,6 @@ def _tolerances(model: DesignFile, source: YamlSource, linear: bool
     the input must stay positive) or a positive quantity of the input's kind (absolute),
     uniform over +-it or normal with that sigma, truncated at ``truncate`` sigmas (the
     corners at +-truncate sigma, within the same bounds)."""
-    from sizer.units import KINDS, to_si
-
     out = []
     for key, given in (model.tolerances or {}).items():
         at: tuple[str, ...] = ("tolerances", key)
@@ -530,40 +528,55 @@ def _tolerances(model: DesignFile, source: YamlSource, linear: bool
             at = (*at, "sigma")
         elif "distribution" in given.model_fields_set:
             at = (*at, "plus_minus")
-        field = ".".join(at)
-        kinds = TOLERANCE_KINDS[key]
-        absolute = False
-        try:
-            fraction = to_si(value, "fraction", field=field)
-        except UserError as error:
-            if kinds is None:
-                raise source.relocate(error, at) from None
-            kind = KINDS[kinds[linear]]
-            try:
-                fraction, absolute = to_si(value, kind.name, field=field), True
-            except UserError:
-                raise source.error(
-                    f"expected a fraction like '10 %' (relative) or an absolute "
-                    f"{kind.name.replace('_', ' ')} like {kind.example!r}, got "
-                    f"{value!r}", at) from None
-        sigmas = (given.truncate or DEFAULT_SIGMAS) if normal else None
-        width = fraction * (sigmas or 1.0)
-        if absolute:
-            if not fraction > 0.0:
-                raise source.error(f"an absolute tolerance must be positive, got {value!r}",
-                                   at)
-        else:
-            zero_ok = key in ("load.friction", "load.damping", "load.torque", "load.force")
-            if not (0.0 < width < 1.0 or (zero_ok and width == 1.0)):
-                bound = "(0, 100 %]" if zero_ok else "(0, 100 %)"
-                what = (f"truncate x sigma ({sigmas:g} x {value!r})" if normal
-                        else repr(value))
-                raise source.error(f"a relative tolerance must be in {bound}, got {what}",
-                                   at)
-        out.append(Tolerance(key, width, absolute=absolute,
-                             distribution="normal" if normal else "uniform",
-                             sigmas=sigmas))
+        assert value is not None
+        out.append(_tolerance(source, key, value, at, linear,
+                              (given.truncate or DEFAULT_SIGMAS) if normal else None))
+    named = {t.name for t in out}
+    for field, value in model.load.inline_tolerances.items():  # '0.35 kg*m^2 +- 20 %'
+        key = f"load.{field}"
+        if key in named:
+            raise source.error(f"a tolerance beside the value and one in 'tolerances:' "
+                               f"({key}): give it in one place", ("load", field))
+        out.append(_tolerance(source, key, value, ("load", field), linear, None))
     return tuple(out)
+
+
+def _tolerance(source: YamlSource, key: str, value: str, at: tuple[str, ...], linear: bool,
+               sigmas: float | None) -> Tolerance:
+    """One tolerance of ``key`` given as ``value`` at ``at`` (sigma with ``sigmas``
+    for a normal one, else the half-width of a uniform one)."""
+    from sizer.units import KINDS, to_si
+
+    normal = sigmas is not None
+    field = ".".join(at)
+    kinds = TOLERANCE_KINDS[key]
+    absolute = False
+    try:
+        fraction = to_si(value, "fraction", field=field)
+    except UserError as error:
+        if kinds is None:
+            raise source.relocate(error, at) from None
+        kind = KINDS[kinds[linear]]
+        try:
+            fraction, absolute = to_si(value, kind.name, field=field), True
+        except UserError:
+            raise source.error(
+                f"expected a fraction like '10 %' (relative) or an absolute "
+                f"{kind.name.replace('_', ' ')} like {kind.example!r}, got "
+                f"{value!r}", at) from None
+    width = fraction * (sigmas or 1.0)
+    if absolute:
+        if not fraction > 0.0:
+            raise source.error(f"an absolute tolerance must be positive, got {value!r}", at)
+    else:
+        zero_ok = key in ("load.friction", "load.damping", "load.torque", "load.force")
+        if not (0.0 < width < 1.0 or (zero_ok and width == 1.0)):
+            bound = "(0, 100 %]" if zero_ok else "(0, 100 %)"
+            what = (f"truncate x sigma ({sigmas:g} x {value!r})" if normal
+                    else repr(value))
+            raise source.error(f"a relative tolerance must be in {bound}, got {what}", at)
+    return Tolerance(key, width, absolute=absolute,
+                     distribution="normal" if normal else "uniform", sigmas=sigmas)
 
 
 def design_of_source(source: YamlSource, folder: Path, name: str,

@@ -4,6 +4,7 @@ of the design's tolerances (sizer.robust, docs/robust.md)."""
 from __future__ import annotations
 
 import json
+import math
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -22,6 +23,10 @@ RANKING = ("the pairs feasible at every corner first, then as usual (the nominal
            "ranking within each group)")
 RANKING_BUILDS = ("the pairs feasible at every build (corner and sample) first, then as "
                   "usual (the nominal ranking within each group)")
+RANKING_DURATION = ("the pairs feasible at every build first, then the shortest worst-case "
+                    "T_min first (ties: the nominal ranking)")
+FIXED_RATIO = ("each pair's ratio (a free ratio, a catalog gearbox) is the one chosen at the "
+               "nominal design, as the one bought, and fixed at every build")
 RANKING_WORST = ("the pairs feasible at every build first, then the largest worst-case "
                  "margin first (ties: the nominal ranking by margin)")
 
@@ -79,15 +84,21 @@ class RobustDocument(SizingDocument):
     def table(self, compact: bool = False) -> Table:
         base = super().table(compact)
         sampled = self.robust.samples > 0
+        minimize = self.robust.minimize
         columns = (*base.columns, Column("worst margin [%]"), Column("robust", "left"),
-                   *((Column("pass [%] (95 % interval)", "left"),) if sampled else ()))
+                   *((Column("pass [%] (95 % interval)", "left"),) if sampled else ()),
+                   *((Column("worst T_min [ms]"),) if minimize else ()),
+                   *((Column("T_min p95 [ms]"),) if minimize and sampled else ()))
         rows = [(*row, percent(finite_or_none(self._of[id(r)].margin)),
                  _verdict(self._of[id(r)]),
-                 *((share_text(self._of[id(r)]),) if sampled else ()))
+                 *((share_text(self._of[id(r)]),) if sampled else ()),
+                 *(_durations(self._of[id(r)], sampled) if minimize else ()))
                 for row, (_, r) in zip(base.rows, self.rows, strict=True)]
         return make_table(columns, rows, title=base.title)
 
     def _ranking(self) -> str:
+        if self.robust.by_worst_duration:
+            return RANKING_DURATION
         if self.robust.by_worst_margin:
             return RANKING_WORST
         return RANKING_BUILDS if self.robust.samples else RANKING
@@ -112,10 +123,18 @@ class RobustDocument(SizingDocument):
                      f"(2^{len(robust.tolerances)}): sampled instead, every pair at {drawn}; "
                      f"'worst margin' is the least margin seen over the samples (an "
                      f"estimate, not a bound): {tolerances}"]
+        if robust.fixed_ratio:
+            lines.append(f"robust: {FIXED_RATIO}")
+        if robust.minimize:
+            lines.append("robust: each build sized for its shortest duration (its margins "
+                         "are at its own T_min); 'worst T_min' is the largest over the "
+                         "builds, 'none' where a build has none (--format json names its "
+                         "build)" + ("; 'T_min p95' the samples' 95th percentile (nearest "
+                                     "rank)" if robust.samples else ""))
         lines.append(f"ranked robustly: {self._ranking()}")
         for rank, r in self.rows:
             worst = self._of[id(r)]
-            if robust.corners and worst.sampled_checks:
+            if robust.corners and worst.sampled_checks and not robust.minimize:
                 where = ", ".join(f"{name} (at {_WHERE[(worst.by or {})[name]]})"
                                   for name in worst.sampled_checks)
                 lines.append(f"  #{rank} {r.motor}: not monotone, worse inside the box than "
@@ -136,6 +155,8 @@ class RobustDocument(SizingDocument):
             for t in robust.tolerances]
         data["robust_method"] = {"corners": robust.corners, "samples": robust.samples,
                                  "seed": robust.seed if robust.samples else None}
+        if robust.fixed_ratio:
+            data["robust_method"]["ratio"] = FIXED_RATIO
         data["robust_ranking"] = self._ranking()
         for item, (_, r) in zip(data["results"], self.rows, strict=True):
             item["robust"] = robust_json(self._of[id(r)])
@@ -175,4 +196,24 @@ def robust_json(result: RobustResult) -> dict[str, Any]:
         low, high = result.interval
         out.update(samples=result.samples, passing_samples=result.passing,
                    share=result.share, interval=[low, high])
+    if result.duration is not None:
+        d = result.duration
+        out["duration"] = {"worst": finite_or_none(d.worst), "corner": _corner_json(d.corner),
+                           "by": d.by}
+        if result.samples:
+            out["duration"].update(p95=finite_or_none(d.p95),
+                                   sampled_max=finite_or_none(d.sampled_max))
     return out
+
+
+def _ms(seconds: float) -> str:
+    return f"{seconds * 1000.0:.4g}" if math.isfinite(seconds) else "none"
+
+
+def _durations(result: RobustResult, sampled: bool) -> tuple[str, ...]:
+    """The worst T_min (and the samples' 95th percentile) in ms; 'none' where a build
+    has no T_min."""
+    d = result.duration
+    if d is None:
+        return ("", "") if sampled else ("",)
+    return (_ms(d.worst), _ms(d.p95)) if sampled else (_ms(d.worst),)
