@@ -20,6 +20,7 @@ from itertools import pairwise
 import numpy as np
 import pytest
 from bad_input_cases import edited
+from test_position_loads import ROTOR_GEAR, G, _falling, _motor  # shared motors
 
 from sizer.errors import UserError
 from sizer.laws import law_choice
@@ -39,26 +40,7 @@ from sizer.sizing.candidates import MotorArrays
 from sizer.sizing.linkage_move import PositionCycle, position_model
 from sizer.sizing.shortest_duration import answer
 
-G = 9.80665
 N = 5.0
-ROTOR_GEAR = 5e-6
-
-
-def _motor(k: int, peak: float, continuous: float, speed: float = 300.0,
-           inertia: float = 1e-4) -> Motor:
-    return Motor(id=f"m{k}", inertia=inertia, continuous_torque=continuous, peak_torque=peak,
-                 rated_speed=speed, max_speed=speed,
-                 intermittent_curve=((0.0, peak), (speed, peak)),
-                 continuous_curve=((0.0, continuous), (speed, continuous)))
-
-
-def _falling(k: int) -> Motor:
-    tp, vn = 2.0 + 3.0 * k, 150.0 + 25.0 * k
-    return Motor(id=f"f{k}", inertia=1e-4 * (1 + k), continuous_torque=tp / 3, peak_torque=tp,
-                 rated_speed=vn, max_speed=2 * vn,
-                 intermittent_curve=((0.0, tp), (0.8 * vn, tp), (1.4 * vn, 0.7 * tp),
-                                     (2 * vn, 0.35 * tp)),
-                 continuous_curve=((0.0, tp / 3), (2 * vn, tp / 5)))
 
 
 ARM = Load(inertia=0.05, damping=0.01, friction=0.2,
