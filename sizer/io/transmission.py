@@ -13,7 +13,7 @@ import math
 from collections.abc import Sequence
 from importlib import resources
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 from sizer.io.linkage import linkage_stage
 from sizer.io.schema.provenance import file_sources, gearbox_sources
@@ -75,7 +75,8 @@ def build_transmission(items: Sequence[Any] | None, source: YamlSource, folder: 
                                f"angle (give it as a length, e.g. '200 mm')", at(index, "type"))
         stage, free = _stage(item, source, at, index, linear and last, folder, files)
         shaft = _shaft_load(item, source, at(index), first=not stages,
-                            last=last and linear)
+                            last=last and linear,
+                            after_gearbox=bool(stages) and stages[-1].kind == "gearbox")
         if shaft is not None:
             stage = dataclasses.replace(stage, shaft_load=shaft)
         if free is not None:
@@ -170,44 +171,58 @@ DEFAULT_PRESSURE_ANGLE = math.radians(20.0)
 
 
 def _shaft_load(item: Any, source: YamlSource, at: tuple[Any, ...], first: bool,
-                last: bool) -> ShaftLoad | None:
+                last: bool, after_gearbox: bool = False) -> ShaftLoad | None:
     """What a belt, pinion or ball screw marked ``on_motor_shaft`` puts on the motor's
-    shaft (docs/shaft-loads.md), None for any other stage; the fields each kind needs."""
+    shaft, or marked ``on_gearbox_output`` on the output shaft of the gearbox right before
+    it (docs/shaft-loads.md), None for any other stage; the fields each kind needs."""
+    motor = getattr(item, "on_motor_shaft", False)
+    output = getattr(item, "on_gearbox_output", False)
     belt_only = ("pretension", "wrap_angle")
     if isinstance(item, BeltInput):
         given = [f for f in belt_only if getattr(item, f) is not None]
-        if given and not item.on_motor_shaft:
-            raise source.error(f"{given[0]} is for the belt's load on the motor shaft: add "
-                               f"on_motor_shaft: true", (*at, given[0]))
+        if given and not (motor or output):
+            raise source.error(f"{given[0]} is for the belt's load on the shaft it sits on: "
+                               f"add on_motor_shaft: true (or on_gearbox_output: true)",
+                               (*at, given[0]))
     if isinstance(item, RackPinionInput) and item.pressure_angle is not None \
-            and not item.on_motor_shaft:
-        raise source.error("pressure_angle is for the pinion's load on the motor shaft: add "
-                           "on_motor_shaft: true", (*at, "pressure_angle"))
-    if not getattr(item, "on_motor_shaft", False):
+            and not (motor or output):
+        raise source.error("pressure_angle is for the pinion's load on the shaft it sits on: "
+                           "add on_motor_shaft: true (or on_gearbox_output: true)",
+                           (*at, "pressure_angle"))
+    if not (motor or output):
         return None
-    if not first:
+    flag = "on_motor_shaft" if motor else "on_gearbox_output"
+    if motor and output:
+        raise source.error(f"the {item.type} sits on the motor's shaft or on a gearbox's "
+                           f"output shaft, not both", (*at, "on_gearbox_output"))
+    if motor and not first:
         raise source.error(f"on_motor_shaft: the {item.type} must be the first stage (on "
                            f"the motor's shaft)", (*at, "on_motor_shaft"))
+    if output and not after_gearbox:
+        raise source.error(f"on_gearbox_output: the {item.type} must come right after a "
+                           f"gearbox stage (on its output shaft)", (*at, "on_gearbox_output"))
+    shaft: Literal["motor", "gearbox"] = "motor" if motor else "gearbox"
+    where = "the motor shaft" if motor else "a gearbox's output shaft"
     if isinstance(item, BeltInput):
         if item.pretension is None:
-            raise source.error("a belt on the motor shaft needs its pretension (the static "
-                               "tension per strand as installed, e.g. '200 N')",
-                               (*at, "on_motor_shaft"))
+            raise source.error(f"a belt on {where} needs its pretension (the static "
+                               f"tension per strand as installed, e.g. '200 N')",
+                               (*at, flag))
         if item.driver_diameter is None:
-            raise source.error("a belt on the motor shaft needs driver_diameter (its pull "
-                               "is the torque over d/2)", (*at, "on_motor_shaft"))
+            raise source.error(f"a belt on {where} needs driver_diameter (its pull "
+                               f"is the torque over d/2)", (*at, flag))
         wrap = math.pi if item.wrap_angle is None else item.wrap_angle
-        return ShaftLoad("belt", item.driver_diameter, item.pretension, wrap)
+        return ShaftLoad("belt", item.driver_diameter, item.pretension, wrap, shaft=shaft)
     if isinstance(item, RackPinionInput):
         radius = item.pitch_radius if item.pitch_radius is not None \
             else 0.5 * (item.pitch_diameter or 0.0)
         angle = DEFAULT_PRESSURE_ANGLE if item.pressure_angle is None \
             else item.pressure_angle
-        return ShaftLoad("pinion", 2.0 * radius, pressure_angle=angle)
+        return ShaftLoad("pinion", 2.0 * radius, pressure_angle=angle, shaft=shaft)
     if not last:
-        raise source.error("on_motor_shaft: a ball screw's axial force is the load's when "
-                           "it is the last stage of a linear axis", (*at, "on_motor_shaft"))
-    return ShaftLoad("screw")
+        raise source.error(f"{flag}: a ball screw's axial force is the load's when "
+                           f"it is the last stage of a linear axis", (*at, flag))
+    return ShaftLoad("screw", shaft=shaft)
 
 
 SHAFT_FIELDS = ("mounting", "root_diameter", "support_distance", "buckling_length",
@@ -300,7 +315,9 @@ def _gearbox(item: GearboxInput, source: YamlSource, at, index: int,
         return options[0].stage, RatioChoice(gearboxes=options)
     ratio, free = _ratio(item.ratio)
     assert ratio is not None  # no catalog: the ratio is given (checked above)
-    return gearbox(ratio, item.efficiency, item.inertia, name=item.name or "", **limits), free
+    stage = gearbox(ratio, item.efficiency, item.inertia, name=item.name or "", **limits)
+    return dataclasses.replace(stage, output_radial_load=item.output_radial_load,
+                               output_axial_load=item.output_axial_load), free
 
 
 def bundled_gearbox_catalogs() -> dict[str, Path]:
@@ -342,6 +359,8 @@ def load_gearbox_catalog(path: str | Path) -> tuple[GearboxOption, ...]:
                 backlash=series.backlash,
                 name="gearbox",
             )
+            stage = dataclasses.replace(stage, output_radial_load=series.output_radial_load,
+                                        output_axial_load=series.output_axial_load)
             options.append(GearboxOption(f"{series.id} i={ratio.ratio:g}", stage,
                                          gearbox_sources(series, ratio, shared, common)))
     return tuple(options)

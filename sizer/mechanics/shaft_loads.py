@@ -1,7 +1,9 @@
-"""The forces the first transmission stage puts on the motor's shaft (docs/shaft-loads.md).
+"""The forces a transmission stage puts on the shaft it sits on (docs/shaft-loads.md): the
+motor's (the first stage), or the output shaft of the gearbox right before it.
 
-For the torque tau on the shaft (the motor's peak |torque| over the cycle: an upper bound,
-the rotor's own inertia torque J_m a does not pass through the shaft):
+For the torque tau on the shaft (on the motor's, the motor's peak |torque| over the cycle:
+an upper bound, the rotor's own inertia torque J_m a does not pass through the shaft; on a
+gearbox's output, the gearbox's peak |output torque|):
 
 - a belt whose driver pulley (pitch diameter d) sits on the shaft, installed with the
   static tension F_pre in each strand, wrapping the pulley over the angle theta: the
@@ -45,8 +47,8 @@ def pinion_radial_load(tangential_force: Any, pressure_angle: Any) -> np.ndarray
 
 @dataclass(frozen=True)
 class ShaftForces:
-    """The radial and axial loads on the motor's shaft per candidate (N); None where the
-    stage puts no such load on it."""
+    """The radial and axial loads on the shaft per candidate (N); None where the stage
+    puts no such load on it."""
 
     radial: np.ndarray | None
     axial: np.ndarray | None

@@ -291,24 +291,34 @@ class Stage:
     peak_output_torque: float | None = None
     backlash: float | None = None
     shaft_load: ShaftLoad | None = None
-    """What this stage puts on the motor's shaft when it sits on it (a belt's driver
-    pulley, a pinion, a ball screw coupled directly); None: nothing the motor's bearings
-    carry is known (sizer.mechanics.shaft_loads, docs/shaft-loads.md)."""
+    """What this stage puts on the shaft it sits on (a belt's driver pulley, a pinion, a
+    ball screw coupled directly): the motor's (``ShaftLoad.shaft`` "motor", the first
+    stage) or the gearbox's output shaft before it ("gearbox"); None: nothing the
+    bearings carry is known (sizer.mechanics.shaft_loads, docs/shaft-loads.md)."""
+    output_radial_load: float | None = None
+    """N: a gearbox's permissible radial load on its output shaft, as its maker rates it
+    (Beckhoff's F2RMax, in relation to the shaft center); None: not published."""
+    output_axial_load: float | None = None
+    """N: a gearbox's permissible axial load on its output shaft (Beckhoff's FaStat,
+    F2AMax); None: not published."""
 
 
 @dataclass(frozen=True)
 class ShaftLoad:
-    """The first stage's loads on the motor's shaft (docs/shaft-loads.md): ``kind`` belt
+    """A stage's loads on the shaft it sits on (docs/shaft-loads.md): ``kind`` belt
     (its driver pulley of pitch ``diameter`` m on the shaft, static tension ``pretension``
     N per strand, ``wrap_angle`` rad on the pulley), pinion (pitch ``diameter``,
     ``pressure_angle`` rad) or screw (a ball screw coupled directly whose axial force the
-    motor's bearing takes)."""
+    shaft's bearing takes)."""
 
     kind: Literal["belt", "pinion", "screw"]
     diameter: float = 0.0
     pretension: float = 0.0
     wrap_angle: float = math.pi
     pressure_angle: float = 0.0
+    shaft: Literal["motor", "gearbox"] = "motor"
+    """The shaft it sits on: the motor's (the first stage) or the output shaft of the
+    gearbox stage right before it (checked against that gearbox's ratings)."""
 
 
 @dataclass(frozen=True)

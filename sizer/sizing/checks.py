@@ -23,12 +23,13 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from enum import StrEnum
 from functools import cached_property
+from typing import Any
 
 import numpy as np
 
 from sizer.mechanics import Drive
 from sizer.mechanics.stages import BallScrewStage, ScrewRatings
-from sizer.model.domain import Limits, Motor, ShaftLoad, Transmission
+from sizer.model.domain import Limits, Motor, RatioChoice, ShaftLoad, Transmission
 from sizer.sizing.candidates import MotorArrays
 from sizer.sizing.evaluation import CycleMetrics
 
@@ -60,6 +61,8 @@ class CheckName(StrEnum):
     CAM_CONTACT = "cam_contact"
     SHAFT_RADIAL = "shaft_radial"
     SHAFT_AXIAL = "shaft_axial"
+    GEARBOX_RADIAL = "gearbox_radial"
+    GEARBOX_AXIAL = "gearbox_axial"
 
 
 @dataclass(frozen=True, eq=False)
@@ -271,9 +274,13 @@ CAM_CONTACT = OwnCheckKind(CheckName.CAM_CONTACT, "N")
 SHAFT_RADIAL = OwnCheckKind(CheckName.SHAFT_RADIAL, "N")
 SHAFT_AXIAL = OwnCheckKind(CheckName.SHAFT_AXIAL, "N")
 """The loads on the motor's shaft against its catalog ratings (:func:`shaft_checks`)."""
+GEARBOX_RADIAL = OwnCheckKind(CheckName.GEARBOX_RADIAL, "N")
+GEARBOX_AXIAL = OwnCheckKind(CheckName.GEARBOX_AXIAL, "N")
+"""The loads on a gearbox's output shaft against its ratings (:func:`shaft_checks`)."""
 OWN_CHECKS = (HOLDING_BRAKE, DRIVE_PEAK_CURRENT, DRIVE_RMS_CURRENT, RESIDUAL_VIBRATION,
               BRAKING_RESISTOR_POWER, WINDING_TEMPERATURE_RISE, DEAD_POINT, PRESSURE_ANGLE,
-              CAM_CURVATURE, CAM_CONTACT, SHAFT_RADIAL, SHAFT_AXIAL)
+              CAM_CURVATURE, CAM_CONTACT, SHAFT_RADIAL, SHAFT_AXIAL, GEARBOX_RADIAL,
+              GEARBOX_AXIAL)
 """The kinds evaluated by their own code, in the order results list them."""
 
 
@@ -294,44 +301,73 @@ def evaluate_checks(metrics: CycleMetrics, motors: MotorArrays, drive: Drive,
 
 SHAFT_RATINGS = ((SHAFT_RADIAL, "radial_load", "radial"), (SHAFT_AXIAL, "axial_load", "axial"))
 """Each shaft check, the Motor rating it reads and the ShaftForces figure it checks."""
+GEARBOX_RATINGS = ((GEARBOX_RADIAL, "output_radial_load", "radial"),
+                   (GEARBOX_AXIAL, "output_axial_load", "axial"))
+"""Each gearbox output shaft check, the gearbox Stage rating it reads and the ShaftForces
+figure it checks."""
 
 
 def shaft_checks(x: CheckInput) -> list[CheckArrays]:
-    """The loads the first stage puts on the motor's shaft (its ``shaft_load``: a belt's
+    """The loads a stage puts on the shaft it sits on (its ``shaft_load``: a belt's
     pretension and pull, a pinion's tooth force, a directly coupled ball screw's axial
-    force; sizer.mechanics.shaft_loads) against the motor's catalog ratings, with no
-    further margin (the makers' ratings are the limits):
+    force; sizer.mechanics.shaft_loads) against that shaft's ratings, with no further
+    margin (the makers' ratings are the limits):
 
-    - ``shaft_radial``: the peak radial load against ``radial_load`` (N);
-    - ``shaft_axial``: the peak axial load against ``axial_load`` (N).
+    - ``shaft_radial``, ``shaft_axial``: the first stage on the motor's shaft, against the
+      motor's catalog ``radial_load`` and ``axial_load`` (N), for the motor's peak |torque|
+      of the cycle;
+    - ``gearbox_radial``, ``gearbox_axial``: a stage on the output shaft of the gearbox
+      right before it, against that gearbox's ``output_radial_load`` and
+      ``output_axial_load`` (N), for the gearbox's peak |output torque| of the cycle.
 
-    The torque is the motor's peak |torque| of the cycle, the screw's force the load's
-    peak |force| (the screw being the last stage). A check applies to the candidates whose
-    motor gives the rating; none where no motor gives it or no stage loads the shaft
-    (:func:`shaft_notes` says which)."""
+    A screw's force is the load's peak |force| (the screw being the last stage). A check
+    applies to the candidates whose motor (gearbox) gives the rating; none where none
+    gives it or no stage loads the shaft (:func:`shaft_notes` says which)."""
     from sizer.mechanics.shaft_loads import shaft_forces
 
-    load = first_shaft_load(x.drive)
-    if load is None:
-        return []
-    forces = shaft_forces(load, x.metrics.peak_torque, x.metrics.load_torque)
     out = []
-    for kind, rating, figure in SHAFT_RATINGS:
-        force = getattr(forces, figure)
-        limit = _motor_rating(x.motors, rating)
-        has = np.isfinite(limit)
-        if force is None or not has.any():
+    load = first_shaft_load(x.drive)
+    if load is not None:
+        forces = shaft_forces(load, x.metrics.peak_torque, x.metrics.load_torque)
+        for kind, rating, figure in SHAFT_RATINGS:
+            out.extend(_rated(kind, getattr(forces, figure), _motor_rating(x.motors, rating),
+                              x.ones))
+    for i, stage in enumerate(x.drive.transmission.stages):
+        load = stage.shaft_load
+        if load is None or load.shaft != "gearbox" or i == 0 \
+                or not stage_peaks_computed(x.drive.stages):
             continue
-        out.append(kind.arrays(np.broadcast_to(force, x.ones.shape).copy(),
-                               np.where(has, limit, 1.0), 0.0,
-                               None if has.all() else has))
+        forces = shaft_forces(load, x.metrics.stage_peak[i - 1], x.metrics.load_torque)
+        for kind, rating, figure in GEARBOX_RATINGS:
+            out.extend(_rated(kind, getattr(forces, figure),
+                              _gearbox_rating(x.drive, i - 1, rating), x.ones))
     return out
+
+
+def stage_peaks_computed(stages: Sequence[Any]) -> bool:
+    """Whether the engine computes the stages' peak output torques: where a stage has a
+    torque rating (sizer.sizing.move.CycleCalculator.stage_checks, the same rule), else
+    they are left at zero and no gearbox output shaft check is made (:func:`shaft_notes`
+    says so)."""
+    return any(s.rated_output_torque is not None or s.peak_output_torque is not None
+               for s in stages)
+
+
+def _rated(kind: OwnCheckKind, force: np.ndarray | None, limit: np.ndarray,
+           ones: np.ndarray) -> list[CheckArrays]:
+    """The check of ``force`` against the rating ``limit`` (NaN: not rated) where a
+    candidate is rated; none without a force or a rated candidate."""
+    limit = np.broadcast_to(limit, ones.shape)
+    has = np.isfinite(limit)
+    if force is None or not has.any():
+        return []
+    return [kind.arrays(np.broadcast_to(force, ones.shape).copy(), np.where(has, limit, 1.0),
+                        0.0, None if has.all() else has)]
 
 
 def first_shaft_load(drive: Drive) -> ShaftLoad | None:
     """The first stage's load on the motor's shaft (None: none known)."""
-    stages = drive.transmission.stages
-    return stages[0].shaft_load if stages else None
+    return first_shaft_load_of(drive.transmission)
 
 
 def _motor_rating(motors: MotorArrays, name: str) -> np.ndarray:
@@ -341,24 +377,64 @@ def _motor_rating(motors: MotorArrays, name: str) -> np.ndarray:
     return column[motors.index]
 
 
-def shaft_notes(motors: Sequence[Motor], transmission: Transmission) -> list[str]:
-    """What the shaft checks left out: the motors whose catalogs give no rating for a load
-    the first stage puts on the shaft (no guessed limit: no check)."""
+def _gearbox_rating(drive: Drive, i: int, name: str) -> np.ndarray:
+    """The rating ``name`` of stage ``i`` (a gearbox) per candidate (each candidate's
+    transmission option: a catalog gearbox), NaN where it is not rated."""
+    column = np.array([np.nan if (v := getattr(t.stages[i], name)) is None else v
+                       for t in drive.transmissions], dtype=float)
+    return column if drive.option is None else column[drive.option]
+
+
+def _listed(names: Sequence[str]) -> str:
+    return ", ".join(names[:5]) + (f" and {len(names) - 5} more" if len(names) > 5 else "")
+
+
+def shaft_notes(motors: Sequence[Motor], transmission: Transmission,
+                choice: RatioChoice | None = None) -> list[str]:
+    """What the shaft checks left out: the motors (gearboxes: the design's, or with
+    ``choice`` its catalog's) whose catalogs give no rating for a load a stage puts on the
+    shaft (no guessed limit: no check)."""
+    stages = transmission.stages
+    out: list[str] = []
+    load = first_shaft_load_of(transmission)
+    if load is not None:
+        for _, rating, figure in SHAFT_RATINGS:
+            if (figure == "axial") != (load.kind == "screw"):
+                continue
+            missing = [m.id for m in motors if getattr(m, rating) is None]
+            if missing:
+                out.append(f"no shaft_{figure} check for {_listed(missing)}: the catalog "
+                           f"gives no {rating}")
+    for i, stage in enumerate(stages):
+        load = stage.shaft_load
+        if load is None or load.shaft != "gearbox" or i == 0:
+            continue
+        if choice is not None and choice.stage == i - 1 and choice.gearboxes:
+            boxes = [(g.gearbox, g.stage) for g in choice.gearboxes]
+        else:
+            boxes = [(stages[i - 1].name or "the gearbox", stages[i - 1])]
+        options = [*stages, *(box for _, box in boxes)]
+        if not stage_peaks_computed(options):
+            out.append("no gearbox_radial or gearbox_axial check: the gearbox's output "
+                       "torque is computed where a stage has a torque rating (give the "
+                       "gearbox its rated_output_torque or peak_output_torque)")
+            continue
+        for _, rating, figure in GEARBOX_RATINGS:
+            if (figure == "axial") != (load.kind == "screw"):
+                continue
+            missing = list(dict.fromkeys(
+                name.split(" i=")[0] for name, box in boxes if getattr(box, rating) is None))
+            if missing:
+                out.append(f"no gearbox_{figure} check for {_listed(missing)}: its ratings "
+                           f"give no {rating}")
+    return out
+
+
+def first_shaft_load_of(transmission: Transmission) -> ShaftLoad | None:
+    """The first stage's load on the motor's shaft of ``transmission`` (None: none)."""
     stages = transmission.stages
     load = stages[0].shaft_load if stages else None
-    if load is None:
-        return []
-    out = []
-    for _, rating, figure in SHAFT_RATINGS:
-        if (figure == "axial") != (load.kind == "screw"):
-            continue
-        missing = [m.id for m in motors if getattr(m, rating) is None]
-        if missing:
-            shown = ", ".join(missing[:5]) + (f" and {len(missing) - 5} more"
-                                               if len(missing) > 5 else "")
-            out.append(f"no shaft_{figure} check for {shown}: the catalog gives no "
-                       f"{rating}")
-    return out
+    return load if load is not None and load.shaft == "motor" else None
 
 
 def cam_checks(x: CheckInput) -> list[CheckArrays]:

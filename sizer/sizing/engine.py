@@ -375,7 +375,7 @@ def assumptions(design: Design) -> tuple[str, ...]:
         else:
             notes.append("efficiency applied in the direction of power flow")
     notes.extend(energy_notes(design))
-    notes.extend(shaft_notes(design.motors, design.transmission))
+    notes.extend(shaft_notes(design.motors, design.transmission, design.ratio_choice))
     if design.limits.inertia_ratio is not None:
         if design.limits.inertia_ratio_of == "load":
             notes.append("inertia ratio: the load alone reflected to the motor, over the "

@@ -100,6 +100,19 @@ Efficiency = Annotated[float, Ranged("efficiency")]
 Inertia = Annotated[float, Ranged("stage_inertia", note="reflected to the stage input")]
 Speed = Annotated[float, Ranged("stage_speed")]
 Torque = Annotated[float, Ranged("stage_torque")]
+OutputRadialLoad = Annotated[float, Ranged(
+    "shaft_load", note="the maker's permissible radial load on the gearbox's output shaft "
+                       "(e.g. Beckhoff's F2RMax), docs/shaft-loads.md")]
+OutputAxialLoad = Annotated[float, Ranged(
+    "shaft_load", note="the maker's permissible axial load on the gearbox's output shaft "
+                       "(e.g. Beckhoff's FaStat, F2AMax)")]
+
+
+def _on_gearbox_output() -> Any:
+    return Field(False, description="the stage sits on the output shaft of the gearbox "
+                                    "stage right before it: its load is checked against "
+                                    "that gearbox's output_radial_load / output_axial_load "
+                                    "(docs/shaft-loads.md)")
 
 
 class GearboxInput(Strict):
@@ -116,6 +129,8 @@ class GearboxInput(Strict):
     rated_output_torque: Torque | None = None
     peak_output_torque: Torque | None = None
     backlash: Annotated[float, Ranged("backlash", note="informative")] | None = None
+    output_radial_load: OutputRadialLoad | None = None
+    output_axial_load: OutputAxialLoad | None = None
     name: Text | None = None
 
 
@@ -139,6 +154,7 @@ class BeltInput(Strict):
                                 "'200 N'")] | None = None
     wrap_angle: Annotated[float, Ranged(
         "wrap_angle", note="on the driver pulley; 180 deg for equal pulleys")] | None = None
+    on_gearbox_output: bool = _on_gearbox_output()
     name: Text | None = None
 
 
@@ -182,6 +198,7 @@ class BallScrewInput(Strict):
         False, description="the screw is coupled directly to the motor and the motor's "
                            "bearing takes its axial force: checked against the motor's "
                            "axial_load")
+    on_gearbox_output: bool = _on_gearbox_output()
     name: Text | None = None
 
 
@@ -198,6 +215,7 @@ class RackPinionInput(Strict):
                            "tooth force is checked against the motor's radial_load")
     pressure_angle: Annotated[float, Ranged(
         "gear_pressure_angle", note="default 20 deg (the standard basic rack)")] | None = None
+    on_gearbox_output: bool = _on_gearbox_output()
     name: Text | None = None
 
 
@@ -369,6 +387,8 @@ class GearboxSeriesInput(Strict):
     rated_output_torque: Torque | None = None
     peak_output_torque: Torque | None = None
     backlash: Annotated[float, Ranged("backlash")] | None = None
+    output_radial_load: OutputRadialLoad | None = None
+    output_axial_load: OutputAxialLoad | None = None
     source: Text | None = None
     figure_sources: FigureSourcesInput | None = None
     notes: Text | None = None
