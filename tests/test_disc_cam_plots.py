@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 import yaml
 from cli_run import assert_user_error, run_cli
+from test_cam_follower import _lift  # the lift written out: the same cam cycle
 
 pytest.importorskip("matplotlib")
 
@@ -53,28 +54,6 @@ def _write(folder: Path, design: dict) -> Path:
     path = folder / "cam.yaml"
     path.write_text(yaml.safe_dump(design, sort_keys=False), encoding="utf-8")
     return path
-
-
-def _cycloidal(x: np.ndarray, k: int) -> np.ndarray:
-    """d^k/dx^k of x - sin(2 pi x)/(2 pi)."""
-    w = 2.0 * np.pi
-    return [x - np.sin(w * x) / w, 1.0 - np.cos(w * x), w * np.sin(w * x),
-            w * w * np.cos(w * x)][k]
-
-
-def _lift(theta: np.ndarray, k: int = 0) -> np.ndarray:
-    """d^k s/dtheta^k: a cycloidal rise over BETA, a dwell, the return, a dwell."""
-    theta = np.mod(np.asarray(theta, dtype=float), 2.0 * np.pi)
-    out = np.zeros(theta.shape)
-    rise = theta < BETA
-    top = (theta >= BETA) & (theta < BETA + DWELL)
-    back = (theta >= BETA + DWELL) & (theta < 2 * BETA + DWELL)
-    out[rise] = H * _cycloidal(theta[rise] / BETA, k) / BETA**k
-    out[back] = -H * _cycloidal((theta[back] - BETA - DWELL) / BETA, k) / BETA**k
-    if k == 0:
-        out[top] = H
-        out[back] += H
-    return out
 
 
 def _read_csv(path: Path) -> tuple[dict[str, str], list[str], np.ndarray]:
