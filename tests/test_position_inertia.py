@@ -12,12 +12,12 @@ scipy.integrate.quad split there, T_min by brentq on those checks."""
 from __future__ import annotations
 
 import math
-from itertools import pairwise
 
 import numpy as np
 import pytest
 from bad_input_cases import Case, edited
 from bad_input_cases import run_case as run
+from position_reference import N_GEAR, ROTOR_GEAR, PiecewiseReference, calculator, falling, flat
 
 from sizer.laws import law_choice
 from sizer.mechanics.drive import Drive
@@ -37,8 +37,6 @@ from sizer.sizing.linkage_move import position_calculator
 from sizer.sizing.shortest_duration import answer
 
 G = 9.80665
-ROTOR_GEAR = 5e-6
-N_GEAR = 5.0
 
 # an arm whose reach changes along the move: J rises, peaks, falls, rises again
 X = (-0.2, 0.1, 0.45, 0.7, 0.95, 1.3, 1.8)
@@ -49,23 +47,7 @@ LOAD = Load(inertia=0.01, damping=0.01, friction=0.15, gravity=ARM,
             inertia_table=InertiaTableLoad(X, J, offset=OFFSET))
 
 
-def _falling(k: int) -> Motor:
-    tp, vn = 2.0 + 3.0 * k, 150.0 + 25.0 * k
-    return Motor(id=f"f{k}", inertia=1e-4 * (1 + k), continuous_torque=tp / 3, peak_torque=tp,
-                 rated_speed=vn, max_speed=2 * vn,
-                 intermittent_curve=((0.0, tp), (0.8 * vn, tp), (1.4 * vn, 0.7 * tp),
-                                     (2 * vn, 0.35 * tp)),
-                 continuous_curve=((0.0, tp / 3), (2 * vn, tp / 5)))
-
-
-def _flat(k: int, peak: float, continuous: float, speed: float = 300.0) -> Motor:
-    return Motor(id=f"m{k}", inertia=1e-4, continuous_torque=continuous, peak_torque=peak,
-                 rated_speed=speed, max_speed=speed,
-                 intermittent_curve=((0.0, peak), (speed, peak)),
-                 continuous_curve=((0.0, continuous), (speed, continuous)))
-
-
-class Independent:
+class Independent(PiecewiseReference):
     """The move's torques from their closed forms, with scipy's PCHIP for J(q)."""
 
     def __init__(self, load: Load, h: float, law_name: str, eta: float) -> None:
@@ -77,11 +59,6 @@ class Independent:
         self.slope = self.spline.derivative()
         self.offset, self.knots = table.offset, np.asarray(table.x) - table.offset
         self.load, self.h, self.law, self.eta = load, h, law_choice(law_name).law, eta
-
-    def motion(self, t, T: float):
-        u = np.clip(np.atleast_1d(np.asarray(t, dtype=float)) / T, 0.0, 1.0)
-        q, v, a = (self.law.derivative(u, k) for k in range(3))
-        return self.h * q, self.h * v / T, self.h * a / T**2
 
     def gravity(self, q):
         arm = self.load.gravity
@@ -104,53 +81,6 @@ class Independent:
     def hold(self) -> float:
         return abs(float(self.gravity(self.h))) / (N_GEAR * self.eta)
 
-    def edges(self, T: float) -> list[float]:
-        """0, every time the position crosses a knot or the power flow reverses, T."""
-        from scipy.optimize import brentq
-
-        t = np.linspace(0.0, T, 4001)
-        cuts = []
-        for knot in self.knots:
-            f = self.motion(t, T)[0] - knot
-            cuts += [brentq(lambda s, k=knot: float(self.motion(s, T)[0][0] - k), t[i], t[i + 1],
-                            xtol=1e-16, rtol=1e-15)
-                     for i in np.flatnonzero(f[:-1] * f[1:] < 0.0)]
-        flow = self.load_torque(t, T) * self.motion(t, T)[1]
-        cuts += [brentq(lambda s: float((self.load_torque(s, T) * self.motion(s, T)[1])[0]),
-                        t[i], t[i + 1], xtol=1e-16, rtol=1e-15)
-                 for i in np.flatnonzero(flow[:-1] * flow[1:] < 0.0)]
-        return [0.0, *sorted(cuts), T]
-
-    def peak(self, T: float, rotor: float, dwell: float) -> float:
-        from scipy.optimize import minimize_scalar
-
-        best = 0.0
-        for lo, hi in pairwise(self.edges(T)):  # smooth on each piece
-            t = np.linspace(lo, hi, 401)
-            values = np.abs(self.torque(t, T, rotor))
-            best = max(best, float(values.max()))
-            i = int(np.argmax(values))
-            a, b = t[max(i - 1, 0)], t[min(i + 1, len(t) - 1)]
-            found = minimize_scalar(lambda s: -abs(self.torque(s, T, rotor)[0]), bounds=(a, b),
-                                    method="bounded", options={"xatol": 1e-15 * T})
-            best = max(best, -float(found.fun))
-        return max(best, self.hold()) if dwell > 0.0 else best
-
-    def rms(self, T: float, rotor: float, dwell: float) -> float:
-        from scipy.integrate import quad
-
-        square = sum(quad(lambda s: self.torque(s, T, rotor)[0] ** 2, lo, hi, limit=200,
-                          epsabs=0.0, epsrel=1e-13)[0] for lo, hi in pairwise(self.edges(T)))
-        return math.sqrt((square + dwell * self.hold() ** 2) / (T + dwell))
-
-
-def _calculator(load: Load, h: float, law: str, motors, eta: float, duration, dwell: float):
-    drive = Drive(load, Transmission(stages=(Stage(ratio=N_GEAR, efficiency=eta,
-                                                   inertia=ROTOR_GEAR),)))
-    return position_calculator(Task(h, duration, dwell=dwell), law_choice(law).law, load,
-                               drive, MotorArrays.of(motors, "electrical"))
-
-
 def test_the_interpolation_is_scipys_pchip():
     from scipy.interpolate import PchipInterpolator
 
@@ -167,14 +97,14 @@ def test_the_interpolation_is_scipys_pchip():
 
 
 def test_a_constant_table_sizes_as_the_constant_inertia():
-    motors = tuple(_falling(k) for k in range(3))
+    motors = tuple(falling(k) for k in range(3))
     table = InertiaTableLoad(X, (0.04,) * len(X), offset=OFFSET)
     with_table = Load(inertia=0.01, damping=0.01, friction=0.15, gravity=ARM,
                       inertia_table=table)
     plain = Load(inertia=0.05, damping=0.01, friction=0.15, gravity=ARM)
     for h, law in ((1.5, "cycloidal"), (-0.25, "poly7")):
-        got = _calculator(with_table, h, law, motors, 0.9, 0.5, 0.3)
-        ref = _calculator(plain, h, law, motors, 0.9, 0.5, 0.3)
+        got = calculator(with_table, h, law, motors, 0.9, 0.5, 0.3)
+        ref = calculator(plain, h, law, motors, 0.9, 0.5, 0.3)
         a, b = got.evaluate(np.full(3, 0.5)), ref.evaluate(np.full(3, 0.5))
         for name in ("peak_torque", "rms_torque", "peak_ratio", "load_torque"):
             np.testing.assert_allclose(getattr(a, name), getattr(b, name), rtol=1e-12,
@@ -189,9 +119,9 @@ def test_a_constant_table_sizes_as_the_constant_inertia():
     (-0.25, "poly7", 1.0),     # backwards, the start on a rising stretch of J
 ])
 def test_peak_and_rms_against_independent_evaluations(h, law, eta):
-    motors = tuple(_falling(k) for k in range(3))
+    motors = tuple(falling(k) for k in range(3))
     T, dwell = 0.5, 0.3
-    calc = _calculator(LOAD, h, law, motors, eta, T, dwell)
+    calc = calculator(LOAD, h, law, motors, eta, T, dwell)
     metrics = calc.evaluate(np.full(len(motors), T))
     ref = Independent(LOAD, h, law, eta)
     # the peak: a parabola through the largest samples (spacing 1/4000) reads it to about
@@ -211,7 +141,7 @@ def test_the_velocity_term_is_half_the_slope_times_the_speed_squared():
     # torque from the profile at T = 1 against J(q) q'' + b/2 q'^2 in closed form
     table = InertiaTableLoad((0.0, 2.0), (0.1, 0.5))
     load = Load(inertia=0.0, inertia_table=table)
-    calc = _calculator(load, 1.0, "cycloidal", (_falling(0),), 1.0, 1.0, 0.0)
+    calc = calculator(load, 1.0, "cycloidal", (falling(0),), 1.0, 1.0, 0.0)
     p = calc.profile
     u = p.u
     law = law_choice("cycloidal").law
@@ -225,8 +155,8 @@ def test_the_velocity_term_is_half_the_slope_times_the_speed_squared():
 def test_the_inertia_ratio_reads_the_largest_inertia_over_the_move(h, lo, hi):
     from scipy.interpolate import PchipInterpolator
 
-    motors = tuple(_falling(k) for k in range(2))
-    calc = _calculator(LOAD, h, "cycloidal", motors, 1.0, 0.5, 0.0)
+    motors = tuple(falling(k) for k in range(2))
+    calc = calculator(LOAD, h, "cycloidal", motors, 1.0, 0.5, 0.0)
     q = np.concatenate((np.linspace(lo, hi, 200001), [x - OFFSET for x in X
                                                        if lo <= x - OFFSET <= hi]))
     largest = LOAD.inertia + float(np.max(PchipInterpolator(X, J)(q + OFFSET)))
@@ -253,9 +183,9 @@ def _t_min(motor: Motor, check: str, h: float, law: str, dwell: float, grip: flo
 
 
 def test_t_min_where_the_position_terms_do_not_scale():
-    motors = (_flat(0, peak=1.2, continuous=100.0), _flat(1, peak=100.0, continuous=0.6))
+    motors = (flat(0, peak=1.2, continuous=100.0), flat(1, peak=100.0, continuous=0.6))
     h, law, dwell, grip = 1.5, "cycloidal", 0.3, 0.9
-    calc = _calculator(LOAD, h, law, motors, 1.0, None, dwell)
+    calc = calculator(LOAD, h, law, motors, 1.0, None, dwell)
     settled = answer(calc, Limits(torque_margin=0.1), [], True)
     assert settled.feasible.all()
     # the peak read as above (1e-8), then brentq on the peak check
@@ -271,7 +201,7 @@ def test_a_mass_table_on_a_linear_axis(h, law):
     x, mass = (-0.1, -0.02, 0.03, 0.07, 0.15), (2.0, 6.0, 6.0, 14.0, 3.0)
     load = Load(inertia=8.0, damping=3.0, friction=25.0,
                 inertia_table=InertiaTableLoad(x, mass))
-    motors = tuple(_falling(k) for k in range(2))
+    motors = tuple(falling(k) for k in range(2))
     drive = Drive(load, Transmission(stages=(Stage(ratio=N_GEAR, efficiency=1.0,
                                                    inertia=ROTOR_GEAR),)))
     T, dwell = 0.4, 0.2

@@ -11,12 +11,12 @@ RMS by scipy.integrate.quad split at those crossings, T_min by brentq on those c
 from __future__ import annotations
 
 import math
-from itertools import pairwise
 
 import numpy as np
 import pytest
 from bad_input_cases import Case, edited
 from bad_input_cases import run_case as run
+from position_reference import N_GEAR, ROTOR_GEAR, PiecewiseReference, calculator, falling, flat
 
 from sizer.errors import UserError
 from sizer.laws import law_choice
@@ -28,8 +28,6 @@ from sizer.sizing.linkage_move import position_calculator
 from sizer.sizing.shortest_duration import answer
 
 G = 9.80665
-ROTOR_GEAR = 5e-6
-N_GEAR = 5.0
 
 # a measured process torque: rises, a sharp peak at 0.7 rad, falls, turns over
 X = (-0.2, 0.1, 0.45, 0.7, 0.95, 1.3, 1.8)
@@ -37,34 +35,14 @@ TAU = (0.5, 0.8, 2.6, 4.1, 1.2, -0.6, 0.3)
 TABLE = Load(inertia=0.03, damping=0.01, friction=0.15, table=TableLoad(X, TAU, offset=0.1))
 
 
-def _falling(k: int) -> Motor:
-    tp, vn = 2.0 + 3.0 * k, 150.0 + 25.0 * k
-    return Motor(id=f"f{k}", inertia=1e-4 * (1 + k), continuous_torque=tp / 3, peak_torque=tp,
-                 rated_speed=vn, max_speed=2 * vn,
-                 intermittent_curve=((0.0, tp), (0.8 * vn, tp), (1.4 * vn, 0.7 * tp),
-                                     (2 * vn, 0.35 * tp)),
-                 continuous_curve=((0.0, tp / 3), (2 * vn, tp / 5)))
-
-
-def _flat(k: int, peak: float, continuous: float, speed: float = 300.0) -> Motor:
-    return Motor(id=f"m{k}", inertia=1e-4, continuous_torque=continuous, peak_torque=peak,
-                 rated_speed=speed, max_speed=speed,
-                 intermittent_curve=((0.0, peak), (speed, peak)),
-                 continuous_curve=((0.0, continuous), (speed, continuous)))
-
-
-class Independent:
+class Independent(PiecewiseReference):
     """The move's torques from their closed forms, with numpy's interp and scipy."""
 
     def __init__(self, x, tau, offset: float, load: Load, h: float, law_name: str,
                  eta: float) -> None:
         self.x, self.tau, self.offset = np.asarray(x), np.asarray(tau), offset
+        self.knots = self.x - offset
         self.load, self.h, self.law, self.eta = load, h, law_choice(law_name).law, eta
-
-    def motion(self, t, T: float):
-        u = np.clip(np.atleast_1d(np.asarray(t, dtype=float)) / T, 0.0, 1.0)
-        q, v, a = (self.law.derivative(u, k) for k in range(3))
-        return self.h * q, self.h * v / T, self.h * a / T**2
 
     def position_torque(self, q):
         return np.interp(np.asarray(q) + self.offset, self.x, self.tau)
@@ -84,62 +62,15 @@ class Independent:
     def hold(self) -> float:
         return abs(float(self.position_torque(self.h))) / (N_GEAR * self.eta)
 
-    def edges(self, T: float) -> list[float]:
-        """0, every time the position crosses a knot or the power flow reverses, T."""
-        from scipy.optimize import brentq
-
-        t = np.linspace(0.0, T, 4001)
-        cuts = []
-        for knot in self.x - self.offset:
-            f = self.motion(t, T)[0] - knot
-            cuts += [brentq(lambda s, k=knot: float(self.motion(s, T)[0][0] - k), t[i], t[i + 1],
-                            xtol=1e-16, rtol=1e-15)
-                     for i in np.flatnonzero(f[:-1] * f[1:] < 0.0)]
-        flow = self.load_torque(t, T) * self.motion(t, T)[1]
-        cuts += [brentq(lambda s: float((self.load_torque(s, T) * self.motion(s, T)[1])[0]),
-                        t[i], t[i + 1], xtol=1e-16, rtol=1e-15)
-                 for i in np.flatnonzero(flow[:-1] * flow[1:] < 0.0)]
-        return [0.0, *sorted(cuts), T]
-
-    def peak(self, T: float, rotor: float, dwell: float) -> float:
-        from scipy.optimize import minimize_scalar
-
-        best = 0.0
-        for lo, hi in pairwise(self.edges(T)):  # smooth on each piece
-            t = np.linspace(lo, hi, 401)
-            values = np.abs(self.torque(t, T, rotor))
-            best = max(best, float(values.max()))
-            i = int(np.argmax(values))
-            a, b = t[max(i - 1, 0)], t[min(i + 1, len(t) - 1)]
-            found = minimize_scalar(lambda s: -abs(self.torque(s, T, rotor)[0]), bounds=(a, b),
-                                    method="bounded", options={"xatol": 1e-15 * T})
-            best = max(best, -float(found.fun))
-        return max(best, self.hold()) if dwell > 0.0 else best
-
-    def rms(self, T: float, rotor: float, dwell: float) -> float:
-        from scipy.integrate import quad
-
-        square = sum(quad(lambda s: self.torque(s, T, rotor)[0] ** 2, lo, hi, limit=200,
-                          epsabs=0.0, epsrel=1e-13)[0] for lo, hi in pairwise(self.edges(T)))
-        return math.sqrt((square + dwell * self.hold() ** 2) / (T + dwell))
-
-
-def _calculator(load: Load, h: float, law: str, motors, eta: float, duration, dwell: float):
-    drive = Drive(load, Transmission(stages=(Stage(ratio=N_GEAR, efficiency=eta,
-                                                   inertia=ROTOR_GEAR),)))
-    return position_calculator(Task(h, duration, dwell=dwell), law_choice(law).law, load,
-                               drive, MotorArrays.of(motors, "electrical"))
-
-
 @pytest.mark.parametrize("h, law, eta", [
     (1.5, "cycloidal", 1.0),   # every knot crossed, the peak at the table's sharp knot
     (1.5, "poly5", 0.9),
     (-0.25, "poly7", 1.0),     # backwards: the load drives part of the move
 ])
 def test_peak_and_rms_against_independent_evaluations(h, law, eta):
-    motors = tuple(_falling(k) for k in range(3))
+    motors = tuple(falling(k) for k in range(3))
     T, dwell = 0.5, 0.3
-    calc = _calculator(TABLE, h, law, motors, eta, T, dwell)
+    calc = calculator(TABLE, h, law, motors, eta, T, dwell)
     metrics = calc.evaluate(np.full(len(motors), T))
     ref = Independent(X, TAU, 0.1, TABLE, h, law, eta)
     for k, motor in enumerate(motors):
@@ -151,15 +82,15 @@ def test_peak_and_rms_against_independent_evaluations(h, law, eta):
 
 def test_a_table_of_gravity_approaches_gravity():
     arm = GravityLoad(moment=0.5, offset=-0.3)
-    motors = tuple(_falling(k) for k in range(2))
+    motors = tuple(falling(k) for k in range(2))
     base = Load(inertia=0.05, friction=0.2, gravity=arm)
-    exact = _calculator(base, math.pi / 2, "cycloidal", motors, 1.0, 0.45, 0.3)
+    exact = calculator(base, math.pi / 2, "cycloidal", motors, 1.0, 0.45, 0.3)
     reference = exact.evaluate(np.full(2, 0.45))
     errors = []
     for n in (9, 33, 129):
         x = np.linspace(-0.01, math.pi / 2 + 0.01, n)
         table = TableLoad(tuple(x), tuple(0.5 * G * np.cos(x - 0.3)))
-        calc = _calculator(Load(inertia=0.05, friction=0.2, table=table), math.pi / 2,
+        calc = calculator(Load(inertia=0.05, friction=0.2, table=table), math.pi / 2,
                            "cycloidal", motors, 1.0, 0.45, 0.3)
         got = calc.evaluate(np.full(2, 0.45))
         errors.append(max(np.max(np.abs(got.peak_torque / reference.peak_torque - 1.0)),
@@ -184,9 +115,9 @@ def _t_min(motor: Motor, check: str, h: float, law: str, dwell: float, grip: flo
 
 
 def test_t_min_where_the_position_terms_do_not_scale():
-    motors = (_flat(0, peak=1.6, continuous=100.0), _flat(1, peak=100.0, continuous=1.0))
+    motors = (flat(0, peak=1.6, continuous=100.0), flat(1, peak=100.0, continuous=1.0))
     h, law, dwell, grip = 1.5, "cycloidal", 0.3, 0.9
-    calc = _calculator(TABLE, h, law, motors, 0.9, None, dwell)
+    calc = calculator(TABLE, h, law, motors, 0.9, None, dwell)
     settled = answer(calc, Limits(torque_margin=0.1), [], True)
     assert settled.feasible.all()
     assert settled.scale[0] == pytest.approx(_t_min(motors[0], "peak", h, law, dwell, grip),
@@ -200,7 +131,7 @@ def test_a_force_table_on_a_linear_axis(h, law):
     # a linear axis (s in m, F in N) through a stage of ratio N rad/m: the same engine
     x, force = (-0.1, -0.02, 0.03, 0.07, 0.15), (40.0, 120.0, 310.0, -60.0, 90.0)
     load = Load(inertia=8.0, damping=3.0, friction=25.0, table=TableLoad(x, force))
-    motors = tuple(_falling(k) for k in range(2))
+    motors = tuple(falling(k) for k in range(2))
     drive = Drive(load, Transmission(stages=(Stage(ratio=N_GEAR, efficiency=0.9,
                                                    inertia=ROTOR_GEAR),)))
     T, dwell = 0.4, 0.2
@@ -253,7 +184,7 @@ def test_no_output_is_written_over_the_table_file(tmp_path):
 
 
 def test_a_move_beyond_the_table_is_refused():
-    motors = MotorArrays.of((_falling(0),), "electrical")
+    motors = MotorArrays.of((falling(0),), "electrical")
     law = law_choice("cycloidal").law
     with pytest.raises(UserError, match="table covers"):
         position_calculator(Task(2.0, 0.5), law, TABLE, Drive(TABLE, Transmission()), motors)
