@@ -146,17 +146,11 @@ def pair(design: Design, motor: str | None = None, law: str | None = None
 
 def fixed_pair(design: Design, result: CandidateResult) -> Design:
     """``design`` with only ``result``'s motor, drive and law, and the transmission the
-    sizing chose (a ratio choice fixed: sizer.export.resized.fixed_design); the duration
+    sizing chose (a ratio choice fixed: CandidateResult.fixed_in); the duration
     as the design has it (given, or minimized again)."""
     from sizer.laws.choice import law_choice
 
-    fixed = replace(design, motors=(result.motor_object,), laws=(law_choice(result.spec),),
-                    chosen_motor=None, chosen_law=None)
-    if design.ratio_choice is not None:
-        fixed = replace(fixed, ratio_choice=None, transmission=result.transmission)
-    if result.drive_object is not None:
-        fixed = replace(fixed, drives=(result.drive_object,))
-    return fixed
+    return replace(result.fixed_in(design), laws=(law_choice(result.spec),))
 
 
 # ---------------------------------------------------------------------- the inputs

@@ -54,13 +54,7 @@ def fixed_design(design: Design, result: CandidateResult) -> Design:
     from sizer.model.cycle import from_task
 
     task = replace(design.task, duration=result.duration)
-    fixed = replace(design, machine_cycle=from_task(task), motors=(result.motor_object,),
-                    chosen_motor=None, chosen_law=None)
-    if design.ratio_choice is not None:
-        fixed = replace(fixed, ratio_choice=None, transmission=result.transmission)
-    if result.drive_object is not None:
-        fixed = replace(fixed, drives=(result.drive_object,))
-    return fixed
+    return result.fixed_in(replace(design, machine_cycle=from_task(task)))
 
 
 def resize(design: Design, result: CandidateResult, spec: str) -> Resized:
@@ -106,13 +100,7 @@ def cycle_design(design: Design, result: CandidateResult, specs: Sequence[str | 
             segments.append(segment)
     fixed = replace(cycle, segments=tuple(segments), cycle_time=None,
                     minimize_segment=None, shorthand=None)
-    out = replace(design, machine_cycle=fixed, motors=(result.motor_object,),
-                  chosen_motor=None, chosen_law=None)
-    if design.ratio_choice is not None:
-        out = replace(out, ratio_choice=None, transmission=result.transmission)
-    if result.drive_object is not None:
-        out = replace(out, drives=(result.drive_object,))
-    return out
+    return result.fixed_in(replace(design, machine_cycle=fixed))
 
 
 def resize_cycle(design: Design, result: CandidateResult, specs: Sequence[str | None]

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from enum import StrEnum
 from functools import cached_property
 from typing import Any, overload
@@ -22,7 +22,7 @@ from typing import Any, overload
 import numpy as np
 
 from sizer.laws import MotionLaw
-from sizer.model.domain import Motor, ServoDrive, Transmission
+from sizer.model.domain import Design, Motor, ServoDrive, Transmission
 from sizer.sizing.checks import TOLERANCE, CheckArrays, limiting_index
 from sizer.sizing.energy_check import ENERGY_FIGURES
 
@@ -196,6 +196,17 @@ class CandidateResult:
     def ratio(self) -> float:
         """The total transmission ratio K (motor speed over load speed)."""
         return self.transmission.ratio
+
+    def fixed_in(self, design: Design) -> Design:
+        """``design`` with this pair's motor (and drive) alone and the transmission the
+        sizing chose in place of a ratio choice; its laws and durations as it has them."""
+        fixed = replace(design, motors=(self.motor_object,), chosen_motor=None,
+                        chosen_law=None)
+        if design.ratio_choice is not None:
+            fixed = replace(fixed, ratio_choice=None, transmission=self.transmission)
+        if self.drive_object is not None:
+            fixed = replace(fixed, drives=(self.drive_object,))
+        return fixed
 
     @property
     def drive(self) -> str | None:
