@@ -170,8 +170,8 @@ def plan(design: DesignLike, *, catalogs: Iterable[CatalogRef] = (),
          laws: Sequence[LawChoice | str] | None = None) -> PlanningResult:
     """Each law's shortest duration (or, for a given duration, the book's scaling factor
     lambda, eq. 5.4) under the load's own limits, with no motor (``sizer size`` of a
-    design with ``motors: []``; sizer.sizing.planning, docs/planning.md). The design's
-    motors, if any, are not used."""
+    design with no motors and the load's limits; sizer.sizing.planning,
+    docs/planning.md). The design's motors, if any, are not used."""
     from sizer.sizing.planning import plan as plan_laws
 
     return plan_laws(override(load(design, catalogs), laws=laws))

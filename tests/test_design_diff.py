@@ -278,3 +278,41 @@ def test_user_errors_exit_2(tmp_path, capsys, args, words):
     err = capsys.readouterr().err
     assert err.startswith("error: ") and words in err and "Traceback" not in err
     assert a.read_text() == yaml.safe_dump(_data(EX61), sort_keys=False)
+
+
+@pytest.mark.skipif(shutil.which("git") is None, reason="needs git")
+def test_a_revision_with_catalog_options_is_sized_as_a_file(tmp_path, capsys, monkeypatch):
+    """--catalog adds its motors to a revision's design as the loader adds them to a file:
+    a design naming no motors gets only those (not the bundled catalogs); the same diff as
+    the two files compared directly with the option."""
+    repo = tmp_path / "repo"
+    repo.mkdir()
+    data = _data(EX61)
+    data.pop("motors", None)
+    design = _write(repo, "axis.yaml", data)
+    _git(repo, "init", "-q")
+    _git(repo, "add", ".")
+    _git(repo, "commit", "-qm", "one")
+    old = _write(tmp_path, "old.yaml", data)
+    data["load"]["inertia"] = "1.2 kg*m^2"
+    _write(repo, "axis.yaml", data)
+    monkeypatch.chdir(repo)
+    assert run(["diff", str(old), str(design), "--catalog", "book-examples", "-f", "json"]) == 1
+    direct = json.loads(capsys.readouterr().out)
+    from sizer.io.loader import load_catalog
+
+    book = {m.id for m in load_catalog("book-examples")}
+    assert direct["pairs"] and {p["motor"] for p in direct["pairs"]} <= book
+    assert run(["diff", "axis.yaml", "--rev", "HEAD", "--catalog", "book-examples",
+                "-f", "json"]) == 1
+    revision = json.loads(capsys.readouterr().out)
+    assert revision["pairs"] == direct["pairs"]
+    # a plan's design (no motors, the load's limits, no load) with --catalog is sized
+    # against the catalog, so it needs its load, in a revision as in a file
+    plan = {k: v for k, v in data.items() if k != "load"}
+    plan["limits"] = {"max_speed": "30 rad/s"}
+    _write(repo, "axis.yaml", plan)
+    _git(repo, "commit", "-qam", "plan")
+    code = run(["diff", "axis.yaml", "--rev", "HEAD~1", "--rev", "HEAD", "--catalog",
+                "book-examples"])
+    assert code == 2 and "load.inertia" in capsys.readouterr().err

@@ -247,7 +247,9 @@ def test_yaml_anchors_and_merge_keys(tmp_path):
 
 def test_schema_names_the_sections():
     schema = design_schema()
-    assert {"load"} <= set(schema["required"])  # and task or cycle: see test_cycle_input.py
+    # task or cycle: see test_cycle_input.py; load is required by the loader but for a plan
+    # without a motor (test_planning.py), so not by the schema
+    assert "load" not in schema.get("required", [])
     assert {"name", "task", "cycle", "load", "transmission", "laws", "motors", "drives",
             "check", "limits", "tolerances", "efficiency_applies_to"} == set(schema["properties"])
     assert "return" in schema["$defs"]["TaskInput"]["properties"]

@@ -315,3 +315,55 @@ def test_the_python_api_plans_as_the_command(tmp_path: Path) -> None:
     expected = max(15 / 8 * 40 / 30, math.sqrt(10 / math.sqrt(3) * 40 / 80))
     assert result.plans[0].T_min == pytest.approx(expected, rel=1e-12)
     assert result.plans[0].binding == "speed"
+
+
+def test_motors_left_out_with_the_load_limits_is_a_plan_and_needs_no_load(
+        tmp_path: Path) -> None:
+    """Issue 38: `motors:` may be left out when the load's limits are given (and then the
+    load too); without the limits a design naming no motors is sized against the bundled
+    catalogs, and with `--catalog` (or named motors) its load is required as always.
+    Table 5.1's poly3 row: T_vel = 3/2 h / v = 2, T_acc = sqrt(6 h / a) = 1.7321."""
+    design = tmp_path / "table51.yaml"
+    design.write_text("name: table 5.1\ntask: {displacement: 40 rad, duration: minimize}\n"
+                      "laws: [poly3]\n"
+                      "limits: {max_speed: 30 rad/s, max_acceleration: 80 rad/s^2}\n")
+    result = run_cli("size", str(design), "--format", "json")
+    assert result.returncode == 0, result.stderr
+    row = json.loads(result.stdout)["laws"][0]
+    assert row["T_min"] == pytest.approx(1.5 * 40 / 30, rel=1e-12)
+    assert row["binding"] == "speed"
+    assert_user_error(run_cli("size", str(design), "--catalog", "siemens-1ft7"),
+                      "load.inertia", "required field is missing")
+    named = design.read_text() + "motors: [siemens-1ft7]\n"
+    design.write_text(named)
+    assert_user_error(run_cli("size", str(design)), "load.inertia")
+    sized = named.replace("laws:", "load: {inertia: 0.01 kg*m^2}\nlaws:")
+    design.write_text(sized.replace("motors: [siemens-1ft7]\n", ""))  # a load: still a plan
+    out = run_cli("size", str(design), "--format", "json")
+    assert out.returncode == 0 and "laws" in json.loads(out.stdout)
+    design.write_text(sized)  # named motors: sized
+    out = run_cli("size", str(design), "--format", "json")
+    assert out.returncode == 0 and "results" in json.loads(out.stdout)
+    catalogs = tmp_path / "catalogs.yaml"  # no load limits: the bundled catalogs
+    catalogs.write_text("name: bundled\ntask: {displacement: 40 rad, duration: 2 s}\n"
+                        "load: {inertia: 0.01 kg*m^2}\nlaws: [poly3]\n")
+    out = run_cli("size", str(catalogs), "--format", "json")
+    assert out.returncode == 0 and len(json.loads(out.stdout)["results"]) > 10
+
+
+def test_a_machine_axis_without_motors_is_sized_against_the_bundled_catalogs() -> None:
+    """A machine is sized, never planned: an axis naming no motors gets the bundled
+    catalogs even where it gives the load's limits (as a design without those limits)."""
+    import yaml
+
+    from sizer.io.loader import default_catalogs, load_catalog
+    from sizer.io.machine_loader import load_machine_data
+
+    root = Path(__file__).resolve().parents[1] / "examples" / "machines"
+    data = yaml.safe_load((root / "two-axis-packer.yaml").read_text())
+    axis = data["axes"][0]
+    del axis["motors"]
+    axis["limits"]["max_speed"] = "300 rpm"
+    machine = load_machine_data(data, base=root)
+    bundled = sum(len(load_catalog(path)) for path in default_catalogs().values())
+    assert len(machine.axes[0].design.motors) == bundled

@@ -14,7 +14,7 @@ import os
 import shutil
 import subprocess
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any
 
@@ -133,14 +133,14 @@ def diff(
 
 
 def _refuse_plans(*sides: Side) -> None:
-    """A design without motors (``motors: []`` with the load's limits) is planned, not
+    """A design without motors (no motors, and the load's limits) is planned, not
     sized (docs/planning.md): no motor/law pairs to compare."""
     from sizer.sizing.planning import plans_without_motor
 
     for side in sides:
         if plans_without_motor(side.design):
-            raise UserError("a design without motors (motors: []) is planned, not sized: "
-                            "sizer diff compares the motor/law pairs of two sizings",
+            raise UserError("a design without motors (with the load's limits) is planned, "
+                            "not sized: sizer diff compares the motor/law pairs of two sizings",
                             file=side.label)
 
 
@@ -182,9 +182,7 @@ def _revision(path: Path, rev: str, catalog: Sequence[str] | None,
         raise UserError("a machine file (axes:): sizer diff compares design files",
                         file=label)
     folder = path.parent if str(path.parent) else Path(".")
-    design = design_of_source(source, folder, path.stem, [])
-    if catalog:
-        design = _with_catalogs(design, catalog, named_motors="motors" in source.data)
+    design = design_of_source(source, folder, path.stem, [], catalog or ())
     report_warnings((*design.warnings, *_differing_files(design.files, folder, rev, label)))
     with as_option("motors", "--motor"):
         design = api.override(design, motors=motor or None, envelope=envelope or None)
@@ -192,24 +190,6 @@ def _revision(path: Path, rev: str, catalog: Sequence[str] | None,
         with as_option("laws", "--law"):
             design = api.override(design, laws=list(dict.fromkeys(law)))
     return Side(design, source.data, label, Path(label))
-
-
-def _with_catalogs(design: Design, catalogs: Sequence[str], *, named_motors: bool) -> Design:
-    """``design`` with the motors of the --catalog files added, as the loader adds them to
-    a design file (a design naming no motors gets only these, not the bundled ones)."""
-    from sizer.io.loader import load_catalog
-
-    own = design.motors if named_motors else ()
-    known = {m.id for m in own}
-    extra = []
-    for reference in catalogs:
-        for motor in load_catalog(reference):
-            if motor.id in known:
-                raise UserError(f"motor {motor.id!r} is in the design's motors and in "
-                                f"{reference}", field="--catalog")
-            known.add(motor.id)
-            extra.append(motor)
-    return replace(design, motors=(*own, *extra))
 
 
 def _differing_files(files: Sequence[Path], folder: Path, rev: str, label: str

@@ -113,9 +113,10 @@ def size(
     Exit code 0 even when no pair is feasible (the report says so); 2 for bad input;
     3 for an internal error (a bug in sizer).
 
-    With 'motors: []' and the load's limits (limits.max_speed, max_acceleration,
-    max_jerk) each law is planned without a motor: its shortest duration, or for a given
-    duration the scaling factor lambda, and the limit that binds (docs/planning.md).
+    With no motors ('motors:' left out or []) and the load's limits (limits.max_speed,
+    max_acceleration, max_jerk) each law is planned without a motor: its shortest
+    duration, or for a given duration the scaling factor lambda, and the limit that binds
+    (docs/planning.md).
 
     On a terminal too narrow for the table (80 columns) the table abbreviates rather than
     cuts: mrg = margin, pk = peak, spd = speed, limit = the limiting check (J_ratio =
@@ -164,7 +165,7 @@ def size(
                              outputs=() if output is None else (output,), laws=law)
     from sizer.sizing.planning import plans_without_motor
 
-    if plans_without_motor(loaded):  # `motors: []` with the load's limits
+    if plans_without_motor(loaded):  # no motors, and the load's limits
         _plan(design, loaded, refused=((rank_by, "--rank-by"), (front, "--front"),
                                        (front_by, "--front-by"), (envelope, "--envelope"),
                                        (robust, "--robust")),
@@ -276,7 +277,7 @@ def _plan(path: Path, design: Design, *, refused: Sequence[tuple[object, str]],
 
     for given, option in refused:
         if given:
-            raise UserError("not for a plan without a motor (`motors: []` with the load's "
+            raise UserError("not for a plan without a motor (no motors, and the load's "
                             "limits): it ranks the laws by T_min or lambda", field=option)
     try:
         result = plan(design)

@@ -410,9 +410,10 @@ def load_design(path: PathLike, extra_catalogs: Iterable[PathLike] = (), *,
     ``extra_catalogs`` (paths relative to the working directory, or bundled names). A
     catalog file named twice is read once.
 
-    With ``default_motors``, a design without a ``motors:`` entry and with no extra
-    catalogs is sized against the bundled catalogs of real motors (``default_catalogs()``);
-    ``motors: []`` still means none. Without it such a design has no motors.
+    With ``default_motors``, a design without a ``motors:`` entry, with no extra catalogs
+    and none of the load's limits (those ask for a plan without a motor) is sized against
+    the bundled catalogs of real motors (``default_catalogs()``); ``motors: []`` still
+    means none. Without it such a design has no motors.
     """
     path = Path(path)
     source = read_yaml(path, limit=MAX_DESIGN_BYTES, max_nodes=MAX_DESIGN_NODES)
@@ -431,7 +432,8 @@ def load_design_data(data: Mapping[str, Any], extra_catalogs: Iterable[PathLike]
 
 
 def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
-               extra_catalogs: Iterable[PathLike], default_motors: bool) -> Design:
+               extra_catalogs: Iterable[PathLike], default_motors: bool,
+               plans: bool = True) -> Design:
     """The Design of a parsed design document (``folder``: where relative paths start)."""
     canonical_data_laws(source, folder)
     model = validate(DesignFile, source)
@@ -440,7 +442,10 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
     linear = cycle.linear
     warnings = [*bare_number_warnings(source, linear), *noted,
                 *oscillation_warnings(laws, source)]
-    load = _load(model, source, output_linear(model.transmission, linear), folder, cycle)
+    extra = list(extra_catalogs)
+    planned = plans and _planned(model) and not extra
+    load = _load(model, source, output_linear(model.transmission, linear), folder, cycle,
+                 planned=planned)
     files = list(files)
     files += _position_table_files(model, folder)  # never written over (output guard)
     transmission, ratio_choice, linkage_at = build_transmission(
@@ -449,8 +454,8 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
         cycle = linkage_cycle(cycle, transmission.linkage, source, linkage_at)
         linear = cycle.linear
         check_linkage_design(model, source)
-    extra = list(extra_catalogs)
-    if default_motors and model.motors is None and not extra:
+    if default_motors and model.motors is None and not extra \
+            and not (plans and _load_limits_given(model)):
         extra = list(default_catalogs().values())
     transmission = replace(transmission, efficiency_applies_to=model.efficiency_applies_to)
     _check_position_drive(model, source, transmission)
@@ -579,11 +584,16 @@ def _tolerance(source: YamlSource, key: str, value: str, at: tuple[str, ...], li
                      distribution="normal" if normal else "uniform", sigmas=sigmas)
 
 
-def design_of_source(source: YamlSource, folder: Path, name: str,
-                     files: list[Path]) -> Design:
-    """The Design of a parsed design document (an axis of a machine file: its lines are
-    the file's), sized against the bundled catalogs when it names no motors."""
-    return _design_of(source, folder, name, files, (), True)
+def design_of_source(source: YamlSource, folder: Path, name: str, files: list[Path],
+                     extra_catalogs: Iterable[PathLike] = (), *, plans: bool = True
+                     ) -> Design:
+    """The Design of a parsed design document (an axis of a machine file, a design at a
+    git revision: its lines are the text's), with the motors of ``extra_catalogs`` added
+    as :func:`load_design` adds them; sized against the bundled catalogs when it names no
+    motors and no extra catalogs, and (with ``plans``) gives none of the load's limits.
+    Without ``plans`` (a machine's axis: a machine is sized, never planned) the load's
+    limits do not ask for a plan."""
+    return _design_of(source, folder, name, files, extra_catalogs, True, plans)
 
 
 def default_laws() -> tuple[str, ...]:
@@ -614,7 +624,10 @@ def _located_laws(model: DesignFile) -> list[LocatedLaw]:
 
 
 def _load(model: DesignFile, source: YamlSource, linear: bool,
-          folder: Path | None = None, cycle: Cycle | None = None) -> Load:
+          folder: Path | None = None, cycle: Cycle | None = None, *,
+          planned: bool = False) -> Load:
+    """The design's load; ``planned`` (a plan without a motor, which reads no load): its
+    inertia or mass may be left out."""
     given = model.load
     axis = ("a linear axis (the displacement is a length)" if linear
             else "a rotary axis (the displacement is an angle)")
@@ -624,6 +637,8 @@ def _load(model: DesignFile, source: YamlSource, linear: bool,
         if getattr(given, wrong) is not None:
             raise source.error(f"{axis} takes '{right}', not '{wrong}'", ("load", wrong))
     inertia = getattr(given, mass_key)
+    if inertia is None and planned:
+        return Load(inertia=0.0)
     if inertia is None:
         raise source.error(f"required field is missing for {axis}", ("load",),
                            field=f"load.{mass_key}")
@@ -985,11 +1000,18 @@ def _design_motors(model: DesignFile, source: YamlSource, folder: Path,
 
 
 def _load_limits_given(model: DesignFile) -> bool:
-    """Any of the load's limits (max speed, acceleration, jerk): `motors: []` then means a
-    plan without a motor (docs/planning.md)."""
+    """Any of the load's limits (max speed, acceleration, jerk): no motors (`motors:` left
+    out or `motors: []`, and no --catalog) then means a plan without a motor (book sec.
+    5.2.1, docs/planning.md)."""
     limits = model.limits
     return any(v is not None for v in (limits.max_speed, limits.max_acceleration,
                                        limits.max_jerk))
+
+
+def _planned(model: DesignFile) -> bool:
+    """No motors named (``motors:`` left out or ``[]``) and the load's limits given: a
+    plan without a motor, which needs no load."""
+    return not model.motors and _load_limits_given(model)
 
 
 def _unknown_motor(motor_id: str, known: list[str]) -> str:

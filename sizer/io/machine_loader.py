@@ -106,7 +106,7 @@ def _axis(given: AxisInput, raw: Mapping[str, Any], index: int, cycle: float,
     lines = {path[2:]: line for path, line in source.lines.items() if path[:2] == at}
     sub = YamlSource(data, source.file, lines)
     try:
-        design = design_of_source(sub, folder, given.name, files)
+        design = design_of_source(sub, folder, given.name, files, plans=False)
     except UserError as error:
         if error.file not in (None, source.file) or not error.field:
             raise

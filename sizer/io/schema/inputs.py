@@ -686,7 +686,10 @@ class DesignFile(Strict):
     cycle: Annotated[CycleInput | None, BeforeValidator(given)] = Field(
         None, description="a machine cycle of segments (moves, runs, dwells); instead of "
                           "`task`")
-    load: LoadInput
+    load: LoadInput = Field(
+        default_factory=lambda: LoadInput.model_validate({}),
+        description="required (its inertia or mass), but for a plan without a motor "
+                    "(docs/planning.md)")
     transmission: Annotated[list[TransmissionStageInput] | None,
                             OneOrList("object")] = Field(
         None, description="one stage (a mapping) or a list of stages from the motor to the "
@@ -695,8 +698,9 @@ class DesignFile(Strict):
         None, min_length=1, description="law specs; omitted = the default laws")
     motors: Annotated[list[MotorRef] | None, OneOrList("string")] = Field(
         None, description="catalog paths (relative to this file), bundled catalog names "
-                          "or inline motors; [] with limits.max_speed, max_acceleration "
-                          "or max_jerk: a plan without a motor (docs/planning.md)")
+                          "or inline motors; omitted: the bundled catalogs, or with "
+                          "limits.max_speed, max_acceleration or max_jerk (and [] with "
+                          "them) a plan without a motor (docs/planning.md)")
     drives: Annotated[list[Text] | None, OneOrList("string")] = Field(
         None, min_length=1,
         description="drive catalogs (paths relative to this file, or bundled names): "
