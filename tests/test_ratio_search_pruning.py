@@ -144,7 +144,7 @@ def test_the_floor_is_below_every_feasible_duration(seed):
     checked = 0
     for spec in design.laws:
         floor = floor_below_feasible(design, spec, pairs)
-        for k in range(0, len(floor), 3):
+        for k in range(seed % 6, len(floor), 6):  # each seed its own sixth of the pairs
             if not np.isfinite(floor[k]) or floor[k] <= 0.0:
                 continue
             ratio = design.ratio_choice.ratios[option[k]]
@@ -152,7 +152,7 @@ def test_the_floor_is_below_every_feasible_duration(seed):
                              float(floor[k]) * (1.0 - 1e-7))
             assert not below.feasible, (spec, motor[k], ratio)
             checked += 1
-    assert checked >= 10
+    assert checked >= 5
 
 
 @pytest.mark.parametrize("rising", [False, True])
@@ -203,7 +203,7 @@ def test_rms_fails_up_to_means_failing_at_every_shorter_duration(seed):
         fails = rms_fails_up_to(design, spec, pairs, T)
         for k in range(len(T)):
             said[bool(fails[k])] += 1
-            if not fails[k] or said[True] % 2:  # every other one: the reference is slow
+            if not fails[k] or said[True] % 4:  # every fourth: the reference is slow
                 continue
             ratio = design.ratio_choice.ratios[option[k]]
             c = candidate(design, design.motors[motor[k]], spec, ratio)
