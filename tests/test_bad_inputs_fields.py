@@ -433,6 +433,7 @@ def test_every_field_of_the_input_files_has_a_case():
     from test_ball_screw_checks import FIELD_CASES as SCREW_CASES  # a screw's ratings
     from test_cam_follower import FIELD_CASES as CAM_CASES  # a disc cam's fields
     from test_cycle_input import CASES as CYCLE_CASES  # the fields of `cycle:`
+    from test_gearbox_output_life import FIELD_CASES as GEARBOX_LIFE_CASES  # its bearing life
     from test_gearbox_shaft_loads import FIELD_CASES as GEARBOX_SHAFT_CASES  # gearbox output
     from test_position_tables import POSITION_FIELD_CASES as POSITION_CASES  # position terms
     from test_robust import FIELD_CASES as ROBUST_CASES  # the design's tolerances
@@ -440,7 +441,7 @@ def test_every_field_of_the_input_files_has_a_case():
 
     named = {f for c in (*CASES, *CATALOG_CASES, *CYCLE_CASES, *MACHINE_CASES, *SCREW_CASES,
                          *CAM_CASES, *POSITION_CASES, *ROBUST_CASES, *SHAFT_CASES,
-                         *GEARBOX_SHAFT_CASES)
+                         *GEARBOX_SHAFT_CASES, *GEARBOX_LIFE_CASES)
              for f in c.fields}
     # an axis's design fields are read by the design loader: the design's cases cover them
     named |= {f"machine:axes.{f}" for f in named if f"machine:axes.{f}" in input_fields()}

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from importlib import resources
 from pathlib import Path
 from typing import Any, Literal
@@ -27,6 +27,7 @@ from sizer.io.schema.transmission_inputs import (
     FourBarInput,
     GearboxCatalogFile,
     GearboxInput,
+    GearboxSeriesInput,
     RackPinionInput,
     SliderCrankInput,
 )
@@ -316,8 +317,31 @@ def _gearbox(item: GearboxInput, source: YamlSource, at, index: int,
     ratio, free = _ratio(item.ratio)
     assert ratio is not None  # no catalog: the ratio is given (checked above)
     stage = gearbox(ratio, item.efficiency, item.inertia, name=item.name or "", **limits)
-    return dataclasses.replace(stage, output_radial_load=item.output_radial_load,
-                               output_axial_load=item.output_axial_load), free
+    stage = dataclasses.replace(stage, output_radial_load=item.output_radial_load,
+                                output_axial_load=item.output_axial_load)
+    return _output_life(stage, item, lambda message, field: source.error(
+        message, at(index, field))), free
+
+
+OUTPUT_LIFE_FIELDS = ("output_radial_load_life", "output_axial_load_life", "output_load_life")
+"""A gearbox's output forces rated for a bearing life, and that life (docs/shaft-loads.md)."""
+
+
+def _output_life(stage: Stage, item: GearboxInput | GearboxSeriesInput,
+                 error: Callable[[str, str], Exception]) -> Stage:
+    """``stage`` with the gearbox's output forces for a bearing life and that life: a force
+    needs the life it is rated for, the life a force."""
+    given = [f for f in OUTPUT_LIFE_FIELDS if getattr(item, f) is not None]
+    if given and "output_load_life" not in given:
+        raise error(f"{given[0]} needs output_load_life, the bearing life it is rated for "
+                    f"(e.g. '20000 h')", given[0])
+    if given == ["output_load_life"]:
+        raise error("output_load_life is the bearing life of output_radial_load_life or "
+                    "output_axial_load_life: give one of them (or leave it out)",
+                    "output_load_life")
+    return dataclasses.replace(stage, output_radial_load_life=item.output_radial_load_life,
+                               output_axial_load_life=item.output_axial_load_life,
+                               output_load_life=item.output_load_life)
 
 
 def bundled_gearbox_catalogs() -> dict[str, Path]:
@@ -341,6 +365,7 @@ def load_gearbox_catalog(path: str | Path) -> tuple[GearboxOption, ...]:
                                ("gearboxes", s_index, "id"))
         seen.add(series.id)
         ratios_seen: dict[float, int] = {}
+        life_error = _catalog_life_error(source, s_index)
         for r_index, ratio in enumerate(series.ratios):
             if ratio.ratio in ratios_seen:
                 first = source.line_of(("gearboxes", s_index, "ratios", ratios_seen[ratio.ratio]))
@@ -361,9 +386,18 @@ def load_gearbox_catalog(path: str | Path) -> tuple[GearboxOption, ...]:
             )
             stage = dataclasses.replace(stage, output_radial_load=series.output_radial_load,
                                         output_axial_load=series.output_axial_load)
+            stage = _output_life(stage, series, life_error)
             options.append(GearboxOption(f"{series.id} i={ratio.ratio:g}", stage,
                                          gearbox_sources(series, ratio, shared, common)))
     return tuple(options)
+
+
+def _catalog_life_error(source: YamlSource, s_index: int
+                        ) -> Callable[[str, str], Exception]:
+    def error(message: str, field: str) -> Exception:
+        return source.error(message, ("gearboxes", s_index, field))
+
+    return error
 
 
 def _first(*values: float | None) -> float | None:

@@ -301,6 +301,14 @@ class Stage:
     output_axial_load: float | None = None
     """N: a gearbox's permissible axial load on its output shaft (Beckhoff's FaStat,
     F2AMax); None: not published."""
+    output_radial_load_life: float | None = None
+    """N: the radial force on a gearbox's output shaft its maker rates for the bearing life
+    ``output_load_life`` (Beckhoff's "radial force ... for 20000 h"); checked against the
+    cycle's equivalent (mean cubic) radial force; None: not published."""
+    output_axial_load_life: float | None = None
+    """N: the axial force on the output shaft rated for ``output_load_life``."""
+    output_load_life: float | None = None
+    """s: the bearing life the two forces above are rated for (e.g. 20000 h)."""
 
 
 @dataclass(frozen=True)

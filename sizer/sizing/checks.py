@@ -63,6 +63,8 @@ class CheckName(StrEnum):
     SHAFT_AXIAL = "shaft_axial"
     GEARBOX_RADIAL = "gearbox_radial"
     GEARBOX_AXIAL = "gearbox_axial"
+    GEARBOX_RADIAL_LIFE = "gearbox_radial_life"
+    GEARBOX_AXIAL_LIFE = "gearbox_axial_life"
 
 
 @dataclass(frozen=True, eq=False)
@@ -234,7 +236,7 @@ margin (the makers' safety factors are in the limits):
   and mean speed (s).
 
 They are made by :func:`screw_checks` and evaluated as a later limit of the search
-(sizer.sizing.screw_check), after the checks of the cycle."""
+(sizer.sizing.stage_life), after the checks of the cycle."""
 
 
 @dataclass(frozen=True)
@@ -277,10 +279,15 @@ SHAFT_AXIAL = OwnCheckKind(CheckName.SHAFT_AXIAL, "N")
 GEARBOX_RADIAL = OwnCheckKind(CheckName.GEARBOX_RADIAL, "N")
 GEARBOX_AXIAL = OwnCheckKind(CheckName.GEARBOX_AXIAL, "N")
 """The loads on a gearbox's output shaft against its ratings (:func:`shaft_checks`)."""
+GEARBOX_RADIAL_LIFE = OwnCheckKind(CheckName.GEARBOX_RADIAL_LIFE, "N")
+GEARBOX_AXIAL_LIFE = OwnCheckKind(CheckName.GEARBOX_AXIAL_LIFE, "N")
+"""The equivalent (mean cubic) load on a gearbox's output shaft over the cycle against the
+force its maker rates for a bearing life (:func:`gearbox_life_check`,
+sizer.sizing.stage_life)."""
 OWN_CHECKS = (HOLDING_BRAKE, DRIVE_PEAK_CURRENT, DRIVE_RMS_CURRENT, RESIDUAL_VIBRATION,
               BRAKING_RESISTOR_POWER, WINDING_TEMPERATURE_RISE, DEAD_POINT, PRESSURE_ANGLE,
               CAM_CURVATURE, CAM_CONTACT, SHAFT_RADIAL, SHAFT_AXIAL, GEARBOX_RADIAL,
-              GEARBOX_AXIAL)
+              GEARBOX_AXIAL, GEARBOX_RADIAL_LIFE, GEARBOX_AXIAL_LIFE)
 """The kinds evaluated by their own code, in the order results list them."""
 
 
@@ -305,6 +312,10 @@ GEARBOX_RATINGS = ((GEARBOX_RADIAL, "output_radial_load", "radial"),
                    (GEARBOX_AXIAL, "output_axial_load", "axial"))
 """Each gearbox output shaft check, the gearbox Stage rating it reads and the ShaftForces
 figure it checks."""
+GEARBOX_LIFE_RATINGS = ((GEARBOX_RADIAL_LIFE, "output_radial_load_life", "radial"),
+                        (GEARBOX_AXIAL_LIFE, "output_axial_load_life", "axial"))
+"""Each gearbox output bearing life check, the rating it reads (the force the maker rates
+for the bearing life ``output_load_life``) and the figure it checks."""
 
 
 def shaft_checks(x: CheckInput) -> list[CheckArrays]:
@@ -318,7 +329,8 @@ def shaft_checks(x: CheckInput) -> list[CheckArrays]:
       of the cycle;
     - ``gearbox_radial``, ``gearbox_axial``: a stage on the output shaft of the gearbox
       right before it, against that gearbox's ``output_radial_load`` and
-      ``output_axial_load`` (N), for the gearbox's peak |output torque| of the cycle.
+      ``output_axial_load`` (N), for the gearbox's peak |output torque| of the cycle
+      (their bearing life checks over the whole cycle: sizer.sizing.stage_life).
 
     A screw's force is the load's peak |force| (the screw being the last stage). A check
     applies to the candidates whose motor (gearbox) gives the rating; none where none
@@ -332,16 +344,44 @@ def shaft_checks(x: CheckInput) -> list[CheckArrays]:
         for kind, rating, figure in SHAFT_RATINGS:
             out.extend(_rated(kind, getattr(forces, figure), _motor_rating(x.motors, rating),
                               x.ones))
-    for i, stage in enumerate(x.drive.transmission.stages):
-        load = stage.shaft_load
-        if load is None or load.shaft != "gearbox" or i == 0 \
-                or not stage_peaks_computed(x.drive.stages):
-            continue
+    for i, load in gearbox_output_loads(x.drive):
         forces = shaft_forces(load, x.metrics.stage_peak[i - 1], x.metrics.load_torque)
         for kind, rating, figure in GEARBOX_RATINGS:
             out.extend(_rated(kind, getattr(forces, figure),
                               _gearbox_rating(x.drive, i - 1, rating), x.ones))
     return out
+
+
+def gearbox_output_loads(drive: Drive) -> list[tuple[int, ShaftLoad]]:
+    """Each stage ``i`` on the output shaft of the gearbox ``i - 1`` and its load, where the
+    engine computes the stages' output torques (:func:`stage_peaks_computed`)."""
+    if not stage_peaks_computed(drive.stages):
+        return []
+    return [(i, s.shaft_load) for i, s in enumerate(drive.transmission.stages)
+            if i > 0 and s.shaft_load is not None and s.shaft_load.shaft == "gearbox"]
+
+
+def gearbox_life_kind(load: ShaftLoad) -> tuple[OwnCheckKind, str]:
+    """The bearing life check a stage's ``load`` on a gearbox's output shaft makes
+    (``gearbox_axial_life`` for a ball screw's thrust, else ``gearbox_radial_life``) and the
+    gearbox rating it reads."""
+    kind, rating, _ = GEARBOX_LIFE_RATINGS[1 if load.kind == "screw" else 0]
+    return kind, rating
+
+
+def gearbox_life_rating(drive: Drive, i: int, load: ShaftLoad) -> np.ndarray:
+    """The force the gearbox before stage ``i`` (loaded by ``load``) is rated for over its
+    bearing life, per candidate (N; NaN: not rated)."""
+    return _gearbox_rating(drive, i - 1, gearbox_life_kind(load)[1])
+
+
+def gearbox_life_check(load: ShaftLoad, value: np.ndarray, limit: np.ndarray) -> CheckArrays:
+    """``gearbox_radial_life`` or ``gearbox_axial_life``: the cycle's equivalent force on the
+    gearbox's output ``value`` (N, sizer.sizing.stage_life) against the rated ``limit``
+    (NaN: not rated, the check does not apply), with no further margin."""
+    kind, _ = gearbox_life_kind(load)
+    has = np.isfinite(limit)
+    return kind.arrays(value, np.where(has, limit, 1.0), 0.0, None if has.all() else has.copy())
 
 
 def stage_peaks_computed(stages: Sequence[Any]) -> bool:
@@ -390,10 +430,12 @@ def _listed(names: Sequence[str]) -> str:
 
 
 def shaft_notes(motors: Sequence[Motor], transmission: Transmission,
-                choice: RatioChoice | None = None) -> list[str]:
+                choice: RatioChoice | None = None, sampled: bool = True) -> list[str]:
     """What the shaft checks left out: the motors (gearboxes: the design's, or with
     ``choice`` its catalog's) whose catalogs give no rating for a load a stage puts on the
-    shaft (no guessed limit: no check)."""
+    shaft (no guessed limit: no check); without ``sampled`` (a design through a linkage or
+    with position-dependent loads: sizer.sizing.stage_life does not sample its cycle's
+    stage forces) the gearbox output bearing life checks."""
     stages = transmission.stages
     out: list[str] = []
     load = first_shaft_load_of(transmission)
@@ -419,13 +461,19 @@ def shaft_notes(motors: Sequence[Motor], transmission: Transmission,
                        "torque is computed where a stage has a torque rating (give the "
                        "gearbox its rated_output_torque or peak_output_torque)")
             continue
-        for _, rating, figure in GEARBOX_RATINGS:
+        for kind, rating, figure in (*GEARBOX_RATINGS, *GEARBOX_LIFE_RATINGS):
             if (figure == "axial") != (load.kind == "screw"):
+                continue
+            if kind in (GEARBOX_RADIAL_LIFE, GEARBOX_AXIAL_LIFE) and not sampled:
+                if any(getattr(box, rating) is not None for _, box in boxes):
+                    out.append(f"no {kind.name} check: the cycle's forces on the gearbox's "
+                               f"output are not sampled through a linkage or with "
+                               f"position-dependent loads")
                 continue
             missing = list(dict.fromkeys(
                 name.split(" i=")[0] for name, box in boxes if getattr(box, rating) is None))
             if missing:
-                out.append(f"no gearbox_{figure} check for {_listed(missing)}: its ratings "
+                out.append(f"no {kind.name} check for {_listed(missing)}: its ratings "
                            f"give no {rating}")
     return out
 

@@ -67,8 +67,8 @@ from sizer.sizing.results import (
     concatenate,
     in_groups,
 )
-from sizer.sizing.screw_check import screw_limits
 from sizer.sizing.shortest_duration import answer, is_purely_inertial
+from sizer.sizing.stage_life import gearbox_life_limits, screw_limits
 from sizer.sizing.vibration_check import residual_limit
 
 if TYPE_CHECKING:
@@ -253,7 +253,9 @@ def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates,
     calculator = cycle_model(design, law, candidates)
     later = [kind for kind in (residual_limit(design, law),
                                energy_limit(design, candidates.motors),
-                               *screw_limits(candidates.drive)) if kind is not None]
+                               *screw_limits(candidates.drive),
+                               *(gearbox_life_limits(candidates.drive)
+                                 if cycle_sampled(design) else ())) if kind is not None]
     settled = answer(calculator, limits, later, cycle.minimize, peaks)
     checks, verdict = settled.checks, settled.feasible
     if limits.thermal_duty == "once":  # a one-off run: the winding model decides
@@ -263,6 +265,14 @@ def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates,
         duration = np.where(settled.feasible, duration, np.nan)
     return _table(design, law, candidates, duration, settled.metrics, checks, verdict,
                   settled.figures)
+
+
+def cycle_sampled(design: Design) -> bool:
+    """Whether the stages' forces over the cycle are read from the drive at the load's
+    samples (sizer.sizing.stage_life): not through a linkage (its samples are the output's)
+    nor with position-dependent loads (the drive holds their constant part only); the
+    gearbox output bearing life checks are made there only (a note says so)."""
+    return design.transmission.linkage is None and not design.load.position_dependent
 
 
 def cycle_model(design: Design, law: MotionLaw, candidates: Candidates) -> CycleModel:
@@ -375,7 +385,8 @@ def assumptions(design: Design) -> tuple[str, ...]:
         else:
             notes.append("efficiency applied in the direction of power flow")
     notes.extend(energy_notes(design))
-    notes.extend(shaft_notes(design.motors, design.transmission, design.ratio_choice))
+    notes.extend(shaft_notes(design.motors, design.transmission, design.ratio_choice,
+                             cycle_sampled(design)))
     if design.limits.inertia_ratio is not None:
         if design.limits.inertia_ratio_of == "load":
             notes.append("inertia ratio: the load alone reflected to the motor, over the "

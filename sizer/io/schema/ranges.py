@@ -236,7 +236,10 @@ RANGES: dict[str, Range] = {
     "brake_holding_torque": _r("torque", 1e-6, 1e6, "a holding brake's static friction torque "
                                "at the motor shaft, as the motors' torques"),
     "shaft_load": _r("force", 1e-3, 1e7, "a motor's or a gearbox output's permissible "
-                     "radial or axial shaft load: 1 mN (a micro motor) to 10 MN"),
+                     "radial or axial shaft load (or one rated for a bearing life): 1 mN (a "
+                     "micro motor) to 10 MN"),
+    "bearing_life": _r("time", 1.0, 1e10, "the bearing life a gearbox's rated output "
+                       "forces are for, e.g. '20000 h' (7.2e7 s); up to 317 years"),
     "shaft_load_point": _r("length", 1e-4, 10.0, "0.1 mm to 10 m from the flange",
                            zero=True),
     "brake_inertia": _r("inertia", 1e-12, 1e3, "what the brake adds to the rotor's inertia; "

@@ -106,6 +106,17 @@ OutputRadialLoad = Annotated[float, Ranged(
 OutputAxialLoad = Annotated[float, Ranged(
     "shaft_load", note="the maker's permissible axial load on the gearbox's output shaft "
                        "(e.g. Beckhoff's FaStat, F2AMax)")]
+OutputRadialLoadLife = Annotated[float, Ranged(
+    "shaft_load", note="the radial force on the gearbox's output shaft its maker rates for "
+                       "the bearing life output_load_life (e.g. Beckhoff's 'radial force "
+                       "for 20000 h'), against the cycle's equivalent force, "
+                       "docs/shaft-loads.md")]
+OutputAxialLoadLife = Annotated[float, Ranged(
+    "shaft_load", note="the axial force on the gearbox's output shaft rated for the bearing "
+                       "life output_load_life")]
+OutputLoadLife = Annotated[float, Ranged(
+    "bearing_life", note="the bearing life the output forces for a life are rated for, "
+                         "e.g. '20000 h' (required with them)")]
 
 
 def _on_gearbox_output() -> Any:
@@ -131,6 +142,9 @@ class GearboxInput(Strict):
     backlash: Annotated[float, Ranged("backlash", note="informative")] | None = None
     output_radial_load: OutputRadialLoad | None = None
     output_axial_load: OutputAxialLoad | None = None
+    output_radial_load_life: OutputRadialLoadLife | None = None
+    output_axial_load_life: OutputAxialLoadLife | None = None
+    output_load_life: OutputLoadLife | None = None
     name: Text | None = None
 
 
@@ -389,6 +403,9 @@ class GearboxSeriesInput(Strict):
     backlash: Annotated[float, Ranged("backlash")] | None = None
     output_radial_load: OutputRadialLoad | None = None
     output_axial_load: OutputAxialLoad | None = None
+    output_radial_load_life: OutputRadialLoadLife | None = None
+    output_axial_load_life: OutputAxialLoadLife | None = None
+    output_load_life: OutputLoadLife | None = None
     source: Text | None = None
     figure_sources: FigureSourcesInput | None = None
     notes: Text | None = None
