@@ -96,6 +96,10 @@ class LinkageProfile:
     load: Load
     max_inertia: float
     issues: tuple[str, ...]
+    jumps: np.ndarray | None = None
+    """The samples (a mask over u) at the law's breakpoints, where its acceleration (and
+    so the torque) may jump: the one sample there holds one side's value, so no parabola
+    is read through it (:func:`profile_max`); None: none known."""
 
 
 def _grid(law: MotionLaw | FixedShape | CamTurn, extra: np.ndarray | None = None
@@ -116,10 +120,27 @@ def _grid(law: MotionLaw | FixedShape | CamTurn, extra: np.ndarray | None = None
     left, width = cuts[:-1, None], np.diff(cuts)[:, None]
     nodes = (left + 0.5 * width * (x + 1.0)).ravel()
     weights = (0.5 * width * w).ravel()
-    peaks = np.unique(np.concatenate((np.linspace(0.0, 1.0, PEAK_POINTS), breaks)))
+    peaks = np.unique(np.concatenate((np.linspace(0.0, 1.0, PEAK_POINTS), breaks,
+                                      _beside(law.breakpoints))))
     u = np.concatenate((nodes, peaks))
     order = np.argsort(u, kind="stable")  # in time order, as the inverse kinematics needs
     return u[order], np.concatenate((weights, np.zeros(len(peaks))))[order]
+
+
+def _beside(breakpoints: np.ndarray) -> np.ndarray:
+    """The points one rounding step either side of each interior breakpoint: the law's
+    acceleration may jump there, and the one sample at the breakpoint holds one side's
+    value; these hold both (peak samples, no quadrature weight)."""
+    b = np.asarray(breakpoints, dtype=float)
+    inner = b[(b > 0.0) & (b < 1.0)]
+    return np.concatenate((np.nextafter(inner, 0.0), np.nextafter(inner, 1.0)))
+
+
+def jump_mask(law: MotionLaw | FixedShape | CamTurn, u: np.ndarray) -> np.ndarray:
+    """The samples u at and beside the law's breakpoints (:func:`_beside`), where the
+    torque may jump: no parabola is read through them (:func:`profile_max`)."""
+    b = np.asarray(law.breakpoints, dtype=float)
+    return np.isin(u, np.concatenate((b, _beside(b))))
 
 
 @dataclass(frozen=True)
@@ -235,10 +256,10 @@ def profile_of(stage: LinkageStage, load: Load, h: float, duration: float | None
               _finite(motor[2]), s[1], s[2], s[3], _finite(inertial), _finite(damping),
               _finite(steady), hold, turn, dynamics.output_side_inertia, load, max_inertia,
               issues)
+    jumps = jump_mask(law, u)
     if crossings is not None:  # the force's kinks: no parabola through them (peaks)
-        return PositionProfile(*fields, np.isin(u, np.concatenate((crossings,
-                                                                   law.breakpoints))))
-    return LinkageProfile(*fields)
+        return PositionProfile(*fields, jumps=jumps, kinks=np.isin(u, crossings))
+    return LinkageProfile(*fields, jumps=jumps)
 
 
 def _output_position(views: Any, given: Any, x0: float, h: float,
@@ -475,7 +496,7 @@ class LinkageCalculator:
         :meth:`evaluate` reads it), reaches the speed limit with its margin: the speed
         check's slack is 0 there and negative below (inf: no duration meets it)."""
         p, N = self.profile, self.drive.ratio
-        fastest = refined_max(np.abs(N[:, None] * p.theta1), p.u)  # at T = 1
+        fastest = profile_max(np.abs(N[:, None] * p.theta1), p)  # at T = 1
         limit = (1.0 - limits.speed_margin) * self.motors.speed_limit
         with np.errstate(divide="ignore", invalid="ignore"):
             return np.where(limit > 0.0, fastest / limit, np.inf)
@@ -570,9 +591,8 @@ class LinkageCalculator:
             force = force + load.table.torque(p.s)
         stage_torque, stage_speed = self._stages(crank, T)
         metrics = CycleMetrics(
-            duration=T[:, 0], max_speed=refined_max(np.abs(speed), p.u),
-            peak_torque=refined_max(np.abs(torque), p.u) if kinks is None
-            else refined_max_kinked(np.abs(torque), p.u, kinks),
+            duration=T[:, 0], max_speed=profile_max(np.abs(speed), p),
+            peak_torque=profile_max(np.abs(torque), p, jumping=True),
             peak_ratio=peak_ratio(motors, torque, speed),
             rms_torque=np.sqrt(square / cycle), thermal_speed=self.thermal_speed(T[:, 0]),
             load_speed=np.max(np.abs(p.s1)) / T[:, 0],
@@ -582,6 +602,13 @@ class LinkageCalculator:
             stage_peak=[np.max(np.abs(x), axis=1) for x in stage_torque],
             stage_rms=[np.sqrt(T[:, 0] * (x**2 @ p.weights) / cycle) for x in stage_torque],
             stage_speed=stage_speed)
+        if dwell > 0.0 and bool(np.any(hold > 0.0)):  # the dwell holds it (as move.py does)
+            at_rest = peak_ratio(motors, hold[:, None], np.zeros((len(motors), 1)))
+            held, _ = self._stages(np.full((len(motors), 1), abs(p.hold)), T)
+            metrics = replace(metrics, peak_torque=np.maximum(metrics.peak_torque, hold),
+                              peak_ratio=np.maximum(metrics.peak_ratio, at_rest),
+                              stage_peak=[np.maximum(x, h[:, 0]) for x, h in
+                                          zip(metrics.stage_peak, held, strict=True)])
         return metrics, speed, torque
 
     def thermal_speed(self, T: np.ndarray) -> np.ndarray:
@@ -661,24 +688,59 @@ def _contenders(region: RegionTable, torque: np.ndarray, speed: np.ndarray
     return magnitude >= np.where(usable, threshold, -np.inf)[:, None]
 
 
-def refined_max(values: np.ndarray, u: np.ndarray) -> np.ndarray:
+def refined_max(values: np.ndarray, u: np.ndarray, kinks: np.ndarray | None = None,
+                jumps: np.ndarray | None = None) -> np.ndarray:
     """The largest value of each row of samples at the increasing points u, refined by
-    the parabola through the largest sample and its two neighbours (a smooth peak between
-    samples is then read to the third order of their spacing, not the second)."""
+    a parabola through three neighbouring samples (a smooth peak between samples is then
+    read to the third order of their spacing, not the second).
+
+    Without ``kinks`` the parabola through the largest sample and its two neighbours.
+    With ``kinks`` (a mask: samples where the values have a kink) a parabola is read only
+    through three samples whose middle one is not a kink (smooth between them), centred on
+    the largest sample or either neighbour (a smooth peak beside a kink); ``jumps`` (a
+    mask: samples where the values may jump, the one sample holding one side's value) are
+    kinks that may not be an end of the three either. The parabola centred on the largest
+    sample where it is valid (its neighbours' extrapolate: each overshoots by about the
+    third derivative times the spacing cubed, and the largest of them would be kept)."""
     m = values.shape[1]
-    i = np.clip(np.argmax(values, axis=1), 1, m - 2)
     rows = np.arange(values.shape[0])
-    x0, x1, x2 = u[i - 1], u[i], u[i + 1]
-    f0, f1, f2 = values[rows, i - 1], values[rows, i], values[rows, i + 1]
-    d01 = (f1 - f0) / (x1 - x0)
-    curvature = ((f2 - f1) / (x2 - x1) - d01) / (x2 - x0)
     best = np.max(values, axis=1)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        # p(x) = f0 + d01 (x - x0) + c (x - x0)(x - x1): p'(x*) = 0
-        vertex = 0.5 * (x0 + x1) - d01 / (2.0 * curvature)
-        top = f0 + d01 * (vertex - x0) + curvature * (vertex - x0) * (vertex - x1)
-    inside = (curvature < 0.0) & (vertex > x0) & (vertex < x2) & np.isfinite(top)
-    return np.where(inside, np.maximum(best, top), best)
+    top_i = np.argmax(values, axis=1)
+    centred = np.zeros(len(rows), dtype=bool)
+    for shift in ((0,) if kinks is None else (0, -1, 1)):
+        i = np.clip(top_i + shift, 1, m - 2)
+        x0, x1, x2 = u[i - 1], u[i], u[i + 1]
+        f0, f1, f2 = values[rows, i - 1], values[rows, i], values[rows, i + 1]
+        d01 = (f1 - f0) / (x1 - x0)
+        curvature = ((f2 - f1) / (x2 - x1) - d01) / (x2 - x0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            # p(x) = f0 + d01 (x - x0) + c (x - x0)(x - x1): p'(x*) = 0
+            vertex = 0.5 * (x0 + x1) - d01 / (2.0 * curvature)
+            top = f0 + d01 * (vertex - x0) + curvature * (vertex - x0) * (vertex - x1)
+        inside = (curvature < 0.0) & (vertex > x0) & (vertex < x2) & np.isfinite(top) \
+            & ~centred
+        if kinks is not None:
+            inside &= ~kinks[i]
+        if jumps is not None:
+            inside &= ~jumps[i - 1] & ~jumps[i + 1]
+        best = np.where(inside, np.maximum(best, top), best)
+        if shift == 0:
+            centred = inside
+    return best
+
+
+def profile_max(values: np.ndarray, p: LinkageProfile, jumping: bool = False
+                ) -> np.ndarray:
+    """:func:`refined_max` of samples on the profile ``p``'s grid: its law's breakpoints
+    (``p.jumps``) and a position table's knot crossings (``kinks`` of a
+    :class:`PositionProfile`) are kinks; ``jumping`` (a torque: the law's acceleration may
+    jump at its breakpoints) the breakpoints are jumps too. A speed is continuous there,
+    so its kinks may be a parabola's ends."""
+    kinks = getattr(p, "kinks", None)
+    if p.jumps is None:
+        return refined_max(values, p.u, kinks)
+    every = p.jumps if kinks is None else p.jumps | kinks
+    return refined_max(values, p.u, every, p.jumps if jumping else None)
 
 
 def crank_drive(design: Design, drive: Drive, profile: LinkageProfile) -> Drive:
@@ -1057,7 +1119,7 @@ class LinkageCycle:
             part = self.parts[i]
             assert isinstance(part, LinkageProfile)
             speed = self.drive.ratio[:, None] * part.theta1
-            self.known[i] = {"unit": [refined_max(np.abs(speed), part.u),
+            self.known[i] = {"unit": [profile_max(np.abs(speed), part),
                                       speed**2 @ part.weights]}
         return self.known[i]["unit"][0], self.known[i]["unit"][1]
 
@@ -1509,41 +1571,10 @@ def position_profile(load: Load, displacement: float, law: MotionLaw | FixedShap
     damping = load.damping * q[1]
     steady = load.friction * sense + load.torque + load.position_torque(q[0])
     hold = float(load.torque + load.position_torque(np.array([start + h]))[0])
-    kinks = None
-    if crossings is not None:
-        kinks = np.isin(u, np.concatenate((crossings, law.breakpoints)))
+    kinks = None if crossings is None else np.isin(u, crossings)
     return PositionProfile(u, weights, q[0], np.ones_like(u), q[0], q[1], q[2], q[1], q[2],
                            q[3], inertial, damping, steady, hold, abs(h), load.inertia, load,
-                           largest, (), kinks)
-
-
-def refined_max_kinked(values: np.ndarray, u: np.ndarray, kinks: np.ndarray) -> np.ndarray:
-    """:func:`refined_max` where the samples ``kinks`` (a mask) are kinks of the values: a
-    parabola is read only through three samples whose middle one is not a kink (smooth
-    between them), centred on the largest sample or either neighbour (a smooth peak
-    beside a kink). The parabola centred on the largest sample where it is valid (its
-    neighbours' extrapolate: each overshoots by about the third derivative times the
-    spacing cubed, and the largest of them would be kept)."""
-    m = values.shape[1]
-    rows = np.arange(values.shape[0])
-    best = np.max(values, axis=1)
-    top_i = np.argmax(values, axis=1)
-    centred = np.zeros(len(rows), dtype=bool)
-    for shift in (0, -1, 1):
-        i = np.clip(top_i + shift, 1, m - 2)
-        x0, x1, x2 = u[i - 1], u[i], u[i + 1]
-        f0, f1, f2 = values[rows, i - 1], values[rows, i], values[rows, i + 1]
-        d01 = (f1 - f0) / (x1 - x0)
-        curvature = ((f2 - f1) / (x2 - x1) - d01) / (x2 - x0)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            vertex = 0.5 * (x0 + x1) - d01 / (2.0 * curvature)
-            top = f0 + d01 * (vertex - x0) + curvature * (vertex - x0) * (vertex - x1)
-        inside = (curvature < 0.0) & (vertex > x0) & (vertex < x2) & np.isfinite(top) \
-            & ~kinks[i] & ~centred
-        best = np.where(inside, np.maximum(best, top), best)
-        if shift == 0:
-            centred = inside
-    return best
+                           largest, (), jumps=jump_mask(law, u), kinks=kinks)
 
 
 class PositionCalculator(LinkageCalculator):
@@ -1595,17 +1626,10 @@ class PositionCalculator(LinkageCalculator):
             ratio = np.where(limit > 0.0, np.abs(torque) / limit,
                              np.where(torque == 0.0, 0.0, np.inf))
         ratio = np.where(np.isnan(ratio), np.inf, ratio)
-        kinks = getattr(p, "kinks", None)
-        if kinks is None:
-            peak_ratio = np.maximum(metrics.peak_ratio, refined_max(ratio, p.u))
-            return replace(metrics, load_torque=load_torque, peak_ratio=peak_ratio), speed, \
-                torque
-        # a position table: the torque has kinks at its knots, where a parabola through
-        # the largest sample would overshoot
-        peak_ratio = np.maximum(metrics.peak_ratio, refined_max_kinked(ratio, p.u, kinks))
-        peak = refined_max_kinked(np.abs(torque), p.u, kinks)
-        return replace(metrics, load_torque=load_torque, peak_ratio=peak_ratio,
-                       peak_torque=peak), speed, torque
+        # (a position table's knots and the law's breakpoints: no parabola through them)
+        peak_ratio = np.maximum(metrics.peak_ratio, profile_max(ratio, p, jumping=True))
+        return replace(metrics, load_torque=load_torque, peak_ratio=peak_ratio), speed, \
+            torque
 
 
 FLOOR_STEPS = 40
