@@ -127,6 +127,15 @@ class Drive:
         out.stages = tuple(s.take(index) for s in self.stages)
         return out
 
+    def with_load(self, load: Load) -> Drive:
+        """The same transmission options and candidates driving ``load`` instead."""
+        if load is self.load:
+            return self
+        out = object.__new__(Drive)
+        out.load, out.transmissions = load, self.transmissions
+        out.option, out.stages = self.option, self.stages
+        return out
+
     @property
     def transmission(self) -> Transmission:
         """The first option (the design's when there is one): its stages' kinds and rule."""
@@ -220,18 +229,28 @@ class Drive:
                 for s, k_in in zip(self.stages, self.input_ratios, strict=True)]
 
     def chain(self, a_l: np.ndarray, v_l: np.ndarray, direction: float | np.ndarray,
-              index: np.ndarray | None = None) -> tuple[np.ndarray, list[np.ndarray]]:
+              index: np.ndarray | None = None,
+              extra: tuple[np.ndarray, np.ndarray] | None = None
+              ) -> tuple[np.ndarray, list[np.ndarray]]:
         """Torque the transmission needs at the motor shaft, and each stage's output torque.
 
         a_l, v_l are the load's acceleration and speed along the motion (magnitudes for
         the move's direction), candidate-major; ``index`` names the candidates of their
-        rows (default: all, in order). Returns (shaft torque without the rotor, [output
-        torque of stage 0, ..., output torque of the last stage = u]).
+        rows (default: all, in order). ``extra`` (inertial, steady): torques the load adds
+        along the motion beyond :meth:`load_torque`, as the terms of its position
+        (sizer.model.domain.Load.position_terms: the inertia table's, the position
+        torque); with power-flow efficiencies both pass the stages as the rest of the
+        load (the position engine reflects its whole crank torque so,
+        sizer.sizing.linkage_move.LinkageCalculator.motor_samples), with the steady-load
+        rule as :meth:`_steady_load_chain` says. Returns (shaft torque without the rotor,
+        [output torque of stage 0, ..., output torque of the last stage = u]).
         """
         values = self._stage_values(index, a_l)
         if self.steady_load_efficiency:
-            return self._steady_load_chain(a_l, v_l, direction, values)
+            return self._steady_load_chain(a_l, v_l, direction, values, extra)
         x = self.load_torque(a_l, v_l, direction)
+        if extra is not None:
+            x = x + extra[0] + extra[1]
         outputs = [x]
         for ratio, efficiency, inertia, preload, k_in in reversed(values):
             reflected = np.where(x >= 0.0, x / (ratio * efficiency), x * efficiency / ratio)
@@ -240,12 +259,24 @@ class Drive:
         outputs.pop()  # the last one is the shaft torque, not a stage output
         return x, outputs[::-1]
 
-    def _steady_load_chain(self, a_l, v_l, direction: float | np.ndarray, values):
-        """``chain`` with the efficiencies on the steady torque only (Yaskawa)."""
+    def _steady_load_chain(self, a_l, v_l, direction: float | np.ndarray, values,
+                           extra: tuple[np.ndarray, np.ndarray] | None = None):
+        """``chain`` with the efficiencies on the steady torque only (Yaskawa). An
+        ``extra`` (inertial, steady) sorts as the position engine sorts the terms
+        (sizer.sizing.linkage_move.position_profile): the inertia table's terms are
+        inertial (without loss), the position torque is steady (gravity on a vertical
+        axis is Yaskawa's steady load: T_L = F P_B / (2 pi R eta)), so it joins the
+        constant part whose sign picks 1/eta or eta, now at each sample. (The position
+        engine itself refuses this rule: sizer.sizing.linkage_move.check_position_drive.)"""
         load = self.load
         inertial = load.inertia * a_l
         steady = load.damping * v_l + load.friction + direction * load.torque
-        constant = np.float64(load.friction + direction * load.torque)
+        constant: np.ndarray = np.asarray(load.friction + direction * load.torque,
+                                          dtype=float)
+        if extra is not None:
+            inertial = inertial + extra[0]
+            steady = steady + extra[1]
+            constant = constant + extra[1]
         outputs = [inertial + steady]
         for ratio, efficiency, inertia, preload, k_in in reversed(values):
             factor = _steady_factor(efficiency, constant)

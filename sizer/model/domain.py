@@ -102,6 +102,26 @@ class Load:
                 out = out + term.torque(q)
         return out
 
+    def position_terms(self, q, speed, acceleration):
+        """The load's terms of its position q moving at q' = ``speed``, q'' =
+        ``acceleration`` (rad or m, per s, per s^2; arrays that broadcast), signed as
+        :meth:`position_torque` (positive opposing a positive move): (inertial, steady),
+        the inertia table's J(q) q'' + 1/2 J'(q) q'^2 (Lagrange's equation for the kinetic
+        energy 1/2 J(q) q'^2: d/dt(J q') - 1/2 J' q'^2; book sec. 5.2.2, eq. 5.13 with
+        the inertia of the position) and the position torque g(q) (gravity, spring,
+        table). Both 0 without such terms; ``inertia`` and the constant loads are not in
+        them."""
+        import numpy as np
+
+        q = np.asarray(q, dtype=float)
+        qd, qdd = np.asarray(speed, dtype=float), np.asarray(acceleration, dtype=float)
+        shape = np.broadcast_shapes(q.shape, qd.shape, qdd.shape)
+        inertial = np.zeros(shape)
+        table = self.inertia_table
+        if table is not None and table.active:
+            inertial = inertial + table.values(q) * qdd + 0.5 * table.values(q, 1) * qd**2
+        return inertial, np.broadcast_to(self.position_torque(q), shape)
+
 
 @dataclass(frozen=True)
 class GravityLoad:

@@ -433,9 +433,9 @@ def shaft_notes(motors: Sequence[Motor], transmission: Transmission,
                 choice: RatioChoice | None = None, sampled: bool = True) -> list[str]:
     """What the shaft checks left out: the motors (gearboxes: the design's, or with
     ``choice`` its catalog's) whose catalogs give no rating for a load a stage puts on the
-    shaft (no guessed limit: no check); without ``sampled`` (a design through a linkage or
-    with position-dependent loads: sizer.sizing.stage_life does not sample its cycle's
-    stage forces) the gearbox output bearing life checks."""
+    shaft (no guessed limit: no check); without ``sampled`` (a design through a linkage:
+    sizer.sizing.stage_life does not sample its cycle's stage forces, its samples are the
+    output's) the gearbox output bearing life checks."""
     stages = transmission.stages
     out: list[str] = []
     load = first_shaft_load_of(transmission)
@@ -467,8 +467,7 @@ def shaft_notes(motors: Sequence[Motor], transmission: Transmission,
             if kind in (GEARBOX_RADIAL_LIFE, GEARBOX_AXIAL_LIFE) and not sampled:
                 if any(getattr(box, rating) is not None for _, box in boxes):
                     out.append(f"no {kind.name} check: the cycle's forces on the gearbox's "
-                               f"output are not sampled through a linkage or with "
-                               f"position-dependent loads")
+                               f"output are not sampled through a linkage")
                 continue
             missing = list(dict.fromkeys(
                 name.split(" i=")[0] for name, box in boxes if getattr(box, rating) is None))

@@ -269,10 +269,11 @@ def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates,
 
 def cycle_sampled(design: Design) -> bool:
     """Whether the stages' forces over the cycle are read from the drive at the load's
-    samples (sizer.sizing.stage_life): not through a linkage (its samples are the output's)
-    nor with position-dependent loads (the drive holds their constant part only); the
+    samples (sizer.sizing.stage_life): not through a linkage (its samples are the
+    output's); position-dependent loads included (their terms added at each sample's
+    position, speed and acceleration: sizer.sizing.stage_life.mean_cubic_load). The
     gearbox output bearing life checks are made there only (a note says so)."""
-    return design.transmission.linkage is None and not design.load.position_dependent
+    return design.transmission.linkage is None
 
 
 def cycle_model(design: Design, law: MotionLaw, candidates: Candidates) -> CycleModel:

@@ -1562,14 +1562,15 @@ def position_profile(load: Load, displacement: float, law: MotionLaw | FixedShap
     q[0] = start + q[0]
     _check_table_span(load, q[0], linear)
     sense = np.where(q[1] > 0.0, 1.0, np.where(q[1] < 0.0, -1.0, direction))
-    inertial = load.inertia * q[2]
+    # J(q) q'' + 1/2 J'(q) q'^2 (both as 1/T^2) and g(q): Load.position_terms
+    extra, position = load.position_terms(q[0], q[1], q[2])
+    inertial = load.inertia * q[2] + extra
     largest = load.inertia
     table = load.inertia_table
-    if table is not None and table.active:  # J(q) q'' + 1/2 J'(q) q'^2, both as 1/T^2
-        inertial = inertial + table.values(q[0]) * q[2] + 0.5 * table.values(q[0], 1) * q[1]**2
+    if table is not None and table.active:
         largest = load.inertia + table.largest(float(np.min(q[0])), float(np.max(q[0])))
     damping = load.damping * q[1]
-    steady = load.friction * sense + load.torque + load.position_torque(q[0])
+    steady = load.friction * sense + load.torque + position
     hold = float(load.torque + load.position_torque(np.array([start + h]))[0])
     kinks = None if crossings is None else np.isin(u, crossings)
     return PositionProfile(u, weights, q[0], np.ones_like(u), q[0], q[1], q[2], q[1], q[2],
