@@ -62,10 +62,10 @@ def test_a_constant_table_gives_the_constant_force_life():
     expected, got = _size(base), _size(table)
     assert _life(got) == pytest.approx(_life(expected), rel=1e-9)
     # the buckling check's peak |F|: the law move's in closed form, the position
-    # engine's the largest of its samples (dt = T/4000; a smooth peak between two of
-    # them is read up to about (dt/2)^2 of its curvature low: 5e-8 here)
+    # engine's its samples refined by a parabola (dt = T/4000: a smooth peak is then read
+    # to about the third derivative times dt^3, 3e-11 here)
     assert got.check("ball_screw_buckling").value == pytest.approx(
-        expected.check("ball_screw_buckling").value, rel=1e-7)
+        expected.check("ball_screw_buckling").value, rel=1e-10)
     # the motor's RMS, not this change's: the position engine's Gauss-Legendre sum is
     # not split where the power flow turns (a kink of tau^2), the law move's is exact
     assert got.rms_torque == pytest.approx(expected.rms_torque, rel=1e-8)

@@ -598,7 +598,7 @@ class LinkageCalculator:
             load_speed=np.max(np.abs(p.s1)) / T[:, 0],
             load_acceleration=np.max(np.abs(p.s2)) / T[:, 0] ** 2,
             load_jerk=np.max(np.abs(p.s3)) / T[:, 0] ** 3,
-            load_torque=np.max(np.abs(force), axis=1),
+            load_torque=profile_max(np.abs(force), p, jumping=True),
             stage_peak=[np.max(np.abs(x), axis=1) for x in stage_torque],
             stage_rms=[np.sqrt(T[:, 0] * (x**2 @ p.weights) / cycle) for x in stage_torque],
             stage_speed=stage_speed)
@@ -1617,7 +1617,7 @@ class PositionCalculator(LinkageCalculator):
         p = self.profile
         T = np.broadcast_to(np.asarray(duration, dtype=float), (len(self.motors),))[:, None]
         force = p.inertial / T**2 + p.damping / T + p.steady
-        load_torque = np.max(np.abs(force), axis=1)
+        load_torque = profile_max(np.abs(force), p, jumping=True)
         if self.task.dwell > 0.0:
             load_torque = np.maximum(load_torque, abs(p.hold))
         # the peak ratio refined as the peak torque is (the samples alone read a smooth
