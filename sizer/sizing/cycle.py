@@ -905,7 +905,8 @@ class SegmentCycle:
                     v, a = np.full((n, 2), segment.speed), np.zeros((n, 2))
                     q = segment.speed * (Tc * u[None])
                 out.append(CyclePiece(name, start + Tc * u[None], position + q, v, a, K * v,
-                                      K * a, signed_torque(drive, self.motors, a, v, rest)))
+                                      K * a, signed_torque(drive, self.motors, a, v, rest),
+                                      load=drive.load))
             start, position = start + Tc, position + segment.displacement
         return out
 

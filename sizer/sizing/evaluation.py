@@ -22,7 +22,7 @@ import numpy as np
 if TYPE_CHECKING:
     from sizer.laws import MotionLaw
     from sizer.mechanics import Drive
-    from sizer.model.domain import Limits, Task
+    from sizer.model.domain import Limits, Load, Task
     from sizer.sizing.candidates import MotorArrays
     from sizer.sizing.move import CycleCalculator
 
@@ -64,7 +64,10 @@ class CyclePiece:
     the same for every candidate (the load's position); ``theta`` and ``ratio`` through a
     linkage only. Times from the cycle's start (a repeated time is a jump), the load's
     position, speed and acceleration, the motor's speed and acceleration, the motor torque
-    signed like the motion (SI)."""
+    signed like the motion (SI). ``load``: the load the piece moves where it is not the
+    model's drive's (whose load is the heaviest of the cycle, for the inertia ratio): a
+    segment's own (a picked-up part's mass while it is carried), or a load of the
+    position whose terms act at the piece's positions; None: the drive's."""
 
     name: str
     time: np.ndarray
@@ -76,6 +79,7 @@ class CyclePiece:
     torque: np.ndarray
     theta: np.ndarray | None = None
     ratio: np.ndarray | None = None
+    load: Load | None = None
 
 
 def held_piece(name: str, start: np.ndarray, T: np.ndarray, position: float,

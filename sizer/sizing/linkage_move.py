@@ -1421,6 +1421,9 @@ def linkage_pieces(calculator: LinkageCalculator | LinkageCycle, s: np.ndarray,
     n = len(calculator.motors)
     N = np.broadcast_to(np.asarray(calculator.drive.ratio, dtype=float), (n,))[:, None]
     out, start, position = [], np.zeros((n, 1)), 0.0
+    # against loads of the position (no linkage) each move carries the load it moves,
+    # its terms of the position with it; through a linkage the samples are the output's
+    own_load = calculator.drive.transmission.linkage is None
     for name, _, _, part, T, move in calculator.segments(s):
         Tc = np.asarray(T, dtype=float)[:, None]
         if isinstance(part, HeldDwell):
@@ -1435,7 +1438,8 @@ def linkage_pieces(calculator: LinkageCalculator | LinkageCycle, s: np.ndarray,
             out.append(CyclePiece(name, start + Tc * part.u[pick][None], part.s[pick],
                                   part.s1[pick][None] / Tc, part.s2[pick][None] / Tc**2,
                                   speed[:, pick], N * part.theta2[pick][None] / Tc**2,
-                                  torque[:, pick], part.theta[pick], part.ratio[pick]))
+                                  torque[:, pick], part.theta[pick], part.ratio[pick],
+                                  part.load if own_load else None))
             position = float(part.s[-1])
         start = start + Tc
     return out

@@ -10,7 +10,7 @@ its load) each stage's output torque (force) is as the engine computes it
 J(q) q'' + 1/2 J'(q) q'^2; sizer.model.domain.Load.position_terms at each sample's
 position, speed and acceleration, added to the load's torque as the position engine adds
 them, sizer.sizing.linkage_move.position_profile, each move with the load it moves:
-:func:`piece_drives`); with v the load's speed, the mean cubic
+:class:`sizer.sizing.evaluation.CyclePiece`'s ``load``); with v the load's speed, the mean cubic
 load weighted by revolutions F_m = (int |F|^3 |v| dt / int |v| dt)^(1/3) (the shaft's speed
 is k |v| with k constant per candidate: it cancels), each integral by the trapezoidal rule
 on the samples (a repeated time, a jump, adds nothing; a dwell, where nothing turns,
@@ -58,7 +58,7 @@ import numpy as np
 from sizer.mechanics import Drive
 from sizer.mechanics.shaft_loads import shaft_forces
 from sizer.mechanics.stages import ScrewRatings, screw_rated_life
-from sizer.model.domain import Load, ShaftLoad
+from sizer.model.domain import ShaftLoad
 from sizer.numerics.roots import illinois
 from sizer.sizing.checks import (
     TOLERANCE,
@@ -101,9 +101,9 @@ def mean_cubic_load(calculator: CycleModel, s: np.ndarray, force: StageForce
     s = np.broadcast_to(np.asarray(s, dtype=float), (len(calculator.motors),))
     n = len(s)
     travel, cube, end = np.zeros(n), np.zeros(n), np.zeros(n)
-    pieces = calculator.pieces(s)
-    for piece, (drive, moved) in zip(pieces, piece_drives(calculator, s, len(pieces)),
-                                     strict=True):
+    for piece in calculator.pieces(s):
+        moved = piece.load
+        drive = calculator.drive if moved is None else calculator.drive.with_load(moved)
         time = np.broadcast_to(piece.time, (n, np.shape(piece.time)[-1]))
         v = np.broadcast_to(piece.load_speed, time.shape)
         a = np.broadcast_to(piece.load_acceleration, time.shape)
@@ -112,7 +112,7 @@ def mean_cubic_load(calculator: CycleModel, s: np.ndarray, force: StageForce
             continue  # a dwell: nothing turns
         sense = np.where(v < 0.0, -1.0, 1.0)  # along the motion, as the engine's chain
         extra = None
-        if moved is not None:  # the load's terms of its position, along the motion
+        if moved is not None and moved.position_dependent:  # along the motion
             inertial, steady = moved.position_terms(piece.position, v, a)
             extra = (sense * inertial, sense * steady)
         _, outputs = drive.chain(sense * a, sense * v, sense, extra=extra)
@@ -123,32 +123,6 @@ def mean_cubic_load(calculator: CycleModel, s: np.ndarray, force: StageForce
     with np.errstate(divide="ignore", invalid="ignore"):
         mean = np.where(travel > 0.0, np.cbrt(cube / travel), 0.0)
     return MeanCubicLoad(travel, mean, end)
-
-
-def piece_drives(calculator: CycleModel, s: np.ndarray, count: int
-                 ) -> list[tuple[Drive, Load | None]]:
-    """For each of the ``count`` pieces of the cycle at scales ``s``, the drive whose
-    chain gives its stage forces and the load whose position terms add to them (None:
-    none). The calculator's drive and none, except against position-dependent loads
-    without a linkage (through one the pieces are the output's, its load the crank's):
-    there the drive holds the largest inertia over the cycle (an inertia table's largest
-    J, a picked-up part's; for the inertia ratio, sizer.sizing.linkage_move.
-    position_model), while each move's profile holds the load it moves (``segments``, one
-    per piece: the design's, a segment's picked-up part added). That load, with its
-    position terms (a dwell's piece, holding, turns nothing). A cycle of segments
-    (sizer.sizing.cycle.SegmentCycle) likewise: its drive holds the heaviest segment's
-    load (for the inertia ratio), each piece is read with its own segment's drive."""
-    drive = calculator.drive
-    own = getattr(calculator, "drives", None)  # a cycle of segments: each its own load
-    if own is not None and len(own) == count and not drive.load.position_dependent:
-        return [(d, None) for d in own]
-    segments = getattr(calculator, "segments", None)
-    if (not drive.load.position_dependent or drive.transmission.linkage is not None
-            or segments is None):
-        return [(drive, None)] * count
-    loads = [getattr(part.part, "load", None) for part in segments(s)]
-    return [(drive, None) if load is None else (drive.with_load(load), load)
-            for load in loads]
 
 
 @dataclass(frozen=True)
