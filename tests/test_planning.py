@@ -334,6 +334,9 @@ def test_motors_left_out_with_the_load_limits_is_a_plan_and_needs_no_load(
     assert row["binding"] == "speed"
     assert_user_error(run_cli("size", str(design), "--catalog", "siemens-1ft7"),
                       "load.inertia", "required field is missing")
+    # the commands about motors say why there are none
+    assert_user_error(run_cli("report", str(design), "-o", str(tmp_path / "r.md")),
+                      "no motors to size", "is a plan")
     named = design.read_text() + "motors: [siemens-1ft7]\n"
     design.write_text(named)
     assert_user_error(run_cli("size", str(design)), "load.inertia")

@@ -94,8 +94,12 @@ def size_design(design: Design, rank_by: str | None = None,
     """
     motors = tuple(motors if motors is not None else design.motors)
     if not motors:
-        raise UserError("no motors to size: give a catalog in the design or with --catalog",
-                        field="motors")
+        from sizer.sizing.planning import LoadLimits
+
+        planned = LoadLimits.of(design.limits).given  # docs/planning.md
+        raise UserError("no motors to size: give a catalog in the design or with --catalog"
+                        + ("; with the load's limits and no motors the design is a plan, "
+                           "which `sizer size` gives" if planned else ""), field="motors")
     specs = ranked_laws(design)
     arrays = MotorArrays.of(motors, design.limits.envelope, design.drives)
     if progress is not None:
