@@ -210,8 +210,9 @@ def check_tolerances(design: Design, samples: int = 0) -> None:
         if not t.absolute:
             continue
         values = ([(t.name, present[t.name])] if not t.name.startswith(MOTOR) else
-                  [(f"motor {m.id}'s {t.name.removeprefix(MOTOR)}",
-                    float(getattr(m, t.name.removeprefix(MOTOR)))) for m in design.motors])
+                  [(f"motor {m.id}'s {t.input.removeprefix(MOTOR)}",
+                    float(getattr(m, t.input.removeprefix(MOTOR)))) for m in design.motors
+                   if t.motor in (None, m.id)])
         for what, value in values:
             if not t.width < abs(value):
                 raise UserError(f"the tolerance's range +-{t.width:g} (SI) reaches zero: "
@@ -287,9 +288,12 @@ def perturbed_motor(motor: Motor, changes: Sequence[tuple[str, float]]) -> Motor
 
 def build_motor(motor: Motor, tolerances: Sequence[Tolerance],
                 changes: Sequence[float]) -> Motor:
-    """``motor`` at one build of the motor ``tolerances``."""
+    """``motor`` at one build of the motor ``tolerances`` (one limited to another motor
+    changes nothing)."""
     for t, change in zip(tolerances, changes, strict=True):
-        field = t.name.removeprefix(MOTOR)
+        if t.motor not in (None, motor.id):
+            continue
+        field = t.input.removeprefix(MOTOR)
         value = float(getattr(motor, field))
         changed: dict[str, Any] = {field: value * _factor(t, float(change), value)}
         motor = replace(motor, **changed)

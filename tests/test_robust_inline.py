@@ -189,3 +189,57 @@ def test_the_output_says_the_ratio_is_fixed(tmp_path):
     assert result.returncode == 0, result.stderr
     assert "chosen at the nominal design" in result.stdout
     assert "worst T_min [ms]" in result.stdout and "T_min p95 [ms]" in result.stdout
+
+
+INLINE_MOTORS = """\
+name: two inline motors
+task: {{displacement: 90 deg, duration: 0.25 s, dwell: 0.2 s}}
+load: {{inertia: 0.002 kg*m^2, friction: 0.2 N*m}}
+laws: [cycloidal, poly5]
+motors:
+  - {{id: M1, inertia: 1.2 kg*cm^2, continuous_torque: 1.3 N*m, peak_torque: {m1},
+     rated_speed: 3000 rpm}}
+  - {{id: M2, inertia: 0.9 kg*cm^2, continuous_torque: 1.0 N*m, peak_torque: 2.1 N*m,
+     rated_speed: 3000 rpm}}
+"""
+
+
+def test_a_tolerance_beside_an_inline_motor_s_figure_is_that_motor_s_alone(tmp_path):
+    """``peak_torque: 3 N*m +- 10 %`` on M1: M1's pairs' worst-case margins are the least
+    over the two corners, each sized on its own with M1's peak torque set by hand (2.7 and
+    3.3 N*m); M2's pairs are their nominal ones (the tolerance is not M2's)."""
+    design = api.load(_write(tmp_path, "d.yaml", INLINE_MOTORS.format(m1="3 N*m +- 10 %")))
+    (tolerance,) = design.tolerances
+    assert (tolerance.name, tolerance.input, tolerance.motor) == (
+        "motor.peak_torque[M1]", "motor.peak_torque", "M1")
+    robust = robust_sizing(design, api.size(design))
+    corners = [api.size(api.load(_write(tmp_path, f"c{k}.yaml",
+                                        INLINE_MOTORS.format(m1=f"{peak} N*m"))))
+               for k, peak in enumerate((2.7, 3.3))]
+    for result in robust.results:
+        nominal = result.nominal
+        if nominal.motor == "M2":
+            expected = {c.name: float(c.margin) for c in nominal.checks}
+        else:
+            expected = {}
+            for sized in corners:
+                (row,) = [r for r in sized.results
+                          if (r.motor, r.spec) == (nominal.motor, nominal.spec)]
+                for c in row.checks:
+                    expected[c.name] = min(expected.get(c.name, math.inf), float(c.margin))
+        assert result.worst.keys() == expected.keys()
+        for name, margin in expected.items():
+            assert result.worst[name] == pytest.approx(margin, rel=1e-12, abs=1e-12), name
+    m1_peak = next(r for r in robust.results if r.nominal.motor == "M1")
+    assert m1_peak.worst["peak"] < min(c.margin for c in m1_peak.nominal.checks
+                                       if c.name == "peak")
+
+
+def test_a_catalog_motor_takes_no_tolerance_beside_its_figure(tmp_path):
+    catalog = _write(tmp_path, "cat.yaml", "catalog: c\nmanufacturer: m\nsource: s\nmotors:\n"
+                     "  - {id: C1, inertia: 1 kg*cm^2, continuous_torque: 1 N*m, "
+                     "peak_torque: 3 N*m +- 10 %, rated_speed: 3000 rpm}\n")
+    design = _write(tmp_path, "d.yaml", INLINE_MOTORS.format(m1="3 N*m").split("motors:")[0]
+                    + f"motors: [{catalog.name}]\n")
+    assert_clean_answer(run_cli("size", str(design)), 2,
+                        ("peak_torque", "tolerance beside a catalog motor"))

@@ -236,6 +236,10 @@ def _validated_catalog(source: YamlSource, warnings: list[str],
     located = []
     for index, item in enumerate(catalog.motors):
         at = ("motors", index)
+        for field in item.inline_tolerances:  # a design's, not a catalog's
+            raise source.error(f"a tolerance beside a catalog motor's {field}: give it in "
+                               f"the design (tolerances: {{motor.{field}: ...}} for every "
+                               f"motor, or beside an inline motor's value)", (*at, field))
         motor = _motor(item, source, at, manufacturer=catalog.manufacturer,
                        source_text=source_text,
                        provenance=row_sources(item.figure_sources, shared, common))
@@ -543,17 +547,28 @@ def _tolerances(model: DesignFile, source: YamlSource, linear: bool
             raise source.error(f"a tolerance beside the value and one in 'tolerances:' "
                                f"({key}): give it in one place", ("load", field))
         out.append(_tolerance(source, key, value, ("load", field), linear, None))
+    for index, item in enumerate(model.motors or ()):  # an inline motor's: its own
+        if isinstance(item, str):
+            continue
+        for field, value in item.inline_tolerances.items():
+            key, where = f"motor.{field}", ("motors", index, field)
+            if key in named:
+                raise source.error(f"a tolerance beside motor {item.id!r}'s {field} and one "
+                                   f"for every motor in 'tolerances:' ({key}): give one",
+                                   where)
+            found = _tolerance(source, key, value, where, linear, None)
+            out.append(replace(found, name=f"{key}[{item.id}]"))
     return tuple(out)
 
 
-def _tolerance(source: YamlSource, key: str, value: str, at: tuple[str, ...], linear: bool,
-               sigmas: float | None) -> Tolerance:
+def _tolerance(source: YamlSource, key: str, value: str, at: tuple[str | int, ...],
+               linear: bool, sigmas: float | None) -> Tolerance:
     """One tolerance of ``key`` given as ``value`` at ``at`` (sigma with ``sigmas``
     for a normal one, else the half-width of a uniform one)."""
     from sizer.units import KINDS, to_si
 
     normal = sigmas is not None
-    field = ".".join(at)
+    field = format_path(at)
     kinds = TOLERANCE_KINDS[key]
     absolute = False
     try:

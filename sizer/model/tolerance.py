@@ -22,7 +22,8 @@ DEFAULT_SIGMAS = 3.0
 
 @dataclass(frozen=True)
 class Tolerance:
-    """An input's tolerance: its ``name`` (e.g. ``load.inertia``) and ``width``, the
+    """An input's tolerance: its ``name`` (e.g. ``load.inertia``; ``motor.peak_torque[M1]``
+    for one motor's figure alone) and ``width``, the
     box's half-width, ``absolute`` (the width in SI) or relative (a fraction);
     ``distribution`` uniform or normal, ``sigmas`` the normal's truncation in standard
     deviations (its sigma is width / sigmas; None for a uniform one)."""
@@ -41,6 +42,18 @@ class Tolerance:
             object.__setattr__(self, "sigmas", DEFAULT_SIGMAS)
         elif self.distribution == "uniform":
             object.__setattr__(self, "sigmas", None)
+
+    @property
+    def input(self) -> str:
+        """The input's name without the one motor the tolerance is limited to
+        (``motor.peak_torque[M1]``: ``motor.peak_torque``)."""
+        return self.name.split("[", 1)[0]
+
+    @property
+    def motor(self) -> str | None:
+        """The one motor a motor figure's tolerance applies to (given beside an inline
+        motor's value: ``motor.<field>[<id>]``); None: every motor (or not a motor's)."""
+        return self.name[len(self.input) + 1:-1] if "[" in self.name else None
 
     @property
     def sigma(self) -> float | None:

@@ -77,7 +77,7 @@ class RobustDocument(SizingDocument):
         self.robust = robust
         self._of = {id(r.nominal): r for r in robust.results}
         units = tolerance_units(design)
-        self._units = {t.name: units.get(t.name, "") for t in robust.tolerances}
+        self._units = {t.name: units.get(t.input, "") for t in robust.tolerances}
         self._absolute = {t.name: self._units[t.name] for t in robust.tolerances
                           if t.absolute}
 

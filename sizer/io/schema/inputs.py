@@ -15,7 +15,7 @@ ValidationError into a UserError at the file, line and field.
 
 import re
 from itertools import pairwise
-from typing import Annotated, Any, Literal, Self
+from typing import Annotated, Any, ClassVar, Literal, Self
 
 from pydantic import (
     BeforeValidator,
@@ -99,8 +99,76 @@ def _increasing_points(points: list[Any] | None) -> list[Any] | None:
     return points
 
 
-class MotorInput(Strict):
-    """One motor of a catalog (or inline in a design file)."""
+INLINE_TOLERANCE_FIELDS = ("inertia", "mass", "friction", "damping", "torque", "force")
+"""The load's fields that may carry a tolerance beside the value ('0.35 kg*m^2 +- 20 %'):
+the loader reads it as ``load.<field>`` of the ``tolerances:`` section (docs/robust.md)."""
+
+_PLUS_MINUS = re.compile(r"\+\s*-|\+\s*/\s*-|\u00b1")
+"""'+-', '+/-' or the sign itself, between a value and its tolerance."""
+
+
+def split_inline_tolerance(value: Any) -> tuple[Any, str | None]:
+    """``value`` as (quantity, tolerance text): '0.35 kg*m^2 +- 20 %' is ('0.35 kg*m^2',
+    '20 %'), a value without a tolerance is (value, None); ValueError when one side of the
+    sign is missing or the sign is written twice."""
+    if not isinstance(value, str):
+        return value, None
+    parts = _PLUS_MINUS.split(value)
+    if len(parts) == 1:
+        return value, None
+    if len(parts) > 2:
+        raise ValueError(f"one tolerance beside a value, like '0.35 kg*m^2 +- 20 %', got "
+                         f"{value!r}")
+    quantity, tolerance = (part.strip() for part in parts)
+    if not quantity or not tolerance:
+        raise ValueError(f"expected a value and its tolerance, like '0.35 kg*m^2 +- 20 %' "
+                         f"or '0.35 kg*m^2 +- 0.05 kg*m^2', got {value!r}")
+    return quantity, tolerance
+
+
+MOTOR_INLINE_TOLERANCE_FIELDS = ("inertia", "continuous_torque", "peak_torque", "rated_speed")
+"""An inline motor's figures that may carry a tolerance beside the value ('2.4 N*m +- 10 %'):
+the loader reads it as ``motor.<field>`` of that motor alone (docs/robust.md)."""
+
+
+class InlineTolerances(Strict):
+    """A model whose ``inline_fields`` may carry a tolerance beside the value ('0.35 kg*m^2
+    +- 20 %'): the field keeps the quantity, :attr:`inline_tolerances` the tolerance's
+    text (the loader reads it as the ``tolerances:`` section's)."""
+
+    inline_fields: ClassVar[tuple[str, ...]] = ()
+    _inline: dict[str, str] = PrivateAttr(default_factory=dict)
+
+    @model_validator(mode="wrap")
+    @classmethod
+    def _tolerances_beside_values(cls, data: Any,
+                                  handler: ModelWrapValidatorHandler[Self]) -> Self:
+        found: dict[str, str] = {}
+        if isinstance(data, dict):
+            data = dict(data)
+            for name in [n for n in data if n in cls.inline_fields]:  # file order
+                try:
+                    quantity, tolerance = split_inline_tolerance(data.get(name))
+                except ValueError as error:
+                    raise PydanticCustomError("inline_tolerance", str(error),
+                                              {"at": (name,)}) from None
+                if tolerance is not None:
+                    data[name], found[name] = quantity, tolerance
+        model = handler(data)
+        model._inline = found
+        return model
+
+    @property
+    def inline_tolerances(self) -> dict[str, str]:
+        """Each field given with a tolerance beside it: the tolerance as written."""
+        return dict(self._inline)
+
+
+class MotorInput(InlineTolerances):
+    """One motor of a catalog (or inline in a design file, whose figures
+    MOTOR_INLINE_TOLERANCE_FIELDS may carry a tolerance beside the value)."""
+
+    inline_fields: ClassVar[tuple[str, ...]] = MOTOR_INLINE_TOLERANCE_FIELDS
 
     id: Identifier = Field(description="unique among all loaded motors")
     inertia: Annotated[float, Ranged(
@@ -474,64 +542,13 @@ class MassTableInput(Strict):
                                                          "move; default 0")] | None = None
 
 
-INLINE_TOLERANCE_FIELDS = ("inertia", "mass", "friction", "damping", "torque", "force")
-"""The load's fields that may carry a tolerance beside the value ('0.35 kg*m^2 +- 20 %'):
-the loader reads it as ``load.<field>`` of the ``tolerances:`` section (docs/robust.md)."""
-
-_PLUS_MINUS = re.compile(r"\+\s*-|\+\s*/\s*-|\u00b1")
-"""'+-', '+/-' or the sign itself, between a value and its tolerance."""
-
-
-def split_inline_tolerance(value: Any) -> tuple[Any, str | None]:
-    """``value`` as (quantity, tolerance text): '0.35 kg*m^2 +- 20 %' is ('0.35 kg*m^2',
-    '20 %'), a value without a tolerance is (value, None); ValueError when one side of the
-    sign is missing or the sign is written twice."""
-    if not isinstance(value, str):
-        return value, None
-    parts = _PLUS_MINUS.split(value)
-    if len(parts) == 1:
-        return value, None
-    if len(parts) > 2:
-        raise ValueError(f"one tolerance beside a value, like '0.35 kg*m^2 +- 20 %', got "
-                         f"{value!r}")
-    quantity, tolerance = (part.strip() for part in parts)
-    if not quantity or not tolerance:
-        raise ValueError(f"expected a value and its tolerance, like '0.35 kg*m^2 +- 20 %' "
-                         f"or '0.35 kg*m^2 +- 0.05 kg*m^2', got {value!r}")
-    return quantity, tolerance
-
-
-class LoadInput(Strict):
+class LoadInput(InlineTolerances):
     """The load at the load side; rotary fields or linear ones, per the displacement.
 
     A quantity may carry its tolerance ('0.35 kg*m^2 +- 20 %', INLINE_TOLERANCE_FIELDS):
     the field keeps the quantity, :attr:`inline_tolerances` the tolerance's text."""
 
-    _inline: dict[str, str] = PrivateAttr(default_factory=dict)
-
-    @model_validator(mode="wrap")
-    @classmethod
-    def _tolerances_beside_values(cls, data: Any,
-                                  handler: ModelWrapValidatorHandler[Self]) -> Self:
-        found: dict[str, str] = {}
-        if isinstance(data, dict):
-            data = dict(data)
-            for name in [n for n in data if n in INLINE_TOLERANCE_FIELDS]:  # file order
-                try:
-                    quantity, tolerance = split_inline_tolerance(data.get(name))
-                except ValueError as error:
-                    raise PydanticCustomError("inline_tolerance", str(error),
-                                              {"at": (name,)}) from None
-                if tolerance is not None:
-                    data[name], found[name] = quantity, tolerance
-        model = handler(data)
-        model._inline = found
-        return model
-
-    @property
-    def inline_tolerances(self) -> dict[str, str]:
-        """Each field given with a tolerance beside it: the tolerance as written."""
-        return dict(self._inline)
+    inline_fields: ClassVar[tuple[str, ...]] = INLINE_TOLERANCE_FIELDS
 
     inertia: Annotated[RawValue, RawQuantity(
         "'0.35 kg*m^2'", rotary="load_inertia")] | None = Field(
