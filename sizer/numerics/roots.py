@@ -40,6 +40,39 @@ def illinois(f: Callable[..., np.ndarray], lo: np.ndarray, hi: np.ndarray,
     return (lo, hi) if bracket else 0.5 * (lo + hi)
 
 
+def first_passing(slack: Callable[[np.ndarray, np.ndarray], np.ndarray], lo: np.ndarray,
+                  f_lo: np.ndarray, doublings: int = 30, xtol: float = 1e-12) -> np.ndarray:
+    """Per element, the smallest x >= ``lo`` where ``slack(x, index) >= 0`` (``index``: the
+    elements x is for), a slack that grows with x: ``lo`` itself where ``f_lo`` (its slack)
+    passes, else x doubled until it passes (at most ``doublings`` times) and the crossing
+    bracketed by :func:`illinois` to ``xtol``, its passing end returned; inf where no
+    doubling passes. The later limits' passing scale (sizer.sizing.stage_life,
+    sizer.sizing.energy_check)."""
+    lo, f_lo = np.array(lo, dtype=float), np.array(f_lo, dtype=float)
+    n = len(lo)
+    out = np.where(f_lo >= 0.0, lo, np.inf)
+    hi, f_hi = np.full(n, np.nan), np.full(n, np.nan)
+    todo = np.flatnonzero(f_lo < 0.0)
+    for _ in range(doublings):
+        if not todo.size:
+            break
+        trial = 2.0 * lo[todo]
+        value = slack(trial, todo)
+        passed = value >= 0.0
+        hi[todo[passed]], f_hi[todo[passed]] = trial[passed], value[passed]
+        lo[todo[~passed]], f_lo[todo[~passed]] = trial[~passed], value[~passed]
+        todo = todo[~passed]
+    found = np.flatnonzero(np.isfinite(hi) & ~np.isfinite(out))
+    if found.size:
+        def f(x: np.ndarray, index: np.ndarray) -> np.ndarray:
+            return slack(x, found[index])
+
+        _, top = illinois(f, lo[found], hi[found], f_lo[found], f_hi[found], xtol,
+                          args=(np.arange(found.size),), bracket=True)
+        out[found] = top
+    return out
+
+
 def _point(lo, hi, f_lo, f_hi, step: int) -> np.ndarray:
     """The next point: the (weighted) secant, or the midpoint every sixth step."""
     with np.errstate(invalid="ignore", divide="ignore"):

@@ -56,7 +56,7 @@ import numpy as np
 
 from sizer.model.cycle import shorthand_task
 from sizer.model.domain import Design, Motor, ServoDrive
-from sizer.numerics.roots import illinois
+from sizer.numerics.roots import first_passing
 from sizer.sizing.candidates import MotorArrays, catalog_facts
 from sizer.sizing.checks import (
     BRAKING_RESISTOR_POWER,
@@ -372,27 +372,7 @@ def energy_duration(design: Design, calculator: CycleModel, duration: np.ndarray
     checks pass; inf where none does up to ``duration`` 2^DOUBLINGS. ``slack``: that of
     :func:`energy_slack` at ``duration`` where the caller has it (else evaluated)."""
     lo = np.array(duration, dtype=float)
-    n = len(lo)
     f_lo = np.array(slack, dtype=float) if slack is not None \
-        else energy_slack(design, calculator, lo, np.arange(n))
-    out = np.where(f_lo >= 0.0, lo, np.inf)
-    hi, f_hi = np.full(n, np.nan), np.full(n, np.nan)
-    todo = np.flatnonzero(f_lo < 0.0)
-    for _ in range(DOUBLINGS):
-        if not todo.size:
-            break
-        trial = 2.0 * lo[todo]
-        slack = energy_slack(design, calculator, trial, todo)
-        passed = slack >= 0.0
-        hi[todo[passed]], f_hi[todo[passed]] = trial[passed], slack[passed]
-        lo[todo[~passed]], f_lo[todo[~passed]] = trial[~passed], slack[~passed]
-        todo = todo[~passed]
-    found = np.flatnonzero(np.isfinite(hi) & ~np.isfinite(out))
-    if found.size:
-        def f(x: np.ndarray, index: np.ndarray) -> np.ndarray:
-            return energy_slack(design, calculator, x, found[index])
-
-        _, top = illinois(f, lo[found], hi[found], f_lo[found], f_hi[found], XTOL,
-                          args=(np.arange(found.size),), bracket=True)
-        out[found] = top
-    return out
+        else energy_slack(design, calculator, lo, np.arange(len(lo)))
+    return first_passing(lambda x, rows: energy_slack(design, calculator, x, rows), lo, f_lo,
+                         DOUBLINGS, XTOL)

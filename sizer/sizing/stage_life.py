@@ -59,7 +59,7 @@ from sizer.mechanics import Drive
 from sizer.mechanics.shaft_loads import shaft_forces
 from sizer.mechanics.stages import ScrewRatings, screw_rated_life
 from sizer.model.domain import ShaftLoad
-from sizer.numerics.roots import illinois
+from sizer.numerics.roots import first_passing
 from sizer.sizing.checks import (
     TOLERANCE,
     CheckArrays,
@@ -102,14 +102,14 @@ def mean_cubic_load(calculator: CycleModel, s: np.ndarray, force: StageForce
     n = len(s)
     travel, cube, end = np.zeros(n), np.zeros(n), np.zeros(n)
     for piece in calculator.pieces(s):
-        moved = piece.load
-        drive = calculator.drive if moved is None else calculator.drive.with_load(moved)
         time = np.broadcast_to(piece.time, (n, np.shape(piece.time)[-1]))
         v = np.broadcast_to(piece.load_speed, time.shape)
         a = np.broadcast_to(piece.load_acceleration, time.shape)
         end = np.maximum(end, time[:, -1])
         if not np.any(v):
             continue  # a dwell: nothing turns
+        moved = piece.load
+        drive = calculator.drive if moved is None else calculator.drive.with_load(moved)
         sense = np.where(v < 0.0, -1.0, 1.0)  # along the motion, as the engine's chain
         extra = None
         if moved is not None and moved.position_dependent:  # along the motion
@@ -185,30 +185,8 @@ class CycleLimit:
             checks = self.checks(sub, x, sub.evaluate(x), np.ones(len(index), dtype=bool))
             return np.min([c.slack for c in checks], axis=0) + TOLERANCE
 
-        lo = np.array(s, dtype=float)
         f_lo = np.min([c.slack[rows] for c in found.checks], axis=0) + TOLERANCE
-        out = np.where(f_lo >= 0.0, lo, np.inf)
-        hi, f_hi = np.full(len(lo), np.nan), np.full(len(lo), np.nan)
-        todo = np.flatnonzero(f_lo < 0.0)
-        for _ in range(DOUBLINGS):
-            if not todo.size:
-                break
-            trial = 2.0 * lo[todo]
-            value = slack(trial, todo)
-            passed = value >= 0.0
-            hi[todo[passed]], f_hi[todo[passed]] = trial[passed], value[passed]
-            lo[todo[~passed]], f_lo[todo[~passed]] = trial[~passed], value[~passed]
-            todo = todo[~passed]
-        bracketed = np.flatnonzero(np.isfinite(hi) & ~np.isfinite(out))
-        if bracketed.size:
-            def f(x: np.ndarray, index: np.ndarray) -> np.ndarray:
-                return slack(x, bracketed[index])
-
-            _, top = illinois(f, lo[bracketed], hi[bracketed], f_lo[bracketed],
-                              f_hi[bracketed], XTOL, args=(np.arange(bracketed.size),),
-                              bracket=True)
-            out[bracketed] = top
-        return out
+        return first_passing(slack, s, f_lo, DOUBLINGS, XTOL)
 
 
 @dataclass(frozen=True)
