@@ -96,10 +96,10 @@ class LinkageProfile:
     load: Load
     max_inertia: float
     issues: tuple[str, ...]
-    jumps: np.ndarray | None = None
-    """The samples (a mask over u) at the law's breakpoints, where its acceleration (and
-    so the torque) may jump: the one sample there holds one side's value, so no parabola
-    is read through it (:func:`profile_max`); None: none known."""
+    jumps: np.ndarray
+    """The samples (a mask over u) at and beside the law's breakpoints, where its
+    acceleration (and so the torque) may jump (:func:`jump_mask`): no parabola is read
+    through them (:func:`profile_max`)."""
 
 
 def _grid(law: MotionLaw | FixedShape | CamTurn, extra: np.ndarray | None = None
@@ -737,8 +737,6 @@ def profile_max(values: np.ndarray, p: LinkageProfile, jumping: bool = False
     jump at its breakpoints) the breakpoints are jumps too. A speed is continuous there,
     so its kinks may be a parabola's ends."""
     kinks = getattr(p, "kinks", None)
-    if p.jumps is None:
-        return refined_max(values, p.u, kinks)
     every = p.jumps if kinks is None else p.jumps | kinks
     return refined_max(values, p.u, every, p.jumps if jumping else None)
 
