@@ -20,7 +20,8 @@ from itertools import pairwise
 import numpy as np
 import pytest
 from bad_input_cases import edited
-from test_position_loads import ROTOR_GEAR, G, _falling, _motor  # shared motors
+from position_reference import ROTOR_GEAR, falling
+from test_position_loads import G, _motor  # shared motors
 
 from sizer.errors import UserError
 from sizer.laws import law_choice
@@ -181,7 +182,7 @@ def _return_segments(h: float, T: float, dwell: float, law: str) -> list[tuple]:
     (MIXED, 1.3, "cycloidal"),  # the table's knots crossed on the way out and back
 ])
 def test_a_return_move_at_its_true_positions(load, h, law):
-    motors = (_falling(1),)
+    motors = (falling(1),)
     T, dwell = 0.45, 0.3
     task = Task(h, T, dwell=dwell, return_move=True)
     calc = position_model(from_task(task), law_choice(law).law, load, _drive(load, 1.0),
@@ -200,7 +201,7 @@ def test_the_return_is_not_the_way_out_mirrored():
     """The return starts at h: its position terms differ from a second move from 0 (the
     old one-move engine would have evaluated them at 0 ... -h)."""
     h, T, dwell = math.pi / 2, 0.45, 0.3
-    motors = (_falling(0),)
+    motors = (falling(0),)
     calc = position_model(from_task(Task(h, T, dwell=dwell, return_move=True)),
                           law_choice("cycloidal").law, ARM, _drive(ARM, 1.0),
                           MotorArrays.of(motors, "electrical"))
@@ -233,7 +234,7 @@ def _cycle(segments: list[tuple], free: bool = False) -> Cycle:
 
 @pytest.mark.parametrize("load", [SPRING, MIXED])
 def test_a_cycle_of_segments_from_its_running_position(load):
-    motors = (_falling(1),)
+    motors = (falling(1),)
     calc = position_model(_cycle(CYCLE), law_choice("cycloidal").law, load, _drive(load, 1.0),
                           MotorArrays.of(motors, "electrical"))
     metrics = calc.evaluate(np.ones(len(motors)))
@@ -247,7 +248,7 @@ def test_a_cycle_of_segments_from_its_running_position(load):
 def test_a_lossy_stage_in_a_cycle():
     """eta < 1 where the power flow reverses: the kink inside a quadrature interval costs
     the composite rule its order (docs/position-loads.md, the known limit): 1e-7."""
-    motors = (_falling(1),)
+    motors = (falling(1),)
     calc = position_model(_cycle(CYCLE), law_choice("cycloidal").law, ARM, _drive(ARM, 0.85),
                           MotorArrays.of(motors, "electrical"))
     metrics = calc.evaluate(np.ones(1))
@@ -319,7 +320,7 @@ def test_a_cycle_that_leaves_the_table_is_refused():
     segments = [*CYCLE[:4], ("move", 0.2, 0.2, "poly5"), ("move", -1.6, 0.4, "poly5")]
     with pytest.raises(UserError, match=r"table covers"):
         position_model(_cycle(segments), law_choice("cycloidal").law, MIXED,
-                       _drive(MIXED, 1.0), MotorArrays.of((_falling(0),), "electrical"))
+                       _drive(MIXED, 1.0), MotorArrays.of((falling(0),), "electrical"))
 
 
 def test_a_dwell_holds_with_the_sign_of_its_load():
@@ -327,7 +328,7 @@ def test_a_dwell_holds_with_the_sign_of_its_load():
     h, T, dwell = -math.pi / 2, 0.45, 0.3  # lowered to 120 deg below: gravity pulls down
     calc = position_model(from_task(Task(h, T, dwell=dwell, return_move=True)),
                           law_choice("cycloidal").law, ARM, _drive(ARM, 1.0),
-                          MotorArrays.of((_falling(0),), "electrical"))
+                          MotorArrays.of((falling(0),), "electrical"))
     pieces = calc.pieces(np.array([T]), 11)
     held = 0.5 * G * math.cos(h - math.radians(30.0)) / N
     assert held < 0.0
@@ -363,11 +364,11 @@ def test_a_knot_reached_at_a_moves_end_up_to_rounding():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         calc = position_model(_cycle(segments), law_choice("poly5").law, load,
-                              _drive(load, 1.0), MotorArrays.of((_falling(0),), "electrical"))
+                              _drive(load, 1.0), MotorArrays.of((falling(0),), "electrical"))
         metrics = calc.evaluate(np.ones(1))
     assert all(np.all(np.diff(p.u) > 0.0) for p in calc.parts if hasattr(p, "u"))
     ref = Independent(load, segments, 1.0)
-    assert metrics.rms_torque[0] == pytest.approx(ref.rms(_falling(0).inertia), rel=1e-9)
+    assert metrics.rms_torque[0] == pytest.approx(ref.rms(falling(0).inertia), rel=1e-9)
 
 
 # ------------------------------------------------------------ design files, located

@@ -11,7 +11,8 @@ import math
 import pytest
 from bad_input_cases import edited
 from cli_run import run_cli as run
-from test_position_cycles import ARM, ROTOR_GEAR, Independent, _falling
+from position_reference import ROTOR_GEAR, falling
+from test_position_cycles import ARM, Independent
 
 TABLE_POINTS = [["0 deg", "0 N*m"], ["50 deg", "1 N*m"], ["100 deg", "0 N*m"]]
 
@@ -34,7 +35,7 @@ def test_a_return_move_sized_end_to_end(tmp_path):
     h, T, dwell = math.pi / 2, 0.45, 0.3
     path = _design(tmp_path, {"task": {"displacement": "90 deg", "duration": f"{T} s",
                                        "dwell": f"{dwell} s", "return": True}})
-    motor = _falling(1)
+    motor = falling(1)
     row = sizer.size(path, motors=[motor]).results[0]
     ref = Independent(ARM, [("move", h, T, "cycloidal"), ("dwell", dwell),
                             ("move", -h, T, "cycloidal"), ("dwell", dwell)], 1.0)
@@ -54,7 +55,7 @@ def test_a_cycle_sized_end_to_end(tmp_path):
              else {"dwell": {"duration": f"{s[1]} s", "name": f"s{i}"}}
              for i, s in enumerate(segments)]
     path = _design(tmp_path, {"cycle": {"closed": True, "segments": cycle}}, ("task",))
-    motor = _falling(1)
+    motor = falling(1)
     row = sizer.size(path, motors=[motor]).results[0]
     ref = Independent(ARM, segments, 1.0)
     assert row.duration == pytest.approx(1.35, rel=1e-15)  # the cycle time

@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 from bad_input_cases import Case, edited
 from bad_input_cases import run_case as run
+from position_reference import ROTOR_GEAR, falling
 
 from sizer.errors import UserError
 from sizer.laws import law_choice
@@ -32,7 +33,6 @@ from sizer.sizing.move import CycleCalculator
 from sizer.sizing.shortest_duration import answer
 
 G = 9.80665
-ROTOR_GEAR = 5e-6
 
 
 def _motor(k: int, peak: float, continuous: float, speed: float = 300.0,
@@ -42,15 +42,6 @@ def _motor(k: int, peak: float, continuous: float, speed: float = 300.0,
                  rated_speed=speed, max_speed=speed,
                  intermittent_curve=((0.0, peak), (speed, peak)),
                  continuous_curve=((0.0, continuous), (speed, continuous)))
-
-
-def _falling(k: int) -> Motor:
-    tp, vn = 2.0 + 3.0 * k, 150.0 + 25.0 * k
-    return Motor(id=f"f{k}", inertia=1e-4 * (1 + k), continuous_torque=tp / 3, peak_torque=tp,
-                 rated_speed=vn, max_speed=2 * vn,
-                 intermittent_curve=((0.0, tp), (0.8 * vn, tp), (1.4 * vn, 0.7 * tp),
-                                     (2 * vn, 0.35 * tp)),
-                 continuous_curve=((0.0, tp / 3), (2 * vn, tp / 5)))
 
 
 ARM = Load(inertia=0.05, damping=0.01, friction=0.2,
@@ -159,7 +150,7 @@ def _calculator(load: Load, h: float, law: str, motors: tuple[Motor, ...], eta: 
     (ARM, math.pi / 2, "poly7", 0.9, 1e-9),
 ])
 def test_peak_and_rms_against_independent_evaluations(load, h, law, eta, rms_tolerance):
-    motors = tuple(_falling(k) for k in range(3))
+    motors = tuple(falling(k) for k in range(3))
     T, dwell = (3.0 if law == "poly7" and eta == 0.9 else 0.45), 0.3
     calc = _calculator(load, h, law, motors, eta, T, dwell)
     metrics = calc.evaluate(np.full(len(motors), T))
@@ -263,7 +254,7 @@ def test_sizer_sizes_a_gravity_arm_end_to_end(tmp_path):
         "laws": ["cycloidal"]})
     path = tmp_path / "arm.yaml"
     path.write_text(text, encoding="utf-8")
-    motor = _falling(1)
+    motor = falling(1)
     row = sizer.size(path, motors=[motor]).results[0]
     ref = Independent(ARM, math.pi / 2, "cycloidal", 5.0, 0.9)
     assert row.peak_torque == pytest.approx(ref.peak(0.45, motor.inertia, 0.3), rel=1e-9)
@@ -363,7 +354,7 @@ def test_a_dwell_holding_more_than_the_move_sets_the_peaks():
     without position terms (sizer.sizing.move)."""
     arm = Load(inertia=0.05, gravity=GravityLoad(moment=0.5, offset=-math.pi / 3))
     h, law, eta, T, dwell = math.pi / 3, "constant_acceleration", 0.9, 3.0, 0.3
-    motors = tuple(_falling(k) for k in range(3))
+    motors = tuple(falling(k) for k in range(3))
     ref = Independent(arm, h, law, 5.0, eta)
     static = 0.5 * G
     t = np.linspace(0.0, T, 20001)
