@@ -324,10 +324,13 @@ def robust_sizing(design: Design, nominal: SizingResult, *, rank_by: str | None 
     names = [t.name for t in tolerances]
 
     fixed = {c.text for c in design.laws if c.is_fixed}
+    per_move = design.machine_cycle.share.per_move
 
     def key(r: CandidateResult, motor: int) -> tuple[object, ...]:
-        # a law chosen at each build (an 'auto' parameter) is known by its family
-        law = r.spec if r.spec in fixed else f"{r.law} (chosen)"
+        # a law chosen at each build (an 'auto' parameter, a law per move) is known by
+        # its family
+        law = "per_move (chosen)" if per_move else \
+            r.spec if r.spec in fixed else f"{r.law} (chosen)"
         return (motor, r.drive_object.id if r.drive_object is not None else None, law,
                 r.gearbox)
 
@@ -420,7 +423,8 @@ def _fixed_ratio_parts(design: Design, index: dict[tuple[object, ...], Candidate
     out = []
     for part, keys, motors in parts.values():
         specs = {r.spec for k_, r in index.items() if k_ in keys}
-        laws = tuple(c for c in part.laws if not c.is_fixed or c.law.spec in specs)
+        laws = part.laws if part.machine_cycle.share.per_move else \
+            tuple(c for c in part.laws if not c.is_fixed or c.law.spec in specs)
         out.append((replace(part, laws=laws), keys, sorted(motors)))
     return out
 

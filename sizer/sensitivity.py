@@ -149,7 +149,12 @@ def fixed_pair(design: Design, result: CandidateResult) -> Design:
     sizing chose (a ratio choice fixed: CandidateResult.fixed_in); the duration
     as the design has it (given, or minimized again)."""
     from sizer.laws.choice import law_choice
+    from sizer.laws.per_move import LawsPerMove
 
+    if isinstance(result.law_object, LawsPerMove):  # its laws written in, kept fixed
+        from sizer.sizing.cycle import with_move_laws
+
+        return with_move_laws(result.fixed_in(design), result.law_object)
     return replace(result.fixed_in(design), laws=(law_choice(result.spec),))
 
 
@@ -328,6 +333,8 @@ def sensitivity(design: Design, motor: str | None = None, law: str | None = None
     fixed = fixed_pair(design, nominal_pair)
     minimize = design.machine_cycle.minimize
     nominal = api.size(fixed).results[0]
+    if nominal.spec != nominal_pair.spec:  # a law per move written in: the pair's label
+        nominal = replace(nominal, law_object=nominal_pair.law_object)
     inputs = design_inputs(fixed)
     rows: list[InputSensitivity] = []
     motor_inputs = [i for i in inputs if i.build is None]

@@ -32,12 +32,12 @@ if TYPE_CHECKING:
     from sizer.export.profile import CamProfile
     from sizer.export.resized import Resized
     from sizer.export.targets import Target
-    from sizer.laws.base import MotionLaw
+    from sizer.laws.per_move import RankedLaw
 
 FORMULA = "Y = A0 + A1*X + A2*X^2 + A3*X^3 + A4*X^4 + A5*X^5 + A6*X^6 + B0*sin(B1*X + B2)"
 
 
-def export_coefficients(target: Target, law: MotionLaw, h: float, T: float, linear: bool,
+def export_coefficients(target: Target, law: RankedLaw, h: float, T: float, linear: bool,
                         master_range: float | None, tolerance: float | None,
                         points: int | None, task: Any, output: Path,
                         certificate: Path | None, pair: Any, design: Path | None,

@@ -25,6 +25,7 @@ if TYPE_CHECKING:
     from sizer.export.sampling import PointTable
     from sizer.export.targets import Target
     from sizer.laws.base import MotionLaw
+    from sizer.laws.per_move import RankedLaw
 
 DEFAULT_TOLERANCE = 1e-4
 
@@ -130,7 +131,7 @@ def cam(
                 raise UserError("a law alone (--displacement, --duration) has no motor or "
                                 "design: leave out " + option, field=option)
         h, T, linear = move
-        the_law = _law_alone(source, output, certificate)
+        the_law: RankedLaw = _law_alone(source, output, certificate)
         pair, task = None, None
     else:
         h, T, linear, the_law, pair, task = _sized_move(Path(source), motor, law, catalog,
@@ -224,7 +225,7 @@ def _law_alone(spec: str, output: Path, certificate: Path | None) -> MotionLaw:
 
 def _sized_move(design: Path, motor: str | None, law: str | None,
                 catalog: list[str] | None, outputs: list[Path | None]
-                ) -> tuple[float, float, bool, MotionLaw, Any, Any]:
+                ) -> tuple[float, float, bool, RankedLaw, Any, Any]:
     """(h, T, linear, law, result, task) of the design's pair to export; for a cycle of
     segments task is the Design itself (its ``cycle`` set) and T the cycle time the
     result reports."""
@@ -264,7 +265,7 @@ def _sized_move(design: Path, motor: str | None, law: str | None,
     return task.displacement, result.duration, task.linear, result.law_object, result, task
 
 
-def _table(law: MotionLaw, h: float, T: float, linear: bool, master_range: float | None,
+def _table(law: RankedLaw, h: float, T: float, linear: bool, master_range: float | None,
            target: Target, tolerance: float | None, points: int | None,
            task: Any = None, profile: Any = None) -> PointTable:
     """The certified table of the move (or with ``task``, its machine cycle; or the

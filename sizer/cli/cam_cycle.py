@@ -13,17 +13,17 @@ if TYPE_CHECKING:
     from collections.abc import Callable
 
     from sizer.export.resized import Resized
+    from sizer.laws.per_move import RankedLaw
     from sizer.sizing.results import CandidateResult
 
 from sizer.errors import UserError
 
 if TYPE_CHECKING:
     from sizer.export.profile import CamProfile
-    from sizer.laws.base import MotionLaw
     from sizer.model.domain import Design
 
 
-def sized_cycle(design: Design, law: MotionLaw, duration: float,
+def sized_cycle(design: Design, law: RankedLaw, duration: float,
                 master_range: float | None, source: Path,
                 pair: CandidateResult | None = None) -> CamProfile:
     """The whole cycle of the design at the result's cycle time ``duration`` (the

@@ -16,12 +16,12 @@ from sizer.report.cam_certificate import record_head
 
 if TYPE_CHECKING:
     from sizer.export.profile import CamProfile
-    from sizer.laws.base import MotionLaw
+    from sizer.laws.per_move import RankedLaw
 
 EXACT = "exact (the law the controller names)"
 
 
-def export_segments(name: str, law: MotionLaw, h: float, T: float, linear: bool,
+def export_segments(name: str, law: RankedLaw, h: float, T: float, linear: bool,
                     master_range: float | None, task: Any, output: Path,
                     certificate: Path | None, pair: Any, tolerance: float | None,
                     points: int | None, profile: CamProfile | None = None) -> None:

@@ -32,10 +32,10 @@ if TYPE_CHECKING:
     from sizer.export.profile import CamProfile
     from sizer.export.resized import Resized
     from sizer.export.targets import Target
-    from sizer.laws.base import MotionLaw
+    from sizer.laws.per_move import RankedLaw
 
 
-def export_smooth(target: Target, law: MotionLaw, h: float, T: float, linear: bool,
+def export_smooth(target: Target, law: RankedLaw, h: float, T: float, linear: bool,
                   master_range: float | None, tolerance: float | None, points: int | None,
                   task: Any, output: Path, certificate: Path | None, pair: Any,
                   design: Path | None, catalog: list[str] | None,
@@ -62,7 +62,7 @@ def export_smooth(target: Target, law: MotionLaw, h: float, T: float, linear: bo
         newly_failed_message(output, resized))
 
 
-def _table(law: MotionLaw, h: float, T: float, linear: bool, master_range: float | None,
+def _table(law: RankedLaw, h: float, T: float, linear: bool, master_range: float | None,
            target: Target, tolerance: float | None, points: int | None, task: Any,
            default_tolerance: float, profile: CamProfile | None = None) -> HermiteTable:
     from sizer.export.hermite_certificate import fewest_points, table_for_tolerance, table_of

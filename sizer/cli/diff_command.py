@@ -97,7 +97,7 @@ def diff(
     from sizer.cli.output_guard import check_output
     from sizer.cli.size_command import check_laws, check_rank_key, size_loaded
     from sizer.report.diff_report import DiffDocument, publish_diff
-    from sizer.sizing.design_diff import design_changes, diff_sizings
+    from sizer.sizing.design_diff import design_changes, diff_sizings, ranked_choices
 
     check_rank_key(rank_by)
     check_laws(law or ())
@@ -124,8 +124,8 @@ def diff(
     _refuse_plans(before, after)
     sized = [size_loaded(side.path, side.design, rank_by, workers=jobs, laws=law)
              for side in (before, after)]
-    result = diff_sizings(sized[0], sized[1], laws_a=before.design.laws,
-                          laws_b=after.design.laws,
+    result = diff_sizings(sized[0], sized[1], laws_a=ranked_choices(before.design),
+                          laws_b=ranked_choices(after.design),
                           design=design_changes(before.data, after.data))
     publish_diff(DiffDocument(result, before.label, after.label), fmt, output)
     if result.regressions:

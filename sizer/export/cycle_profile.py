@@ -31,6 +31,7 @@ import numpy as np
 
 from sizer.export.profile import CamProfile, CamSegment
 from sizer.laws.base import MotionLaw
+from sizer.laws.per_move import RankedLaw
 from sizer.laws.pieces import trig_poly_piece
 
 if TYPE_CHECKING:
@@ -118,7 +119,7 @@ def segment_durations(design: Design, duration: float,
     return out
 
 
-def cycle_profile(design: Design, law: MotionLaw | None, duration: float,
+def cycle_profile(design: Design, law: RankedLaw | None, duration: float,
                   master_range: float | None = None,
                   pair: CandidateResult | None = None) -> CamProfile:
     """The design's whole machine cycle at the result's reported ``duration`` (s),

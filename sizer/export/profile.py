@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from sizer.laws.base import MotionLaw
+from sizer.laws.per_move import RankedLaw, one_law
 
 
 @dataclass(frozen=True)
@@ -44,7 +45,7 @@ class CamProfile:
     ``master_unit``); with ``segments``, the machine cycle they make (moves by ``law`` of
     ``stroke`` each way, and dwells) over ``span`` in all."""
 
-    law: MotionLaw
+    law: RankedLaw
     stroke: float
     span: float
     slave_unit: str = "deg"
@@ -58,7 +59,8 @@ class CamProfile:
             raise ValueError(f"the master span must be positive, got {self.span!r}")
         if not self.segments:
             object.__setattr__(self, "segments",
-                               (CamSegment(0.0, self.span, 0.0, self.stroke, self.law),))
+                               (CamSegment(0.0, self.span, 0.0, self.stroke,
+                                           one_law(self.law)),))
 
     @property
     def over_time(self) -> bool:
@@ -150,7 +152,7 @@ def task_cycle(law: MotionLaw, stroke: float, duration: float, dwell: float,
     return CamProfile(law, stroke, x, segments=tuple(segments), **units)
 
 
-def move_profile(law: MotionLaw, h: float, duration: float, linear: bool,
+def move_profile(law: RankedLaw, h: float, duration: float, linear: bool,
                  master_range: float | None, task: Any = None) -> CamProfile:
     """The profile ``sizer cam`` exports: a move of h (m or rad, SI) in ``duration`` s,
     the slave in mm or deg; over time, or over a master range (deg) spanning the move (or,
@@ -159,8 +161,8 @@ def move_profile(law: MotionLaw, h: float, duration: float, linear: bool,
     master_unit = "s" if master_range is None else "deg"
     if task is None:
         span = duration if master_range is None else master_range
-        return CamProfile(law, stroke, span, unit, master_unit)
+        return CamProfile(one_law(law), stroke, span, unit, master_unit)
     cycle_time = (duration + task.dwell) * (2 if task.return_move else 1)
     scale = 1.0 if master_range is None else master_range / cycle_time
-    return task_cycle(law, stroke, duration, task.dwell, task.return_move, scale,
+    return task_cycle(one_law(law), stroke, duration, task.dwell, task.return_move, scale,
                       slave_unit=unit, master_unit=master_unit)

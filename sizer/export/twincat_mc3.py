@@ -54,6 +54,7 @@ import numpy as np
 from sizer.export.numbers import exact
 from sizer.export.profile import CamProfile
 from sizer.laws.base import MotionLaw
+from sizer.laws.per_move import RankedLaw, one_law
 
 PI = math.pi
 LINEAR = "Linear"
@@ -82,8 +83,9 @@ SUPPORTED = ("polynomial(degree=3) (poly3)", "polynomial(degree=5) (poly5)",
              "polynomial(degree=7) (poly7)", "cycloidal", "modified_sinusoidal")
 
 
-def named_law(law: MotionLaw) -> NamedLaw:
+def named_law(ranked: RankedLaw) -> NamedLaw:
     """The TwinCAT function type that IS ``law``, or UnnamedLawError."""
+    law = one_law(ranked)
     if law.law_id == "polynomial":
         degree = int(law.params["degree"])
         if degree in POLYNOMIALS:

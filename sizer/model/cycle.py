@@ -73,12 +73,23 @@ class ShareRule(enum.Enum):
     """Chosen to minimize the largest residual vibration over the moves (the load's mode,
     ``load.natural_frequency``): one split for every motor, the residual depends on the
     laws and durations only (sizer.allocation.minimax_split)."""
+    OPTIMIZE_RMS_PER_MOVE = "optimize: rms, laws: per_move"
+    """As OPTIMIZE_RMS, with a law per free move chosen with the split from the design's
+    ``laws:`` (sizer.allocation.allocate_laws): each motor its own combination."""
+    OPTIMIZE_ENERGY_PER_MOVE = "optimize: energy, laws: per_move"
+    """As OPTIMIZE_ENERGY, with a law per free move chosen with the split."""
 
     @property
     def goal(self) -> str | None:
         """What an optimized split minimizes ("rms", "energy", "vibration"), None for a
         fixed rule."""
-        return self.value.partition(": ")[2] or None
+        return self.value.partition(": ")[2].partition(",")[0] or None
+
+    @property
+    def per_move(self) -> bool:
+        """Whether each move that names no law takes its own of the design's laws, chosen
+        with the split (``share: {optimize: GOAL, laws: per_move}``)."""
+        return self.value.endswith("laws: per_move")
 
 
 @dataclass(frozen=True)

@@ -122,13 +122,15 @@ class DesignReport:
     def _laws(self) -> list[MotionLaw]:
         """The design's laws with fixed shapes, then the shapes the solver chose for 'auto'
         parameters among the pairs shown (ranking and best candidates)."""
+        from sizer.laws.per_move import LawsPerMove
         laws: dict[str, MotionLaw] = {}
         for choice in self.design.laws:
             if choice.is_fixed:
                 laws.setdefault(choice.law.spec, choice.law)
         if not all(s.is_fixed for s in self.design.laws):  # auto shapes, shaped for each T
             for result in self._shown_results():
-                if result.spec not in laws:
+                if result.spec not in laws and not isinstance(result.law_object,
+                                                              LawsPerMove):
                     laws[result.spec] = result.law_object
         return list(laws.values())
 

@@ -40,6 +40,7 @@ import numpy as np
 
 from sizer.errors import UserError
 from sizer.laws import LawChoice, MotionLaw, law_choice, make_law
+from sizer.laws.per_move import LawsPerMove, PerMoveChoice, RankedLaw
 from sizer.mechanics import Drive
 from sizer.mechanics.loads import linear_load
 from sizer.model.cycle import (
@@ -48,6 +49,7 @@ from sizer.model.cycle import (
     Move,
     Run,
     Segment,
+    ShareRule,
     boundary_laws,
     fixed_shape,
     shorthand_task,
@@ -99,15 +101,25 @@ def given_scale(cycle: Cycle) -> float:
     return (cycle.cycle_time - cycle.fixed_time) / weights
 
 
-def ranked_laws(design: Design) -> tuple[LawChoice, ...]:
+def ranked_laws(design: Design) -> tuple[LawChoice | PerMoveChoice, ...]:
     """The law choices the ranking runs over: the design's laws (those that can meet the
-    boundary speeds of every move that names no law of its own); with a cycle whose every
-    move names its law, that cycle once, labelled by its first move's law."""
+    boundary speeds of every move that names no law of its own), or with ``share:
+    {optimize: GOAL, laws: per_move}`` one choice of a law of theirs per move; with a
+    cycle whose every move names its law, that cycle once, labelled by its first move's
+    law."""
     cycle = design.machine_cycle
     open_moves = [m for m in cycle.moves if m.law is None]
     if not open_moves:
         first = cycle.moves[0].law if cycle.moves else None
         return (first or law_choice("cycloidal"),)
+    offered = _offered_laws(design)  # fixed laws: sizer.io refuses others in a cycle
+    return (PerMoveChoice(offered),) if cycle.share.per_move else offered
+
+
+def _offered_laws(design: Design) -> tuple[LawChoice, ...]:
+    """The design's laws that can meet the boundary speeds of every move that names no
+    law of its own."""
+    cycle = design.machine_cycle
     if not design.laws:
         raise UserError("no motion laws to consider" + (
             "" if cycle.shorthand else " for the moves that name none"), field="laws")
@@ -122,7 +134,7 @@ def left_out_laws(design: Design) -> tuple[str, ...]:
     boundary speeds or accelerations), for the notes."""
     if not any(m.law is None for m in design.machine_cycle.moves):
         return ()
-    kept = set(ranked_laws(design))
+    kept = set(_offered_laws(design))
     return tuple(spec.text for spec in design.laws if spec not in kept)
 
 
@@ -232,10 +244,33 @@ def normalized_move(basis, move: Move, T: np.ndarray) -> np.ndarray:
                          r1=move.end_acceleration * T * T / h)
 
 
-def cycle_laws(cycle: Cycle, law: MotionLaw | None) -> tuple[MotionLaw | None, ...]:
-    """The law of each segment: a move's own law, else ``law`` (the one being ranked)."""
+def cycle_laws(cycle: Cycle, law: RankedLaw | None) -> tuple[MotionLaw | None, ...]:
+    """The law of each segment: a move's own law, else ``law`` (the one being ranked; a
+    law per move, sizer.laws.per_move, gives the moves that name none theirs in order)."""
+    if isinstance(law, LawsPerMove):
+        open_moves = sum(1 for s in cycle.segments if isinstance(s, Move) and not s.law)
+        if open_moves != len(law.laws):
+            raise ValueError(f"{law.spec} gives {len(law.laws)} laws for {open_moves} moves "
+                             "that name none")
+        spread = iter(law.laws)
+        return tuple((make_law(s.law) if s.law else next(spread)) if isinstance(s, Move)
+                     else None for s in cycle.segments)
     return tuple((make_law(s.law) if s.law else law) if isinstance(s, Move) else None
                  for s in cycle.segments)
+
+
+def with_move_laws(design: Design, law: LawsPerMove) -> Design:
+    """``design`` with a sized pair's law per move written in: each move that names no law
+    names its law of ``law``, the share minimizes the same goal with those laws (no law
+    choice left). Sized, its pair is the one ``law`` was chosen for (the same laws and
+    split): what a sensitivity or another build of that pair keeps fixed."""
+    cycle = design.machine_cycle
+    laws = cycle_laws(cycle, law)
+    segments = tuple(replace(s, law=law_choice(one.spec))
+                     if isinstance(s, Move) and not s.law and one is not None else s
+                     for s, one in zip(cycle.segments, laws, strict=True))
+    share = ShareRule(f"optimize: {cycle.share.goal}")
+    return replace(design, machine_cycle=replace(cycle, segments=segments, share=share))
 
 
 class SegmentCycle:
@@ -248,7 +283,7 @@ class SegmentCycle:
 
     segmented = True
 
-    def __init__(self, cycle: Cycle, law: MotionLaw | None, drive: Drive,
+    def __init__(self, cycle: Cycle, law: RankedLaw | None, drive: Drive,
                  motors: MotorArrays, thermal_speed: ThermalSpeedRule = "max",
                  weights: np.ndarray | None = None) -> None:
         self.cycle = cycle
@@ -368,6 +403,27 @@ class SegmentCycle:
 
         return allocate_laws(cost, len(laws), np.full(n, s * float(np.sum(self.weights))),
                              np.tile(self.weights[free], (n, 1)))
+
+    def move_laws(self, laws: tuple[MotionLaw, ...]) -> np.ndarray:
+        """Per candidate the law (an index into ``laws``) of each move that names none, in
+        the cycle's order (candidates, moves): the free ones' with the split
+        (:meth:`law_split`), a move of fixed duration's the law of least goal at its
+        duration (its term does not depend on the split)."""
+        goal = self.cycle.share.goal
+        free = [i for i, w in enumerate(self.weights) if w > 0.0]
+        split = self.law_split(laws) if free else None
+        out = []
+        for i, segment in enumerate(self.cycle.segments):
+            if not isinstance(segment, Move) or segment.law:
+                continue
+            if split is not None and i in free:
+                out.append(split.laws[:, free.index(i)])
+                continue
+            cost = self._move_cost(str(goal), [i])
+            T, rows = np.full(len(self.motors), self.fixed[i]), np.arange(len(self.motors))
+            every = np.stack([cost(0, law, T, rows) for law in laws], axis=1)
+            out.append(np.argmin(np.where(np.isnan(every), np.inf, every), axis=1))
+        return np.stack(out, axis=1)
 
     def _vibration_split(self, free: list[int], free_time: float) -> np.ndarray:
         """The free moves' durations (moves,) that minimize the largest residual vibration

@@ -32,6 +32,8 @@ from dataclasses import dataclass, field
 from enum import StrEnum
 from typing import Any
 
+from sizer.laws.per_move import PerMoveChoice
+from sizer.model.domain import Design
 from sizer.sizing.results import CandidateResult, SizingResult, flat_record
 
 NOT_COMPARED = ("rank", "motor", "drive", "law", "reason")
@@ -173,10 +175,21 @@ def _number(value: object) -> bool:
         and math.isfinite(float(value))
 
 
+def ranked_choices(design: Design) -> tuple[object, ...]:
+    """The law choices a sizing of ``design`` keys its rows by (:func:`keyed_rows`): its
+    laws, and with ``laws: per_move`` that one choice."""
+    if design.machine_cycle.share.per_move:
+        return (*design.laws, PerMoveChoice(tuple(design.laws)))
+    return tuple(design.laws)
+
+
 def _law_key(result: CandidateResult, choices: Sequence[object]) -> str:
     """The law as the design lists it: the first choice ``result``'s law comes from (same
-    family, its fixed values equal), else the law's own spec."""
+    family, its fixed values equal), else the law's own spec; with a law per move
+    (``laws: per_move``, every motor one row) the choice itself, whatever laws it took."""
     spec = result.spec
+    if any(isinstance(choice, PerMoveChoice) for choice in choices):
+        return PerMoveChoice.text
     for choice in choices:
         if str(choice) == spec:
             return spec

@@ -39,7 +39,8 @@ import numpy as np
 
 from sizer.envelope import envelope_note
 from sizer.errors import UserError
-from sizer.laws import LawChoice, MotionLaw, law_choice
+from sizer.laws import LawChoice, law_choice
+from sizer.laws.per_move import LawsPerMove, PerMoveChoice, RankedLaw, per_move
 from sizer.model.cycle import Dwell
 from sizer.model.domain import Design, Motor
 from sizer.sizing.candidates import Candidates, MotorArrays
@@ -136,12 +137,25 @@ def _options(design: Design) -> int:
     return max(1, len(choice.ratios) + len(choice.gearboxes))
 
 
-def evaluate_spec(design: Design, spec: LawChoice | str, motors: MotorArrays,
+def evaluate_spec(design: Design, spec: LawChoice | PerMoveChoice | str, motors: MotorArrays,
                   first: np.ndarray | None = None,
                   shared: SharedByLaws | None = None) -> CandidateTable:
     """One law choice for all motors (one row per motor), the free ratio chosen if any
     (``first``: per motor the listed option to try first, sizer.sizing.choices;
     ``shared``: what the laws of the sizing share, built once for them all)."""
+    if isinstance(spec, PerMoveChoice):  # a law per move, chosen with the split
+        choice = spec
+
+        def sized(candidates: Candidates) -> CandidateTable:
+            return evaluate_per_move(design, choice, candidates)
+
+        if design.ratio_choice is None:
+            return sized(Candidates.single(motors, design.load, design.transmission))
+        from sizer.sizing.choices import choose_ratio
+
+        return choose_ratio(design, motors, sized, first=first,
+                            pairs=(SharedByLaws(design, motors) if shared is None
+                                   else shared).pairs)
     spec = law_choice(spec)
     if design.ratio_choice is None:
         candidates = Candidates.single(motors, design.load, design.transmission)
@@ -198,6 +212,29 @@ def evaluate_law(design: Design, spec: LawChoice | str,
         design, distinct[k], candidates.take(index)), len(distinct))
 
 
+def evaluate_per_move(design: Design, choice: PerMoveChoice,
+                      candidates: Candidates) -> CandidateTable:
+    """``share: {optimize: GOAL, laws: per_move}``: each candidate's law for each move that
+    names none (of ``choice.laws``) chosen with its split of the cycle time to minimize
+    the goal (SegmentCycle.move_laws: sizer.allocation.allocate_laws, every combination a
+    row of one search where they are few); the candidates grouped by the combination
+    chosen, each group sized with it (its split found again by the engine for those laws:
+    the same search, the same optimum), as the shapes of ``auto`` laws are."""
+    if design.transmission.linkage is not None or design.load.position_dependent:
+        raise UserError("`laws: per_move` chooses a law for each move of a cycle of "
+                        "segments; through a linkage or against loads of the position the "
+                        "cycle takes one law for its moves", field="cycle.share")
+    laws = tuple(spec.law for spec in choice.laws)
+    cycle = design.machine_cycle
+    chooser = SegmentCycle(cycle, None, candidates.drive, candidates.motors,
+                           design.limits.thermal_speed, weights=np.array(cycle.weights()))
+    chosen = chooser.move_laws(laws)
+    combinations, group = np.unique(chosen, axis=0, return_inverse=True)
+    return in_groups(np.ravel(group), lambda k, index: evaluate_fixed_law(
+        design, per_move(tuple(laws[j] for j in combinations[k])), candidates.take(index)),
+        len(combinations))
+
+
 CHUNK_SAMPLES = 2**21
 """Candidates x law samples evaluated at once (each array of that size is 16 MiB): larger
 candidate sets are evaluated in chunks, so memory stays bounded whatever the catalog."""
@@ -216,14 +253,16 @@ def candidates_per_chunk(samples: int) -> int:
     return max(1, min(max(MIN_CHUNK, CHUNK_SAMPLES // samples), MAX_CHUNK_SAMPLES // samples))
 
 
-def chunk_size(law: MotionLaw, moves: int = 1) -> int:
+def chunk_size(law: RankedLaw, moves: int = 1) -> int:
     """How many candidates one evaluation of ``law`` takes (its grid's samples each, for
-    each of ``moves`` moves evaluated together)."""
+    each of ``moves`` moves evaluated together; a law per move: its largest grid's)."""
+    if isinstance(law, LawsPerMove):
+        return min(chunk_size(one, moves) for one in law.laws)
     grid = law_grid(law)
     return candidates_per_chunk((grid.nodes.size + 2 * grid.size) * max(moves, 1))
 
 
-def evaluate_fixed_law(design: Design, law: MotionLaw, candidates: Candidates,
+def evaluate_fixed_law(design: Design, law: RankedLaw, candidates: Candidates,
                        peaks: bool = True) -> CandidateTable:
     """The requirements, checks and verdicts of one law for every candidate, in chunks
     of :func:`chunk_size` candidates. Without ``peaks`` (a given duration only) the peak
@@ -247,7 +286,7 @@ def evaluate_fixed_law(design: Design, law: MotionLaw, candidates: Candidates,
         np.arange(start, min(start + size, len(candidates)))), peaks) for start in starts])
 
 
-def _evaluate_chunk(design: Design, law: MotionLaw, candidates: Candidates,
+def _evaluate_chunk(design: Design, law: RankedLaw, candidates: Candidates,
                     peaks: bool = True) -> CandidateTable:
     """One law for a chunk of candidates on the design's cycle model (:func:`cycle_model`):
     every check at the given scale, or in minimize mode at the shortest scale at which
@@ -280,10 +319,13 @@ def cycle_sampled(design: Design) -> bool:
     return design.transmission.linkage is None
 
 
-def cycle_model(design: Design, law: MotionLaw, candidates: Candidates) -> CycleModel:
+def cycle_model(design: Design, law: RankedLaw, candidates: Candidates) -> CycleModel:
     """The model the design's cycle is sized on, for these candidates: the law move of the
     task shorthand (its closed forms), the cycle of segments, or either through a
     linkage (sizer.sizing.linkage_move)."""
+    if isinstance(law, LawsPerMove):  # a cycle of segments (evaluate_per_move)
+        return SegmentCycle(design.machine_cycle, law, candidates.drive, candidates.motors,
+                            design.limits.thermal_speed)
     if design.transmission.linkage is not None:
         from sizer.sizing.linkage_move import linkage_calculator  # lazy: start-up
 
@@ -317,7 +359,7 @@ LINKAGE_SAMPLES = 8192
 """Samples of a move through a linkage per candidate (sizer.sizing.linkage_move)."""
 
 
-def _table(design: Design, law: MotionLaw, candidates: Candidates, duration: np.ndarray,
+def _table(design: Design, law: RankedLaw, candidates: Candidates, duration: np.ndarray,
            metrics: CycleMetrics, checks: list[CheckArrays], feasible: np.ndarray,
            extra: dict[str, np.ndarray]) -> CandidateTable:
     motors, drive = candidates.motors, candidates.drive
@@ -433,7 +475,7 @@ def _start(design: Design, motors: MotorArrays) -> None:
     _STATE["shared"] = SharedByLaws(design, motors)
 
 
-def _size_law(spec: LawChoice, first: np.ndarray | None) -> CandidateTable:
+def _size_law(spec: LawChoice | PerMoveChoice, first: np.ndarray | None) -> CandidateTable:
     """One law in a worker; the table goes back without its motors (the caller's own
     objects go in again: one copy of the catalog, shared by every table)."""
 
@@ -444,12 +486,13 @@ def _size_law(spec: LawChoice, first: np.ndarray | None) -> CandidateTable:
     return dataclasses.replace(table, motors=())
 
 
-def tables_in_processes(design: Design, specs: Sequence[LawChoice | str],
+def tables_in_processes(design: Design, specs: Sequence[LawChoice | PerMoveChoice | str],
                         motors: MotorArrays, workers: int,
                         done: Callable[[int], None] | None = None) -> list[CandidateTable]:
     """The table of each law choice (sizer.sizing.engine.evaluate_spec), sized in
     ``workers`` processes; ``done(count)`` after each law with the count so far."""
-    choices = [law_choice(spec) for spec in specs]
+    choices = [spec if isinstance(spec, PerMoveChoice) else law_choice(spec)
+               for spec in specs]
     import multiprocessing  # here: the start-up of a command sized in one process
     from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 

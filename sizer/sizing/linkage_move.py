@@ -38,6 +38,7 @@ import numpy as np
 from sizer.envelope import RegionTable
 from sizer.errors import UserError
 from sizer.laws import MotionLaw
+from sizer.laws.per_move import RankedLaw
 from sizer.laws.quadrature import gauss_legendre
 from sizer.mechanics.disc_cam import CamStage
 from sizer.mechanics.drive import Drive
@@ -771,7 +772,7 @@ def linkage_calculator(design: Design, law: MotionLaw, motors: MotorArrays, driv
                              motors, design.limits.thermal_speed, law)
 
 
-def cam_design(design: Design, law: MotionLaw | None) -> Design:
+def cam_design(design: Design, law: RankedLaw | None) -> Design:
     """The design with its cam's lift (the follower's cycle over one turn of the cam,
     each segment by its law: ``law`` where it names none) and base radius (``auto``: the
     smallest that keeps the geometry checks) resolved; any other design as it is."""

@@ -21,7 +21,7 @@ from typing import Any, overload
 
 import numpy as np
 
-from sizer.laws import MotionLaw
+from sizer.laws.per_move import RankedLaw
 from sizer.model.domain import Design, Motor, ServoDrive, Transmission
 from sizer.sizing.checks import TOLERANCE, CheckArrays, limiting_index
 from sizer.sizing.energy_check import ENERGY_FIGURES
@@ -148,7 +148,7 @@ class CandidateResult:
     """
 
     motor_object: Motor
-    law_object: MotionLaw
+    law_object: RankedLaw
     feasible: bool
     duration: float | None
     peak_torque: float | None
@@ -356,7 +356,7 @@ class CandidateTable:
     """
 
     mode: Mode
-    laws: tuple[MotionLaw, ...]
+    laws: tuple[RankedLaw, ...]
     law: np.ndarray
     motors: tuple[Motor, ...]
     motor: np.ndarray
@@ -465,7 +465,7 @@ def concatenate(tables: Sequence[CandidateTable]) -> CandidateTable:
     first = tables[0]
     if len(tables) == 1:
         return first
-    laws: list[MotionLaw] = []
+    laws: list[RankedLaw] = []
     transmissions: list[Transmission] = []
     gearboxes: list[str | None] = []
     law_index, option_index = [], []

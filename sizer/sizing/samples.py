@@ -27,6 +27,7 @@ import numpy as np
 from sizer.envelope import continuous_region, intermittent_region
 from sizer.errors import UserError
 from sizer.laws import MotionLaw, make_law
+from sizer.laws.per_move import RankedLaw, one_law
 from sizer.mechanics import Drive
 from sizer.model.cycle import shorthand_task
 from sizer.model.domain import Curve, Design, Motor, Transmission
@@ -161,33 +162,33 @@ def scale_of(design: Design, duration: float) -> float:
     return 1.0 if weights == 0.0 else (duration - cycle.fixed_time) / weights
 
 
-def _result(design: Design, motor: Motor, law: MotionLaw,
+def _result(design: Design, motor: Motor, law: RankedLaw,
             transmission: Transmission | None) -> CycleModel:
     """The cycle model of a sizing result's motor, law and transmission."""
     task = shorthand_task(design.machine_cycle)
     if task is None or design.transmission.linkage is not None:
         return _segmented(design, motor, law, transmission)
     if design.load.position_dependent:  # a load of the position
-        return _position(design, motor, law, transmission)
+        return _position(design, motor, one_law(law), transmission)
     return CycleCalculator(None, task, Drive(design.load, transmission or design.transmission),
                            MotorArrays.of([motor], design.limits.envelope),
-                           design.limits.thermal_speed, law=law)
+                           design.limits.thermal_speed, law=one_law(law))
 
 
-def _segmented(design: Design, motor: Motor, law: MotionLaw,
+def _segmented(design: Design, motor: Motor, law: RankedLaw,
                transmission: Transmission | None) -> SegmentedModel:
     """The same as a cycle of segments (the task shorthand as the cycle it means)."""
     if design.transmission.linkage is not None:
-        return result_calculator(design, motor, law, transmission)
+        return result_calculator(design, motor, one_law(law), transmission)
     if design.load.position_dependent:  # a load of the position
-        return _position(design, motor, law, transmission)
+        return _position(design, motor, one_law(law), transmission)
     return SegmentCycle(design.machine_cycle, law,
                         Drive(design.load, transmission or design.transmission),
                         MotorArrays.of([motor], design.limits.envelope),
                         design.limits.thermal_speed)
 
 
-def pair_durations(design: Design, motor: Motor, law: MotionLaw, duration: float,
+def pair_durations(design: Design, motor: Motor, law: RankedLaw, duration: float,
                    transmission: Transmission | None = None) -> list[float]:
     """Each segment's duration (s) of a cycle of segments as the sizing gave it to this
     motor, law and transmission at its reported cycle time ``duration``: its own split
@@ -215,7 +216,7 @@ def _one_linkage_move(design: Design) -> bool:
         and not task.return_move
 
 
-def task_curve(design: Design, motor: Motor, law: MotionLaw | str, duration: float,
+def task_curve(design: Design, motor: Motor, law: RankedLaw | str, duration: float,
                transmission: Transmission | None = None,
                samples: int = CURVE_SAMPLES) -> TaskCurve:
     """Sample the cycle of ``law`` in ``duration`` for ``motor`` (samples per move).
@@ -258,13 +259,13 @@ class LinkageCurve:
     linear: bool
 
 
-def linkage_curve_of(design: Design, motor, law: MotionLaw, duration: float,
+def linkage_curve_of(design: Design, motor, law: RankedLaw, duration: float,
                      transmission=None) -> LinkageCurve:
     """The data of the ratio-and-torque plot of one result (sizer plot --linkage): the
     moves, one move on its profile's whole uniform grid, a cycle's on CURVE_SAMPLES."""
     stage = design.transmission.linkage
     assert stage is not None, "sizer plot --linkage asks for a linkage"
-    calc = result_calculator(design, motor, law, transmission)
+    calc = result_calculator(design, motor, one_law(law), transmission)
     s = np.array([scale_of(design, duration)])
     pieces = [p for p in calc.pieces(s, None if _one_linkage_move(design) else CURVE_SAMPLES)
               if p.ratio is not None]  # the moves
@@ -302,7 +303,8 @@ class SegmentBreakdown:
     rows: tuple[SegmentRow, ...]
 
 
-def segment_breakdown(design: Design, motor: Motor, law: MotionLaw | str, duration: float,
+def segment_breakdown(design: Design, motor: Motor, law: RankedLaw | str,
+                      duration: float,
                       transmission: Transmission | None = None) -> SegmentBreakdown:
     """What each segment of ``design``'s cycle asks of ``motor`` with ``law`` (the ranked
     law of the moves that name none) at a result's ``duration`` (issue 12): its start and

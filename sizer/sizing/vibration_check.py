@@ -23,6 +23,7 @@ import numpy as np
 
 from sizer.errors import UserError
 from sizer.laws.base import MotionLaw
+from sizer.laws.per_move import RankedLaw
 from sizer.model.cycle import from_task
 from sizer.model.domain import Design
 from sizer.numerics.roots import illinois
@@ -50,7 +51,7 @@ def refusal(design: Design) -> str | None:
     return None
 
 
-def cycle_vibration(design: Design, law: MotionLaw, sweep: bool = False
+def cycle_vibration(design: Design, law: RankedLaw, sweep: bool = False
                     ) -> CycleVibration | None:
     """The residual vibration of the design's cycle with this law, or None without a mode.
 
@@ -113,7 +114,7 @@ def own_durations(calculator: CycleModel, s: np.ndarray) -> list[np.ndarray] | N
     return durations
 
 
-def residual_limit(design: Design, law: MotionLaw) -> ResidualLimit | None:
+def residual_limit(design: Design, law: RankedLaw) -> ResidualLimit | None:
     """The design's residual vibration with this law as a later limit, or None without a
     mode of the load (UserError where the design limits it all the same: a limit is never
     skipped; sizer.io refuses it at its line)."""

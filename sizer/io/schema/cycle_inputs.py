@@ -43,6 +43,9 @@ SHARE_RULES = ("equal", "displacement", "sqrt_displacement", "weights")
 
 SHARE_GOALS = ("rms", "energy", "vibration")
 """What ``share: {optimize: GOAL}`` may minimize (docs/allocation.md)."""
+PER_MOVE_GOALS = ("rms", "energy")
+"""The goals with which ``laws: per_move`` chooses a law for each move (sums of one term
+per move: sizer.allocation.allocate_laws)."""
 GOALS_NOT_YET: tuple[str, ...] = ()
 """Goals named in the issue that are not built yet: refused with "not yet"."""
 
@@ -56,9 +59,14 @@ def _share(value: Any) -> str:
     if isinstance(value, str) and value in SHARE_RULES:
         return value
     if isinstance(value, dict) and set(value) == {"optimize", "laws"}:
-        raise ValueError("`laws: per_move` (a law chosen per move with the split) is not yet "
-                         "ranked: give {optimize: GOAL} alone, each of the design's laws is "
-                         "ranked in turn with its own splits (docs/allocation.md)")
+        goal, laws = value["optimize"], value["laws"]
+        if laws != "per_move":
+            raise ValueError(f"laws takes per_move (a law of the design's list chosen for "
+                             f"each move with the split), got {show_value(laws)}")
+        if isinstance(goal, str) and goal in PER_MOVE_GOALS:
+            return f"optimize: {goal}, laws: per_move"
+        raise ValueError(f"`laws: per_move` is chosen with the split for "
+                         f"{' or '.join(PER_MOVE_GOALS)}, got optimize: {show_value(goal)}")
     if isinstance(value, dict) and set(value) == {"optimize"}:
         goal = value["optimize"]
         if isinstance(goal, str) and goal in SHARE_GOALS:
@@ -79,14 +87,16 @@ Share = Annotated[
     WithJsonSchema({"anyOf": [
         {"type": "string", "enum": list(SHARE_RULES)},
         {"type": "object", "properties": {"optimize": {"type": "string",
-                                                       "enum": list(SHARE_GOALS)}},
+                                                       "enum": list(SHARE_GOALS)},
+                                          "laws": {"const": "per_move"}},
          "required": ["optimize"], "additionalProperties": False}],
         "description": "how free durations share the time: equal, in proportion to |h| "
                        "(displacement) or sqrt(|h|) (sqrt_displacement), by each segment's "
                        "weight (weights), or {optimize: rms | energy | vibration}: each "
                        "motor's own split of a given cycle time that minimizes its RMS "
                        "torque or its energy per cycle, or the split that minimizes the "
-                       "worst residual vibration (docs/allocation.md)"}),
+                       "worst residual vibration; with laws: per_move (rms or energy) also a "
+                       "law of the design's list for each move (docs/allocation.md)"}),
 ]
 """``cycle.share``, as a sizer.model.cycle.ShareRule value."""
 
