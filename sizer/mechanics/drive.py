@@ -26,6 +26,7 @@ from functools import cached_property
 
 import numpy as np
 
+from sizer.mechanics.load_figures import LoadFigures
 from sizer.model.domain import Load, Stage, Transmission
 
 LIMITS = ("max_input_speed", "rated_output_torque", "peak_output_torque")
@@ -85,6 +86,11 @@ class StageArrays:
                            {k: pick(v) for k, v in self.rated.items()})
 
 
+def _per_candidate(value: float | np.ndarray) -> np.ndarray:
+    """A load figure as an array over the candidates: length 1 where it is one number."""
+    return np.array(value, dtype=float, ndmin=1)
+
+
 def _along(values: np.ndarray, like: np.ndarray) -> np.ndarray:
     """Per-candidate values shaped to broadcast over candidate-major ``like``."""
     ndim = np.ndim(like)
@@ -101,16 +107,22 @@ class Drive:
     ``option`` the option of each candidate (None: one transmission for all). Every
     figure is an array over the candidates (length 1 with a single transmission), so
     that motors x transmission options are evaluated as one flat axis.
+
+    ``figures``: the load's J_l, B_l, F and tau_ext as the computations read them, per
+    candidate where each drives its own build of the load (sizer.mechanics.load_figures;
+    robust sizing); by default ``load``'s own.
     """
 
     def __init__(self, load: Load, transmission: Transmission | Sequence[Transmission],
-                 option: np.ndarray | None = None) -> None:
+                 option: np.ndarray | None = None,
+                 figures: LoadFigures | None = None) -> None:
         options = (transmission,) if isinstance(transmission, Transmission) \
             else tuple(transmission)
         counts = {len(t.stages) for t in options}
         if len(counts) != 1:
             raise ValueError("transmission options must have the same number of stages")
         self.load = load
+        self.figures = LoadFigures.of(load) if figures is None else figures
         self.transmissions = options
         self.option = None if option is None or len(options) == 1 \
             else np.asarray(option, dtype=np.intp)
@@ -119,20 +131,27 @@ class Drive:
 
     def take(self, index: np.ndarray) -> Drive:
         """The drive of the candidates at ``index`` (repeats allowed)."""
-        if self.option is None:
+        if self.option is None and not self.figures.varies:
             return self
         out = object.__new__(Drive)
         out.load, out.transmissions = self.load, self.transmissions
-        out.option = self.option[index]
-        out.stages = tuple(s.take(index) for s in self.stages)
+        out.figures = self.figures.take(index)
+        if self.option is None:
+            out.option, out.stages = None, self.stages
+        else:
+            out.option = self.option[index]
+            out.stages = tuple(s.take(index) for s in self.stages)
         return out
 
     def with_load(self, load: Load) -> Drive:
-        """The same transmission options and candidates driving ``load`` instead."""
+        """The same transmission options and candidates driving ``load`` instead (each
+        build of the load changed as ``load`` changes the design's:
+        LoadFigures.moved)."""
         if load is self.load:
             return self
         out = object.__new__(Drive)
         out.load, out.transmissions = load, self.transmissions
+        out.figures = self.figures.moved(self.load, load)
         out.option, out.stages = self.option, self.stages
         return out
 
@@ -190,7 +209,7 @@ class Drive:
     @cached_property
     def reflected_load_inertia(self) -> np.ndarray:
         """J_l/K^2, the load alone reflected to the motor (no efficiency)."""
-        return self.load.inertia / self.ratio**2
+        return self.figures.inertia / self.ratio**2
 
     @property
     def driven_inertia(self) -> np.ndarray:
@@ -202,10 +221,22 @@ class Drive:
         return self.driven_inertia if of == "driven" else self.reflected_load_inertia
 
     def load_torque(self, a_l: np.ndarray, v_l: np.ndarray,
-                    direction: float | np.ndarray) -> np.ndarray:
-        """u = J_l a + B_l v + F + direction*tau_ext: the load's torque along the motion."""
-        load = self.load
-        return load.inertia * a_l + load.damping * v_l + load.friction + direction * load.torque
+                    direction: float | np.ndarray,
+                    index: np.ndarray | None = None) -> np.ndarray:
+        """u = J_l a + B_l v + F + direction*tau_ext: the load's torque along the motion
+        (``index``: the candidates of the rows, as in :meth:`chain`)."""
+        J, B, F, tau = self._figures_along(a_l, index)
+        return J * a_l + B * v_l + F + direction * tau
+
+    def _figures_along(self, like: np.ndarray, index: np.ndarray | None = None):
+        """The load's (J_l, B_l, F, tau_ext) shaped to broadcast over candidate-major
+        ``like`` whose rows are the candidates ``index`` (default: all; numbers where
+        every candidate drives the same load)."""
+        f = self.figures if index is None else self.figures.take(index)
+        values = (f.inertia, f.damping, f.friction, f.torque)
+        if not f.varies:
+            return values
+        return tuple(_along(np.asarray(x), like) for x in values)
 
     def _stage_values(self, index: np.ndarray | None, like: np.ndarray):
         """Per stage (ratio, efficiency, inertia, preload, input ratio), each shaped to
@@ -247,8 +278,8 @@ class Drive:
         """
         values = self._stage_values(index, a_l)
         if self.steady_load_efficiency:
-            return self._steady_load_chain(a_l, v_l, direction, values, extra)
-        x = self.load_torque(a_l, v_l, direction)
+            return self._steady_load_chain(a_l, v_l, direction, values, extra, index)
+        x = self.load_torque(a_l, v_l, direction, index)
         if extra is not None:
             x = x + extra[0] + extra[1]
         outputs = [x]
@@ -260,7 +291,8 @@ class Drive:
         return x, outputs[::-1]
 
     def _steady_load_chain(self, a_l, v_l, direction: float | np.ndarray, values,
-                           extra: tuple[np.ndarray, np.ndarray] | None = None):
+                           extra: tuple[np.ndarray, np.ndarray] | None = None,
+                           index: np.ndarray | None = None):
         """``chain`` with the efficiencies on the steady torque only (Yaskawa). An
         ``extra`` (inertial, steady) sorts as the position engine sorts the terms
         (sizer.sizing.linkage_move.position_profile): the inertia table's terms are
@@ -268,11 +300,10 @@ class Drive:
         axis is Yaskawa's steady load: T_L = F P_B / (2 pi R eta)), so it joins the
         constant part whose sign picks 1/eta or eta, now at each sample. (The position
         engine itself refuses this rule: sizer.sizing.linkage_move.check_position_drive.)"""
-        load = self.load
-        inertial = load.inertia * a_l
-        steady = load.damping * v_l + load.friction + direction * load.torque
-        constant: np.ndarray = np.asarray(load.friction + direction * load.torque,
-                                          dtype=float)
+        J, B, F, tau = self._figures_along(a_l, index)
+        inertial = J * a_l
+        steady = B * v_l + F + direction * tau
+        constant: np.ndarray = np.asarray(F + direction * tau, dtype=float)
         if extra is not None:
             inertial = inertial + extra[0]
             steady = steady + extra[1]
@@ -290,12 +321,12 @@ class Drive:
     def linear_chain(self, direction: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(A, B, C) per candidate with shaft torque = A a_l + B v_l + C, valid when
         ``is_ideal``."""
-        K = self.ratio
-        a_part = self.load.inertia / K
+        K, f = self.ratio, self.figures
+        a_part = f.inertia / K
         for s, k_in in zip(self.stages, self.input_ratios, strict=True):
             a_part = a_part + s.inertia * k_in**2 / K
-        v_part = np.full(1, float(self.load.damping))
-        const = np.full(1, self.load.friction + direction * self.load.torque)
+        v_part = _per_candidate(f.damping)
+        const = _per_candidate(f.friction + direction * f.torque)
         for stage in reversed(self.stages):
             factor = _steady_factor(stage.efficiency, const) if self.steady_load_efficiency \
                 else 1.0
@@ -314,7 +345,7 @@ class Drive:
         With the steady-load rule or ideal stages each list has one function
         (:meth:`linear_chain`). Returns (shaft list, [list of stage 0's output, ...]).
         """
-        load = self.load
+        f = self.figures
         if self.is_ideal:
             shaft = [self.linear_chain(direction)]
             zero, one = np.zeros(1), np.ones(1)
@@ -324,8 +355,8 @@ class Drive:
             stages = [[(xa - x0, xv - x0, x0)]
                       for xa, xv, x0 in zip(out_a, out_v, out_0, strict=True)]
             return shaft, stages
-        x = [(np.full(1, float(load.inertia)), np.full(1, float(load.damping)),
-              np.full(1, load.friction + direction * load.torque))]
+        x = [(_per_candidate(f.inertia), _per_candidate(f.damping),
+              _per_candidate(f.friction + direction * f.torque))]
         outputs = [x]
         for stage, k_in in zip(reversed(self.stages), reversed(self.input_ratios), strict=True):
             factors = [1.0 / (stage.ratio * stage.efficiency)]
@@ -343,7 +374,7 @@ class Drive:
         At rest the power flow is undefined; holding counts as driving (divide by eta),
         the conservative choice.
         """
-        x = np.full(1, abs(self.load.torque))
+        x = _per_candidate(np.abs(self.figures.torque))
         outputs = [x]
         for stage in reversed(self.stages):
             x = x / (stage.ratio * stage.efficiency)

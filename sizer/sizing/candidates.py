@@ -32,7 +32,7 @@ from __future__ import annotations
 import fnmatch
 from collections import OrderedDict
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 
 import numpy as np
@@ -41,6 +41,7 @@ from sizer.envelope import RegionTable, continuous_region, intermittent_region
 from sizer.envelope.electrical import on_supply
 from sizer.errors import UserError
 from sizer.mechanics import Drive
+from sizer.mechanics.load_figures import LoadFigures
 from sizer.model.domain import Curve, EnvelopeRule, Load, Motor, ServoDrive, Transmission
 
 KEPT = 8
@@ -230,6 +231,10 @@ class MotorArrays:
     With ``drives`` a candidate is a motor with one drive (sizer.sizing.candidates): ``drive``
     indexes ``drives`` per candidate, ``currents`` is each candidate's torque-current
     curve, and the regions are clipped at the drive's torques.
+
+    ``builds``: where each candidate drives its own build of the design's load (robust
+    sizing, sizer.robust), the load's figures per candidate (the drive reads them:
+    sizer.mechanics.load_figures); None: the design's load for all.
     """
 
     catalog: tuple[Motor, ...]
@@ -242,13 +247,18 @@ class MotorArrays:
     drives: tuple[ServoDrive, ...] = ()
     drive: np.ndarray | None = None
     currents: CurrentCurves | None = None
+    builds: LoadFigures | None = None
 
     @classmethod
     def of(cls, motors: Sequence[Motor], envelope: EnvelopeRule = "book",
-           drives: Sequence[ServoDrive] = ()) -> MotorArrays:
+           drives: Sequence[ServoDrive] = (),
+           builds: LoadFigures | None = None) -> MotorArrays:
         """The motors' arrays; with ``drives``, one candidate per compatible motor-drive
-        pair, the regions clipped at the drive's torques."""
+        pair, the regions clipped at the drive's torques; ``builds``: the load's figures
+        per motor (each motor its own build of the load)."""
         alone = cls._alone(tuple(motors), envelope)
+        if builds is not None:
+            alone = replace(alone, builds=builds)
         if not drives:
             return alone
         return alone.with_drives(tuple(drives))
@@ -282,7 +292,7 @@ class MotorArrays:
         return MotorArrays(self.catalog, paired.index, paired.inertia, paired.damping,
                            clip_region(intermittent_table, currents.torque(peak)),
                            clip_region(continuous_table, currents.torque(continuous)),
-                           self.envelope, drives, drive, currents)
+                           self.envelope, drives, drive, currents, paired.builds)
 
     def _on_drive_buses(self, drives: tuple[ServoDrive, ...], motor: np.ndarray,
                         drive: np.ndarray, paired: MotorArrays
@@ -362,7 +372,8 @@ class MotorArrays:
                            self.damping[index], self.intermittent.take(index),
                            self.continuous.take(index), self.envelope, self.drives,
                            None if self.drive is None else self.drive[index],
-                           None if self.currents is None else self.currents.take(index))
+                           None if self.currents is None else self.currents.take(index),
+                           None if self.builds is None else self.builds.take(index))
 
 
 def _flat_end(table: RegionTable) -> np.ndarray:
@@ -388,7 +399,7 @@ class Candidates:
     @classmethod
     def single(cls, motors: MotorArrays, load: Load, transmission: Transmission) -> Candidates:
         """Every motor with the same transmission."""
-        return cls(motors, Drive(load, transmission))
+        return cls(motors, Drive(load, transmission, figures=motors.builds))
 
     @classmethod
     def pairs(cls, motors: MotorArrays, load: Load, transmissions: Sequence[Transmission],
@@ -396,7 +407,9 @@ class Candidates:
               gearboxes: tuple[str | None, ...] | None = None) -> Candidates:
         """The candidates (motor[i], transmissions[option[i]]): ``motor`` indexes the
         rows of ``motors``."""
-        return cls(motors.subset(motor), Drive(load, transmissions, option), gearboxes)
+        chosen = motors.subset(motor)
+        return cls(chosen, Drive(load, transmissions, option, figures=chosen.builds),
+                   gearboxes)
 
     def take(self, index: np.ndarray) -> Candidates:
         """The candidates at ``index`` (repeats allowed), in that order."""

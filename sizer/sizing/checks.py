@@ -517,7 +517,7 @@ def holding_brake_check(x: CheckInput) -> CheckArrays | None:
     margin. None where no candidate's motor has a brake or nothing is held."""
     brake = x.motors.brake_torque
     has = np.isfinite(brake)
-    if not has.any() or x.drive.load.torque == 0.0:
+    if not has.any() or x.drive.figures.none("torque"):
         return None
     hold = np.broadcast_to(x.drive.holding_torque, x.ones.shape)
     return HOLDING_BRAKE.arrays(hold, np.where(has, brake, 1.0), x.limits.torque_margin,

@@ -300,11 +300,11 @@ class SegmentCycle:
         free = cycle.free
         self.fixed = np.array([np.nan if s.duration is None or i in free else s.duration
                                for i, s in enumerate(cycle.segments)], dtype=float)
-        self.drives = tuple(Drive(segment_load(drive.load, s), drive.transmissions, drive.option)
+        self.drives = tuple(drive.with_load(segment_load(drive.load, s))
                             if not s.load.is_zero else drive for s in cycle.segments)
         heaviest = max(cycle.segments, key=lambda s: s.load.inertia)
-        self.drive = (Drive(segment_load(drive.load, heaviest), drive.transmissions,
-                            drive.option) if heaviest.load.inertia > 0.0 else drive)
+        self.drive = (drive.with_load(segment_load(drive.load, heaviest))
+                      if heaviest.load.inertia > 0.0 else drive)
         """The drive the checks read (the inertia ratio): the largest load of the cycle."""
         self.task = Task(cycle.moves[0].displacement if cycle.moves else 0.0, None,
                          linear=cycle.linear)
@@ -925,7 +925,8 @@ class SegmentCycle:
         zero = np.zeros(n)
         return SegmentFigures(
             duration=T, peak_torque=hold.copy(), peak_ratio=ratio,
-            load_torque=np.full(n, abs(drive.load.torque)), max_speed=zero, load_speed=zero,
+            load_torque=np.abs(drive.figures.column("torque", n)), max_speed=zero,
+            load_speed=zero,
             load_acceleration=zero, load_jerk=zero,
             stage_peak=[x.copy() for x in stage_hold],
             stage_speed=[zero for _ in drive.stages], torque_square=hold * hold * T,
@@ -948,7 +949,7 @@ class SegmentCycle:
             if isinstance(segment, Dwell):
                 hold = np.broadcast_to(np.asarray(drive.holding_torque, dtype=float), (n,))
                 out.append(held_piece(name, start, Tc, position,
-                                      hold * np.sign(drive.load.torque)))
+                                      hold * np.sign(drive.figures.torque)))
             else:
                 if isinstance(segment, Move):
                     assert law is not None, "cycle_laws gives a move one"

@@ -41,6 +41,7 @@ from sizer.envelope import envelope_note
 from sizer.errors import UserError
 from sizer.laws import LawChoice, law_choice
 from sizer.laws.per_move import LawsPerMove, PerMoveChoice, RankedLaw, per_move
+from sizer.mechanics.load_figures import LoadFigures
 from sizer.model.cycle import Dwell
 from sizer.model.domain import Design, Motor
 from sizer.sizing.candidates import Candidates, MotorArrays
@@ -86,12 +87,15 @@ def mode_of(design: Design) -> Mode:
 
 def size_design(design: Design, rank_by: str | None = None,
                 motors: Sequence[Motor] | None = None,
-                progress: Progress | None = None, workers: int | None = 1) -> SizingResult:
+                progress: Progress | None = None, workers: int | None = 1,
+                builds: LoadFigures | None = None) -> SizingResult:
     """Every motor x law (x transmission option) of the design, ranked (feasible first).
 
     ``progress``, if given, is called with (0, n) and then after each of the n laws.
     ``workers``: processes sizing the laws (:func:`tables_in_processes`; None: every CPU
-    for a large design); the result is the same whatever their number.
+    for a large design); the result is the same whatever their number. ``builds``: the
+    load's figures per motor (each motor, typically a copy, driving its own build of the
+    load: sizer.robust), for a design whose engine reads them (:func:`reads_builds`).
     """
     motors = tuple(motors if motors is not None else design.motors)
     if not motors:
@@ -101,8 +105,11 @@ def size_design(design: Design, rank_by: str | None = None,
         raise UserError("no motors to size: give a catalog in the design or with --catalog"
                         + ("; with the load's limits and no motors the design is a plan, "
                            "which `sizer size` gives" if planned else ""), field="motors")
+    if builds is not None and not reads_builds(design):
+        raise ValueError("builds of the load per motor are sized for a cycle without a "
+                         "linkage or loads of the position")
     specs = ranked_laws(design)
-    arrays = MotorArrays.of(motors, design.limits.envelope, design.drives)
+    arrays = MotorArrays.of(motors, design.limits.envelope, design.drives, builds)
     if progress is not None:
         progress(0, len(specs))
     count = worker_count(workers, len(arrays) * _options(design), len(specs))
@@ -126,6 +133,13 @@ def size_design(design: Design, rank_by: str | None = None,
     order = rank_order(table, rank_by)
     return SizingResult(table.mode, Rows(table, order), design.name,
                         notes=assumptions(design), table=table)
+
+
+def reads_builds(design: Design) -> bool:
+    """Whether the engine of ``design`` reads the load's figures per candidate (the drive's
+    LoadFigures): the law move and the cycle of segments; a linkage's engine and the one
+    for loads of the position read the design's load."""
+    return design.transmission.linkage is None and not design.load.position_dependent
 
 
 def _options(design: Design) -> int:

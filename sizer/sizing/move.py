@@ -350,11 +350,9 @@ class _Channels:
 
         self.motor = both(plus[0], minus[0], rotor)
         self.stages = [both(p, m) for p, m in zip(plus[1], minus[1], strict=True)]
-        load = drive.load
-        self.load = both([(np.full(1, float(load.inertia)), np.full(1, float(load.damping)),
-                           np.full(1, load.friction + load.torque))],
-                         [(np.full(1, float(load.inertia)), np.full(1, float(load.damping)),
-                           np.full(1, load.friction - load.torque))])
+        f = drive.figures
+        self.load = both([(f.inertia, f.damping, f.friction + f.torque)],
+                         [(f.inertia, f.damping, f.friction - f.torque)])
         self.reversing = len(self.motor) > 1
 
     @staticmethod
@@ -1003,7 +1001,7 @@ class CycleCalculator:
             peak_torque = np.maximum(peak_torque, hold)
             hold_limit = self.motors.intermittent.limit(np.zeros_like(T))
             peak_ratio = np.maximum(peak_ratio, _safe_ratio(hold, hold_limit))
-            load_torque = np.maximum(load_torque, abs(self.drive.load.torque))
+            load_torque = np.maximum(load_torque, np.abs(self.drive.figures.torque))
             for i in range(n_stages):
                 stage_peak[i] = np.maximum(stage_peak[i], stage_hold[i])
         cycle = n * (T + dwell)
@@ -1338,12 +1336,12 @@ class CycleCalculator:
         (the same linear functions per candidate in every move, their coefficients and
         the direction per row): each query elementwise, so the answers are those of one
         run per move, at the cost of one."""
-        load = self.drive.load
+        figures = self.drive.figures
         terms = [self.channel_terms(scales) for scales in moves]
         n = len(self.motors)
         joined = None
-        if len(moves) > 1 and not (_inertial(terms[0][0]) and load.damping == 0.0
-                                   and load.friction == 0.0 and load.torque == 0.0):
+        if len(moves) > 1 and not (_inertial(terms[0][0])
+                                   and figures.none("damping", "friction", "torque")):
             joined = _stacked_terms(terms, n)
         if joined is None:
             # no linear-peak query to share (the book's inertial case), or a single move
@@ -1393,7 +1391,7 @@ class CycleCalculator:
         h, Tc = self.h, T[:, None]
         K = np.broadcast_to(np.asarray(self.drive.ratio, dtype=float), (n,))[:, None]
         hold = np.broadcast_to(np.asarray(self.drive.holding_torque, dtype=float), (n,))
-        hold = hold * np.sign(self.drive.load.torque)
+        hold = hold * np.sign(self.drive.figures.torque)
         directions = iter(self.directions)
         out, start, position = [], np.zeros((n, 1)), 0.0
         for segment in from_task(self.task).segments:  # named move, dwell, return, dwell 2
@@ -1525,9 +1523,9 @@ class CycleCalculator:
 
         places: list[tuple[np.ndarray, np.ndarray] | None] = []  # where each |peak| is
         motor_terms, *stage_terms = self.channel_terms(scales) if terms is None else terms
-        load_terms = [(spread(drive.load.inertia * scales.acc, n),
-                       spread(drive.load.damping * scales.vel, n),
-                       np.full(n, drive.load.friction + scales.direction * drive.load.torque))]
+        f = drive.figures
+        load_terms = [(spread(f.inertia * scales.acc, n), spread(f.damping * scales.vel, n),
+                       f.column("friction", n) + scales.direction * f.column("torque", n))]
         channels = [motor_terms, load_terms] + (stage_terms if self.stage_checks else [])
         # every function's highest and lowest point, all channels in one query
         functions = [f for co in channels if not inertial(co) for f in co]

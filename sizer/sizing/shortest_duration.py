@@ -148,19 +148,19 @@ def has_constant_torques(calculator: CycleModel) -> bool:
     the book's rectangles, and for extended regions wherever the move's peak speed stays
     below the end of the flat part (:func:`minimum_duration` searches the others).
     """
-    load, drive, motors = calculator.drive.load, calculator.drive, calculator.motors
+    drive, motors = calculator.drive, calculator.motors
     stages_plain = all(bool(np.all(s.preload_torque == 0.0)) and s.max_input_speed is None
                        and s.rated_output_torque is None and s.peak_output_torque is None
                        for s in drive.stages)
-    return (load.damping == 0.0 and drive.is_ideal and stages_plain
+    return (drive.figures.none("damping") and drive.is_ideal and stages_plain
             and bool(np.all(motors.damping == 0.0)))
 
 
 def is_purely_inertial(calculator: CycleModel) -> bool:
     """The case of eq. (6.2) as the book has it: :func:`has_constant_torques` without
     friction or a constant load (no constant torque at all)."""
-    load = calculator.drive.load
-    return load.friction == 0.0 and load.torque == 0.0 and has_constant_torques(calculator)
+    return calculator.drive.figures.none("friction", "torque") \
+        and has_constant_torques(calculator)
 
 
 def minimum_duration(calculator: CycleModel, limits: Limits) -> DurationSolution:
@@ -651,8 +651,7 @@ def constant_torques(calculator: CycleCalculator) -> ConstantTorques | None:
     external load with its sign) and the torque the dwells hold (Drive.holding_torques);
     None where nothing constant is there to reflect (the book's case)."""
     drive, n = calculator.drive, len(calculator.motors)
-    load = drive.load
-    if load.friction == 0.0 and load.torque == 0.0 \
+    if drive.figures.none("friction", "torque") \
             and all(bool(np.all(s.preload_torque == 0.0)) for s in drive.stages):
         return None
     c = np.stack([np.broadcast_to(np.asarray(drive.linear_chain(d)[2], dtype=float), (n,))
