@@ -19,13 +19,15 @@ sizing chose, fixed. In minimize mode each build is sized for its own T_min, and
 worst-case T_min is the largest over the corners (:class:`WorstDuration`).
 
 Every build (a corner or a sample) is a change of each input in its tolerance's terms (a
-fraction, or SI for an absolute tolerance). The motor's tolerances are candidate rows of
-one sizing (perturbed Motor copies, as in sizer.sensitivity, at most MAX_MOTOR_ROWS rows
-a sizing); builds with the same non-motor changes share the sizing of one perturbed design
-(2^j of them for j non-motor tolerances at the corners, one per sample otherwise): the
-engine has no load axis to batch them on. The design is never re-read, the catalogs never
-re-loaded: each build is the loaded design with dataclasses.replace. Pure:
-sizer.api, the model objects and numpy.
+fraction, or SI for an absolute tolerance). Builds are candidate rows of one sizing where
+the engine has an axis for them: the motor's figures (perturbed Motor copies, as in
+sizer.sensitivity) and the load's J, B, F and tau_ext (each copy driving its own build of
+the load: sizer.mechanics.load_figures; not through a linkage or with loads of the
+position, whose engines read the design's load), at most MAX_MOTOR_ROWS rows a sizing.
+Builds that differ in another input (an efficiency, a ratio, a duration, the mode) are
+sizings of their own, one per such change (2^j at the corners for j such tolerances). The
+design is never re-read, the catalogs never re-loaded: each build is the loaded design
+with dataclasses.replace. Pure: sizer.api, the engine, the model objects and numpy.
 """
 
 from __future__ import annotations
@@ -33,6 +35,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Callable, Sequence
+from copy import copy
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
@@ -40,7 +43,7 @@ import numpy as np
 
 from sizer.errors import UserError
 from sizer.model.tolerance import Tolerance, tolerance_of
-from sizer.sensitivity import design_inputs
+from sizer.sensitivity import LOAD_FIGURES, design_inputs
 
 if TYPE_CHECKING:
     from sizer.model.domain import Design, Motor
@@ -51,6 +54,7 @@ MAX_TOLERANCES = 10
 """At most this many tolerances for corners (2^10 = 1024); more are sampled."""
 
 MAX_MOTOR_ROWS = 512
+
 """At most this many motor rows (perturbed copies) in one sizing, unless one build has
 more motors. The engine's work is per row: on examples/pick-and-place.yaml (ratio 2, 4
 laws) 512 rows in one sizing took 0.8 times the CPU of 8 sizings of 64, 1280 rows 1.15
@@ -308,6 +312,8 @@ def robust_sizing(design: Design, nominal: SizingResult, *, rank_by: str | None 
     them with ``seed`` (:func:`check_tolerances` first). ``rank_by`` worst_margin orders
     each group (feasible at every build or not) by the worst-case margin."""
     from sizer import api
+    from sizer.mechanics.load_figures import LoadFigures
+    from sizer.sizing.engine import reads_builds, size_design
     from sizer.sizing.ranking import is_robust_key, nominal_rank_by
 
     check_tolerances(design, samples)
@@ -319,8 +325,12 @@ def robust_sizing(design: Design, nominal: SizingResult, *, rank_by: str | None 
          draw(tolerances, samples, seed) if samples else np.empty((0, k))]).reshape(-1, k)
     n_corners = 2 ** k if with_corners else 0
     is_motor = np.array([t.name.startswith(MOTOR) for t in tolerances], dtype=bool)
+    is_load = np.array([reads_builds(design) and t.name in LOAD_FIGURES for t in tolerances],
+                       dtype=bool)
+    is_other = ~is_motor & ~is_load
     motor_tol = [t for t, m in zip(tolerances, is_motor, strict=True) if m]
-    other_tol = [t for t, m in zip(tolerances, is_motor, strict=True) if not m]
+    load_tol = [t for t, m in zip(tolerances, is_load, strict=True) if m]
+    other_tol = [t for t, m in zip(tolerances, is_other, strict=True) if m]
     names = [t.name for t in tolerances]
 
     fixed = {c.text for c in design.laws if c.is_fixed}
@@ -342,7 +352,7 @@ def robust_sizing(design: Design, nominal: SizingResult, *, rank_by: str | None 
     seen = {k_: _Tally(n_corners, minimize) for k_ in index}
     groups: dict[tuple[float, ...], list[int]] = {}
     for b, row in enumerate(builds):
-        groups.setdefault(tuple(row[~is_motor].tolist()), []).append(b)
+        groups.setdefault(tuple(row[is_other].tolist()), []).append(b)
     sizing_rank = nominal_rank_by(rank_by)
     fixed_ratio = design.ratio_choice is not None
     for part, wanted, motors in _fixed_ratio_parts(design, index) if fixed_ratio else [
@@ -355,11 +365,17 @@ def robust_sizing(design: Design, nominal: SizingResult, *, rank_by: str | None 
             if other not in designs:
                 designs[other] = build_design(part, other_tol, other)
             group_design = designs[other]
-            copies = [(i, b, build_motor(design.motors[i], motor_tol, builds[b, is_motor]))
-                      for i in motors for b in members]
+            copies = [(i, b, copy(build_motor(design.motors[i], motor_tol,
+                                              builds[b, is_motor])))
+                      for i in motors for b in members]  # each its own object: its row
             slot = {id(p): (i, b) for i, b, p in copies}
-            sized = api.size(group_design, motors=[p for _, _, p in copies],
-                             rank_by=sizing_rank, workers=workers)
+            loads = {b: build_design(group_design, load_tol, builds[b, is_load]).load
+                     for b in members} if load_tol else {}
+            sized = size_design(
+                api.override(group_design, motors=[p for _, _, p in copies]),
+                rank_by=sizing_rank, workers=workers,
+                builds=LoadFigures.builds([loads[b] for _, b, _ in copies]) if loads
+                else None)
             for r in sized.results:
                 found = slot.get(id(r.motor_object))
                 if found is None:  # the engine copied the motor: find it by value

@@ -14,14 +14,18 @@ figures shown, and the one-sided differences (error O(h) ~ 1e-6) still tell a ki
 change of slope of order one) from curvature.
 
 The motor's perturbations are candidate rows of ONE sizing (sizer.api.size with the
-perturbed Motor objects); every other input is two sizings, of its two perturbed
-designs. Pure: sizer.api and the model objects, no printing, files or CLI.
+perturbed Motor objects), and so are the load's figures (J, B, F, tau_ext: copies of the
+pair's motor each driving its perturbed load, sizer.mechanics.load_figures, where the
+design's engine reads them); every other input (a stage's ratio or efficiency, a
+displacement, a duration) is two sizings, of its two perturbed designs. Pure: sizer.api,
+the engine and the model objects, no printing, files or CLI.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
+from copy import copy
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, TypeVar
 
@@ -176,6 +180,13 @@ def _scaled(obj: _T, name: str, factor: float) -> _T:
     return replace(obj, **{name: getattr(obj, name) * factor})  # type: ignore[type-var]
 
 
+LOAD_FIGURES = frozenset(f"load.{name}" for name in ("inertia", "mass", "damping", "friction",
+                                                     "torque", "force"))
+"""The inputs that are the load's figures (Load's inertia, damping, friction and torque; a
+linear axis names them mass and force), which the engine takes per candidate row
+(sizer.mechanics.load_figures)."""
+
+
 def design_inputs(design: Design) -> list[_Input]:
     """The inputs present and non-zero in ``design`` (fixed to one pair): the load's, the
     transmission stages', the task's and the motor's figures."""
@@ -323,6 +334,33 @@ def _motor_results(design: Design, motors: Sequence[Motor]) -> list[CandidateRes
     return out
 
 
+def _load_results(design: Design, inputs: Sequence[_Input], step: float
+                  ) -> dict[_Input, tuple[CandidateResult, CandidateResult]]:
+    """The load's figures ``inputs`` each at 1 -+ ``step`` as candidate rows of one
+    sizing (copies of the pair's motor, each driving its build of the load:
+    sizer.mechanics.load_figures), where the design's engine reads them; empty where it
+    does not, or where a build cannot be sized (each is then sized alone)."""
+    from sizer import api
+    from sizer.mechanics.load_figures import LoadFigures
+    from sizer.sizing.engine import reads_builds, size_design
+
+    if not inputs or not reads_builds(design):
+        return {}
+    builds: list[Design] = []
+    for item in inputs:
+        assert item.build is not None, "a load figure is the design's input"
+        builds += [item.build(1.0 - step), item.build(1.0 + step)]
+    copies = [copy(design.motors[0]) for _ in builds]  # each its own object: its row
+    try:
+        sized = size_design(api.override(design, motors=copies),
+                            builds=LoadFigures.builds([d.load for d in builds]))
+    except (UserError, ValueError):
+        return {}
+    found = {id(r.motor_object): r for r in sized.results}
+    rows = [found[id(c)] for c in copies]
+    return {item: (rows[2 * k], rows[2 * k + 1]) for k, item in enumerate(inputs)}
+
+
 def sensitivity(design: Design, motor: str | None = None, law: str | None = None, *,
                 step: float = STEP) -> Sensitivity:
     """The sensitivities of the pair (:func:`pair`) of ``design``, most influential
@@ -347,8 +385,11 @@ def sensitivity(design: Design, motor: str | None = None, law: str | None = None
             rows.append(_input(item, nominal, sized[2 * k], sized[2 * k + 1], minimize,
                                step))
     skipped: list[tuple[str, str]] = []
+    batched = _load_results(fixed, [i for i in inputs if i.name in LOAD_FIGURES], step)
+    for item, (low, high) in batched.items():
+        rows.append(_input(item, nominal, low, high, minimize, step))
     for item in inputs:
-        if item.build is None:
+        if item.build is None or item in batched:
             continue
         try:
             low = api.size(item.build(1.0 - step)).results[0]

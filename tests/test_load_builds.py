@@ -116,3 +116,29 @@ def test_figures_move_with_a_segment_and_slice_with_the_candidates() -> None:
     assert LoadFigures.of(base).moved(base, replace(base, inertia=7.0)).inertia == 7.0
     assert not builds.none("torque") and LoadFigures.of(Load(1.0)).none("torque", "friction")
 
+
+def test_robust_builds_of_the_load_and_motors_are_one_sizing(monkeypatch) -> None:
+    """Tolerances on the load's figures and the motors' take one sizing for all their
+    corners and samples (rows), not one per build; the worst margins are still the least
+    over the corners each sized on its own (tests/test_robust*.py check that across
+    designs; here the count)."""
+    import sizer.sizing.engine as engine
+    from sizer.model.tolerance import Tolerance
+    from sizer.robust import robust_sizing
+
+    design = api.load(EXAMPLES / "indexing-duty-cycle.yaml")
+    design = replace(design, motors=design.motors[:2], tolerances=(
+        Tolerance("load.inertia", 0.2), Tolerance("load.friction", 0.5),
+        Tolerance("motor.peak_torque", 0.1)))
+    nominal = api.size(design)
+    calls: list[int] = []
+    sized = engine.size_design
+
+    def counted(*args, **kwargs):
+        calls.append(1)
+        return sized(*args, **kwargs)
+
+    monkeypatch.setattr(engine, "size_design", counted)
+    robust = robust_sizing(design, nominal, samples=20)
+    assert len(calls) == 1  # 8 corners and 20 samples x 2 motors: 56 rows of one sizing
+    assert all(r.corners == 8 and r.samples == 20 for r in robust.results)
