@@ -200,6 +200,7 @@ def design_inputs(design: Design) -> list[_Input]:
             label = {"inertia": "mass", "torque": "force"}.get(name, name) if linear else name
             out.append(_Input(f"load.{label}", value, lin if linear else rotary,
                               _load(design, name)))
+    out.extend(_mode_inputs(design))
     stages = design.transmission.stages
     for i, stage in enumerate(stages):
         prefix = f"stage {i + 1}" if len(stages) > 1 else "transmission"
@@ -225,6 +226,27 @@ def design_inputs(design: Design) -> list[_Input]:
         value = float(getattr(motor, name))
         if value != 0.0:
             out.append(_Input(f"motor.{name}", value, unit, motor_field=name))
+    return out
+
+
+def _mode_inputs(design: Design) -> list[_Input]:
+    """The load's mode (sec. 7.1.1) where the design gives one: its natural frequency and
+    (when not zero) its damping ratio; they move the residual vibration only."""
+    elastic = design.load.elastic
+    if elastic is None:
+        return []
+
+    def build(name: str) -> Callable[[float], Design]:
+        def scaled(factor: float) -> Design:
+            return replace(design, load=replace(design.load, elastic=_scaled(elastic, name,
+                                                                               factor)))
+        return scaled
+
+    out = [_Input("load.natural_frequency", elastic.natural_frequency, "Hz",
+                  build("natural_frequency"))]
+    if elastic.damping_ratio > 0.0:
+        out.append(_Input("load.damping_ratio", elastic.damping_ratio, "",
+                          build("damping_ratio")))
     return out
 
 

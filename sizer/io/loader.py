@@ -496,7 +496,8 @@ def _design_of(source: YamlSource, folder: Path, name: str, files: list[Path],
 
 TOLERANCE_KEYS = {
     "load.inertia": False, "load.mass": True, "load.friction": None, "load.damping": None,
-    "load.torque": False, "load.force": True, "transmission.efficiency": None,
+    "load.torque": False, "load.force": True, "load.natural_frequency": None,
+    "load.damping_ratio": None, "transmission.efficiency": None,
     "motor.continuous_torque": None, "motor.peak_torque": None, "motor.rated_speed": None,
     "motor.inertia": None}
 """The inputs a ``tolerances:`` section may name (docs/robust.md), and whether the name
@@ -508,6 +509,7 @@ TOLERANCE_KINDS: dict[str, tuple[str, str] | None] = {
     "load.friction": ("torque", "force"),
     "load.damping": ("rotary_damping", "linear_damping"),
     "load.torque": ("torque", "torque"), "load.force": ("force", "force"),
+    "load.natural_frequency": ("rate", "rate"), "load.damping_ratio": None,
     "transmission.efficiency": None,
     "motor.continuous_torque": ("torque", "torque"), "motor.peak_torque": ("torque", "torque"),
     "motor.rated_speed": ("angular_speed", "angular_speed"),
@@ -589,7 +591,8 @@ def _tolerance(source: YamlSource, key: str, value: str, at: tuple[str | int, ..
         if not fraction > 0.0:
             raise source.error(f"an absolute tolerance must be positive, got {value!r}", at)
     else:
-        zero_ok = key in ("load.friction", "load.damping", "load.torque", "load.force")
+        zero_ok = key in ("load.friction", "load.damping", "load.torque", "load.force",
+                          "load.damping_ratio")
         if not (0.0 < width < 1.0 or (zero_ok and width == 1.0)):
             bound = "(0, 100 %]" if zero_ok else "(0, 100 %)"
             what = (f"truncate x sigma ({sigmas:g} x {value!r})" if normal

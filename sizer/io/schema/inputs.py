@@ -99,7 +99,8 @@ def _increasing_points(points: list[Any] | None) -> list[Any] | None:
     return points
 
 
-INLINE_TOLERANCE_FIELDS = ("inertia", "mass", "friction", "damping", "torque", "force")
+INLINE_TOLERANCE_FIELDS = ("inertia", "mass", "friction", "damping", "torque", "force",
+                           "natural_frequency")
 """The load's fields that may carry a tolerance beside the value ('0.35 kg*m^2 +- 20 %'):
 the loader reads it as ``load.<field>`` of the ``tolerances:`` section (docs/robust.md)."""
 
