@@ -43,7 +43,7 @@ import numpy as np
 
 from sizer.errors import UserError
 from sizer.model.tolerance import Tolerance, tolerance_of
-from sizer.sensitivity import LOAD_FIGURES, design_inputs
+from sizer.sensitivity import design_inputs, row_input
 
 if TYPE_CHECKING:
     from sizer.model.domain import Design, Motor
@@ -312,7 +312,7 @@ def robust_sizing(design: Design, nominal: SizingResult, *, rank_by: str | None 
     them with ``seed`` (:func:`check_tolerances` first). ``rank_by`` worst_margin orders
     each group (feasible at every build or not) by the worst-case margin."""
     from sizer import api
-    from sizer.mechanics.load_figures import LoadFigures
+    from sizer.sizing.candidates import Builds
     from sizer.sizing.engine import reads_builds, size_design
     from sizer.sizing.ranking import is_robust_key, nominal_rank_by
 
@@ -325,11 +325,11 @@ def robust_sizing(design: Design, nominal: SizingResult, *, rank_by: str | None 
          draw(tolerances, samples, seed) if samples else np.empty((0, k))]).reshape(-1, k)
     n_corners = 2 ** k if with_corners else 0
     is_motor = np.array([t.name.startswith(MOTOR) for t in tolerances], dtype=bool)
-    is_load = np.array([reads_builds(design) and t.name in LOAD_FIGURES for t in tolerances],
-                       dtype=bool)
-    is_other = ~is_motor & ~is_load
+    is_row = np.array([reads_builds(design) and row_input(t.name) for t in tolerances],
+                      dtype=bool)  # the load's and the stages' figures: rows too
+    is_other = ~is_motor & ~is_row
     motor_tol = [t for t, m in zip(tolerances, is_motor, strict=True) if m]
-    load_tol = [t for t, m in zip(tolerances, is_load, strict=True) if m]
+    row_tol = [t for t, m in zip(tolerances, is_row, strict=True) if m]
     other_tol = [t for t, m in zip(tolerances, is_other, strict=True) if m]
     names = [t.name for t in tolerances]
 
@@ -369,13 +369,14 @@ def robust_sizing(design: Design, nominal: SizingResult, *, rank_by: str | None 
                                               builds[b, is_motor])))
                       for i in motors for b in members]  # each its own object: its row
             slot = {id(p): (i, b) for i, b, p in copies}
-            loads = {b: build_design(group_design, load_tol, builds[b, is_load]).load
-                     for b in members} if load_tol else {}
+            built = {b: build_design(group_design, row_tol, builds[b, is_row])
+                     for b in members} if row_tol else {}
             sized = size_design(
                 api.override(group_design, motors=[p for _, _, p in copies]),
                 rank_by=sizing_rank, workers=workers,
-                builds=LoadFigures.builds([loads[b] for _, b, _ in copies]) if loads
-                else None)
+                builds=Builds.of([built[b].load for _, b, _ in copies],
+                                 [built[b].transmission for _, b, _ in copies],
+                                 group_design.transmission) if built else None)
             for r in sized.results:
                 found = slot.get(id(r.motor_object))
                 if found is None:  # the engine copied the motor: find it by value
@@ -450,8 +451,9 @@ SAMPLE_BELOW = 1e-9
 
 
 class _Least:
-    """The least margin of each check over some builds and the build giving it (a NaN
-    margin, undecided, sticks: the first one wins)."""
+    """The least margin of each check over some builds and the build giving it, whatever
+    the order the builds come in: a NaN margin (undecided) before any number, then the
+    least margin, and of equals the lowest build."""
 
     def __init__(self) -> None:
         self.margin: dict[str, float] = {}
@@ -460,10 +462,16 @@ class _Least:
     def add(self, b: int, result: CandidateResult) -> None:
         for check in result.checks:
             name, margin = str(check.name), float(check.margin)
-            if name in self.margin and math.isnan(self.margin[name]):
-                continue
-            if name not in self.margin or math.isnan(margin) or margin < self.margin[name]:
+            if name not in self.margin or _order(margin, b) < _order(self.margin[name],
+                                                                     self.build[name]):
                 self.margin[name], self.build[name] = margin, b
+
+
+def _order(margin: float, build: int) -> tuple[bool, float, int]:
+    """The order of (margin, build) in :class:`_Least`: undecided first, then the least
+    margin, then the lowest build."""
+    undecided = math.isnan(margin)
+    return (not undecided, 0.0 if undecided else margin, build)
 
 
 class _Tally:

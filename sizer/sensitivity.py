@@ -187,6 +187,14 @@ linear axis names them mass and force), which the engine takes per candidate row
 (sizer.mechanics.load_figures)."""
 
 
+def row_input(name: str) -> bool:
+    """Whether the input ``name`` is one the engine takes per candidate row (a build of the
+    machine, sizer.sizing.candidates.Builds): the load's figures and a stage's ratio or
+    efficiency (``transmission.ratio``, ``stage 2.efficiency``...)."""
+    return name in LOAD_FIGURES or (name.startswith(("transmission.", "stage "))
+                                    and name.endswith((".ratio", ".efficiency")))
+
+
 def design_inputs(design: Design) -> list[_Input]:
     """The inputs present and non-zero in ``design`` (fixed to one pair): the load's, the
     transmission stages', the task's and the motor's figures."""
@@ -356,14 +364,14 @@ def _motor_results(design: Design, motors: Sequence[Motor]) -> list[CandidateRes
     return out
 
 
-def _load_results(design: Design, inputs: Sequence[_Input], step: float
-                  ) -> dict[_Input, tuple[CandidateResult, CandidateResult]]:
-    """The load's figures ``inputs`` each at 1 -+ ``step`` as candidate rows of one
-    sizing (copies of the pair's motor, each driving its build of the load:
-    sizer.mechanics.load_figures), where the design's engine reads them; empty where it
-    does not, or where a build cannot be sized (each is then sized alone)."""
+def _row_results(design: Design, inputs: Sequence[_Input], step: float
+                 ) -> dict[_Input, tuple[CandidateResult, CandidateResult]]:
+    """The ``inputs`` the engine takes per row (:func:`row_input`) each at 1 -+ ``step``
+    as candidate rows of one sizing (copies of the pair's motor, each in its build of the
+    machine: sizer.sizing.candidates.Builds), where the design's engine reads them; empty
+    where it does not, or where a build cannot be sized (each is then sized alone)."""
     from sizer import api
-    from sizer.mechanics.load_figures import LoadFigures
+    from sizer.sizing.candidates import Builds
     from sizer.sizing.engine import reads_builds, size_design
 
     if not inputs or not reads_builds(design):
@@ -374,8 +382,8 @@ def _load_results(design: Design, inputs: Sequence[_Input], step: float
         builds += [item.build(1.0 - step), item.build(1.0 + step)]
     copies = [copy(design.motors[0]) for _ in builds]  # each its own object: its row
     try:
-        sized = size_design(api.override(design, motors=copies),
-                            builds=LoadFigures.builds([d.load for d in builds]))
+        sized = size_design(api.override(design, motors=copies), builds=Builds.of(
+            [d.load for d in builds], [d.transmission for d in builds], design.transmission))
     except (UserError, ValueError):
         return {}
     found = {id(r.motor_object): r for r in sized.results}
@@ -407,7 +415,7 @@ def sensitivity(design: Design, motor: str | None = None, law: str | None = None
             rows.append(_input(item, nominal, sized[2 * k], sized[2 * k + 1], minimize,
                                step))
     skipped: list[tuple[str, str]] = []
-    batched = _load_results(fixed, [i for i in inputs if i.name in LOAD_FIGURES], step)
+    batched = _row_results(fixed, [i for i in inputs if row_input(i.name)], step)
     for item, (low, high) in batched.items():
         rows.append(_input(item, nominal, low, high, minimize, step))
     for item in inputs:

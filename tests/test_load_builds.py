@@ -21,6 +21,7 @@ import pytest
 
 from sizer import api
 from sizer.mechanics.load_figures import LoadFigures
+from sizer.sizing.candidates import Builds
 from sizer.sizing.engine import reads_builds, size_design
 
 EXAMPLES = Path(__file__).parents[1] / "examples"
@@ -56,16 +57,32 @@ def _same(a, b) -> None:
         assert c.margin == pytest.approx(d.margin, rel=1e-9, abs=1e-12), c.name
 
 
-def _assert_rows_are_separate_sizings(design, motors: int = 3) -> None:
+def _stages(design, factors):
+    """``design`` with its transmission's first stage's ratio and efficiency times these
+    factors (a build of the transmission)."""
+    if factors is None:
+        return design
+    stage = design.transmission.stages[0]
+    changed = replace(stage, ratio=stage.ratio * factors[0],
+                      efficiency=min(stage.efficiency * factors[1], 1.0))
+    return replace(design, transmission=design.transmission.with_stage(0, changed))
+
+
+def _assert_rows_are_separate_sizings(design, motors: int = 3, stages=None) -> None:
+    """``stages``: per build factors on the first stage's ratio and efficiency too."""
     chosen = design.motors[:motors]
     design = replace(design, motors=chosen)
     copies = [(m, b, copy(m)) for m in chosen for b in range(len(BUILDS))]
-    builds = [_build(design, BUILDS[b]).load for _, b, _ in copies]
+    built = [_stages(_build(design, BUILDS[b]), None if stages is None else stages[b])
+             for _, b, _ in copies]
     sized = size_design(api.override(design, motors=[c for *_, c in copies]),
-                        builds=LoadFigures.builds(builds))
+                        builds=Builds.of([d.load for d in built],
+                                         [d.transmission for d in built],
+                                         design.transmission))
     rows = _rows(sized)
     for b, factors in enumerate(BUILDS):
-        alone = _rows(size_design(_build(design, factors)))
+        alone = _rows(size_design(_stages(_build(design, factors),
+                                          None if stages is None else stages[b])))
         for motor, build, c in copies:
             if build != b:
                 continue
@@ -94,11 +111,20 @@ def test_the_steady_load_rule_and_damping() -> None:
     _assert_rows_are_separate_sizings(replace(design, transmission=transmission))
 
 
+def test_builds_of_the_transmission_are_rows_too() -> None:
+    """Each build its own ratio and efficiency of the gearbox (transmission options of the
+    drive, one per build) besides its load: still each build sized on its own."""
+    design = api.load(EXAMPLES / "indexing-duty-cycle.yaml")
+    stages = [(1.0, 1.0), (1.05, 0.98), (0.95, 1.02), (1.0, 0.9)]
+    _assert_rows_are_separate_sizings(design, 2, stages)
+
+
 def test_a_design_whose_engine_reads_the_design_load_refuses_builds() -> None:
     design = api.load(EXAMPLES / "press-slider-crank.yaml")
     assert not reads_builds(design)
     with pytest.raises(ValueError, match="linkage"):
-        size_design(design, builds=LoadFigures.builds([design.load] * len(design.motors)))
+        size_design(design, builds=Builds(LoadFigures.builds([design.load]
+                                                              * len(design.motors))))
 
 
 def test_figures_move_with_a_segment_and_slice_with_the_candidates() -> None:
@@ -118,10 +144,10 @@ def test_figures_move_with_a_segment_and_slice_with_the_candidates() -> None:
 
 
 def test_robust_builds_of_the_load_and_motors_are_one_sizing(monkeypatch) -> None:
-    """Tolerances on the load's figures and the motors' take one sizing for all their
-    corners and samples (rows), not one per build; the worst margins are still the least
-    over the corners each sized on its own (tests/test_robust*.py check that across
-    designs; here the count)."""
+    """Tolerances on the load's figures, the gearbox's efficiency and the motors' take one
+    sizing for all their corners and samples (rows), not one per build; the worst margins
+    are still the least over the corners each sized on its own (tests/test_robust*.py
+    check that across designs; here the count)."""
     import sizer.sizing.engine as engine
     from sizer.model.tolerance import Tolerance
     from sizer.robust import robust_sizing
@@ -129,7 +155,7 @@ def test_robust_builds_of_the_load_and_motors_are_one_sizing(monkeypatch) -> Non
     design = api.load(EXAMPLES / "indexing-duty-cycle.yaml")
     design = replace(design, motors=design.motors[:2], tolerances=(
         Tolerance("load.inertia", 0.2), Tolerance("load.friction", 0.5),
-        Tolerance("motor.peak_torque", 0.1)))
+        Tolerance("transmission.efficiency", 0.02), Tolerance("motor.peak_torque", 0.1)))
     nominal = api.size(design)
     calls: list[int] = []
     sized = engine.size_design
@@ -140,5 +166,5 @@ def test_robust_builds_of_the_load_and_motors_are_one_sizing(monkeypatch) -> Non
 
     monkeypatch.setattr(engine, "size_design", counted)
     robust = robust_sizing(design, nominal, samples=20)
-    assert len(calls) == 1  # 8 corners and 20 samples x 2 motors: 56 rows of one sizing
-    assert all(r.corners == 8 and r.samples == 20 for r in robust.results)
+    assert len(calls) == 1  # 16 corners and 20 samples x 2 motors: 72 rows of one sizing
+    assert all(r.corners == 16 and r.samples == 20 for r in robust.results)

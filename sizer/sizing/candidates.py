@@ -218,6 +218,41 @@ def clip_region(table: RegionTable, cap: np.ndarray) -> RegionTable:
     return out
 
 
+@dataclass(frozen=True, eq=False)
+class Builds:
+    """Each candidate's build of the machine (robust sizing and sensitivities, sizer.robust:
+    the builds are rows of one sizing): the load's figures (sizer.mechanics.load_figures;
+    None: the design's), and where the builds change a stage's figures (a ratio, an
+    efficiency) the transmissions and each candidate's (``option``)."""
+
+    figures: LoadFigures | None = None
+    transmissions: tuple[Transmission, ...] = ()
+    option: np.ndarray | None = None
+
+    @classmethod
+    def of(cls, loads: Sequence[Load], transmissions: Sequence[Transmission],
+           design_transmission: Transmission) -> Builds:
+        """The builds whose loads and transmissions are these (one each per candidate);
+        the transmissions kept only where one differs from the design's."""
+        distinct = list(dict.fromkeys(transmissions))
+        if distinct == [design_transmission]:
+            return cls(LoadFigures.builds(list(loads)))
+        option = np.array([distinct.index(t) for t in transmissions], dtype=np.intp)
+        return cls(LoadFigures.builds(list(loads)), tuple(distinct), option)
+
+    def take(self, index: np.ndarray) -> Builds:
+        return Builds(None if self.figures is None else self.figures.take(index),
+                      self.transmissions,
+                      None if self.option is None else self.option[index])
+
+    def drive(self, load: Load, transmission: Transmission) -> Drive:
+        """The candidates' drive: ``load`` with their figures, through ``transmission``
+        (the design's) or their builds' transmissions."""
+        if self.transmissions:
+            return Drive(load, self.transmissions, self.option, figures=self.figures)
+        return Drive(load, transmission, figures=self.figures)
+
+
 @dataclass(frozen=True)
 class MotorArrays:
     """Rotor inertia, damping and speed-torque regions of the candidates' motors.
@@ -232,9 +267,9 @@ class MotorArrays:
     indexes ``drives`` per candidate, ``currents`` is each candidate's torque-current
     curve, and the regions are clipped at the drive's torques.
 
-    ``builds``: where each candidate drives its own build of the design's load (robust
-    sizing, sizer.robust), the load's figures per candidate (the drive reads them:
-    sizer.mechanics.load_figures); None: the design's load for all.
+    ``builds``: where each candidate is sized in its own build of the machine (robust
+    sizing, sizer.robust): its load's figures and transmission (:class:`Builds`); None:
+    the design's for all.
     """
 
     catalog: tuple[Motor, ...]
@@ -247,15 +282,15 @@ class MotorArrays:
     drives: tuple[ServoDrive, ...] = ()
     drive: np.ndarray | None = None
     currents: CurrentCurves | None = None
-    builds: LoadFigures | None = None
+    builds: Builds | None = None
 
     @classmethod
     def of(cls, motors: Sequence[Motor], envelope: EnvelopeRule = "book",
            drives: Sequence[ServoDrive] = (),
-           builds: LoadFigures | None = None) -> MotorArrays:
+           builds: Builds | None = None) -> MotorArrays:
         """The motors' arrays; with ``drives``, one candidate per compatible motor-drive
-        pair, the regions clipped at the drive's torques; ``builds``: the load's figures
-        per motor (each motor its own build of the load)."""
+        pair, the regions clipped at the drive's torques; ``builds``: per motor its build
+        of the machine."""
         alone = cls._alone(tuple(motors), envelope)
         if builds is not None:
             alone = replace(alone, builds=builds)
@@ -399,7 +434,9 @@ class Candidates:
     @classmethod
     def single(cls, motors: MotorArrays, load: Load, transmission: Transmission) -> Candidates:
         """Every motor with the same transmission."""
-        return cls(motors, Drive(load, transmission, figures=motors.builds))
+        if motors.builds is not None:
+            return cls(motors, motors.builds.drive(load, transmission))
+        return cls(motors, Drive(load, transmission))
 
     @classmethod
     def pairs(cls, motors: MotorArrays, load: Load, transmissions: Sequence[Transmission],
@@ -408,7 +445,11 @@ class Candidates:
         """The candidates (motor[i], transmissions[option[i]]): ``motor`` indexes the
         rows of ``motors``."""
         chosen = motors.subset(motor)
-        return cls(chosen, Drive(load, transmissions, option, figures=chosen.builds),
+        if chosen.builds is None:
+            return cls(chosen, Drive(load, transmissions, option), gearboxes)
+        if chosen.builds.transmissions:
+            raise ValueError("builds of the transmission are not sized with a ratio choice")
+        return cls(chosen, Drive(load, transmissions, option, figures=chosen.builds.figures),
                    gearboxes)
 
     def take(self, index: np.ndarray) -> Candidates:

@@ -41,10 +41,9 @@ from sizer.envelope import envelope_note
 from sizer.errors import UserError
 from sizer.laws import LawChoice, law_choice
 from sizer.laws.per_move import LawsPerMove, PerMoveChoice, RankedLaw, per_move
-from sizer.mechanics.load_figures import LoadFigures
 from sizer.model.cycle import Dwell
 from sizer.model.domain import Design, Motor
-from sizer.sizing.candidates import Candidates, MotorArrays
+from sizer.sizing.candidates import Builds, Candidates, MotorArrays
 from sizer.sizing.checks import TOLERANCE, CheckArrays, CheckName, shaft_notes
 from sizer.sizing.checks import feasible as all_pass
 from sizer.sizing.choices import SharedByLaws, choose_shape
@@ -88,14 +87,15 @@ def mode_of(design: Design) -> Mode:
 def size_design(design: Design, rank_by: str | None = None,
                 motors: Sequence[Motor] | None = None,
                 progress: Progress | None = None, workers: int | None = 1,
-                builds: LoadFigures | None = None) -> SizingResult:
+                builds: Builds | None = None) -> SizingResult:
     """Every motor x law (x transmission option) of the design, ranked (feasible first).
 
     ``progress``, if given, is called with (0, n) and then after each of the n laws.
     ``workers``: processes sizing the laws (:func:`tables_in_processes`; None: every CPU
-    for a large design); the result is the same whatever their number. ``builds``: the
-    load's figures per motor (each motor, typically a copy, driving its own build of the
-    load: sizer.robust), for a design whose engine reads them (:func:`reads_builds`).
+    for a large design); the result is the same whatever their number. ``builds``: per
+    motor (typically a copy) its build of the machine, its load's figures and transmission
+    (sizer.robust), for a design whose engine reads them (:func:`reads_builds`) and
+    without a ratio choice where they change the transmission.
     """
     motors = tuple(motors if motors is not None else design.motors)
     if not motors:
