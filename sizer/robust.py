@@ -24,8 +24,10 @@ the engine has an axis for them: the motor's figures (perturbed Motor copies, as
 sizer.sensitivity) and the load's J, B, F and tau_ext (each copy driving its own build of
 the load: sizer.mechanics.load_figures; not through a linkage or with loads of the
 position, whose engines read the design's load), at most MAX_MOTOR_ROWS rows a sizing.
-Builds that differ in another input (an efficiency, a ratio, a duration, the mode) are
-sizings of their own, one per such change (2^j at the corners for j such tolerances). The
+The transmission's efficiency and the load's mode are rows too (sizer.sizing.candidates.
+Builds), the mode except where a law or the split is made for the design's mode
+(sizer.sizing.engine.reads_builds): such builds are sizings of their own, one per change
+(2^j at the corners for j such tolerances). The
 design is never re-read, the catalogs never re-loaded: each build is the loaded design
 with dataclasses.replace. Pure: sizer.api, the engine, the model objects and numpy.
 """
@@ -313,7 +315,7 @@ def robust_sizing(design: Design, nominal: SizingResult, *, rank_by: str | None 
     each group (feasible at every build or not) by the worst-case margin."""
     from sizer import api
     from sizer.sizing.candidates import Builds
-    from sizer.sizing.engine import reads_builds, size_design
+    from sizer.sizing.engine import size_design
     from sizer.sizing.ranking import is_robust_key, nominal_rank_by
 
     check_tolerances(design, samples)
@@ -325,8 +327,8 @@ def robust_sizing(design: Design, nominal: SizingResult, *, rank_by: str | None 
          draw(tolerances, samples, seed) if samples else np.empty((0, k))]).reshape(-1, k)
     n_corners = 2 ** k if with_corners else 0
     is_motor = np.array([t.name.startswith(MOTOR) for t in tolerances], dtype=bool)
-    is_row = np.array([reads_builds(design) and row_input(t.name) for t in tolerances],
-                      dtype=bool)  # the load's and the stages' figures: rows too
+    is_row = np.array([row_input(design, t.name) for t in tolerances],
+                      dtype=bool)  # the load's and the stages' figures, the mode: rows too
     is_other = ~is_motor & ~is_row
     motor_tol = [t for t, m in zip(tolerances, is_motor, strict=True) if m]
     row_tol = [t for t, m in zip(tolerances, is_row, strict=True) if m]
@@ -374,9 +376,8 @@ def robust_sizing(design: Design, nominal: SizingResult, *, rank_by: str | None 
             sized = size_design(
                 api.override(group_design, motors=[p for _, _, p in copies]),
                 rank_by=sizing_rank, workers=workers,
-                builds=Builds.of([built[b].load for _, b, _ in copies],
-                                 [built[b].transmission for _, b, _ in copies],
-                                 group_design.transmission) if built else None)
+                builds=Builds.of([built[b] for _, b, _ in copies], group_design)
+                if built else None)
             for r in sized.results:
                 found = slot.get(id(r.motor_object))
                 if found is None:  # the engine copied the motor: find it by value

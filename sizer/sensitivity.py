@@ -187,12 +187,21 @@ linear axis names them mass and force), which the engine takes per candidate row
 (sizer.mechanics.load_figures)."""
 
 
-def row_input(name: str) -> bool:
-    """Whether the input ``name`` is one the engine takes per candidate row (a build of the
-    machine, sizer.sizing.candidates.Builds): the load's figures and a stage's ratio or
-    efficiency (``transmission.ratio``, ``stage 2.efficiency``...)."""
-    return name in LOAD_FIGURES or (name.startswith(("transmission.", "stage "))
-                                    and name.endswith((".ratio", ".efficiency")))
+MODE_INPUTS = frozenset(("load.natural_frequency", "load.damping_ratio"))
+"""The inputs of the load's mode (they move the residual vibration only)."""
+
+
+def row_input(design: Design, name: str) -> bool:
+    """Whether the input ``name`` is one the engine of ``design`` takes per candidate row
+    (a build of the machine, sizer.sizing.candidates.Builds: sizer.sizing.engine.
+    reads_builds): the load's figures, a stage's ratio or efficiency
+    (``transmission.ratio``, ``stage 2.efficiency``...) and the load's mode."""
+    from sizer.sizing.engine import reads_builds
+
+    stage = name.startswith(("transmission.", "stage ")) and name.endswith(
+        (".ratio", ".efficiency"))
+    return (name in LOAD_FIGURES or stage or name in MODE_INPUTS) \
+        and reads_builds(design, name in MODE_INPUTS)
 
 
 def design_inputs(design: Design) -> list[_Input]:
@@ -372,9 +381,9 @@ def _row_results(design: Design, inputs: Sequence[_Input], step: float
     where it does not, or where a build cannot be sized (each is then sized alone)."""
     from sizer import api
     from sizer.sizing.candidates import Builds
-    from sizer.sizing.engine import reads_builds, size_design
+    from sizer.sizing.engine import size_design
 
-    if not inputs or not reads_builds(design):
+    if not inputs:
         return {}
     builds: list[Design] = []
     for item in inputs:
@@ -382,8 +391,8 @@ def _row_results(design: Design, inputs: Sequence[_Input], step: float
         builds += [item.build(1.0 - step), item.build(1.0 + step)]
     copies = [copy(design.motors[0]) for _ in builds]  # each its own object: its row
     try:
-        sized = size_design(api.override(design, motors=copies), builds=Builds.of(
-            [d.load for d in builds], [d.transmission for d in builds], design.transmission))
+        sized = size_design(api.override(design, motors=copies),
+                            builds=Builds.of(builds, design))
     except (UserError, ValueError):
         return {}
     found = {id(r.motor_object): r for r in sized.results}
@@ -415,7 +424,7 @@ def sensitivity(design: Design, motor: str | None = None, law: str | None = None
             rows.append(_input(item, nominal, sized[2 * k], sized[2 * k + 1], minimize,
                                step))
     skipped: list[tuple[str, str]] = []
-    batched = _row_results(fixed, [i for i in inputs if row_input(i.name)], step)
+    batched = _row_results(fixed, [i for i in inputs if row_input(fixed, i.name)], step)
     for item, (low, high) in batched.items():
         rows.append(_input(item, nominal, low, high, minimize, step))
     for item in inputs:

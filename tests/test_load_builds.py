@@ -76,9 +76,7 @@ def _assert_rows_are_separate_sizings(design, motors: int = 3, stages=None) -> N
     built = [_stages(_build(design, BUILDS[b]), None if stages is None else stages[b])
              for _, b, _ in copies]
     sized = size_design(api.override(design, motors=[c for *_, c in copies]),
-                        builds=Builds.of([d.load for d in built],
-                                         [d.transmission for d in built],
-                                         design.transmission))
+                        builds=Builds.of(built, design))
     rows = _rows(sized)
     for b, factors in enumerate(BUILDS):
         alone = _rows(size_design(_stages(_build(design, factors),

@@ -42,7 +42,16 @@ from sizer.envelope.electrical import on_supply
 from sizer.errors import UserError
 from sizer.mechanics import Drive
 from sizer.mechanics.load_figures import LoadFigures
-from sizer.model.domain import Curve, EnvelopeRule, Load, Motor, ServoDrive, Transmission
+from sizer.model.domain import (
+    Curve,
+    Design,
+    EnvelopeRule,
+    Load,
+    Motor,
+    ServoDrive,
+    Transmission,
+)
+from sizer.vibration.elastic_load import ElasticLoad
 
 KEPT = 8
 """Catalogs whose facts are kept (a design has one; tests and loops make more)."""
@@ -222,28 +231,32 @@ def clip_region(table: RegionTable, cap: np.ndarray) -> RegionTable:
 class Builds:
     """Each candidate's build of the machine (robust sizing and sensitivities, sizer.robust:
     the builds are rows of one sizing): the load's figures (sizer.mechanics.load_figures;
-    None: the design's), and where the builds change a stage's figures (a ratio, an
-    efficiency) the transmissions and each candidate's (``option``)."""
+    None: the design's); where the builds change a stage's figures (a ratio, an
+    efficiency) the transmissions and each candidate's (``option``); where they change the
+    load's mode, the modes and each candidate's (``mode``: the residual vibration's,
+    sizer.sizing.vibration_check.ResidualLimit)."""
 
     figures: LoadFigures | None = None
     transmissions: tuple[Transmission, ...] = ()
     option: np.ndarray | None = None
+    modes: tuple[ElasticLoad | None, ...] = ()
+    mode: np.ndarray | None = None
 
     @classmethod
-    def of(cls, loads: Sequence[Load], transmissions: Sequence[Transmission],
-           design_transmission: Transmission) -> Builds:
-        """The builds whose loads and transmissions are these (one each per candidate);
-        the transmissions kept only where one differs from the design's."""
-        distinct = list(dict.fromkeys(transmissions))
-        if distinct == [design_transmission]:
-            return cls(LoadFigures.builds(list(loads)))
-        option = np.array([distinct.index(t) for t in transmissions], dtype=np.intp)
-        return cls(LoadFigures.builds(list(loads)), tuple(distinct), option)
+    def of(cls, builds: Sequence[Design], design: Design) -> Builds:
+        """The builds of ``design`` (one per candidate): their loads' figures, and their
+        transmissions and modes where one differs from the design's."""
+        transmissions, option = _distinct([b.transmission for b in builds],
+                                          design.transmission)
+        modes, mode = _distinct([b.load.elastic for b in builds], design.load.elastic)
+        return cls(LoadFigures.builds([b.load for b in builds]), transmissions, option,
+                   modes, mode)
 
     def take(self, index: np.ndarray) -> Builds:
         return Builds(None if self.figures is None else self.figures.take(index),
                       self.transmissions,
-                      None if self.option is None else self.option[index])
+                      None if self.option is None else self.option[index], self.modes,
+                      None if self.mode is None else self.mode[index])
 
     def drive(self, load: Load, transmission: Transmission) -> Drive:
         """The candidates' drive: ``load`` with their figures, through ``transmission``
@@ -251,6 +264,15 @@ class Builds:
         if self.transmissions:
             return Drive(load, self.transmissions, self.option, figures=self.figures)
         return Drive(load, transmission, figures=self.figures)
+
+
+def _distinct(values: list, design_value: object) -> tuple[tuple, np.ndarray | None]:
+    """The distinct ``values`` and each one's index among them; nothing where every one is
+    the design's own."""
+    distinct = list(dict.fromkeys(values))
+    if distinct == [design_value]:
+        return (), None
+    return tuple(distinct), np.array([distinct.index(v) for v in values], dtype=np.intp)
 
 
 @dataclass(frozen=True)

@@ -105,9 +105,10 @@ def size_design(design: Design, rank_by: str | None = None,
         raise UserError("no motors to size: give a catalog in the design or with --catalog"
                         + ("; with the load's limits and no motors the design is a plan, "
                            "which `sizer size` gives" if planned else ""), field="motors")
-    if builds is not None and not reads_builds(design):
-        raise ValueError("builds of the load per motor are sized for a cycle without a "
-                         "linkage or loads of the position")
+    if builds is not None and not reads_builds(design, bool(builds.modes)):
+        raise ValueError("builds per motor are sized for a cycle without a linkage or "
+                         "loads of the position (and builds of the mode without a law "
+                         "or split made for the design's mode)")
     specs = ranked_laws(design)
     arrays = MotorArrays.of(motors, design.limits.envelope, design.drives, builds)
     if progress is not None:
@@ -135,11 +136,17 @@ def size_design(design: Design, rank_by: str | None = None,
                         notes=assumptions(design), table=table)
 
 
-def reads_builds(design: Design) -> bool:
-    """Whether the engine of ``design`` reads the load's figures per candidate (the drive's
-    LoadFigures): the law move and the cycle of segments; a linkage's engine and the one
-    for loads of the position read the design's load."""
-    return design.transmission.linkage is None and not design.load.position_dependent
+def reads_builds(design: Design, modes: bool = False) -> bool:
+    """Whether the engine of ``design`` reads each candidate's build of the machine
+    (sizer.sizing.candidates.Builds: the drive's load figures and transmissions): the law
+    move and the cycle of segments; a linkage's engine and the one for loads of the
+    position read the design's load. With ``modes``, builds of the load's mode too (the
+    residual vibration's): not where a law is shaped for the mode at each duration or the
+    split minimizes the residual (both made for the design's mode)."""
+    if design.transmission.linkage is not None or design.load.position_dependent:
+        return False
+    return not modes or (not any(c.open_shaped for c in design.laws)
+                         and design.machine_cycle.share.goal != "vibration")
 
 
 def _options(design: Design) -> int:
@@ -308,7 +315,9 @@ def _evaluate_chunk(design: Design, law: RankedLaw, candidates: Candidates,
     (sizer.sizing.shortest_duration.answer); the duration the model reports."""
     cycle, limits = design.machine_cycle, design.limits
     calculator = cycle_model(design, law, candidates)
-    later = [kind for kind in (residual_limit(design, law),
+    builds = candidates.motors.builds
+    later = [kind for kind in (residual_limit(design, law,
+                                              () if builds is None else builds.modes),
                                energy_limit(design, candidates.motors),
                                *screw_limits(candidates.drive),
                                *(gearbox_life_limits(candidates.drive)

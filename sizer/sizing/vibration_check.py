@@ -32,6 +32,7 @@ from sizer.sizing.evaluation import CycleMetrics, CycleModel
 from sizer.sizing.results import RESIDUAL
 from sizer.sizing.shortest_duration import LaterChecks
 from sizer.vibration.cycle_residual import CycleVibration
+from sizer.vibration.elastic_load import ElasticLoad
 
 GRID_PER_PERIOD = 16
 """Samples per damped period of the search for the admissible durations."""
@@ -85,11 +86,30 @@ class ResidualLimit:
     vibration: CycleVibration
     limit: float | None
     linear: bool
+    modes: tuple[CycleVibration, ...] = ()
+    """Each build's where the candidates' builds change the mode (their ``mode`` indexes
+    it: sizer.sizing.candidates.Builds); else the design's :attr:`vibration` for all."""
+
+    def _groups(self, calculator: CycleModel, rows: np.ndarray | None = None
+                ) -> list[tuple[CycleVibration, np.ndarray | None]]:
+        """(vibration, the candidates of ``rows`` (default: all) it holds for; None: all)."""
+        builds = calculator.motors.builds
+        if not self.modes or builds is None or builds.mode is None:
+            return [(self.vibration, None)]
+        mode = builds.mode if rows is None else builds.mode[rows]
+        return [(v, np.flatnonzero(mode == k)) for k, v in enumerate(self.modes)]
 
     def at(self, calculator: CycleModel, s: np.ndarray, metrics: CycleMetrics,
            known: np.ndarray) -> LaterChecks:
         at = np.where(known, s, 1.0)
-        worst = self.vibration.worst(at, own_durations(calculator, at))
+        own = own_durations(calculator, at)
+        worst = np.empty(np.shape(at))
+        for vibration, index in self._groups(calculator):
+            if index is None:
+                worst = vibration.worst(at, own)
+            elif index.size:
+                worst[index] = vibration.worst(at[index], None if own is None
+                                               else [d[index] for d in own])
         figures = {RESIDUAL: np.where(known, worst, np.nan)}
         if self.limit is None:
             return LaterChecks([], np.ones(len(known), dtype=bool), figures)
@@ -101,7 +121,13 @@ class ResidualLimit:
     def passing_scale(self, calculator: CycleModel, rows: np.ndarray, s: np.ndarray,
                       found: LaterChecks) -> np.ndarray:
         assert self.limit is not None, "a check fails only against a limit"
-        return admissible_scale(self.vibration, s, self.limit)
+        out = np.empty(np.shape(s))
+        for vibration, index in self._groups(calculator, rows):
+            if index is None:
+                return admissible_scale(vibration, s, self.limit)
+            if index.size:
+                out[index] = admissible_scale(vibration, s[index], self.limit)
+        return out
 
 
 def own_durations(calculator: CycleModel, s: np.ndarray) -> list[np.ndarray] | None:
@@ -114,10 +140,12 @@ def own_durations(calculator: CycleModel, s: np.ndarray) -> list[np.ndarray] | N
     return durations
 
 
-def residual_limit(design: Design, law: RankedLaw) -> ResidualLimit | None:
+def residual_limit(design: Design, law: RankedLaw,
+                   modes: tuple[ElasticLoad | None, ...] = ()) -> ResidualLimit | None:
     """The design's residual vibration with this law as a later limit, or None without a
     mode of the load (UserError where the design limits it all the same: a limit is never
-    skipped; sizer.io refuses it at its line)."""
+    skipped; sizer.io refuses it at its line). ``modes``: the modes of the candidates'
+    builds (sizer.sizing.candidates.Builds), each candidate's residual by its own."""
     vibration = cycle_vibration(design, law)
     if vibration is None:
         if design.limits.residual_vibration is not None:
@@ -125,8 +153,13 @@ def residual_limit(design: Design, law: RankedLaw) -> ResidualLimit | None:
                             "load.natural_frequency (and damping_ratio)",
                             field="limits.residual_vibration")
         return None
+    per_mode = tuple(cycle_vibration(replace(design, load=replace(design.load, elastic=m)),
+                                     law) for m in modes)
+    if any(v is None for v in per_mode):
+        raise ValueError("every build of a load with a mode has one")
     return ResidualLimit(vibration, design.limits.residual_vibration,
-                         design.machine_cycle.linear)
+                         design.machine_cycle.linear,
+                         tuple(v for v in per_mode if v is not None))
 
 
 def admissible_scale(vibration: CycleVibration, s: np.ndarray, limit: float) -> np.ndarray:
