@@ -146,7 +146,8 @@ def test_robust_builds_of_the_load_and_motors_are_one_sizing(monkeypatch) -> Non
     sizing for all their corners and samples (rows), not one per build; the worst margins
     are still the least over the corners each sized on its own (tests/test_robust*.py
     check that across designs; here the count)."""
-    import sizer.sizing.engine as engine
+    from engine_calls import counted_sizings
+
     from sizer.model.tolerance import Tolerance
     from sizer.robust import robust_sizing
 
@@ -155,14 +156,7 @@ def test_robust_builds_of_the_load_and_motors_are_one_sizing(monkeypatch) -> Non
         Tolerance("load.inertia", 0.2), Tolerance("load.friction", 0.5),
         Tolerance("transmission.efficiency", 0.02), Tolerance("motor.peak_torque", 0.1)))
     nominal = api.size(design)
-    calls: list[int] = []
-    sized = engine.size_design
-
-    def counted(*args, **kwargs):
-        calls.append(1)
-        return sized(*args, **kwargs)
-
-    monkeypatch.setattr(engine, "size_design", counted)
-    robust = robust_sizing(design, nominal, samples=20)
-    assert len(calls) == 1  # 16 corners and 20 samples x 2 motors: 72 rows of one sizing
+    robust, sizings = counted_sizings(
+        monkeypatch, lambda: robust_sizing(design, nominal, samples=20))
+    assert sizings == 1  # 16 corners and 20 samples x 2 motors: 72 rows of one sizing
     assert all(r.corners == 16 and r.samples == 20 for r in robust.results)

@@ -83,23 +83,14 @@ def test_builds_of_the_mode_are_rows_unless_a_law_is_shaped_for_it(tmp_path, mon
     """The mode's corners are rows of one sizing (each row's residual by its build's mode);
     a law shaped for the load's mode at each duration is shaped again at each build, so
     its builds are sizings of their own (four corners: four sizings)."""
-    import sizer.sizing.engine as engine
+    from engine_calls import counted_sizings
 
     design = _design(tmp_path)
     design = replace(design, laws=api.load(EXAMPLES / DESIGN).laws[laws], tolerances=(
         Tolerance("load.natural_frequency", 0.1), Tolerance("load.damping_ratio", 0.5)))
     nominal = api.size(design)
-    calls: list[int] = []
-    sized = engine.size_design
-
-    def counted(*args, **kwargs):
-        calls.append(1)
-        return sized(*args, **kwargs)
-
-    monkeypatch.setattr(engine, "size_design", counted)
-    robust = robust_sizing(design, nominal)
-    assert len(calls) == sizings
-    monkeypatch.undo()
+    robust, count = counted_sizings(monkeypatch, lambda: robust_sizing(design, nominal))
+    assert count == sizings
     corners = [{(r.motor, r.law): r for r in api.size(_with_mode(design, f, z)).results}
                for f, z in itertools.product(CORNER_F, CORNER_Z)]
     # a shaped law by its family, shaped at each build: its T_min iteration stops at a
