@@ -360,3 +360,14 @@ def test_a_diff_of_laws_per_move_pairs_each_motor_with_itself(tmp_path) -> None:
         if rows_a[motor]["spec"] != rows_b[motor]["spec"]:
             assert changes["spec"]["after"] == rows_b[motor]["spec"]
     assert rows_a["m2"]["spec"] != rows_b["m2"]["spec"]  # the case the key is for
+
+
+def test_the_laws_per_move_are_chosen_in_bounded_chunks(monkeypatch) -> None:
+    """The search of each candidate's laws runs in chunks of candidates (memory bounded
+    whatever the catalog): one candidate a chunk gives the same rows."""
+    import sizer.sizing.engine as engine
+
+    whole = _by_motor(_per_move())
+    monkeypatch.setattr(engine, "_rows_per_candidate", lambda cycle, laws: 10**9)
+    for motor, row in _by_motor(_per_move()).items():
+        assert row == whole[motor]

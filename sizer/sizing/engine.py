@@ -41,7 +41,7 @@ from sizer.envelope import envelope_note
 from sizer.errors import UserError
 from sizer.laws import LawChoice, law_choice
 from sizer.laws.per_move import LawsPerMove, PerMoveChoice, RankedLaw, per_move
-from sizer.model.cycle import Dwell
+from sizer.model.cycle import Cycle, Dwell
 from sizer.model.domain import Design, Motor
 from sizer.sizing.candidates import Builds, Candidates, MotorArrays
 from sizer.sizing.checks import TOLERANCE, CheckArrays, CheckName, shaft_notes
@@ -247,13 +247,32 @@ def evaluate_per_move(design: Design, choice: PerMoveChoice,
                         "cycle takes one law for its moves", field="cycle.share")
     laws = tuple(spec.law for spec in choice.laws)
     cycle = design.machine_cycle
-    chooser = SegmentCycle(cycle, None, candidates.drive, candidates.motors,
-                           design.limits.thermal_speed, weights=np.array(cycle.weights()))
-    chosen = chooser.move_laws(laws)
+    weights = np.array(cycle.weights())
+
+    def choose(part: Candidates) -> np.ndarray:
+        return SegmentCycle(cycle, None, part.drive, part.motors, design.limits.thermal_speed,
+                            weights=weights).move_laws(laws)
+
+    size = max(1, chunk_size(LawsPerMove(laws), len(cycle.moves)) // _rows_per_candidate(
+        cycle, len(laws)))
+    chosen = np.concatenate([choose(candidates.take(np.arange(start, min(
+        start + size, len(candidates))))) for start in range(0, len(candidates), size)])
     combinations, group = np.unique(chosen, axis=0, return_inverse=True)
     return in_groups(np.ravel(group), lambda k, index: evaluate_fixed_law(
         design, per_move(tuple(laws[j] for j in combinations[k])), candidates.take(index)),
         len(combinations))
+
+
+def _rows_per_candidate(cycle: Cycle, laws: int) -> int:
+    """The rows one candidate becomes in the search of its laws and split
+    (sizer.allocation.allocate_laws: a row per law combination of the free moves, at most
+    COMBINATIONS, else per law; five durations each for the slope and curvature), so that
+    its chunks stay within the engine's samples per evaluation."""
+    from sizer.allocation import COMBINATIONS
+
+    free = sum(1 for i in cycle.free if not getattr(cycle.segments[i], "law", None))
+    combinations = laws ** free
+    return 5 * (combinations if combinations <= COMBINATIONS else laws)
 
 
 CHUNK_SAMPLES = 2**21
