@@ -133,15 +133,10 @@ class Drive:
         """The drive of the candidates at ``index`` (repeats allowed)."""
         if self.option is None and not self.figures.varies:
             return self
-        out = object.__new__(Drive)
-        out.load, out.transmissions = self.load, self.transmissions
-        out.figures = self.figures.take(index)
         if self.option is None:
-            out.option, out.stages = None, self.stages
-        else:
-            out.option = self.option[index]
-            out.stages = tuple(s.take(index) for s in self.stages)
-        return out
+            return self._copy(figures=self.figures.take(index))
+        return self._copy(figures=self.figures.take(index), option=self.option[index],
+                          stages=tuple(s.take(index) for s in self.stages))
 
     def with_load(self, load: Load) -> Drive:
         """The same transmission options and candidates driving ``load`` instead (each
@@ -149,10 +144,16 @@ class Drive:
         LoadFigures.moved)."""
         if load is self.load:
             return self
+        return self._copy(load=load, figures=self.figures.moved(self.load, load))
+
+    def _copy(self, **changed: object) -> Drive:
+        """This drive with the fields ``changed`` (its five: load, figures,
+        transmissions, option, stages), its cached figures computed again."""
         out = object.__new__(Drive)
-        out.load, out.transmissions = load, self.transmissions
-        out.figures = self.figures.moved(self.load, load)
-        out.option, out.stages = self.option, self.stages
+        fields = {"load": self.load, "figures": self.figures,
+                  "transmissions": self.transmissions, "option": self.option,
+                  "stages": self.stages}
+        out.__dict__.update(fields, **changed)
         return out
 
     @property
