@@ -269,10 +269,10 @@ class Builds:
 def _distinct(values: list, design_value: object) -> tuple[tuple, np.ndarray | None]:
     """The distinct ``values`` and each one's index among them; nothing where every one is
     the design's own."""
-    distinct = list(dict.fromkeys(values))
-    if distinct == [design_value]:
+    place = {v: k for k, v in enumerate(dict.fromkeys(values))}
+    if list(place) == [design_value]:
         return (), None
-    return tuple(distinct), np.array([distinct.index(v) for v in values], dtype=np.intp)
+    return tuple(place), np.array([place[v] for v in values], dtype=np.intp)
 
 
 @dataclass(frozen=True)
