@@ -37,12 +37,16 @@ Searched to tolerance, for the cases without a closed form (:func:`search_shape`
 damping, efficiency, curved envelopes, stage limits, a given duration (the largest smallest
 margin) or other families: the score of a shape (-T_min in minimize mode, else the slacks of
 all checks smallest first, compared lexicographically) is computed by the engine's own
-checks for each motor. One parameter: a coarse grid brackets each motor's best point, then
-golden section narrows the bracket to TOLERANCE[1] (T_min and the margins are max/min of
-quasi-convex/quasi-concave bounds, unimodal on the bracket), or until the scores across the
-bracket agree to FLAT. Two parameters: the same, nested (the inner search for each outer
-point), to TOLERANCE[2] per parameter (coarser: the cost is the product of the two
-searches). Three or more (:func:`search_box`): a grid shared by all motors, then a pattern
+checks for each motor. One parameter (:func:`search_1d`): a coarse grid brackets each
+motor's best point (T_min and the margins are max/min of quasi-convex/quasi-concave
+bounds, unimodal on the bracket), then each step tries where the two bounds cross (read
+from the lines through the points either side: the optimum is mostly such a crossing)
+or the vertex of a parabola (a smooth optimum of one bound), whichever foretold the
+other points better, a golden-section-like point where neither lies inside or the
+bracket did not halve in two steps, until the bracket is narrower than TOLERANCE[1] or
+the scores across it agree to FLAT. Two parameters: the same, nested (the inner search
+for each outer point), to TOLERANCE[2] per parameter (coarser: the cost is the product of
+the two searches). Three or more (:func:`search_box`): a grid shared by all motors, then a pattern
 search on the 3^N - 1 neighbours of each motor's best point to TOLERANCE[3]. Integer
 parameters are enumerated. Motors at equal points are evaluated together (vectorized). In
 minimize mode each T_min is the engine's (sizer.sizing.shortest_duration).
@@ -209,12 +213,20 @@ def search_box(score: Callable[[list[np.ndarray]], Scores], bounds: list[tuple[f
 
 def search_1d(score: Callable[[np.ndarray], Scores], parameter, bounds: tuple[float, float],
               n: int, dims: int) -> tuple[np.ndarray, Scores]:
-    """Best point per motor of a 1-D score, and its score (grid, then golden section).
+    """Best point per motor of a 1-D score, and its score (a grid, then a bracket search).
 
-    A motor is settled when its bracket is narrower than TOLERANCE[dims] or when the
-    scores at the bracket's ends and inner points agree to FLAT (the optimum's value is
-    then known to that precision); settled motors are not evaluated again (their point
-    is passed as nan).
+    The grid's best point m and its neighbours a < m < b bracket each motor's best point
+    (the score is unimodal there). Each step tries one point in the bracket: where the
+    bounds meet, read from the points either side (:func:`_v_step`: T_min and the smallest
+    margin are maxima of smooth per-check bounds, so the optimum is mostly a crossing of
+    two, where this converges like a secant), or a golden-section point where there is no
+    such point, the first entries of the scores tie, or the bracket has not halved in two
+    steps. A best point at an end of the range is first compared with the point beside it
+    (an optimum at the end is then settled in one step). A motor is settled when its
+    bracket is narrower than TOLERANCE[dims], or when the scores at the bracket's ends and
+    its best point agree to FLAT with that point well inside; settled motors are not
+    evaluated again (their point is passed as nan). The best of all the points tried is
+    returned.
     """
     lo, hi = bounds
     if parameter.integer:
@@ -223,34 +235,128 @@ def search_1d(score: Callable[[np.ndarray], Scores], parameter, bounds: tuple[fl
             grid = grid[grid % 2 == 1]
         best, best_s, _, _ = _best_on_grid(score, grid, n)
         return best, best_s
+    tol = TOLERANCE[dims]
     grid = np.linspace(lo, hi, GRID[dims])
     best, best_s, index, on_grid = _best_on_grid(score, grid, n)
-    rows = np.arange(n)
-    left_i, right_i = np.maximum(index - 1, 0), np.minimum(index + 1, len(grid) - 1)
-    a, b = grid[left_i], grid[right_i]
-    fa, fb = on_grid[left_i, rows], on_grid[right_i, rows]
-    x1, x2 = b - INV_PHI * (b - a), a + INV_PHI * (b - a)
-    f1, f2 = score(x1), score(x2)
+    rows, last = np.arange(n), len(grid) - 1
+
+    def at(i: np.ndarray) -> tuple[np.ndarray, Scores]:
+        """The grid's points and scores at indices i (nan beyond the grid)."""
+        inside = (i >= 0) & (i <= last)
+        k = np.clip(i, 0, last)
+        return (np.where(inside, grid[k], np.nan),
+                np.where(inside[:, None], on_grid[k, rows], np.nan))
+
+    (lo_x, f_lo), (a, fa) = at(index - 2), at(np.maximum(index - 1, 0))
+    (b, fb), (r, fr) = at(np.minimum(index + 1, last)), at(index + 2)
+    m, fm = grid[index], best_s
     active = np.ones(n, dtype=bool)
+    edge = (index == 0) | (index == last)
+    if edge.any():  # the point beside the end: the end stays best, or the bracket is
+        low = index == 0  # (end, beside, next)
+        z = np.where(edge, m + np.where(low, 0.5, -0.5) * tol, np.nan)
+        f_z = score(z)
+        best, best_s = _keep_best(best, best_s, z, f_z, edge)
+        moved = edge & beats(f_z, fm)
+        active &= ~edge | moved
+        a, fa = np.where(moved & low, m, a), np.where((moved & low)[:, None], fm, fa)
+        b, fb = np.where(moved & ~low, m, b), np.where((moved & ~low)[:, None], fm, fb)
+        m, fm = np.where(moved, z, m), np.where(moved[:, None], f_z, fm)
+    before = [np.full(n, np.inf), np.full(n, np.inf)]  # the widths of the last two steps
     while True:
-        active &= (b - a > TOLERANCE[dims]) & ~_flat(fa, f1, f2, fb)
+        active &= (b - a > tol) & ~(_flat(fa, fm, fb) & (np.minimum(m - a, b - m)
+                                                          >= 0.2 * (b - a)))
         if not active.any():
             break
-        left = ~beats(f2, f1)  # the best lies in [a, x2]
-        move_b, move_a = active & left, active & ~left
-        fb = np.where(move_b[:, None], f2, fb)
-        fa = np.where(move_a[:, None], f1, fa)
-        b, a = np.where(move_b, x2, b), np.where(move_a, x1, a)
-        new1 = np.where(left, b - INV_PHI * (b - a), x2)
-        new2 = np.where(left, x1, a + INV_PHI * (b - a))
-        f_new = score(np.where(active, np.where(left, new1, new2), np.nan))
-        f1, f2 = (np.where(move_b[:, None], f_new, np.where(move_a[:, None], f2, f1)),
-                  np.where(move_b[:, None], f1, np.where(move_a[:, None], f_new, f2)))
-        x1, x2 = np.where(active, new1, x1), np.where(active, new2, x2)
-    for x, s in ((x1, f1), (x2, f2)):
-        take = beats(s, best_s)
-        best, best_s = np.where(take, x, best), np.where(take[:, None], s, best_s)
+        z = _v_step(np.stack([lo_x, a, m, b, r]), -np.stack([f_lo, fa, fm, fb, fr])[..., 0])
+        # else a point on the wider side: at the golden section, or at three times the
+        # narrow side's width where that is nearer (m is then likely within it: the
+        # bracket closes around m, else the next such step goes three times as far)
+        wide_right = b - m > m - a
+        wide, narrow = np.maximum(b - m, m - a), np.minimum(b - m, m - a)
+        step = np.minimum((1 - INV_PHI) * wide, 3.0 * narrow)
+        z = np.where(np.isnan(z) | (b - a > 0.5 * before[0]),
+                     np.where(wide_right, m + step, m - step), z)
+        z = _apart(z, a, m, b, 0.25 * tol)
+        f_z = score(np.where(active, z, np.nan))
+        best, best_s = _keep_best(best, best_s, z, f_z, active)
+        before = [before[1], b - a]
+        # the inner points u < w: the bracket keeps the better one inside, the point it
+        # leaves out is the next beyond it on that side
+        z_left = z < m
+        u, w = np.where(z_left, z, m), np.where(z_left, m, z)
+        f_u, f_w = (np.where(z_left[:, None], f_z, fm), np.where(z_left[:, None], fm, f_z))
+        to_left = active & ~beats(f_w, f_u)  # the best lies in [a, w]
+        to_right = active & ~to_left  # in [u, b]
+        r, fr = np.where(to_left, b, r), np.where(to_left[:, None], fb, fr)
+        lo_x, f_lo = np.where(to_right, a, lo_x), np.where(to_right[:, None], fa, f_lo)
+        b, fb = np.where(to_left, w, b), np.where(to_left[:, None], f_w, fb)
+        a, fa = np.where(to_right, u, a), np.where(to_right[:, None], f_u, fa)
+        m = np.where(to_left, u, np.where(to_right, w, m))
+        fm = np.where(to_left[:, None], f_u, np.where(to_right[:, None], f_w, fm))
     return best, best_s
+
+
+def _keep_best(best: np.ndarray, best_s: Scores, x: np.ndarray, s: Scores,
+               where: np.ndarray) -> tuple[np.ndarray, Scores]:
+    """The best point so far per motor: x where its score s beats it."""
+    take = where & beats(s, best_s)
+    return np.where(take, x, best), np.where(take[:, None], s, best_s)
+
+
+def _v_step(x: np.ndarray, f: np.ndarray) -> np.ndarray:
+    """The next point to try per motor (nan where none is found), from the points
+    x = (p, a, m, b, r) (p, r beyond the bracket a < m < b, nan where there are none) and
+    the values f to minimize there: where the two bounds cross, or the vertex of the
+    parabola through a, m, b, whichever model foretells the points it was not fitted to
+    better. Crossing: if m lies on the falling bound, the lines through (a, m) and (b, r)
+    meet at the optimum when the bounds are straight (told p); if on the rising one,
+    those through (p, a) and (m, b) (told r). A line joining points on either bound lies
+    above them where they are convex, so of the two crossings found the lower one is
+    taken. The parabola converges where the optimum is a smooth minimum of one bound."""
+    p, a, m, b, r = x
+    fp, fa, fm, fb, fr = f
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        x1, y1, miss1 = _crossing_of(a, fa, m, fm, b, fb, r, fr, p, fp)
+        x2, y2, miss2 = _crossing_of(p, fp, a, fa, m, fm, b, fb, r, fr)
+        ok1 = (x1 > m) & (x1 < b)
+        ok2 = (x2 > a) & (x2 < m)
+        take1 = ok1 & ~(ok2 & (y2 < y1))
+        cross = np.where(take1, x1, np.where(ok2, x2, np.nan))
+        miss = np.where(take1, miss1, miss2)
+        slope = (fm - fa) / (m - a)
+        curve = ((fb - fm) / (b - m) - slope) / (b - a)
+        vertex = np.where(curve > 0.0, 0.5 * (a + m) - slope / (2.0 * curve), np.nan)
+        vertex = np.where((vertex > a) & (vertex < b), vertex, np.nan)
+
+        def parabola(t):
+            return fa + slope * (t - a) + curve * (t - a) * (t - m)
+
+        told = np.fmax(np.abs(parabola(p) - fp), np.abs(parabola(r) - fr))
+        use_vertex = ~np.isnan(vertex) & (np.isnan(cross) | (told < miss))
+        return np.where(use_vertex, vertex, cross)
+
+
+def _crossing_of(x0, f0, x1, f1, x2, f2, x3, f3, xt, ft):
+    """Where the falling line through (x0, f0), (x1, f1) meets the rising one through
+    (x2, f2), (x3, f3), its value there (nan where the slopes do not fall and rise), and
+    how far the line on the side of (xt, ft) misses it (nan where there is no such point)."""
+    falling = (f1 - f0) / (x1 - x0)
+    rising = (f3 - f2) / (x3 - x2)
+    good = (falling < 0.0) & (rising > 0.0) & np.isfinite(falling) & np.isfinite(rising)
+    x = (f2 - f1 + falling * x1 - rising * x2) / (falling - rising)
+    told = np.where(xt < x0, f1 + falling * (xt - x1), f2 + rising * (xt - x2))
+    return (np.where(good, x, np.nan), np.where(good, f1 + falling * (x - x1), np.nan),
+            np.abs(told - ft))
+
+
+def _apart(z: np.ndarray, a: np.ndarray, m: np.ndarray, b: np.ndarray,
+           gap: float) -> np.ndarray:
+    """z moved to at least ``gap`` from m and inside [a + gap, b - gap]."""
+    z = np.clip(z, a + gap, b - gap)
+    side = np.where(z == m, np.where(b - m > m - a, 1.0, -1.0), np.sign(z - m))
+    side = np.where(np.where(side > 0, b - m, m - a) < 2.0 * gap, -side, side)
+    return np.where(np.abs(z - m) < gap, m + side * gap, z)
 
 
 def _flat(*scores: Scores) -> np.ndarray:
@@ -296,10 +402,11 @@ def evaluate_points(family: type[MotionLaw], fixed: dict[str, float], names: lis
         return np.full((n, 1), -np.inf)
     keys, inverse = np.unique(stacked[wanted], axis=0, return_inverse=True)
     inverse = inverse.reshape(-1)
+    laws = [family(**fixed, **{name: float(v) for name, v in zip(names, key, strict=True)})
+            for key in keys]
     out: Scores | None = None
-    for k, key in enumerate(keys):
+    for k, law in enumerate(laws):
         members = wanted[np.nonzero(inverse == k)[0]]
-        law = family(**fixed, **{name: float(v) for name, v in zip(names, key, strict=True)})
         subset = motors if len(members) == n else motors.take(members)
         rows = score_law(law, design, subset)
         if out is None:

@@ -1,0 +1,127 @@
+"""The search of `auto` shape parameters (sizer.sizing.choices.search_1d) on functions
+whose optimum the test knows, its count of evaluations, and against a dense grid of
+fixed shapes sized by the engine."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from sizer.laws.base import Parameter
+from sizer.model import Design, Limits, Load, Motor, Stage, Task, Transmission
+from sizer.sizing import size_design
+from sizer.sizing.choices import TOLERANCE, search_1d
+
+ALPHA = Parameter("alpha", None, 0.0, 0.5)
+
+
+class Counted:
+    """-f at per-motor points (nan: not asked) as (motors, 1) scores, counting the
+    evaluations asked for."""
+
+    def __init__(self, f):
+        self.f, self.asked = f, 0
+
+    def __call__(self, x: np.ndarray) -> np.ndarray:
+        self.asked += int(np.count_nonzero(~np.isnan(x)))
+        with np.errstate(invalid="ignore"):
+            return -self.f(x)[:, None]
+
+
+def v_shape(optimum: np.ndarray):
+    """max of a falling and a rising curve crossing at ``optimum`` (a kink, as where two
+    checks' durations cross): slopes -3 and about +0.7 there."""
+    return lambda x: np.maximum(1.0 + 3.0 * (optimum - x),
+                                1.0 + 0.7 * (x - optimum) + 0.5 * (x - optimum) ** 2)
+
+
+@pytest.mark.parametrize("optimum", [0.3123456789, 0.0871, 0.4444444])
+def test_a_crossing_of_two_bounds_is_found_to_the_tolerance_in_few_steps(optimum):
+    n = 3
+    where = np.full(n, optimum)
+    score = Counted(v_shape(where))
+    best, scores = search_1d(score, ALPHA, (1e-3, 0.5), n, 1)
+    assert np.all(np.abs(best - optimum) <= 2 * TOLERANCE[1])
+    assert np.allclose(-scores[:, 0], 1.0, rtol=0, atol=1e-11)
+    # 13 grid points, then a few steps each: golden section alone takes about 55
+    assert score.asked <= n * 30
+
+
+def test_a_smooth_minimum_ends_where_the_scores_agree_to_flat():
+    centre = np.array([1 / 3, 0.25, 0.1])
+    score = Counted(lambda x: 2.0 + 5.0 * (x - centre) ** 2)
+    best, scores = search_1d(score, ALPHA, (1e-3, 0.5), 3, 1)
+    # the value is known to rounding: the point to about sqrt(1e-13 * 2 / 5)
+    assert np.all(np.abs(best - centre) < 1e-6)
+    assert np.allclose(-scores[:, 0], 2.0, rtol=1e-13)
+    assert score.asked <= 3 * 40
+
+
+def test_an_optimum_at_an_end_of_the_range_is_settled_beside_it():
+    score = Counted(lambda x: np.where(np.arange(2) == 0, 1.0 / x, 1.0 + x))
+    best, _ = search_1d(score, ALPHA, (0.01, 0.5), 2, 1)
+    assert best[0] == 0.5 and best[1] == 0.01
+    assert score.asked == 2 * (13 + 1)  # the grid, then one point beside each end
+
+
+def test_a_jump_to_the_optimum_is_approached_from_its_side():
+    """T_min may jump where a check's window opens: the search still closes on the jump."""
+    edge = 0.2948625330448
+
+    def f(x):
+        return np.where(x < edge, 1.5, 1.0 + (x - edge))
+
+    best, scores = search_1d(Counted(f), ALPHA, (1e-3, 0.5), 1, 1)
+    assert edge <= best[0] <= edge + 2 * TOLERANCE[1]
+    assert -scores[0, 0] == pytest.approx(1.0, abs=1e-11)
+
+
+def test_ties_on_the_first_score_are_decided_by_the_next():
+    """A given duration: the smallest margin may not depend on the shape (a speed check),
+    then the next one decides; the interpolation reads the first entry only."""
+    def score(x):
+        with np.errstate(invalid="ignore"):
+            return np.stack([np.where(np.isnan(x), np.nan, 0.25), -(x - 0.3) ** 2], axis=1)
+
+    best, _ = search_1d(score, ALPHA, (1e-3, 0.5), 2, 1)
+    assert np.all(np.abs(best - 0.3) < 1e-6)
+
+
+MOTORS = tuple(Motor(f"m{i}", inertia=2e-5 * t**1.3, continuous_torque=t, peak_torque=3 * t,
+                     rated_speed=3000 * math.pi / 30)
+               for i, t in enumerate((0.4, 1.1, 2.5, 6.0)))
+
+
+def efficiency_design(motors=MOTORS, spec="trapezoidal(alpha=auto)", seed=None) -> Design:
+    """A searched case: a gearbox of efficiency 0.9 (power flow: no closed form)."""
+    rng = np.random.default_rng(seed)
+    inertia, friction = (0.35, 0.5) if seed is None else (rng.uniform(0.05, 0.6),
+                                                          rng.uniform(0.0, 0.8))
+    dwell = 0.15 if seed is None else rng.uniform(0.0, 0.4)
+    return Design(Task(math.pi / 2, None, dwell=dwell, return_move=True),
+                  Load(inertia, friction=friction),
+                  Transmission((Stage("gearbox", 10.0, 0.9, 1.2e-4),)), laws=(spec,),
+                  motors=motors, limits=Limits(torque_margin=0.1))
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_the_searched_optimum_is_no_slower_than_a_dense_grid_of_fixed_shapes(seed):
+    """Random designs through a gearbox of efficiency 0.9 (no closed form): the auto
+    trapezoid's T_min against the engine's T_min of 97 fixed trapezoids."""
+    motors = MOTORS[1:3]
+    design = efficiency_design(motors, seed=seed)
+    auto = size_design(design).results
+    grid = np.linspace(0.02, 0.5, 97).tolist()
+    fixed = size_design(replace(design, laws=tuple(f"trapezoidal(alpha={a!r})"
+                                                   for a in grid))).results
+    for motor in motors:
+        mine = [r for r in auto if r.motor == motor.id]
+        dense = [r.duration for r in fixed if r.motor == motor.id and r.feasible]
+        assert len(mine) == 1
+        if not dense:
+            continue
+        assert mine[0].feasible
+        assert mine[0].duration <= min(dense) * (1 + 1e-12)
