@@ -1,6 +1,6 @@
 """The search of `auto` shape parameters (sizer.sizing.choices.search_1d) on functions
-whose optimum the test knows, its count of evaluations, and against a dense grid of
-fixed shapes sized by the engine."""
+whose optimum the test knows, its count of evaluations, and several laws sized as the
+rows of one model (sizer.sizing.evaluation.LawRows) against each law sized alone."""
 
 from __future__ import annotations
 
@@ -11,9 +11,11 @@ import numpy as np
 import pytest
 
 from sizer.laws.base import Parameter
+from sizer.laws.piecewise_polynomial import Trapezoidal
 from sizer.model import Design, Limits, Load, Motor, Stage, Task, Transmission
 from sizer.sizing import size_design
-from sizer.sizing.choices import TOLERANCE, search_1d
+from sizer.sizing.candidates import Candidates, MotorArrays
+from sizer.sizing.choices import TOLERANCE, _law_rows, score_law, search_1d
 
 ALPHA = Parameter("alpha", None, 0.0, 0.5)
 
@@ -105,6 +107,22 @@ def efficiency_design(motors=MOTORS, spec="trapezoidal(alpha=auto)", seed=None) 
                   Load(inertia, friction=friction),
                   Transmission((Stage("gearbox", 10.0, 0.9, 1.2e-4),)), laws=(spec,),
                   motors=motors, limits=Limits(torque_margin=0.1))
+
+
+def test_several_laws_as_rows_of_one_model_give_each_laws_own_answer():
+    design = efficiency_design()
+    candidates = Candidates.single(MotorArrays.of(design.motors), design.load,
+                                   design.transmission)
+    laws = [Trapezoidal(alpha=a) for a in (0.11, 0.25, 1 / 3, 0.47)]
+    part = np.array([2, 0, 3, 1, 1, 2, 0, 3])
+    rows = candidates.take(np.arange(8) % 4)
+    together = _law_rows(laws, part, design, rows)
+    assert together is not None
+    for k, law in enumerate(laws):
+        mine = np.flatnonzero(part == k)
+        alone = score_law(law, design, rows.take(mine))
+        assert np.array_equal(together[mine], alone)  # the same numbers, bit for bit
+    assert np.isfinite(together).all()
 
 
 @pytest.mark.parametrize("seed", [1, 2, 3])

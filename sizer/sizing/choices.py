@@ -94,6 +94,7 @@ from sizer.sizing.candidates import Candidates, MotorArrays
 from sizer.sizing.checks import evaluate_checks
 from sizer.sizing.cycle import single_task
 from sizer.sizing.energy_check import has_braking_check, has_heat_check, without_power_figures
+from sizer.sizing.evaluation import LawRows
 from sizer.sizing.move import CycleCalculator
 from sizer.sizing.results import CandidateTable, Mode, concatenate, in_groups
 from sizer.sizing.shortest_duration import minimum_duration
@@ -404,6 +405,11 @@ def evaluate_points(family: type[MotionLaw], fixed: dict[str, float], names: lis
     inverse = inverse.reshape(-1)
     laws = [family(**fixed, **{name: float(v) for name, v in zip(names, key, strict=True)})
             for key in keys]
+    together = _law_rows(laws, inverse, design, motors.take(wanted))
+    if together is not None:
+        every = np.full((n, 1), -np.inf)
+        every[wanted] = together
+        return every
     out: Scores | None = None
     for k, law in enumerate(laws):
         members = wanted[np.nonzero(inverse == k)[0]]
@@ -414,6 +420,33 @@ def evaluate_points(family: type[MotionLaw], fixed: dict[str, float], names: lis
         out[members] = rows
     assert out is not None
     return out
+
+
+def _law_rows(laws: list[MotionLaw], part: np.ndarray, design: Design,
+              candidates: Candidates) -> Scores | None:
+    """The scores of several laws' candidates (row i of laws[part[i]]) sized as the rows
+    of one model (sizer.sizing.evaluation.LawRows) where the laws take the search from
+    their peak bounds: minimize mode, a move rest-to-rest without a linkage or a closed
+    form, no law that moves backwards. None elsewhere (each law scored alone)."""
+    if len(laws) < 2 or design.transmission.linkage is not None:
+        return None
+    task = single_task(design)
+    if not task.minimize:
+        return None
+    from sizer.sizing.shortest_duration import has_constant_torques
+
+    parts = []
+    for k, law in enumerate(laws):
+        mine = np.flatnonzero(part == k)
+        parts.append(CycleCalculator(None, task, candidates.drive.take(mine),
+                                     candidates.motors.subset(mine),
+                                     design.limits.thermal_speed, law=law))
+    rows = LawRows(parts, part, candidates.motors, candidates.drive)
+    if has_constant_torques(rows) or any(
+            float(law.linear_peaks.minimum(0.0, 1.0).value) < -1e-12 for law in laws):
+        return None
+    solution = minimum_duration(rows, design.limits)
+    return -np.where(solution.feasible, solution.duration, np.inf)[:, None]
 
 
 def score_law(law: MotionLaw, design: Design, candidates: Candidates) -> Scores:

@@ -14,8 +14,10 @@ segment's figures (:class:`SegmentedModel`, :class:`SegmentPart`).
 
 from __future__ import annotations
 
+import dataclasses
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING, Protocol, Self
+from typing import TYPE_CHECKING, Any, Protocol, Self
 
 import numpy as np
 
@@ -228,3 +230,168 @@ class SegmentedModel(CycleModel, Protocol):
     def breakdown(self, s: np.ndarray) -> list[SegmentPart]:
         """Each segment's figures at scales s (sizer.sizing.samples.segment_breakdown)."""
         ...
+
+
+def rms_of_powers(c: np.ndarray, T: np.ndarray, n: int, dwell: float,
+                  hold: np.ndarray) -> np.ndarray:
+    """The RMS torque at durations T of n moves whose summed int tau^2 dt is
+    c_3/T^3 + c_2/T^2 + c_1/T + c_0 + c_(-1) T (rows of ``c``: :attr:`RmsModel.powers`),
+    each followed by a dwell holding ``hold``."""
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        u = 1.0 / T
+        square = ((c[0] * u + c[1]) * u + c[2]) * u + c[3] + c[4] * T
+        mean = (square + n * dwell * np.square(hold)) / (n * (T + dwell))
+    return np.sqrt(np.where(np.isnan(mean), np.inf, mean))
+
+
+class LawRows:
+    """Several laws' candidates as the rows of one cycle model: the law as an array axis.
+
+    A search over shape parameters (sizer.sizing.choices) asks at each step the shortest
+    duration of a different law for each motor. Each law move is its own calculator
+    (sizer.sizing.move.CycleCalculator: the law's tables, its peaks); part k holds the
+    rows where ``part == k``, in their order, and ``motors`` and ``drive`` are the rows'.
+    The search for T_min (sizer.sizing.shortest_duration), its root finders and the checks
+    then run once over all the rows, each calculator evaluating only its own: every
+    evaluation is elementwise over the rows, so each row's answer is the one its law's
+    calculator gives alone. No closed form (:meth:`law_move` is None): used where the laws
+    take the search from their peak bounds (sizer.sizing.choices).
+    """
+
+    segmented = False
+
+    def __init__(self, parts: Sequence[CycleCalculator], part: np.ndarray,
+                 motors: MotorArrays, drive: Drive) -> None:
+        self.parts = tuple(parts)
+        self.part = np.asarray(part, dtype=np.intp)
+        self.rows = [np.flatnonzero(self.part == k) for k in range(len(self.parts))]
+        self._motors, self._drive = motors, drive
+
+    @property
+    def task(self) -> Task:
+        return self.parts[0].task
+
+    @property
+    def drive(self) -> Drive:
+        return self._drive
+
+    @property
+    def motors(self) -> MotorArrays:
+        return self._motors
+
+    def __len__(self) -> int:
+        return len(self.part)
+
+    def take(self, index: np.ndarray) -> LawRows:
+        """The rows at ``index``, in that order (each part takes its own)."""
+        index = np.asarray(index, dtype=np.intp)
+        part = self.part[index]
+        rank = np.empty(len(self.part), dtype=np.intp)  # each row's place in its part
+        for rows in self.rows:
+            rank[rows] = np.arange(len(rows))
+        kept = np.unique(part)  # the parts with rows left, renumbered in order
+        parts = [self.parts[k].take(rank[index[part == k]]) for k in kept]
+        return LawRows(parts, np.searchsorted(kept, part), self._motors.subset(index),
+                       self._drive.take(index))
+
+    def _spread(self, values: Sequence[np.ndarray | None]) -> np.ndarray | None:
+        """One array over the rows from each part's (None if a part has none)."""
+        if any(v is None for v in values):
+            return None
+        out = np.empty(len(self.part))
+        for rows, v in zip(self.rows, values, strict=True):
+            out[rows] = v
+        return out
+
+    def evaluate(self, duration: np.ndarray, peaks: bool = True, model: bool = False,
+                 rms: np.ndarray | None = None) -> CycleMetrics:
+        T = np.broadcast_to(np.asarray(duration, dtype=float), (len(self.part),))
+        found = [calc.evaluate(T[rows], peaks, model, None if rms is None else rms[rows])
+                 for calc, rows in zip(self.parts, self.rows, strict=True)]
+        return _stacked(found, self.rows, len(self.part))
+
+    def thermal_speed(self, T: np.ndarray) -> np.ndarray:
+        T = np.broadcast_to(np.asarray(T, dtype=float), (len(self.part),))
+        out = self._spread([calc.thermal_speed(T[rows])
+                            for calc, rows in zip(self.parts, self.rows, strict=True)])
+        assert out is not None
+        return out
+
+    def peak_bound(self, limits: Limits) -> np.ndarray | None:
+        return self._spread([calc.peak_bound(limits) for calc in self.parts])
+
+    def search_start(self, limits: Limits) -> None:
+        return None
+
+    def initial_guess(self) -> np.ndarray:
+        out = self._spread([calc.initial_guess() for calc in self.parts])
+        assert out is not None
+        return out
+
+    def rms_lower_bound(self) -> np.ndarray | None:
+        return self._spread([calc.rms_lower_bound() for calc in self.parts])
+
+    def reported(self, metrics: CycleMetrics) -> np.ndarray:
+        return metrics.duration
+
+    def dead_point_issues(self) -> None:
+        return None
+
+    def given_scale(self) -> float:
+        return self.parts[0].given_scale()
+
+    def law_move(self) -> None:
+        """None: the rows are several laws' (each law's closed forms are its own)."""
+        return None
+
+    def cycle_time(self, T: np.ndarray) -> np.ndarray:
+        return self.parts[0].cycle_time(T)
+
+    def scale_of(self, duration: np.ndarray) -> np.ndarray:
+        return np.asarray(duration, dtype=float)
+
+    def pieces(self, s: np.ndarray, samples: int | None = None) -> list[CyclePiece]:
+        raise NotImplementedError("the rows of several laws are sampled law by law")
+
+
+@dataclass(frozen=True)
+class StackedRms:
+    """The parts' RMS models (sizer.sizing.move.RmsModel) as one over the rows."""
+
+    powers: np.ndarray
+    moves: int
+    dwell: float
+    hold: np.ndarray
+
+    def rms(self, T: np.ndarray, index: np.ndarray | None = None) -> np.ndarray:
+        c = self.powers if index is None else self.powers[:, index]
+        hold = self.hold if index is None else self.hold[index]
+        return rms_of_powers(c, T, self.moves, self.dwell, hold)
+
+
+def _stacked(found: list[CycleMetrics], rows: list[np.ndarray], n: int) -> CycleMetrics:
+    """The parts' metrics as one evaluation over the rows."""
+    def put(values: list[np.ndarray]) -> np.ndarray:
+        out = np.empty(n, dtype=np.result_type(*values))
+        for r, v in zip(rows, values, strict=True):
+            out[r] = np.broadcast_to(v, (len(r),))
+        return out
+
+    fields: dict[str, Any] = {}
+    for field in dataclasses.fields(CycleMetrics):
+        if field.name == "rms_model":
+            continue
+        values = [getattr(m, field.name) for m in found]
+        fields[field.name] = [put(list(stage)) for stage in zip(*values, strict=True)] \
+            if isinstance(values[0], list) else put(values)
+    models = [m.rms_model for m in found]
+    if models and all(m is not None for m in models):
+        powers = np.empty((5, n))
+        hold = np.empty(n)
+        for r, model in zip(rows, models, strict=True):
+            powers[:, r] = model.powers  # type: ignore[union-attr]
+            hold[r] = np.broadcast_to(model.hold, (len(r),))  # type: ignore[union-attr]
+        first = models[0]
+        fields["rms_model"] = StackedRms(powers, len(first.moves),  # type: ignore[union-attr]
+                                         first.dwell, hold)  # type: ignore[union-attr]
+    return CycleMetrics(**fields)

@@ -54,8 +54,8 @@ from sizer.sizing.cycle import (
     rms_floor,
     segment_load,
 )
-from sizer.sizing.evaluation import CycleMetrics, CyclePiece, SegmentPart, held_piece
-from sizer.sizing.move import rms_of_powers, rule_speed
+from sizer.sizing.evaluation import CycleMetrics, CyclePiece, SegmentPart, held_piece, rms_of_powers
+from sizer.sizing.move import rule_speed
 from sizer.sizing.shortest_duration import mechanical_answer
 
 PEAK_POINTS = 4001

@@ -126,7 +126,7 @@ from sizer.numerics.arrays import sorted_unique, spread
 from sizer.numerics.golden import golden_step, interior_points
 from sizer.numerics.hermite import hermite_root
 from sizer.sizing.candidates import MotorArrays
-from sizer.sizing.evaluation import SAMPLES, CycleMetrics, CyclePiece, held_piece
+from sizer.sizing.evaluation import SAMPLES, CycleMetrics, CyclePiece, held_piece, rms_of_powers
 
 POLYNOMIAL_INTERVALS = 16
 """Uniform intervals per polynomial piece. One would be exact for the integrals, but the
@@ -877,18 +877,6 @@ class RmsModel:
         c = self.powers if index is None else self.powers[:, index]
         hold = self.hold if index is None else self.hold[index]
         return rms_of_powers(c, T, len(self.moves), self.dwell, hold)
-
-
-def rms_of_powers(c: np.ndarray, T: np.ndarray, n: int, dwell: float,
-                  hold: np.ndarray) -> np.ndarray:
-    """The RMS torque at durations T of n moves whose summed int tau^2 dt is
-    c_3/T^3 + c_2/T^2 + c_1/T + c_0 + c_(-1) T (rows of ``c``: :attr:`RmsModel.powers`),
-    each followed by a dwell holding ``hold``."""
-    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        u = 1.0 / T
-        square = ((c[0] * u + c[1]) * u + c[2]) * u + c[3] + c[4] * T
-        mean = (square + n * dwell * np.square(hold)) / (n * (T + dwell))
-    return np.sqrt(np.where(np.isnan(mean), np.inf, mean))
 
 
 Objective = Callable[[np.ndarray, np.ndarray], np.ndarray]
