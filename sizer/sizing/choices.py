@@ -115,6 +115,10 @@ optimum by about the step (1e-4 relative in T_min): never worse than its grid.""
 BOX_ROUNDS = 60
 FLAT = 1e-13
 TIE = 1e-14
+TRUST = 0.3
+"""A step of the 1-D search goes where a model of the score (two crossing lines, or a
+parabola) puts the optimum only where that model foretold a point it was not fitted to
+within TRUST times the rise of the score across the bracket (:func:`_v_step`)."""
 INV_PHI = (math.sqrt(5.0) - 1.0) / 2.0
 
 Scores = np.ndarray
@@ -310,11 +314,12 @@ def _v_step(x: np.ndarray, f: np.ndarray) -> np.ndarray:
     x = (p, a, m, b, r) (p, r beyond the bracket a < m < b, nan where there are none) and
     the values f to minimize there: where the two bounds cross, or the vertex of the
     parabola through a, m, b, whichever model foretells the points it was not fitted to
-    better. Crossing: if m lies on the falling bound, the lines through (a, m) and (b, r)
-    meet at the optimum when the bounds are straight (told p); if on the rising one,
-    those through (p, a) and (m, b) (told r). A line joining points on either bound lies
-    above them where they are convex, so of the two crossings found the lower one is
-    taken. The parabola converges where the optimum is a smooth minimum of one bound."""
+    better, if within TRUST of the rise across the bracket. Crossing: if m lies on the
+    falling bound, the lines through (a, m) and (b, r) meet at the optimum when the bounds
+    are straight (told p); if on the rising one, those through (p, a) and (m, b) (told r).
+    A line joining points on either bound lies above them where they are convex, so of
+    the two crossings found the lower one is taken. The parabola converges where the
+    optimum is a smooth minimum of one bound."""
     p, a, m, b, r = x
     fp, fa, fm, fb, fr = f
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
@@ -334,6 +339,11 @@ def _v_step(x: np.ndarray, f: np.ndarray) -> np.ndarray:
             return fa + slope * (t - a) + curve * (t - a) * (t - m)
 
         told = np.fmax(np.abs(parabola(p) - fp), np.abs(parabola(r) - fr))
+        # a model is trusted where it foretold its held-out point to a tenth of the
+        # rise across the bracket (a wall, such as T_min as beta -> 0, fits neither)
+        trust = TRUST * (np.maximum(fa, fb) - fm)
+        cross = np.where(miss <= trust, cross, np.nan)
+        vertex = np.where(told <= trust, vertex, np.nan)
         use_vertex = ~np.isnan(vertex) & (np.isnan(cross) | (told < miss))
         return np.where(use_vertex, vertex, cross)
 
