@@ -82,14 +82,20 @@ def test_a_jump_to_the_optimum_is_approached_from_its_side():
 
 
 def test_ties_on_the_first_score_are_decided_by_the_next():
-    """A given duration: the smallest margin may not depend on the shape (a speed check),
-    then the next one decides; the interpolation reads the first entry only."""
+    """A given duration: the smallest margin may not depend on the shape (the inertia
+    ratio), then the next one decides, and the steps read that one."""
+    optimum = np.array([0.3, 0.1234567])
+    second = v_shape(optimum)
+    asked = []
+
     def score(x):
+        asked.append(int(np.count_nonzero(~np.isnan(x))))
         with np.errstate(invalid="ignore"):
-            return np.stack([np.where(np.isnan(x), np.nan, 0.25), -(x - 0.3) ** 2], axis=1)
+            return np.stack([np.where(np.isnan(x), np.nan, 0.25), -second(x)], axis=1)
 
     best, _ = search_1d(score, ALPHA, (1e-3, 0.5), 2, 1)
-    assert np.all(np.abs(best - 0.3) < 1e-6)
+    assert np.all(np.abs(best - optimum) <= 2 * TOLERANCE[1])
+    assert sum(asked) <= 2 * 30
 
 
 MOTORS = tuple(Motor(f"m{i}", inertia=2e-5 * t**1.3, continuous_torque=t, peak_torque=3 * t,

@@ -224,14 +224,14 @@ def search_1d(score: Callable[[np.ndarray], Scores], parameter, bounds: tuple[fl
     (the score is unimodal there). Each step tries one point in the bracket: where the
     bounds meet, read from the points either side (:func:`_v_step`: T_min and the smallest
     margin are maxima of smooth per-check bounds, so the optimum is mostly a crossing of
-    two, where this converges like a secant), or a golden-section point where there is no
-    such point, the first entries of the scores tie, or the bracket has not halved in two
-    steps. A best point at an end of the range is first compared with the point beside it
-    (an optimum at the end is then settled in one step). A motor is settled when its
-    bracket is narrower than TOLERANCE[dims], or when the scores at the bracket's ends and
-    its best point agree to FLAT with that point well inside; settled motors are not
-    evaluated again (their point is passed as nan). The best of all the points tried is
-    returned.
+    two, where this converges like a secant) or a parabola's vertex, on the entry of the
+    scores that decides between the bracket's points (:func:`_deciding`); else, or where
+    the bracket has not halved in two steps, a point on its wider side. A best point at
+    an end of the range is first compared with the point beside it (an optimum at the
+    end is then settled in one step). A motor is settled when its bracket is narrower
+    than TOLERANCE[dims], or when the scores at the bracket's ends and its best point
+    agree to FLAT with that point well inside; settled motors are not evaluated again
+    (their point is passed as nan). The best of all the points tried is returned.
     """
     lo, hi = bounds
     if parameter.integer:
@@ -273,7 +273,9 @@ def search_1d(score: Callable[[np.ndarray], Scores], parameter, bounds: tuple[fl
                                                           >= 0.2 * (b - a)))
         if not active.any():
             break
-        z = _v_step(np.stack([lo_x, a, m, b, r]), -np.stack([f_lo, fa, fm, fb, fr])[..., 0])
+        values = np.stack([f_lo, fa, fm, fb, fr])
+        column = _deciding(fa, fm, fb)
+        z = _v_step(np.stack([lo_x, a, m, b, r]), -values[:, rows, column])
         # else a point on the wider side: at the golden section, or at three times the
         # narrow side's width where that is nearer (m is then likely within it: the
         # bracket closes around m, else the next such step goes three times as far)
@@ -300,6 +302,19 @@ def search_1d(score: Callable[[np.ndarray], Scores], parameter, bounds: tuple[fl
         m = np.where(to_left, u, np.where(to_right, w, m))
         fm = np.where(to_left[:, None], f_u, np.where(to_right[:, None], f_w, fm))
     return best, best_s
+
+
+def _deciding(*scores: Scores) -> np.ndarray:
+    """Per row the first entry of the scores at which they differ beyond TIE (the one
+    that decides between them, as :func:`beats` compares; the first where none does): a
+    given duration's smallest margin may not depend on the shape (the inertia ratio),
+    and the next one decides."""
+    first = scores[0]
+    with np.errstate(invalid="ignore"):
+        differs = np.zeros(first.shape, dtype=bool)
+        for s in scores[1:]:
+            differs |= ~np.isclose(s, first, rtol=TIE, atol=1e-300) & (s != first)
+    return np.argmax(differs, axis=1)
 
 
 def _keep_best(best: np.ndarray, best_s: Scores, x: np.ndarray, s: Scores,
