@@ -269,12 +269,15 @@ def search_1d(score: Callable[[np.ndarray], Scores], parameter, bounds: tuple[fl
         m, fm = np.where(moved, z, m), np.where(moved[:, None], f_z, fm)
     before = [np.full(n, np.inf), np.full(n, np.inf)]  # the widths of the last two steps
     while True:
-        active &= (b - a > tol) & ~(_flat(fa, fm, fb) & (np.minimum(m - a, b - m)
+        # the entry that depends on the shape known to FLAT across the bracket: its
+        # optimum is found (the next entries would only break ties within rounding)
+        column = _deciding(fa, fm, fb)
+        deciding = [f[rows, column][:, None] for f in (fa, fm, fb)]
+        active &= (b - a > tol) & ~(_flat(*deciding) & (np.minimum(m - a, b - m)
                                                           >= 0.2 * (b - a)))
         if not active.any():
             break
         values = np.stack([f_lo, fa, fm, fb, fr])
-        column = _deciding(fa, fm, fb)
         z = _v_step(np.stack([lo_x, a, m, b, r]), -values[:, rows, column])
         # else a point on the wider side: at the golden section, or at three times the
         # narrow side's width where that is nearer (m is then likely within it: the
@@ -305,16 +308,15 @@ def search_1d(score: Callable[[np.ndarray], Scores], parameter, bounds: tuple[fl
 
 
 def _deciding(*scores: Scores) -> np.ndarray:
-    """Per row the first entry of the scores at which they differ beyond TIE (the one
-    that decides between them, as :func:`beats` compares; the first where none does): a
-    given duration's smallest margin may not depend on the shape (the inertia ratio),
-    and the next one decides."""
+    """Per row the first entry of the scores that is not the same at every point (the
+    first that depends on the shape; the first where none does): a given duration's
+    smallest margin may not depend on the shape (the inertia ratio), and the next one
+    decides."""
     first = scores[0]
-    with np.errstate(invalid="ignore"):
-        differs = np.zeros(first.shape, dtype=bool)
-        for s in scores[1:]:
-            differs |= ~np.isclose(s, first, rtol=TIE, atol=1e-300) & (s != first)
-    return np.argmax(differs, axis=1)
+    varies = np.zeros(first.shape, dtype=bool)
+    for s in scores[1:]:
+        varies |= s != first
+    return np.argmax(varies, axis=1)
 
 
 def _keep_best(best: np.ndarray, best_s: Scores, x: np.ndarray, s: Scores,
