@@ -69,6 +69,17 @@ def test_an_optimum_at_an_end_of_the_range_is_settled_beside_it():
     assert score.asked == 2 * (13 + 1)  # the grid, then one point beside each end
 
 
+def test_a_best_end_whose_slope_does_not_show_beside_it_is_searched_inside():
+    """The grid's best point at the end of the range, the optimum just inside the last
+    interval and so shallow that the point tol/2 beside the end ties with it: the search
+    goes on inside (it settled at the end, 0.0066 away, before)."""
+    centre = 0.4934
+    score = Counted(lambda x: 1.0 + 1e-3 * (x - centre) ** 2)
+    best, scores = search_1d(score, ALPHA, (1e-3, 0.5), 1, 1)
+    assert abs(best[0] - centre) < 1e-4
+    assert -scores[0, 0] <= 1.0 + 1e-12
+
+
 def test_a_jump_to_the_optimum_is_approached_from_its_side():
     """T_min may jump where a check's window opens: the search still closes on the jump."""
     edge = 0.2948625330448

@@ -33,7 +33,9 @@ C_a_rms = sqrt((6-8b)/(3a))/((1-a)(1-b)): in b, T_A and T_R increase and T_J dec
 so for a given a the best b is where max(T_A, T_R) meets T_J (a 1-D root), or an end of
 the range. What remains is a function of a alone, the largest of smooth pieces; its
 minimum (a minimum of one piece or a crossing of two) is bracketed on a dense sample
-that contains the special points and located by golden section to 1e-13 in a. Where T_R
+that contains the special points and located to 1e-13 in a by the bracket search of
+sizer.numerics.bracket_search (steps where two pieces cross or to a parabola's vertex,
+safeguarded like golden section). Where T_R
 does not bind and the optimum lies in the ranges, it is the book's closed form (sec. 3.4.3).
 """
 
@@ -48,7 +50,7 @@ from sizer.laws import MotionLaw
 from sizer.laws.piecewise_polynomial import DoubleS, Trapezoidal
 from sizer.model.domain import Design
 from sizer.numerics.arrays import sorted_unique
-from sizer.numerics.golden import INV_PHI, golden_step, interior_points
+from sizer.numerics.bracket_search import from_grid
 from sizer.sizing.candidates import Candidates
 from sizer.sizing.cycle import single_task
 from sizer.sizing.move import CycleCalculator
@@ -61,7 +63,8 @@ from sizer.sizing.shortest_duration import (
 )
 
 SAMPLES = 65
-GOLDEN_WIDTH = 1e-13
+SEARCH_WIDTH = 1e-13
+"""The width in alpha to which the double S with an RMS bound is searched."""
 HALF = 0.5
 
 
@@ -270,24 +273,30 @@ def time_optimal_double_s(scales: BoundScales,
 def searched_double_s(scales: BoundScales, low_a: float, low_b: float, high_a: float,
                       high_b: float) -> tuple[dict[str, np.ndarray], np.ndarray]:
     """(alpha, beta) minimizing T_min per motor and T_min there, searched: beta exact for
-    each alpha, alpha by a dense sample polished with golden section (each motor's result
-    independent of the others': every bracket takes the steps of the widest)."""
+    each alpha, alpha by a dense sample, then the bracket search around each motor's best
+    sample (sizer.numerics.bracket_search: T_min(alpha) is the largest of the bounds, its
+    optimum mostly where two cross) to SEARCH_WIDTH; each motor's steps depend on its own
+    values only."""
     n = len(scales.speed)
 
-    def reduced(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        b = best_beta(scales, a, low_b, high_b)
-        return double_s_duration(scales, a, b), b
+    def reduced(a: np.ndarray, part: BoundScales = scales) -> tuple[np.ndarray, np.ndarray]:
+        b = best_beta(part, a, low_b, high_b)
+        return double_s_duration(part, a, b), b
 
     grid = sorted_unique(np.concatenate((np.linspace(low_a, high_a, SAMPLES),
                                      [min(max(1.0 / 3.0, low_a), high_a)])))
     T_grid, _ = reduced(np.broadcast_to(grid, (n, len(grid))).copy())
     best = np.argmin(np.where(np.isnan(T_grid), np.inf, T_grid), axis=1)
 
-    def bracket(i: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        return grid[np.maximum(i - 1, 0)], grid[np.minimum(i + 1, len(grid) - 1)]
+    def score(x: np.ndarray) -> np.ndarray:
+        """-T_min at each motor's own alpha (nan: a settled motor, not evaluated)."""
+        out = np.full((n, 1), np.nan)
+        rows = np.flatnonzero(~np.isnan(x))
+        if len(rows):
+            out[rows, 0] = -reduced(x[rows, None], scales.take(rows))[0][:, 0]
+        return out
 
-    widest = float(np.max(np.subtract(*bracket(np.arange(len(grid)))[::-1])))
-    a = _golden(lambda x: reduced(x[:, None])[0][:, 0], *bracket(best), widest)
+    a, _ = from_grid(score, grid, -T_grid.T[:, :, None], best, SEARCH_WIDTH)
     candidates = np.column_stack((a, grid[best]))
     T, b = reduced(candidates)
     pick = np.argmin(np.where(np.isnan(T), np.inf, T), axis=1)
@@ -394,19 +403,6 @@ def log_gap_root(f, lo: np.ndarray, hi: np.ndarray, f_lo: np.ndarray, f_hi: np.n
         side[active] = np.where(same, -1, 1)
         active = active[~done]
     return root
-
-
-def _golden(f, lo: np.ndarray, hi: np.ndarray, widest: float = 0.0) -> np.ndarray:
-    """Per-element golden-section minimum of f on [lo, hi] to a width of GOLDEN_WIDTH, in
-    at least the steps that take a bracket ``widest`` wide there."""
-    lo, hi = lo.astype(float).copy(), hi.astype(float).copy()
-    x1, x2 = interior_points(lo, hi)
-    bracket = (lo, hi, x1, x2, f(x1), f(x2))
-    while np.any(bracket[1] - bracket[0] > GOLDEN_WIDTH) or widest > GOLDEN_WIDTH:
-        bracket = golden_step(f, bracket, bracket[4] <= bracket[5])  # min in [lo, x2]
-        widest *= INV_PHI
-    _, _, x1, x2, f1, f2 = bracket
-    return np.where(f1 <= f2, x1, x2)
 
 
 def _finish(scales: BoundScales, params: dict[str, np.ndarray], duration: np.ndarray,
