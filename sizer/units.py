@@ -303,7 +303,9 @@ _SI_FACTORS: dict[str, dict[str, float]] = {
     "linear_acceleration": {"m/s**2": 1.0, "mm/s**2": 0.001},
     "angular_jerk": {"rad/s**3": 1.0},
     "linear_jerk": {"m/s**3": 1.0},
-    "torque": {"N*m": 1.0, "mN*m": 0.001, "N*cm": 0.01},
+    "torque": {"N*m": 1.0, "mN*m": 0.001, "N*cm": 0.01,
+               # a rotary spring's stiffness, read as a torque (the radian is a ratio)
+               "N*m/rad": 1.0, "N*m/deg": 57.29577951308232},
     "force": {"N": 1.0, "kN": 1000.0},
     "inertia": {"kg*m**2": 1.0, "kg*cm**2": 0.0001, "g*cm**2": 1.0000000000000001e-07},
     "mass": {"kg": 1.0, "g": 0.001},
