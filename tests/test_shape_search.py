@@ -142,6 +142,34 @@ def test_several_laws_as_rows_of_one_model_give_each_laws_own_answer():
     assert np.isfinite(together).all()
 
 
+@pytest.mark.parametrize("duration", [None, 0.6])
+def test_each_candidates_own_law_sized_as_rows_of_one_model_is_each_law_alone(
+        duration, monkeypatch):
+    """sizer.sizing.engine.evaluate_laws (the laws of auto shapes, one per motor): as the
+    rows of one LawRows model, and law by law, every figure the same bit for bit."""
+    from sizer.sizing import engine
+
+    design = replace(efficiency_design(), task=Task(math.pi / 2, duration, dwell=0.15,
+                                                    return_move=True))
+    candidates = Candidates.single(MotorArrays.of(design.motors), design.load,
+                                   design.transmission)
+    laws = [Trapezoidal(alpha=a) for a in (0.2, 1 / 3, 0.45)]
+    group = np.array([2, 0, 1, 0])
+    assert engine._law_rows(design, laws, group, candidates) is not None
+    together = engine.evaluate_laws(design, laws, group, candidates)
+    monkeypatch.setattr(engine, "_law_rows", lambda *args: None)
+    alone = engine.evaluate_laws(design, laws, group, candidates)
+    assert [together.laws[i] for i in together.law] == [laws[k] for k in group]
+    assert [alone.laws[i] for i in alone.law] == [laws[k] for k in group]
+    assert np.array_equal(together.feasible, alone.feasible)
+    for name, values in alone.figures.items():
+        assert np.array_equal(together.figures[name], values, equal_nan=True), name
+    for mine, theirs in zip(together.checks, alone.checks, strict=True):
+        assert mine.name == theirs.name
+        assert np.array_equal(mine.value, theirs.value, equal_nan=True)
+        assert np.array_equal(mine.slack, theirs.slack, equal_nan=True)
+
+
 @pytest.mark.parametrize("seed", [1, 2, 3])
 def test_the_searched_optimum_is_no_slower_than_a_dense_grid_of_fixed_shapes(seed):
     """Random designs through a gearbox of efficiency 0.9 (no closed form): the auto

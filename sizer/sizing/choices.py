@@ -95,8 +95,7 @@ from sizer.sizing.candidates import Candidates, MotorArrays
 from sizer.sizing.checks import evaluate_checks
 from sizer.sizing.cycle import single_task
 from sizer.sizing.energy_check import has_braking_check, has_heat_check, without_power_figures
-from sizer.sizing.evaluation import LawRows
-from sizer.sizing.move import CycleCalculator
+from sizer.sizing.move import CycleCalculator, law_rows
 from sizer.sizing.results import CandidateTable, Mode, concatenate, in_groups
 from sizer.sizing.shortest_duration import minimum_duration
 from sizer.vibration.elastic_load import ElasticLoad
@@ -284,15 +283,9 @@ def _law_rows(laws: list[MotionLaw], part: np.ndarray, design: Design,
         return None
     from sizer.sizing.shortest_duration import has_constant_torques
 
-    parts = []
-    for k, law in enumerate(laws):
-        mine = np.flatnonzero(part == k)
-        parts.append(CycleCalculator(None, task, candidates.drive.take(mine),
-                                     candidates.motors.subset(mine),
-                                     design.limits.thermal_speed, law=law))
-    rows = LawRows(parts, part, candidates.motors, candidates.drive)
-    if has_constant_torques(rows) or any(
-            float(law.linear_peaks.minimum(0.0, 1.0).value) < -1e-12 for law in laws):
+    rows = law_rows(laws, part, task, candidates.drive, candidates.motors,
+                    design.limits.thermal_speed)
+    if has_constant_torques(rows) or rows.moves_backwards():
         return None
     solution = minimum_duration(rows, design.limits)
     return -np.where(solution.feasible, solution.duration, np.inf)[:, None]

@@ -39,7 +39,7 @@ import numpy as np
 
 from sizer.envelope import envelope_note
 from sizer.errors import UserError
-from sizer.laws import LawChoice, law_choice
+from sizer.laws import LawChoice, MotionLaw, law_choice
 from sizer.laws.per_move import LawsPerMove, PerMoveChoice, RankedLaw, per_move
 from sizer.model.cycle import Cycle, Dwell
 from sizer.model.domain import Design, Motor
@@ -55,8 +55,8 @@ from sizer.sizing.cycle import (
     single_task,
 )
 from sizer.sizing.energy_check import energy_limit, energy_notes, without_power_figures
-from sizer.sizing.evaluation import CycleMetrics, CycleModel
-from sizer.sizing.move import CycleCalculator, MoveScales, RmsModel, law_grid
+from sizer.sizing.evaluation import CycleMetrics, CycleModel, LawRows
+from sizer.sizing.move import CycleCalculator, MoveScales, RmsModel, law_grid, law_rows
 from sizer.sizing.ranking import rank_order
 from sizer.sizing.results import (
     FIGURES,
@@ -68,7 +68,7 @@ from sizer.sizing.results import (
     concatenate,
     in_groups,
 )
-from sizer.sizing.shortest_duration import answer, is_purely_inertial
+from sizer.sizing.shortest_duration import answer, has_constant_torques, is_purely_inertial
 from sizer.sizing.stage_life import gearbox_life_limits, screw_limits
 from sizer.sizing.vibration_check import residual_limit
 
@@ -229,8 +229,54 @@ def evaluate_law(design: Design, spec: LawChoice | str,
     distinct = list(dict.fromkeys(laws))
     which = {law: k for k, law in enumerate(distinct)}
     group = np.array([which[law] for law in laws])
-    return in_groups(group, lambda k, index: evaluate_fixed_law(
-        design, distinct[k], candidates.take(index)), len(distinct))
+    return evaluate_laws(design, distinct, group, candidates)
+
+
+def evaluate_laws(design: Design, laws: Sequence[MotionLaw], group: np.ndarray,
+                  candidates: Candidates) -> CandidateTable:
+    """Each candidate with its own law (laws[group[i]]), in the candidates' order: as the
+    rows of one model (sizer.sizing.evaluation.LawRows: the search for T_min and the
+    checks once over every row) where the laws are moves of the task shorthand that take
+    the search from their peak bounds (no closed form, none moving backwards), no later
+    limit applies and one chunk holds them; else law by law (:func:`evaluate_fixed_law`),
+    which gives the same numbers."""
+    rows = _law_rows(design, laws, group, candidates)
+    if rows is None:
+        return in_groups(group, lambda k, index: evaluate_fixed_law(
+            design, laws[k], candidates.take(index)), len(laws))
+    cycle, limits = design.machine_cycle, design.limits
+    settled = answer(rows, limits, [], cycle.minimize)
+    checks, verdict = settled.checks, settled.feasible
+    if limits.thermal_duty == "once":
+        checks, verdict = _once(checks, verdict)
+    duration = rows.reported(settled.metrics)
+    if cycle.minimize:
+        duration = np.where(settled.feasible, duration, np.nan)
+    return _table(design, tuple(laws), candidates, duration, settled.metrics, checks,
+                  verdict, settled.figures, law_index=group)
+
+
+def _law_rows(design: Design, laws: Sequence[MotionLaw], group: np.ndarray,
+              candidates: Candidates) -> LawRows | None:
+    """The candidates as the rows of one LawRows model where :func:`evaluate_laws` may
+    size them so, else None."""
+    task = shorthand_task(design.machine_cycle)
+    if (len(laws) < 2 or task is None or design.transmission.linkage is not None
+            or design.load.position_dependent
+            or len(candidates) > min(chunk_size(law) for law in laws)):
+        return None
+    builds = candidates.motors.builds
+    modes = () if builds is None else builds.modes
+    drive = candidates.drive
+    if (any(residual_limit(design, law, modes) is not None for law in laws)
+            or energy_limit(design, candidates.motors) is not None or screw_limits(drive)
+            or (cycle_sampled(design) and gearbox_life_limits(drive))):
+        return None
+    rows = law_rows(laws, group, task, drive, candidates.motors,
+                    design.limits.thermal_speed)
+    if has_constant_torques(rows) or rows.moves_backwards():
+        return None  # each law's closed form, or its search without a peak bound
+    return rows
 
 
 def evaluate_per_move(design: Design, choice: PerMoveChoice,
@@ -401,18 +447,24 @@ LINKAGE_SAMPLES = 8192
 """Samples of a move through a linkage per candidate (sizer.sizing.linkage_move)."""
 
 
-def _table(design: Design, law: RankedLaw, candidates: Candidates, duration: np.ndarray,
-           metrics: CycleMetrics, checks: list[CheckArrays], feasible: np.ndarray,
-           extra: dict[str, np.ndarray]) -> CandidateTable:
+def _table(design: Design, law: RankedLaw | tuple[MotionLaw, ...], candidates: Candidates,
+           duration: np.ndarray, metrics: CycleMetrics, checks: list[CheckArrays],
+           feasible: np.ndarray, extra: dict[str, np.ndarray],
+           law_index: np.ndarray | None = None) -> CandidateTable:
+    """The table of one law (or of several: ``law`` their tuple, ``law_index`` each
+    candidate's)."""
     motors, drive = candidates.motors, candidates.drive
     n = len(motors)
+    laws = law if isinstance(law, tuple) else (law,)
+    index = np.zeros(n, dtype=np.intp) if law_index is None else np.asarray(law_index,
+                                                                             dtype=np.intp)
     figures = {"duration": duration, "peak_torque": metrics.peak_torque,
                "rms_torque": metrics.rms_torque, "max_speed": metrics.max_speed,
                "load_speed": metrics.load_speed, "load_torque": metrics.load_torque}
     assert set(figures) == set(FIGURES)
     figures.update(extra)  # the later limits': residual vibration, energy and heat
     return CandidateTable(
-        mode_of(design), (law,), np.zeros(n, dtype=np.intp), motors.catalog, motors.index,
+        mode_of(design), laws, index, motors.catalog, motors.index,
         drive.transmissions, candidates.gearbox_names, candidates.option,
         np.asarray(feasible, dtype=bool),
         {k: np.broadcast_to(np.asarray(v, dtype=float), (n,)).copy()

@@ -267,6 +267,12 @@ class LawRows:
         self.rows = [np.flatnonzero(self.part == k) for k in range(len(self.parts))]
         self._motors, self._drive = motors, drive
 
+    def moves_backwards(self) -> bool:
+        """Whether a law may move backwards (v_N < 0): it has no peak bound
+        (sizer.sizing.move.peak_duration), its search is another."""
+        return any(float(calc.law.linear_peaks.minimum(0.0, 1.0).value) < -1e-12
+                   for calc in self.parts)
+
     @property
     def task(self) -> Task:
         return self.parts[0].task

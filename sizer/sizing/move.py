@@ -109,7 +109,7 @@ function gives no necessary condition.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
 
@@ -126,7 +126,14 @@ from sizer.numerics.arrays import sorted_unique, spread
 from sizer.numerics.golden import golden_step, interior_points
 from sizer.numerics.hermite import hermite_root
 from sizer.sizing.candidates import MotorArrays
-from sizer.sizing.evaluation import SAMPLES, CycleMetrics, CyclePiece, held_piece, rms_of_powers
+from sizer.sizing.evaluation import (
+    SAMPLES,
+    CycleMetrics,
+    CyclePiece,
+    LawRows,
+    held_piece,
+    rms_of_powers,
+)
 
 POLYNOMIAL_INTERVALS = 16
 """Uniform intervals per polynomial piece. One would be exact for the integrals, but the
@@ -1900,6 +1907,19 @@ class CycleCalculator:
         lo = tau[interval, np.maximum(column - 1, 0)]
         hi = tau[interval, np.minimum(column + 1, columns - 1)]
         return lo, hi, g.piece[interval], valid, best_value
+
+
+def law_rows(laws: Sequence[MotionLaw], part: np.ndarray, task: Task, drive: Drive,
+             motors: MotorArrays, thermal_speed: ThermalSpeedRule = "max") -> LawRows:
+    """Several law moves of ``task`` as the rows of one model (sizer.sizing.evaluation.
+    LawRows): row i the move with laws[part[i]] for the motor and drive of row i."""
+    part = np.asarray(part, dtype=np.intp)
+    parts = []
+    for k, law in enumerate(laws):
+        mine = np.flatnonzero(part == k)
+        parts.append(CycleCalculator(None, task, drive.take(mine), motors.subset(mine),
+                                     thermal_speed, law=law))
+    return LawRows(parts, part, motors, drive)
 
 
 def _inertial(coefficients) -> bool:
