@@ -32,7 +32,10 @@ The samples must resolve the curve (at most one stationary point of g between tw
 samples near a maximum): 1024 uniform intervals per piece and 16 points a decade graded
 toward the piece ends and the fine points do so at the ends of the parameter ranges too
 (elliptic n = 1000, modified cycloidal kappa = +-0.99, exponential sigma = 1, lam = 0.15),
-checked against a graded brute force.
+checked against a graded brute force. A polynomial piece (degree <= 7: g has at most 4
+stationary points, and the cubic Hermite model is exact up to degree 5) takes 64 uniform
+intervals and 4 points a decade toward its ends (checked against the same brute force:
+the double S's maxima within 1e-4 of a piece end need the grading).
 
 Restricted to a speed band. A move that leaves the speed-torque region needs the peaks
 over the part of the move below its top speed (v_N <= u) and the part above it
@@ -64,6 +67,17 @@ from sizer.numerics.hermite import hermite_root
 
 SAMPLES_PER_PIECE = 1024
 """Uniform sample intervals per piece (plus the graded points of ``scan_grid``)."""
+
+SAMPLES_PER_POLYNOMIAL = 64
+"""Uniform sample intervals of a polynomial piece (``Piece.degree``, up to
+POLYNOMIAL_DEGREE), without grading: its curve has no steep end, and g = p*j_N + q*a_N is
+a polynomial of degree <= degree - 2 with at most degree - 3 stationary points, so 64
+intervals separate its roots, and the cubic Hermite model of g between two samples is
+exact up to degree 5 (a Newton step on the law polishes the rest)."""
+POLYNOMIAL_DEGREE = 7
+GRADED_POLYNOMIAL = 4
+"""Samples per decade toward a polynomial piece's ends (a maximum may lie within 1e-4 of
+an end, where the curve returns to rest: the double S's)."""
 
 GRADED_PER_DECADE = 16
 """Samples per decade of the geometric grading toward piece ends and fine points."""
@@ -153,8 +167,11 @@ def _piece_samples(law: LawShape, index: int) -> tuple[np.ndarray, ...]:
     grid). A piece of constant acceleration (zero jerk at every sample: the trapezoid's)
     is a straight segment of the curve, whose hull is its two ends: only they are kept
     (the jerk is read first, the other orders only where needed)."""
-    tau = scan_grid(law.pieces[index], uniform=SAMPLES_PER_PIECE, toward=law.fine_points(),
-                    per_decade=GRADED_PER_DECADE)
+    piece = law.pieces[index]
+    polynomial = piece.degree is not None and piece.degree <= POLYNOMIAL_DEGREE
+    tau = scan_grid(piece, uniform=SAMPLES_PER_POLYNOMIAL if polynomial else SAMPLES_PER_PIECE,
+                    toward=law.fine_points(),
+                    per_decade=GRADED_POLYNOMIAL if polynomial else GRADED_PER_DECADE)
     j = law.piece_derivative(index, tau, 3)
     if not j.any():
         tau, j = tau[[0, -1]], j[[0, -1]]
