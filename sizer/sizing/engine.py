@@ -262,20 +262,21 @@ def _law_rows(design: Design, laws: Sequence[MotionLaw], group: np.ndarray,
     size them so, else None."""
     task = shorthand_task(design.machine_cycle)
     if (len(laws) < 2 or task is None or design.transmission.linkage is not None
-            or design.load.position_dependent
-            or len(candidates) > min(chunk_size(law) for law in laws)):
+            or design.load.position_dependent):
+        return None
+    drive = candidates.drive
+    rows = law_rows(laws, group, task, drive, candidates.motors,
+                    design.limits.thermal_speed)
+    if has_constant_torques(rows):  # each law's closed form (cheaper than any search)
         return None
     builds = candidates.motors.builds
     modes = () if builds is None else builds.modes
-    drive = candidates.drive
     if (any(residual_limit(design, law, modes) is not None for law in laws)
             or energy_limit(design, candidates.motors) is not None or screw_limits(drive)
-            or (cycle_sampled(design) and gearbox_life_limits(drive))):
+            or (cycle_sampled(design) and gearbox_life_limits(drive))
+            or rows.moves_backwards()  # no peak bound: its search is another
+            or len(candidates) > min(chunk_size(law) for law in laws)):
         return None
-    rows = law_rows(laws, group, task, drive, candidates.motors,
-                    design.limits.thermal_speed)
-    if has_constant_torques(rows) or rows.moves_backwards():
-        return None  # each law's closed form, or its search without a peak bound
     return rows
 
 
