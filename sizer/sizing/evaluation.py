@@ -15,7 +15,7 @@ segment's figures (:class:`SegmentedModel`, :class:`SegmentPart`).
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any, Protocol, Self
 
@@ -375,6 +375,20 @@ class StackedRms:
         return rms_of_powers(c, T, self.moves, self.dwell, hold)
 
 
+def combined_metrics(found: Sequence[CycleMetrics],
+                     combine: Callable[[list[np.ndarray]], np.ndarray]) -> dict[str, Any]:
+    """The fields of one CycleMetrics from several, each array (and each stage's) the
+    ``combine`` of theirs; the RMS model left out."""
+    fields: dict[str, Any] = {}
+    for field in dataclasses.fields(CycleMetrics):
+        if field.name == "rms_model":
+            continue
+        values = [getattr(m, field.name) for m in found]
+        fields[field.name] = [combine(list(stage)) for stage in zip(*values, strict=True)] \
+            if isinstance(values[0], list) else combine(values)
+    return fields
+
+
 def _stacked(found: list[CycleMetrics], rows: list[np.ndarray], n: int) -> CycleMetrics:
     """The parts' metrics as one evaluation over the rows."""
     def put(values: list[np.ndarray]) -> np.ndarray:
@@ -383,13 +397,7 @@ def _stacked(found: list[CycleMetrics], rows: list[np.ndarray], n: int) -> Cycle
             out[r] = np.broadcast_to(v, (len(r),))
         return out
 
-    fields: dict[str, Any] = {}
-    for field in dataclasses.fields(CycleMetrics):
-        if field.name == "rms_model":
-            continue
-        values = [getattr(m, field.name) for m in found]
-        fields[field.name] = [put(list(stage)) for stage in zip(*values, strict=True)] \
-            if isinstance(values[0], list) else put(values)
+    fields = combined_metrics(found, put)
     models = [m.rms_model for m in found]
     if models and all(m is not None for m in models):
         powers = np.empty((5, n))

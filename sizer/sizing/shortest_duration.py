@@ -89,7 +89,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import partial
-from typing import Any, Protocol
+from typing import Protocol
 
 import numpy as np
 
@@ -109,7 +109,13 @@ from sizer.sizing.checks import (
     worst_slack,
 )
 from sizer.sizing.cycle import single_task
-from sizer.sizing.evaluation import CycleMetrics, CycleModel, RmsCurve, singular_metrics
+from sizer.sizing.evaluation import (
+    CycleMetrics,
+    CycleModel,
+    RmsCurve,
+    combined_metrics,
+    singular_metrics,
+)
 from sizer.sizing.move import CycleCalculator, peak_queries, speed_bounds
 
 EXPANSIONS = 80
@@ -301,19 +307,13 @@ def merge_metrics(metrics: CycleMetrics, index: np.ndarray, part: CycleMetrics) 
     elementwise over candidates, so the merge equals one evaluation of all of them."""
     n = len(metrics.duration)
 
-    def put(whole, rows):
+    def put(pair: list[np.ndarray]) -> np.ndarray:
+        whole, rows = pair
         out = np.array(np.broadcast_to(whole, (n,)), dtype=np.result_type(whole, rows))
         out[index] = np.broadcast_to(rows, (len(index),))
         return out
 
-    fields: dict[str, Any] = {}
-    for field in dataclasses.fields(CycleMetrics):
-        if field.name == "rms_model":
-            continue
-        whole, rows = getattr(metrics, field.name), getattr(part, field.name)
-        fields[field.name] = [put(w, r) for w, r in zip(whole, rows, strict=True)] \
-            if isinstance(whole, list) else put(whole, rows)
-    return CycleMetrics(**fields)
+    return CycleMetrics(**combined_metrics((metrics, part), put))
 
 
 def mechanical_answer(calculator: CycleModel, limits: Limits, minimize: bool,
