@@ -244,6 +244,21 @@ def rms_of_powers(c: np.ndarray, T: np.ndarray, n: int, dwell: float,
     return np.sqrt(np.where(np.isnan(mean), np.inf, mean))
 
 
+def thermal_speed_of(rule: str, K: float | np.ndarray, h: float, dwell: float, n: int,
+                     C_v: float | np.ndarray, C_v_rms: float | np.ndarray,
+                     T: np.ndarray) -> np.ndarray:
+    """The speed the continuous region is read at (the thermal rule, book sec. 6.1.1) of n
+    moves of h at durations T with dwells, ratio K and the law's C_v, C_v_rms (one per row
+    where the rows' laws differ): the peak speed as in the book, or the RMS or mean speed
+    over the cycle (sizer.sizing.move.CycleCalculator.thermal_speed)."""
+    cycle = n * (T + dwell)
+    if rule == "max":
+        return K * C_v * h / T
+    if rule == "rms":
+        return K * h * C_v_rms * np.sqrt(n * T / cycle) / T
+    return n * K * h / cycle
+
+
 class LawRows:
     """Several laws' candidates as the rows of one cycle model: the law as an array axis.
 
@@ -266,6 +281,10 @@ class LawRows:
         self.part = np.asarray(part, dtype=np.intp)
         self.rows = [np.flatnonzero(self.part == k) for k in range(len(self.parts))]
         self._motors, self._drive = motors, drive
+        self._c_v, self._c_v_rms = (np.empty(len(self.part)) for _ in range(2))
+        for calc, rows in zip(self.parts, self.rows, strict=True):
+            self._c_v[rows] = calc.law.coefficients.C_v
+            self._c_v_rms[rows] = calc.law.coefficients.C_v_rms
 
     def moves_backwards(self) -> bool:
         """Whether a law may move backwards (v_N < 0): it has no peak bound
@@ -317,11 +336,11 @@ class LawRows:
         return _stacked(found, self.rows, len(self.part))
 
     def thermal_speed(self, T: np.ndarray) -> np.ndarray:
-        T = np.broadcast_to(np.asarray(T, dtype=float), (len(self.part),))
-        out = self._spread([calc.thermal_speed(T[rows])
-                            for calc, rows in zip(self.parts, self.rows, strict=True)])
-        assert out is not None
-        return out
+        """Each row's law's (the same formula and numbers as its calculator's)."""
+        first = self.parts[0]
+        return thermal_speed_of(first.thermal_rule, self._drive.ratio, first.h,
+                                first.task.dwell, len(first.directions), self._c_v,
+                                self._c_v_rms, np.asarray(T, dtype=float))
 
     def peak_bound(self, limits: Limits) -> np.ndarray | None:
         return self._spread([calc.peak_bound(limits) for calc in self.parts])

@@ -133,6 +133,7 @@ from sizer.sizing.evaluation import (
     LawRows,
     held_piece,
     rms_of_powers,
+    thermal_speed_of,
 )
 
 POLYNOMIAL_INTERVALS = 16
@@ -1021,14 +1022,8 @@ class CycleCalculator:
         """The speed the continuous region is read at (the thermal rule): the peak speed
         as in the book, or the RMS or mean speed over the cycle."""
         c = self.law.coefficients
-        K, h, dwell = self.drive.ratio, self.h, self.task.dwell
-        n = len(self.directions)
-        cycle = n * (T + dwell)
-        if self.thermal_rule == "max":
-            return K * c.C_v * h / T
-        if self.thermal_rule == "rms":
-            return K * h * c.C_v_rms * np.sqrt(n * T / cycle) / T
-        return n * K * h / cycle
+        return thermal_speed_of(self.thermal_rule, self.drive.ratio, self.h, self.task.dwell,
+                                len(self.directions), c.C_v, c.C_v_rms, T)
 
     # ---------------------------------------------------------------- torques
     def channels(self, a_n: np.ndarray, v_n: np.ndarray, scales: MoveScales,
