@@ -129,17 +129,15 @@ def deciding(*scores: Scores) -> np.ndarray:
     return np.argmax(varies, axis=1)
 
 
-
 def keep_best(best: np.ndarray, best_s: Scores, x: np.ndarray, s: Scores,
-               where: np.ndarray) -> tuple[np.ndarray, Scores]:
-    """The best point so far per motor: x where its score s beats it."""
+              where: np.ndarray) -> tuple[np.ndarray, Scores]:
+    """The best point so far per row: x where ``where`` and its score s beats it."""
     take = where & beats(s, best_s)
     return np.where(take, x, best), np.where(take[:, None], s, best_s)
 
 
-
 def _v_step(x: np.ndarray, f: np.ndarray) -> np.ndarray:
-    """The next point to try per motor (nan where none is found), from the points
+    """The next point to try per row (nan where none is found), from the points
     x = (p, a, m, b, r) (p, r beyond the bracket a < m < b, nan where there are none) and
     the values f to minimize there: where the two bounds cross, or the vertex of the
     parabola through a, m, b, whichever model foretells the points it was not fitted to
@@ -164,11 +162,11 @@ def _v_step(x: np.ndarray, f: np.ndarray) -> np.ndarray:
         vertex = np.where(curve > 0.0, 0.5 * (a + m) - slope / (2.0 * curve), np.nan)
         vertex = np.where((vertex > a) & (vertex < b), vertex, np.nan)
 
-        def parabola(t):
+        def parabola(t: np.ndarray) -> np.ndarray:
             return fa + slope * (t - a) + curve * (t - a) * (t - m)
 
         told = np.fmax(np.abs(parabola(p) - fp), np.abs(parabola(r) - fr))
-        # a model is trusted where it foretold its held-out point to a tenth of the
+        # a model is trusted where it foretold its held-out point within TRUST of the
         # rise across the bracket (a wall, such as T_min as beta -> 0, fits neither)
         trust = TRUST * (np.maximum(fa, fb) - fm)
         cross = np.where(miss <= trust, cross, np.nan)
@@ -177,8 +175,10 @@ def _v_step(x: np.ndarray, f: np.ndarray) -> np.ndarray:
         return np.where(use_vertex, vertex, cross)
 
 
-
-def _crossing_of(x0, f0, x1, f1, x2, f2, x3, f3, xt, ft):
+def _crossing_of(x0: np.ndarray, f0: np.ndarray, x1: np.ndarray, f1: np.ndarray,
+                 x2: np.ndarray, f2: np.ndarray, x3: np.ndarray, f3: np.ndarray,
+                 xt: np.ndarray, ft: np.ndarray
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Where the falling line through (x0, f0), (x1, f1) meets the rising one through
     (x2, f2), (x3, f3), its value there (nan where the slopes do not fall and rise), and
     how far the line on the side of (xt, ft) misses it (nan where there is no such point)."""
@@ -191,7 +191,6 @@ def _crossing_of(x0, f0, x1, f1, x2, f2, x3, f3, xt, ft):
             np.abs(told - ft))
 
 
-
 def _apart(z: np.ndarray, a: np.ndarray, m: np.ndarray, b: np.ndarray,
            gap: float) -> np.ndarray:
     """z moved to at least ``gap`` from m and inside [a + gap, b - gap]."""
@@ -201,14 +200,12 @@ def _apart(z: np.ndarray, a: np.ndarray, m: np.ndarray, b: np.ndarray,
     return np.where(np.abs(z - m) < gap, m + side * gap, z)
 
 
-
 def agree(*scores: Scores) -> np.ndarray:
     """Per row: all the score rows agree to FLAT (relative, or absolute near zero)."""
     first = scores[0]
     with np.errstate(invalid="ignore"):
         same = [np.isclose(s, first, rtol=FLAT, atol=FLAT) | (s == first) for s in scores[1:]]
     return np.all(np.stack(same), axis=(0, 2))
-
 
 
 def beats(new: Scores, old: Scores) -> np.ndarray:

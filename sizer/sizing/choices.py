@@ -106,14 +106,13 @@ if TYPE_CHECKING:
 
 GRID = {1: 13, 2: 7, 3: 4}
 TOLERANCE = {1: 1e-12, 2: 1e-4, 3: 1e-3}
-"""Bracket width at which the golden section stops, per parameter. Two parameters cost
+"""Bracket width at which the bracket search stops, per parameter. Two parameters cost
 the product of the two searches, each point a full T_min search in minimize mode (about
 0.1 s per motor with friction), so 1e-12 there would take hours; 1e-4 takes minutes.
 Three or more: the step of the pattern search (:func:`search_box`), at most BOX_ROUNDS
 rounds; where two bounds cross along a ridge oblique to the axes it can stop short of the
 optimum by about the step (1e-4 relative in T_min): never worse than its grid."""
 BOX_ROUNDS = 60
-
 
 
 def search_shape(family: type[MotionLaw], fixed: dict[str, float],
