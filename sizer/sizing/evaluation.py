@@ -376,7 +376,12 @@ class LawRows:
         return np.asarray(duration, dtype=float)
 
     def pieces(self, s: np.ndarray, samples: int | None = None) -> list[CyclePiece]:
-        raise NotImplementedError("the rows of several laws are sampled law by law")
+        """Not sampled as one: each law samples its own grid (the counts of samples may
+        differ by law), so the rows' pieces are no one array. The engine uses LawRows only
+        where no later limit samples the cycle (sizer.sizing.engine.evaluate_laws); a
+        result's plots and reports build its own law's model."""
+        raise TypeError("LawRows holds several laws: sample each law's model "
+                        "(sizer.sizing.move.CycleCalculator.pieces)")
 
 
 @dataclass(frozen=True)
