@@ -127,8 +127,13 @@ def search_shape(family: type[MotionLaw], fixed: dict[str, float],
     def score(points: list[np.ndarray]) -> Scores:
         return evaluate_points(family, fixed, names, points, design, motors)
 
+    def score_rows(points: np.ndarray, rows: np.ndarray) -> Scores:
+        """The scores of the motors ``rows`` at ``points`` (one row of values each)."""
+        return evaluate_points(family, fixed, names, list(points.T), design,
+                               motors.take(rows))
+
     bounds = [ranges[name] for name in names]
-    best = search_box(score, bounds, n) if dims >= 3 else \
+    best = search_box(score_rows, bounds, n) if dims >= 3 else \
         _nested(score, [params[name] for name in names], bounds, n, dims, ())[0]
     return dict(zip(names, best, strict=True))
 
@@ -159,34 +164,44 @@ def _nested(score: Callable[[list[np.ndarray]], Scores], parameters: list[Parame
     return best, best_s
 
 
-def search_box(score: Callable[[list[np.ndarray]], Scores], bounds: list[tuple[float, float]],
-               n: int) -> list[np.ndarray]:
+def search_box(score_rows: Callable[[np.ndarray, np.ndarray], Scores],
+               bounds: list[tuple[float, float]], n: int) -> list[np.ndarray]:
     """Best point per motor of N >= 3 continuous parameters (nested 1-D searches would
     cost the product of N searches): a grid of GRID[3] points per parameter shared by all
     motors, then per motor the 3^N - 1 neighbours at +-step around its best point, the
     step halved where none is better, until it is below TOLERANCE[3] or the neighbours'
-    scores agree with the best to FLAT (at most BOX_ROUNDS rounds). Motors at equal
-    points are evaluated together, a point of a motor once; the best of all the points
-    tried is returned."""
+    scores agree with the best to FLAT (at most BOX_ROUNDS rounds). The grid, and each
+    round's neighbours, are scored in one call (``score_rows(points, motors)``: a row per
+    motor and point; motors at equal points evaluated together), a point of a motor once;
+    the neighbours are then taken in turn, the best of all the points tried returned."""
     low, high = (np.array(ends, dtype=float) for ends in zip(*bounds, strict=True))
     points = np.array(list(itertools.product(*(np.linspace(a, b, GRID[3]) for a, b in bounds))))
-    _, best_s, index, _ = _best_on_grid(lambda k: score(list(points[k.astype(int)].T)),
-                                        np.arange(len(points), dtype=float), n)
+    motor = np.arange(n)
+    every = score_rows(np.repeat(points, n, axis=0),
+                       np.tile(motor, len(points))).reshape(len(points), n, -1)
+    index, best_s = np.zeros(n, dtype=int), every[0]
+    for i in range(1, len(points)):  # the first of equals (grid order)
+        take = beats(every[i], best_s)
+        index, best_s = np.where(take, i, index), np.where(take[:, None], every[i], best_s)
     best = points[index]
     step = np.broadcast_to((high - low) / (GRID[3] - 1), best.shape).copy()
-    offsets = [np.array(o) for o in itertools.product((-1, 0, 1), repeat=len(bounds)) if any(o)]
+    offsets = np.array([o for o in itertools.product((-1, 0, 1), repeat=len(bounds)) if any(o)])
     active = np.ones(n, dtype=bool)
     seen: list[dict[bytes, Scores]] = [{} for _ in range(n)]  # per motor: point -> score
 
     def once(point: np.ndarray) -> Scores:
-        """The scores at per-motor points (nan: none), each motor's point scored once in
-        the search (a clipped neighbour or the neighbour of a moved centre repeats one)."""
-        keys = [row.tobytes() for row in point]
-        known = [keys[i] in seen[i] for i in range(n)]
-        fresh = np.where(np.array(known)[:, None], np.nan, point)
-        out = np.full(best_s.shape, -np.inf) if np.isnan(fresh).all() else score(list(fresh.T))
-        for i in np.flatnonzero(~np.isnan(point[:, 0])):
-            out[i] = seen[i][keys[i]] if known[i] else seen[i].setdefault(keys[i], out[i].copy())
+        """The scores at per-motor points (k, motors, N) (nan: none), each motor's point
+        scored once in the search (a clipped neighbour or the neighbour of a moved centre
+        repeats one): the points not seen before in one call of ``score_rows``."""
+        k = len(point)
+        out = np.full((k, n, best_s.shape[1]), -np.inf)
+        wanted = [(j, i) for j in range(k) for i in np.flatnonzero(~np.isnan(point[j, :, 0]))]
+        fresh = [(j, i) for j, i in wanted if point[j, i].tobytes() not in seen[i]]
+        if fresh:
+            at = np.array(fresh)
+            out[at[:, 0], at[:, 1]] = score_rows(point[at[:, 0], at[:, 1]], at[:, 1])
+        for j, i in wanted:  # in the order the neighbours are taken: the first one kept
+            out[j, i] = seen[i].setdefault(point[j, i].tobytes(), out[j, i].copy())
         return out
 
     for _ in range(BOX_ROUNDS):
@@ -194,9 +209,11 @@ def search_box(score: Callable[[list[np.ndarray]], Scores], bounds: list[tuple[f
             break
         step[active] *= 0.5
         center, center_s, flat = best.copy(), best_s, np.ones(n, dtype=bool)
-        for offset in offsets:
-            point = np.where(active[:, None], np.clip(center + offset * step, low, high), np.nan)
-            scores = once(point)
+        around = np.where(active[None, :, None],
+                          np.clip(center[None] + offsets[:, None] * step[None], low, high),
+                          np.nan)
+        scored = once(around)
+        for point, scores in zip(around, scored, strict=True):
             flat &= agree(center_s, scores)
             take = active & beats(scores, best_s)
             best[take], best_s = point[take], np.where(take[:, None], scores, best_s)
