@@ -21,23 +21,23 @@ ALPHA = Parameter("alpha", None, 0.0, 0.5)
 
 
 class Counted:
-    """-f at per-motor points (nan: not asked) as (motors, 1) scores, counting the
-    evaluations asked for."""
+    """-f(x, which) at the rows ``which`` (their own points x, nan: not asked) as
+    (rows, 1) scores (search_1d's RowScore), counting the evaluations asked for."""
 
     def __init__(self, f):
         self.f, self.asked = f, 0
 
-    def __call__(self, x: np.ndarray) -> np.ndarray:
+    def __call__(self, x: np.ndarray, which: np.ndarray) -> np.ndarray:
         self.asked += int(np.count_nonzero(~np.isnan(x)))
         with np.errstate(invalid="ignore"):
-            return -self.f(x)[:, None]
+            return -self.f(x, which)[:, None]
 
 
 def v_shape(optimum: np.ndarray):
     """max of a falling and a rising curve crossing at ``optimum`` (a kink, as where two
     checks' durations cross): slopes -3 and about +0.7 there."""
-    return lambda x: np.maximum(1.0 + 3.0 * (optimum - x),
-                                1.0 + 0.7 * (x - optimum) + 0.5 * (x - optimum) ** 2)
+    return lambda x, w: np.maximum(1.0 + 3.0 * (optimum[w] - x),
+                                   1.0 + 0.7 * (x - optimum[w]) + 0.5 * (x - optimum[w]) ** 2)
 
 
 @pytest.mark.parametrize("optimum", [0.3123456789, 0.0871, 0.4444444])
@@ -54,7 +54,7 @@ def test_a_crossing_of_two_bounds_is_found_to_the_tolerance_in_few_steps(optimum
 
 def test_a_smooth_minimum_ends_where_the_scores_agree_to_flat():
     centre = np.array([1 / 3, 0.25, 0.1])
-    score = Counted(lambda x: 2.0 + 5.0 * (x - centre) ** 2)
+    score = Counted(lambda x, w: 2.0 + 5.0 * (x - centre[w]) ** 2)
     best, scores = search_1d(score, ALPHA, (1e-3, 0.5), 3, 1)
     # the value is known to rounding: the point to about sqrt(1e-13 * 2 / 5)
     assert np.all(np.abs(best - centre) < 1e-6)
@@ -63,7 +63,7 @@ def test_a_smooth_minimum_ends_where_the_scores_agree_to_flat():
 
 
 def test_an_optimum_at_an_end_of_the_range_is_settled_beside_it():
-    score = Counted(lambda x: np.where(np.arange(2) == 0, 1.0 / x, 1.0 + x))
+    score = Counted(lambda x, w: np.where(w == 0, 1.0 / x, 1.0 + x))
     best, _ = search_1d(score, ALPHA, (0.01, 0.5), 2, 1)
     assert best[0] == 0.5 and best[1] == 0.01
     assert score.asked == 2 * (13 + 1)  # the grid, then one point beside each end
@@ -74,7 +74,7 @@ def test_a_best_end_whose_slope_does_not_show_beside_it_is_searched_inside():
     interval and so shallow that the point tol/2 beside the end ties with it: the search
     goes on inside (it settled at the end, 0.0066 away, before)."""
     centre = 0.4934
-    score = Counted(lambda x: 1.0 + 1e-3 * (x - centre) ** 2)
+    score = Counted(lambda x, w: 1.0 + 1e-3 * (x - centre) ** 2)
     best, scores = search_1d(score, ALPHA, (1e-3, 0.5), 1, 1)
     assert abs(best[0] - centre) < 1e-4
     assert -scores[0, 0] <= 1.0 + 1e-12
@@ -84,7 +84,7 @@ def test_a_jump_to_the_optimum_is_approached_from_its_side():
     """T_min may jump where a check's window opens: the search still closes on the jump."""
     edge = 0.2948625330448
 
-    def f(x):
+    def f(x, which):
         return np.where(x < edge, 1.5, 1.0 + (x - edge))
 
     best, scores = search_1d(Counted(f), ALPHA, (1e-3, 0.5), 1, 1)
@@ -99,14 +99,40 @@ def test_ties_on_the_first_score_are_decided_by_the_next():
     second = v_shape(optimum)
     asked = []
 
-    def score(x):
+    def score(x, which):
         asked.append(int(np.count_nonzero(~np.isnan(x))))
         with np.errstate(invalid="ignore"):
-            return np.stack([np.where(np.isnan(x), np.nan, 0.25), -second(x)], axis=1)
+            return np.stack([np.where(np.isnan(x), np.nan, 0.25), -second(x, which)], axis=1)
 
     best, _ = search_1d(score, ALPHA, (1e-3, 0.5), 2, 1)
     assert np.all(np.abs(best - optimum) <= 2 * TOLERANCE[1])
     assert sum(asked) <= 2 * 30
+
+
+def test_two_parameters_nested_with_an_outer_steps_values_as_rows():
+    """The nested search of two parameters (choices._nested): the inner searches of the
+    outer grid's values run as one search over motors x values; each motor's optimum of
+    a known bowl (a kink in alpha, a smooth minimum in beta) is found to TOLERANCE[2]."""
+    from sizer.sizing.choices import _nested
+
+    centre = np.array([[0.31, 0.22], [0.12, 0.41], [0.45, 0.05]])
+    calls = []
+
+    def score_rows(points, rows):
+        a, b = points
+        calls.append(len(rows))
+        with np.errstate(invalid="ignore"):
+            value = (1.0 + 2.0 * np.abs(a - centre[rows, 0])
+                     + 3.0 * (b - centre[rows, 1]) ** 2)
+        return -np.where(np.isnan(a) | np.isnan(b), np.inf, value)[:, None]
+
+    beta = Parameter("beta", None, 0.0, 0.5)
+    best, scores = _nested(score_rows, [ALPHA, beta], [(1e-3, 0.5), (1e-3, 0.5)],
+                           np.arange(3), 2, ())
+    assert np.all(np.abs(best[0] - centre[:, 0]) <= 2e-4)
+    assert np.all(np.abs(best[1] - centre[:, 1]) <= 1e-3)
+    assert np.allclose(-scores[:, 0], 1.0, atol=1e-6)
+    assert calls[0] == 7 * 7 * 3  # the outer grid's inner grids: one call
 
 
 MOTORS = tuple(Motor(f"m{i}", inertia=2e-5 * t**1.3, continuous_torque=t, peak_torque=3 * t,

@@ -124,47 +124,85 @@ def search_shape(family: type[MotionLaw], fixed: dict[str, float],
     n = len(motors)
     dims = len(names)
 
-    def score(points: list[np.ndarray]) -> Scores:
-        return evaluate_points(family, fixed, names, points, design, motors)
-
-    def score_rows(points: np.ndarray, rows: np.ndarray) -> Scores:
-        """The scores of the motors ``rows`` at ``points`` (one row of values each)."""
-        return evaluate_points(family, fixed, names, list(points.T), design,
-                               motors.take(rows))
+    def score_rows(points: list[np.ndarray], rows: np.ndarray) -> Scores:
+        """The scores of the motors ``rows`` at ``points`` (an array per parameter, a
+        value per row; nan: none)."""
+        return evaluate_points(family, fixed, names, points, design, motors.take(rows))
 
     bounds = [ranges[name] for name in names]
     best = search_box(score_rows, bounds, n) if dims >= 3 else \
-        _nested(score, [params[name] for name in names], bounds, n, dims, ())[0]
+        _nested(score_rows, [params[name] for name in names], bounds, np.arange(n), dims,
+                ())[0]
     return dict(zip(names, best, strict=True))
 
 
-def _nested(score: Callable[[list[np.ndarray]], Scores], parameters: list[Parameter],
-            bounds: list[tuple[float, float]], n: int, dims: int,
+RowScore = Callable[[np.ndarray, np.ndarray], Scores]
+"""``score(x, which)``: the scores of the rows ``which`` (repeats allowed) at the values
+``x`` of a parameter (nan: none), one row of scores each."""
+
+
+def _nested(score_rows: Callable[[list[np.ndarray], np.ndarray], Scores],
+            parameters: list[Parameter], bounds: list[tuple[float, float]],
+            rows: np.ndarray, dims: int,
             prefix: tuple[np.ndarray, ...]) -> tuple[list[np.ndarray], Scores]:
-    """Best values per motor of the parameters after ``prefix`` (their values fixed), and
-    the score there: a 1-D search of the first whose score is the best over the rest for
-    that value (nested); the best of all the points tried is returned."""
+    """Best values per row (``rows``: each row's motor) of the parameters after ``prefix``
+    (their values fixed, an array over the rows each), and the score there: a 1-D search
+    of the first whose score is the best over the rest for that value (nested; the rows
+    of an outer step's inner search are its motors x values, one search); the best of
+    all the points tried is returned."""
+    def fixed(which: np.ndarray) -> list[np.ndarray]:
+        return [p[which] for p in prefix]
+
     if len(parameters) == 1:
-        value, scores = search_1d(lambda x: score([*prefix, x]), parameters[0], bounds[0], n,
-                                  dims)
+        value, scores = search_1d(lambda x, which: score_rows([*fixed(which), x],
+                                                              rows[which]),
+                                  parameters[0], bounds[0], len(rows), dims)
         return [value], scores
-    tried: list[tuple[list[np.ndarray], Scores]] = []
+    tried: list[tuple[np.ndarray, list[np.ndarray], Scores]] = []
 
-    def outer(x: np.ndarray) -> Scores:
-        rest, scores = _nested(score, parameters[1:], bounds[1:], n, dims, (*prefix, x))
-        tried.append(([x.copy(), *rest], scores))
-        return scores
+    def outer(x: np.ndarray, which: np.ndarray) -> Scores:
+        out = np.full((len(x), 1), -np.inf)
+        live = np.flatnonzero(~np.isnan(x))  # settled rows: no inner search
+        if len(live):
+            rest, scores = _nested(score_rows, parameters[1:], bounds[1:],
+                                   rows[which[live]], dims,
+                                   (*fixed(which[live]), x[live]))
+            tried.append((which[live], [x[live], *rest], scores))
+            out = np.full((len(x), scores.shape[1]), -np.inf)
+            out[live] = scores
+        return out
 
-    search_1d(outer, parameters[0], bounds[0], n, dims)
-    best, best_s = tried[0]
-    for point, s in tried[1:]:
-        take = beats(s, best_s)
-        best = [np.where(take, p, b) for p, b in zip(point, best, strict=True)]
-        best_s = np.where(take[:, None], s, best_s)
+    search_1d(outer, parameters[0], bounds[0], len(rows), dims)
+    n = len(rows)
+    best = [np.full(n, np.nan) for _ in parameters]
+    best_s = np.full((n, tried[0][2].shape[1]), -np.inf)
+    has = np.zeros(n, dtype=bool)
+    for which, point, s in tried:  # in the order tried; within a call, its order
+        turn = _occurrence(which)
+        for k in range(int(turn.max()) + 1 if len(turn) else 0):
+            at = np.flatnonzero(turn == k)
+            row = which[at]
+            take = ~has[row] | beats(s[at], best_s[row])
+            sel, row = at[take], row[take]
+            for b, p in zip(best, point, strict=True):
+                b[row] = p[sel]
+            best_s[row] = s[sel]
+            has[row] = True
     return best, best_s
 
 
-def search_box(score_rows: Callable[[np.ndarray, np.ndarray], Scores],
+def _occurrence(which: np.ndarray) -> np.ndarray:
+    """Per element, how many equal elements come before it."""
+    order = np.argsort(which, kind="stable")
+    ranked = which[order]
+    start = np.flatnonzero(np.concatenate(([True], ranked[1:] != ranked[:-1])))
+    counts = np.diff(np.concatenate((start, [len(which)])))
+    out = np.empty(len(which), dtype=np.intp)
+    out[order] = np.arange(len(which)) - np.repeat(start, counts)
+    return out
+
+
+def search_box(score_rows: Callable[[list[np.ndarray], np.ndarray], Scores],
                bounds: list[tuple[float, float]], n: int) -> list[np.ndarray]:
     """Best point per motor of N >= 3 continuous parameters (nested 1-D searches would
     cost the product of N searches): a grid of GRID[3] points per parameter shared by all
@@ -177,7 +215,7 @@ def search_box(score_rows: Callable[[np.ndarray, np.ndarray], Scores],
     low, high = (np.array(ends, dtype=float) for ends in zip(*bounds, strict=True))
     points = np.array(list(itertools.product(*(np.linspace(a, b, GRID[3]) for a, b in bounds))))
     motor = np.arange(n)
-    every = score_rows(np.repeat(points, n, axis=0),
+    every = score_rows(list(np.repeat(points, n, axis=0).T),
                        np.tile(motor, len(points))).reshape(len(points), n, -1)
     index, best_s = np.zeros(n, dtype=int), every[0]
     for i in range(1, len(points)):  # the first of equals (grid order)
@@ -199,7 +237,7 @@ def search_box(score_rows: Callable[[np.ndarray, np.ndarray], Scores],
         fresh = [(j, i) for j, i in wanted if point[j, i].tobytes() not in seen[i]]
         if fresh:
             at = np.array(fresh)
-            out[at[:, 0], at[:, 1]] = score_rows(point[at[:, 0], at[:, 1]], at[:, 1])
+            out[at[:, 0], at[:, 1]] = score_rows(list(point[at[:, 0], at[:, 1]].T), at[:, 1])
         for j, i in wanted:  # in the order the neighbours are taken: the first one kept
             out[j, i] = seen[i].setdefault(point[j, i].tobytes(), out[j, i].copy())
         return out
@@ -223,14 +261,14 @@ def search_box(score_rows: Callable[[np.ndarray, np.ndarray], Scores],
     return list(best.T)
 
 
-def search_1d(score: Callable[[np.ndarray], Scores], parameter, bounds: tuple[float, float],
-              n: int, dims: int) -> tuple[np.ndarray, Scores]:
-    """Best point per motor of a 1-D score, and its score: a grid of GRID[dims] points,
-    then from each motor's best grid point the bracket search of
+def search_1d(score: RowScore, parameter, bounds: tuple[float, float], n: int,
+              dims: int) -> tuple[np.ndarray, Scores]:
+    """Best point per row of a 1-D score, and its score: a grid of GRID[dims] points
+    (scored in one call), then from each row's best grid point the bracket search of
     sizer.numerics.bracket_search (steps where two bounds cross, or to a parabola's
     vertex, safeguarded) to TOLERANCE[dims], or until the deciding entry of the scores
-    agrees to FLAT across the bracket. Settled motors are not evaluated again (their
-    point is passed as nan). Integer parameters are enumerated.
+    agrees to FLAT across the bracket. Settled rows are not evaluated again (their point
+    is passed as nan). Integer parameters are enumerated.
     """
     lo, hi = bounds
     if parameter.integer:
@@ -242,13 +280,16 @@ def search_1d(score: Callable[[np.ndarray], Scores], parameter, bounds: tuple[fl
     tol = TOLERANCE[dims]
     grid = np.linspace(lo, hi, GRID[dims])
     _, _, index, on_grid = _best_on_grid(score, grid, n)
-    return from_grid(score, grid, on_grid, index, tol)
+    every = np.arange(n)
+    return from_grid(lambda x: score(x, every), grid, on_grid, index, tol)
 
 
-def _best_on_grid(score, grid: np.ndarray,
+def _best_on_grid(score: RowScore, grid: np.ndarray,
                   n: int) -> tuple[np.ndarray, Scores, np.ndarray, np.ndarray]:
-    """Best grid point per motor (first of equals), its score, its index, all scores."""
-    every = np.stack([score(np.full(n, x)) for x in grid])
+    """Best grid point per row (first of equals), its score, its index, all scores (the
+    grid scored in one call)."""
+    every = score(np.repeat(grid, n), np.tile(np.arange(n), len(grid))).reshape(len(grid), n,
+                                                                                 -1)
     index = np.zeros(n, dtype=int)
     best_s = every[0]
     for i in range(1, len(grid)):
