@@ -95,9 +95,9 @@ from sizer.sizing.candidates import Candidates, MotorArrays
 from sizer.sizing.checks import evaluate_checks
 from sizer.sizing.cycle import single_task
 from sizer.sizing.energy_check import has_braking_check, has_heat_check, without_power_figures
-from sizer.sizing.move import CycleCalculator, law_rows
+from sizer.sizing.move import CycleCalculator
 from sizer.sizing.results import CandidateTable, Mode, concatenate, in_groups
-from sizer.sizing.shortest_duration import minimum_duration
+from sizer.sizing.shortest_duration import minimum_duration, searched_law_rows
 from sizer.vibration.elastic_load import ElasticLoad
 
 if TYPE_CHECKING:
@@ -139,11 +139,13 @@ def search_shape(family: type[MotionLaw], fixed: dict[str, float],
 RowScore = Callable[[np.ndarray, np.ndarray], Scores]
 """``score(x, which)``: the scores of the rows ``which`` (repeats allowed) at the values
 ``x`` of a parameter (nan: none), one row of scores each."""
+PointScore = Callable[[list[np.ndarray], np.ndarray], Scores]
+"""``score(points, motors)``: the scores of the motors (repeats allowed) at the points
+(an array per parameter, a value per row; nan: none)."""
 
 
-def _nested(score_rows: Callable[[list[np.ndarray], np.ndarray], Scores],
-            parameters: list[Parameter], bounds: list[tuple[float, float]],
-            rows: np.ndarray, dims: int,
+def _nested(score_rows: PointScore, parameters: list[Parameter],
+            bounds: list[tuple[float, float]], rows: np.ndarray, dims: int,
             prefix: tuple[np.ndarray, ...]) -> tuple[list[np.ndarray], Scores]:
     """Best values per row (``rows``: each row's motor) of the parameters after ``prefix``
     (their values fixed, an array over the rows each), and the score there: a 1-D search
@@ -202,8 +204,8 @@ def _occurrence(which: np.ndarray) -> np.ndarray:
     return out
 
 
-def search_box(score_rows: Callable[[list[np.ndarray], np.ndarray], Scores],
-               bounds: list[tuple[float, float]], n: int) -> list[np.ndarray]:
+def search_box(score_rows: PointScore, bounds: list[tuple[float, float]],
+               n: int) -> list[np.ndarray]:
     """Best point per motor of N >= 3 continuous parameters (nested 1-D searches would
     cost the product of N searches): a grid of GRID[3] points per parameter shared by all
     motors, then per motor the 3^N - 1 neighbours at +-step around its best point, the
@@ -338,11 +340,9 @@ def _law_rows(laws: list[MotionLaw], part: np.ndarray, design: Design,
     task = single_task(design)
     if not task.minimize:
         return None
-    from sizer.sizing.shortest_duration import has_constant_torques
-
-    rows = law_rows(laws, part, task, candidates.drive, candidates.motors,
-                    design.limits.thermal_speed)
-    if has_constant_torques(rows) or rows.moves_backwards():
+    rows = searched_law_rows(laws, part, task, candidates.drive, candidates.motors,
+                             design.limits.thermal_speed)
+    if rows is None:
         return None
     solution = minimum_duration(rows, design.limits)
     return -np.where(solution.feasible, solution.duration, np.inf)[:, None]

@@ -56,7 +56,7 @@ from sizer.sizing.cycle import (
 )
 from sizer.sizing.energy_check import energy_limit, energy_notes, without_power_figures
 from sizer.sizing.evaluation import CycleMetrics, CycleModel, LawRows
-from sizer.sizing.move import CycleCalculator, MoveScales, RmsModel, law_grid, law_rows
+from sizer.sizing.move import CycleCalculator, MoveScales, RmsModel, law_grid
 from sizer.sizing.ranking import rank_order
 from sizer.sizing.results import (
     FIGURES,
@@ -68,7 +68,7 @@ from sizer.sizing.results import (
     concatenate,
     in_groups,
 )
-from sizer.sizing.shortest_duration import answer, has_constant_torques, is_purely_inertial
+from sizer.sizing.shortest_duration import answer, is_purely_inertial, searched_law_rows
 from sizer.sizing.stage_life import gearbox_life_limits, screw_limits
 from sizer.sizing.vibration_check import residual_limit
 
@@ -265,16 +265,15 @@ def _law_rows(design: Design, laws: Sequence[MotionLaw], group: np.ndarray,
             or design.load.position_dependent):
         return None
     drive = candidates.drive
-    rows = law_rows(laws, group, task, drive, candidates.motors,
-                    design.limits.thermal_speed)
-    if has_constant_torques(rows):  # each law's closed form (cheaper than any search)
+    rows = searched_law_rows(laws, group, task, drive, candidates.motors,
+                             design.limits.thermal_speed)
+    if rows is None:
         return None
     builds = candidates.motors.builds
     modes = () if builds is None else builds.modes
     if (any(residual_limit(design, law, modes) is not None for law in laws)
             or energy_limit(design, candidates.motors) is not None or screw_limits(drive)
             or (cycle_sampled(design) and gearbox_life_limits(drive))
-            or rows.moves_backwards()  # no peak bound: its search is another
             or len(candidates) > min(chunk_size(law) for law in laws)):
         return None
     return rows

@@ -35,8 +35,8 @@ the range. What remains is a function of a alone, the largest of smooth pieces; 
 minimum (a minimum of one piece or a crossing of two) is bracketed on a dense sample
 that contains the special points and located to 1e-13 in a by the bracket search of
 sizer.numerics.bracket_search (steps where two pieces cross or to a parabola's vertex,
-safeguarded like golden section). Where T_R
-does not bind and the optimum lies in the ranges, it is the book's closed form (sec. 3.4.3).
+safeguarded like golden section). Where T_R does not bind and the optimum lies in the
+ranges, it is the book's closed form (sec. 3.4.3).
 """
 
 from __future__ import annotations

@@ -89,16 +89,16 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import partial
-from typing import Protocol
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
-from sizer.laws import LawChoice, law_choice
+from sizer.laws import LawChoice, MotionLaw, law_choice
 from sizer.model.cycle import shorthand_task
-from sizer.model.domain import Design, Limits
+from sizer.model.domain import Design, Limits, Task, ThermalSpeedRule
 from sizer.numerics.golden import golden_step, interior_points
 from sizer.numerics.roots import illinois
-from sizer.sizing.candidates import Candidates
+from sizer.sizing.candidates import Candidates, MotorArrays
 from sizer.sizing.checks import (
     TOLERANCE,
     CheckArrays,
@@ -112,11 +112,15 @@ from sizer.sizing.cycle import single_task
 from sizer.sizing.evaluation import (
     CycleMetrics,
     CycleModel,
+    LawRows,
     RmsCurve,
     combined_metrics,
     singular_metrics,
 )
-from sizer.sizing.move import CycleCalculator, peak_queries, speed_bounds
+from sizer.sizing.move import CycleCalculator, law_rows, peak_queries, speed_bounds
+
+if TYPE_CHECKING:
+    from sizer.mechanics import Drive
 
 EXPANSIONS = 80
 GOLDEN_STEPS = 80
@@ -167,6 +171,18 @@ def is_purely_inertial(calculator: CycleModel) -> bool:
     friction or a constant load (no constant torque at all)."""
     return calculator.drive.figures.none("friction", "torque") \
         and has_constant_torques(calculator)
+
+
+def searched_law_rows(laws: Sequence[MotionLaw], part: np.ndarray, task: Task, drive: Drive,
+                      motors: MotorArrays, thermal_speed: ThermalSpeedRule) -> LawRows | None:
+    """Several law moves of ``task`` as the rows of one model (sizer.sizing.move.law_rows),
+    row i with laws[part[i]], where they take the search from their peak bounds; None
+    where the drive takes the closed forms (each law's own, cheaper than any search) or a
+    law may move backwards (no peak bound: its search is another)."""
+    rows = law_rows(laws, part, task, drive, motors, thermal_speed)
+    if has_constant_torques(rows) or rows.moves_backwards():
+        return None
+    return rows
 
 
 def minimum_duration(calculator: CycleModel, limits: Limits) -> DurationSolution:
