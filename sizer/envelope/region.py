@@ -31,9 +31,9 @@ def intermittent_region(motor: Motor, rule: EnvelopeRule = "book") -> Curve:
     return completed_intermittent(motor, rule)
 
 
-_BRUTE_FORCE_CELLS = 2**25
-"""Up to this many speed x corner comparisons (32 MB of booleans) the segments are
-counted directly; beyond, searched (memory bounded by the samples alone)."""
+_COUNTED_CORNERS = 16
+"""Up to this many interior corners a region's segments are counted, one pass over the
+speeds per corner (memory: the index alone); beyond, searched."""
 
 
 _CONCAVE_TOLERANCE = 1e-12
@@ -75,25 +75,28 @@ class RegionTable:
         speed = np.abs(np.asarray(speed, dtype=float))
         shape = speed.shape
         flat = speed.reshape(shape[0], -1)
-        index = self._segment(flat)
-        rows = np.arange(shape[0])[:, None]
-        s0, s1 = self.speeds[rows, index], self.speeds[rows, index + 1]
-        t0, t1 = self.torques[rows, index], self.torques[rows, index + 1]
+        # each sample's segment as a place in the tables laid end to end: one gather
+        # each, not a two-index lookup
+        at = self._segment(flat) + (np.arange(shape[0]) * self.speeds.shape[1])[:, None]
+        speeds, torques = self.speeds.ravel(), self.torques.ravel()
+        s0, s1 = speeds.take(at), speeds.take(at + 1)
+        t0, t1 = torques.take(at), torques.take(at + 1)
         value = t0 + (t1 - t0) * (flat - s0) / (s1 - s0)
-        value = np.where(flat > self.max_speed[:, None] * (1.0 + 1e-12), 0.0, value)
+        value[flat > self.max_speed[:, None] * (1.0 + 1e-12)] = 0.0
         return value.reshape(shape)
 
     def _segment(self, flat: np.ndarray) -> np.ndarray:
         """Per motor row, the segment of each speed: the count of interior corner speeds
-        <= it (0 .. width-2). Small tables count directly; large ones by one searchsorted
+        <= it (0 .. width-2). Tables of few corners count directly; others by one searchsorted
         over all rows laid end to end (memory motors x samples, not x curve points); the
         offsets cost a few ulps, so the index is then corrected by one step against the
         row's own corner speeds (exact)."""
         count, width = self.speeds.shape
-        if width <= 2:
-            return np.zeros(flat.shape, dtype=np.intp)
-        if flat.size * (width - 2) <= _BRUTE_FORCE_CELLS:  # small: one comparison, faster
-            return (self.speeds[:, None, 1:-1] <= flat[:, :, None]).sum(axis=-1)
+        if width - 2 <= _COUNTED_CORNERS:  # few corners: counted one corner at a time
+            index = np.zeros(flat.shape, dtype=np.intp)
+            for k in range(1, width - 1):
+                index += flat >= self.speeds[:, k, None]
+            return index
         span = self.speeds[:, -1] - self.speeds[:, 0] + 1.0
         base = np.concatenate(([0.0], np.cumsum(span)[:-1]))[:, None]
         laid = (self.speeds - self.speeds[:, :1] + base).ravel()
