@@ -344,8 +344,19 @@ class Drive:
         first while power flows to the load, x >= 0), increasing in x; so every choice of
         direction per stage gives one linear function and the torque is their maximum.
         With the steady-load rule or ideal stages each list has one function
-        (:meth:`linear_chain`). Returns (shaft list, [list of stage 0's output, ...]).
+        (:meth:`linear_chain`). Returns (shaft list, [list of stage 0's output, ...]),
+        built once per direction (a drive's figures do not change; each evaluation of a
+        law move reads them): the arrays are read-only, the lists tuples.
         """
+        cache = self.__dict__.setdefault("_pieces_by_direction", {})
+        key = float(direction)
+        if key not in cache:
+            shaft, outputs = self._linear_pieces(key)
+            cache[key] = (_frozen(shaft), tuple(_frozen(pieces) for pieces in outputs))
+        return cache[key]
+
+    def _linear_pieces(self, direction: float):
+        """:meth:`linear_pieces`, built."""
         f = self.figures
         if self.is_ideal:
             shaft = [self.linear_chain(direction)]
@@ -391,3 +402,15 @@ class Drive:
 def _steady_factor(efficiency, constant):
     """1/eta while the steady torque opposes the motion, eta while it drives."""
     return np.where(np.asarray(constant) >= 0.0, 1.0 / efficiency, efficiency)
+
+
+def _frozen(pieces) -> tuple[tuple[np.ndarray, ...], ...]:
+    """Linear functions (A, B, C) as a tuple of read-only arrays (a cached value that
+    no reader may change)."""
+    out = []
+    for piece in pieces:
+        arrays = tuple(np.array(x, dtype=float) for x in piece)
+        for x in arrays:
+            x.setflags(write=False)
+        out.append(arrays)
+    return tuple(out)
