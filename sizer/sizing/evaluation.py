@@ -415,20 +415,20 @@ def combined_metrics(found: Sequence[CycleMetrics],
 
 def _stacked(found: list[CycleMetrics], rows: list[np.ndarray], n: int) -> CycleMetrics:
     """The parts' metrics as one evaluation over the rows."""
+    inverse = np.empty(n, dtype=np.intp)  # each row's place in the parts laid end to end
+    inverse[np.concatenate(rows)] = np.arange(n)
+
     def put(values: list[np.ndarray]) -> np.ndarray:
-        out = np.empty(n, dtype=np.result_type(*values))
-        for r, v in zip(rows, values, strict=True):
-            out[r] = np.broadcast_to(v, (len(r),))
-        return out
+        laid = [v if np.ndim(v) == 1 and len(v) == len(r) else np.broadcast_to(v, (len(r),))
+                for r, v in zip(rows, values, strict=True)]
+        return np.concatenate(laid).take(inverse)
 
     fields = combined_metrics(found, put)
     models = [m.rms_model for m in found]
     if models and all(m is not None for m in models):
-        powers = np.empty((5, n))
-        hold = np.empty(n)
-        for r, model in zip(rows, models, strict=True):
-            powers[:, r] = model.powers  # type: ignore[union-attr]
-            hold[r] = np.broadcast_to(model.hold, (len(r),))  # type: ignore[union-attr]
+        powers = np.concatenate([m.powers for m in models],  # type: ignore[union-attr]
+                                axis=1).take(inverse, axis=1)
+        hold = put([m.hold for m in models])  # type: ignore[union-attr]
         first = models[0]
         fields["rms_model"] = StackedRms(powers, len(first.moves),  # type: ignore[union-attr]
                                          first.dwell, hold)  # type: ignore[union-attr]
