@@ -40,6 +40,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from sizer.numerics.arrays import sorted_unique
 from sizer.numerics.roots import illinois
 
 Cost = Callable[[int, np.ndarray, np.ndarray], np.ndarray]
@@ -347,7 +348,7 @@ def _by_law(cost: LawCost, laws: np.ndarray, candidate: np.ndarray) -> Cost:
     def rows_cost(j: int, T: np.ndarray, rows: np.ndarray) -> np.ndarray:
         out = np.empty(len(rows))
         law = laws[rows, j]
-        for value in np.unique(law):
+        for value in sorted_unique(law):
             where = law == value
             out[where] = cost(j, int(value), T[where], candidate[rows[where]])
         return out

@@ -40,6 +40,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from sizer.model.domain import Curve, Motor
+from sizer.numerics.arrays import sorted_unique
 
 TOLERANCE = 1e-3
 """How far (a share of the peak torque) the region's straight lines may stray from the
@@ -176,7 +177,7 @@ def clipped(curve: Curve, limit: Curve) -> Curve:
     up to the shorter one's end (a region is zero past its last point)."""
     (cs, ct), (ls, lt) = np.array(curve, dtype=float).T, np.array(limit, dtype=float).T
     end = min(cs[-1], ls[-1])
-    speeds = np.unique(np.concatenate((cs, ls)))
+    speeds = sorted_unique(np.concatenate((cs, ls)))
     speeds = speeds[speeds <= end]
     d = np.interp(speeds, cs, ct) - np.interp(speeds, ls, lt)
     if speeds[-1] == cs[-1] and np.all(d <= 0.0):  # the limit never binds

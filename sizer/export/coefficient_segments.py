@@ -47,6 +47,7 @@ from sizer.export.extremes import Extreme, largest_difference
 from sizer.export.profile import CamProfile
 from sizer.laws.pieces import TrigPolyForm
 from sizer.laws.segment_table import DEGREE, CoefficientSegment
+from sizer.numerics.arrays import sorted_unique
 
 MAX_SEGMENTS = 256
 """sizer's own cap on the segments of one export (not a controller limit: the manual
@@ -288,7 +289,7 @@ def _difference(profile: CamProfile, written: Sequence[Written], x: np.ndarray,
                 which: np.ndarray, order: int) -> np.ndarray:
     """e^(order) = profile - segment at x, x[i] on segment which[i]."""
     out = np.empty(x.shape)
-    for k in np.unique(which):
+    for k in sorted_unique(which):
         mask = which == k
         w = written[int(k)]
         out[mask] = (profile.derivative(x[mask], order, np.full(mask.sum(), w.piece))

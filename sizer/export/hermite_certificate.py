@@ -34,6 +34,7 @@ from sizer.export.extremes import Extreme, largest_difference
 from sizer.export.profile import CamProfile
 from sizer.export.sampling import MAX_POINTS
 from sizer.laws.cam_interpolation import interpolated_curve
+from sizer.numerics.arrays import sorted_unique
 
 SAMPLES = 32
 """Samples of e^(k+1) per cell (sign changes between them bracket the extrema of e^(k))."""
@@ -85,7 +86,7 @@ def hermite_errors(profile: CamProfile, x: np.ndarray, y: np.ndarray, v: np.ndar
     curve = interpolated_curve("quintic_hermite", x, np.asarray(y, float), np.asarray(v, float),
                           np.asarray(a, float))
     breaks = profile.breakpoints
-    edges = np.unique(np.concatenate([x, breaks[(breaks > x[0]) & (breaks < x[-1])]]))
+    edges = sorted_unique(np.concatenate([x, breaks[(breaks > x[0]) & (breaks < x[-1])]]))
     lo, hi = edges[:-1], edges[1:]
     keep = hi > lo
     lo, hi = lo[keep], hi[keep]
@@ -116,7 +117,7 @@ def master_values(profile: CamProfile, points: int) -> np.ndarray:
     """``points`` master values: the profile's breakpoints (its ends included) and
     equidistant ones between them (those within 1e-9 of the span of a breakpoint left
     out, then those nearest a breakpoint until the count is ``points``)."""
-    breaks = np.unique(profile.breakpoints)
+    breaks = sorted_unique(profile.breakpoints)
     if points < len(breaks):
         raise ValueError(f"an XYVA table of this profile needs at least {len(breaks)} "
                          f"points (the law's breakpoints)")
@@ -136,7 +137,7 @@ def master_values(profile: CamProfile, points: int) -> np.ndarray:
 
 
 def fewest_points(profile: CamProfile) -> int:
-    return len(np.unique(profile.breakpoints))
+    return len(sorted_unique(profile.breakpoints))
 
 
 def table_of(profile: CamProfile, points: int, limit: int = MAX_POINTS,

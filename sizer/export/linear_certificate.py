@@ -28,6 +28,7 @@ import numpy as np
 
 from sizer.export.extremes import bracketed_roots
 from sizer.export.profile import CamProfile
+from sizer.numerics.arrays import sorted_unique
 
 SUBDIVISIONS = 4
 """Cells per table interval before the cuts at breakpoints and acceleration zeros."""
@@ -61,7 +62,7 @@ def linear_errors(profile: CamProfile, x: np.ndarray, y: np.ndarray) -> LinearEr
     inner = (x[:-1, None] + np.diff(x)[:, None] * fractions[None, :]).ravel()
     breaks = profile.breakpoints
     breaks = breaks[(breaks > x[0]) & (breaks < x[-1])]
-    edges = np.unique(np.concatenate([x, inner, breaks]))
+    edges = sorted_unique(np.concatenate([x, inner, breaks]))
     # ... and at the zeros of the law's acceleration
     a, b, piece = _cells(profile, edges)
     acc_a = profile.derivative(a, 2, piece)
@@ -70,7 +71,7 @@ def linear_errors(profile: CamProfile, x: np.ndarray, y: np.ndarray) -> LinearEr
     if change.any():
         roots = bracketed_roots(lambda t, p: profile.derivative(t, 2, p),
                        a[change], b[change], piece[change])
-        edges = np.unique(np.concatenate([edges, roots]))
+        edges = sorted_unique(np.concatenate([edges, roots]))
         a, b, piece = _cells(profile, edges)
     interval = np.clip(np.searchsorted(x, 0.5 * (a + b), side="right") - 1, 0, len(slope) - 1)
     s = slope[interval]

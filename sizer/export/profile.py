@@ -21,6 +21,7 @@ import numpy as np
 
 from sizer.laws.base import MotionLaw
 from sizer.laws.per_move import RankedLaw, one_law
+from sizer.numerics.arrays import sorted_unique
 
 
 @dataclass(frozen=True)
@@ -120,7 +121,7 @@ class CamProfile:
         index = np.broadcast_to(index, x.shape)
         _, segment, local = self._pieces
         out = np.zeros(x.shape)
-        for k in np.unique(index):
+        for k in sorted_unique(index):
             mask = index == k
             s = self.segments[segment[k]]
             if order == 0:

@@ -55,6 +55,7 @@ from sizer.export.numbers import exact
 from sizer.export.profile import CamProfile
 from sizer.laws.base import MotionLaw
 from sizer.laws.per_move import RankedLaw, one_law
+from sizer.numerics.arrays import sorted_unique
 
 PI = math.pi
 LINEAR = "Linear"
@@ -305,7 +306,7 @@ def curve(points: tuple[MotionFunctionPoint, ...], x: np.ndarray, order: int,
     index = (np.clip(np.searchsorted(masters[:-1], x, side="right") - 1, 0,
                      len(points) - 2) if segment is None else np.asarray(segment))
     out = np.zeros(x.shape)
-    for k in np.unique(index):
+    for k in sorted_unique(index):
         mask = index == k
         a, b = points[k], points[k + 1]
         span, rise = b.master - a.master, b.slave - a.slave
@@ -378,7 +379,7 @@ def exact_errors(profile: CamProfile, points: tuple[MotionFunctionPoint, ...]
         if s.law is not None:
             taus.append(np.array([piece.start for piece in s.law.pieces] + [0.5]))
             taus.append(_extrema(s.law))
-        tau = np.unique(np.concatenate(taus))
+        tau = sorted_unique(np.concatenate(taus))
         xs.append(s.start + tau * s.span)
         segments.append(np.full(tau.shape, k))
     x, seg = np.concatenate(xs), np.concatenate(segments)

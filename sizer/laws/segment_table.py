@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from sizer.errors import UserError
+from sizer.numerics.arrays import sorted_unique
 
 COLUMNS = ("Type", "Reserve", "X1", "Y1", "X2", "Y2", "A0", "A1", "A2", "A3", "A4", "A5",
            "A6", "B0", "B1", "B2")
@@ -144,7 +145,7 @@ class SegmentCurve:
         t = np.asarray(t, dtype=float)
         index = self.locate(t)
         out = np.zeros(t.shape)
-        for k in np.unique(index):
+        for k in sorted_unique(index):
             mask = index == k
             out[mask] = self.segments[int(k)].derivative(t[mask], nu)
         return out

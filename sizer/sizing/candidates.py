@@ -51,6 +51,7 @@ from sizer.model.domain import (
     ServoDrive,
     Transmission,
 )
+from sizer.numerics.arrays import sorted_unique
 from sizer.vibration.elastic_load import ElasticLoad
 
 KEPT = 8
@@ -337,7 +338,7 @@ class MotorArrays:
         catalog) as candidates, the regions clipped at T(I_peak) and T(I_cont)."""
         motor, drive = pairs(self.catalog, drives)
         paired = self.subset(motor)
-        distinct = np.unique(motor)  # the curves once per paired motor, then per pair
+        distinct = sorted_unique(motor)  # the curves once per paired motor, then per pair
         currents = CurrentCurves.of([self.catalog[int(m)] for m in distinct]).take(
             np.searchsorted(distinct, motor))
         peak = np.array([d.peak_current for d in drives])[drive]

@@ -43,6 +43,7 @@ from sizer.laws import LawChoice, MotionLaw, law_choice
 from sizer.laws.per_move import LawsPerMove, PerMoveChoice, RankedLaw, per_move
 from sizer.model.cycle import Cycle, Dwell
 from sizer.model.domain import Design, Motor
+from sizer.numerics.arrays import sorted_unique
 from sizer.sizing.candidates import Builds, Candidates, MotorArrays
 from sizer.sizing.checks import TOLERANCE, CheckArrays, CheckName, shaft_notes
 from sizer.sizing.checks import feasible as all_pass
@@ -661,7 +662,7 @@ def rms_fails_up_to(design: Design, spec: LawChoice | str, candidates: Candidate
     size = chunk_size(law, task.moves_per_cycle)
     out = np.zeros(len(candidates), dtype=bool)
     if group is not None and len(candidates):
-        groups = np.unique(group)
+        groups = sorted_unique(group)
         done = True
         for start in range(0, len(groups), size):  # the groups' evaluations in chunks
             rows = np.flatnonzero(np.isin(group, groups[start:start + size]))

@@ -21,6 +21,8 @@ from typing import TYPE_CHECKING, Any, Protocol, Self
 
 import numpy as np
 
+from sizer.numerics.arrays import sorted_unique
+
 if TYPE_CHECKING:
     from sizer.laws import MotionLaw
     from sizer.mechanics import Drive
@@ -314,7 +316,7 @@ class LawRows:
         rank = np.empty(len(self.part), dtype=np.intp)  # each row's place in its part
         for rows in self.rows:
             rank[rows] = np.arange(len(rows))
-        kept = np.unique(part)  # the parts with rows left, renumbered in order
+        kept = sorted_unique(part)  # the parts with rows left, renumbered in order
         parts = [self.parts[k].take(rank[index[part == k]]) for k in kept]
         return LawRows(parts, np.searchsorted(kept, part), self._motors.subset(index),
                        self._drive.take(index))

@@ -44,6 +44,7 @@ from sizer.mechanics.disc_cam import CamStage
 from sizer.mechanics.drive import Drive
 from sizer.model.cycle import Cycle, Move, Run, from_task, shorthand_task
 from sizer.model.domain import Design, Limits, LinkageStage, Load, Task
+from sizer.numerics.arrays import sorted_unique
 from sizer.numerics.roots import quadratic_roots
 from sizer.sizing.candidates import MotorArrays
 from sizer.sizing.checks import evaluate_checks, worst_slack
@@ -111,17 +112,17 @@ def _grid(law: MotionLaw | FixedShape | CamTurn, extra: np.ndarray | None = None
     breaks = law.breakpoints
     if extra is not None and extra.size:  # none within rounding of another cut: no
         # piece of zero width (a knot reached at a move's end up to rounding)
-        base = np.unique(np.concatenate((breaks, np.linspace(0.0, 1.0, GAUSS_PIECES + 1))))
-        extra = np.unique(extra)
+        base = sorted_unique(np.concatenate((breaks, np.linspace(0.0, 1.0, GAUSS_PIECES + 1))))
+        extra = sorted_unique(extra)
         near = np.abs(extra[:, None] - base[None, :]).min(axis=1) <= EXTRA_GAP
         apart = np.concatenate(([True], np.diff(extra) > EXTRA_GAP))
         breaks = np.concatenate((breaks, extra[~near & apart]))
-    cuts = np.unique(np.concatenate((breaks, np.linspace(0.0, 1.0, GAUSS_PIECES + 1))))
+    cuts = sorted_unique(np.concatenate((breaks, np.linspace(0.0, 1.0, GAUSS_PIECES + 1))))
     x, w = gauss_legendre(GAUSS_NODES)
     left, width = cuts[:-1, None], np.diff(cuts)[:, None]
     nodes = (left + 0.5 * width * (x + 1.0)).ravel()
     weights = (0.5 * width * w).ravel()
-    peaks = np.unique(np.concatenate((np.linspace(0.0, 1.0, PEAK_POINTS), breaks,
+    peaks = sorted_unique(np.concatenate((np.linspace(0.0, 1.0, PEAK_POINTS), breaks,
                                       _beside(law.breakpoints))))
     u = np.concatenate((nodes, peaks))
     order = np.argsort(u, kind="stable")  # in time order, as the inverse kinematics needs
@@ -377,7 +378,7 @@ def _one_sided(law: MotionLaw, u: np.ndarray, h: float, T: float
 
     def values(index: np.ndarray, order: int) -> np.ndarray:
         out = np.empty(len(u))
-        for i in np.unique(index):
+        for i in sorted_unique(index):
             mask = index == i
             out[mask] = law.piece_derivative(int(i), u[mask], order)
         return h * out / T**order
@@ -1516,7 +1517,7 @@ def crossings_of(position: Any, breakpoints: np.ndarray, knots: tuple[float, ...
     law's ``breakpoints``), bisected to rounding."""
     if not knots:
         return np.empty(0)
-    u = np.unique(np.concatenate((np.linspace(0.0, 1.0, PEAK_POINTS), breakpoints)))
+    u = sorted_unique(np.concatenate((np.linspace(0.0, 1.0, PEAK_POINTS), breakpoints)))
     f = position(u)[None, :] - np.asarray(knots, dtype=float)[:, None]
     k, i = np.nonzero(np.sign(f[:, :-1]) * np.sign(f[:, 1:]) <= 0.0)
     lo, hi = u[i], u[i + 1]
@@ -1529,7 +1530,7 @@ def crossings_of(position: Any, breakpoints: np.ndarray, knots: tuple[float, ...
         hi, lo = np.where(left, mid, hi), np.where(left, lo, mid)
         flo = np.where(left, flo, fmid)
     roots = np.where(f[k, i] == 0.0, u[i], np.where(f[k, i + 1] == 0.0, u[i + 1], lo))
-    return np.unique(roots[(roots > 0.0) & (roots < 1.0)])
+    return sorted_unique(roots[(roots > 0.0) & (roots < 1.0)])
 
 
 def _check_table_span(load: Load, q: np.ndarray, linear: bool) -> None:

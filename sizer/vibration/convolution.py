@@ -26,6 +26,7 @@ import numpy as np
 
 from sizer.laws.base import MotionLaw
 from sizer.laws.quadrature import gauss_legendre, law_intervals
+from sizer.numerics.arrays import sorted_unique
 from sizer.vibration.transform import NODES
 
 CHUNK = 1 << 21
@@ -199,7 +200,7 @@ def grouped(s: np.ndarray, width: int) -> list[tuple[np.ndarray, float]]:
     memory for ``width`` columns a row, each with its grid's s_cap."""
     caps = s_cap_of(np.abs(s))
     out: list[tuple[np.ndarray, float]] = []
-    for cap in np.unique(caps):
+    for cap in sorted_unique(caps):
         rows = np.flatnonzero(caps == cap)
         size = max(1, CHUNK // max(1, width))
         out.extend((rows[i:i + size], float(cap)) for i in range(0, rows.size, size))

@@ -23,6 +23,7 @@ from functools import lru_cache
 import numpy as np
 
 from sizer.laws.base import MotionLaw
+from sizer.numerics.arrays import sorted_unique
 
 POINTS = 33
 """Chebyshev points a part (a polynomial of degree 32 interpolates it)."""
@@ -82,7 +83,7 @@ def _sample(law: MotionLaw, index: np.ndarray, a: np.ndarray, b: np.ndarray,
     x, _, _ = _chebyshev()
     nodes = a[:, None] + (0.5 * (x + 1.0)) * (b - a)[:, None]
     out = np.empty(nodes.shape)
-    for i in np.unique(index):
+    for i in sorted_unique(index):
         rows = index == i
         out[rows] = law.piece_derivative(int(i), nodes[rows], order)
     return out

@@ -27,6 +27,7 @@ import numpy as np
 from sizer.errors import UserError
 from sizer.laws.base import MotionLaw
 from sizer.laws.registry import make_law
+from sizer.numerics.arrays import sorted_unique
 from sizer.vibration import convolution as cv
 from sizer.vibration import far_field as far
 from sizer.vibration.elastic_load import ElasticLoad
@@ -105,7 +106,7 @@ def forced_end(law: MotionLaw, s: np.ndarray) -> np.ndarray:
     if is_far.any():
         out[is_far] = far.end_values(law, s[is_far])
     caps = cv.s_cap_of(np.abs(s))
-    for cap in np.unique(caps[~is_far]):
+    for cap in sorted_unique(caps[~is_far]):
         rows = np.flatnonzero((caps == cap) & ~is_far)
         grid = cv.law_grid(law, float(cap), RESIDUAL_STEP)
         size = max(1, cv.CHUNK // (grid.edges.size + grid.xi.size))
@@ -217,7 +218,7 @@ def tracking_error(law: MotionLaw | str, fT: np.ndarray | float, damping_ratio: 
         part = far_rows[i:i + block]
         out[part] = far.peak_error(the_law, s[part]) / omega_d[part]
     caps = cv.s_cap_of(np.abs(s))
-    for cap in np.unique(caps[~is_far]):
+    for cap in sorted_unique(caps[~is_far]):
         rows = np.flatnonzero((caps == cap) & ~is_far)
         grid = cv.law_grid(the_law, float(cap), TRACK_STEP, int(samples))
         size = max(1, cv.CHUNK // (grid.edges.size + CANDIDATES * grid.xi.size) // 2)

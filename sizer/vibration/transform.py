@@ -19,6 +19,7 @@ import numpy as np
 
 from sizer.laws.base import MotionLaw
 from sizer.laws.quadrature import gauss, law_intervals
+from sizer.numerics.arrays import sorted_unique
 from sizer.vibration import far_field as far
 
 NODES = 20
@@ -83,7 +84,7 @@ def law_transform(law: MotionLaw, s: np.ndarray | complex, order: int = 2) -> np
     if is_far.any():
         out[is_far] = np.exp(-flat[is_far]) * far.end_values(law, flat[is_far], order)
     caps = 2.0 ** np.ceil(np.log2(np.maximum(np.abs(flat), 1.0)))
-    for cap in np.unique(caps[~is_far]):  # nodes for the |s| of each group only
+    for cap in sorted_unique(caps[~is_far]):  # nodes for the |s| of each group only
         near = np.flatnonzero((caps == cap) & ~is_far)
         out[near] = _gauss_transform(law, flat[near], order)
     return out.reshape(s.shape)

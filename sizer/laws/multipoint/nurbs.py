@@ -36,6 +36,7 @@ from sizer.laws.multipoint.bsplines import (
     solve_control_points,
 )
 from sizer.laws.multipoint.poly_splines import Condition, end_conditions
+from sizer.numerics.arrays import sorted_unique
 
 
 def _leibniz_quotient(num: list[np.ndarray], den: list[np.ndarray]) -> list[np.ndarray]:
@@ -71,7 +72,7 @@ class NURBS:
         self._den = BSpline(self.knots, self.weights, self.degree)
         lo, hi = self.knots[self.degree], self.knots[-self.degree - 1]
         inner = self.knots[(self.knots > lo) & (self.knots < hi)]
-        self.x = np.unique(np.concatenate([[lo], inner, [hi]]))
+        self.x = sorted_unique(np.concatenate([[lo], inner, [hi]]))
 
     def _derivs(self, spline: Any, t: np.ndarray, nu: int) -> list[np.ndarray]:
         return [spline(t, i) if i <= self.degree else np.zeros_like(t)

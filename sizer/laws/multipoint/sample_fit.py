@@ -65,6 +65,7 @@ from sizer.errors import UserError
 from sizer.input_limits import MAX_CAM_TABLE_ROWS
 from sizer.laws.multipoint.fields import boolean, integer, number
 from sizer.laws.quadrature import gauss
+from sizer.numerics.arrays import sorted_unique
 
 if TYPE_CHECKING:
     from scipy.interpolate import BSpline, PPoly
@@ -228,7 +229,7 @@ def _trimmed(spline: BSpline, a: float, b: float) -> PPoly:
     from scipy.interpolate import PPoly
 
     k = spline.k
-    knots = np.unique(spline.t)
+    knots = sorted_unique(spline.t)
     span = b - a
     inside = knots[(knots > a + 1e-12 * span) & (knots < b - 1e-12 * span)]
     breaks = np.concatenate(([a], inside, [b]))
@@ -298,7 +299,7 @@ def _derivative_noise(x: np.ndarray, spline: BSpline, curve: PPoly, order: int,
                                           bc_type="periodic" if periodic else None)
     # on at most _NOISE_PIECES pieces spread evenly over the table (all of a shorter one)
     count = len(curve.x) - 1
-    chosen = np.unique(np.linspace(0, count - 1, min(count, _NOISE_PIECES)).astype(int))
+    chosen = sorted_unique(np.linspace(0, count - 1, min(count, _NOISE_PIECES)).astype(int))
     left, width = curve.x[chosen], curve.x[chosen + 1] - curve.x[chosen]
     u, g = np.polynomial.legendre.leggauss(_GAUSS_NODES)
     t = (left[:, None] + 0.5 * width[:, None] * (u + 1.0)).ravel()

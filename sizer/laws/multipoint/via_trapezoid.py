@@ -37,6 +37,7 @@ import numpy as np
 
 from sizer.errors import UserError
 from sizer.laws.multipoint.fields import boolean, number, numbers, points, refuse_unknown
+from sizer.numerics.arrays import sorted_unique
 
 if TYPE_CHECKING:
     from scipy.interpolate import PPoly
@@ -132,7 +133,7 @@ def via_trapezoid(t: np.ndarray, q: np.ndarray, acceleration_times: np.ndarray, 
     cruise = hk / (T - Ta)
     a = cruise / Ta
     end = starts[-1] + durations[-1]
-    breaks = np.unique(np.concatenate(([t[0], end], s, s + Ta, s + T - Ta, s + T)))
+    breaks = sorted_unique(np.concatenate(([t[0], end], s, s + Ta, s + T - Ta, s + T)))
     # one breakpoint where two segments' ends coincide up to rounding
     breaks = breaks[np.concatenate(([True], np.diff(breaks) > 1e-12 * (end - t[0])))]
     breaks[-1] = end
