@@ -60,12 +60,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
 from sizer.errors import UserError
 from sizer.laws import MotionLaw
 from sizer.model.domain import LinkageStage
+from sizer.numerics.arrays import sorted_unique
 
 DEFAULT_PRESSURE_ANGLE = math.radians(30.0)
 """The pressure angle limit of a translating follower (Norton sec. 7.2: 30 deg)."""
@@ -109,18 +111,24 @@ class CamLift:
     def output(self, theta: np.ndarray, order: int = 0) -> np.ndarray:
         """d^order s / d theta^order: h q^(order)(u) / beta^order, u the piece's
         normalized angle."""
+        return self._orders(theta, (order,))[0]
+
+    def _orders(self, theta: np.ndarray, orders: tuple[int, ...]) -> list[np.ndarray]:
+        """:meth:`output` of each order, the angles sorted into pieces once."""
         theta = np.asarray(theta, dtype=float)
         index, phase = self._index(theta)
-        out = np.zeros(theta.shape)
-        for i in np.unique(index):
+        out = [np.zeros(theta.shape) for _ in orders]
+        for i in sorted_unique(index):
             piece = self.pieces[int(i)]
             mask = index == i
-            if order == 0:
-                out[mask] = piece.lift
-            if piece.law is None or order > piece.law.max_order:
-                continue
             u = np.clip((phase[mask] - piece.start) / piece.angle, 0.0, 1.0)
-            out[mask] += piece.rise * piece.law.derivative(u, order) / piece.angle**order
+            for values, order in zip(out, orders, strict=True):
+                if order == 0:
+                    values[mask] = piece.lift
+                if piece.law is None or order > piece.law.max_order:
+                    continue
+                values[mask] += piece.rise * piece.law.derivative(u, order) \
+                    / piece.angle**order
         return out
 
     def input_of(self, s: np.ndarray, half: int) -> np.ndarray:
@@ -134,6 +142,21 @@ class CamLift:
         lifts = [p.lift for p in self.pieces] + [p.lift + p.rise for p in self.pieces]
         return min(lifts), max(lifts)
 
+    @cached_property
+    def turn(self) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray, np.ndarray]]:
+        """The turn's angles (:meth:`angles`) and s, s', s'' there, computed once: every
+        geometry of the cam reads them (the auto base radius bisects over dozens)."""
+        theta = self.angles()
+        s, s1, s2 = self._orders(theta, (0, 1, 2))
+        return theta, (s, s1, s2)
+
+    def outputs(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """s, s', s'' at the angles ``theta`` (the turn's, :attr:`turn`, kept)."""
+        if theta is self.turn[0]:
+            return self.turn[1]
+        s, s1, s2 = self._orders(theta, (0, 1, 2))
+        return s, s1, s2
+
     def angles(self, samples: int = CAM_SAMPLES) -> np.ndarray:
         """Cam angles over a turn: a uniform grid plus every piece's ends (approached
         from inside, where the law's derivatives may jump)."""
@@ -141,7 +164,7 @@ class CamLift:
         for p in self.pieces:
             ends += [p.start, p.start + p.angle * (1.0 - 1e-12)]
         grid = np.linspace(0.0, 2.0 * math.pi, samples, endpoint=False)
-        return np.unique(np.concatenate((grid, ends)))
+        return sorted_unique(np.concatenate((grid, ends)))
 
 
 @dataclass(frozen=True)
@@ -309,7 +332,7 @@ def _follower(lift: CamLift, theta: np.ndarray, prime_radius: float, offset: flo
               arm: Arm | None) -> tuple[np.ndarray, ...]:
     """(P, P', P'', u) of the follower at the cam angles: a translating one
     (P = (e, d + s)) or, with ``arm``, an oscillating one (:func:`oscillating_motion`)."""
-    s, s1, s2 = (lift.output(theta, k) for k in range(3))
+    s, s1, s2 = lift.outputs(theta)
     if arm is not None:
         return oscillating_motion(s, s1, s2, prime_radius, arm)
     d = math.sqrt(prime_radius**2 - offset**2)
@@ -370,15 +393,14 @@ def geometry(lift: CamLift, prime_radius: float, offset: float,
              arm: Arm | None = None) -> CamGeometry:
     """The figures of :class:`CamGeometry` over a turn (:meth:`CamLift.angles`, each
     maximum refined: :func:`refined_max`); ``arm``: an oscillating follower's."""
-    theta = lift.angles()
+    theta = lift.turn[0]  # its s, s', s'' computed once for every geometry of the cam
     if arm is None:  # the translating follower's closed forms
         def phi(x: np.ndarray) -> np.ndarray:
-            return np.abs(pressure_angle(lift.output(x), lift.output(x, 1), prime_radius,
-                                         offset))
+            s, s1, _ = lift.outputs(x)
+            return np.abs(pressure_angle(s, s1, prime_radius, offset))
 
         def kappa(x: np.ndarray) -> np.ndarray:
-            return pitch_curvature(lift.output(x), lift.output(x, 1), lift.output(x, 2),
-                                   prime_radius, offset)
+            return pitch_curvature(*lift.outputs(x), prime_radius, offset)
     else:
         def phi(x: np.ndarray) -> np.ndarray:
             P, P1, _, u = _follower(lift, x, prime_radius, offset, arm)
@@ -485,7 +507,7 @@ def contact_force(stage: CamStage, mass: float, force: float, friction: float,
     (module docstring), the spring included."""
     assert stage.lift is not None
     w = stage.speed
-    s, s1, s2 = (stage.lift.output(theta, k) for k in range(3))
+    s, s1, s2 = stage.lift.outputs(theta)
     return (mass * s2 * w * w + damping * s1 * w + friction * np.sign(s1 * w) + force
             + stage.spring_preload + stage.spring_rate * s)
 
@@ -499,7 +521,7 @@ def needed_preload(stage: CamStage, mass: float, force: float, friction: float,
     def gap(x: np.ndarray) -> np.ndarray:
         return stage.spring_preload - contact_force(stage, mass, force, friction, damping, x)
 
-    return refined_max(gap, stage.lift.angles())
+    return refined_max(gap, stage.lift.turn[0])
 
 
 @dataclass(frozen=True)
