@@ -23,6 +23,8 @@ def hermite_root(g0: np.ndarray, g1: np.ndarray, d0: np.ndarray,
     shape = np.broadcast_shapes(np.shape(g0), np.shape(g1), np.shape(d0), np.shape(d1))
     g0, g1, d0, d1 = (np.ravel(np.broadcast_to(np.asarray(x, dtype=float), shape))
                       for x in (g0, g1, d0, d1))
+    if not g0.size:
+        return np.zeros(shape)
     c2 = 3.0 * (g1 - g0) - 2.0 * d0 - d1
     c3 = 2.0 * (g0 - g1) + d0 + d1
     low, high = np.zeros_like(g0), np.ones_like(g0)

@@ -529,8 +529,13 @@ class LinkageCalculator:
                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(motor speed, motor torque, crank torque) at the profile's samples for each
         candidate's duration: arrays (candidates, samples)."""
+        return self._motor_samples(self._crank(duration))
+
+    def _motor_samples(self, state: tuple[np.ndarray, ...]
+                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """:meth:`motor_samples` from the crank's state at the durations (:meth:`_crank`)."""
         p = self.profile
-        T, N, eta, rotor, crank, driving = self._crank(duration)
+        T, N, eta, rotor, crank, driving = state
         torque = rotor * N * p.theta2 / T**2 + np.where(driving, crank / (N * eta),
                                                          crank * eta / N)
         return N * p.theta1 / T, torque, crank
@@ -555,8 +560,12 @@ class LinkageCalculator:
         near it off only at the samples where the crank torque changes sign between the
         two durations (the torque is small there: 1e-7 relative at 1 % from T0 in the
         bundled press cycle, tests/test_linkage_rms_model.py)."""
+        return self._powers(self._crank(duration))
+
+    def _powers(self, state: tuple[np.ndarray, ...]) -> np.ndarray:
+        """:meth:`powers` from the crank's state at the durations (:meth:`_crank`)."""
         p = self.profile
-        _, N, eta, rotor, _, driving = self._crank(duration)
+        _, N, eta, rotor, _, driving = state
         through = np.where(driving, 1.0 / (N * eta), eta / N)
         A = rotor * N * p.theta2 + through * p.inertial
         B, C = through * p.damping, through * p.steady
@@ -567,20 +576,27 @@ class LinkageCalculator:
     def evaluate(self, duration: np.ndarray, peaks: bool = True, model: bool = False,
                  rms: np.ndarray | None = None) -> CycleMetrics:
         """The requirements at ``duration`` (every one sampled: ``peaks`` and ``rms``
-        change nothing), with ``model`` the RMS model there (:class:`LinkageRms`)."""
-        metrics = self.sampled(duration)[0]
+        change nothing), with ``model`` the RMS model there (:class:`LinkageRms`); the
+        crank's torques computed once for both."""
+        state = self._crank(duration)
+        metrics = self._sampled(duration, state)[0]
         if not model:
             return metrics
-        curve = LinkageRms(self.powers(duration), self.task.dwell,
+        curve = LinkageRms(self._powers(state), self.task.dwell,
                            held_torque(self.profile.hold, self.drive, len(self.motors)))
         return replace(metrics, rms_model=curve)
 
     def sampled(self, duration: np.ndarray
                 ) -> tuple[CycleMetrics, np.ndarray, np.ndarray]:
         """:meth:`evaluate` and the samples it read: (metrics, motor speed, torque)."""
+        return self._sampled(duration, self._crank(duration))
+
+    def _sampled(self, duration: np.ndarray, state: tuple[np.ndarray, ...]
+                 ) -> tuple[CycleMetrics, np.ndarray, np.ndarray]:
+        """:meth:`sampled` from the crank's state at the durations (:meth:`_crank`)."""
         p, motors, drive = self.profile, self.motors, self.drive
         T = np.broadcast_to(np.asarray(duration, dtype=float), (len(motors),))[:, None]
-        speed, torque, crank = self.motor_samples(T[:, 0])
+        speed, torque, crank = self._motor_samples(state)
         dwell = self.task.dwell
         hold = held_torque(p.hold, drive, len(motors))
         cycle = T[:, 0] + dwell
@@ -706,8 +722,8 @@ def refined_max(values: np.ndarray, u: np.ndarray, kinks: np.ndarray | None = No
     third derivative times the spacing cubed, and the largest of them would be kept)."""
     m = values.shape[1]
     rows = np.arange(values.shape[0])
-    best = np.max(values, axis=1)
     top_i = np.argmax(values, axis=1)
+    best = values[rows, top_i]  # the largest (NaN where a row has one, as np.max)
     centred = np.zeros(len(rows), dtype=bool)
     for shift in ((0,) if kinks is None else (0, -1, 1)):
         i = np.clip(top_i + shift, 1, m - 2)
@@ -1613,11 +1629,11 @@ class PositionCalculator(LinkageCalculator):
         return PositionCalculator(self.profile, self.task, self.drive.take(index),
                                   self.motors.subset(index), self.thermal_rule, self.law)
 
-    def sampled(self, duration: np.ndarray
-                ) -> tuple[CycleMetrics, np.ndarray, np.ndarray]:
+    def _sampled(self, duration: np.ndarray, state: tuple[np.ndarray, ...]
+                 ) -> tuple[CycleMetrics, np.ndarray, np.ndarray]:
         """The linkage engine's figures, the load's torque (force) with its position terms
         and, with a dwell, the static load it holds."""
-        metrics, speed, torque = super().sampled(duration)
+        metrics, speed, torque = super()._sampled(duration, state)
         p = self.profile
         T = np.broadcast_to(np.asarray(duration, dtype=float), (len(self.motors),))[:, None]
         force = p.inertial / T**2 + p.damping / T + p.steady
