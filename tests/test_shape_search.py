@@ -168,15 +168,25 @@ def test_several_laws_as_rows_of_one_model_give_each_laws_own_answer():
     assert np.isfinite(together).all()
 
 
-@pytest.mark.parametrize("duration", [None, 0.6])
+@pytest.mark.parametrize("duration, residual", [
+    (None, None), (0.6, None),
+    # a load with a mode: its residual vibration reported, then limited (binding for some)
+    (None, math.inf), (0.6, math.inf), (None, 2e-5), (0.6, 2e-5)])
 def test_each_candidates_own_law_sized_as_rows_of_one_model_is_each_law_alone(
-        duration, monkeypatch):
-    """sizer.sizing.engine.evaluate_laws (the laws of auto shapes, one per motor): as the
-    rows of one LawRows model, and law by law, every figure the same bit for bit."""
+        duration, residual, monkeypatch):
+    """sizer.sizing.engine.evaluate_laws (the laws of auto shapes, one per motor, and of
+    shaped laws, one per duration): as the rows of one LawRows model, the residual
+    vibration a later limit over its rows (sizer.sizing.vibration_check.ResidualRows),
+    and law by law, every figure and check the same bit for bit."""
     from sizer.sizing import engine
+    from sizer.vibration.elastic_load import ElasticLoad
 
     design = replace(efficiency_design(), task=Task(math.pi / 2, duration, dwell=0.15,
                                                     return_move=True))
+    if residual is not None:
+        design = replace(design, load=replace(design.load, elastic=ElasticLoad(25.0, 0.02)),
+                         limits=replace(design.limits, residual_vibration=None
+                                        if math.isinf(residual) else residual))
     candidates = Candidates.single(MotorArrays.of(design.motors), design.load,
                                    design.transmission)
     laws = [Trapezoidal(alpha=a) for a in (0.2, 1 / 3, 0.45)]
@@ -194,6 +204,12 @@ def test_each_candidates_own_law_sized_as_rows_of_one_model_is_each_law_alone(
         assert mine.name == theirs.name
         assert np.array_equal(mine.value, theirs.value, equal_nan=True)
         assert np.array_equal(mine.slack, theirs.slack, equal_nan=True)
+    if residual is not None:
+        assert np.isfinite(together.figures["residual_vibration"]).all()
+    if residual is not None and math.isfinite(residual):
+        check = next(c for c in together.checks if c.name == "residual_vibration")
+        binding = np.abs(check.value - residual) <= 1e-9 * residual
+        assert binding.any() if duration is None else (~check.passed).any()
 
 
 @pytest.mark.parametrize("seed", [1, 2, 3])

@@ -419,6 +419,9 @@ def search_range(law_id: str, p: Parameter, inset: float) -> tuple[float, float]
 
 FixedLawSizing = Callable[[Design, MotionLaw, Candidates], CandidateTable]
 """Sizes one fixed law for every candidate (sizer.sizing.engine.evaluate_fixed_law)."""
+LawsSizing = Callable[[Design, list[MotionLaw], np.ndarray, Candidates], CandidateTable]
+"""Sizes each candidate with its own law, laws[group[i]], as the rows of one model where
+it can (sizer.sizing.engine.evaluate_laws)."""
 
 ROUNDS = 12
 """Most secant steps of the minimize iteration."""
@@ -442,9 +445,11 @@ def _shaped(fields: dict[str, Any], mode: ElasticLoad, T: float) -> MotionLaw:
 
 
 def evaluate_shaped(design: Design, choice: LawChoice, candidates: Candidates,
-                    evaluate_fixed_law: FixedLawSizing) -> CandidateTable:
+                    evaluate_fixed_law: FixedLawSizing,
+                    evaluate_laws: LawsSizing) -> CandidateTable:
     """The open shaped law ``choice`` for every candidate, in their order, each law shaped
-    for it sized by ``evaluate_fixed_law`` (sizer.sizing.engine's)."""
+    for it: one law by ``evaluate_fixed_law``, the laws of each round's durations by
+    ``evaluate_laws`` (sizer.sizing.engine's)."""
     from sizer.vibration.shapers import shaper_length
 
     fields = dict(read_data_spec(choice.text))
@@ -463,7 +468,7 @@ def evaluate_shaped(design: Design, choice: LawChoice, candidates: Candidates,
     known = np.isfinite(start)
     fallback = float(np.nanmax(start)) if known.any() else 4.0 * t_n
     T = np.where(known, start, fallback) + t_n
-    table, h = _round(plain, fields, mode, T, candidates, evaluate_fixed_law)
+    table, h = _round(plain, fields, mode, T, candidates, evaluate_laws)
     previous_T, previous_h = T, h
     for _ in range(ROUNDS):
         moving = np.isfinite(h) & (np.abs(h) > RTOL * T)
@@ -479,30 +484,35 @@ def evaluate_shaped(design: Design, choice: LawChoice, candidates: Candidates,
         nxt = np.where(moving, np.maximum(T + step, t_n * (1.0 + 1e-6)), T)
         previous_T, previous_h = T, h
         T = nxt
-        table, h = _round(plain, fields, mode, T, candidates, evaluate_fixed_law,
+        table, h = _round(plain, fields, mode, T, candidates, evaluate_laws,
                           (table, previous_T))
     if limit is None:
         return table
-    return _round(design, fields, mode, T, candidates, evaluate_fixed_law)[0]
+    return _round(design, fields, mode, T, candidates, evaluate_laws)[0]
 
 
 def _round(design: Design, fields: dict[str, Any], mode: ElasticLoad, T: np.ndarray,
-           candidates: Candidates, evaluate_fixed_law: FixedLawSizing,
+           candidates: Candidates, evaluate_laws: LawsSizing,
            previous: tuple[CandidateTable, np.ndarray] | None = None,
            ) -> tuple[CandidateTable, np.ndarray]:
-    """Every candidate sized (minimize) with the law shaped for its own T; the table in
-    the candidates' order and h = T_min - T (nan where infeasible). ``previous``: an
-    earlier round's table and T, its rows kept where T is the same (the same row)."""
+    """Every candidate sized (minimize) with the law shaped for its own T (the candidates
+    of one T, to 15 digits, share the law shaped for the first one's), the laws as the
+    rows of one model where the engine can; the table in the candidates' order and
+    h = T_min - T (nan where infeasible). ``previous``: an earlier round's table and T,
+    its rows kept where T is the same (the same row)."""
     kept = np.zeros(len(T), dtype=bool) if previous is None else previous[1] == T
-    keys, group = np.unique(np.where(kept, np.inf, np.round(T, 15)), return_inverse=True)
+    new = np.flatnonzero(~kept)
+    _, first, group = np.unique(np.round(T[new], 15), return_index=True,
+                                return_inverse=True)
+    laws = [_shaped(fields, mode, float(T[new[i]])) for i in first]
 
     def size(k: int, index: np.ndarray) -> CandidateTable:
-        if previous is not None and kept[index[0]]:
+        if k == 0 or not len(index):  # the rows kept from the previous round
+            assert previous is not None
             return previous[0].take(index)
-        return evaluate_fixed_law(design, _shaped(fields, mode, float(T[index[0]])),
-                                  candidates.take(index))
+        return evaluate_laws(design, laws, np.ravel(group), candidates.take(index))
 
-    table = in_groups(group, size, len(keys))
+    table = in_groups((~kept).astype(np.intp), size, 2) if kept.any() else size(1, new)
     return table, table.figures["duration"] - T
 
 

@@ -71,7 +71,7 @@ from sizer.sizing.results import (
 )
 from sizer.sizing.shortest_duration import answer, is_purely_inertial, searched_law_rows
 from sizer.sizing.stage_life import gearbox_life_limits, screw_limits
-from sizer.sizing.vibration_check import residual_limit
+from sizer.sizing.vibration_check import ResidualRows, residual_limit
 
 if TYPE_CHECKING:
     from concurrent.futures import Future
@@ -220,7 +220,7 @@ def evaluate_law(design: Design, spec: LawChoice | str,
     if spec.open_shaped:  # shaped for the load's mode at each candidate's duration
         from sizer.sizing.choices import evaluate_shaped
 
-        return evaluate_shaped(design, spec, candidates, evaluate_fixed_law)
+        return evaluate_shaped(design, spec, candidates, evaluate_fixed_law, evaluate_laws)
     if spec.auto:
         single_task(design)  # chosen for the task shorthand only (sizer.io refuses others)
         with without_power_figures():  # verdicts only; the chosen laws get them below
@@ -241,12 +241,13 @@ def evaluate_laws(design: Design, laws: Sequence[MotionLaw], group: np.ndarray,
     the search from their peak bounds (no closed form, none moving backwards), no later
     limit applies and one chunk holds them; else law by law (:func:`evaluate_fixed_law`),
     which gives the same numbers."""
-    rows = _law_rows(design, laws, group, candidates)
-    if rows is None:
+    found = _law_rows(design, laws, group, candidates)
+    if found is None:
         return in_groups(group, lambda k, index: evaluate_fixed_law(
             design, laws[k], candidates.take(index)), len(laws))
+    rows, later = found
     cycle, limits = design.machine_cycle, design.limits
-    settled = answer(rows, limits, [], cycle.minimize)
+    settled = answer(rows, limits, later, cycle.minimize)
     checks, verdict = settled.checks, settled.feasible
     if limits.thermal_duty == "once":
         checks, verdict = _once(checks, verdict)
@@ -258,9 +259,10 @@ def evaluate_laws(design: Design, laws: Sequence[MotionLaw], group: np.ndarray,
 
 
 def _law_rows(design: Design, laws: Sequence[MotionLaw], group: np.ndarray,
-              candidates: Candidates) -> LawRows | None:
+              candidates: Candidates) -> tuple[LawRows, list[ResidualRows]] | None:
     """The candidates as the rows of one LawRows model where :func:`evaluate_laws` may
-    size them so, else None."""
+    size them so, with its later limit (the laws' residual vibration, where the load has
+    a mode), else None."""
     task = shorthand_task(design.machine_cycle)
     if (len(laws) < 2 or task is None or design.transmission.linkage is not None
             or design.load.position_dependent):
@@ -272,12 +274,17 @@ def _law_rows(design: Design, laws: Sequence[MotionLaw], group: np.ndarray,
         return None
     builds = candidates.motors.builds
     modes = () if builds is None else builds.modes
-    if (any(residual_limit(design, law, modes) is not None for law in laws)
-            or energy_limit(design, candidates.motors) is not None or screw_limits(drive)
+    if (energy_limit(design, candidates.motors) is not None or screw_limits(drive)
             or (cycle_sampled(design) and gearbox_life_limits(drive))
             or len(candidates) > min(chunk_size(law) for law in laws)):
         return None
-    return rows
+    residuals = [limit for law in laws if (limit := residual_limit(design, law, modes))
+                 is not None]
+    if not residuals:  # the load has no mode
+        return rows, []
+    if len(residuals) < len(laws):
+        return None
+    return rows, [ResidualRows(tuple(residuals))]
 
 
 def evaluate_per_move(design: Design, choice: PerMoveChoice,

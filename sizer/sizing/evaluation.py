@@ -17,6 +17,7 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
+from functools import cached_property
 from typing import TYPE_CHECKING, Any, Protocol, Self
 
 import numpy as np
@@ -288,6 +289,14 @@ class LawRows:
             self._c_v[rows] = calc.law.coefficients.C_v
             self._c_v_rms[rows] = calc.law.coefficients.C_v_rms
 
+    @cached_property
+    def place(self) -> np.ndarray:
+        """Each row's place among its part's rows (its index in that part's calculator)."""
+        out = np.empty(len(self.part), dtype=np.intp)
+        for rows in self.rows:
+            out[rows] = np.arange(len(rows))
+        return out
+
     def moves_backwards(self) -> bool:
         """Whether a law may move backwards (v_N < 0): it has no peak bound
         (sizer.sizing.move.peak_duration), its search is another."""
@@ -313,11 +322,8 @@ class LawRows:
         """The rows at ``index``, in that order (each part takes its own)."""
         index = np.asarray(index, dtype=np.intp)
         part = self.part[index]
-        rank = np.empty(len(self.part), dtype=np.intp)  # each row's place in its part
-        for rows in self.rows:
-            rank[rows] = np.arange(len(rows))
         kept = sorted_unique(part)  # the parts with rows left, renumbered in order
-        parts = [self.parts[k].take(rank[index[part == k]]) for k in kept]
+        parts = [self.parts[k].take(self.place[index[part == k]]) for k in kept]
         return LawRows(parts, np.searchsorted(kept, part), self._motors.subset(index),
                        self._drive.take(index))
 

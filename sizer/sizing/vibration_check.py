@@ -26,9 +26,10 @@ from sizer.laws.base import MotionLaw
 from sizer.laws.per_move import RankedLaw
 from sizer.model.cycle import from_task
 from sizer.model.domain import Design
+from sizer.numerics.arrays import sorted_unique
 from sizer.numerics.roots import illinois
 from sizer.sizing.checks import RESIDUAL_VIBRATION
-from sizer.sizing.evaluation import CycleMetrics, CycleModel
+from sizer.sizing.evaluation import CycleMetrics, CycleModel, LawRows
 from sizer.sizing.results import RESIDUAL
 from sizer.sizing.shortest_duration import LaterChecks
 from sizer.vibration.cycle_residual import CycleVibration
@@ -101,7 +102,10 @@ class ResidualLimit:
 
     def at(self, calculator: CycleModel, s: np.ndarray, metrics: CycleMetrics,
            known: np.ndarray) -> LaterChecks:
-        at = np.where(known, s, 1.0)
+        return self.checks(self.worst(calculator, np.where(known, s, 1.0)), known)
+
+    def worst(self, calculator: CycleModel, at: np.ndarray) -> np.ndarray:
+        """The largest residual over the moves of each candidate at scales ``at``."""
         own = own_durations(calculator, at)
         worst = np.empty(np.shape(at))
         for vibration, index in self._groups(calculator):
@@ -110,11 +114,16 @@ class ResidualLimit:
             elif index.size:
                 worst[index] = vibration.worst(at[index], None if own is None
                                                else [d[index] for d in own])
+        return worst
+
+    def checks(self, worst: np.ndarray, known: np.ndarray) -> LaterChecks:
+        """The figure, and the check against the limit, of the residuals ``worst`` where
+        ``known`` (elsewhere the figure is NaN and the check passes)."""
         figures = {RESIDUAL: np.where(known, worst, np.nan)}
         if self.limit is None:
             return LaterChecks([], np.ones(len(known), dtype=bool), figures)
         check = RESIDUAL_VIBRATION.arrays(np.where(known, worst, 0.0),
-                                          np.full(np.shape(s), self.limit), 0.0,
+                                          np.full(np.shape(worst), self.limit), 0.0,
                                           linear=self.linear)
         return LaterChecks([check], check.passed, figures)
 
@@ -127,6 +136,37 @@ class ResidualLimit:
                 return admissible_scale(vibration, s, self.limit)
             if index.size:
                 out[index] = admissible_scale(vibration, s[index], self.limit)
+        return out
+
+
+@dataclass(frozen=True)
+class ResidualRows:
+    """The residual limits of several laws as one later limit over the rows of a
+    sizer.sizing.evaluation.LawRows model: part k's rows read ``limits[k]`` (its law's
+    residual at their scales, with its own calculator), so every row's figure, check and
+    passing scale are those its law gives alone. The limits share the design's limit."""
+
+    limits: tuple[ResidualLimit, ...]
+
+    def at(self, calculator: CycleModel, s: np.ndarray, metrics: CycleMetrics,
+           known: np.ndarray) -> LaterChecks:
+        assert isinstance(calculator, LawRows)
+        at = np.where(known, s, 1.0)
+        worst = np.empty(np.shape(at))
+        for limit, part, rows in zip(self.limits, calculator.parts, calculator.rows,
+                                     strict=True):
+            worst[rows] = limit.worst(part, at[rows])
+        return self.limits[0].checks(worst, known)
+
+    def passing_scale(self, calculator: CycleModel, rows: np.ndarray, s: np.ndarray,
+                      found: LaterChecks) -> np.ndarray:
+        assert isinstance(calculator, LawRows)
+        out = np.empty(np.shape(s))
+        part = calculator.part[rows]
+        for k in sorted_unique(part):
+            mine = np.flatnonzero(part == k)
+            out[mine] = self.limits[k].passing_scale(
+                calculator.parts[k], calculator.place[rows[mine]], s[mine], found)
         return out
 
 
