@@ -704,12 +704,16 @@ def listed_choice(design: Design, table: CandidateTable) -> np.ndarray | None:
                                             for g in choice.gearboxes]
     keys += [(None, r) for r in choice.ratios]
     assert table.stage_ratio is not None  # a table of the ratio search
-    place: dict[tuple[str | None, float], int] = {}
-    for k, key in enumerate(keys):
-        place.setdefault(key, k)
-    names = np.array(table.gearboxes, dtype=object)[table.option]
-    return np.array([place.get((name, float(ratio)), -1) for name, ratio in
-                     zip(names, table.stage_ratio, strict=True)], dtype=np.intp)
+    # per row its option's gearbox (a name, or None) as the place of that name among the
+    # table's names, then each listed key in turn: the first that matches (name, ratio)
+    names = list(dict.fromkeys(table.gearboxes))
+    name_of = np.array([names.index(g) for g in table.gearboxes], dtype=np.intp)[table.option]
+    out = np.full(len(table.option), -1, dtype=np.intp)
+    for k, (name, ratio) in enumerate(keys):
+        if name in names:
+            out[(out < 0) & (name_of == names.index(name))
+                & (table.stage_ratio == float(ratio))] = k
+    return out
 
 
 def _peaks_in_order(candidates: Candidates, motor: np.ndarray, rank: np.ndarray,
