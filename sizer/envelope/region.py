@@ -44,20 +44,19 @@ class RegionTable:
     """The regions of many motors as padded arrays, evaluated for all of them at once."""
 
     def __init__(self, curves: Sequence[Curve]) -> None:
-        width = max(len(c) for c in curves)
-        count = len(curves)
-        self.speeds = np.empty((count, width))
-        self.torques = np.empty((count, width))
-        self.max_speed = np.empty(count)
-        for row, curve in enumerate(curves):
-            speed = np.array([p[0] for p in curve], dtype=float)
-            torque = np.array([p[1] for p in curve], dtype=float)
-            top = speed[-1]
-            pad = width - len(curve)
-            # strictly increasing padding past the end keeps every segment well defined
-            self.speeds[row] = np.concatenate((speed, top * (2.0 + np.arange(pad))))
-            self.torques[row] = np.concatenate((torque, np.full(pad, torque[-1])))
-            self.max_speed[row] = top
+        lengths = np.array([len(c) for c in curves], dtype=np.intp)
+        width = int(lengths.max())
+        # every curve's points laid end to end, each row read from its own stretch
+        points = np.array([(p[0], p[1]) for c in curves for p in c], dtype=float)
+        first = np.cumsum(lengths) - lengths
+        column = np.arange(width)[None, :]
+        past = column - lengths[:, None]  # >= 0 past a curve's last point
+        source = first[:, None] + np.minimum(column, lengths[:, None] - 1)
+        self.max_speed = points[first + lengths - 1, 0]
+        # strictly increasing padding past the end keeps every segment well defined
+        self.speeds = np.where(past >= 0, self.max_speed[:, None] * (2.0 + past),
+                               points[source, 0])
+        self.torques = points[source, 1]
 
     def __len__(self) -> int:
         return len(self.max_speed)
