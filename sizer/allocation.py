@@ -22,7 +22,7 @@ every free move. Each E_j' is modelled locally (a power law -p T^-q where E_j fa
 is convex, exact for a purely inertial move, whose integral is c/T^3; else its tangent
 line g + H (T - T_j)), so that T_j(lambda) is explicit and decreasing; the lambda at which
 they sum to F is found by the project's vectorized root finder
-(sizer.numerics.roots.illinois) for all candidates at once. The step towards that split
+(sizer.numerics.roots.bracketed_root) for all candidates at once. The step towards that split
 is halved until the goal does not rise (the engine's values, not the model's), each
 T_j kept within a factor TRUST of its value. The rounds stop per candidate when no T_j
 moves by more than TOLERANCE of itself.
@@ -41,7 +41,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from sizer.numerics.arrays import sorted_unique
-from sizer.numerics.roots import illinois
+from sizer.numerics.roots import bracketed_root
 
 Cost = Callable[[int, np.ndarray, np.ndarray], np.ndarray]
 """``cost(j, T, rows)``: free move j's term of the goal at durations T (k,) for the
@@ -170,7 +170,7 @@ def _model_split(T: np.ndarray, g: np.ndarray, H: np.ndarray, F: np.ndarray) -> 
     low = np.min(lam_at(hi_T), axis=1) - 1.0  # every duration at its longest
     high = np.max(lam_at(lo_T), axis=1) + 1.0  # every duration at its shortest
     args = (T, g, q, H_line, power, scale, F)
-    lam = illinois(gap, low, high, gap(low, *args), gap(high, *args), xtol=1e-15,
+    lam = bracketed_root(gap, low, high, gap(low, *args), gap(high, *args), xtol=1e-15,
                    args=args)
     return split(lam, T, g, q, H_line, power, scale)
 

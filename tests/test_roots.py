@@ -1,4 +1,4 @@
-"""The project's one root finder (sizer.numerics.roots.illinois) and its use by the laws'
+"""The project's one root finder (sizer.numerics.roots.bracketed_root) and its use by the laws'
 coefficient peaks: roots against closed forms, peaks at the closed-form stationary points,
 and no scipy behind the laws' coefficients."""
 
@@ -14,7 +14,7 @@ import pytest
 
 from sizer.laws import make_law
 from sizer.laws.coefficients import peak
-from sizer.numerics.roots import illinois
+from sizer.numerics.roots import bracketed_root
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -24,7 +24,7 @@ def test_all_brackets_at_once_reach_the_roots_of_a_cosine():
     k = np.arange(40)
     roots = (k + 0.5) * math.pi
     lo, hi = roots - 0.3 - 0.01 * k, roots + 0.1 + 0.02 * k
-    found = illinois(np.cos, lo, hi, np.cos(lo), np.cos(hi))
+    found = bracketed_root(np.cos, lo, hi, np.cos(lo), np.cos(hi))
     np.testing.assert_allclose(found, roots, rtol=1e-15, atol=0)  # a few ulps
 
 
@@ -36,17 +36,38 @@ def test_elementwise_mode_and_final_brackets():
     def f(x, c):
         return x**3 - c
 
-    found = illinois(f, lo, hi, -c, 11.0**3 - c, args=(c,))
+    found = bracketed_root(f, lo, hi, -c, 11.0**3 - c, args=(c,))
     np.testing.assert_allclose(found, np.cbrt(c), rtol=1e-15)
-    a, b = illinois(lambda x: x**3 - c, lo, hi, -c, 11.0**3 - c, bracket=True)
+    a, b = bracketed_root(lambda x: x**3 - c, lo, hi, -c, 11.0**3 - c, bracket=True)
     assert np.all(a**3 - c <= 0.0) and np.all(b**3 - c >= 0.0)
     np.testing.assert_allclose(b - a, 0.0, atol=1e-14)
 
 
 def test_the_engine_imports_the_same_root_finder():
-    from sizer.numerics.roots import illinois as engine_illinois
+    from sizer.sizing.shortest_duration import bracketed_root as engine_root
 
-    assert engine_illinois is illinois
+    assert engine_root is bracketed_root
+
+
+@pytest.mark.parametrize("near", [1e-3, 1e-7, 1e-11])
+def test_a_bracket_with_one_end_near_the_root_closes_in_few_evaluations(near):
+    """The excess of an RMS crossing with a dwell, 3x + log(e^x + d) - log(c^3 (c + d))
+    in x = log T (root log c), from an end ``near`` the root and one a unit past it (the
+    ends' values 1e3-1e11 apart): the Illinois method took 31 and 20 evaluations for the
+    first two, halving the far end's value once a step."""
+    c, d = np.array([0.3, 1.7, 40.0]), 0.2
+    root = np.log(c)
+    lo, hi = root - near, root + 1.0
+    count = [0]
+
+    def f(x, c):
+        count[0] += 1
+        return 3.0 * x + np.log(np.exp(x) + d) - 3.0 * np.log(c) - np.log(c + d)
+
+    f_lo, f_hi = f(lo, c), f(hi, c)
+    found = bracketed_root(f, lo, hi, f_lo, f_hi, xtol=1e-15, args=(c,))
+    np.testing.assert_allclose(found, root, rtol=0, atol=4e-15)
+    assert count[0] - 2 <= 8
 
 
 @pytest.mark.parametrize(("spec", "order", "taus", "value"), [

@@ -25,7 +25,7 @@ from sizer.laws.piece_table import PieceTable
 from sizer.laws.pieces import LawShape, Piece
 from sizer.laws.quadrature import QuadratureRule
 from sizer.numerics.arrays import sorted_unique
-from sizer.numerics.roots import illinois
+from sizer.numerics.roots import bracketed_root
 
 GRID_PER_PIECE = 256
 """Uniform sub-intervals per piece scanned for sign changes of the next derivative."""
@@ -136,7 +136,7 @@ def _table_peak(law: LawShape, table: PieceTable, order: int) -> tuple[float, fl
         slope = table.evaluate(owner, tau, order + 1)
         row, col = np.nonzero(slope[:, :-1] * slope[:, 1:] < 0.0)
         at = pieces[row]
-        roots = illinois(lambda x, p: table.evaluate(p, x, order + 1), tau[row, col],
+        roots = bracketed_root(lambda x, p: table.evaluate(p, x, order + 1), tau[row, col],
                          tau[row, col + 1], slope[row, col], slope[row, col + 1],
                          args=(at,))
         taus = np.concatenate((tau.ravel(), roots))
@@ -169,13 +169,13 @@ def _peak_candidates(law: LawShape, index: int, order: int) -> np.ndarray:
 def _stationary_points(law: LawShape, index: int, order: int,
                        grid: np.ndarray) -> np.ndarray:
     """The roots of q_N^(order + 1) in every sign change of its samples on ``grid``, all
-    brackets of the piece at once (sizer.numerics.roots.illinois, to an ulp or so): the
+    brackets of the piece at once (sizer.numerics.roots.bracketed_root, to an ulp or so): the
     interior extrema of q_N^(order), where its value is then evaluated."""
     slope = law.piece_derivative(index, grid, order + 1)
     k = np.nonzero(slope[:-1] * slope[1:] < 0.0)[0]
     if not k.size:
         return k.astype(float)
-    return illinois(lambda x: law.piece_derivative(index, x, order + 1), grid[k], grid[k + 1],
+    return bracketed_root(lambda x: law.piece_derivative(index, x, order + 1), grid[k], grid[k + 1],
                     slope[k], slope[k + 1])
 
 

@@ -1,6 +1,7 @@
 """Numerical building blocks shared by the laws and the sizing engine (pure numpy).
 
-- :mod:`sizer.numerics.roots`: the project's one bracketing root finder (Illinois).
+- :mod:`sizer.numerics.roots`: the project's one bracketing root finder (Chandrupatla's
+  method).
 - :mod:`sizer.numerics.golden`: the golden-section step of the bracketed extremum
   searches (used where no derivative of the objective is available).
 - :mod:`sizer.numerics.hermite`: the root of a cubic Hermite model on an interval (the

@@ -1000,7 +1000,7 @@ def first_crossing(f, lo: np.ndarray, hi: np.ndarray, f_lo: np.ndarray, f_hi: np
     bracket is the first adjacent pair whose signs differ, so the bracket always holds
     the first sign change it held; where f is smooth the secant point is accurate to the
     square of the width, which the offsets then bracket (about three rounds from a width
-    of 0.3 to 1e-13, where the project's root finder, sizer.numerics.roots.illinois, takes
+    of 0.3 to 1e-13, where the project's root finder, sizer.numerics.roots.bracketed_root, takes
     one call per step and about ten).
     """
     lo, hi, f_lo, f_hi = (np.array(x, dtype=float) for x in (lo, hi, f_lo, f_hi))

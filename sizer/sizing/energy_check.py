@@ -39,7 +39,7 @@ winding temperature rise or the braking resistor's power
 fails there, a longer move is tried: both fall as the move slows (the torques fall as
 1/T^2, the speeds and the returned energy per cycle as 1/T, the cycle grows), so the
 first duration at which both pass is bracketed by doubling T from T_min and found by the
-project's root finder (sizer.numerics.roots.illinois) on the smaller of the two slacks.
+project's root finder (sizer.numerics.roots.bracketed_root) on the smaller of the two slacks.
 The heat check's slack may jump where the rule switches from the RMS-equivalent rise to
 the winding model (book sec. 6.1.1, footnote: the cycle against 1/10 of tau_th); the
 root finder keeps a passing end, so the duration returned passes.

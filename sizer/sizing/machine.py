@@ -35,7 +35,7 @@ minimize sizing of that cycle gives them all (:func:`scaled_cycle_time`). Laws c
 per duration (`auto` shapes, shaped laws without f_T: the task shorthand only) and
 axes without a dwell take the root of phi(T_c) = T_c - H(T_c), H(T_c) = min over the
 candidates of T_min(g T_c) / f (:func:`searched_cycle_time`; sizer.numerics.roots.
-illinois on a bracket from H itself: a dwell that relieves the RMS torque makes H fall,
+bracketed_root on a bracket from H itself: a dwell that relieves the RMS torque makes H fall,
 then [H(H(0)), H(0)] brackets the root; one that costs makes it rise, then T_c doubles
 until phi >= 0). The machine's cycle time is the largest of the axes', Theta / v_c.
 """
@@ -53,7 +53,7 @@ from sizer.energy.bus import BusAxis, shared_bus
 from sizer.energy.power import integral, interval_parts
 from sizer.model.domain import Design, ServoDrive
 from sizer.model.machine import Bus, Machine, MachineAxis
-from sizer.numerics.roots import illinois
+from sizer.numerics.roots import bracketed_root
 from sizer.sizing.energy_check import without_power_figures
 from sizer.sizing.engine import size_design
 from sizer.sizing.results import CandidateResult, SizingResult
@@ -260,7 +260,7 @@ def searched_cycle_time(axis: MachineAxis, cycle_angle: float,
     def phi(x: np.ndarray) -> np.ndarray:
         return np.array([float(x[0]) - H(float(x[0]))])
 
-    _, top = illinois(phi, np.array([lo]), np.array([hi]), np.array([phi_lo]),
+    _, top = bracketed_root(phi, np.array([lo]), np.array([hi]), np.array([phi_lo]),
                       np.array([phi_hi]), xtol=RELATIVE_TOLERANCE * min(1.0, hi), bracket=True)
     return float(top[0])
 

@@ -1142,7 +1142,7 @@ class CycleCalculator:
         (:func:`moment_table`) and the work per candidate is per reversal, not per grid
         interval. The reversals: a stage's output torque (a maximum of linear functions)
         is read at the ends of every grid interval; where it changes sign inside an
-        interval the root is found (Illinois, in the interval's own coordinate, to 1e-9:
+        interval the root is found (Newton in a bracket, in the interval's own coordinate:
         the two reflections agree at the root, so a root error dz changes an integral by
         O(dz^2)) and the table read there by Gauss-Legendre on the part of the interval
         before it; where its sign class changes across a grid edge (a jump of a_N) the

@@ -10,7 +10,7 @@ reaches its limit, by rounds on the cycle's RMS model (:func:`rms_crossing`). Wh
 leave (and the designs whose laws move backwards, where the bound does not hold) is found by
 a search on the worst slack, vectorized over candidates: a walk in log T up the slack until
 a feasible duration (or a golden-section search for the slack's maximum where it stops
-rising), then the Illinois method down to where the binding check reaches its limit, to a
+rising), then Chandrupatla's method down to where the binding check reaches its limit, to a
 relative width of 1e-13; each step evaluates only the candidates still open.
 
 The checks this search does not see, the later limits (residual vibration, braking
@@ -97,7 +97,7 @@ from sizer.laws import LawChoice, MotionLaw, law_choice
 from sizer.model.cycle import shorthand_task
 from sizer.model.domain import Design, Limits, Task, ThermalSpeedRule
 from sizer.numerics.golden import golden_step, interior_points
-from sizer.numerics.roots import illinois
+from sizer.numerics.roots import bracketed_root
 from sizer.sizing.candidates import Candidates, MotorArrays
 from sizer.sizing.checks import (
     TOLERANCE,
@@ -585,7 +585,7 @@ def rms_crossing_with_rms(calculator: CycleModel, limits: Limits, start: np.ndar
         g_lo, g_hi = np.where(x_a < x_b, g_a, g_b), np.where(x_a < x_b, g_b, g_a)
         x = np.where(found, 0.5 * (lo + hi), x0)
         if found.any():
-            x[found] = illinois(excess_of, lo[found], hi[found], g_lo[found], g_hi[found],
+            x[found] = bracketed_root(excess_of, lo[found], hi[found], g_lo[found], g_hi[found],
                                 xtol=1e-15, args=(np.flatnonzero(found),))
         new = np.exp(x)
         # the model's error grows with the square of the distance from where it was built
@@ -1071,9 +1071,9 @@ def _crossing(slack: _Slack, x_lo, x_hi, f_lo, f_hi, active) -> np.ndarray:
     if len(index) == 0:
         return out
     offset = np.where(f_hi[index] >= 0.0, 0.0, TOLERANCE)
-    _, hi = illinois(lambda x, where, shift: slack(x, where) + shift, x_lo[index], x_hi[index],
-                     f_lo[index] + offset, f_hi[index] + offset, xtol=1e-13,
-                     args=(index, offset), bracket=True)
+    _, hi = bracketed_root(lambda x, where, shift: slack(x, where) + shift, x_lo[index],
+                           x_hi[index], f_lo[index] + offset, f_hi[index] + offset,
+                           xtol=1e-13, args=(index, offset), bracket=True)
     out[index] = hi
     return out
 

@@ -27,7 +27,7 @@ from sizer.laws.per_move import RankedLaw
 from sizer.model.cycle import from_task
 from sizer.model.domain import Design
 from sizer.numerics.arrays import sorted_unique
-from sizer.numerics.roots import illinois
+from sizer.numerics.roots import bracketed_root
 from sizer.sizing.checks import RESIDUAL_VIBRATION
 from sizer.sizing.evaluation import CycleMetrics, CycleModel, LawRows
 from sizer.sizing.results import RESIDUAL
@@ -252,7 +252,7 @@ def _crossing(vibration: CycleVibration, left: np.ndarray, right: np.ndarray,
     open_ = (f_left > 0.0) & (f_right < 0.0)
     if open_.any():
         index = np.flatnonzero(open_)
-        _, hi = illinois(lambda x, where: excess(x), left[index], right[index],
+        _, hi = bracketed_root(lambda x, where: excess(x), left[index], right[index],
                          f_left[index], f_right[index], xtol=4e-16,
                          args=(index,), bracket=True)
         out[index] = hi

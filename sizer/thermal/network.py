@@ -19,7 +19,7 @@ h from P0 to P1 each mode moves exactly to
 (weights by power series where h/tau is small, :func:`_weights`) and the intervals
 compose by an associative scan (no time stepping). The periodic steady state of a
 repeated cycle solves z(0) = z(period): z0 = c/(1 - A) per mode. Peaks are exact: the
-samples and the interior maxima (T' = 0, found by Illinois regula falsi on each interval,
+samples and the interior maxima (T' = 0, found by Chandrupatla's method on each interval,
 split where T'' changes sign). Means are exact integrals.
 """
 
@@ -32,7 +32,7 @@ from numpy.typing import ArrayLike
 
 from sizer.energy.inputs import finite, nonnegative, positive, samples, span, times
 from sizer.errors import UserError
-from sizer.numerics.roots import illinois
+from sizer.numerics.roots import bracketed_root
 
 SERIES_BELOW = 0.5
 """Below this h/tau the weights are summed from their power series (no cancellation)."""
@@ -186,7 +186,7 @@ class Response:
             rows, cols = rows[keep], cols[keep]
             if rows.size == 0:
                 continue
-            root = illinois(lambda s, r, c: at(s, r, c)[0], lo[keep], hi[keep], d_lo[keep],
+            root = bracketed_root(lambda s, r, c: at(s, r, c)[0], lo[keep], hi[keep], d_lo[keep],
                             d_hi[keep], args=(rows, cols))
             np.maximum.at(best, rows, at(root, rows, cols)[1])
         return best
