@@ -45,7 +45,7 @@ from sizer.mechanics.drive import Drive
 from sizer.model.cycle import Cycle, Move, Run, from_task, shorthand_task
 from sizer.model.domain import Design, Limits, LinkageStage, Load, Task
 from sizer.numerics.arrays import sorted_unique
-from sizer.numerics.roots import quadratic_roots
+from sizer.numerics.roots import bracketed_root, quadratic_roots
 from sizer.sizing.candidates import MotorArrays
 from sizer.sizing.checks import evaluate_checks, worst_slack
 from sizer.sizing.cycle import (
@@ -1653,17 +1653,18 @@ class PositionCalculator(LinkageCalculator):
             torque
 
 
-FLOOR_STEPS = 40
-"""Secant (Illinois) steps of :func:`refined_floor` at most; a few suffice."""
+FLOOR_WIDTH = 1e-14
+"""The relative width to which :func:`refined_floor` brackets the crossing."""
 
 
 def refined_floor(calculator: PositionCalculator, limits: Limits, floor: np.ndarray
                   ) -> np.ndarray:
     """The peak floor of :func:`peak_floor`, read on the samples (a smooth peak between
     two of them is read up to 1e-7 low), moved up where the refined peak ratio exceeds
-    1 - torque margin there: to where it meets it, by the Illinois method on T from the
-    floor (the ratio falls with T past the floor). Where no bracket is found the floor
-    stays (the engine's search goes on from it)."""
+    1 - torque margin there: to where it meets it, by the project's root finder
+    (sizer.numerics.roots.bracketed_root) on T from the floor (the ratio falls with T
+    past the floor). Where no bracket is found the floor stays (the engine's search goes
+    on from it)."""
     grip = 1.0 - limits.torque_margin
     out = np.array(floor, dtype=float)
     rows = np.flatnonzero(np.isfinite(out) & (out > 0.0))
@@ -1689,27 +1690,17 @@ def refined_floor(calculator: PositionCalculator, limits: Limits, floor: np.ndar
         f_hi = np.where(need, excess(hi), f_hi)
         step *= 10.0
     open_ &= f_hi <= 0.0
-    side = 0
-    for _ in range(FLOOR_STEPS):
-        if not open_.any():
-            break
-        with np.errstate(divide="ignore", invalid="ignore"):
-            x = np.where(open_, hi - f_hi * (hi - lo) / (f_hi - f_lo), hi)
-        x = np.where(np.isfinite(x) & (x > lo) & (x < hi), x, 0.5 * (lo + hi))
-        f = np.where(open_, excess(x), f_hi)
-        right = f <= 0.0
-        new_side = 1 if np.all(right[open_]) else -1 if not np.any(right[open_]) else 0
-        f_lo = np.where(open_ & ~right, f, f_lo)
-        lo = np.where(open_ & ~right, x, lo)
-        f_hi = np.where(open_ & right, f, f_hi)
-        hi = np.where(open_ & right, x, hi)
-        if new_side and new_side == side:  # Illinois: halve the stale end's value
-            f_lo = np.where(open_ & right, 0.5 * f_lo, f_lo)
-            f_hi = np.where(open_ & ~right, 0.5 * f_hi, f_hi)
-        side = new_side
-        open_ &= hi - lo > 1e-14 * hi
-    done = f_hi <= 0.0
-    out[rows] = np.where(done & (f_lo > 0.0), hi, out[rows])
+    index = np.flatnonzero(open_)
+    if index.size:  # the crossing in u = T / floor (so that 1e-14 is relative to T)
+        base = lo[index]
+
+        def excess_at(u: np.ndarray, where: np.ndarray) -> np.ndarray:
+            return calc.take(index[where]).sampled(u * base[where])[0].peak_ratio - grip
+
+        _, top = bracketed_root(excess_at, np.ones(index.size), hi[index] / base,
+                                f_lo[index], f_hi[index], xtol=FLOOR_WIDTH,
+                                args=(np.arange(index.size),), bracket=True)
+        out[rows[index]] = top * base
     return out
 
 
