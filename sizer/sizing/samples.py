@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -40,14 +41,10 @@ from sizer.sizing.evaluation import (
     CyclePiece,
     SegmentedModel,
 )
-from sizer.sizing.linkage_move import (
-    PositionCalculator,
-    PositionCycle,
-    dead_points,
-    position_model,
-    result_calculator,
-)
 from sizer.sizing.move import CycleCalculator
+
+if TYPE_CHECKING:
+    from sizer.sizing.linkage_move import PositionCalculator, PositionCycle
 
 CURVE_SAMPLES = 401
 """Samples per move of one candidate's curves (SAMPLES: for energy and heat)."""
@@ -179,6 +176,8 @@ def _segmented(design: Design, motor: Motor, law: RankedLaw,
                transmission: Transmission | None) -> SegmentedModel:
     """The same as a cycle of segments (the task shorthand as the cycle it means)."""
     if design.transmission.linkage is not None:
+        from sizer.sizing.linkage_move import result_calculator  # lazy: start-up
+
         return result_calculator(design, motor, one_law(law), transmission)
     if design.load.position_dependent:  # a load of the position
         return _position(design, motor, one_law(law), transmission)
@@ -202,6 +201,8 @@ def _position(design: Design, motor: Motor, law: MotionLaw,
               transmission: Transmission | None) -> PositionCalculator | PositionCycle:
     """The cycle against loads of the position: one move and its dwell, a task with its
     return, a cycle of segments (sizer.sizing.linkage_move.position_model)."""
+    from sizer.sizing.linkage_move import position_model  # lazy: start-up
+
     return position_model(design.machine_cycle, law, design.load,
                           Drive(design.load, transmission or design.transmission),
                           MotorArrays.of([motor], design.limits.envelope),
@@ -265,6 +266,8 @@ def linkage_curve_of(design: Design, motor, law: RankedLaw, duration: float,
     moves, one move on its profile's whole uniform grid, a cycle's on CURVE_SAMPLES."""
     stage = design.transmission.linkage
     assert stage is not None, "sizer plot --linkage asks for a linkage"
+    from sizer.sizing.linkage_move import dead_points, result_calculator  # lazy: start-up
+
     calc = result_calculator(design, motor, one_law(law), transmission)
     s = np.array([scale_of(design, duration)])
     pieces = [p for p in calc.pieces(s, None if _one_linkage_move(design) else CURVE_SAMPLES)
