@@ -163,9 +163,7 @@ def size(
         return
     loaded = load_overridden(design, catalog, motor, rank_by, envelope=envelope,
                              outputs=() if output is None else (output,), laws=law)
-    from sizer.sizing.planning import plans_without_motor
-
-    if plans_without_motor(loaded):  # no motors, and the load's limits
+    if not loaded.motors and _plans_without_motor(loaded):  # and the load's limits
         _plan(design, loaded, refused=((rank_by, "--rank-by"), (front, "--front"),
                                        (front_by, "--front-by"), (envelope, "--envelope"),
                                        (robust, "--robust")),
@@ -383,3 +381,11 @@ def check_rank_key(rank_by: str | None, field: str = "--rank-by") -> None:
 
 def register(app: typer.Typer) -> None:
     app.command("size")(size)
+
+
+def _plans_without_motor(design: Design) -> bool:
+    """sizer.sizing.planning.plans_without_motor, its module imported only for a design
+    without motors (a plan: docs/planning.md)."""
+    from sizer.sizing.planning import plans_without_motor
+
+    return plans_without_motor(design)

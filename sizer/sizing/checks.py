@@ -495,9 +495,11 @@ def cam_checks(x: CheckInput) -> list[CheckArrays]:
       the design speed (the follower never leaves the cam) against the given preload (N).
 
     None for a design without a cam."""
+    stage = x.drive.transmission.linkage
+    if stage is None:  # no linkage: the cam's module is not even imported
+        return []
     from sizer.mechanics.disc_cam import CamStage
 
-    stage = x.drive.transmission.linkage
     if not isinstance(stage, CamStage) or stage.figures is None:
         return []
     f, ones = stage.figures, x.ones
