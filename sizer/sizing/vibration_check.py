@@ -18,6 +18,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -32,8 +33,10 @@ from sizer.sizing.checks import RESIDUAL_VIBRATION
 from sizer.sizing.evaluation import CycleMetrics, CycleModel, LawRows
 from sizer.sizing.results import RESIDUAL
 from sizer.sizing.shortest_duration import LaterChecks
-from sizer.vibration.cycle_residual import CycleVibration
 from sizer.vibration.elastic_load import ElasticLoad
+
+if TYPE_CHECKING:
+    from sizer.vibration.cycle_residual import CycleVibration
 
 GRID_PER_PERIOD = 16
 """Samples per damped period of the search for the admissible durations."""
@@ -75,6 +78,8 @@ def cycle_vibration(design: Design, law: RankedLaw, sweep: bool = False
     elif sweep and not cycle.free:
         raise UserError("no segment of the cycle has a free duration to sweep",
                         field="cycle")
+    from sizer.vibration.cycle_residual import CycleVibration  # lazy: a mode's only
+
     return CycleVibration(elastic, cycle, cycle_laws(cycle, law))
 
 
