@@ -171,7 +171,7 @@ def _model_split(T: np.ndarray, g: np.ndarray, H: np.ndarray, F: np.ndarray) -> 
     high = np.max(lam_at(lo_T), axis=1) + 1.0  # every duration at its shortest
     args = (T, g, q, H_line, power, scale, F)
     lam = bracketed_root(gap, low, high, gap(low, *args), gap(high, *args), xtol=1e-15,
-                   args=args)
+                         args=args)
     return split(lam, T, g, q, H_line, power, scale)
 
 

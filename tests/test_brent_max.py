@@ -1,5 +1,5 @@
 """Brent's method for a maximum (sizer.numerics.golden.BrentMax), the step of the search
-for a feasible duration where the slack peaks (sizer.sizing.shortest_duration._golden_max):
+for a feasible duration where the slack peaks (sizer.sizing.shortest_duration._peak_search):
 the maximizers of functions known in closed form, and how many points it reads."""
 
 from __future__ import annotations
@@ -19,8 +19,8 @@ def search(f, lo, hi, steps=100):
     x1, x2 = interior_points(lo, hi)
     f1, f2 = f(x1, np.arange(len(lo))), f(x2, np.arange(len(lo)))
     best = f1 >= f2
-    state = BrentMax(lo, hi, f(lo, np.arange(len(lo))), np.full(len(lo), np.nan),
-                     np.where(best, x1, x2), np.where(best, f1, f2),
+    state = BrentMax(lo, hi, f(lo, np.arange(len(lo))), np.where(best, x1, x2),
+                     np.where(best, f1, f2),
                      np.where(best, x2, x1), np.where(best, f2, f1), TOL)
     index = np.arange(len(lo))
     found, count = np.full(len(lo), np.nan), np.zeros(len(lo), dtype=int)

@@ -137,8 +137,8 @@ def _table_peak(law: LawShape, table: PieceTable, order: int) -> tuple[float, fl
         row, col = np.nonzero(slope[:, :-1] * slope[:, 1:] < 0.0)
         at = pieces[row]
         roots = bracketed_root(lambda x, p: table.evaluate(p, x, order + 1), tau[row, col],
-                         tau[row, col + 1], slope[row, col], slope[row, col + 1],
-                         args=(at,))
+                               tau[row, col + 1], slope[row, col], slope[row, col + 1],
+                               args=(at,))
         taus = np.concatenate((tau.ravel(), roots))
         values = np.abs(table.evaluate(np.concatenate((owner.ravel(), at)), taus, order))
         k = int(np.argmax(values))
@@ -176,7 +176,7 @@ def _stationary_points(law: LawShape, index: int, order: int,
     if not k.size:
         return k.astype(float)
     return bracketed_root(lambda x: law.piece_derivative(index, x, order + 1), grid[k], grid[k + 1],
-                    slope[k], slope[k + 1])
+                          slope[k], slope[k + 1])
 
 
 def scan_grid(piece: Piece, uniform: int = GRID_PER_PIECE, toward: Sequence[float] = (),

@@ -45,23 +45,24 @@ class BrentMax:
     :meth:`point` and hands the values to :meth:`update`, and stops an element by its own
     rule (a width, a value found), dropping it with :meth:`take`.
 
-    State per element: the bracket [a, b] (both ends evaluated, values fa, fb), the best
-    point x, the second best w and the one before v (values fx, fw, fv), the last step d
+    State per element: the bracket [a, b] (its lower end's value fa, for a caller that
+    looks below a point), the best point x, the second best w and the one before v
+    (values fx, fw, fv), the last step d
     and the one before e. Where f is smooth near its maximum the parabola through x, w, v
     converges superlinearly; golden-section steps keep the bracket shrinking elsewhere
     (a kink, a flat stretch). ``tol``: the absolute spacing below which no two points are
     read; an element is settled once its bracket is about 4 tol wide (:attr:`settled`).
     """
 
-    def __init__(self, a, b, fa, fb, x, fx, w, fw, tol: float) -> None:
-        self.a, self.b, self.fa, self.fb = a, b, fa, fb
+    def __init__(self, a, b, fa, x, fx, w, fw, tol: float) -> None:
+        self.a, self.b, self.fa = a, b, fa
         self.x, self.fx, self.w, self.fw, self.v, self.fv = x, fx, w, fw, w.copy(), fw.copy()
         self.d, self.e = np.zeros_like(a), np.zeros_like(a)
         self.tol = tol
 
     def take(self, keep: np.ndarray) -> BrentMax:
         out = object.__new__(BrentMax)
-        for name in ("a", "b", "fa", "fb", "x", "fx", "w", "fw", "v", "fv", "d", "e"):
+        for name in ("a", "b", "fa", "x", "fx", "w", "fw", "v", "fv", "d", "e"):
             setattr(out, name, getattr(self, name)[keep])
         out.tol = self.tol
         return out
@@ -109,7 +110,6 @@ class BrentMax:
         self.a = np.where(x_end_low, x, np.where(u_end_low, u, self.a))
         self.fa = np.where(x_end_low, fx, np.where(u_end_low, fu, self.fa))
         self.b = np.where(x_end_high, x, np.where(u_end_high, u, self.b))
-        self.fb = np.where(x_end_high, fx, np.where(u_end_high, fu, self.fb))
         second = ~better & ((fu >= fw) | (w == x))
         third = ~better & ~second & ((fu >= fv) | (v == x) | (v == w))
         self.v = np.where(better | second, w, np.where(third, u, v))

@@ -147,7 +147,7 @@ def first_passing(slack: Callable[[np.ndarray, np.ndarray], np.ndarray], lo: np.
             return slack(x, found[index])
 
         _, top = bracketed_root(f, lo[found], hi[found], f_lo[found], f_hi[found], xtol,
-                          args=(np.arange(found.size),), bracket=True)
+                                args=(np.arange(found.size),), bracket=True)
         out[found] = top
     return out
 

@@ -261,7 +261,8 @@ def searched_cycle_time(axis: MachineAxis, cycle_angle: float,
         return np.array([float(x[0]) - H(float(x[0]))])
 
     _, top = bracketed_root(phi, np.array([lo]), np.array([hi]), np.array([phi_lo]),
-                      np.array([phi_hi]), xtol=RELATIVE_TOLERANCE * min(1.0, hi), bracket=True)
+                            np.array([phi_hi]), xtol=RELATIVE_TOLERANCE * min(1.0, hi),
+                            bracket=True)
     return float(top[0])
 
 

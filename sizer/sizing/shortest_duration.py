@@ -9,7 +9,7 @@ cycle is feasible there it is T_min; where the RMS check fails there, T_min is w
 reaches its limit, by rounds on the cycle's RMS model (:func:`rms_crossing`). What these
 leave (and the designs whose laws move backwards, where the bound does not hold) is found by
 a search on the worst slack, vectorized over candidates: a walk in log T up the slack until
-a feasible duration (or a golden-section search for the slack's maximum where it stops
+a feasible duration (or Brent's search for the slack's maximum where it stops
 rising), then Chandrupatla's method down to where the binding check reaches its limit, to a
 relative width of 1e-13; each step evaluates only the candidates still open.
 
@@ -122,8 +122,8 @@ if TYPE_CHECKING:
     from sizer.mechanics import Drive
 
 EXPANSIONS = 80
-GOLDEN_STEPS = 80
-GOLDEN_WIDTH = 1e-7
+PEAK_STEPS = 80
+PEAK_WIDTH = 1e-7
 STEP = math.log(2.0)
 
 
@@ -585,7 +585,7 @@ def rms_crossing_with_rms(calculator: CycleModel, limits: Limits, start: np.ndar
         x = np.where(found, 0.5 * (lo + hi), x0)
         if found.any():
             x[found] = bracketed_root(excess_of, lo[found], hi[found], g_lo[found], g_hi[found],
-                                xtol=1e-15, args=(np.flatnonzero(found),))
+                                      xtol=1e-15, args=(np.flatnonzero(found),))
         new = np.exp(x)
         # the model's error grows with the square of the distance from where it was built
         # (about 1e-3 d^2 relative on the laws tried): a move below 1e-6 leaves 1e-15
@@ -955,7 +955,7 @@ def _bracket(slack: _Slack, x0: np.ndarray, active: np.ndarray):
     then fall (an RMS with friction over a cycle with dwell): the feasible durations form
     an interval. From x0 the walk goes up the slack by factors of 2 until f >= -TOLERANCE;
     where f stops rising before, its maximum lies in the last three points and a
-    golden-section search looks there. From a feasible x0 the walk goes down to an
+    search for it (Brent's method) looks there. From a feasible x0 the walk goes down to an
     infeasible point. Returns (found, x_bad, x_ok, f_bad, f_ok); x_bad is nan where every
     point down to 2^-EXPANSIONS x0 was feasible.
     """
@@ -978,7 +978,7 @@ def _bracket(slack: _Slack, x0: np.ndarray, active: np.ndarray):
     x_prev, f_prev = np.where(up, x0, x1), np.where(up, f0, f1)
     x_cur, f_cur = np.where(up, x1, x0), np.where(up, f1, f0)
     descending = active & ok0  # from a feasible point down to an infeasible one
-    peaked = np.zeros(n, dtype=bool)  # the slack stopped rising: golden search
+    peaked = np.zeros(n, dtype=bool)  # the slack stopped rising: its peak searched
     x_lo, x_hi = nan.copy(), nan.copy()
     for _ in range(EXPANSIONS):
         if not (climbing.any() or descending.any()):
@@ -1010,22 +1010,22 @@ def _bracket(slack: _Slack, x0: np.ndarray, active: np.ndarray):
         x_cur, f_cur = np.where(rising, x_next, x_cur), np.where(rising, f_next, f_cur)
         climbing = rising
     if peaked.any():
-        hit, x_top, f_top, x_below, f_below = _golden_max(slack, x_lo, x_hi, peaked)
+        hit, x_top, f_top, x_below, f_below = _peak_search(slack, x_lo, x_hi, peaked)
         found |= hit
         x_ok, f_ok = np.where(hit, x_top, x_ok), np.where(hit, f_top, f_ok)
         x_bad, f_bad = np.where(hit, x_below, x_bad), np.where(hit, f_below, f_bad)
     return found, x_bad, x_ok, f_bad, f_ok
 
 
-def _golden_max(slack: _Slack, lo: np.ndarray, hi: np.ndarray, active: np.ndarray):
+def _peak_search(slack: _Slack, lo: np.ndarray, hi: np.ndarray, active: np.ndarray):
     """A feasible point where the slack peaks in [lo, hi], by Brent's method for a maximum
     (sizer.numerics.golden.BrentMax: parabolic steps where the slack is smooth there,
     golden-section ones elsewhere), from the bracket's two golden points.
 
     Stops for a candidate at its first feasible point; every point evaluated before it
     was infeasible, so the nearest of them below it brackets the crossing. Also stops
-    where the best point is known to about GOLDEN_WIDTH: the slack's maximum is then known
-    to about GOLDEN_WIDTH^2 times its curvature, far below the tolerance (golden section
+    where the best point is known to about PEAK_WIDTH: the slack's maximum is then known
+    to about PEAK_WIDTH^2 times its curvature, far below the tolerance (golden section
     alone took 33 steps from a bracket of 1.4 to that width; a smooth peak takes about
     ten). Returns (hit, x_ok, f_ok, x_bad, f_bad).
     """
@@ -1049,10 +1049,9 @@ def _golden_max(slack: _Slack, lo: np.ndarray, hi: np.ndarray, active: np.ndarra
         x_bad[where], f_bad[where] = below[new], f_below[new]
         open_ &= ~new
     best = f1 >= f2
-    search = BrentMax(lo, hi, f_lo, np.full(len(index), np.nan),
-                      np.where(best, x1, x2), np.where(best, f1, f2),
-                      np.where(best, x2, x1), np.where(best, f2, f1), 0.25 * GOLDEN_WIDTH)
-    for _ in range(GOLDEN_STEPS):
+    search = BrentMax(lo, hi, f_lo, np.where(best, x1, x2), np.where(best, f1, f2),
+                      np.where(best, x2, x1), np.where(best, f2, f1), 0.25 * PEAK_WIDTH)
+    for _ in range(PEAK_STEPS):
         open_ &= ~search.settled
         index, search = index[open_], search.take(open_)
         if len(index) == 0:

@@ -258,8 +258,8 @@ def _crossing(vibration: CycleVibration, left: np.ndarray, right: np.ndarray,
     if open_.any():
         index = np.flatnonzero(open_)
         _, hi = bracketed_root(lambda x, where: excess(x), left[index], right[index],
-                         f_left[index], f_right[index], xtol=4e-16,
-                         args=(index,), bracket=True)
+                               f_left[index], f_right[index], xtol=4e-16,
+                               args=(index,), bracket=True)
         out[index] = hi
     return out
 

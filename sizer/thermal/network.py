@@ -187,7 +187,7 @@ class Response:
             if rows.size == 0:
                 continue
             root = bracketed_root(lambda s, r, c: at(s, r, c)[0], lo[keep], hi[keep], d_lo[keep],
-                            d_hi[keep], args=(rows, cols))
+                                  d_hi[keep], args=(rows, cols))
             np.maximum.at(best, rows, at(root, rows, cols)[1])
         return best
 
