@@ -11,7 +11,7 @@ ROOT = Path(__file__).resolve().parent.parent
 def test_distribution_name_command_and_license() -> None:
     project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
     assert project["name"] == "sizer-motion"  # "sizer" on the registry is another project
-    assert project["scripts"] == {"sizer": "sizer.cli.app:main"}
+    assert project["scripts"] == {"sizer": "sizer.cli.process:main"}
     assert project["license"] == {"text": "MIT"}
     text = (ROOT / "LICENSE").read_text()
     assert text.startswith("MIT License\n")
