@@ -810,25 +810,43 @@ def _continuous(bounds, with_ratio, consider, best: _Best, motors: int) -> None:
     """Log-spaced lattice over the bounds, then halving steps around each motor's best.
 
     All points lie on one lattice in log(ratio), so each round evaluates every needed
-    point once, for all the motors whose neighbourhood contains it.
+    point once, for all the motors whose neighbourhood contains it. A point a motor had
+    evaluated in an earlier round (its best's neighbours one old step away are the new
+    round's outer offsets: the same ratio to the bit, lo + k step) is not evaluated
+    again: it gives the same figures, and with its earlier, smaller rank it could not
+    replace the best kept on a tie either.
     """
     lo, hi = math.log(bounds[0]), math.log(bounds[1])
     step = (hi - lo) / (COARSE - 1)
-    points = [with_ratio(math.exp(x)) for x in np.linspace(lo, hi, COARSE)]
+    xs = np.linspace(lo, hi, COARSE)
+    points = [with_ratio(math.exp(x)) for x in xs]
     consider(points, [None] * COARSE, np.repeat(np.arange(motors), COARSE),
              np.tile(np.arange(COARSE), motors))
+    rounds = 0  # the halvings to come: the lattice's finest spacing is step / 2^rounds
+    while step / 2.0**rounds > LOG_STEP:
+        rounds += 1
+    finest = (COARSE - 1) << rounds  # the last index on the finest lattice
+    # every (motor, point) evaluated, as motor * (finest + 1) + index on the finest
+    # lattice; a coarse point counts only where linspace put it at lo + k step exactly
+    same = np.flatnonzero(xs == lo + np.arange(COARSE) * step) << rounds
+    seen = np.sort((np.arange(motors)[:, None] * (finest + 1) + same[None, :]).ravel())
     last = COARSE - 1
     offsets = np.array([-2, -1, 1, 2])
     while step > LOG_STEP:
         step /= 2.0
         last *= 2
+        rounds -= 1
         centre = np.rint((np.log(best.stage_ratio) - lo) / step).astype(np.intp)
         keys = centre[:, None] + offsets[None, :]
-        valid = (keys >= 0) & (keys <= last)
-        motor = np.broadcast_to(np.arange(motors)[:, None], keys.shape)[valid]
+        every = np.broadcast_to(np.arange(motors)[:, None], keys.shape)
+        at = every * (finest + 1) + (keys << rounds)
+        valid = (keys >= 0) & (keys <= last) & ~np.isin(at, seen)
+        if not valid.any():  # every neighbour evaluated already
+            continue
+        seen = np.union1d(seen, at[valid])
         unique, option = np.unique(keys[valid], return_inverse=True)
         points = [with_ratio(math.exp(lo + int(k) * step)) for k in unique]
-        consider(points, [None] * len(points), motor, option.reshape(-1))
+        consider(points, [None] * len(points), every[valid], option.reshape(-1))
 
 
 class SharedByLaws:
