@@ -32,7 +32,9 @@ def hermite_root(g0: np.ndarray, g1: np.ndarray, d0: np.ndarray,
     with np.errstate(divide="ignore", invalid="ignore"):
         s = g0 / (g0 - g1)
     out = s.copy()
-    index = np.arange(s.size)
+    # the rows still stepping, as a mask over all of them (the steps of a few hundred
+    # rows cost their calls, not their length: no row is taken out of the arrays)
+    open_ = np.ones(s.shape, dtype=bool)
     for _ in range(NEWTON_STEPS):
         h = g0 + s * (d0 + s * (c2 + s * c3))
         before = (h < 0.0) == rising  # the root lies above s
@@ -41,23 +43,18 @@ def hermite_root(g0: np.ndarray, g1: np.ndarray, d0: np.ndarray,
             step = s - h / (d0 + s * (2.0 * c2 + 3.0 * s * c3))
         # a row at its fixed point (a zero of the model, or a step that returns s) keeps
         # it in every later step: it is done, the steps go on with the others
-        moving = ~((h == 0.0) | (step == s))
-        if not moving.all():
-            index, g0, d0, c2, c3, rising, low, high, s, h, step = (
-                v[moving] for v in (index, g0, d0, c2, c3, rising, low, high, s, h, step))
-            if not len(index):
-                break
+        open_ &= (h != 0.0) & (step != s)
+        if not open_.any():
+            break
         # a step inside the bracket, or one at rounding level (converged), is taken;
         # else bisect
-        take = ((step >= low) & (step <= high)) | (np.abs(step - s) <= 1e-15)
+        near = np.abs(step - s)
+        take = ((step >= low) & (step <= high)) | (near <= 1e-15)
         new = np.where(take, step, 0.5 * (low + high))
-        out[index] = new
+        out = np.where(open_, new, out)
         if xtol > 0.0:
-            open_ = ~(take & (np.abs(step - s) <= xtol))
-            if not open_.all():
-                index, g0, d0, c2, c3, rising, low, high, new = (
-                    v[open_] for v in (index, g0, d0, c2, c3, rising, low, high, new))
-                if not len(index):
-                    break
+            open_ &= ~(take & (near <= xtol))
+            if not open_.any():
+                break
         s = new
     return np.clip(out, 0.0, 1.0).reshape(shape)
