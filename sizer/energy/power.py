@@ -62,12 +62,18 @@ def interval_parts(time: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np
     p0, p1 = values[:, :-1], values[:, 1:]
     same = p0 * p1 >= 0.0
     mean = 0.5 * (p0 + p1) * h
-    with np.errstate(divide="ignore", invalid="ignore"):
-        span = np.abs(p0) + np.abs(p1)
-        up = 0.5 * h * (np.maximum(p0, 0.0) ** 2 + np.maximum(p1, 0.0) ** 2) / span
-        down = 0.5 * h * (np.minimum(p0, 0.0) ** 2 + np.minimum(p1, 0.0) ** 2) / span
-    positive_part = np.where(same, np.maximum(mean, 0.0), np.where(span > 0.0, up, 0.0))
-    negative_part = np.where(same, np.maximum(-mean, 0.0), np.where(span > 0.0, down, 0.0))
+    positive_part, negative_part = np.maximum(mean, 0.0), np.maximum(-mean, 0.0)
+    # where the sign changes (a few intervals), each part is the triangle on its side
+    rows, cols = np.nonzero(~same)
+    if len(rows):
+        a, b = p0[rows, cols], p1[rows, cols]
+        width = np.broadcast_to(h, p0.shape)[rows, cols]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            span = np.abs(a) + np.abs(b)
+            up = 0.5 * width * (np.maximum(a, 0.0) ** 2 + np.maximum(b, 0.0) ** 2) / span
+            down = 0.5 * width * (np.minimum(a, 0.0) ** 2 + np.minimum(b, 0.0) ** 2) / span
+        positive_part[rows, cols] = np.where(span > 0.0, up, 0.0)
+        negative_part[rows, cols] = np.where(span > 0.0, down, 0.0)
     return positive_part, negative_part
 
 
