@@ -102,7 +102,7 @@ class RegionTable:
         query = np.clip(flat, self.speeds[:, :1], self.speeds[:, -1:]) - self.speeds[:, :1]
         found = np.searchsorted(laid, query + base, side="right")
         rows = np.arange(count)[:, None]
-        index = np.clip(found - rows * width - 1, 0, width - 2)
+        index = np.minimum(np.maximum(found - rows * width - 1, 0), width - 2)  # ints: no clip
         index -= (index > 0) & (flat < self.speeds[rows, index])
         index += (index < width - 2) & (flat >= self.speeds[rows, index + 1])
         return index

@@ -726,7 +726,7 @@ def refined_max(values: np.ndarray, u: np.ndarray, kinks: np.ndarray | None = No
     best = values[rows, top_i]  # the largest (NaN where a row has one, as np.max)
     centred = np.zeros(len(rows), dtype=bool)
     for shift in ((0,) if kinks is None else (0, -1, 1)):
-        i = np.clip(top_i + shift, 1, m - 2)
+        i = np.minimum(np.maximum(top_i + shift, 1), m - 2)  # np.clip's ~10 us a call
         x0, x1, x2 = u[i - 1], u[i], u[i + 1]
         f0, f1, f2 = values[rows, i - 1], values[rows, i], values[rows, i + 1]
         d01 = (f1 - f0) / (x1 - x0)
@@ -1314,8 +1314,8 @@ def _sample_floors(calculator: LinkageCalculator, limits: Limits, cand: np.ndarr
     middle = np.where(np.isfinite(hi), 0.5 * (lo + hi), np.where(lo > 0.0, 2.0 * lo, 1.0))
     middle = np.where(np.isfinite(lo), middle, 1.0)
     at = np.minimum(middle * rate, top[:, None])  # the speed, clipped at the region's end
-    segment = np.clip((speeds[:, None, 1:-1] <= at[:, :, None]).sum(axis=-1), 0,
-                      speeds.shape[1] - 2)
+    segment = np.minimum((speeds[:, None, 1:-1] <= at[:, :, None]).sum(axis=-1),
+                         speeds.shape[1] - 2)  # a count: >= 0
     row = np.arange(len(cand))[:, None]
     s0, s1 = speeds[row, segment], speeds[row, segment + 1]
     t0, t1 = torques[row, segment], torques[row, segment + 1]
