@@ -25,6 +25,8 @@ def main(argv: Sequence[str] | None = None) -> None:
     """The ``sizer`` entry point: the collector's thresholds, then
     :func:`sizer.cli.app.main`; at its exit what is left is frozen."""
     gc.set_threshold(*GC_THRESHOLDS)
+    # imported after the setting on purpose (no import circle): its imports are most of
+    # the objects the setting spares
     from sizer.cli.app import main as run_app
 
     try:

@@ -817,29 +817,28 @@ def _continuous(bounds, with_ratio, consider, best: _Best, motors: int) -> None:
     replace the best kept on a tie either.
     """
     lo, hi = math.log(bounds[0]), math.log(bounds[1])
-    step = (hi - lo) / (COARSE - 1)
+    coarse_step = (hi - lo) / (COARSE - 1)
     xs = np.linspace(lo, hi, COARSE)
     points = [with_ratio(math.exp(x)) for x in xs]
     consider(points, [None] * COARSE, np.repeat(np.arange(motors), COARSE),
              np.tile(np.arange(COARSE), motors))
-    rounds = 0  # the halvings to come: the lattice's finest spacing is step / 2^rounds
-    while step / 2.0**rounds > LOG_STEP:
-        rounds += 1
-    finest = (COARSE - 1) << rounds  # the last index on the finest lattice
-    # every (motor, point) evaluated, as motor * (finest + 1) + index on the finest
-    # lattice; a coarse point counts only where linspace put it at lo + k step exactly
-    same = np.flatnonzero(xs == lo + np.arange(COARSE) * step) << rounds
-    seen = np.sort((np.arange(motors)[:, None] * (finest + 1) + same[None, :]).ravel())
-    last = COARSE - 1
-    offsets = np.array([-2, -1, 1, 2])
+    steps, step = [], coarse_step  # the halving rounds' spacings, each half the one before
     while step > LOG_STEP:
         step /= 2.0
-        last *= 2
-        rounds -= 1
+        steps.append(step)
+    finest = (COARSE - 1) << len(steps)  # the last index on the finest lattice
+    # every (motor, point) evaluated, as motor * (finest + 1) + index on the finest
+    # lattice; a coarse point counts only where linspace put it at lo + k step exactly
+    coarse = np.flatnonzero(xs == lo + np.arange(COARSE) * coarse_step)
+    seen = (np.arange(motors)[:, None] * (finest + 1)
+            + (coarse << len(steps))[None, :]).ravel()
+    offsets = np.array([-2, -1, 1, 2])
+    for done, step in enumerate(steps, start=1):
+        last, finer = (COARSE - 1) << done, len(steps) - done  # halvings still to come
         centre = np.rint((np.log(best.stage_ratio) - lo) / step).astype(np.intp)
         keys = centre[:, None] + offsets[None, :]
         every = np.broadcast_to(np.arange(motors)[:, None], keys.shape)
-        at = every * (finest + 1) + (keys << rounds)
+        at = every * (finest + 1) + (keys << finer)
         valid = (keys >= 0) & (keys <= last) & ~np.isin(at, seen)
         if not valid.any():  # every neighbour evaluated already
             continue
