@@ -27,6 +27,7 @@ import sizer.laws.coefficients as law_coefficients
 from sizer.errors import UserError
 from sizer.laws.coefficients import LawCoefficients
 from sizer.laws.linear_peaks import LinearPeaks
+from sizer.laws.piece_forms import PieceForms
 from sizer.laws.piece_table import PieceTable
 from sizer.laws.pieces import Piece
 from sizer.laws.quadrature import QuadratureRule, quadrature_rule
@@ -227,6 +228,18 @@ class MotionLaw:
         law of many polynomial pieces; None: evaluate piece by piece."""
         return None
 
+    def piece_forms(self) -> PieceForms | None:
+        """The pieces as data evaluated all at once (sizer.laws.piece_forms), for a law of
+        several pieces that are polynomials plus sines (or their reflections); None:
+        evaluate piece by piece."""
+        return self._piece_forms
+
+    @cached_property
+    def _piece_forms(self) -> PieceForms | None:
+        if len(self.pieces) < 2:  # one piece: its own closure, no gathering
+            return None
+        return PieceForms.of(self.pieces, self.max_order)
+
     def derivative(self, tau: np.ndarray | float, order: int = 0) -> np.ndarray:
         """The order-th derivative of q_N at tau (vectorized); rest outside [0, 1].
 
@@ -246,6 +259,10 @@ class MotionLaw:
         table = self.piece_table()
         if table is not None:
             out[inside] = table.evaluate(np.maximum(index[inside], 0), tau[inside], order)
+            return out
+        forms = self.piece_forms()
+        if forms is not None:
+            out[inside] = forms.values(index[inside], tau[inside], (order,))[0]
             return out
         for i, piece in enumerate(self.pieces):
             mask = inside & (index == i)

@@ -149,6 +149,11 @@ def piece_values(law: LawShape, tau: np.ndarray, piece: np.ndarray,
     if len(law.pieces) == 1:  # one piece: no grouping
         shaped = tuple(law.piece_derivative(0, flat_tau, k).reshape(tau.shape) for k in orders)
         return shaped[0] if isinstance(order, int) else shaped
+    forms = law.piece_forms()
+    if forms is not None:  # every piece at once, the same values
+        shaped = tuple(v.reshape(tau.shape) for v in forms.values(
+            flat_piece.astype(np.intp, copy=False), flat_tau, orders))
+        return shaped[0] if isinstance(order, int) else shaped
     out = [np.empty(flat_tau.shape) for _ in orders]
     by_piece = np.argsort(flat_piece, kind="stable")
     bounds = np.searchsorted(flat_piece[by_piece], np.arange(len(law.pieces) + 1))

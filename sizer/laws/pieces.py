@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, Protocol
 import numpy as np
 
 if TYPE_CHECKING:
+    from sizer.laws.piece_forms import PieceForms
     from sizer.laws.piece_table import PieceTable
 
 PieceFunction = Callable[[np.ndarray, int], np.ndarray]
@@ -28,7 +29,9 @@ class Piece:
     table, shares a fixed budget among them: sizer.laws.data_law); None: the caller's.
     ``form``, when set, is the piece's exact closed form (a polynomial plus sines, as
     :func:`trig_poly_piece` builds it): what an export that writes coefficients reads
-    (sizer.export.coefficient_segments); nothing evaluates through it.
+    (sizer.export.coefficient_segments). ``mirror_of``, when set, is the piece this one
+    reflects (:func:`mirrored`). sizer.laws.piece_forms evaluates many pieces at once
+    from these, with the arithmetic of their own ``evaluate``.
     """
 
     start: float
@@ -37,6 +40,7 @@ class Piece:
     degree: int | None = None
     intervals: int | None = None
     form: TrigPolyForm | None = None
+    mirror_of: Piece | None = None
 
     def clamp(self, tau: np.ndarray) -> np.ndarray:
         """tau moved into [start, end]: a point one ulp outside reads the end's value."""
@@ -77,6 +81,7 @@ class LawShape(Protocol):
     def pieces(self) -> tuple[Piece, ...]: ...
     def fine_points(self) -> tuple[float, ...]: ...
     def piece_table(self) -> PieceTable | None: ...
+    def piece_forms(self) -> PieceForms | None: ...
     def piece_derivative(self, index: int, tau: np.ndarray | float, order: int) -> np.ndarray: ...
     def outside(self, order: int) -> tuple[float, float]: ...
 
@@ -100,7 +105,7 @@ def mirrored(pieces: Sequence[Piece]) -> list[Piece]:
             return -((-1.0) ** order) * value
 
         form = None if piece.form is None else piece.form.mirrored()
-        return Piece(start, end, evaluate, piece.degree, piece.intervals, form)
+        return Piece(start, end, evaluate, piece.degree, piece.intervals, form, mirror_of=piece)
 
     return list(pieces) + [reflect(p) for p in reversed(pieces)]
 
@@ -126,7 +131,7 @@ def trig_poly_piece(
 
     def evaluate(tau: np.ndarray, order: int) -> np.ndarray:
         while len(derivatives) <= order:
-            derivatives.append(_derivative(derivatives[-1]))
+            derivatives.append(polynomial_derivative(derivatives[-1]))
         out = _horner(derivatives[order], tau - origin) + 0.0  # (-0.0 read as 0.0)
         if order not in waves:
             waves[order] = [(amplitude * omega**order, omega, phase, order * math.pi / 2)
@@ -140,7 +145,7 @@ def trig_poly_piece(
     return Piece(start, end, evaluate, None if sines else len(coef) - 1, form=form)
 
 
-def _derivative(coef: list[float]) -> list[float]:
+def polynomial_derivative(coef: list[float]) -> list[float]:
     """Coefficients of the derivative of sum coef[k] x^k (numpy's polyder, as lists)."""
     if len(coef) == 1:
         return [coef[0] * 0.0]
