@@ -14,7 +14,7 @@ from sizer.laws.data_spec import data_spec_text
 
 LAWS = Path(__file__).resolve().parents[1] / "sizer" / "laws"
 
-BELOW_BASE = ("pieces", "piece_table", "quadrature", "coefficients", "linear_peaks")
+BELOW_BASE = ("pieces", "piece_table", "piece_forms", "quadrature", "coefficients", "linear_peaks")
 """The modules a law's analyses live in: they know a law only as sizer.laws.pieces.LawShape."""
 
 
