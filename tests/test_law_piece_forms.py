@@ -87,7 +87,7 @@ def test_a_piece_without_a_form_has_no_table() -> None:
     from sizer.laws.pieces import Piece
 
     plain = Piece(0.5, 1.0, lambda tau, order: np.zeros(np.shape(tau)))
-    assert PieceForms.of([trig_poly_piece(0.0, 0.5, (0.0, 1.0)), plain], 4) is None
+    assert PieceForms.of([trig_poly_piece(0.0, 0.5, (0.0, 1.0)), plain]) is None
 
 
 def test_padding_adds_exact_zeros() -> None:
@@ -97,7 +97,7 @@ def test_padding_adds_exact_zeros() -> None:
               trig_poly_piece(0.3, 0.6, (1e-3, 2.0, -3.0, 4.0, -5.0, 6.0), origin=0.3),
               trig_poly_piece(0.6, 1.0, (0.5,), [(0.2, 7.0, 0.1), (-0.3, 3.0, -1.2)],
                               origin=0.6)]
-    forms = PieceForms.of(pieces, 6)
+    forms = PieceForms.of(pieces)
     assert forms is not None
     rng = np.random.default_rng(3)
     tau = rng.uniform(-0.2, 1.2, 500)
@@ -108,3 +108,17 @@ def test_padding_adds_exact_zeros() -> None:
             rows = piece == i
             expected[rows] = p.evaluate(p.clamp(tau[rows]), order)
         assert np.array_equal(got, expected), order
+
+
+@pytest.mark.parametrize("spec", MULTI_PIECE)
+def test_the_linear_peaks_samples_are_the_pieces_own(spec: str) -> None:
+    """The (v_N, a_N) samples a law's linear peaks are built on: every piece in one pass
+    gives each piece's samples, constant-acceleration pieces cut to their ends, the same
+    values bit for bit."""
+    from sizer.laws.linear_peaks import _law_samples, _piece_samples
+
+    law = make_law(spec)
+    columns = [_piece_samples(law, index) for index in range(len(law.pieces))]
+    expected = [np.concatenate(parts) for parts in zip(*columns, strict=True)]
+    for got, want in zip(_law_samples(law), expected, strict=True):
+        assert got.dtype == want.dtype and np.array_equal(got, want), spec

@@ -238,7 +238,7 @@ class MotionLaw:
     def _piece_forms(self) -> PieceForms | None:
         if len(self.pieces) < 2:  # one piece: its own closure, no gathering
             return None
-        return PieceForms.of(self.pieces, self.max_order)
+        return PieceForms.of(self.pieces)
 
     def derivative(self, tau: np.ndarray | float, order: int = 0) -> np.ndarray:
         """The order-th derivative of q_N at tau (vectorized); rest outside [0, 1].

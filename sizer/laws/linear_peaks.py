@@ -167,21 +167,49 @@ def piece_values(law: LawShape, tau: np.ndarray, piece: np.ndarray,
     return shaped[0] if isinstance(order, int) else shaped
 
 
+def _piece_grid(law: LawShape, index: int) -> np.ndarray:
+    """The samples of one piece: its scan grid (finer where its law varies fast)."""
+    piece = law.pieces[index]
+    polynomial = piece.degree is not None and piece.degree <= POLYNOMIAL_DEGREE
+    return scan_grid(piece, uniform=SAMPLES_PER_POLYNOMIAL if polynomial else SAMPLES_PER_PIECE,
+                     toward=law.fine_points(),
+                     per_decade=GRADED_POLYNOMIAL if polynomial else GRADED_PER_DECADE)
+
+
 def _piece_samples(law: LawShape, index: int) -> tuple[np.ndarray, ...]:
     """tau, piece index, v_N, a_N, j_N and q_N^(4) at the samples of one piece (its scan
     grid). A piece of constant acceleration (zero jerk at every sample: the trapezoid's)
     is a straight segment of the curve, whose hull is its two ends: only they are kept
     (the jerk is read first, the other orders only where needed)."""
-    piece = law.pieces[index]
-    polynomial = piece.degree is not None and piece.degree <= POLYNOMIAL_DEGREE
-    tau = scan_grid(piece, uniform=SAMPLES_PER_POLYNOMIAL if polynomial else SAMPLES_PER_PIECE,
-                    toward=law.fine_points(),
-                    per_decade=GRADED_POLYNOMIAL if polynomial else GRADED_PER_DECADE)
+    tau = _piece_grid(law, index)
     j = law.piece_derivative(index, tau, 3)
     if not j.any():
         tau, j = tau[[0, -1]], j[[0, -1]]
     v, a, snap = (law.piece_derivative(index, tau, order) for order in (1, 2, 4))
     return tau, np.full(len(tau), index), v, a, j, snap
+
+
+def _law_samples(law: LawShape) -> tuple[np.ndarray, ...]:
+    """:func:`_piece_samples` of every piece, concatenated; for a law with pieces as data
+    (sizer.laws.piece_forms) every piece in one pass, the same samples and values."""
+    forms = law.piece_forms()
+    if forms is None:
+        columns = [_piece_samples(law, index) for index in range(len(law.pieces))]
+        return tuple(np.concatenate(parts) for parts in zip(*columns, strict=True))
+    grids = [_piece_grid(law, index) for index in range(len(law.pieces))]
+    sizes = np.array([len(g) for g in grids])
+    tau = np.concatenate(grids)
+    piece = np.repeat(np.arange(len(grids)), sizes)
+    (j,) = forms.values(piece, tau, (3,))
+    starts = np.concatenate(([0], np.cumsum(sizes)[:-1]))
+    moving = np.logical_or.reduceat(j != 0.0, starts)
+    # a piece of constant acceleration keeps its two ends
+    ends = np.zeros(len(tau), dtype=bool)
+    ends[starts], ends[starts + sizes - 1] = True, True
+    keep = np.repeat(moving, sizes) | ends
+    tau, piece, j = tau[keep], piece[keep], j[keep]
+    v, a, snap = forms.values(piece, tau, (1, 2, 4))
+    return tau, piece, v, a, j, snap
 
 
 def _next(x: np.ndarray) -> np.ndarray:
@@ -518,9 +546,7 @@ class LinearPeaks:
 
     def __init__(self, law: LawShape) -> None:
         self.law = law
-        columns = [_piece_samples(law, index) for index in range(len(law.pieces))]
-        self.tau, self.piece, self.v, self.a, self.j, self.snap = (
-            np.concatenate(parts) for parts in zip(*columns, strict=True))
+        self.tau, self.piece, self.v, self.a, self.j, self.snap = _law_samples(law)
         self.first = np.concatenate(([True], self.piece[1:] != self.piece[:-1]))
         self.last = np.concatenate((self.piece[1:] != self.piece[:-1], [True]))
         self._table = _Table(self.tau, self.piece, self.v, self.a, self.j, self.snap,

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -28,11 +28,10 @@ from sizer.laws.pieces import Piece, TrigPolyForm, polynomial_derivative
 
 @dataclass(frozen=True, eq=False)
 class PieceForms:
-    """Pieces [starts[i], ends[i]] of a law, each the closed form ``form`` of piece
-    ``source[i]`` read at tau (``mirror[i]`` False) or reflected (True: q = 1 - f(1 - tau)
-    with f on [inner_starts[i], inner_ends[i]]). ``poly[k]`` (pieces, width) holds the
-    k-th derivative's polynomial coefficients; ``waves[k]`` the (scale, omega, phase)
-    columns (pieces, sines) of its sines and ``quarters[k]`` their phase shift k pi/2."""
+    """Pieces [starts[i], ends[i]] of a law, each the closed form ``forms[i]`` read at
+    tau (``mirror[i]`` False) or reflected (True: q = 1 - f(1 - tau) with f on
+    [inner_starts[i], inner_ends[i]]). Each derivative order's rows are built on first
+    use (:meth:`rows`)."""
 
     starts: np.ndarray
     ends: np.ndarray
@@ -40,14 +39,13 @@ class PieceForms:
     inner_starts: np.ndarray
     inner_ends: np.ndarray
     origins: np.ndarray
-    poly: tuple[np.ndarray, ...]
-    waves: tuple[tuple[np.ndarray, np.ndarray, np.ndarray], ...]
-    quarters: tuple[float, ...]
+    forms: tuple[TrigPolyForm, ...]
+    _rows: dict[int, OrderRows] = field(default_factory=dict, repr=False)
 
     @classmethod
-    def of(cls, pieces: Sequence[Piece], max_order: int) -> PieceForms | None:
-        """The table of these pieces up to derivative ``max_order``, or None where a piece
-        is not a polynomial plus sines (or the reflection of one)."""
+    def of(cls, pieces: Sequence[Piece]) -> PieceForms | None:
+        """The table of these pieces, or None where a piece is not a polynomial plus
+        sines (or the reflection of one)."""
         forms: list[TrigPolyForm] = []
         inner: list[Piece] = []
         for piece in pieces:
@@ -56,23 +54,16 @@ class PieceForms:
                 return None
             forms.append(source.form)
             inner.append(source)
-        poly, waves = [], []
-        for order in range(max_order + 1):
-            rows = [_derivative_coefficients(form, order) for form in forms]
-            width = max(len(r) for r in rows)
-            poly.append(np.array([r + [0.0] * (width - len(r)) for r in rows]))
-            count = max(len(form.sines) for form in forms)
-            columns = [np.zeros((len(forms), count)) for _ in range(3)]
-            for i, form in enumerate(forms):
-                for s, (amplitude, omega, phase) in enumerate(form.sines):
-                    columns[0][i, s] = amplitude * omega**order
-                    columns[1][i, s], columns[2][i, s] = omega, phase
-            waves.append((columns[0], columns[1], columns[2]))
         return cls(np.array([p.start for p in pieces]), np.array([p.end for p in pieces]),
                    np.array([p.mirror_of is not None for p in pieces]),
                    np.array([p.start for p in inner]), np.array([p.end for p in inner]),
-                   np.array([f.origin for f in forms]), tuple(poly), tuple(waves),
-                   tuple(order * math.pi / 2 for order in range(max_order + 1)))
+                   np.array([f.origin for f in forms]), tuple(forms))
+
+    def rows(self, order: int) -> OrderRows:
+        """The ``order``-th derivative's coefficients and sines, a row per piece."""
+        if order not in self._rows:
+            self._rows[order] = OrderRows.of(self.forms, order)
+        return self._rows[order]
 
     def values(self, piece: np.ndarray, tau: np.ndarray,
                orders: Sequence[int]) -> tuple[np.ndarray, ...]:
@@ -80,7 +71,8 @@ class PieceForms:
         tau clamped into its piece (one-sided values at the piece ends)."""
         t = np.minimum(np.maximum(tau, self.starts[piece]), self.ends[piece])
         mirror = self.mirror[piece]
-        if mirror.any():
+        mirrored = bool(mirror.any())
+        if mirrored:
             start, end = self.starts[piece], self.ends[piece]
             inner_start, inner_end = self.inner_starts[piece], self.inner_ends[piece]
             u = np.where(t <= start, inner_end, np.where(t >= end, inner_start, 1.0 - t))
@@ -88,20 +80,45 @@ class PieceForms:
         x = t - self.origins[piece]
         out = []
         for order in orders:
-            rows = self.poly[order][piece]
+            table = self.rows(order)
+            rows = table.poly[piece]
             value = rows[:, -1] + x * 0.0
             for column in range(rows.shape[1] - 2, -1, -1):
                 value = rows[:, column] + value * x
             value = value + 0.0  # (-0.0 read as 0.0, as the pieces do)
-            scale, omega, phase = (w[piece] for w in self.waves[order])
-            quarter = self.quarters[order]
-            for s in range(scale.shape[1]):
-                value = value + scale[:, s] * np.sin(omega[:, s] * t + phase[:, s] + quarter)
-            if mirror.any():
+            for s in range(table.scale.shape[1]):
+                value = value + table.scale[piece, s] * np.sin(
+                    table.omega[piece, s] * t + table.phase[piece, s] + table.quarter)
+            if mirrored:
                 value = np.where(mirror, 1.0 - value if order == 0
                                  else -((-1.0) ** order) * value, value)
             out.append(value)
         return tuple(out)
+
+
+@dataclass(frozen=True)
+class OrderRows:
+    """One derivative order of every piece: ``poly`` (pieces, width) the polynomial's
+    coefficients (zeros at the high end), ``scale``, ``omega``, ``phase`` (pieces, sines)
+    its sines A w^k sin(w tau + phi + k pi/2) (zero amplitudes at the end)."""
+
+    poly: np.ndarray
+    scale: np.ndarray
+    omega: np.ndarray
+    phase: np.ndarray
+    quarter: float
+
+    @classmethod
+    def of(cls, forms: Sequence[TrigPolyForm], order: int) -> OrderRows:
+        rows = [_derivative_coefficients(form, order) for form in forms]
+        width = max(len(r) for r in rows)
+        count = max(len(form.sines) for form in forms)
+        scale, omega, phase = (np.zeros((len(forms), count)) for _ in range(3))
+        for i, form in enumerate(forms):
+            for s, (amplitude, w, phi) in enumerate(form.sines):
+                scale[i, s], omega[i, s], phase[i, s] = amplitude * w**order, w, phi
+        return cls(np.array([r + [0.0] * (width - len(r)) for r in rows]), scale, omega,
+                   phase, order * math.pi / 2)
 
 
 def _derivative_coefficients(form: TrigPolyForm, order: int) -> list[float]:
