@@ -122,3 +122,36 @@ def test_the_linear_peaks_samples_are_the_pieces_own(spec: str) -> None:
     expected = [np.concatenate(parts) for parts in zip(*columns, strict=True)]
     for got, want in zip(_law_samples(law), expected, strict=True):
         assert got.dtype == want.dtype and np.array_equal(got, want), spec
+
+
+@pytest.mark.parametrize("spec", MULTI_PIECE)
+def test_the_laws_tables_are_the_same_from_the_forms(spec: str, monkeypatch) -> None:
+    """The law's grid (edges, nodes and their values), its quadrature values, its one-sided
+    limits at the breakpoints and a piecewise evaluation read through the forms are those
+    of the pieces one by one (the forms switched off for the reference), bit for bit."""
+    from sizer.laws.coefficients import one_sided_limits
+    from sizer.laws.quadrature import quadrature_rule
+    from sizer.sizing.move import PieceEvaluator, law_grid
+
+    law = make_law(spec)
+    if law.piece_forms() is None:
+        return
+    rng = np.random.default_rng(11)
+    tau, piece = _points(law, rng)
+    rule = quadrature_rule(law)
+
+    def tables():
+        grid = law_grid.__wrapped__(law)
+        arrays = [getattr(grid, name) for name in vars(grid) if name != "law"]
+        values = [rule.values(law, k) for k in range(law.max_order + 1)]
+        limits = [one_sided_limits(law, k) for k in range(law.max_order + 1)]
+        evaluated = PieceEvaluator(law, piece).orders(tau, (0, 1, 2, 3))
+        return arrays, values, limits, evaluated
+
+    with_forms = tables()
+    monkeypatch.setattr(type(law), "piece_forms", lambda self: None)
+    reference = tables()
+    for got, want in zip(with_forms[0] + with_forms[1] + list(with_forms[3]),
+                         reference[0] + reference[1] + list(reference[3]), strict=True):
+        assert np.array_equal(np.asarray(got), np.asarray(want)), spec
+    assert with_forms[2] == reference[2], spec

@@ -233,6 +233,11 @@ def one_sided_limits(law: LawShape, order: int) -> list[tuple[float, float, floa
         index = np.arange(table.count)
         ends = np.stack((table.evaluate(index, table.starts, order),
                          table.evaluate(index, table.ends, order)), axis=1).tolist()
+    elif (forms := law.piece_forms()) is not None:  # every piece at once, the same values
+        index = np.arange(len(pieces))
+        (starts,) = forms.values(index, np.array([p.start for p in pieces]), (order,))
+        (ends_at,) = forms.values(index, np.array(stops), (order,))
+        ends = np.stack((starts, ends_at), axis=1).tolist()
     else:
         ends = [law.piece_derivative(i, np.array([piece.start, stop]), order).tolist()
                 for i, (piece, stop) in enumerate(zip(pieces, stops, strict=True))]

@@ -41,6 +41,7 @@ class PieceForms:
     origins: np.ndarray
     forms: tuple[TrigPolyForm, ...]
     _rows: dict[int, OrderRows] = field(default_factory=dict, repr=False)
+    _chains: list[list[list[float]]] = field(default_factory=list, repr=False)
 
     @classmethod
     def of(cls, pieces: Sequence[Piece]) -> PieceForms | None:
@@ -62,7 +63,12 @@ class PieceForms:
     def rows(self, order: int) -> OrderRows:
         """The ``order``-th derivative's coefficients and sines, a row per piece."""
         if order not in self._rows:
-            self._rows[order] = OrderRows.of(self.forms, order)
+            chains = self._chains
+            while len(chains) <= order:  # each derivative from the one before, as the
+                # pieces' closures build them (the same function, the same floats)
+                chains.append([polynomial_derivative(c) for c in chains[-1]] if chains
+                              else [list(form.poly) for form in self.forms])
+            self._rows[order] = OrderRows.of(self.forms, order, chains[order])
         return self._rows[order]
 
     def values(self, piece: np.ndarray, tau: np.ndarray,
@@ -109,8 +115,10 @@ class OrderRows:
     quarter: float
 
     @classmethod
-    def of(cls, forms: Sequence[TrigPolyForm], order: int) -> OrderRows:
-        rows = [_derivative_coefficients(form, order) for form in forms]
+    def of(cls, forms: Sequence[TrigPolyForm], order: int,
+           rows: Sequence[list[float]]) -> OrderRows:
+        """The rows of ``forms`` at ``order``, ``rows`` their polynomials' coefficients
+        there (:meth:`PieceForms.rows` keeps each derivative's to build the next)."""
         width = max(len(r) for r in rows)
         count = max(len(form.sines) for form in forms)
         scale, omega, phase = (np.zeros((len(forms), count)) for _ in range(3))
@@ -120,11 +128,3 @@ class OrderRows:
         return cls(np.array([r + [0.0] * (width - len(r)) for r in rows]), scale, omega,
                    phase, order * math.pi / 2)
 
-
-def _derivative_coefficients(form: TrigPolyForm, order: int) -> list[float]:
-    """The polynomial coefficients of the form's ``order``-th derivative, as the piece's
-    closure builds them (the same function, the same floats)."""
-    coefficients = list(form.poly) if form.poly else [0.0]
-    for _ in range(order):
-        coefficients = polynomial_derivative(coefficients)
-    return coefficients

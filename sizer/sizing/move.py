@@ -118,6 +118,7 @@ import numpy as np
 from sizer.errors import UserError
 from sizer.laws import MotionLaw
 from sizer.laws.linear_peaks import LinearPeak, piece_values
+from sizer.laws.piece_forms import PieceForms
 from sizer.laws.quadrature import PieceIntervals, Resolution, gauss_legendre, law_intervals
 from sizer.mechanics import Drive
 from sizer.model.cycle import Dwell, from_task
@@ -191,8 +192,11 @@ def law_grid(law: MotionLaw) -> LawGrid:
     weights = np.concatenate([weight for _, weight in rules])
     # nodes are evaluated on their interval's piece: in an interval a few ulps wide a node
     # may round onto the next piece's start, where law.derivative would switch pieces
-    on_pieces = [_edge_and_node_values(law, part, tau)
-                 for part, (tau, _) in zip(parts, rules, strict=True)]
+    taus = [tau for tau, _ in rules]
+    forms = law.piece_forms()
+    on_pieces = ([_edge_and_node_values(law, part, tau)
+                  for part, tau in zip(parts, taus, strict=True)] if forms is None
+                 else _edge_and_node_values_at_once(forms, parts, taus))
     end_v, end_a, end_j, velocity, acceleration = (
         np.concatenate(columns) for columns in zip(*on_pieces, strict=True))
     return LawGrid(law, left, right, piece, nodes, weights, velocity, acceleration,
@@ -213,6 +217,31 @@ def _edge_and_node_values(law: MotionLaw, part: PieceIntervals, tau: np.ndarray
             v[edges:].reshape(tau.shape), a[edges:].reshape(tau.shape))
 
 
+def _edge_and_node_values_at_once(forms: PieceForms, parts: Sequence[PieceIntervals],
+                                  taus: Sequence[np.ndarray]) -> list[tuple[np.ndarray, ...]]:
+    """:func:`_edge_and_node_values` of every part, each piece's points evaluated in one
+    pass of the law's pieces as data (the same values)."""
+    at = [np.concatenate((part.edges, tau.ravel())) for part, tau in zip(parts, taus,
+                                                                         strict=True)]
+    sizes = [len(x) for x in at]
+    edge_sizes = [len(part.edges) for part in parts]
+    v, a = forms.values(np.repeat([part.index for part in parts], sizes), np.concatenate(at),
+                        (1, 2))
+    (j,) = forms.values(np.repeat([part.index for part in parts], edge_sizes),
+                        np.concatenate([part.edges for part in parts]), (3,))
+    out: list[tuple[np.ndarray, ...]] = []
+    start = edge_start = 0
+    for size, edges, tau in zip(sizes, edge_sizes, taus, strict=True):
+        vp, ap = v[start:start + size], a[start:start + size]
+        jp = j[edge_start:edge_start + edges]
+        start, edge_start = start + size, edge_start + edges
+        out.append((np.stack((vp[:edges - 1], vp[1:edges]), axis=1),
+                    np.stack((ap[:edges - 1], ap[1:edges]), axis=1),
+                    np.stack((jp[:-1], jp[1:]), axis=1),
+                    vp[edges:].reshape(tau.shape), ap[edges:].reshape(tau.shape)))
+    return out
+
+
 class PieceEvaluator:
     """Evaluates a law at points each bound to its own piece (one-sided at piece ends).
 
@@ -228,6 +257,7 @@ class PieceEvaluator:
         self.shape = piece.shape
         flat = piece.ravel()
         self.groups = [(int(i), np.nonzero(flat == i)[0]) for i in sorted_unique(flat)]
+        self._piece = flat.astype(np.intp, copy=False)  # for the law's pieces as data
 
     def __call__(self, tau: np.ndarray, order: int) -> np.ndarray:
         return self.orders(tau, (order,))[0]
@@ -243,6 +273,10 @@ class PieceEvaluator:
             for values, k in zip(out, orders, strict=True):
                 values[:] = piece.evaluate(at, k)
             return tuple(values.reshape(self.shape) for values in out)
+        forms = self.law.piece_forms()
+        if forms is not None:  # every piece at once, the same values
+            return tuple(values.reshape(self.shape)
+                         for values in forms.values(self._piece, flat, orders))
         out = [np.empty(flat.shape) for _ in orders]
         for index, where in self.groups:
             piece = self.law.pieces[index]
