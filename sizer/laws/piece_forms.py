@@ -75,11 +75,11 @@ class PieceForms:
                orders: Sequence[int]) -> tuple[np.ndarray, ...]:
         """q_N^(k) for each k of ``orders`` at each (piece, tau) (1-D arrays of one length),
         tau clamped into its piece (one-sided values at the piece ends)."""
-        t = np.minimum(np.maximum(tau, self.starts[piece]), self.ends[piece])
+        start, end = self.starts[piece], self.ends[piece]
+        t = np.minimum(np.maximum(tau, start), end)
         mirror = self.mirror[piece]
         mirrored = bool(mirror.any())
         if mirrored:
-            start, end = self.starts[piece], self.ends[piece]
             inner_start, inner_end = self.inner_starts[piece], self.inner_ends[piece]
             u = np.where(t <= start, inner_end, np.where(t >= end, inner_start, 1.0 - t))
             t = np.where(mirror, np.minimum(np.maximum(u, inner_start), inner_end), t)

@@ -1277,18 +1277,22 @@ class CycleCalculator:
             z = np.clip(f0 / (f0 - f1), 0.0, 1.0)
         rows = np.arange(count)
         bounds_of = np.arange(len(law.pieces) + 1)
+        forms = law.piece_forms()
         for _ in range(60):
             if not len(rows):
                 break
             tau = lo_edge[rows] + z[rows] * width[rows]
             mine = piece[rows]
-            bounds = np.searchsorted(mine, bounds_of)
-            v_n, a_n, j_n = (np.empty(len(rows)) for _ in range(3))
-            for index in np.flatnonzero(np.diff(bounds)):
-                part = slice(bounds[index], bounds[index + 1])
-                at = law.pieces[index].clamp(tau[part])
-                for out, order in ((v_n, 1), (a_n, 2), (j_n, 3)):
-                    out[part] = law.pieces[index].evaluate(at, order)
+            if forms is not None:  # every piece at once, the same values
+                v_n, a_n, j_n = forms.values(mine, tau, (1, 2, 3))
+            else:
+                bounds = np.searchsorted(mine, bounds_of)
+                v_n, a_n, j_n = (np.empty(len(rows)) for _ in range(3))
+                for index in np.flatnonzero(np.diff(bounds)):
+                    part = slice(bounds[index], bounds[index + 1])
+                    at = law.pieces[index].clamp(tau[part])
+                    for out, order in ((v_n, 1), (a_n, 2), (j_n, 3)):
+                        out[part] = law.pieces[index].evaluate(at, order)
             values = np.stack([P[rows] * a_n + Q[rows] * v_n + C[rows] for P, Q, C in chosen])
             k = np.argmax(values, axis=0)
             f = values[k, np.arange(len(rows))]
