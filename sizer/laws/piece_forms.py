@@ -60,6 +60,17 @@ class PieceForms:
                    np.array([p.start for p in inner]), np.array([p.end for p in inner]),
                    np.array([f.origin for f in forms]), tuple(forms))
 
+    @classmethod
+    def stacked(cls, tables: Sequence[PieceForms]) -> PieceForms:
+        """Several laws' tables as one, their pieces numbered in turn (law k's piece i is
+        piece i + the pieces of the laws before it): several laws evaluated at once."""
+        def joined(name: str) -> np.ndarray:
+            return np.concatenate([getattr(f, name) for f in tables])
+
+        return cls(joined("starts"), joined("ends"), joined("mirror"), joined("inner_starts"),
+                   joined("inner_ends"), joined("origins"),
+                   tuple(form for f in tables for form in f.forms))
+
     def rows(self, order: int) -> OrderRows:
         """The ``order``-th derivative's coefficients and sines, a row per piece."""
         if order not in self._rows:

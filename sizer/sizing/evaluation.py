@@ -262,6 +262,12 @@ def thermal_speed_of(rule: str, K: float | np.ndarray, h: float, dwell: float, n
     return n * K * h / cycle
 
 
+PartFlows = Callable[["LawRows", np.ndarray, bool, "np.ndarray | None"], "list | None"]
+"""``flows(rows, T, model, rms)``: per part of a :class:`LawRows` model the power-flow
+sums its calculator would compute at durations T (one per move direction), computed for
+all the rows at once (sizer.sizing.move.stacked_flows); None where none is needed."""
+
+
 class LawRows:
     """Several laws' candidates as the rows of one cycle model: the law as an array axis.
 
@@ -279,8 +285,10 @@ class LawRows:
     segmented = False
 
     def __init__(self, parts: Sequence[CycleCalculator], part: np.ndarray,
-                 motors: MotorArrays, drive: Drive) -> None:
+                 motors: MotorArrays, drive: Drive,
+                 flows: PartFlows | None = None) -> None:
         self.parts = tuple(parts)
+        self._flows = flows
         self.part = np.asarray(part, dtype=np.intp)
         self.rows = [np.flatnonzero(self.part == k) for k in range(len(self.parts))]
         self._motors, self._drive = motors, drive
@@ -325,7 +333,7 @@ class LawRows:
         kept = sorted_unique(part)  # the parts with rows left, renumbered in order
         parts = [self.parts[k].take(self.place[index[part == k]]) for k in kept]
         return LawRows(parts, np.searchsorted(kept, part), self._motors.subset(index),
-                       self._drive.take(index))
+                       self._drive.take(index), self._flows)
 
     def _spread(self, values: Sequence[np.ndarray | None]) -> np.ndarray | None:
         """One array over the rows from each part's (None if a part has none)."""
@@ -339,8 +347,11 @@ class LawRows:
     def evaluate(self, duration: np.ndarray, peaks: bool = True, model: bool = False,
                  rms: np.ndarray | None = None) -> CycleMetrics:
         T = np.broadcast_to(np.asarray(duration, dtype=float), (len(self.part),))
-        found = [calc.evaluate(T[rows], peaks, model, None if rms is None else rms[rows])
-                 for calc, rows in zip(self.parts, self.rows, strict=True)]
+        # the parts' power-flow sums in one pass over all rows, where they are needed
+        flows = None if self._flows is None else self._flows(self, T, model, rms)
+        found = [calc.evaluate(T[rows], peaks, model, None if rms is None else rms[rows],
+                               flow=None if flows is None else flows[k])
+                 for k, (calc, rows) in enumerate(zip(self.parts, self.rows, strict=True))]
         return _stacked(found, self.rows, len(self.part))
 
     def thermal_speed(self, T: np.ndarray) -> np.ndarray:

@@ -109,6 +109,7 @@ function gives no necessary condition.
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
@@ -177,6 +178,74 @@ class LawGrid:
     @property
     def size(self) -> int:
         return len(self.left)
+
+
+class GridRows:
+    """The law grid each candidate row reads: one law's for every row, or (several laws
+    as the rows of one model: sizer.sizing.evaluation.LawRows) row i the grid of
+    ``laws[which[i]]``, the laws' arrays padded to the longest grid (a padded interval
+    repeats the last one's right end and is marked invalid). Interval indices are each
+    row's own grid's; pieces, for the laws' pieces as data, are numbered across the laws
+    (sizer.laws.piece_forms.PieceForms.stacked)."""
+
+    def __init__(self, laws: Sequence[MotionLaw], several: bool = False) -> None:
+        self.laws = tuple(laws)
+        self.which: np.ndarray | None = None  # per row its law (:meth:`for_rows`)
+        grids = [law_grid(law) for law in self.laws]
+        tables = [moment_table(law) for law in self.laws]
+        if not several:  # one law: its own arrays, shared by every row
+            (g,), (table,) = grids, tables
+            self.size = np.full(1, float(g.size))
+            self.table, self.piece, self.left, self.right = table, g.piece, g.left, g.right
+            self.end_velocity, self.end_acceleration = g.end_velocity, g.end_acceleration
+            self.end_jerk = g.end_jerk
+            self.forms = self.laws[0].piece_forms()
+            self.node_count = np.full(1, g.nodes.shape[1])
+            return
+        sizes = np.array([g.size for g in grids])
+        width = int(sizes.max())
+        forms = [law.piece_forms() for law in self.laws]
+        self.forms = None if any(f is None for f in forms) else PieceForms.stacked(
+            [f for f in forms if f is not None])
+        first = np.concatenate(([0], np.cumsum([len(law.pieces) for law in self.laws])))
+
+        def padded(arrays: Sequence[np.ndarray], length: int) -> np.ndarray:
+            out = np.empty((len(arrays), length, *arrays[0].shape[1:]), arrays[0].dtype)
+            for k, x in enumerate(arrays):
+                out[k, :len(x)] = x
+                out[k, len(x):] = x[-1]
+            return out
+
+        def ends(arrays: Sequence[np.ndarray]) -> np.ndarray:
+            out = padded(arrays, width)
+            for k, x in enumerate(arrays):
+                out[k, len(x):] = x[-1, 1]  # a padded interval: the last right end
+            return out
+
+        self.size = sizes.astype(float)
+        self.table = padded(tables, width + 1)
+        self.piece = padded([g.piece + first[k] for k, g in enumerate(grids)], width)
+        self.left, self.right = (padded([getattr(g, name) for g in grids], width)
+                                 for name in ("left", "right"))
+        self.end_velocity, self.end_acceleration, self.end_jerk = (
+            ends([getattr(g, name) for g in grids])
+            for name in ("end_velocity", "end_acceleration", "end_jerk"))
+        self.node_count = np.array([g.nodes.shape[1] for g in grids])
+        self.valid = np.arange(width)[None, :] < sizes[:, None]
+
+    def for_rows(self, which: np.ndarray) -> GridRows:
+        """These laws' grids read by rows each of its own law, ``laws[which[i]]``."""
+        view = copy.copy(self)
+        view.which = which
+        return view
+
+    def law_of(self, cand: np.ndarray) -> np.ndarray | int:
+        """The law (index into the padded arrays) of each row at ``cand``; 0 for one law."""
+        return 0 if self.which is None else self.which[cand]
+
+    def at(self, array: np.ndarray, cand: np.ndarray, interval: np.ndarray) -> np.ndarray:
+        """``array``'s entries of each (row, interval) pair."""
+        return array[interval] if self.which is None else array[self.which[cand], interval]
 
 
 @lru_cache(maxsize=256)
@@ -963,6 +1032,7 @@ class CycleCalculator:
                             "(sizer.sizing.linkage_move; docs/position-loads.md), not in "
                             "this case (a cycle, a return or a ratio search)", field="load")
         self._grid = grid
+        self._grid_rows: GridRows | None = None  # the law's grid as the rows read it
         self.law = grid.law if grid is not None else law
         self.task = task
         self.drive = drive
@@ -983,7 +1053,8 @@ class CycleCalculator:
 
     # ------------------------------------------------------------------ public
     def evaluate(self, duration: np.ndarray, peaks: bool = True,
-                 model: bool = False, rms: np.ndarray | None = None) -> CycleMetrics:
+                 model: bool = False, rms: np.ndarray | None = None,
+                 flow: list | None = None) -> CycleMetrics:
         """The requirements at the given durations. Without ``peaks`` the peak torques
         and ratios are left at zero (a search on the other checks, where the peaks are
         known to pass: sizer.sizing.shortest_duration); with ``model`` the metrics carry
@@ -991,7 +1062,9 @@ class CycleCalculator:
         torque at these durations, known (an RMS model's value within CONVERGED of where
         it was built: sizer.sizing.shortest_duration.rms_crossing_with_rms); the power-flow
         integrals are then not computed where no stage has an RMS rating to check (the
-        stages' RMS is then left at zero, as nothing reads it)."""
+        stages' RMS is then left at zero, as nothing reads it). ``flow``: per move
+        direction the channels' terms and power-flow sums at these durations, computed
+        with other laws' rows (:func:`stacked_flows`; the same arrays)."""
         if rms is not None and (model or self.stage_checks or self.drive.is_ideal):
             rms = None  # wanted, or as cheap as the known values
         T = np.broadcast_to(np.asarray(duration, dtype=float), (len(self.motors),)).copy()
@@ -1011,7 +1084,8 @@ class CycleCalculator:
             (np.zeros_like(T), np.zeros_like(T), np.zeros_like(T),
              [np.zeros_like(T) for _ in range(n_stages)]) for _ in moves]
         parts: list | None = [] if model else None
-        for scales, (torque, ratio, load, stages) in zip(moves, found, strict=True):
+        for number, (scales, (torque, ratio, load, stages)) in enumerate(
+                zip(moves, found, strict=True)):
             peak_torque = np.maximum(peak_torque, torque)
             peak_ratio = np.maximum(peak_ratio, ratio)
             load_torque = np.maximum(load_torque, load)
@@ -1019,7 +1093,8 @@ class CycleCalculator:
                 stage_peak[i] = np.maximum(stage_peak[i], stages[i])
             if rms is not None:
                 continue
-            means = self._mean_squares(scales, parts)
+            means = self._mean_squares(scales, parts,
+                                       None if flow is None else flow[number])
             square += T * means[0]
             for i in range(n_stages):
                 stage_square[i] += T * means[1 + i]
@@ -1080,8 +1155,8 @@ class CycleCalculator:
         K = np.reshape(K, (-1,) + (1,) * (np.ndim(a_l) - 1)) if np.ndim(a_l) > 1 else K
         return rotor * K * a_l + damping * K * v_l + shaft, outputs
 
-    def _mean_squares(self, scales: MoveScales,
-                      model: list | None = None) -> list[np.ndarray]:
+    def _mean_squares(self, scales: MoveScales, model: list | None = None,
+                      flow: tuple | None = None) -> list[np.ndarray]:
         """(1/T) * integral of the squared motor torque (then of each stage output) per move.
 
         Each torque is a maximum of linear functions L_k = P a_N + Q v_N + C of the law
@@ -1099,8 +1174,11 @@ class CycleCalculator:
             if model is not None:
                 model.append(self._ideal_motor_terms(scales))
             return self._ideal_mean_squares(scales)
-        terms = self.channel_terms(scales)
-        sums = self._flow_sums(terms)
+        if flow is None:
+            terms = self.channel_terms(scales)
+            sums = self._flow_sums(terms)
+        else:  # computed with other laws' rows (:func:`stacked_flows`)
+            terms, sums = flow
         if model is not None:
             model.append([(*piece, m) for piece, m in zip(terms[0], sums[0], strict=True)])
         with np.errstate(over="ignore", invalid="ignore"):
@@ -1168,167 +1246,10 @@ class CycleCalculator:
 
     def _flow_sums(self, terms) -> list[list[np.ndarray]]:
         """Per channel and per function of it, the law's moments summed over the stretches
-        of the move where that function is the torque: (6, candidates) arrays.
-
-        Between two power-flow reversals of the stages every channel is one of its linear
-        functions (the reflections switch only where a stage's output torque is zero), so
-        a stretch's moments are a difference of the law's prefix-sum moment table
-        (:func:`moment_table`) and the work per candidate is per reversal, not per grid
-        interval. The reversals: a stage's output torque (a maximum of linear functions)
-        is read at the ends of every grid interval; where it changes sign inside an
-        interval the root is found (Newton in a bracket, in the interval's own coordinate:
-        the two reflections agree at the root, so a root error dz changes an integral by
-        O(dz^2)) and the table read there by Gauss-Legendre on the part of the interval
-        before it; where its sign class changes across a grid edge (a jump of a_N) the
-        edge is a split. Each stretch's function is the one with the largest integral
-        over it (the torque is the maximum of the functions).
-        """
-        g, law = self.grid, self.law
-        n, size = len(self.motors), g.size
-        table = moment_table(law)
-        edge = np.zeros((n, max(size - 1, 0)), dtype=bool)
-        roots: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []  # (cand, interval, z)
-        for pieces in terms[1:]:  # each stage's output at the ends of every interval
-            x = _linear_maximum(pieces, g.end_acceleration, g.end_velocity)
-            lo, hi = x[..., 0], x[..., 1]
-            # sign classes as booleans (NaN, a move of 1e-200 s, counts as zero): an end
-            # at zero takes the class of the interval's other end
-            pos_lo, neg_lo, pos_hi, neg_hi = lo > 0.0, lo < 0.0, hi > 0.0, hi < 0.0
-            left_pos = pos_lo | (pos_hi & ~neg_lo)
-            left_neg = neg_lo | (neg_hi & ~pos_lo)
-            right_pos = pos_hi | (pos_lo & ~neg_hi)
-            right_neg = neg_hi | (neg_lo & ~pos_hi)
-            edge |= (right_pos[:, :-1] != left_pos[:, 1:]) | (right_neg[:, :-1] != left_neg[:, 1:])
-            cand, interval = np.nonzero((pos_lo & neg_hi) | (neg_lo & pos_hi))
-            if len(cand):
-                roots.append((cand, interval, self._flow_root(pieces, cand, interval,
-                                                              lo[cand, interval],
-                                                              hi[cand, interval])))
-        # every split point: (candidate, position along the grid, prefix moments there)
-        e_cand, e_index = np.nonzero(edge)
-        cands = [np.arange(n), np.arange(n), e_cand]
-        keys = [np.zeros(n), np.full(n, float(size)), (e_index + 1).astype(float)]
-        values = [np.zeros((n, 6)), np.broadcast_to(table[-1], (n, 6)), table[e_index + 1]]
-        for cand, interval, z in roots:
-            cands.append(cand)
-            keys.append(interval + z)
-            values.append(table[interval] + self._partial_moments(interval, z))
-        cand = np.concatenate(cands)
-        key = np.concatenate(keys)
-        value = np.concatenate(values)
-        order = np.lexsort((key, cand))
-        cand, value = cand[order], value[order]
-        same = cand[1:] == cand[:-1]
-        run_cand = cand[:-1][same]
-        run = (value[1:] - value[:-1])[same]
-        sums = []
-        for channel in terms:
-            if len(channel) == 1:
-                sums.append([np.repeat(table[-1][:, None], n, axis=1)])
-                continue
-            best = _largest_integral([tuple(spread(x, n)[run_cand] for x in f)
-                                      for f in channel], run)
-            mine = []
-            columns = np.arange(6)
-            for k in range(len(channel)):
-                rows = best == k
-                # one bincount over (candidate, moment) bins: each bin's terms summed in
-                # the runs' order, as six bincounts of one column each would
-                bins = (run_cand[rows][:, None] * 6 + columns).ravel()
-                mine.append(np.bincount(bins, weights=run[rows].ravel(),
-                                        minlength=6 * n).reshape(n, 6).T.copy())
-            sums.append(mine)
-        return sums
-
-    def _flow_root(self, pieces, cand: np.ndarray, interval: np.ndarray, f_lo: np.ndarray,
-                   f_hi: np.ndarray) -> np.ndarray:
-        """Where a stage's output torque (its linear ``pieces``) is zero inside the grid
-        intervals at ``interval`` of the candidates at ``cand``: the coordinate z in [0, 1]
-        of each interval (f_lo, f_hi: the torque at its ends, of opposite signs).
-
-        Newton's method on the function that is the torque (its derivative P j_N + Q a_N),
-        kept inside the shrinking sign bracket (bisection where a step would leave it),
-        from the regula falsi point; each step evaluates only the roots still open, the
-        points sorted by piece once so that a subset needs no regrouping, until a step
-        is below FLOW_ROOT_STEP (or the bracket below 1e-10). Where the torque is one
-        linear function the root of its cubic Hermite model on the interval (values and
-        slopes at the ends, from the grid) starts the steps instead: one or two
-        evaluations of the law per root.
-        """
-        g, law = self.grid, self.law
-        count = len(cand)
-        by_piece = np.argsort(g.piece[interval], kind="stable")
-        piece = g.piece[interval][by_piece]
-        lo_edge = g.left[interval][by_piece]
-        width = g.right[interval][by_piece] - lo_edge
-        n = len(self.motors)
-        chosen = [tuple(spread(x, n)[cand[by_piece]] for x in part)
-                  for part in pieces]
-        sign_lo = np.sign(f_lo[by_piece])
-        lo, hi = np.zeros(count), np.ones(count)
-        f0, f1 = f_lo[by_piece], f_hi[by_piece]
-        if len(chosen) == 1:  # one function: its cubic Hermite model on the interval
-            (P, Q, _), = chosen
-            ends = interval[by_piece]
-            a, j = (x[ends] for x in (g.end_acceleration, g.end_jerk))
-            z = hermite_root(f0, f1, (P * j[:, 0] + Q * a[:, 0]) * width,
-                             (P * j[:, 1] + Q * a[:, 1]) * width, xtol=0.1 * FLOW_ROOT_STEP)
-        else:
-            z = np.clip(f0 / (f0 - f1), 0.0, 1.0)
-        rows = np.arange(count)
-        bounds_of = np.arange(len(law.pieces) + 1)
-        forms = law.piece_forms()
-        for _ in range(60):
-            if not len(rows):
-                break
-            tau = lo_edge[rows] + z[rows] * width[rows]
-            mine = piece[rows]
-            if forms is not None:  # every piece at once, the same values
-                v_n, a_n, j_n = forms.values(mine, tau, (1, 2, 3))
-            else:
-                bounds = np.searchsorted(mine, bounds_of)
-                v_n, a_n, j_n = (np.empty(len(rows)) for _ in range(3))
-                for index in np.flatnonzero(np.diff(bounds)):
-                    part = slice(bounds[index], bounds[index + 1])
-                    at = law.pieces[index].clamp(tau[part])
-                    for out, order in ((v_n, 1), (a_n, 2), (j_n, 3)):
-                        out[part] = law.pieces[index].evaluate(at, order)
-            values = np.stack([P[rows] * a_n + Q[rows] * v_n + C[rows] for P, Q, C in chosen])
-            k = np.argmax(values, axis=0)
-            f = values[k, np.arange(len(rows))]
-            slope = np.choose(k, [P[rows] * j_n + Q[rows] * a_n for P, Q, _ in chosen])
-            below = np.sign(f) == sign_lo[rows]
-            lo[rows] = np.where(below, z[rows], lo[rows])
-            hi[rows] = np.where(below, hi[rows], z[rows])
-            with np.errstate(divide="ignore", invalid="ignore"):
-                step = z[rows] - f / (slope * width[rows])
-            inside = (step > lo[rows]) & (step < hi[rows])
-            new = np.where(inside, step, 0.5 * (lo[rows] + hi[rows]))
-            done = (np.abs(new - z[rows]) <= FLOW_ROOT_STEP) | (f == 0.0) \
-                | (hi[rows] - lo[rows] <= 1e-10)
-            z[rows] = np.where(f == 0.0, z[rows], new)
-            rows = rows[~done]
-        out = np.empty(count)
-        out[by_piece] = np.minimum(np.maximum(z, 0.0), 1.0)
-        return out
-
-    def _partial_moments(self, interval: np.ndarray, z: np.ndarray) -> np.ndarray:
-        """The law's moments over the first part [left, left + z width] of each grid
-        interval at ``interval`` (Gauss-Legendre with the grid's node count, on the
-        interval's piece): (len(interval), 6), columns as :func:`interval_moments`."""
-        g = self.grid
-        lo_edge = g.left[interval]
-        half = 0.5 * z * (g.right[interval] - lo_edge)
-        x, w = gauss_legendre(g.nodes.shape[1])
-        tau = (lo_edge + half)[:, None] + half[:, None] * x
-        on_pieces = PieceEvaluator(self.law, np.broadcast_to(g.piece[interval][:, None],
-                                                             tau.shape))
-        a_n, v_n = on_pieces.orders(tau, (2, 1))
-        weight = half[:, None] * w
-        return np.column_stack([(weight * a_n * a_n).sum(axis=1),
-                                (weight * v_n * v_n).sum(axis=1), weight.sum(axis=1),
-                                (weight * a_n * v_n).sum(axis=1), (weight * a_n).sum(axis=1),
-                                (weight * v_n).sum(axis=1)])
+        of the move where that function is the torque (:func:`flow_sums`)."""
+        if self._grid_rows is None:
+            self._grid_rows = GridRows((self.law,))
+        return flow_sums(self._grid_rows, terms, len(self.motors))
 
     # ------------------------------------------------------------------ peaks
     def _peaks(self, moves: list[MoveScales]):
@@ -1945,14 +1866,69 @@ class CycleCalculator:
 def law_rows(laws: Sequence[MotionLaw], part: np.ndarray, task: Task, drive: Drive,
              motors: MotorArrays, thermal_speed: ThermalSpeedRule = "max") -> LawRows:
     """Several law moves of ``task`` as the rows of one model (sizer.sizing.evaluation.
-    LawRows): row i the move with laws[part[i]] for the motor and drive of row i."""
+    LawRows): row i the move with laws[part[i]] for the motor and drive of row i; where
+    every law has its pieces as data, the power-flow sums of all rows in one pass
+    (:class:`StackedFlows`)."""
     part = np.asarray(part, dtype=np.intp)
     parts = []
     for k, law in enumerate(laws):
         mine = np.flatnonzero(part == k)
         parts.append(CycleCalculator(None, task, drive.take(mine), motors.subset(mine),
                                      thermal_speed, law=law))
-    return LawRows(parts, part, motors, drive)
+    flows = None
+    if not drive.is_ideal and all(law.piece_forms() is not None for law in laws):
+        flows = StackedFlows(laws)
+    return LawRows(parts, part, motors, drive, flows)
+
+
+class StackedFlows:
+    """The power-flow sums (:func:`flow_sums`) of several laws' rows in one pass: each
+    row reads its own law's grid and pieces (:class:`GridRows` padded over the laws), so
+    each part's sums are those its calculator computes alone (every step is elementwise
+    over the rows, each sum taken in the same order)."""
+
+    def __init__(self, laws: Sequence[MotionLaw]) -> None:
+        self.grids = GridRows(laws, several=True)
+        self.index = {law: k for k, law in enumerate(laws)}
+
+    def __call__(self, rows: LawRows, T: np.ndarray, model: bool,
+                 rms: np.ndarray | None) -> list | None:
+        """Per part, per move direction, (terms, sums) at durations T; None where the
+        parts compute no sums (a known RMS: CycleCalculator.evaluate)."""
+        parts = rows.parts
+        first = parts[0]
+        assert isinstance(first, CycleCalculator)
+        if rms is not None and not (model or first.stage_checks):
+            return None
+        n = len(rows)
+        which = np.empty(n, dtype=np.intp)
+        for calc, mine in zip(parts, rows.rows, strict=True):
+            assert isinstance(calc, CycleCalculator)
+            which[mine] = self.index[calc.law]
+        grids = self.grids.for_rows(which)
+        out: list[list] = [[] for _ in parts]
+        for direction in first.directions:
+            terms = []
+            for calc, mine in zip(parts, rows.rows, strict=True):
+                assert isinstance(calc, CycleCalculator)
+                Tk = T[mine].copy()
+                terms.append(calc.channel_terms(MoveScales(calc.h / Tk / Tk, calc.h / Tk,
+                                                           direction)))
+            joined = [[tuple(_joined([t[c][f][i] for t in terms], rows.rows, n)
+                             for i in range(3))
+                       for f in range(len(terms[0][c]))] for c in range(len(terms[0]))]
+            sums = flow_sums(grids, joined, n)
+            for k, mine in enumerate(rows.rows):
+                out[k].append((terms[k], [[s[:, mine] for s in channel] for channel in sums]))
+        return out
+
+
+def _joined(values: Sequence[np.ndarray], rows: Sequence[np.ndarray], n: int) -> np.ndarray:
+    """One array over all rows from each part's (its rows at ``rows[k]``)."""
+    out = np.empty(n)
+    for x, mine in zip(values, rows, strict=True):
+        out[mine] = spread(x, len(mine))
+    return out
 
 
 def _inertial(coefficients) -> bool:
@@ -1977,10 +1953,204 @@ def _stacked_terms(terms: list, n: int):
              for k in range(len(terms[0][c]))] for c in range(len(terms[0]))]
 
 
-def _linear_maximum(pieces, a_n: np.ndarray, v_n: np.ndarray) -> np.ndarray:
+def flow_sums(rows: GridRows, terms, n: int) -> list[list[np.ndarray]]:
+    """Per channel and per function of it, the law's moments summed over the stretches
+    of the move where that function is the torque: (6, candidates) arrays; each row
+    reads its own law's grid (``rows``).
+
+    Between two power-flow reversals of the stages every channel is one of its linear
+    functions (the reflections switch only where a stage's output torque is zero), so
+    a stretch's moments are a difference of the law's prefix-sum moment table
+    (:func:`moment_table`) and the work per candidate is per reversal, not per grid
+    interval. The reversals: a stage's output torque (a maximum of linear functions)
+    is read at the ends of every grid interval; where it changes sign inside an
+    interval the root is found (Newton in a bracket, in the interval's own coordinate:
+    the two reflections agree at the root, so a root error dz changes an integral by
+    O(dz^2)) and the table read there by Gauss-Legendre on the part of the interval
+    before it; where its sign class changes across a grid edge (a jump of a_N) the
+    edge is a split. Each stretch's function is the one with the largest integral
+    over it (the torque is the maximum of the functions).
+    """
+    several = rows.which is not None
+    size = rows.end_velocity.shape[-2]
+    end_a, end_v = rows.end_acceleration, rows.end_velocity
+    if several:
+        end_a, end_v = end_a[rows.which], end_v[rows.which]
+    edge = np.zeros((n, max(size - 1, 0)), dtype=bool)
+    roots: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []  # (cand, interval, z)
+    for pieces in terms[1:]:  # each stage's output at the ends of every interval
+        x = _linear_maximum(pieces, end_a, end_v, rows_first=several)
+        lo, hi = x[..., 0], x[..., 1]
+        # sign classes as booleans (NaN, a move of 1e-200 s, counts as zero): an end
+        # at zero takes the class of the interval's other end
+        pos_lo, neg_lo, pos_hi, neg_hi = lo > 0.0, lo < 0.0, hi > 0.0, hi < 0.0
+        left_pos = pos_lo | (pos_hi & ~neg_lo)
+        left_neg = neg_lo | (neg_hi & ~pos_lo)
+        right_pos = pos_hi | (pos_lo & ~neg_hi)
+        right_neg = neg_hi | (neg_lo & ~pos_hi)
+        edge |= (right_pos[:, :-1] != left_pos[:, 1:]) | (right_neg[:, :-1] != left_neg[:, 1:])
+        crossing = (pos_lo & neg_hi) | (neg_lo & pos_hi)
+        if several:  # a padded interval neither crosses nor splits
+            valid = rows.valid[rows.which]
+            crossing &= valid
+            edge &= valid[:, 1:]
+        cand, interval = np.nonzero(crossing)
+        if len(cand):
+            roots.append((cand, interval, _flow_root(rows, pieces, n, cand, interval,
+                                                     lo[cand, interval],
+                                                     hi[cand, interval])))
+    # every split point: (candidate, position along the grid, prefix moments there)
+    table = rows.table
+    totals = table[-1] if not several else table[rows.which, -1]
+    e_cand, e_index = np.nonzero(edge)
+    cands = [np.arange(n), np.arange(n), e_cand]
+    keys = [np.zeros(n), np.full(n, rows.size[0]) if not several
+            else rows.size[rows.which], (e_index + 1).astype(float)]
+    values = [np.zeros((n, 6)), np.broadcast_to(totals, (n, 6)),
+              rows.at(table, e_cand, e_index + 1)]
+    for cand, interval, z in roots:
+        cands.append(cand)
+        keys.append(interval + z)
+        values.append(rows.at(table, cand, interval)
+                      + _partial_moments(rows, cand, interval, z))
+    cand = np.concatenate(cands)
+    key = np.concatenate(keys)
+    value = np.concatenate(values)
+    order = np.lexsort((key, cand))
+    cand, value = cand[order], value[order]
+    same = cand[1:] == cand[:-1]
+    run_cand = cand[:-1][same]
+    run = (value[1:] - value[:-1])[same]
+    sums = []
+    for channel in terms:
+        if len(channel) == 1:
+            sums.append([np.repeat(totals[:, None], n, axis=1) if not several
+                         else np.ascontiguousarray(totals.T)])
+            continue
+        best = _largest_integral([tuple(spread(x, n)[run_cand] for x in f)
+                                  for f in channel], run)
+        mine = []
+        columns = np.arange(6)
+        for k in range(len(channel)):
+            chosen = best == k
+            # one bincount over (candidate, moment) bins: each bin's terms summed in
+            # the runs' order, as six bincounts of one column each would
+            bins = (run_cand[chosen][:, None] * 6 + columns).ravel()
+            mine.append(np.bincount(bins, weights=run[chosen].ravel(),
+                                    minlength=6 * n).reshape(n, 6).T.copy())
+        sums.append(mine)
+    return sums
+
+
+def _flow_root(rows: GridRows, pieces, n: int, cand: np.ndarray, interval: np.ndarray,
+               f_lo: np.ndarray, f_hi: np.ndarray) -> np.ndarray:
+    """Where a stage's output torque (its linear ``pieces``) is zero inside the grid
+    intervals at ``interval`` of the candidates at ``cand``: the coordinate z in [0, 1]
+    of each interval (f_lo, f_hi: the torque at its ends, of opposite signs).
+
+    Newton's method on the function that is the torque (its derivative P j_N + Q a_N),
+    kept inside the shrinking sign bracket (bisection where a step would leave it),
+    from the regula falsi point; each step evaluates only the roots still open, the
+    points sorted by piece once so that a subset needs no regrouping, until a step
+    is below FLOW_ROOT_STEP (or the bracket below 1e-10). Where the torque is one
+    linear function the root of its cubic Hermite model on the interval (values and
+    slopes at the ends, from the grid) starts the steps instead: one or two
+    evaluations of the law per root.
+    """
+    count = len(cand)
+    on_piece = rows.at(rows.piece, cand, interval)
+    by_piece = np.argsort(on_piece, kind="stable")
+    piece = on_piece[by_piece]
+    lo_edge = rows.at(rows.left, cand, interval)[by_piece]
+    width = rows.at(rows.right, cand, interval)[by_piece] - lo_edge
+    chosen = [tuple(spread(x, n)[cand[by_piece]] for x in part)
+              for part in pieces]
+    sign_lo = np.sign(f_lo[by_piece])
+    lo, hi = np.zeros(count), np.ones(count)
+    f0, f1 = f_lo[by_piece], f_hi[by_piece]
+    if len(chosen) == 1:  # one function: its cubic Hermite model on the interval
+        (P, Q, _), = chosen
+        a, j = (rows.at(x, cand[by_piece], interval[by_piece])
+                for x in (rows.end_acceleration, rows.end_jerk))
+        z = hermite_root(f0, f1, (P * j[:, 0] + Q * a[:, 0]) * width,
+                         (P * j[:, 1] + Q * a[:, 1]) * width, xtol=0.1 * FLOW_ROOT_STEP)
+    else:
+        z = np.clip(f0 / (f0 - f1), 0.0, 1.0)
+    forms = rows.forms
+    law = rows.laws[0]  # (without forms: one law, evaluated piece by piece)
+    bounds_of = np.arange(len(law.pieces) + 1)
+    open_ = np.arange(count)
+    for _ in range(60):
+        if not len(open_):
+            break
+        tau = lo_edge[open_] + z[open_] * width[open_]
+        mine = piece[open_]
+        if forms is not None:  # every piece at once, the same values
+            v_n, a_n, j_n = forms.values(mine, tau, (1, 2, 3))
+        else:
+            bounds = np.searchsorted(mine, bounds_of)
+            v_n, a_n, j_n = (np.empty(len(open_)) for _ in range(3))
+            for index in np.flatnonzero(np.diff(bounds)):
+                part = slice(bounds[index], bounds[index + 1])
+                at = law.pieces[index].clamp(tau[part])
+                for out, order in ((v_n, 1), (a_n, 2), (j_n, 3)):
+                    out[part] = law.pieces[index].evaluate(at, order)
+        values = np.stack([P[open_] * a_n + Q[open_] * v_n + C[open_] for P, Q, C in chosen])
+        k = np.argmax(values, axis=0)
+        f = values[k, np.arange(len(open_))]
+        slope = np.choose(k, [P[open_] * j_n + Q[open_] * a_n for P, Q, _ in chosen])
+        below = np.sign(f) == sign_lo[open_]
+        lo[open_] = np.where(below, z[open_], lo[open_])
+        hi[open_] = np.where(below, hi[open_], z[open_])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = z[open_] - f / (slope * width[open_])
+        inside = (step > lo[open_]) & (step < hi[open_])
+        new = np.where(inside, step, 0.5 * (lo[open_] + hi[open_]))
+        done = (np.abs(new - z[open_]) <= FLOW_ROOT_STEP) | (f == 0.0) \
+            | (hi[open_] - lo[open_] <= 1e-10)
+        z[open_] = np.where(f == 0.0, z[open_], new)
+        open_ = open_[~done]
+    out = np.empty(count)
+    out[by_piece] = np.minimum(np.maximum(z, 0.0), 1.0)
+    return out
+
+
+def _partial_moments(rows: GridRows, cand: np.ndarray, interval: np.ndarray,
+                     z: np.ndarray) -> np.ndarray:
+    """The law's moments over the first part [left, left + z width] of each grid
+    interval at ``interval`` (Gauss-Legendre with the grid's node count, on the
+    interval's piece): (len(interval), 6), columns as :func:`interval_moments`. Rows of
+    laws with different node counts are integrated in groups of one count."""
+    counts = rows.node_count[rows.law_of(cand)] if rows.which is not None \
+        else np.broadcast_to(rows.node_count, (len(cand),))
+    out = np.empty((len(cand), 6))
+    for count in sorted_unique(counts):
+        at = np.flatnonzero(counts == count) if len(rows.node_count) > 1 else slice(None)
+        c, i = cand[at], interval[at]
+        lo_edge = rows.at(rows.left, c, i)
+        half = 0.5 * z[at] * (rows.at(rows.right, c, i) - lo_edge)
+        x, w = gauss_legendre(int(count))
+        tau = (lo_edge + half)[:, None] + half[:, None] * x
+        piece = np.broadcast_to(rows.at(rows.piece, c, i)[:, None], tau.shape)
+        if rows.forms is not None:
+            a_n, v_n = (v.reshape(tau.shape) for v in rows.forms.values(
+                piece.ravel(), tau.ravel(), (2, 1)))
+        else:
+            a_n, v_n = PieceEvaluator(rows.laws[0], piece).orders(tau, (2, 1))
+        weight = half[:, None] * w
+        out[at] = np.column_stack([(weight * a_n * a_n).sum(axis=1),
+                                   (weight * v_n * v_n).sum(axis=1), weight.sum(axis=1),
+                                   (weight * a_n * v_n).sum(axis=1),
+                                   (weight * a_n).sum(axis=1), (weight * v_n).sum(axis=1)])
+    return out
+
+
+def _linear_maximum(pieces, a_n: np.ndarray, v_n: np.ndarray,
+                    rows_first: bool = False) -> np.ndarray:
     """max_k P_k a_N + Q_k v_N + C_k for (P, Q, C) arrays over candidates and a_N, v_N
-    arrays shared by all of them: shape (candidates, *a_n.shape)."""
-    shape = (-1,) + (1,) * np.ndim(a_n)
+    arrays shared by all of them: shape (candidates, *a_n.shape); with ``rows_first``
+    a_N, v_N have the candidates as their first axis already (each its own law's)."""
+    shape = (-1,) + (1,) * (np.ndim(a_n) - (1 if rows_first else 0))
     out = None
     for P, Q, C in pieces:
         value = np.reshape(P, shape) * a_n + np.reshape(Q, shape) * v_n + np.reshape(C, shape)
