@@ -73,3 +73,12 @@ def test_an_ideal_drive_or_a_law_without_its_pieces_as_data_keeps_the_parts_sums
     assert law_rows(laws, part, task, ideal.drive, ideal.motors)._flows is None
     mixed = [*laws[:-1], make_law("poly5")]  # one piece, its own closure
     assert law_rows(mixed, part, task, candidates.drive, candidates.motors)._flows is None
+
+
+def test_several_laws_grids_refuse_a_law_without_its_pieces_as_data() -> None:
+    """Their pieces are numbered across the laws: a law evaluated piece by piece cannot
+    join them (law_rows then keeps each part's own sums)."""
+    from sizer.sizing.move import GridRows
+
+    with pytest.raises(ValueError):
+        GridRows([make_law("trapezoidal(alpha=0.2)"), make_law("poly5")], several=True)

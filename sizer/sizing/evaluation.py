@@ -339,6 +339,11 @@ class LawRows:
         """One array over the rows from each part's (None if a part has none)."""
         if any(v is None for v in values):
             return None
+        return self.joined([v for v in values if v is not None])
+
+    def joined(self, values: Sequence[np.ndarray | float]) -> np.ndarray:
+        """One array over the rows from each part's values (an array over its rows, or
+        one value for all of them)."""
         out = np.empty(len(self.part))
         for rows, v in zip(self.rows, values, strict=True):
             out[rows] = v

@@ -199,13 +199,15 @@ class GridRows:
             self.table, self.piece, self.left, self.right = table, g.piece, g.left, g.right
             self.end_velocity, self.end_acceleration = g.end_velocity, g.end_acceleration
             self.end_jerk = g.end_jerk
-            self.forms = self.laws[0].piece_forms()
+            self.forms: PieceForms | None = self.laws[0].piece_forms()
             self.node_count = np.full(1, g.nodes.shape[1])
             return
         sizes = np.array([g.size for g in grids])
         width = int(sizes.max())
         forms = [law.piece_forms() for law in self.laws]
-        self.forms = None if any(f is None for f in forms) else PieceForms.stacked(
+        if any(f is None for f in forms):  # their pieces are numbered across the laws
+            raise ValueError("several laws' grids need every law's pieces as data")
+        self.forms = PieceForms.stacked(
             [f for f in forms if f is not None])
         first = np.concatenate(([0], np.cumsum([len(law.pieces) for law in self.laws])))
 
@@ -1901,11 +1903,8 @@ class StackedFlows:
         if rms is not None and not (model or first.stage_checks):
             return None
         n = len(rows)
-        which = np.empty(n, dtype=np.intp)
-        for calc, mine in zip(parts, rows.rows, strict=True):
-            assert isinstance(calc, CycleCalculator)
-            which[mine] = self.index[calc.law]
-        grids = self.grids.for_rows(which)
+        laws = [calc.law for calc in parts if isinstance(calc, CycleCalculator)]
+        grids = self.grids.for_rows(np.array([self.index[law] for law in laws])[rows.part])
         out: list[list] = [[] for _ in parts]
         for direction in first.directions:
             terms = []
@@ -1914,21 +1913,12 @@ class StackedFlows:
                 Tk = T[mine].copy()
                 terms.append(calc.channel_terms(MoveScales(calc.h / Tk / Tk, calc.h / Tk,
                                                            direction)))
-            joined = [[tuple(_joined([t[c][f][i] for t in terms], rows.rows, n)
-                             for i in range(3))
+            joined = [[tuple(rows.joined([t[c][f][i] for t in terms]) for i in range(3))
                        for f in range(len(terms[0][c]))] for c in range(len(terms[0]))]
             sums = flow_sums(grids, joined, n)
             for k, mine in enumerate(rows.rows):
                 out[k].append((terms[k], [[s[:, mine] for s in channel] for channel in sums]))
         return out
-
-
-def _joined(values: Sequence[np.ndarray], rows: Sequence[np.ndarray], n: int) -> np.ndarray:
-    """One array over all rows from each part's (its rows at ``rows[k]``)."""
-    out = np.empty(n)
-    for x, mine in zip(values, rows, strict=True):
-        out[mine] = spread(x, len(mine))
-    return out
 
 
 def _inertial(coefficients) -> bool:
@@ -2121,11 +2111,10 @@ def _partial_moments(rows: GridRows, cand: np.ndarray, interval: np.ndarray,
     interval at ``interval`` (Gauss-Legendre with the grid's node count, on the
     interval's piece): (len(interval), 6), columns as :func:`interval_moments`. Rows of
     laws with different node counts are integrated in groups of one count."""
-    counts = rows.node_count[rows.law_of(cand)] if rows.which is not None \
-        else np.broadcast_to(rows.node_count, (len(cand),))
+    counts = rows.node_count[rows.law_of(cand)]  # one count for one law
     out = np.empty((len(cand), 6))
     for count in sorted_unique(counts):
-        at = np.flatnonzero(counts == count) if len(rows.node_count) > 1 else slice(None)
+        at = np.flatnonzero(counts == count) if np.ndim(counts) else slice(None)
         c, i = cand[at], interval[at]
         lo_edge = rows.at(rows.left, c, i)
         half = 0.5 * z[at] * (rows.at(rows.right, c, i) - lo_edge)
