@@ -15,7 +15,7 @@ import pytest
 
 from sizer.laws import DEFAULT_LAW_SPECS, make_law
 from sizer.laws.quadrature import Resolution, law_intervals
-from sizer.sizing.move import ENGINE_RESOLUTION, law_grid
+from sizer.sizing.move import ENGINE_RESOLUTION, engine_intervals, grid_samples, law_grid
 
 SPECS = (*DEFAULT_LAW_SPECS, "elliptic(n=1000)", "polynomial(21)",
          "exponential(sigma=2, lam=0.61)", "double_s(alpha=1e-6, beta=1e-6)")
@@ -75,3 +75,13 @@ def test_one_interval_per_polynomial_piece_is_exact(spec):
         total += float((law.piece_derivative(part.index, tau, 2) ** 2 * weight).sum())
     assert math.sqrt(total) == pytest.approx(law.closed_form_coefficients()["C_a_rms"],
                                              rel=1e-14)
+
+
+@pytest.mark.parametrize("spec", SPECS)
+def test_grid_samples_counts_the_grid_from_its_intervals(spec):
+    # the chunks' memory (sizer.sizing.engine.chunk_size) without the grid's values: the
+    # nodes and both ends of every interval, as the grid built from them holds
+    law = make_law(spec)
+    g = law_grid(law)
+    assert grid_samples(law) == g.nodes.size + 2 * g.size
+    assert engine_intervals(law) is engine_intervals(law)  # computed once per law

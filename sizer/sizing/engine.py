@@ -57,7 +57,7 @@ from sizer.sizing.cycle import (
 )
 from sizer.sizing.energy_check import energy_limit, energy_notes, without_power_figures
 from sizer.sizing.evaluation import CycleMetrics, CycleModel, LawRows
-from sizer.sizing.move import CycleCalculator, MoveScales, RmsModel, law_grid
+from sizer.sizing.move import CycleCalculator, MoveScales, RmsModel, grid_samples
 from sizer.sizing.ranking import rank_order
 from sizer.sizing.results import (
     FIGURES,
@@ -352,8 +352,7 @@ def chunk_size(law: RankedLaw, moves: int = 1) -> int:
     each of ``moves`` moves evaluated together; a law per move: its largest grid's)."""
     if isinstance(law, LawsPerMove):
         return min(chunk_size(one, moves) for one in law.laws)
-    grid = law_grid(law)
-    return candidates_per_chunk((grid.nodes.size + 2 * grid.size) * max(moves, 1))
+    return candidates_per_chunk(grid_samples(law) * max(moves, 1))
 
 
 def evaluate_fixed_law(design: Design, law: RankedLaw, candidates: Candidates,

@@ -251,9 +251,26 @@ class GridRows:
 
 
 @lru_cache(maxsize=256)
+def engine_intervals(law: MotionLaw) -> tuple[PieceIntervals, ...]:
+    """The intervals and node counts of the law's grid (cached: laws hash by their
+    canonical spec; read by :func:`law_grid` and :func:`grid_samples`)."""
+    return tuple(law_intervals(law, ENGINE_RESOLUTION))
+
+
+def grid_samples(law: MotionLaw) -> int:
+    """The samples of one candidate on the law's grid, its nodes and both ends of each
+    interval (``grid.nodes.size + 2 * grid.size`` of :func:`law_grid`), from its intervals
+    alone: the memory of an evaluation is known without computing the law's values there
+    (a law move through an ideal drive never reads them unless its exact peaks fail)."""
+    parts = engine_intervals(law)
+    count = max(part.nodes for part in parts)
+    return sum(len(part.edges) - 1 for part in parts) * (count + 2)
+
+
+@lru_cache(maxsize=256)
 def law_grid(law: MotionLaw) -> LawGrid:
     """The grid of a law (cached: laws hash by their canonical spec)."""
-    parts = law_intervals(law, ENGINE_RESOLUTION)
+    parts = engine_intervals(law)
     count = max(part.nodes for part in parts)
     rules = [part.gauss(count) for part in parts]
     left = np.concatenate([part.edges[:-1] for part in parts])
