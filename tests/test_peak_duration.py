@@ -226,10 +226,10 @@ def test_each_query_bound_lies_in_its_bracket():
     checked = 0
     for calculator in competing_calculators():
         law = calculator.law
-        _, P, Q, D = peak_queries(calculator, limits)
+        who, P, Q, D = peak_queries(calculator, limits)
         c = law.coefficients
         low, high = _brackets(P, Q, D, c.C_a, c.C_v)
-        u = _largest_u(law.linear_peaks, law, P, Q, D, c.C_a, c.C_v)
+        u = _largest_u(calculator, who, P, Q, D, c.C_a, c.C_v)
         with np.errstate(divide="ignore"):
             T = np.where(u > 0.0, 1.0 / u, np.inf)
         finite = np.isfinite(T) & np.isfinite(high)

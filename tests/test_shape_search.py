@@ -1,6 +1,6 @@
 """The search of `auto` shape parameters (sizer.sizing.choices.search_1d) on functions
 whose optimum the test knows, its count of evaluations, and several laws sized as the
-rows of one model (sizer.sizing.evaluation.LawRows) against each law sized alone."""
+rows of one model (sizer.laws.row_laws.RowLaws) against each law sized alone."""
 
 from __future__ import annotations
 
@@ -168,21 +168,26 @@ def test_several_laws_as_rows_of_one_model_give_each_laws_own_answer():
     assert np.isfinite(together).all()
 
 
+@pytest.mark.parametrize("efficiency", [0.9, 1.0])
 @pytest.mark.parametrize("duration, residual", [
     (None, None), (0.6, None),
     # a load with a mode: its residual vibration reported, then limited (binding for some)
     (None, math.inf), (0.6, math.inf), (None, 2e-5), (0.6, 2e-5)])
 def test_each_candidates_own_law_sized_as_rows_of_one_model_is_each_law_alone(
-        duration, residual, monkeypatch):
+        duration, residual, efficiency, monkeypatch):
     """sizer.sizing.engine.evaluate_laws (the laws of auto shapes, one per motor, and of
-    shaped laws, one per duration): as the rows of one LawRows model, the residual
-    vibration a later limit over its rows (sizer.sizing.vibration_check.ResidualRows),
-    and law by law, every figure and check the same bit for bit."""
+    shaped laws, one per duration): as the rows of one model of their laws (the closed
+    forms with the friction as a constant torque through an ideal gearbox, the search
+    through an efficient one), the residual vibration a later limit over its rows
+    (sizer.sizing.vibration_check.ResidualRows), and law by law, every figure and check
+    the same bit for bit."""
     from sizer.sizing import engine
     from sizer.vibration.elastic_load import ElasticLoad
 
     design = replace(efficiency_design(), task=Task(math.pi / 2, duration, dwell=0.15,
                                                     return_move=True))
+    gearbox = replace(design.transmission.stages[0], efficiency=efficiency)
+    design = replace(design, transmission=Transmission((gearbox,)))
     if residual is not None:
         design = replace(design, load=replace(design.load, elastic=ElasticLoad(25.0, 0.02)),
                          limits=replace(design.limits, residual_vibration=None

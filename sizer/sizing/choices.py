@@ -97,7 +97,7 @@ from sizer.sizing.cycle import single_task
 from sizer.sizing.energy_check import has_braking_check, has_heat_check, without_power_figures
 from sizer.sizing.move import CycleCalculator
 from sizer.sizing.results import CandidateTable, Mode, concatenate, in_groups
-from sizer.sizing.shortest_duration import minimum_duration, searched_law_rows
+from sizer.sizing.shortest_duration import laws_model, minimum_duration
 from sizer.vibration.elastic_load import ElasticLoad
 
 if TYPE_CHECKING:
@@ -332,16 +332,16 @@ def evaluate_points(family: type[MotionLaw], fixed: dict[str, float], names: lis
 def _law_rows(laws: list[MotionLaw], part: np.ndarray, design: Design,
               candidates: Candidates) -> Scores | None:
     """The scores of several laws' candidates (row i of laws[part[i]]) sized as the rows
-    of one model (sizer.sizing.evaluation.LawRows) where the laws take the search from
-    their peak bounds: minimize mode, a move rest-to-rest without a linkage or a closed
-    form, no law that moves backwards. None elsewhere (each law scored alone)."""
+    of one model (sizer.sizing.shortest_duration.laws_model: each row's T_min its law's
+    alone): minimize mode, a move rest-to-rest without a linkage, no law that moves
+    backwards. None elsewhere (each law scored alone)."""
     if len(laws) < 2 or design.transmission.linkage is not None:
         return None
     task = single_task(design)
     if not task.minimize:
         return None
-    rows = searched_law_rows(laws, part, task, candidates.drive, candidates.motors,
-                             design.limits.thermal_speed)
+    rows = laws_model(laws, part, task, candidates.drive, candidates.motors,
+                      design.limits.thermal_speed)
     if rows is None:
         return None
     solution = minimum_duration(rows, design.limits)

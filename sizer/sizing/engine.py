@@ -56,7 +56,7 @@ from sizer.sizing.cycle import (
     single_task,
 )
 from sizer.sizing.energy_check import energy_limit, energy_notes, without_power_figures
-from sizer.sizing.evaluation import CycleMetrics, CycleModel, LawRows
+from sizer.sizing.evaluation import CycleMetrics, CycleModel
 from sizer.sizing.move import CycleCalculator, MoveScales, RmsModel, grid_samples
 from sizer.sizing.ranking import rank_order
 from sizer.sizing.results import (
@@ -69,7 +69,7 @@ from sizer.sizing.results import (
     concatenate,
     in_groups,
 )
-from sizer.sizing.shortest_duration import answer, is_purely_inertial, searched_law_rows
+from sizer.sizing.shortest_duration import answer, is_purely_inertial, laws_model
 from sizer.sizing.stage_life import gearbox_life_limits, screw_limits
 from sizer.sizing.vibration_check import ResidualRows, residual_limit
 
@@ -236,11 +236,11 @@ def evaluate_law(design: Design, spec: LawChoice | str,
 def evaluate_laws(design: Design, laws: Sequence[MotionLaw], group: np.ndarray,
                   candidates: Candidates) -> CandidateTable:
     """Each candidate with its own law (laws[group[i]]), in the candidates' order: as the
-    rows of one model (sizer.sizing.evaluation.LawRows: the search for T_min and the
-    checks once over every row) where the laws are moves of the task shorthand that take
-    the search from their peak bounds (no closed form, none moving backwards), no later
-    limit applies and one chunk holds them; else law by law (:func:`evaluate_fixed_law`),
-    which gives the same numbers."""
+    rows of one model (sizer.laws.row_laws.RowLaws in sizer.sizing.move.CycleCalculator:
+    the closed forms, the search for T_min and the checks once over every row) where the
+    laws are moves of the task shorthand (none moving backwards), no later limit but the
+    residual vibration applies and one chunk holds them; else law by law
+    (:func:`evaluate_fixed_law`), which gives the same numbers."""
     found = _law_rows(design, laws, group, candidates)
     if found is None:
         return in_groups(group, lambda k, index: evaluate_fixed_law(
@@ -259,17 +259,16 @@ def evaluate_laws(design: Design, laws: Sequence[MotionLaw], group: np.ndarray,
 
 
 def _law_rows(design: Design, laws: Sequence[MotionLaw], group: np.ndarray,
-              candidates: Candidates) -> tuple[LawRows, list[ResidualRows]] | None:
-    """The candidates as the rows of one LawRows model where :func:`evaluate_laws` may
-    size them so, with its later limit (the laws' residual vibration, where the load has
-    a mode), else None."""
+              candidates: Candidates) -> tuple[CycleCalculator, list[ResidualRows]] | None:
+    """The candidates as the rows of one model of their laws (sizer.laws.row_laws.RowLaws)
+    where :func:`evaluate_laws` may size them so, with its later limit (the laws' residual
+    vibration, where the load has a mode), else None."""
     task = shorthand_task(design.machine_cycle)
     if (len(laws) < 2 or task is None or design.transmission.linkage is not None
             or design.load.position_dependent):
         return None
     drive = candidates.drive
-    rows = searched_law_rows(laws, group, task, drive, candidates.motors,
-                             design.limits.thermal_speed)
+    rows = laws_model(laws, group, task, drive, candidates.motors, design.limits.thermal_speed)
     if rows is None:
         return None
     builds = candidates.motors.builds

@@ -17,12 +17,9 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
-from functools import cached_property
 from typing import TYPE_CHECKING, Any, Protocol, Self
 
 import numpy as np
-
-from sizer.numerics.arrays import sorted_unique
 
 if TYPE_CHECKING:
     from sizer.laws import MotionLaw
@@ -262,167 +259,6 @@ def thermal_speed_of(rule: str, K: float | np.ndarray, h: float, dwell: float, n
     return n * K * h / cycle
 
 
-PartFlows = Callable[["LawRows", np.ndarray, bool, "np.ndarray | None"], "list | None"]
-"""``flows(rows, T, model, rms)``: per part of a :class:`LawRows` model the power-flow
-sums its calculator would compute at durations T (one per move direction), computed for
-all the rows at once (sizer.sizing.move.stacked_flows); None where none is needed."""
-
-
-class LawRows:
-    """Several laws' candidates as the rows of one cycle model: the law as an array axis.
-
-    A search over shape parameters (sizer.sizing.choices) asks at each step the shortest
-    duration of a different law for each motor. Each law move is its own calculator
-    (sizer.sizing.move.CycleCalculator: the law's tables, its peaks); part k holds the
-    rows where ``part == k``, in their order, and ``motors`` and ``drive`` are the rows'.
-    The search for T_min (sizer.sizing.shortest_duration), its root finders and the checks
-    then run once over all the rows, each calculator evaluating only its own: every
-    evaluation is elementwise over the rows, so each row's answer is the one its law's
-    calculator gives alone. No closed form (:meth:`law_move` is None): used where the laws
-    take the search from their peak bounds (sizer.sizing.choices).
-    """
-
-    segmented = False
-
-    def __init__(self, parts: Sequence[CycleCalculator], part: np.ndarray,
-                 motors: MotorArrays, drive: Drive,
-                 flows: PartFlows | None = None) -> None:
-        self.parts = tuple(parts)
-        self._flows = flows
-        self.part = np.asarray(part, dtype=np.intp)
-        self.rows = [np.flatnonzero(self.part == k) for k in range(len(self.parts))]
-        self._motors, self._drive = motors, drive
-        self._c_v, self._c_v_rms = (np.empty(len(self.part)) for _ in range(2))
-        for calc, rows in zip(self.parts, self.rows, strict=True):
-            self._c_v[rows] = calc.law.coefficients.C_v
-            self._c_v_rms[rows] = calc.law.coefficients.C_v_rms
-
-    @cached_property
-    def place(self) -> np.ndarray:
-        """Each row's place among its part's rows (its index in that part's calculator)."""
-        out = np.empty(len(self.part), dtype=np.intp)
-        for rows in self.rows:
-            out[rows] = np.arange(len(rows))
-        return out
-
-    def moves_backwards(self) -> bool:
-        """Whether a law may move backwards (v_N < 0): it has no peak bound
-        (sizer.sizing.move.peak_duration), its search is another."""
-        return any(float(calc.law.linear_peaks.minimum(0.0, 1.0).value) < -1e-12
-                   for calc in self.parts)
-
-    @property
-    def task(self) -> Task:
-        return self.parts[0].task
-
-    @property
-    def drive(self) -> Drive:
-        return self._drive
-
-    @property
-    def motors(self) -> MotorArrays:
-        return self._motors
-
-    def __len__(self) -> int:
-        return len(self.part)
-
-    def take(self, index: np.ndarray) -> LawRows:
-        """The rows at ``index``, in that order (each part takes its own)."""
-        index = np.asarray(index, dtype=np.intp)
-        part = self.part[index]
-        kept = sorted_unique(part)  # the parts with rows left, renumbered in order
-        parts = [self.parts[k].take(self.place[index[part == k]]) for k in kept]
-        return LawRows(parts, np.searchsorted(kept, part), self._motors.subset(index),
-                       self._drive.take(index), self._flows)
-
-    def _spread(self, values: Sequence[np.ndarray | None]) -> np.ndarray | None:
-        """One array over the rows from each part's (None if a part has none)."""
-        if any(v is None for v in values):
-            return None
-        return self.joined([v for v in values if v is not None])
-
-    def joined(self, values: Sequence[np.ndarray | float]) -> np.ndarray:
-        """One array over the rows from each part's values (an array over its rows, or
-        one value for all of them)."""
-        out = np.empty(len(self.part))
-        for rows, v in zip(self.rows, values, strict=True):
-            out[rows] = v
-        return out
-
-    def evaluate(self, duration: np.ndarray, peaks: bool = True, model: bool = False,
-                 rms: np.ndarray | None = None) -> CycleMetrics:
-        T = np.broadcast_to(np.asarray(duration, dtype=float), (len(self.part),))
-        # the parts' power-flow sums in one pass over all rows, where they are needed
-        flows = None if self._flows is None else self._flows(self, T, model, rms)
-        found = [calc.evaluate(T[rows], peaks, model, None if rms is None else rms[rows],
-                               flow=None if flows is None else flows[k])
-                 for k, (calc, rows) in enumerate(zip(self.parts, self.rows, strict=True))]
-        return _stacked(found, self.rows, len(self.part))
-
-    def thermal_speed(self, T: np.ndarray) -> np.ndarray:
-        """Each row's law's (the same formula and numbers as its calculator's)."""
-        first = self.parts[0]
-        return thermal_speed_of(first.thermal_rule, self._drive.ratio, first.h,
-                                first.task.dwell, len(first.directions), self._c_v,
-                                self._c_v_rms, np.asarray(T, dtype=float))
-
-    def peak_bound(self, limits: Limits) -> np.ndarray | None:
-        return self._spread([calc.peak_bound(limits) for calc in self.parts])
-
-    def search_start(self, limits: Limits) -> None:
-        return None
-
-    def initial_guess(self) -> np.ndarray:
-        out = self._spread([calc.initial_guess() for calc in self.parts])
-        assert out is not None
-        return out
-
-    def rms_lower_bound(self) -> np.ndarray | None:
-        return self._spread([calc.rms_lower_bound() for calc in self.parts])
-
-    def reported(self, metrics: CycleMetrics) -> np.ndarray:
-        return metrics.duration
-
-    def dead_point_issues(self) -> None:
-        return None
-
-    def given_scale(self) -> float:
-        return self.parts[0].given_scale()
-
-    def law_move(self) -> None:
-        """None: the rows are several laws' (each law's closed forms are its own)."""
-        return None
-
-    def cycle_time(self, T: np.ndarray) -> np.ndarray:
-        return self.parts[0].cycle_time(T)
-
-    def scale_of(self, duration: np.ndarray) -> np.ndarray:
-        return np.asarray(duration, dtype=float)
-
-    def pieces(self, s: np.ndarray, samples: int | None = None) -> list[CyclePiece]:
-        """Not sampled as one: each law samples its own grid (the counts of samples may
-        differ by law), so the rows' pieces are no one array. The engine uses LawRows only
-        where no later limit samples the cycle (sizer.sizing.engine.evaluate_laws); a
-        result's plots and reports build its own law's model."""
-        raise TypeError("LawRows holds several laws: sample each law's model "
-                        "(sizer.sizing.move.CycleCalculator.pieces)")
-
-
-@dataclass(frozen=True)
-class StackedRms:
-    """The parts' RMS models (sizer.sizing.move.RmsModel) as one over the rows."""
-
-    powers: np.ndarray
-    moves: int
-    dwell: float
-    hold: np.ndarray
-
-    def rms(self, T: np.ndarray, index: np.ndarray | None = None) -> np.ndarray:
-        c = self.powers if index is None else self.powers[:, index]
-        hold = self.hold if index is None else self.hold[index]
-        return rms_of_powers(c, T, self.moves, self.dwell, hold)
-
-
 def combined_metrics(found: Sequence[CycleMetrics],
                      combine: Callable[[list[np.ndarray]], np.ndarray]) -> dict[str, Any]:
     """The fields of one CycleMetrics from several, each array (and each stage's) the
@@ -435,25 +271,3 @@ def combined_metrics(found: Sequence[CycleMetrics],
         fields[field.name] = [combine(list(stage)) for stage in zip(*values, strict=True)] \
             if isinstance(values[0], list) else combine(values)
     return fields
-
-
-def _stacked(found: list[CycleMetrics], rows: list[np.ndarray], n: int) -> CycleMetrics:
-    """The parts' metrics as one evaluation over the rows."""
-    inverse = np.empty(n, dtype=np.intp)  # each row's place in the parts laid end to end
-    inverse[np.concatenate(rows)] = np.arange(n)
-
-    def put(values: list[np.ndarray]) -> np.ndarray:
-        laid = [v if np.ndim(v) == 1 and len(v) == len(r) else np.broadcast_to(v, (len(r),))
-                for r, v in zip(rows, values, strict=True)]
-        return np.concatenate(laid).take(inverse)
-
-    fields = combined_metrics(found, put)
-    models = [m.rms_model for m in found]
-    if models and all(m is not None for m in models):
-        powers = np.concatenate([m.powers for m in models],  # type: ignore[union-attr]
-                                axis=1).take(inverse, axis=1)
-        hold = put([m.hold for m in models])  # type: ignore[union-attr]
-        first = models[0]
-        fields["rms_model"] = StackedRms(powers, len(first.moves),  # type: ignore[union-attr]
-                                         first.dwell, hold)  # type: ignore[union-attr]
-    return CycleMetrics(**fields)

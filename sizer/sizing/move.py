@@ -121,6 +121,7 @@ from sizer.laws import MotionLaw
 from sizer.laws.linear_peaks import LinearPeak, piece_values
 from sizer.laws.piece_forms import PieceForms
 from sizer.laws.quadrature import PieceIntervals, Resolution, gauss_legendre, law_intervals
+from sizer.laws.row_laws import RowLaws
 from sizer.mechanics import Drive
 from sizer.model.cycle import Dwell, from_task
 from sizer.model.domain import Limits, Task, ThermalSpeedRule
@@ -132,7 +133,6 @@ from sizer.sizing.evaluation import (
     SAMPLES,
     CycleMetrics,
     CyclePiece,
-    LawRows,
     held_piece,
     rms_of_powers,
     thermal_speed_of,
@@ -182,7 +182,7 @@ class LawGrid:
 
 class GridRows:
     """The law grid each candidate row reads: one law's for every row, or (several laws
-    as the rows of one model: sizer.sizing.evaluation.LawRows) row i the grid of
+    as the rows of one model: sizer.laws.row_laws.RowLaws) row i the grid of
     ``laws[which[i]]``, the laws' arrays padded to the longest grid (a padded interval
     repeats the last one's right end and is marked invalid). Interval indices are each
     row's own grid's; pieces, for the laws' pieces as data, are numbered across the laws
@@ -728,6 +728,34 @@ def _peak_ratio(motor: np.ndarray, points: np.ndarray, top: np.ndarray, kin: _Ki
     return solved(found)
 
 
+def _load_jerk(c, h: float, T: np.ndarray) -> np.ndarray:
+    """The load's peak jerk C_j h / T^3 where the law's acceleration is continuous (each
+    row's law's: RowLaws), else inf (a jump: an impulse of jerk)."""
+    if isinstance(c.jerk_bounded, bool):
+        return c.C_j * h / T / T / T if c.jerk_bounded else np.full_like(T, np.inf)
+    with np.errstate(invalid="ignore", over="ignore"):
+        return np.where(c.jerk_bounded, c.C_j * h / T / T / T, np.inf)
+
+
+def _stacked_grids(law: RowLaws) -> GridRows:
+    """The laws' grids padded into one (GridRows), built once for the rows of these laws
+    and every take of them."""
+    grids = law.shared.get("grids")
+    if grids is None:
+        grids = law.shared["grids"] = GridRows(law.laws, several=True)
+    assert isinstance(grids, GridRows)
+    return grids
+
+
+def _jerk_bound(c, h: float, max_jerk: float) -> np.ndarray | float:
+    """The duration below which the load's jerk exceeds ``max_jerk``: cbrt(C_j h / j_max)
+    where the law's (each row's law's) acceleration is continuous, else inf."""
+    if isinstance(c.jerk_bounded, bool):
+        return np.cbrt(c.C_j * h / max_jerk) if c.jerk_bounded else np.inf
+    with np.errstate(invalid="ignore"):
+        return np.where(c.jerk_bounded, np.cbrt(c.C_j * h / max_jerk), np.inf)
+
+
 def _safe_ratio(torque: np.ndarray, limit: np.ndarray) -> np.ndarray:
     """torque/limit, infinite where a positive torque meets a zero limit."""
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -1072,8 +1100,7 @@ class CycleCalculator:
 
     # ------------------------------------------------------------------ public
     def evaluate(self, duration: np.ndarray, peaks: bool = True,
-                 model: bool = False, rms: np.ndarray | None = None,
-                 flow: list | None = None) -> CycleMetrics:
+                 model: bool = False, rms: np.ndarray | None = None) -> CycleMetrics:
         """The requirements at the given durations. Without ``peaks`` the peak torques
         and ratios are left at zero (a search on the other checks, where the peaks are
         known to pass: sizer.sizing.shortest_duration); with ``model`` the metrics carry
@@ -1081,9 +1108,7 @@ class CycleCalculator:
         torque at these durations, known (an RMS model's value within CONVERGED of where
         it was built: sizer.sizing.shortest_duration.rms_crossing_with_rms); the power-flow
         integrals are then not computed where no stage has an RMS rating to check (the
-        stages' RMS is then left at zero, as nothing reads it). ``flow``: per move
-        direction the channels' terms and power-flow sums at these durations, computed
-        with other laws' rows (:func:`stacked_flows`; the same arrays)."""
+        stages' RMS is then left at zero, as nothing reads it)."""
         if rms is not None and (model or self.stage_checks or self.drive.is_ideal):
             rms = None  # wanted, or as cheap as the known values
         T = np.broadcast_to(np.asarray(duration, dtype=float), (len(self.motors),)).copy()
@@ -1103,8 +1128,7 @@ class CycleCalculator:
             (np.zeros_like(T), np.zeros_like(T), np.zeros_like(T),
              [np.zeros_like(T) for _ in range(n_stages)]) for _ in moves]
         parts: list | None = [] if model else None
-        for number, (scales, (torque, ratio, load, stages)) in enumerate(
-                zip(moves, found, strict=True)):
+        for scales, (torque, ratio, load, stages) in zip(moves, found, strict=True):
             peak_torque = np.maximum(peak_torque, torque)
             peak_ratio = np.maximum(peak_ratio, ratio)
             load_torque = np.maximum(load_torque, load)
@@ -1112,8 +1136,7 @@ class CycleCalculator:
                 stage_peak[i] = np.maximum(stage_peak[i], stages[i])
             if rms is not None:
                 continue
-            means = self._mean_squares(scales, parts,
-                                       None if flow is None else flow[number])
+            means = self._mean_squares(scales, parts)
             square += T * means[0]
             for i in range(n_stages):
                 stage_square[i] += T * means[1 + i]
@@ -1136,7 +1159,7 @@ class CycleCalculator:
                                   * np.square(np.float64(stage_hold[i]))) / cycle)
                          for i in range(n_stages)]
         thermal = self.thermal_speed(T)
-        jerk = c.C_j * h / T / T / T if c.jerk_bounded else np.full_like(T, np.inf)
+        jerk = _load_jerk(c, h, T)
         return CycleMetrics(
             duration=T, max_speed=K * load_speed, peak_torque=peak_torque,
             peak_ratio=peak_ratio, rms_torque=rms, thermal_speed=thermal,
@@ -1174,8 +1197,7 @@ class CycleCalculator:
         K = np.reshape(K, (-1,) + (1,) * (np.ndim(a_l) - 1)) if np.ndim(a_l) > 1 else K
         return rotor * K * a_l + damping * K * v_l + shaft, outputs
 
-    def _mean_squares(self, scales: MoveScales, model: list | None = None,
-                      flow: tuple | None = None) -> list[np.ndarray]:
+    def _mean_squares(self, scales: MoveScales, model: list | None = None) -> list[np.ndarray]:
         """(1/T) * integral of the squared motor torque (then of each stage output) per move.
 
         Each torque is a maximum of linear functions L_k = P a_N + Q v_N + C of the law
@@ -1193,11 +1215,8 @@ class CycleCalculator:
             if model is not None:
                 model.append(self._ideal_motor_terms(scales))
             return self._ideal_mean_squares(scales)
-        if flow is None:
-            terms = self.channel_terms(scales)
-            sums = self._flow_sums(terms)
-        else:  # computed with other laws' rows (:func:`stacked_flows`)
-            terms, sums = flow
+        terms = self.channel_terms(scales)
+        sums = self._flow_sums(terms)
         if model is not None:
             model.append([(*piece, m) for piece, m in zip(terms[0], sums[0], strict=True)])
         with np.errstate(over="ignore", invalid="ignore"):
@@ -1213,11 +1232,11 @@ class CycleCalculator:
         c = self.law.coefficients
         K = self.drive.ratio
         a_part, v_part, const = self.drive.linear_chain(float(scales.direction))
-        moments = np.array([c.C_a_rms**2, c.C_v_rms**2, 1.0, 0.0, 0.0, 1.0])
+        moments = np.stack([np.broadcast_to(np.asarray(x, dtype=float), (n,)) for x in
+                            (c.C_a_rms**2, c.C_v_rms**2, 1.0, 0.0, 0.0, 1.0)])
         return [(spread((self.motors.inertia * K + a_part) * scales.acc, n),
                  spread((self.motors.damping * K + v_part) * scales.vel, n),
-                 spread(np.asarray(const, dtype=float), n),
-                 np.broadcast_to(moments[:, None], (6, n)))]
+                 spread(np.asarray(const, dtype=float), n), moments)]
 
     def channel_terms(self, scales: MoveScales) -> list[list[tuple[np.ndarray, ...]]]:
         """Per channel (the motor, then each stage's output) its linear functions of the
@@ -1266,9 +1285,26 @@ class CycleCalculator:
     def _flow_sums(self, terms) -> list[list[np.ndarray]]:
         """Per channel and per function of it, the law's moments summed over the stretches
         of the move where that function is the torque (:func:`flow_sums`)."""
-        if self._grid_rows is None:
-            self._grid_rows = GridRows((self.law,))
-        return flow_sums(self._grid_rows, terms, len(self.motors))
+        n = len(self.motors)
+        law = self.law
+        if not isinstance(law, RowLaws):
+            if self._grid_rows is None:
+                self._grid_rows = GridRows((law,))
+            return flow_sums(self._grid_rows, terms, n)
+        if all(one.piece_forms() is not None for one in law.laws):  # every row at once
+            return flow_sums(_stacked_grids(law).for_rows(law.index), terms, n)
+        # law by law: each law's rows summed on its own grid, as its calculator does
+        out: list[list[np.ndarray]] | None = None
+        for k, at in law.groups():
+            part = [[tuple(spread(x, n)[at] for x in f) for f in channel] for channel in terms]
+            found = flow_sums(GridRows((law.laws[k],)), part, len(at))
+            if out is None:
+                out = [[np.empty((6, n)) for _ in channel] for channel in found]
+            for mine, theirs in zip(out, found, strict=True):
+                for whole, one in zip(mine, theirs, strict=True):
+                    whole[:, at] = one
+        assert out is not None
+        return out
 
     # ------------------------------------------------------------------ peaks
     def _peaks(self, moves: list[MoveScales]):
@@ -1284,20 +1320,71 @@ class CycleCalculator:
         for scales, found_exactly in zip(moves, self._exact_moves(moves), strict=True):
             (peak, ratio, load, stages), exact, certified = found_exactly
             if not exact.all():
-                index = np.flatnonzero(~exact)
-                sub = self.take(index)
-                move = MoveScales(scales.acc[index], scales.vel[index], scales.direction)
-                if bool(np.all(certified[index])):
-                    # only the ratio against a falling region is left to the grid search
-                    ratio[index] = sub._sampled_peaks([move], ratio_only=True)[0][1]
-                else:
-                    found = sub._sampled_peaks([move])[0]
-                    for mine, theirs in zip((peak, ratio, load, *stages),
-                                            (found[0], found[1], found[2], *found[3]),
-                                            strict=True):
-                        mine[index] = theirs
+                rows = np.flatnonzero(~exact)
+                for _, at, sub in self.by_law(rows):
+                    index = rows[at]
+                    move = MoveScales(scales.acc[index], scales.vel[index], scales.direction)
+                    if bool(np.all(certified[index])):
+                        # only the ratio against a falling region is left to the grid search
+                        ratio[index] = sub._sampled_peaks([move], ratio_only=True)[0][1]
+                    else:
+                        found = sub._sampled_peaks([move])[0]
+                        for mine, theirs in zip((peak, ratio, load, *stages),
+                                                (found[0], found[1], found[2], *found[3]),
+                                                strict=True):
+                            mine[index] = theirs
             out.append((peak, ratio, load, stages))
         return out
+
+    def by_law(self, rows: np.ndarray) -> list[tuple[int, np.ndarray, CycleCalculator]]:
+        """The rows ``rows`` law by law (RowLaws), else all at once (law 0): per law its
+        index, the positions ``at`` in ``rows`` of its rows and the calculator of the rows
+        ``rows[at]`` with that law alone."""
+        if not isinstance(self.law, RowLaws):
+            return [(0, np.arange(len(rows)), self.take(rows))]
+        out = []
+        for k, at in self.law.groups(rows):
+            index = rows[at]
+            out.append((k, at, CycleCalculator(None, self.task, self.drive.take(index),
+                                               self.motors.subset(index), self.thermal_rule,
+                                               law=self.law.laws[k])))
+        return out
+
+    def _law_view(self, k: int) -> CycleCalculator:
+        """This calculator's rows, every one read with the law ``self.law.laws[k]``
+        (RowLaws: the rows of that law take its own steps through it)."""
+        assert isinstance(self.law, RowLaws)
+        return CycleCalculator(None, self.task, self.drive, self.motors, self.thermal_rule,
+                               law=self.law.laws[k])
+
+    def _each_law(self, rows: np.ndarray,
+                  step: Callable[[CycleCalculator, np.ndarray], np.ndarray]) -> np.ndarray:
+        """``step(calculator, rows)`` over the rows ``rows``: this calculator with all of
+        them, or (RowLaws) law by law, a view of its rows read with that law
+        (:meth:`_law_view`) with that law's rows; the results joined."""
+        if not isinstance(self.law, RowLaws):
+            return step(self, rows)
+        out: np.ndarray | None = None
+        for k, at in self.law.groups(rows):
+            found = step(self._law_view(k), rows[at])
+            if out is None:
+                out = np.empty(len(rows), dtype=found.dtype)
+            out[at] = found
+        assert out is not None
+        return out
+
+    def _linear_peaks(self, rows: np.ndarray):
+        """The linear peaks of queries asked for the rows ``rows``: the law's, or each
+        row's own law's (RowLaws)."""
+        if isinstance(self.law, RowLaws):
+            return self.law.peaks(rows)
+        return self.law.linear_peaks
+
+    def _values(self, rows: np.ndarray, tau: np.ndarray, piece: np.ndarray, order):
+        """piece_values of points of the rows ``rows`` on the law (each row's: RowLaws)."""
+        if isinstance(self.law, RowLaws):
+            return self.law.values(rows, tau, piece, order)
+        return piece_values(self.law, tau, piece, order)
 
     def _exact_moves(self, moves: list[MoveScales]):
         """:meth:`_exact_peaks` of every move, the moves' candidates stacked into one run
@@ -1353,6 +1440,8 @@ class CycleCalculator:
         """The task shorthand at move durations T = s: move, dwell and with a return the
         move back and a dwell, each move on the law's normalized grid scaled by T (time
         t0 + T u, speed h v_N(u) / T, acceleration h a_N(u) / T^2, book sec. 6.1.1)."""
+        if isinstance(self.law, RowLaws):  # the engine samples each chosen law's own model
+            raise TypeError("a calculator of several laws' rows has no one law to sample")
         T = s
         n = len(self.motors)
         u, q_n, v_n, a_n = law_samples(self.law, SAMPLES if samples is None else samples)
@@ -1382,8 +1471,9 @@ class CycleCalculator:
 
     def take(self, index: np.ndarray) -> CycleCalculator:
         """The calculator of the candidates at ``index`` (same law and grid)."""
+        law = self.law.take(index) if isinstance(self.law, RowLaws) else self.law
         return CycleCalculator(self._grid, self.task, self.drive.take(index),
-                               self.motors.subset(index), self.thermal_rule, law=self.law)
+                               self.motors.subset(index), self.thermal_rule, law=law)
 
     def peak_bound(self, limits: Limits) -> np.ndarray | None:
         """The peak and speed bound on T_min (:func:`peak_duration`)."""
@@ -1481,7 +1571,7 @@ class CycleCalculator:
             tau = np.choose(best, [low.tau for low in lows])
             piece = np.choose(best, [low.piece for low in lows])
             if len(coefficients) > 1:
-                v_n, a_n = piece_values(self.law, tau, piece, (1, 2))
+                v_n, a_n = self._values(np.arange(n), tau, piece, (1, 2))
                 values = np.stack([P * a_n + Q * v_n + C for P, Q, C in coefficients])
                 scale = np.max(np.abs(values), axis=0) + np.abs(bottom)
                 certified[:] &= values.max(axis=0) <= bottom + 1e-12 * scale
@@ -1499,7 +1589,7 @@ class CycleCalculator:
         functions = [f for co in channels if not inertial(co) for f in co]
         # the law's linear peaks (its hull) only where a channel needs them: purely
         # inertial channels read C_a alone
-        solved = self.law.linear_peaks.maximum(
+        solved = self._linear_peaks(np.tile(np.arange(n), 2 * len(functions))).maximum(
             np.concatenate([sign * spread(P, n) for sign in (1.0, -1.0)
                             for P, _, _ in functions]),
             np.concatenate([sign * spread(Q, n) for sign in (1.0, -1.0)
@@ -1532,18 +1622,19 @@ class CycleCalculator:
         curved = np.flatnonzero(certified & ~flat)
         speed_scale = spread(K * scales.vel, n)
         if len(curved):
-            exact[curved] = self._curve_ratio(motor_terms, curved, speed_scale[curved], c.C_v,
-                                              ratio)
+            exact[curved] = self._each_law(curved, lambda calc, rows: calc._curve_ratio(
+                motor_terms, rows, speed_scale[rows], calc.law.coefficients.C_v, ratio))
         beyond = np.flatnonzero(certified & ~exact & (spread(speed, n)
                                                       > motors.speed_limit))
         if len(beyond) and peak_place is not None:
-            exact[beyond] = self._beyond_ratio(peak, peak_place, beyond, speed_scale[beyond],
-                                               ratio)
+            place = peak_place
+            exact[beyond] = self._each_law(beyond, lambda calc, rows: calc._beyond_ratio(
+                peak, place, rows, speed_scale[rows], ratio))
         leaving = np.flatnonzero(certified & ~exact & (spread(speed, n)
                                                        > motors.speed_limit))
         if len(leaving):
-            exact[leaving] = self._leaving_ratio(motor_terms, leaving, speed_scale[leaving],
-                                                 ratio)
+            exact[leaving] = self._each_law(leaving, lambda calc, rows: calc._leaving_ratio(
+                motor_terms, rows, speed_scale[rows], ratio))
         return (peak, ratio, load, stages), exact, certified
 
     def _beyond_ratio(self, peak: np.ndarray, place, rows: np.ndarray,
@@ -1883,59 +1974,12 @@ class CycleCalculator:
 
 
 def law_rows(laws: Sequence[MotionLaw], part: np.ndarray, task: Task, drive: Drive,
-             motors: MotorArrays, thermal_speed: ThermalSpeedRule = "max") -> LawRows:
-    """Several law moves of ``task`` as the rows of one model (sizer.sizing.evaluation.
-    LawRows): row i the move with laws[part[i]] for the motor and drive of row i; where
-    every law has its pieces as data, the power-flow sums of all rows in one pass
-    (:class:`StackedFlows`)."""
-    part = np.asarray(part, dtype=np.intp)
-    parts = []
-    for k, law in enumerate(laws):
-        mine = np.flatnonzero(part == k)
-        parts.append(CycleCalculator(None, task, drive.take(mine), motors.subset(mine),
-                                     thermal_speed, law=law))
-    flows = None
-    if not drive.is_ideal and all(law.piece_forms() is not None for law in laws):
-        flows = StackedFlows(laws)
-    return LawRows(parts, part, motors, drive, flows)
-
-
-class StackedFlows:
-    """The power-flow sums (:func:`flow_sums`) of several laws' rows in one pass: each
-    row reads its own law's grid and pieces (:class:`GridRows` padded over the laws), so
-    each part's sums are those its calculator computes alone (every step is elementwise
-    over the rows, each sum taken in the same order)."""
-
-    def __init__(self, laws: Sequence[MotionLaw]) -> None:
-        self.grids = GridRows(laws, several=True)
-        self.index = {law: k for k, law in enumerate(laws)}
-
-    def __call__(self, rows: LawRows, T: np.ndarray, model: bool,
-                 rms: np.ndarray | None) -> list | None:
-        """Per part, per move direction, (terms, sums) at durations T; None where the
-        parts compute no sums (a known RMS: CycleCalculator.evaluate)."""
-        parts = rows.parts
-        first = parts[0]
-        assert isinstance(first, CycleCalculator)
-        if rms is not None and not (model or first.stage_checks):
-            return None
-        n = len(rows)
-        laws = [calc.law for calc in parts if isinstance(calc, CycleCalculator)]
-        grids = self.grids.for_rows(np.array([self.index[law] for law in laws])[rows.part])
-        out: list[list] = [[] for _ in parts]
-        for direction in first.directions:
-            terms = []
-            for calc, mine in zip(parts, rows.rows, strict=True):
-                assert isinstance(calc, CycleCalculator)
-                Tk = T[mine].copy()
-                terms.append(calc.channel_terms(MoveScales(calc.h / Tk / Tk, calc.h / Tk,
-                                                           direction)))
-            joined = [[tuple(rows.joined([t[c][f][i] for t in terms]) for i in range(3))
-                       for f in range(len(terms[0][c]))] for c in range(len(terms[0]))]
-            sums = flow_sums(grids, joined, n)
-            for k, mine in enumerate(rows.rows):
-                out[k].append((terms[k], [[s[:, mine] for s in channel] for channel in sums]))
-        return out
+             motors: MotorArrays, thermal_speed: ThermalSpeedRule = "max") -> CycleCalculator:
+    """Several law moves of ``task`` as the rows of one model: row i the move with
+    laws[part[i]] for the motor and drive of row i (sizer.laws.row_laws.RowLaws: every
+    row's numbers those of its law's calculator alone)."""
+    return CycleCalculator(None, task, drive, motors, thermal_speed,
+                           law=RowLaws(laws, np.asarray(part, dtype=np.intp)))
 
 
 def _inertial(coefficients) -> bool:
@@ -2233,8 +2277,8 @@ def peak_duration(calculator: CycleCalculator, limits: Limits,
     check; None where the law may move backwards, v_N < 0, and the bound does not hold).
     ``prune=False`` solves every query (the reference the pruned result equals)."""
     law = calculator.law
-    peaks = law.linear_peaks
-    if float(peaks.minimum(0.0, 1.0).value) < -1e-12:
+    if law.moves_backwards() if isinstance(law, RowLaws) else \
+            float(law.linear_peaks.minimum(0.0, 1.0).value) < -1e-12:
         return None
     c = law.coefficients
     n, h = len(calculator.motors), calculator.h
@@ -2244,7 +2288,8 @@ def peak_duration(calculator: CycleCalculator, limits: Limits,
     queries = peak_queries(calculator, limits)
     if queries is not None:
         who, P, Q, D = queries
-        bounds.append(_largest_duration(peaks, law, n, who, P, Q, D, c.C_a, c.C_v, prune))
+        bounds.append(_largest_duration(calculator, n, who, P, Q, D, spread(c.C_a, n)[who],
+                                        spread(c.C_v, n)[who], prune))
     return np.max(np.stack(bounds), axis=0)
 
 
@@ -2288,8 +2333,9 @@ PRUNE_MARGIN = 1e-9
 bracket to be left out (far above the rounding of either)."""
 
 
-def _largest_duration(peaks, law, n: int, who: np.ndarray, P: np.ndarray, Q: np.ndarray,
-                      D: np.ndarray, C_a: float, C_v: float, prune: bool) -> np.ndarray:
+def _largest_duration(calculator: CycleCalculator, n: int, who: np.ndarray, P: np.ndarray,
+                      Q: np.ndarray, D: np.ndarray, C_a: np.ndarray, C_v: np.ndarray,
+                      prune: bool) -> np.ndarray:
     """Per candidate the largest of its queries' bounds 1/u (:func:`_largest_u`).
 
     Only the largest counts, so a query is solved only where it may be the largest: each
@@ -2309,7 +2355,8 @@ def _largest_duration(peaks, law, n: int, who: np.ndarray, P: np.ndarray, Q: np.
     for _ in range(2):
         todo = keep & ~solved
         if todo.any():
-            u = _largest_u(peaks, law, P[todo], Q[todo], D[todo], C_a, C_v)
+            u = _largest_u(calculator, who[todo], P[todo], Q[todo], D[todo], C_a[todo],
+                           C_v[todo])
             with np.errstate(divide="ignore"):
                 np.maximum.at(worst, who[todo], np.where(u > 0.0, 1.0 / u, np.inf))
             solved |= todo
@@ -2320,8 +2367,8 @@ def _largest_duration(peaks, law, n: int, who: np.ndarray, P: np.ndarray, Q: np.
     return worst
 
 
-def _brackets(P: np.ndarray, Q: np.ndarray, D: np.ndarray, C_a: float,
-              C_v: float) -> tuple[np.ndarray, np.ndarray]:
+def _brackets(P: np.ndarray, Q: np.ndarray, D: np.ndarray, C_a: np.ndarray,
+              C_v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Per query a lower and an upper end of its bound 1/u* (module docs: F(u) <= D).
 
     Lower: 1/u at the start of :func:`_largest_u` (the Newton iterates stay at or below
@@ -2356,7 +2403,7 @@ def speed_bounds(calculator: CycleCalculator, limits: Limits) -> np.ndarray:
     if limits.max_acceleration is not None:
         T = np.maximum(T, np.sqrt(c.C_a * h / limits.max_acceleration))
     if limits.max_jerk is not None:
-        T = np.maximum(T, np.cbrt(c.C_j * h / limits.max_jerk) if c.jerk_bounded else np.inf)
+        T = np.maximum(T, _jerk_bound(c, h, limits.max_jerk))
     for k, stage in zip(calculator.drive.input_ratios, calculator.drive.stages, strict=True):
         if stage.max_input_speed is not None:
             rated = np.broadcast_to(stage.rated["max_input_speed"], T.shape)
@@ -2366,8 +2413,8 @@ def speed_bounds(calculator: CycleCalculator, limits: Limits) -> np.ndarray:
     return T
 
 
-def _largest_u(peaks, law, P: np.ndarray, Q: np.ndarray, D: np.ndarray,
-               C_a: float, C_v: float) -> np.ndarray:
+def _largest_u(calculator: CycleCalculator, who: np.ndarray, P: np.ndarray, Q: np.ndarray,
+               D: np.ndarray, C_a: np.ndarray, C_v: np.ndarray) -> np.ndarray:
     """Per query the largest u with max_tau (P a_N u^2 + Q v_N u) <= D (0 where D <= 0,
     inf where nothing limits u): the maximizer's quadratic from the right (module docs)."""
     u = np.full(P.shape, np.inf)
@@ -2383,8 +2430,9 @@ def _largest_u(peaks, law, P: np.ndarray, Q: np.ndarray, D: np.ndarray,
     for _ in range(NEWTON_STEPS):
         if len(index) == 0:
             break
-        peak = peaks.maximum(P * x * x, Q * x)
-        v, a = piece_values(law, peak.tau, peak.piece, (1, 2))
+        rows = who[index]  # each query's candidate (its law's peaks and pieces)
+        peak = calculator._linear_peaks(rows).maximum(P * x * x, Q * x)
+        v, a = calculator._values(rows, peak.tau, peak.piece, (1, 2))
         excess = peak.value - D
         # the maximizer's quadratic A u^2 + b u <= F(u), equal at x with the same slope:
         # its positive root, in the stable form, lies in (u*, x) where F(x) > D

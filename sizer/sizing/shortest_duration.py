@@ -88,11 +88,12 @@ import dataclasses
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
 from sizer.laws import LawChoice, MotionLaw, law_choice
+from sizer.laws.row_laws import RowLaws
 from sizer.model.cycle import shorthand_task
 from sizer.model.domain import Design, Limits, Task, ThermalSpeedRule
 from sizer.numerics.golden import BrentMax, interior_points
@@ -111,7 +112,6 @@ from sizer.sizing.cycle import single_task
 from sizer.sizing.evaluation import (
     CycleMetrics,
     CycleModel,
-    LawRows,
     RmsCurve,
     combined_metrics,
     singular_metrics,
@@ -172,16 +172,16 @@ def is_purely_inertial(calculator: CycleModel) -> bool:
         and has_constant_torques(calculator)
 
 
-def searched_law_rows(laws: Sequence[MotionLaw], part: np.ndarray, task: Task, drive: Drive,
-                      motors: MotorArrays, thermal_speed: ThermalSpeedRule) -> LawRows | None:
+def laws_model(laws: Sequence[MotionLaw], part: np.ndarray, task: Task, drive: Drive,
+               motors: MotorArrays, thermal_speed: ThermalSpeedRule) -> CycleCalculator | None:
     """Several law moves of ``task`` as the rows of one model (sizer.sizing.move.law_rows),
-    row i with laws[part[i]], where they take the search from their peak bounds; None
-    where the drive takes the closed forms (each law's own, cheaper than any search) or a
-    law may move backwards (no peak bound: its search is another)."""
+    row i with laws[part[i]]: the closed forms and the search for T_min once over all the
+    rows, each row's numbers its law's alone; None where a law may move backwards (no
+    peak bound: its search is another, law by law)."""
     rows = law_rows(laws, part, task, drive, motors, thermal_speed)
-    if has_constant_torques(rows) or rows.moves_backwards():
-        return None
-    return rows
+    law = rows.law
+    assert isinstance(law, RowLaws)
+    return None if law.moves_backwards() else rows
 
 
 def minimum_duration(calculator: CycleModel, limits: Limits) -> DurationSolution:
@@ -794,19 +794,30 @@ def closed_form_duration(calculator: CycleCalculator, limits: Limits,
     rms = rms_duration(c.C_a_rms * s.rms, s.dwell)
     if limits.max_jerk is None:
         jerk = np.zeros_like(s.jerk)
-    elif c.jerk_bounded:
-        jerk = np.cbrt(c.C_j * s.jerk)
-    else:
-        jerk = np.full_like(s.jerk, np.inf)
+    elif isinstance(c.jerk_bounded, bool):
+        jerk = np.cbrt(c.C_j * s.jerk) if c.jerk_bounded else np.full_like(s.jerk, np.inf)
+    else:  # each row's law (RowLaws)
+        with np.errstate(invalid="ignore"):
+            jerk = np.where(c.jerk_bounded, np.cbrt(c.C_j * s.jerk), np.inf)
     if s.constant:
-        extreme = calculator.law.linear_peaks.maximum(np.array([1.0, -1.0]), np.zeros(2))
-        most, least = (float(v) for v in extreme.value)  # max q_N'', -min q_N''
+        most, least = acceleration_extremes(calculator.law)  # max q_N'', -min q_N''
         torque = np.sqrt(np.maximum(np.maximum(most * s.rise, least * s.fall),
                                     c.C_a * s.acceleration))
     else:
         torque = np.sqrt(c.C_a * s.torque)
     T = np.max(np.stack([c.C_v * s.speed, torque, rms, jerk]), axis=0)
     return np.where(s.undecided, np.nan, T)
+
+
+def acceleration_extremes(law: MotionLaw | RowLaws) -> tuple[Any, Any]:
+    """max q_N'' and -min q_N'' of the law, from its linear peaks (as the evaluation reads
+    them); of each row's law for RowLaws (arrays over the rows)."""
+    laws = law.laws if isinstance(law, RowLaws) else (law,)
+    found = np.array([one.linear_peaks.maximum(np.array([1.0, -1.0]), np.zeros(2)).value
+                      for one in laws])
+    if isinstance(law, RowLaws):
+        return found[law.index, 0], found[law.index, 1]
+    return float(found[0, 0]), float(found[0, 1])
 
 
 def rms_duration(scale: np.ndarray, dwell: float | np.ndarray) -> np.ndarray:

@@ -27,10 +27,10 @@ from sizer.laws.base import MotionLaw
 from sizer.laws.per_move import RankedLaw
 from sizer.model.cycle import from_task
 from sizer.model.domain import Design
-from sizer.numerics.arrays import sorted_unique
 from sizer.numerics.roots import bracketed_root
 from sizer.sizing.checks import RESIDUAL_VIBRATION
-from sizer.sizing.evaluation import CycleMetrics, CycleModel, LawRows
+from sizer.sizing.evaluation import CycleMetrics, CycleModel
+from sizer.sizing.move import CycleCalculator
 from sizer.sizing.results import RESIDUAL
 from sizer.sizing.shortest_duration import LaterChecks
 from sizer.vibration.elastic_load import ElasticLoad
@@ -146,32 +146,29 @@ class ResidualLimit:
 
 @dataclass(frozen=True)
 class ResidualRows:
-    """The residual limits of several laws as one later limit over the rows of a
-    sizer.sizing.evaluation.LawRows model: part k's rows read ``limits[k]`` (its law's
-    residual at their scales, with its own calculator), so every row's figure, check and
-    passing scale are those its law gives alone. The limits share the design's limit."""
+    """The residual limits of several laws as one later limit over the rows of a model
+    of their laws (sizer.laws.row_laws.RowLaws in sizer.sizing.move.CycleCalculator): the
+    rows of law k read ``limits[k]`` (its law's residual at their scales, with the
+    calculator of those rows and that law), so every row's figure, check and passing
+    scale are those its law gives alone. The limits share the design's limit."""
 
     limits: tuple[ResidualLimit, ...]
 
     def at(self, calculator: CycleModel, s: np.ndarray, metrics: CycleMetrics,
            known: np.ndarray) -> LaterChecks:
-        assert isinstance(calculator, LawRows)
+        assert isinstance(calculator, CycleCalculator)
         at = np.where(known, s, 1.0)
         worst = np.empty(np.shape(at))
-        for limit, part, rows in zip(self.limits, calculator.parts, calculator.rows,
-                                     strict=True):
-            worst[rows] = limit.worst(part, at[rows])
+        for k, rows, part in calculator.by_law(np.arange(len(at))):
+            worst[rows] = self.limits[k].worst(part, at[rows])
         return self.limits[0].checks(worst, known)
 
     def passing_scale(self, calculator: CycleModel, rows: np.ndarray, s: np.ndarray,
                       found: LaterChecks) -> np.ndarray:
-        assert isinstance(calculator, LawRows)
+        assert isinstance(calculator, CycleCalculator)
         out = np.empty(np.shape(s))
-        part = calculator.part[rows]
-        for k in sorted_unique(part):
-            mine = np.flatnonzero(part == k)
-            out[mine] = self.limits[k].passing_scale(
-                calculator.parts[k], calculator.place[rows[mine]], s[mine], found)
+        for k, at, part in calculator.by_law(np.asarray(rows, dtype=np.intp)):
+            out[at] = self.limits[k].passing_scale(part, np.arange(len(at)), s[at], found)
         return out
 
 
