@@ -43,7 +43,8 @@ CatalogRef = str | PathLike[str]
 """A motor catalog: a YAML file (relative to the working directory) or a bundled name."""
 
 Progress = Callable[[int, int], None]
-"""``progress(done, total)``: called with (0, n), then after each of the design's n laws."""
+"""``progress(done, total)``: called with (0, n), then as the design's n laws are sized
+(after each, or once with (n, n) where they are sized together as one axis)."""
 
 ENVELOPES: tuple[EnvelopeRule, ...] = get_args(EnvelopeRule)
 """The ``envelope`` rules (sizer.envelope.completion.ENVELOPE_RULES)."""

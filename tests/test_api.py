@@ -133,10 +133,15 @@ def test_motors_as_objects_or_ids_and_laws_replace_the_designs():
     assert [(r["motor"], r["spec"]) for r in by_id] == [("ex6_3", "polynomial(degree=5)")]
 
 
-def test_progress_is_called_once_per_law():
+def test_progress_is_called_as_the_laws_are_sized(monkeypatch):
+    # the book's laws are sized together as one axis: all done at once
     calls: list[tuple[int, int]] = []
     sizer.size(BOOK, progress=lambda done, total: calls.append((done, total)))
     laws = len(sizer.load(BOOK).laws)
+    assert laws > 1 and calls == [(0, laws), (laws, laws)]
+    calls.clear()  # law by law: after each
+    monkeypatch.setattr("sizer.sizing.engine.law_axis", lambda *args: None)
+    sizer.size(BOOK, progress=lambda done, total: calls.append((done, total)))
     assert calls == [(i, laws) for i in range(laws + 1)]
 
 
@@ -199,7 +204,7 @@ def test_the_readme_example_runs(monkeypatch, capsys):
     exec(compile(code, "README.md", "exec"), {})
     lines = capsys.readouterr().out.splitlines()
     assert lines[0].startswith("ex6_1 ") and lines[0].endswith(" True")
-    assert lines[-4:] == ["0/2 laws", "1/2 laws", "2/2 laws", "True"]
+    assert lines[-3:] == ["0/2 laws", "2/2 laws", "True"]  # the two laws as one axis
 
 
 def test_records_carry_the_energy_figures_of_designs_with_those_checks():

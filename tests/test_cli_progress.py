@@ -18,15 +18,21 @@ ROOT = Path(__file__).resolve().parent.parent
 DESIGN = ROOT / "examples" / "book" / "ex6_4.yaml"  # quick: minimize over two laws
 
 
-def test_size_design_calls_back_per_law_and_gives_the_same_results() -> None:
+@pytest.mark.parametrize("axis", [True, False])
+def test_size_design_calls_back_as_the_laws_are_sized_and_gives_the_same_results(
+        axis: bool, monkeypatch) -> None:
+    """(0, n), then (n, n) where the laws are sized together as one axis, else after each
+    law."""
     from sizer.io import load_design
-    from sizer.sizing import size_design
+    from sizer.sizing import engine, size_design
 
+    if not axis:
+        monkeypatch.setattr(engine, "law_axis", lambda *args: None)
     design = load_design(DESIGN)
     calls: list[tuple[int, int]] = []
     with_progress = size_design(design, progress=lambda done, total: calls.append((done, total)))
     n = len(design.laws)
-    assert calls == [(i, n) for i in range(n + 1)]
+    assert calls == ([(0, n), (n, n)] if axis else [(i, n) for i in range(n + 1)])
     assert with_progress == size_design(design)
 
 

@@ -293,6 +293,10 @@ class MotorArrays:
     ``builds``: where each candidate is sized in its own build of the machine (robust
     sizing, sizer.robust): its load's figures and transmission (:class:`Builds`); None:
     the design's for all.
+
+    ``axis``: per candidate its place on an axis its caller laid the motors out along
+    (the law of each row where several laws' candidates are sized as one axis:
+    sizer.sizing.engine), carried through :meth:`subset`; None: none.
     """
 
     catalog: tuple[Motor, ...]
@@ -306,6 +310,7 @@ class MotorArrays:
     drive: np.ndarray | None = None
     currents: CurrentCurves | None = None
     builds: Builds | None = None
+    axis: np.ndarray | None = None
 
     @classmethod
     def of(cls, motors: Sequence[Motor], envelope: EnvelopeRule = "book",
@@ -431,7 +436,8 @@ class MotorArrays:
                            self.continuous.take(index), self.envelope, self.drives,
                            None if self.drive is None else self.drive[index],
                            None if self.currents is None else self.currents.take(index),
-                           None if self.builds is None else self.builds.take(index))
+                           None if self.builds is None else self.builds.take(index),
+                           None if self.axis is None else self.axis[index])
 
 
 def _flat_end(table: RegionTable) -> np.ndarray:
