@@ -1,10 +1,12 @@
 """Time `auto` shape parameters against a fixed law, in the same process (CPU time).
 
-    python benchmarks/bench_auto_shape.py --motors 200 --searched 64 4 2
+    python benchmarks/bench_auto_shape.py --motors 200 --searched 64 4 2 --ideal 64 64 2
 
 With friction (issue 34): the load has Coulomb friction (0.5 N*m), trapezoidal(alpha=auto)
-on 64 motors, double_s(alpha=auto, beta=auto) on 4 and fifteen_segments with three auto
-parameters on 2 (fewer motors: they are slower), each printed as the ratio of size_design
+on 64 motors, double_s(alpha=auto, beta=auto) on 64 through the ideal gearbox and on 4
+through the efficient one, and fifteen_segments with three auto parameters on 2 (fewer
+motors: they are slower; --ideal and --searched set the counts), each printed as the
+ratio of size_design
 with the auto spec to size_design with one fixed law of the family (best of 3) on the same
 motors. Through the ideal gearbox the friction is a constant torque per move, so the
 trapezoid and the double S take the closed forms with constant torques
@@ -84,7 +86,10 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--motors", type=int, default=200)
     parser.add_argument("--searched", type=int, nargs=3, default=(64, 4, 2),
-                        help="motors of the three searched cases (0 skips one)")
+                        help="motors of the three cases through the efficient gearbox "
+                             "(0 skips one)")
+    parser.add_argument("--ideal", type=int, nargs=3, default=(64, 64, 2),
+                        help="motors of the three cases through the ideal gearbox")
     args = parser.parse_args()
     print(f"{'family':32s} {'motors':>6s} {'choose [ms]':>11s} {'auto size [s]':>13s} "
           f"{'fixed size [s]':>14s}")
@@ -100,7 +105,8 @@ def main() -> None:
         print(f"\nfriction 0.5 N*m, gearbox efficiency {efficiency:g}, CPU time\n"
               f"{'family':52s} {'motors':>6s} {'auto [s]':>9s} {'fixed [s]':>9s} "
               f"{'ratio':>7s}")
-        for (auto, fixed), count in zip(SEARCHED, args.searched, strict=True):
+        counts = args.ideal if efficiency == 1.0 else args.searched
+        for (auto, fixed), count in zip(SEARCHED, counts, strict=True):
             if count:
                 whole = timed(partial(with_friction, count, auto, efficiency))
                 one = timed(partial(with_friction, count, fixed, efficiency), 3)

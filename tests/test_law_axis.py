@@ -4,9 +4,10 @@ row at once) against the laws sized one after another: the same results, to the 
 
 The designs: the random designs of test_engine_vs_scalar with three laws (friction,
 damping, a constant load, efficiencies, stage ratings and speeds, limits on the load's
-motion, dwells and returns, a list of ratios: minimize and given durations), a catalog
-gearbox choice, a continuous ratio range, no ratio choice, a residual-vibration limit, and
-bundled examples."""
+motion, dwells and returns, a list of ratios: minimize and given durations), a continuous
+ratio range, no ratio choice, a residual-vibration limit, cycles of segments (free and
+fixed moves and dwells, weights; minimized and at a given cycle time; a model of several
+laws' rows in sizer.sizing.cycle.SegmentCycle) and bundled examples."""
 
 from __future__ import annotations
 
@@ -20,6 +21,7 @@ from test_engine_vs_scalar import LAWS, random_design
 
 from sizer.io.loader import load_design
 from sizer.model import RatioChoice
+from sizer.model.cycle import Cycle, Dwell, Move
 from sizer.sizing import engine
 from sizer.vibration.elastic_load import ElasticLoad
 
@@ -87,3 +89,24 @@ def test_a_large_design_or_a_law_with_auto_parameters_takes_its_laws_one_by_one(
     assert engine.law_axis(design, laws, engine.AXIS_ROWS) is None
     auto = dataclasses.replace(design, laws=(*design.laws[:2], "trapezoidal(alpha=auto)"))
     assert engine.law_axis(auto, engine.ranked_laws(auto), 2) is None
+
+
+def _cycle(seed: int, minimize: bool):
+    design = _three_laws(seed)
+    h = design.task.displacement
+    rng = np.random.default_rng(seed + 200)
+    segments = (Move(h, None), Dwell(float(rng.uniform(0.05, 0.2))),
+                Move(-h / 2, float(rng.uniform(0.15, 0.3))), Move(-h / 2, None, weight=2.0),
+                Dwell(None))
+    cycle = Cycle(segments, closed=True, cycle_time=None if minimize else 2.0)
+    return dataclasses.replace(design, cycle=cycle)
+
+
+@pytest.mark.parametrize("seed", range(4))
+@pytest.mark.parametrize("minimize", [True, False])
+def test_cycles_of_segments_size_alike_as_one_axis(seed: int, minimize: bool,
+                                                   monkeypatch) -> None:
+    design = _cycle(seed, minimize)
+    assert engine.shorthand_task(design.machine_cycle) is None
+    together, alone = _both(design, monkeypatch)
+    assert together == alone

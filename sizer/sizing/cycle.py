@@ -34,13 +34,14 @@ import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
 
 from sizer.errors import UserError
 from sizer.laws import LawChoice, MotionLaw, law_choice, make_law
 from sizer.laws.per_move import LawsPerMove, PerMoveChoice, RankedLaw
+from sizer.laws.row_laws import RowLaws
 from sizer.mechanics import Drive
 from sizer.mechanics.loads import linear_load
 from sizer.model.cycle import (
@@ -68,7 +69,6 @@ from sizer.sizing.evaluation import (
 from sizer.sizing.move import (
     CycleCalculator,
     MoveFigures,
-    MoveScales,
     RmsModel,
     _safe_ratio,
     law_samples,
@@ -244,9 +244,11 @@ def normalized_move(basis, move: Move, T: np.ndarray) -> np.ndarray:
                          r1=move.end_acceleration * T * T / h)
 
 
-def cycle_laws(cycle: Cycle, law: RankedLaw | None) -> tuple[MotionLaw | None, ...]:
+def cycle_laws(cycle: Cycle, law: RankedLaw | RowLaws | None) -> tuple[MotionLaw | None, ...]:
     """The law of each segment: a move's own law, else ``law`` (the one being ranked; a
-    law per move, sizer.laws.per_move, gives the moves that name none theirs in order)."""
+    law per move, sizer.laws.per_move, gives the moves that name none theirs in order;
+    several laws over the candidates' rows, RowLaws, stand for one in the rest-to-rest
+    moves' engine, sizer.sizing.move.CycleCalculator, which takes either)."""
     if isinstance(law, LawsPerMove):
         open_moves = sum(1 for s in cycle.segments if isinstance(s, Move) and not s.law)
         if open_moves != len(law.laws):
@@ -255,7 +257,8 @@ def cycle_laws(cycle: Cycle, law: RankedLaw | None) -> tuple[MotionLaw | None, .
         spread = iter(law.laws)
         return tuple((make_law(s.law) if s.law else next(spread)) if isinstance(s, Move)
                      else None for s in cycle.segments)
-    return tuple((make_law(s.law) if s.law else law) if isinstance(s, Move) else None
+    ranked = cast("MotionLaw | None", law)
+    return tuple((make_law(s.law) if s.law else ranked) if isinstance(s, Move) else None
                  for s in cycle.segments)
 
 
@@ -283,7 +286,7 @@ class SegmentCycle:
 
     segmented = True
 
-    def __init__(self, cycle: Cycle, law: RankedLaw | None, drive: Drive,
+    def __init__(self, cycle: Cycle, law: RankedLaw | RowLaws | None, drive: Drive,
                  motors: MotorArrays, thermal_speed: ThermalSpeedRule = "max",
                  weights: np.ndarray | None = None) -> None:
         self.cycle = cycle
@@ -476,6 +479,10 @@ class SegmentCycle:
     def take(self, index: np.ndarray) -> SegmentCycle:
         out = object.__new__(SegmentCycle)
         out.__dict__.update(self.__dict__)
+        if isinstance(self.law, RowLaws):  # each row's law goes with it
+            out.law = self.law.take(index)
+            out.laws = tuple(law.take(index) if isinstance(law, RowLaws) else law
+                             for law in self.laws)
         out.motors = self.motors.subset(index)
         out.drives = tuple(d.take(index) for d in self.drives)
         out.drive = self.drive.take(index)
@@ -837,9 +844,10 @@ class SegmentCycle:
         calc = CycleCalculator(None, task, drive, self.motors, "max", law=law)
         m = calc.evaluate(T, peaks, model)
         c, K, h = law.coefficients, np.broadcast_to(drive.ratio, T.shape), abs(move.displacement)
+        start, end = _end_accelerations(law)
         with np.errstate(over="ignore", invalid="ignore"):
             rms_speed = K * h * c.C_v_rms / T
-            energy = self._rest_energy(calc, T)
+            energy = calc.shaft_work(T)
             return SegmentFigures(
                 duration=T, peak_torque=m.peak_torque, peak_ratio=m.peak_ratio,
                 load_torque=m.load_torque, max_speed=m.max_speed, load_speed=m.load_speed,
@@ -850,21 +858,7 @@ class SegmentCycle:
                 speed_square=np.square(rms_speed) * T, speed_abs=K * h, energy=energy,
                 rms_model=m.rms_model if isinstance(m.rms_model, RmsModel) else None,
                 end_accelerations=(  # a law move's model is an RmsModel (or None)
-                    move.displacement * law.piece_derivative(0, 0.0, 2) / T / T,
-                    move.displacement * law.piece_derivative(len(law.pieces) - 1, 1.0, 2)
-                    / T / T))
-
-    def _rest_energy(self, calc: CycleCalculator, T: np.ndarray) -> np.ndarray:
-        """Work at the motor shaft over the move, the integral of tau*omega (signed along
-        the move), by the law grid's Gauss-Legendre rule (exact for polynomial pieces of
-        an ideal drive; to the grid's accuracy where a stage's power flow reverses)."""
-        grid = calc.grid
-        sign = 1.0 if calc.task.displacement >= 0 else -1.0
-        scales = MoveScales(calc.h / T / T, calc.h / T, sign)
-        torque, _ = calc.channels(grid.acceleration[None], grid.velocity[None], scales)
-        K = np.broadcast_to(calc.drive.ratio, T.shape)
-        omega = (K * calc.h / T)[:, None, None] * grid.velocity[None]
-        return np.sum(grid.weights[None] * torque * omega, axis=(1, 2)) * T
+                    move.displacement * start / T / T, move.displacement * end / T / T))
 
     def _boundary_move(self, move: Move, law: MotionLaw | None, drive: Drive,
                        T: np.ndarray) -> SegmentFigures:
@@ -1111,6 +1105,16 @@ def signed_torque(drive: Drive, motors: MotorArrays, a: np.ndarray, v: np.ndarra
         along = J * K * s * a + B * K * s * v + shaft
         out = np.where(sign == s, s * along, out)
     return out
+
+
+def _end_accelerations(law: MotionLaw | RowLaws) -> tuple[float | np.ndarray, ...]:
+    """q_N'' at the start of the first piece and at the end of the last, one-sided: the
+    law's, or each row's law's (RowLaws: arrays over the rows)."""
+    if isinstance(law, RowLaws):
+        ends = np.array([_end_accelerations(one) for one in law.laws], dtype=float)
+        return ends[law.index, 0], ends[law.index, 1]
+    return (law.piece_derivative(0, 0.0, 2),
+            law.piece_derivative(len(law.pieces) - 1, 1.0, 2))
 
 
 def _move_samples(move: Move, law: MotionLaw, T: np.ndarray, samples: int):

@@ -41,6 +41,7 @@ from sizer.envelope import envelope_note
 from sizer.errors import UserError
 from sizer.laws import LawChoice, MotionLaw, law_choice
 from sizer.laws.per_move import LawsPerMove, PerMoveChoice, RankedLaw, per_move
+from sizer.laws.row_laws import RowLaws
 from sizer.model.cycle import Cycle, Dwell
 from sizer.model.domain import Design, Motor
 from sizer.numerics.arrays import sorted_unique
@@ -218,9 +219,11 @@ motors, even at about 150 motors, 15 % slower at 200)."""
 def law_axis(design: Design, specs: Sequence[LawChoice | PerMoveChoice],
              motors: int) -> list[LawChoice] | None:
     """The design's laws where they are sized as one axis (:func:`evaluate_law_axis`):
-    two or more fixed laws of the task shorthand (no linkage, no loads of the position),
-    at most AXIS_ROWS candidates in all; else None (law by law)."""
-    if len(specs) < 2 or shorthand_task(design.machine_cycle) is None \
+    two or more fixed laws of the task shorthand or of a cycle of rest-to-rest moves
+    (:func:`rows_cycle`; no linkage, no loads of the position), at most AXIS_ROWS
+    candidates in all; else None (law by law)."""
+    cycle = design.machine_cycle
+    if len(specs) < 2 or (shorthand_task(cycle) is None and not rows_cycle(cycle)) \
             or design.transmission.linkage is not None or design.load.position_dependent:
         return None
     laws = [spec for spec in specs if isinstance(spec, LawChoice) and spec.is_fixed
@@ -353,32 +356,49 @@ def evaluate_laws(design: Design, laws: Sequence[MotionLaw], group: np.ndarray,
 
 
 def _law_rows(design: Design, laws: Sequence[MotionLaw], group: np.ndarray,
-              candidates: Candidates) -> tuple[CycleCalculator, list[ResidualRows]] | None:
+              candidates: Candidates) -> tuple[CycleModel, list[ResidualRows]] | None:
     """The candidates as the rows of one model of their laws (sizer.laws.row_laws.RowLaws)
     where :func:`evaluate_laws` may size them so, with its later limit (the laws' residual
-    vibration, where the load has a mode), else None."""
-    task = shorthand_task(design.machine_cycle)
-    if (len(laws) < 2 or task is None or design.transmission.linkage is not None
-            or design.load.position_dependent):
+    vibration, where the load has a mode: the task shorthand), else None: the task
+    shorthand's law move (sizer.sizing.move.CycleCalculator) or a cycle of segments whose
+    moves are rest to rest, its split the rule's (:func:`rows_cycle`: SegmentCycle)."""
+    cycle = design.machine_cycle
+    task = shorthand_task(cycle)
+    if (len(laws) < 2 or design.transmission.linkage is not None
+            or design.load.position_dependent or (task is None and not rows_cycle(cycle))):
         return None
-    drive = candidates.drive
-    rows = laws_model(laws, group, task, drive, candidates.motors, design.limits.thermal_speed)
+    drive, motors = candidates.drive, candidates.motors
+    rows: CycleModel | None
+    if task is not None:
+        rows = laws_model(laws, group, task, drive, motors, design.limits.thermal_speed)
+    else:
+        law = RowLaws(laws, group)
+        rows = None if law.moves_backwards() else SegmentCycle(
+            cycle, law, drive, motors, design.limits.thermal_speed)
     if rows is None:
         return None
-    builds = candidates.motors.builds
+    builds = motors.builds
     modes = () if builds is None else builds.modes
-    if (energy_limit(design, candidates.motors) is not None or screw_limits(drive)
+    moves = 1 if task is not None else len(cycle.moves)
+    if (energy_limit(design, motors) is not None or screw_limits(drive)
             or (cycle_sampled(design) and gearbox_life_limits(drive))
-            or (len(candidates) > min(chunk_size(law) for law in laws)
-                and not is_purely_inertial(rows))):  # the closed forms need no grid
-        return None
+            or (len(candidates) > min(chunk_size(law, moves) for law in laws)
+                and not (task is not None and is_purely_inertial(rows)))):
+        return None  # (the closed forms of a law move need no grid)
     residuals = [limit for law in laws if (limit := residual_limit(design, law, modes))
                  is not None]
     if not residuals:  # the load has no mode
         return rows, []
-    if len(residuals) < len(laws):
+    if len(residuals) < len(laws) or task is None:
         return None
     return rows, [ResidualRows(tuple(residuals))]
+
+
+def rows_cycle(cycle: Cycle) -> bool:
+    """Whether a cycle of segments takes several laws as the rows of one model: every move
+    rest to rest (each on the law move's engine) and the split of its time the rule's (no
+    share optimized per candidate)."""
+    return cycle.share.goal is None and all(move.rest_to_rest for move in cycle.moves)
 
 
 def evaluate_per_move(design: Design, choice: PerMoveChoice,

@@ -1350,6 +1350,24 @@ class CycleCalculator:
                                                law=self.law.laws[k])))
         return out
 
+    def shaft_work(self, T: np.ndarray) -> np.ndarray:
+        """Work at the motor shaft over the move, the integral of tau*omega (signed along
+        the move), by the law grid's Gauss-Legendre rule (exact for polynomial pieces of
+        an ideal drive; to the grid's accuracy where a stage's power flow reverses); each
+        row on its own law's grid (RowLaws: law by law)."""
+        if isinstance(self.law, RowLaws):
+            out = np.empty(len(T))
+            for _, at, calc in self.by_law(np.arange(len(T))):
+                out[at] = calc.shaft_work(T[at])
+            return out
+        grid = self.grid
+        sign = 1.0 if self.task.displacement >= 0 else -1.0
+        scales = MoveScales(self.h / T / T, self.h / T, sign)
+        torque, _ = self.channels(grid.acceleration[None], grid.velocity[None], scales)
+        K = np.broadcast_to(self.drive.ratio, T.shape)
+        omega = (K * self.h / T)[:, None, None] * grid.velocity[None]
+        return np.sum(grid.weights[None] * torque * omega, axis=(1, 2)) * T
+
     def _law_view(self, k: int) -> CycleCalculator:
         """This calculator's rows, every one read with the law ``self.law.laws[k]``
         (RowLaws: the rows of that law take its own steps through it)."""
