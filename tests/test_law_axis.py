@@ -110,3 +110,30 @@ def test_cycles_of_segments_size_alike_as_one_axis(seed: int, minimize: bool,
     assert engine.shorthand_task(design.machine_cycle) is None
     together, alone = _both(design, monkeypatch)
     assert together == alone
+
+
+@pytest.mark.parametrize("limit", [None, 2e-4])
+def test_a_cycles_residual_vibration_over_several_laws_rows_is_each_laws(limit, monkeypatch):
+    """The residual over the rows of a cycle of several laws (ResidualRows with
+    SegmentCycle.by_law): reported, then limited, as each law alone."""
+    design = _cycle(1, True)
+    load = dataclasses.replace(design.load, elastic=ElasticLoad(30.0, 0.02))
+    design = dataclasses.replace(design, load=load, limits=dataclasses.replace(
+        design.limits, residual_vibration=limit))
+    seen = []
+    rows = engine._law_rows
+
+    def spy(*args):
+        found = rows(*args)
+        seen.append(found is not None and bool(found[1]))
+        return found
+
+    monkeypatch.setattr(engine, "_law_rows", spy)
+    together, alone = _both(design, monkeypatch)
+    assert any(seen)  # one model with its residual limit over the rows
+    assert together == alone
+    residual = engine.size_design(design).table.figures["residual_vibration"]
+    with monkeypatch.context() as m:
+        m.setattr(engine, "law_axis", lambda *args: None)
+        by_law = engine.size_design(design).table.figures["residual_vibration"]
+    assert np.isfinite(residual).any() and np.array_equal(residual, by_law, equal_nan=True)

@@ -493,6 +493,21 @@ class SegmentCycle:
             out.split = self.split[np.asarray(index)]
         return out
 
+    def by_law(self, rows: np.ndarray) -> list[tuple[int, np.ndarray, SegmentCycle]]:
+        """The rows ``rows`` law by law (RowLaws), else all at once (law 0): per law its
+        index, the positions ``at`` in ``rows`` of its rows and the cycle of the rows
+        ``rows[at]`` with that law alone (its fixed segments' figures read from this
+        cycle's, row by row)."""
+        if not isinstance(self.law, RowLaws):
+            return [(0, np.arange(len(rows)), self.take(rows))]
+        out = []
+        for k, at in self.law.groups(rows):
+            one = self.take(rows[at])
+            one.law = self.law.laws[k]
+            one.laws = cycle_laws(self.cycle, one.law)
+            out.append((k, at, one))
+        return out
+
     def initial_guess(self) -> np.ndarray:
         """A scale to start the search from: the free moves' speed and inertial bounds."""
         n = len(self.motors)

@@ -359,7 +359,7 @@ def _law_rows(design: Design, laws: Sequence[MotionLaw], group: np.ndarray,
               candidates: Candidates) -> tuple[CycleModel, list[ResidualRows]] | None:
     """The candidates as the rows of one model of their laws (sizer.laws.row_laws.RowLaws)
     where :func:`evaluate_laws` may size them so, with its later limit (the laws' residual
-    vibration, where the load has a mode: the task shorthand), else None: the task
+    vibration, where the load has a mode), else None: the task
     shorthand's law move (sizer.sizing.move.CycleCalculator) or a cycle of segments whose
     moves are rest to rest, its split the rule's (:func:`rows_cycle`: SegmentCycle)."""
     cycle = design.machine_cycle
@@ -389,7 +389,7 @@ def _law_rows(design: Design, laws: Sequence[MotionLaw], group: np.ndarray,
                  is not None]
     if not residuals:  # the load has no mode
         return rows, []
-    if len(residuals) < len(laws) or task is None:
+    if len(residuals) < len(laws):
         return None
     return rows, [ResidualRows(tuple(residuals))]
 

@@ -29,6 +29,7 @@ from sizer.model.cycle import from_task
 from sizer.model.domain import Design
 from sizer.numerics.roots import bracketed_root
 from sizer.sizing.checks import RESIDUAL_VIBRATION
+from sizer.sizing.cycle import SegmentCycle, cycle_laws
 from sizer.sizing.evaluation import CycleMetrics, CycleModel
 from sizer.sizing.move import CycleCalculator
 from sizer.sizing.results import RESIDUAL
@@ -70,8 +71,6 @@ def cycle_vibration(design: Design, law: RankedLaw, sweep: bool = False
     if why is not None:
         raise UserError(f"the residual vibration is not computed for {why}; remove "
                         "load.natural_frequency", field="load.natural_frequency")
-    from sizer.sizing.cycle import cycle_laws
-
     cycle, task = design.machine_cycle, design.machine_cycle.shorthand
     if sweep and task is not None:  # written as a task: its moves take the scale
         cycle = from_task(replace(task, duration=None))
@@ -147,16 +146,17 @@ class ResidualLimit:
 @dataclass(frozen=True)
 class ResidualRows:
     """The residual limits of several laws as one later limit over the rows of a model
-    of their laws (sizer.laws.row_laws.RowLaws in sizer.sizing.move.CycleCalculator): the
-    rows of law k read ``limits[k]`` (its law's residual at their scales, with the
-    calculator of those rows and that law), so every row's figure, check and passing
-    scale are those its law gives alone. The limits share the design's limit."""
+    of their laws (sizer.laws.row_laws.RowLaws in sizer.sizing.move.CycleCalculator or
+    sizer.sizing.cycle.SegmentCycle): the rows of law k read ``limits[k]`` (its law's
+    residual at their scales, with the model of those rows and that law: ``by_law``), so
+    every row's figure, check and passing scale are those its law gives alone. The limits
+    share the design's limit."""
 
     limits: tuple[ResidualLimit, ...]
 
     def at(self, calculator: CycleModel, s: np.ndarray, metrics: CycleMetrics,
            known: np.ndarray) -> LaterChecks:
-        assert isinstance(calculator, CycleCalculator)
+        assert isinstance(calculator, CycleCalculator | SegmentCycle)
         at = np.where(known, s, 1.0)
         worst = np.empty(np.shape(at))
         for k, rows, part in calculator.by_law(np.arange(len(at))):
@@ -165,7 +165,7 @@ class ResidualRows:
 
     def passing_scale(self, calculator: CycleModel, rows: np.ndarray, s: np.ndarray,
                       found: LaterChecks) -> np.ndarray:
-        assert isinstance(calculator, CycleCalculator)
+        assert isinstance(calculator, CycleCalculator | SegmentCycle)
         out = np.empty(np.shape(s))
         for k, at, part in calculator.by_law(np.asarray(rows, dtype=np.intp)):
             out[at] = self.limits[k].passing_scale(part, np.arange(len(at)), s[at], found)
