@@ -155,3 +155,37 @@ def test_the_laws_tables_are_the_same_from_the_forms(spec: str, monkeypatch) -> 
                          reference[0] + reference[1] + list(reference[3]), strict=True):
         assert np.array_equal(np.asarray(got), np.asarray(want)), spec
     assert with_forms[2] == reference[2], spec
+
+
+def _bits(x: np.ndarray) -> np.ndarray:
+    """The array's bits (floats as int64: a signed zero differs), to compare exactly."""
+    return x.view(np.int64) if x.dtype == np.float64 else x
+
+
+def test_several_laws_samples_in_one_pass_are_each_laws_own():
+    """sizer.laws.linear_peaks.samples_together (the hull samples of a search step's laws,
+    their pieces numbered across the laws) against each law's own samples, bit for bit;
+    sizer.laws.base.build_linear_peaks gives each law the hull it builds alone."""
+    from sizer.laws.base import build_linear_peaks
+    from sizer.laws.linear_peaks import LinearPeaks, _law_samples, samples_together
+
+    specs = ("trapezoidal(alpha=0.2)", "double_s(alpha=0.3, beta=0.15)",
+             "fifteen_segments(alpha=0.3, beta=0.2, gamma=0.25)", "modified_sinusoidal",
+             "modified_trapezoidal", "double_s(alpha=1e-6, beta=1e-6)",
+             "trapezoidal(alpha=0.45, alpha_d=0.3)")
+    laws = [make_law(spec) for spec in specs]
+    assert all(law.piece_forms() is not None for law in laws)
+    for law, together in zip(laws, samples_together(laws), strict=True):
+        for mine, alone in zip(together, _law_samples(law), strict=True):
+            assert mine.dtype == alone.dtype
+            assert np.array_equal(_bits(mine), _bits(alone)), law.spec
+    fresh = [type(law)(**dict(law.params)) for law in [*laws, make_law("poly5")]]
+    built = fresh[0].linear_peaks  # built already: kept
+    build_linear_peaks(fresh)
+    assert fresh[0].linear_peaks is built
+    for law in fresh[1:-1]:
+        assert "linear_peaks" in law.__dict__
+        alone = LinearPeaks(law)
+        assert np.array_equal(law.linear_peaks.hull, alone.hull)
+        assert np.array_equal(_bits(law.linear_peaks._angles), _bits(alone._angles))
+    assert "linear_peaks" not in fresh[-1].__dict__  # one piece: built on first use

@@ -26,7 +26,7 @@ import numpy as np
 import sizer.laws.coefficients as law_coefficients
 from sizer.errors import UserError
 from sizer.laws.coefficients import LawCoefficients
-from sizer.laws.linear_peaks import LinearPeaks
+from sizer.laws.linear_peaks import LinearPeaks, samples_together
 from sizer.laws.piece_forms import PieceForms
 from sizer.laws.piece_table import PieceTable
 from sizer.laws.pieces import Piece
@@ -315,6 +315,19 @@ class MotionLaw:
     def linear_peaks(self) -> LinearPeaks:
         """Sampled (v_N, a_N) curve and its convex hull, for exact peaks of p*a_N + q*v_N."""
         return LinearPeaks(self)
+
+
+def build_linear_peaks(laws: Sequence[MotionLaw]) -> None:
+    """Each law's ``linear_peaks`` built where it is not yet, the samples of the laws
+    with their pieces as data in one pass (sizer.laws.linear_peaks.samples_together: the
+    same samples, so the same peaks as each law builds alone): the laws of a search step
+    or of one sizing build their hulls together."""
+    todo = [law for law in dict.fromkeys(laws)
+            if "linear_peaks" not in law.__dict__ and law.piece_forms() is not None]
+    if len(todo) < 2:
+        return
+    for law, samples in zip(todo, samples_together(todo), strict=True):
+        law.__dict__["linear_peaks"] = LinearPeaks(law, samples)  # the cached property's
 
 
 LAW_CACHE_SIZE = 4096

@@ -54,6 +54,7 @@ with it.
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -62,6 +63,7 @@ from typing import Protocol
 import numpy as np
 
 from sizer.laws.coefficients import scan_grid
+from sizer.laws.piece_forms import PieceForms
 from sizer.laws.pieces import LawShape
 from sizer.numerics.hermite import hermite_root
 
@@ -210,6 +212,34 @@ def _law_samples(law: LawShape) -> tuple[np.ndarray, ...]:
     tau, piece, j = tau[keep], piece[keep], j[keep]
     v, a, snap = forms.values(piece, tau, (1, 2, 4))
     return tau, piece, v, a, j, snap
+
+
+def samples_together(laws: Sequence[LawShape]) -> list[tuple[np.ndarray, ...]]:
+    """:func:`_law_samples` of several laws with their pieces as data, every law's pieces
+    evaluated in one pass (sizer.laws.piece_forms.PieceForms.stacked: each piece with its
+    own arithmetic): the same samples and values, law by law."""
+    tables = [law.piece_forms() for law in laws]
+    assert all(table is not None for table in tables), "laws with their pieces as data"
+    forms = PieceForms.stacked([table for table in tables if table is not None])
+    counts = np.array([len(law.pieces) for law in laws])
+    grids = [_piece_grid(law, index) for law in laws for index in range(len(law.pieces))]
+    sizes = np.array([len(g) for g in grids])
+    tau = np.concatenate(grids)
+    piece = np.repeat(np.arange(len(grids)), sizes)  # numbered across the laws
+    (j,) = forms.values(piece, tau, (3,))
+    starts = np.concatenate(([0], np.cumsum(sizes)[:-1]))
+    moving = np.logical_or.reduceat(j != 0.0, starts)
+    # a piece of constant acceleration keeps its two ends
+    ends = np.zeros(len(tau), dtype=bool)
+    ends[starts], ends[starts + sizes - 1] = True, True
+    keep = np.repeat(moving, sizes) | ends
+    tau, piece, j = tau[keep], piece[keep], j[keep]
+    v, a, snap = forms.values(piece, tau, (1, 2, 4))
+    first = np.concatenate(([0], np.cumsum(counts)[:-1]))  # each law's first piece
+    bounds = np.searchsorted(piece, np.append(first, len(grids)))
+    return [(tau[lo:hi].copy(), piece[lo:hi] - first[k], v[lo:hi].copy(), a[lo:hi].copy(),
+             j[lo:hi].copy(), snap[lo:hi].copy())
+            for k, (lo, hi) in enumerate(itertools.pairwise(bounds))]
 
 
 def _next(x: np.ndarray) -> np.ndarray:
@@ -544,9 +574,12 @@ class LinearPeaks:
     """A law's sampled (v_N, a_N) curve and its convex hull (built once per law: use
     ``law.linear_peaks``), answering max and min of p*a_N + q*v_N over tau in [0, 1]."""
 
-    def __init__(self, law: LawShape) -> None:
+    def __init__(self, law: LawShape, samples: tuple[np.ndarray, ...] | None = None) -> None:
+        """``samples``: the law's :func:`_law_samples` where computed with other laws'
+        (:func:`samples_together`)."""
         self.law = law
-        self.tau, self.piece, self.v, self.a, self.j, self.snap = _law_samples(law)
+        self.tau, self.piece, self.v, self.a, self.j, self.snap = (
+            _law_samples(law) if samples is None else samples)
         self.first = np.concatenate(([True], self.piece[1:] != self.piece[:-1]))
         self.last = np.concatenate((self.piece[1:] != self.piece[:-1], [True]))
         self._table = _Table(self.tau, self.piece, self.v, self.a, self.j, self.snap,

@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from sizer.laws.base import build_linear_peaks
 from sizer.laws.linear_peaks import LinearPeak, piece_values
 
 if TYPE_CHECKING:
@@ -99,7 +100,9 @@ class RowLaws:
         return out[0] if isinstance(order, int) else tuple(out)
 
     def moves_backwards(self) -> bool:
-        """Whether some law may move backwards (v_N < 0 somewhere)."""
+        """Whether some law may move backwards (v_N < 0 somewhere); the laws' linear
+        peaks built together where they are not yet (sizer.laws.base.build_linear_peaks)."""
+        build_linear_peaks(self.laws)
         return any(float(law.linear_peaks.minimum(0.0, 1.0).value) < -1e-12
                    for law in self.laws)
 
