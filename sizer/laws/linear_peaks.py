@@ -198,14 +198,19 @@ def _law_samples(law: LawShape) -> tuple[np.ndarray, ...]:
     if forms is None:
         columns = [_piece_samples(law, index) for index in range(len(law.pieces))]
         return tuple(np.concatenate(parts) for parts in zip(*columns, strict=True))
-    grids = [_piece_grid(law, index) for index in range(len(law.pieces))]
+    return _samples_on(forms, [_piece_grid(law, index) for index in range(len(law.pieces))])
+
+
+def _samples_on(forms: PieceForms, grids: Sequence[np.ndarray]) -> tuple[np.ndarray, ...]:
+    """tau, piece, v_N, a_N, j_N and q_N^(4) of the pieces of ``forms`` at their scan
+    grids (``grids[i]``: piece i's), in one pass: :func:`_piece_samples` of each piece
+    (a piece of constant acceleration keeps its two ends)."""
     sizes = np.array([len(g) for g in grids])
     tau = np.concatenate(grids)
     piece = np.repeat(np.arange(len(grids)), sizes)
     (j,) = forms.values(piece, tau, (3,))
     starts = np.concatenate(([0], np.cumsum(sizes)[:-1]))
     moving = np.logical_or.reduceat(j != 0.0, starts)
-    # a piece of constant acceleration keeps its two ends
     ends = np.zeros(len(tau), dtype=bool)
     ends[starts], ends[starts + sizes - 1] = True, True
     keep = np.repeat(moving, sizes) | ends
@@ -217,24 +222,13 @@ def _law_samples(law: LawShape) -> tuple[np.ndarray, ...]:
 def samples_together(laws: Sequence[LawShape]) -> list[tuple[np.ndarray, ...]]:
     """:func:`_law_samples` of several laws with their pieces as data, every law's pieces
     evaluated in one pass (sizer.laws.piece_forms.PieceForms.stacked: each piece with its
-    own arithmetic): the same samples and values, law by law."""
+    own arithmetic, numbered across the laws): the same samples and values, law by law."""
     tables = [law.piece_forms() for law in laws]
     assert all(table is not None for table in tables), "laws with their pieces as data"
     forms = PieceForms.stacked([table for table in tables if table is not None])
     counts = np.array([len(law.pieces) for law in laws])
     grids = [_piece_grid(law, index) for law in laws for index in range(len(law.pieces))]
-    sizes = np.array([len(g) for g in grids])
-    tau = np.concatenate(grids)
-    piece = np.repeat(np.arange(len(grids)), sizes)  # numbered across the laws
-    (j,) = forms.values(piece, tau, (3,))
-    starts = np.concatenate(([0], np.cumsum(sizes)[:-1]))
-    moving = np.logical_or.reduceat(j != 0.0, starts)
-    # a piece of constant acceleration keeps its two ends
-    ends = np.zeros(len(tau), dtype=bool)
-    ends[starts], ends[starts + sizes - 1] = True, True
-    keep = np.repeat(moving, sizes) | ends
-    tau, piece, j = tau[keep], piece[keep], j[keep]
-    v, a, snap = forms.values(piece, tau, (1, 2, 4))
+    tau, piece, v, a, j, snap = _samples_on(forms, grids)
     first = np.concatenate(([0], np.cumsum(counts)[:-1]))  # each law's first piece
     bounds = np.searchsorted(piece, np.append(first, len(grids)))
     return [(tau[lo:hi].copy(), piece[lo:hi] - first[k], v[lo:hi].copy(), a[lo:hi].copy(),
