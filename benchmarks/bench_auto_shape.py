@@ -1,12 +1,12 @@
 """Time `auto` shape parameters against a fixed law, in the same process (CPU time).
 
-    python benchmarks/bench_auto_shape.py --motors 200 --searched 64 4 2 --ideal 64 64 2
+    python benchmarks/bench_auto_shape.py --motors 200 --searched 64 4 2 1 --ideal 64 64 2 1
 
 With friction (issue 34): the load has Coulomb friction (0.5 N*m), trapezoidal(alpha=auto)
 on 64 motors, double_s(alpha=auto, beta=auto) on 64 through the ideal gearbox and on 4
-through the efficient one, and fifteen_segments with three auto parameters on 2 (fewer
-motors: they are slower; --ideal and --searched set the counts), each printed as the
-ratio of size_design
+through the efficient one, fifteen_segments with three auto parameters on 2 and
+exponential(sigma=auto, lam=auto) on 1 (fewer motors: they are slower; --ideal and
+--searched set the counts), each printed as the ratio of size_design
 with the auto spec to size_design with one fixed law of the family (best of 3) on the same
 motors. Through the ideal gearbox the friction is a constant torque per move, so the
 trapezoid and the double S take the closed forms with constant torques
@@ -54,7 +54,8 @@ def rectangular_motors(count: int) -> tuple[Motor, ...]:
 SEARCHED = (("trapezoidal(alpha=auto)", "trapezoidal(alpha=1/3)"),
             ("double_s(alpha=auto, beta=auto)", "double_s(alpha=1/3, beta=1/4)"),
             ("fifteen_segments(alpha=auto, beta=auto, gamma=auto)",
-             "fifteen_segments(alpha=1/3, beta=1/4, gamma=1/4)"))
+             "fifteen_segments(alpha=1/3, beta=1/4, gamma=1/4)"),
+            ("exponential(sigma=auto, lam=auto)", "exponential(sigma=7.1, lam=0.2)"))
 
 
 def design(count: int, spec: str, friction: float = 0.0, efficiency: float = 1.0) -> Design:
@@ -85,11 +86,11 @@ def timed(function, repeat: int = 1) -> float:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--motors", type=int, default=200)
-    parser.add_argument("--searched", type=int, nargs=3, default=(64, 4, 2),
-                        help="motors of the three cases through the efficient gearbox "
+    parser.add_argument("--searched", type=int, nargs=4, default=(64, 4, 2, 1),
+                        help="motors of the four cases through the efficient gearbox "
                              "(0 skips one)")
-    parser.add_argument("--ideal", type=int, nargs=3, default=(64, 64, 2),
-                        help="motors of the three cases through the ideal gearbox")
+    parser.add_argument("--ideal", type=int, nargs=4, default=(64, 64, 2, 1),
+                        help="motors of the four cases through the ideal gearbox")
     args = parser.parse_args()
     print(f"{'family':32s} {'motors':>6s} {'choose [ms]':>11s} {'auto size [s]':>13s} "
           f"{'fixed size [s]':>14s}")
