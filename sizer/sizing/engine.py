@@ -259,8 +259,9 @@ def evaluate_law_axis(design: Design, specs: Sequence[LawChoice],
     from sizer.sizing.choices import choose_ratio, listed_pairs
     from sizer.sizing.shortest_duration import duration_floor
 
-    def by_law(candidates: Candidates, each: Callable[[int, Candidates, np.ndarray], np.ndarray
-                                                      | None]) -> np.ndarray | None:
+    def each_law(candidates: Candidates, each: Callable[[int, Candidates, np.ndarray],
+                                                          np.ndarray | None]
+                 ) -> np.ndarray | None:
         """``each(k, law k's candidates, their positions)`` joined; None if one is."""
         which = law_of(candidates)
         out: np.ndarray | None = None
@@ -275,10 +276,10 @@ def evaluate_law_axis(design: Design, specs: Sequence[LawChoice],
         return out
 
     def floor(candidates: Candidates) -> np.ndarray | None:
-        return by_law(candidates, lambda k, part, at: duration_floor(design, specs[k], part))
+        return each_law(candidates, lambda k, part, at: duration_floor(design, specs[k], part))
 
     def fails_up_to(candidates: Candidates, T: np.ndarray, group: np.ndarray) -> np.ndarray:
-        found = by_law(candidates, lambda k, part, at: rms_fails_up_to(
+        found = each_law(candidates, lambda k, part, at: rms_fails_up_to(
             design, specs[k], part, T[at], group[at]))
         assert found is not None
         return found
@@ -330,11 +331,12 @@ def evaluate_law(design: Design, spec: LawChoice | str,
 def evaluate_laws(design: Design, laws: Sequence[MotionLaw], group: np.ndarray,
                   candidates: Candidates) -> CandidateTable:
     """Each candidate with its own law (laws[group[i]]), in the candidates' order: as the
-    rows of one model (sizer.laws.row_laws.RowLaws in sizer.sizing.move.CycleCalculator:
-    the closed forms, the search for T_min and the checks once over every row) where the
-    laws are moves of the task shorthand (none moving backwards), no later limit but the
-    residual vibration applies and one chunk holds them; else law by law
-    (:func:`evaluate_fixed_law`), which gives the same numbers."""
+    rows of one model (sizer.laws.row_laws.RowLaws in the task shorthand's
+    sizer.sizing.move.CycleCalculator or a cycle of rest-to-rest moves' SegmentCycle: the
+    closed forms, the search for T_min and the checks once over every row) where no law
+    moves backwards, no later limit but the residual vibration applies and one chunk holds
+    them (:func:`_law_rows`); else law by law (:func:`evaluate_fixed_law`), which gives
+    the same numbers."""
     present = sorted_unique(group)
     if len(present) < len(laws):  # the laws some candidate has, in their order
         laws, group = [laws[k] for k in present], np.searchsorted(present, group)

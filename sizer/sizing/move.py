@@ -737,12 +737,14 @@ def _load_jerk(c, h: float, T: np.ndarray) -> np.ndarray:
         return np.where(c.jerk_bounded, c.C_j * h / T / T / T, np.inf)
 
 
-def _stacked_grids(law: RowLaws) -> GridRows:
-    """The laws' grids padded into one (GridRows), built once for the rows of these laws
-    and every take of them."""
-    grids = law.shared.get("grids")
+def _stacked_grids(law: RowLaws, k: int | None = None) -> GridRows:
+    """The laws' grids padded into one (GridRows; with ``k``, law k's alone), built once
+    for the rows of these laws and every take of them."""
+    key = "grids" if k is None else f"grid {k}"
+    grids = law.shared.get(key)
     if grids is None:
-        grids = law.shared["grids"] = GridRows(law.laws, several=True)
+        grids = law.shared[key] = (GridRows(law.laws, several=True) if k is None
+                                   else GridRows((law.laws[k],)))
     assert isinstance(grids, GridRows)
     return grids
 
@@ -1297,7 +1299,7 @@ class CycleCalculator:
         out: list[list[np.ndarray]] | None = None
         for k, at in law.groups():
             part = [[tuple(spread(x, n)[at] for x in f) for f in channel] for channel in terms]
-            found = flow_sums(GridRows((law.laws[k],)), part, len(at))
+            found = flow_sums(_stacked_grids(law, k), part, len(at))
             if out is None:
                 out = [[np.empty((6, n)) for _ in channel] for channel in found]
             for mine, theirs in zip(out, found, strict=True):
