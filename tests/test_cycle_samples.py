@@ -12,7 +12,7 @@ from sizer.laws import make_law
 from sizer.mechanics import Drive
 from sizer.sizing.candidates import MotorArrays
 from sizer.sizing.move import CycleCalculator
-from sizer.sizing.samples import cycle_samples, task_curve
+from sizer.sizing.samples import cycle_samples, motor_trace, task_curve
 
 MOTORS = [{"id": f"M{k}", "inertia": f"{k * 1e-3} kg*m^2", "continuous_torque": "8 N*m",
            "peak_torque": "20 N*m", "rated_speed": "300 rad/s", "damping": "0.01 N*m*s/rad"}
@@ -47,6 +47,19 @@ def test_each_candidate_matches_its_task_curve(spec, load):
         np.testing.assert_allclose(got.torque[k], curve.motor_torque, rtol=0, atol=1e-9)
         np.testing.assert_allclose(got.speed[k], curve.motor_speed, rtol=0, atol=1e-9)
         assert got.cycle_time[k] == pytest.approx(2 * T[k] + 2 * 0.25, rel=1e-15)
+
+
+@pytest.mark.parametrize("spec", ["cycloidal", "modified_trapezoidal"])
+def test_the_motor_trace_is_the_task_curves_own_series(spec):
+    """sizer.sizing.samples.motor_trace (what the shared DC bus reads) is the task curve's
+    time, motor torque and speed without its figures: the same arrays, bit for bit."""
+    d = load_design_data(design(torque="1.5 N*m"))
+    law = make_law(spec)
+    curve = task_curve(d, d.motors[1], law, 0.5, samples=301)
+    time, torque, speed = motor_trace(d, d.motors[1], law, 0.5, samples=301)
+    for mine, theirs in ((time, curve.time), (torque, curve.motor_torque),
+                         (speed, curve.motor_speed)):
+        assert np.array_equal(mine, theirs)
 
 
 def test_a_pure_inertia_on_a_constant_acceleration_move():

@@ -12,7 +12,7 @@ candidate and the bus's braking resistor, where a limit is given, copes.
 What do the axes of a machine ask of the DC bus they share (issue 16, :func:`bus_result`)?
 
 For each axis's chosen candidate (its first-ranked feasible one) the motor torque and
-speed over one machine cycle (sizer.sizing.samples.task_curve) give its bus power
+speed over one machine cycle (sizer.sizing.samples.motor_trace) give its bus power
 (sizer.energy.axis_power: shaft power plus copper loss where the motor gives k_t and R);
 the axes' powers add with their phases in the machine cycle (sizer.energy.shared_bus).
 From the sum: the peak power drawn and returned, the energy per cycle, and the braking
@@ -57,7 +57,7 @@ from sizer.numerics.roots import bracketed_root
 from sizer.sizing.energy_check import without_power_figures
 from sizer.sizing.engine import size_design
 from sizer.sizing.results import CandidateResult, SizingResult
-from sizer.sizing.samples import task_curve
+from sizer.sizing.samples import motor_trace
 
 SAMPLES = 1001
 """Samples per move of each axis's torque and speed (as sizer.sizing.samples)."""
@@ -121,12 +121,11 @@ def _axis_bus_power(axis: AxisOnBus) -> tuple[np.ndarray, np.ndarray]:
     """(time, bus power) of one axis over its machine cycle, from t = 0."""
     c = axis.candidate
     assert c.duration is not None  # an axis on the bus is a feasible result
-    curve = task_curve(axis.design, c.motor_object, c.law_object, c.duration,
-                       c.transmission, samples=SAMPLES)
+    time, torque, speed = motor_trace(axis.design, c.motor_object, c.law_object, c.duration,
+                                      c.transmission, samples=SAMPLES)
     k_t, R = _copper(c)
-    power = axis_power(curve.time, curve.motor_torque, curve.motor_speed,
-                       torque_constant=k_t, winding_resistance=R)
-    return curve.time - curve.time[0], power.bus[0]
+    power = axis_power(time, torque, speed, torque_constant=k_t, winding_resistance=R)
+    return time - time[0], power.bus[0]
 
 
 def _lowest(values: Sequence[float | None]) -> float | None:

@@ -226,9 +226,7 @@ def task_curve(design: Design, motor: Motor, law: RankedLaw | str, duration: flo
     when the ratio was chosen by the solver, the transmission with that ratio.
     """
     law = make_law(law) if isinstance(law, str) else law
-    calc = _result(design, motor, law, transmission)
-    s = np.array([scale_of(design, duration)])
-    pieces = calc.pieces(s, samples)
+    calc, s, pieces = _curve_pieces(design, motor, law, duration, transmission, samples)
     segments = () if _one_linkage_move(design) else tuple(
         (p.name, float(p.time[0, 0]), float(p.time[0, -1])) for p in pieces)
     metrics: CycleMetrics = calc.evaluate(s)
@@ -245,6 +243,25 @@ def task_curve(design: Design, motor: Motor, law: RankedLaw | str, duration: flo
         continuous_region=continuous_region(motor, design.limits.envelope),
         intermittent_region=intermittent_region(motor, design.limits.envelope),
         total_inertia=motor.inertia + float(calc.drive.driven_inertia[0]), segments=segments)
+
+
+def motor_trace(design: Design, motor: Motor, law: RankedLaw, duration: float,
+                transmission: Transmission | None = None,
+                samples: int = CURVE_SAMPLES) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(time, motor torque, motor speed) of :func:`task_curve`'s samples, without the
+    figures it reports besides (the shared DC bus reads only these: sizer.sizing.machine)."""
+    _, _, pieces = _curve_pieces(design, motor, law, duration, transmission, samples)
+    return (_joined(pieces, "time", 0), _joined(pieces, "torque", 0),
+            _joined(pieces, "motor_speed", 0))
+
+
+def _curve_pieces(design: Design, motor: Motor, law: RankedLaw, duration: float,
+                  transmission: Transmission | None, samples: int
+                  ) -> tuple[CycleModel, np.ndarray, list[CyclePiece]]:
+    """The cycle model of one result, its scale at ``duration`` and its sampled pieces."""
+    calc = _result(design, motor, law, transmission)
+    s = np.array([scale_of(design, duration)])
+    return calc, s, calc.pieces(s, samples)
 
 
 @dataclass(frozen=True)
