@@ -291,3 +291,18 @@ def test_each_candidate_with_its_own_durations() -> None:
                                                phase=phases[row])], 0.65)
         assert braking(grid[row], total[row]).worst_stop_energy[0] == pytest.approx(
             braking(alone_t, alone_p).worst_stop_energy[0], rel=1e-12)
+
+
+@pytest.mark.parametrize("side", ["left", "right"])
+def test_the_counts_before_are_searchsorteds_for_one_row_and_several(side) -> None:
+    """sizer.energy.bus._count_before: one row (a machine's own cycle) by searchsorted,
+    several by one merge sort: both numpy's searchsorted row by row, ties included."""
+    from sizer.energy.bus import _count_before
+
+    rng = np.random.default_rng(3)
+    t = np.sort(rng.choice(np.linspace(0.0, 1.0, 41), size=(3, 30)), axis=1)
+    x = np.concatenate((rng.uniform(-0.1, 1.1, (3, 20)), t[:, ::3]), axis=1)  # ties
+    expected = np.array([np.searchsorted(t[r], x[r], side=side) for r in range(3)])
+    assert np.array_equal(_count_before(t, x, side), expected)
+    for r in range(3):
+        assert np.array_equal(_count_before(t[r:r + 1], x[r:r + 1], side), expected[r:r + 1])

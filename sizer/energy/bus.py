@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -41,6 +42,9 @@ class BusAxis:
 SNAP = 1e-9
 """Times closer than this share of the cycle are one time (shifting by a phase rounds)."""
 
+Side = Literal["left", "right"]
+"""Which limit where the samples jump, as numpy's searchsorted names it."""
+
 
 def _merge_close(grid: np.ndarray, tolerance: np.ndarray) -> np.ndarray:
     """Sorted rows with each run of times closer than ``tolerance`` set to its first."""
@@ -58,9 +62,12 @@ def _snap(t: np.ndarray, x: np.ndarray, tolerance: np.ndarray) -> np.ndarray:
     return np.where(np.abs(x - below) < tolerance, below, x)
 
 
-def _count_before(t: np.ndarray, x: np.ndarray, side: str) -> np.ndarray:
+def _count_before(t: np.ndarray, x: np.ndarray, side: Side) -> np.ndarray:
     """Row by row, how many of the sorted t (rows, p) are < x ("left") or <= x ("right"),
-    x (rows, k): numpy's searchsorted for each row, by one stable merge sort."""
+    x (rows, k): numpy's searchsorted for each row, by one stable merge sort (one row:
+    searchsorted itself, the same counts)."""
+    if t.shape[0] == 1 and x.shape[0] == 1:  # a machine's own cycle: one candidate
+        return np.searchsorted(t[0], x[0], side=side)[None, :]
     p = t.shape[1]
     k = x.shape[1]
     order = np.argsort(x, axis=1, kind="stable")
@@ -76,7 +83,7 @@ def _count_before(t: np.ndarray, x: np.ndarray, side: str) -> np.ndarray:
     return out
 
 
-def _evaluate(t: np.ndarray, p: np.ndarray, x: np.ndarray, side: str) -> np.ndarray:
+def _evaluate(t: np.ndarray, p: np.ndarray, x: np.ndarray, side: Side) -> np.ndarray:
     """The piecewise-linear interpolant of p (rows, samples) at t (rows, samples), read at
     x (rows, k): the left or right limit where the samples jump."""
     i = np.clip(_count_before(t, x, side), 1, t.shape[1] - 1)
