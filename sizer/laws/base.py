@@ -311,6 +311,11 @@ class MotionLaw:
         """The law's fixed Gauss-Legendre rule over its pieces (computed once per law)."""
         return quadrature_rule(self)
 
+    def moves_backwards(self) -> bool:
+        """Whether v_N < 0 somewhere (its linear peaks' least v_N, beyond rounding): no
+        peak bound on T_min holds for it (sizer.sizing.move.peak_duration)."""
+        return float(self.linear_peaks.minimum(0.0, 1.0).value) < -1e-12
+
     @cached_property
     def linear_peaks(self) -> LinearPeaks:
         """Sampled (v_N, a_N) curve and its convex hull, for exact peaks of p*a_N + q*v_N."""

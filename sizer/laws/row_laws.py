@@ -14,7 +14,7 @@ object and shared by its rows.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
 from typing import TYPE_CHECKING
@@ -103,14 +103,7 @@ class RowLaws:
         """Whether some law may move backwards (v_N < 0 somewhere); the laws' linear
         peaks built together where they are not yet (sizer.laws.base.build_linear_peaks)."""
         build_linear_peaks(self.laws)
-        return any(float(law.linear_peaks.minimum(0.0, 1.0).value) < -1e-12
-                   for law in self.laws)
-
-    def speeds_nonnegative(self) -> np.ndarray:
-        """Per row: its law's v_N >= 0 along the whole move
-        (sizer.laws.linear_peaks.LinearPeaks.speeds_nonnegative)."""
-        return np.array([law.linear_peaks.speeds_nonnegative for law in self.laws],
-                        dtype=bool)[self.index]
+        return any(law.moves_backwards() for law in self.laws)
 
 
 class RowPeaks:
@@ -121,32 +114,14 @@ class RowPeaks:
         self.laws = laws
         self.rows = rows
 
-    def _by_law(self, ask: Callable[..., LinearPeak], *columns: np.ndarray | float
-                ) -> LinearPeak:
-        """``ask(law_peaks, *columns at its queries)`` for each law, joined."""
+    def maximum(self, p: np.ndarray | float, q: np.ndarray | float) -> LinearPeak:
+        """max over tau of p*a_N + q*v_N (LinearPeaks.maximum), each query on its row's
+        law."""
         count = len(self.rows)
-        arrays = [np.broadcast_to(np.asarray(c, dtype=float), (count,)) for c in columns]
+        P, Q = (np.broadcast_to(np.asarray(x, dtype=float), (count,)) for x in (p, q))
         value, tau = np.empty(count), np.empty(count)
         piece = np.empty(count, dtype=np.intp)
         for k, at in self.laws.groups(self.rows):
-            found = ask(self.laws.laws[k].linear_peaks, *(c[at] for c in arrays))
+            found = self.laws.laws[k].linear_peaks.maximum(P[at], Q[at])
             value[at], tau[at], piece[at] = found.value, found.tau, found.piece
         return LinearPeak(value, tau, piece)
-
-    def maximum(self, p: np.ndarray | float, q: np.ndarray | float) -> LinearPeak:
-        """max over tau of p*a_N + q*v_N, each query on its row's law."""
-        return self._by_law(lambda peaks, P, Q: peaks.maximum(P, Q), p, q)
-
-    def minimum(self, p: np.ndarray | float, q: np.ndarray | float) -> LinearPeak:
-        """min over tau of p*a_N + q*v_N, each query on its row's law."""
-        return self._by_law(lambda peaks, P, Q: peaks.minimum(P, Q), p, q)
-
-    def ratio_maximum(self, p: np.ndarray, q: np.ndarray, c: np.ndarray, alpha: np.ndarray,
-                      rate: np.ndarray, floor: np.ndarray | None = None) -> LinearPeak:
-        """max over tau of (p a_N + q v_N + c) / (alpha + rate v_N), each query on its
-        row's law (LinearPeaks.ratio_maximum)."""
-        if floor is None:
-            return self._by_law(lambda peaks, *x: peaks.ratio_maximum(*x),
-                                p, q, c, alpha, rate)
-        return self._by_law(lambda peaks, *x: peaks.ratio_maximum(*x[:5], x[5]),
-                            p, q, c, alpha, rate, floor)

@@ -48,7 +48,14 @@ from sizer.numerics.arrays import sorted_unique
 from sizer.sizing.candidates import Builds, Candidates, MotorArrays
 from sizer.sizing.checks import TOLERANCE, CheckArrays, CheckName, shaft_notes
 from sizer.sizing.checks import feasible as all_pass
-from sizer.sizing.choices import SharedByLaws, choose_shape
+from sizer.sizing.choices import (
+    SharedByLaws,
+    choose_ratio,
+    choose_shape,
+    evaluate_shaped,
+    listed_choice,
+    listed_pairs,
+)
 from sizer.sizing.cycle import (
     SegmentCycle,
     left_out_laws,
@@ -70,7 +77,12 @@ from sizer.sizing.results import (
     concatenate,
     in_groups,
 )
-from sizer.sizing.shortest_duration import answer, is_purely_inertial, laws_model
+from sizer.sizing.shortest_duration import (
+    answer,
+    duration_floor,
+    is_purely_inertial,
+    laws_model,
+)
 from sizer.sizing.stage_life import gearbox_life_limits, screw_limits
 from sizer.sizing.vibration_check import ResidualRows, residual_limit
 
@@ -132,8 +144,6 @@ def size_design(design: Design, rank_by: str | None = None,
         for done, spec in enumerate(specs, start=1):
             tables.append(evaluate_spec(design, spec, arrays, first, shared))
             if design.ratio_choice is not None:
-                from sizer.sizing.choices import listed_choice
-
                 first = listed_choice(design, tables[-1])
             if progress is not None:
                 progress(done, len(specs))
@@ -179,8 +189,6 @@ def evaluate_spec(design: Design, spec: LawChoice | PerMoveChoice | str, motors:
 
         if design.ratio_choice is None:
             return sized(Candidates.single(motors, design.load, design.transmission))
-        from sizer.sizing.choices import choose_ratio
-
         return choose_ratio(design, motors, sized, first=first,
                             pairs=(SharedByLaws(design, motors) if shared is None
                                    else shared).pairs)
@@ -188,9 +196,6 @@ def evaluate_spec(design: Design, spec: LawChoice | PerMoveChoice | str, motors:
     if design.ratio_choice is None:
         candidates = Candidates.single(motors, design.load, design.transmission)
         return evaluate_law(design, spec, candidates)
-    from sizer.sizing.choices import choose_ratio
-    from sizer.sizing.shortest_duration import duration_floor
-
     common = SharedByLaws(design, motors) if shared is None else shared
 
     def without_peaks(candidates: Candidates) -> CandidateTable:
@@ -256,8 +261,6 @@ def evaluate_law_axis(design: Design, specs: Sequence[LawChoice],
 
     if design.ratio_choice is None:
         return sized(Candidates.single(rows, design.load, design.transmission))
-    from sizer.sizing.choices import choose_ratio, listed_pairs
-    from sizer.sizing.shortest_duration import duration_floor
 
     def each_law(candidates: Candidates, each: Callable[[int, Candidates, np.ndarray],
                                                           np.ndarray | None]
@@ -313,8 +316,6 @@ def evaluate_law(design: Design, spec: LawChoice | str,
     """One law choice (fixed or with auto parameters) for all candidates, in their order."""
     spec = law_choice(spec)
     if spec.open_shaped:  # shaped for the load's mode at each candidate's duration
-        from sizer.sizing.choices import evaluate_shaped
-
         return evaluate_shaped(design, spec, candidates, evaluate_fixed_law, evaluate_laws)
     if spec.auto:
         single_task(design)  # chosen for the task shorthand only (sizer.io refuses others)
@@ -712,8 +713,6 @@ def tables_in_processes(design: Design, specs: Sequence[LawChoice | PerMoveChoic
                for spec in specs]
     import multiprocessing  # here: the start-up of a command sized in one process
     from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
-
-    from sizer.sizing.choices import listed_choice
 
     methods = multiprocessing.get_all_start_methods()
     context = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")

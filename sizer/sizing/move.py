@@ -731,8 +731,6 @@ def _peak_ratio(motor: np.ndarray, points: np.ndarray, top: np.ndarray, kin: _Ki
 def _load_jerk(c, h: float, T: np.ndarray) -> np.ndarray:
     """The load's peak jerk C_j h / T^3 where the law's acceleration is continuous (each
     row's law's: RowLaws), else inf (a jump: an impulse of jerk)."""
-    if isinstance(c.jerk_bounded, bool):
-        return c.C_j * h / T / T / T if c.jerk_bounded else np.full_like(T, np.inf)
     with np.errstate(invalid="ignore", over="ignore"):
         return np.where(c.jerk_bounded, c.C_j * h / T / T / T, np.inf)
 
@@ -752,8 +750,6 @@ def _stacked_grids(law: RowLaws, k: int | None = None) -> GridRows:
 def _jerk_bound(c, h: float, max_jerk: float) -> np.ndarray | float:
     """The duration below which the load's jerk exceeds ``max_jerk``: cbrt(C_j h / j_max)
     where the law's (each row's law's) acceleration is continuous, else inf."""
-    if isinstance(c.jerk_bounded, bool):
-        return np.cbrt(c.C_j * h / max_jerk) if c.jerk_bounded else np.inf
     with np.errstate(invalid="ignore"):
         return np.where(c.jerk_bounded, np.cbrt(c.C_j * h / max_jerk), np.inf)
 
@@ -1993,15 +1989,6 @@ class CycleCalculator:
         return lo, hi, g.piece[interval], valid, best_value
 
 
-def law_rows(laws: Sequence[MotionLaw], part: np.ndarray, task: Task, drive: Drive,
-             motors: MotorArrays, thermal_speed: ThermalSpeedRule = "max") -> CycleCalculator:
-    """Several law moves of ``task`` as the rows of one model: row i the move with
-    laws[part[i]] for the motor and drive of row i (sizer.laws.row_laws.RowLaws: every
-    row's numbers those of its law's calculator alone)."""
-    return CycleCalculator(None, task, drive, motors, thermal_speed,
-                           law=RowLaws(laws, np.asarray(part, dtype=np.intp)))
-
-
 def _inertial(coefficients) -> bool:
     """A channel proportional to the acceleration (the book's inertial case): its peak is
     |P| C_a, no linear-peak query."""
@@ -2297,8 +2284,7 @@ def peak_duration(calculator: CycleCalculator, limits: Limits,
     check; None where the law may move backwards, v_N < 0, and the bound does not hold).
     ``prune=False`` solves every query (the reference the pruned result equals)."""
     law = calculator.law
-    if law.moves_backwards() if isinstance(law, RowLaws) else \
-            float(law.linear_peaks.minimum(0.0, 1.0).value) < -1e-12:
+    if law.moves_backwards():  # one law or each row's (RowLaws)
         return None
     c = law.coefficients
     n, h = len(calculator.motors), calculator.h

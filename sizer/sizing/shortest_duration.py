@@ -116,7 +116,7 @@ from sizer.sizing.evaluation import (
     combined_metrics,
     singular_metrics,
 )
-from sizer.sizing.move import CycleCalculator, law_rows, peak_queries, speed_bounds
+from sizer.sizing.move import CycleCalculator, peak_queries, speed_bounds
 
 if TYPE_CHECKING:
     from sizer.mechanics import Drive
@@ -174,14 +174,13 @@ def is_purely_inertial(calculator: CycleModel) -> bool:
 
 def laws_model(laws: Sequence[MotionLaw], part: np.ndarray, task: Task, drive: Drive,
                motors: MotorArrays, thermal_speed: ThermalSpeedRule) -> CycleCalculator | None:
-    """Several law moves of ``task`` as the rows of one model (sizer.sizing.move.law_rows),
-    row i with laws[part[i]]: the closed forms and the search for T_min once over all the
-    rows, each row's numbers its law's alone; None where a law may move backwards (no
-    peak bound: its search is another, law by law)."""
-    rows = law_rows(laws, part, task, drive, motors, thermal_speed)
-    law = rows.law
-    assert isinstance(law, RowLaws)
-    return None if law.moves_backwards() else rows
+    """Several law moves of ``task`` as the rows of one model (sizer.laws.row_laws.RowLaws
+    in CycleCalculator), row i with laws[part[i]]: the closed forms and the search for
+    T_min once over all the rows, each row's numbers its law's alone; None where a law may
+    move backwards (no peak bound: its search is another, law by law)."""
+    law = RowLaws(laws, part)
+    return None if law.moves_backwards() else CycleCalculator(None, task, drive, motors,
+                                                               thermal_speed, law=law)
 
 
 def minimum_duration(calculator: CycleModel, limits: Limits) -> DurationSolution:
@@ -794,13 +793,11 @@ def closed_form_duration(calculator: CycleCalculator, limits: Limits,
     rms = rms_duration(c.C_a_rms * s.rms, s.dwell)
     if limits.max_jerk is None:
         jerk = np.zeros_like(s.jerk)
-    elif isinstance(c.jerk_bounded, bool):
-        jerk = np.cbrt(c.C_j * s.jerk) if c.jerk_bounded else np.full_like(s.jerk, np.inf)
-    else:  # each row's law (RowLaws)
+    else:  # inf where the law's (each row's law's) acceleration jumps
         with np.errstate(invalid="ignore"):
             jerk = np.where(c.jerk_bounded, np.cbrt(c.C_j * s.jerk), np.inf)
     if s.constant:
-        most, least = acceleration_extremes(calculator.law)  # max q_N'', -min q_N''
+        most, least = _acceleration_extremes(calculator.law)  # max q_N'', -min q_N''
         torque = np.sqrt(np.maximum(np.maximum(most * s.rise, least * s.fall),
                                     c.C_a * s.acceleration))
     else:
@@ -809,7 +806,7 @@ def closed_form_duration(calculator: CycleCalculator, limits: Limits,
     return np.where(s.undecided, np.nan, T)
 
 
-def acceleration_extremes(law: MotionLaw | RowLaws) -> tuple[Any, Any]:
+def _acceleration_extremes(law: MotionLaw | RowLaws) -> tuple[Any, Any]:
     """max q_N'' and -min q_N'' of the law, from its linear peaks (as the evaluation reads
     them); of each row's law for RowLaws (arrays over the rows)."""
     laws = law.laws if isinstance(law, RowLaws) else (law,)
@@ -1179,7 +1176,7 @@ def duration_floor(design: Design, spec: LawChoice | str, candidates: Candidates
                                  design.limits.thermal_speed, law=law)
     if is_purely_inertial(calculator):  # eq. (6.2): every option is cheap as it is
         return None
-    if float(law.linear_peaks.minimum(0.0, 1.0).value) < -1e-12:
+    if law.moves_backwards():
         return None  # it moves backwards: no peak bound (sizer.sizing.move)
     if calculator.h == 0.0:
         return np.zeros(len(candidates))
