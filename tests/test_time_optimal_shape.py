@@ -19,6 +19,8 @@ from sizer.sizing.optimal_shapes import (
     optimal_double_s,
     optimal_trapezoid,
     rms_time,
+    speed_rms_alpha,
+    speed_torque_alpha,
     trapezoid_coefficients,
 )
 
@@ -142,6 +144,58 @@ def test_peak_torque_rms_speed_and_jerk_bounds_against_a_constrained_minimizatio
     if double_s:
         active.append(np.isclose(np.cbrt(c_j * sj), T, rtol=1e-9))
     assert all(x.sum() >= 3 for x in active)
+
+
+def test_trapezoid_crossings_in_closed_form_meet_their_bounds():
+    """T_V = S_V/(1-a) meets T_A = sqrt(S_A/(a(1-a))) and T_R (T^3 (T + d) = 2 S_R^2 /
+    (a (1-a)^2), sec. 6.2.1) at the closed forms' alphas."""
+    rng = np.random.default_rng(11)
+    n = 400
+    sv, sa, sr = (10 ** rng.uniform(-4, 1, n) for _ in range(3))
+    dwell = np.where(rng.random(n) < 0.2, 0.0, 10 ** rng.uniform(-4, 1, n))
+    a = speed_torque_alpha(scales(sv, sa))
+    half = a <= 0.5  # the trapezoid's range (a -> 1 would lose 1 - a to rounding)
+    assert half.sum() > n / 4
+    np.testing.assert_allclose((sv / (1 - a))[half], np.sqrt(sa / (a * (1 - a)))[half],
+                               rtol=1e-14)
+    a = speed_rms_alpha(scales(sv, sa, sr, None, dwell))
+    assert np.all((a > 0) & (a < 1))
+    half = a <= 0.5
+    assert half.sum() > n / 4
+    T = sv / (1 - a)
+    np.testing.assert_allclose((T**3 * (T + dwell))[half],
+                               (2 * sr**2 / (a * (1 - a) ** 2))[half], rtol=1e-13)
+    # a negative dwell' (the hold above the rating) has no closed form here
+    assert np.isnan(speed_rms_alpha(scales(sv[:3], sa[:3], sr[:3], None, -0.1))).all()
+
+
+def smallest_rms_time(x, dwell):
+    """The smallest T > max(0, -dwell) with T^3 (T + dwell) >= x^2, by bisection."""
+    lo = np.maximum(-dwell, 0.0) + np.zeros_like(x)
+    hi = lo + np.sqrt(x) + np.cbrt(x * x / np.maximum(np.abs(dwell), 1e-300)) + 1.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        ok = mid**3 * (mid + dwell) >= x * x
+        lo, hi = np.where(ok, lo, mid), np.where(ok, mid, hi)
+    return hi
+
+
+def test_trapezoid_with_a_dwell_per_motor_against_a_dense_search():
+    """Each motor its own dwell', some negative (constant torques held above the rating in
+    the dwells): never worse than the best of a dense grid of alpha, and within its step."""
+    rng = np.random.default_rng(12)
+    n = 60
+    sv, sa, sr = 10 ** rng.uniform(-2, 0, n), 10 ** rng.uniform(-3, -1, n), \
+        10 ** rng.uniform(-3, -1, n)
+    dwell = rng.uniform(-0.05, 0.5, n)
+    solution = optimal_trapezoid(scales(sv, sa, sr, None, dwell), LOW)
+    a = np.linspace(1e-3, 0.5, 4001)[None, :]
+    c_v, c_a, c_r = trapezoid_coefficients(a)
+    T = np.maximum(np.maximum(c_v * sv[:, None], np.sqrt(c_a * sa[:, None])),
+                   smallest_rms_time(c_r * sr[:, None], dwell[:, None]))
+    best = T.min(axis=1)
+    assert np.all(solution.duration <= best * (1 + 1e-12))
+    np.testing.assert_allclose(solution.duration, best, rtol=1e-3)  # the grid's step
 
 
 def test_rms_time_solves_the_quartic():

@@ -401,8 +401,14 @@ def choose_shape(family: type[MotionLaw], values: dict[str, Fraction | str], des
                 params[name][index] = chosen
     if params is None:  # no candidates: neither the exact shapes nor a search
         return []
-    return [family(**fixed, **{name: float(v[i]) for name, v in params.items()})
-            for i in range(len(motors))]
+    names = list(params)
+    if not names:
+        return [family(**fixed)] * len(motors)
+    points, inverse = np.unique(np.column_stack([params[name] for name in names]), axis=0,
+                                return_inverse=True)  # one law per distinct point
+    laws = [family(**fixed, **{name: float(v) for name, v in zip(names, point, strict=True)})
+            for point in points]
+    return [laws[k] for k in inverse.reshape(-1)]
 
 
 def search_range(law_id: str, p: Parameter, inset: float) -> tuple[float, float]:

@@ -25,8 +25,10 @@ The trapezoid's coefficients are C_v = 1/(1-a), C_a = 1/(a(1-a)), C_a_rms = sqrt
 (a = alpha, sec. 6.2.1); each bound is monotone or unimodal in a (T_V increasing, T_A
 decreasing, T_R smallest at a = 1/3) and the sign of every difference of two bounds changes
 at most once on (0, 1/2]. The optimum is therefore among: the ends, a = 1/3, and the
-crossings of two bounds, each found to machine precision by a bracketed root; all candidates
-are evaluated and the best kept, for all motors at once.
+crossings of two bounds: T_V = T_A at a = S_A/(S_A + S_V^2), T_V = T_R at the root of a
+quadratic (dwell' >= 0), T_A = T_R (and T_V = T_R with a negative dwell') found to machine
+precision by a bracketed root; all candidates are evaluated and the best kept, for all
+motors at once.
 
 The double S (a = alpha, b = beta) has C_a = 1/(a(1-a)(1-b)), C_j = 1/(a^2 b (1-a)(1-b)),
 C_a_rms = sqrt((6-8b)/(3a))/((1-a)(1-b)): in b, T_A and T_R increase and T_J decreases,
@@ -42,6 +44,7 @@ ranges, it is the book's closed form (sec. 3.4.3).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -163,10 +166,20 @@ def _dwell_like(scales: BoundScales, shape: tuple[int, ...], rows=None) -> float
 
 def _bounds(S, dwell: float | np.ndarray, c_v, c_a, c_a_rms, c_j=None) -> list[np.ndarray]:
     """T_V, T_A, T_R (and T_J) from coefficient arrays and scales S of the same shape."""
-    out = [c_v * S[0], np.sqrt(c_a * S[1]), rms_time(c_a_rms * S[2], dwell)]
-    if c_j is not None:
-        out.append(np.cbrt(c_j * S[3]))
-    return out
+    coefficients = (c_v, c_a, c_a_rms) if c_j is None else (c_v, c_a, c_a_rms, c_j)
+    return [_bound(k, S, dwell, coefficients) for k in range(len(coefficients))]
+
+
+def _bound(k: int, S, dwell: float | np.ndarray, coefficients) -> np.ndarray:
+    """Bound k of :func:`_bounds` alone (T_V, T_A, T_R, T_J: 0, 1, 2, 3)."""
+    c = coefficients[k]
+    if k == 0:
+        return c * S[0]
+    if k == 1:
+        return np.sqrt(c * S[1])
+    if k == 2:
+        return rms_time(c * S[2], dwell)
+    return np.cbrt(c * S[3])
 
 
 def trapezoid_bounds(scales: BoundScales, a: np.ndarray) -> list[np.ndarray]:
@@ -202,15 +215,100 @@ def optimal_trapezoid(scales: BoundScales, low: float, high: float = HALF) -> Op
     n = len(scales.speed)
     special = np.array([low, min(max(1.0 / 3.0, low), high), high])
     candidates = [np.broadcast_to(special, (n, 3))]
-    for i, j in ((0, 1), (0, 2), (1, 2)):
-        def gap(a, i=i, j=j):
-            return _log_gap(trapezoid_bounds(scales, a), i, j)
-        candidates.append(_crossing(gap, n, low, high)[:, None])
+    candidates.append(_inside(speed_torque_alpha(scales), low, high)[:, None])
+    candidates.append(_speed_rms_crossing(scales, low, high)[:, None])
+    candidates.append(_torque_rms_crossing(scales, low, high)[:, None])
     a = np.concatenate(candidates, axis=1)
     T = trapezoid_duration(scales, a)
     best = np.argmin(np.where(np.isnan(T), np.inf, T), axis=1)
     rows = np.arange(n)
     return _finish(scales, {"alpha": a[rows, best]}, T[rows, best], {"alpha": 1.0 / 3.0})
+
+
+def _trapezoid_gap(scales: BoundScales, i: int, j: int):
+    """log T_i - log T_j of the trapezoid as a function of alpha (arrays (n, 1)): the two
+    bounds alone (T_R costs a root each)."""
+    def gap(a: np.ndarray) -> np.ndarray:
+        shape = np.shape(a)
+        S, dwell = _scales_like(scales, shape), _dwell_like(scales, shape)
+        c = trapezoid_coefficients(a)
+        return _log_gap({i: _bound(i, S, dwell, c), j: _bound(j, S, dwell, c)}, i, j)
+    return gap
+
+
+def speed_torque_alpha(scales: BoundScales) -> np.ndarray:
+    """The alpha at which the trapezoid's T_V = S_V/(1-a) meets T_A = sqrt(S_A/(a(1-a))):
+    S_V^2 a = S_A (1 - a), a = S_A/(S_A + S_V^2) (nan where both scales are zero)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return scales.torque / (scales.torque + scales.speed * scales.speed)
+
+
+def speed_rms_alpha(scales: BoundScales) -> np.ndarray:
+    """The alpha in (0, 1) at which the trapezoid's T_V = S_V/(1-a) meets T_R (the root of
+    T^3 (T + d) = 2 S_R^2/(a (1-a)^2), d = dwell' >= 0): with T = T_V, a quadratic
+    A a^2 - B a + C = 0 (over S_V^4: A = 2r + e, B = 1 + e + 4r, C = 2r, r =
+    S_R^2/S_V^4, e = d/S_V), positive at 0, -1 at 1: its smaller root C/q, q = (B +
+    sqrt(B^2 - 4AC))/2, B^2 - 4AC = (1 + e)^2 + 8r (no cancellation). T_V < T_R below it,
+    T_V > T_R above. nan where d < 0 or a scale is zero (no such crossing: the caller
+    decides)."""
+    d = np.broadcast_to(np.asarray(scales.dwell, dtype=float), np.shape(scales.speed))
+    S_V, S_R = scales.speed, scales.rms
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        r = S_R * S_R / (S_V * S_V * S_V * S_V)
+        e = d / S_V
+        q = 0.5 * (1.0 + e + 4.0 * r + np.sqrt((1.0 + e) * (1.0 + e) + 8.0 * r))
+        root = 2.0 * r / q
+    ok = (d >= 0.0) & (S_V > 0.0) & (S_R > 0.0) & np.isfinite(root)
+    return np.where(ok, root, np.nan)
+
+
+def _inside(root: np.ndarray, low: float, high: float) -> np.ndarray:
+    """The roots strictly inside (low, high), else low (as :func:`_crossing` gives where
+    the sign does not change)."""
+    with np.errstate(invalid="ignore"):
+        return np.where((root > low) & (root < high), root, low)
+
+
+def _speed_rms_crossing(scales: BoundScales, low: float, high: float) -> np.ndarray:
+    """Where T_V meets T_R in (low, high), else low: the closed form
+    (:func:`speed_rms_alpha`; T_V - T_R changes sign once on (0, 1)), by the bracketed
+    root where it does not apply (a negative dwell', or no such limit)."""
+    root = speed_rms_alpha(scales)
+    out = _inside(root, low, high)
+    rest = np.flatnonzero(np.isnan(root) & (scales.speed > 0.0) & (scales.rms > 0.0))
+    if len(rest):
+        out[rest] = _crossing(_trapezoid_gap(scales.take(rest), 0, 2), len(rest), low, high)
+    return out
+
+
+def _torque_rms_crossing(scales: BoundScales, low: float, high: float) -> np.ndarray:
+    """Where T_A meets T_R in (low, high), else low, by the bracketed root: with dwell'
+    >= 0 on the sign of 3 log T_A + log(T_A + d) - 2 log(C_a_rms S_R), that of
+    T_A - T_R (T^3 (T + d) rises in T), which needs no root for T_R; with a negative
+    dwell' on log T_A - log T_R itself."""
+    d = np.broadcast_to(np.asarray(scales.dwell, dtype=float), np.shape(scales.speed))
+    plain = d >= 0.0
+    out = np.full(len(d), low)
+    for mask, gap in ((plain, _torque_rms_excess), (~plain, lambda part: _trapezoid_gap(
+            part, 1, 2))):
+        rows = np.flatnonzero(mask)
+        if len(rows):
+            out[rows] = _crossing(gap(scales.take(rows)), len(rows), low, high)
+    return out
+
+
+def _torque_rms_excess(scales: BoundScales):
+    """3 log T_A + log(T_A + d) - 2 log(C_a_rms S_R) of the trapezoid as a function of
+    alpha (arrays (n, 1)), dwell' d >= 0: the sign of T_A - T_R."""
+    S_A, S_R = scales.torque[:, None], scales.rms[:, None]
+    d = np.broadcast_to(np.asarray(scales.dwell, dtype=float), np.shape(scales.torque))[:, None]
+
+    def excess(a: np.ndarray) -> np.ndarray:
+        _, c_a, c_a_rms = trapezoid_coefficients(a)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            T_A = np.sqrt(c_a * S_A)
+            return 3.0 * np.log(T_A) + np.log(T_A + d) - 2.0 * np.log(c_a_rms * S_R)
+    return excess
 
 
 def optimal_double_s(scales: BoundScales, low_a: float, low_b: float,
@@ -351,7 +449,8 @@ def best_beta(scales: BoundScales, a: np.ndarray, low: float, high: float = HALF
 
 
 # ------------------------------------------------------------------------- helpers
-def _log_gap(bounds: list[np.ndarray], i: int, j: int) -> np.ndarray:
+def _log_gap(bounds: Sequence[np.ndarray] | dict[int, np.ndarray], i: int, j: int
+             ) -> np.ndarray:
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.log(bounds[i]) - np.log(bounds[j])
 
