@@ -31,7 +31,8 @@ def _bisected(vibration, left: float, right: float) -> float:
     return right
 
 
-@pytest.mark.parametrize("spec", ["cycloidal", "double_s(alpha=1/3, beta=1/4)", "poly5"])
+@pytest.mark.parametrize("spec", ["cycloidal", "double_s(alpha=1/3, beta=1/4)", "poly5",
+                                  "trapezoidal(alpha=1/3)"])
 def test_admissible_scale_is_the_first_scale_meeting_the_limit(spec):
     design = load_design(EXAMPLE)
     vibration = cycle_vibration(design, make_law(spec))

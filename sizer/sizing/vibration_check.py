@@ -227,9 +227,10 @@ def admissible_scale(vibration: CycleVibration, s: np.ndarray, limit: float) -> 
     begin, reach = float(s[index].min()), float(s[index].max()) + WINDOW_PERIODS * period
     while index.size and reach <= float(s[todo].max()) + SEARCH_PERIODS * period:
         grid = np.arange(begin, reach + step, step)
-        good = np.flatnonzero(vibration.worst(grid) <= limit * (1.0 - 1e-12))
+        start = np.searchsorted(grid, s[index], side="left")
+        good = _good_points(vibration, grid, start, limit)
         # the first good grid point at or after each candidate's s, the crossing before it
-        pick = np.searchsorted(good, np.searchsorted(grid, s[index], side="left"))
+        pick = np.searchsorted(good, start)
         found = pick < good.size
         if found.any():
             j = good[pick[found]]
@@ -238,6 +239,28 @@ def admissible_scale(vibration: CycleVibration, s: np.ndarray, limit: float) -> 
         index = index[~found]
         begin, reach = reach, reach + 4.0 * (reach - begin)
     return out
+
+
+def _good_points(vibration: CycleVibration, grid: np.ndarray, start: np.ndarray,
+                 limit: float) -> np.ndarray:
+    """The indices of the grid's points whose worst residual is within the limit, in
+    order, from its first point up to the first good point at or after each index of
+    ``start`` (or all of them): the grid evaluated in runs from WINDOW_PERIODS periods'
+    points up, each twice the last, that stop once every start has its good point (each
+    point's residual is its own, so the first good points are those of the whole grid;
+    the far points of a window, whose residuals cost the most, are mostly not needed)."""
+    size = WINDOW_PERIODS * GRID_PER_PERIOD
+    found: list[np.ndarray] = []
+    done = 0
+    while done < grid.size:
+        stop = min(grid.size, done + size)
+        found.append(done + np.flatnonzero(vibration.worst(grid[done:stop])
+                                           <= limit * (1.0 - 1e-12)))
+        done, size = stop, 2 * size
+        good = np.concatenate(found)
+        if np.all(np.searchsorted(good, start) < good.size):
+            break
+    return np.concatenate(found)
 
 
 def _crossing(vibration: CycleVibration, left: np.ndarray, right: np.ndarray,
