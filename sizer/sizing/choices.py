@@ -401,9 +401,7 @@ def choose_shape(family: type[MotionLaw], values: dict[str, Fraction | str], des
                 params[name][index] = chosen
     if params is None:  # no candidates: neither the exact shapes nor a search
         return []
-    names = list(params)
-    if not names:
-        return [family(**fixed)] * len(motors)
+    names = list(params)  # the auto parameters (at least one)
     points, inverse = np.unique(np.column_stack([params[name] for name in names]), axis=0,
                                 return_inverse=True)  # one law per distinct point
     laws = [family(**fixed, **{name: float(v) for name, v in zip(names, point, strict=True)})
