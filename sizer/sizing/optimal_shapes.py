@@ -44,7 +44,6 @@ ranges, it is the book's closed form (sec. 3.4.3).
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -93,6 +92,11 @@ class BoundScales:
         dwell = np.asarray(self.dwell)[rows] if np.ndim(self.dwell) else self.dwell
         return BoundScales(self.speed[rows], self.torque[rows], self.rms[rows],
                            self.jerk[rows], dwell, self.feasible[rows])
+
+    @property
+    def dwells(self) -> np.ndarray:
+        """``dwell`` per motor (one number broadcast)."""
+        return np.broadcast_to(np.asarray(self.dwell, dtype=float), np.shape(self.speed))
 
 
 @dataclass(frozen=True)
@@ -225,15 +229,18 @@ def optimal_trapezoid(scales: BoundScales, low: float, high: float = HALF) -> Op
     return _finish(scales, {"alpha": a[rows, best]}, T[rows, best], {"alpha": 1.0 / 3.0})
 
 
-def _trapezoid_gap(scales: BoundScales, i: int, j: int):
-    """log T_i - log T_j of the trapezoid as a function of alpha (arrays (n, 1)): the two
-    bounds alone (T_R costs a root each)."""
+def _log_gap_crossing(scales: BoundScales, rows: np.ndarray, i: int, j: int, low: float,
+                      high: float) -> np.ndarray:
+    """Where the trapezoid's bounds T_i and T_j meet for the motors ``rows``
+    (:func:`_crossing` on log T_i - log T_j, the two bounds alone: T_R costs a root)."""
+    part = scales.take(rows)
+
     def gap(a: np.ndarray) -> np.ndarray:
         shape = np.shape(a)
-        S, dwell = _scales_like(scales, shape), _dwell_like(scales, shape)
+        S, dwell = _scales_like(part, shape), _dwell_like(part, shape)
         c = trapezoid_coefficients(a)
-        return _log_gap({i: _bound(i, S, dwell, c), j: _bound(j, S, dwell, c)}, i, j)
-    return gap
+        return _log_ratio(_bound(i, S, dwell, c), _bound(j, S, dwell, c))
+    return _crossing(gap, len(rows), low, high)
 
 
 def speed_torque_alpha(scales: BoundScales) -> np.ndarray:
@@ -251,7 +258,7 @@ def speed_rms_alpha(scales: BoundScales) -> np.ndarray:
     sqrt(B^2 - 4AC))/2, B^2 - 4AC = (1 + e)^2 + 8r (no cancellation). T_V < T_R below it,
     T_V > T_R above. nan where d < 0 or a scale is zero (no such crossing: the caller
     decides)."""
-    d = np.broadcast_to(np.asarray(scales.dwell, dtype=float), np.shape(scales.speed))
+    d = scales.dwells
     S_V, S_R = scales.speed, scales.rms
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         r = S_R * S_R / (S_V * S_V * S_V * S_V)
@@ -277,7 +284,7 @@ def _speed_rms_crossing(scales: BoundScales, low: float, high: float) -> np.ndar
     out = _inside(root, low, high)
     rest = np.flatnonzero(np.isnan(root) & (scales.speed > 0.0) & (scales.rms > 0.0))
     if len(rest):
-        out[rest] = _crossing(_trapezoid_gap(scales.take(rest), 0, 2), len(rest), low, high)
+        out[rest] = _log_gap_crossing(scales, rest, 0, 2, low, high)
     return out
 
 
@@ -286,14 +293,13 @@ def _torque_rms_crossing(scales: BoundScales, low: float, high: float) -> np.nda
     >= 0 on the sign of 3 log T_A + log(T_A + d) - 2 log(C_a_rms S_R), that of
     T_A - T_R (T^3 (T + d) rises in T), which needs no root for T_R; with a negative
     dwell' on log T_A - log T_R itself."""
-    d = np.broadcast_to(np.asarray(scales.dwell, dtype=float), np.shape(scales.speed))
-    plain = d >= 0.0
+    d = scales.dwells
     out = np.full(len(d), low)
-    for mask, gap in ((plain, _torque_rms_excess), (~plain, lambda part: _trapezoid_gap(
-            part, 1, 2))):
-        rows = np.flatnonzero(mask)
-        if len(rows):
-            out[rows] = _crossing(gap(scales.take(rows)), len(rows), low, high)
+    plain, held = np.flatnonzero(d >= 0.0), np.flatnonzero(d < 0.0)
+    if len(plain):
+        out[plain] = _crossing(_torque_rms_excess(scales.take(plain)), len(plain), low, high)
+    if len(held):
+        out[held] = _log_gap_crossing(scales, held, 1, 2, low, high)
     return out
 
 
@@ -301,7 +307,7 @@ def _torque_rms_excess(scales: BoundScales):
     """3 log T_A + log(T_A + d) - 2 log(C_a_rms S_R) of the trapezoid as a function of
     alpha (arrays (n, 1)), dwell' d >= 0: the sign of T_A - T_R."""
     S_A, S_R = scales.torque[:, None], scales.rms[:, None]
-    d = np.broadcast_to(np.asarray(scales.dwell, dtype=float), np.shape(scales.torque))[:, None]
+    d = scales.dwells[:, None]
 
     def excess(a: np.ndarray) -> np.ndarray:
         _, c_a, c_a_rms = trapezoid_coefficients(a)
@@ -449,10 +455,10 @@ def best_beta(scales: BoundScales, a: np.ndarray, low: float, high: float = HALF
 
 
 # ------------------------------------------------------------------------- helpers
-def _log_gap(bounds: Sequence[np.ndarray] | dict[int, np.ndarray], i: int, j: int
-             ) -> np.ndarray:
+def _log_ratio(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """log x - log y (inf or nan where a bound is zero or missing)."""
     with np.errstate(divide="ignore", invalid="ignore"):
-        return np.log(bounds[i]) - np.log(bounds[j])
+        return np.log(x) - np.log(y)
 
 
 def _crossing(gap, n: int, low: float, high: float) -> np.ndarray:
