@@ -32,9 +32,12 @@ def hermite_root(g0: np.ndarray, g1: np.ndarray, d0: np.ndarray,
     with np.errstate(divide="ignore", invalid="ignore"):
         s = g0 / (g0 - g1)
     out = s.copy()
-    # the rows still stepping, as a mask over all of them (the steps of a few hundred
-    # rows cost their calls, not their length: no row is taken out of the arrays)
+    # the rows still stepping, as a mask over the working rows: all of them at first (the
+    # steps of a few hundred rows cost their calls, not their length), then, once fewer
+    # than half of them step on, only those (``where``: their positions in ``out``; a
+    # row's steps are its own, so the values are the same)
     open_ = np.ones(s.shape, dtype=bool)
+    where: np.ndarray | None = None
     for _ in range(NEWTON_STEPS):
         h = g0 + s * (d0 + s * (c2 + s * c3))
         before = (h < 0.0) == rising  # the root lies above s
@@ -51,10 +54,19 @@ def hermite_root(g0: np.ndarray, g1: np.ndarray, d0: np.ndarray,
         near = np.abs(step - s)
         take = ((step >= low) & (step <= high)) | (near <= 1e-15)
         new = np.where(take, step, 0.5 * (low + high))
-        out = np.where(open_, new, out)
+        if where is None:
+            out = np.where(open_, new, out)
+        else:
+            out[where] = np.where(open_, new, out[where])
         if xtol > 0.0:
             open_ &= ~(take & (near <= xtol))
             if not open_.any():
                 break
         s = new
+        if 2 * np.count_nonzero(open_) < open_.size:
+            keep = np.flatnonzero(open_)
+            where = keep if where is None else where[keep]
+            g0, d0, c2, c3, low, high, s, rising = (
+                x[keep] for x in (g0, d0, c2, c3, low, high, s, rising))
+            open_ = open_[keep]
     return np.clip(out, 0.0, 1.0).reshape(shape)
