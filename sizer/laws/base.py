@@ -314,6 +314,12 @@ class MotionLaw:
     def moves_backwards(self) -> bool:
         """Whether v_N < 0 somewhere (its linear peaks' least v_N, beyond rounding): no
         peak bound on T_min holds for it (sizer.sizing.move.peak_duration)."""
+        return self._moves_backwards
+
+    @cached_property
+    def _moves_backwards(self) -> bool:
+        """:meth:`moves_backwards`, asked once per law (each model of a search step asks
+        it of every law of its rows)."""
         return float(self.linear_peaks.minimum(0.0, 1.0).value) < -1e-12
 
     @cached_property
