@@ -16,9 +16,9 @@ T_min up to the first scale where the limit holds.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol, runtime_checkable
 
 import numpy as np
 
@@ -29,9 +29,8 @@ from sizer.model.cycle import from_task
 from sizer.model.domain import Design
 from sizer.numerics.roots import bracketed_root
 from sizer.sizing.checks import RESIDUAL_VIBRATION
-from sizer.sizing.cycle import SegmentCycle, cycle_laws
+from sizer.sizing.cycle import cycle_laws
 from sizer.sizing.evaluation import CycleMetrics, CycleModel
-from sizer.sizing.move import CycleCalculator
 from sizer.sizing.results import RESIDUAL
 from sizer.sizing.shortest_duration import LaterChecks
 from sizer.vibration.elastic_load import ElasticLoad
@@ -143,11 +142,26 @@ class ResidualLimit:
         return out
 
 
+@runtime_checkable
+class RowsByLaw(Protocol):
+    """A model whose rows may each move with their own law (sizer.laws.row_laws.RowLaws:
+    sizer.sizing.move.CycleCalculator, sizer.sizing.cycle.SegmentCycle): its rows split
+    law by law, each part the model of those rows with that law alone."""
+
+    def by_law(self, rows: np.ndarray) -> Sequence[tuple[int, np.ndarray, CycleModel]]: ...
+
+
+def _by_law(calculator: CycleModel) -> RowsByLaw:
+    """``calculator`` as a model of rows by law (:class:`RowsByLaw`)."""
+    if not isinstance(calculator, RowsByLaw):
+        raise TypeError(f"{type(calculator).__name__} has no rows by law")
+    return calculator
+
+
 @dataclass(frozen=True)
 class ResidualRows:
     """The residual limits of several laws as one later limit over the rows of a model
-    of their laws (sizer.laws.row_laws.RowLaws in sizer.sizing.move.CycleCalculator or
-    sizer.sizing.cycle.SegmentCycle): the rows of law k read ``limits[k]`` (its law's
+    of their laws (:class:`RowsByLaw`): the rows of law k read ``limits[k]`` (its law's
     residual at their scales, with the model of those rows and that law: ``by_law``), so
     every row's figure, check and passing scale are those its law gives alone. The limits
     share the design's limit."""
@@ -156,18 +170,16 @@ class ResidualRows:
 
     def at(self, calculator: CycleModel, s: np.ndarray, metrics: CycleMetrics,
            known: np.ndarray) -> LaterChecks:
-        assert isinstance(calculator, CycleCalculator | SegmentCycle)
         at = np.where(known, s, 1.0)
         worst = np.empty(np.shape(at))
-        for k, rows, part in calculator.by_law(np.arange(len(at))):
+        for k, rows, part in _by_law(calculator).by_law(np.arange(len(at))):
             worst[rows] = self.limits[k].worst(part, at[rows])
         return self.limits[0].checks(worst, known)
 
     def passing_scale(self, calculator: CycleModel, rows: np.ndarray, s: np.ndarray,
                       found: LaterChecks) -> np.ndarray:
-        assert isinstance(calculator, CycleCalculator | SegmentCycle)
         out = np.empty(np.shape(s))
-        for k, at, part in calculator.by_law(np.asarray(rows, dtype=np.intp)):
+        for k, at, part in _by_law(calculator).by_law(np.asarray(rows, dtype=np.intp)):
             out[at] = self.limits[k].passing_scale(part, np.arange(len(at)), s[at], found)
         return out
 
