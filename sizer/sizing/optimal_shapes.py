@@ -39,6 +39,33 @@ that contains the special points and located to 1e-13 in a by the bracket search
 sizer.numerics.bracket_search (steps where two pieces cross or to a parabola's vertex,
 safeguarded like golden section). Where T_R does not bind and the optimum lies in the
 ranges, it is the book's closed form (sec. 3.4.3).
+
+The trapezoid's T_min at each alpha where its torques are constant in each phase, through
+any efficiencies (:func:`trusted_phase_model`, the shape search's score where it holds:
+sizer.sizing.choices.search_shape). A trapezoid's normalized acceleration is C_a, 0 and
+-C_a in its three phases (sec. 3.2); with no damping anywhere (motor, stages, load), plain
+stages and rectangular regions read at the peak speed, the motor torque of a move is the
+largest of the drive's linear functions P a_l + C of the load's acceleration
+(Drive.linear_pieces: one per choice of power-flow direction in each stage, P with the
+rotor's inertia), constant in each phase. With x = C_a h / T^2 (the load's acceleration in
+the outer phases) the checks of T_min (sec. 6.1.1) are closed forms of T per motor:
+
+    speed, thermal speed, load speed   T >= C_v S, S the largest of K h / v' (each region's
+                                       top speed with its margin) and h / v_load
+    peak    |torque| <= tau_p' in every phase of every move and in the dwells:
+            x <= min_k (tau_p' - C_k) / P_k (acceleration phase),
+            x <= max_k (tau_p' + C_k) / P_k (deceleration), |max_k C_k| <= tau_p' (cruise)
+    load acceleration   x <= a_max
+    RMS     T sum_moves [alpha (t_a^2 + t_d^2) + (1 - 2 alpha) t_c^2] + n d H^2
+                <= n tau_c'^2 (T + d)
+
+(t_a, t_c, t_d a move's phase torques, n moves, d the dwell after each, H the torque held
+there: sizer.sizing.move.CycleCalculator.evaluate's sums): T_min is the largest of the
+first bounds, or past them the smallest T where the RMS holds (a bracketed root from a
+point where it fails to one where it holds, found by doubling). For the motors where one
+trapezoid's T_min sized by the engine (sizer.sizing.shortest_duration.minimum_duration) is
+the model's to AGREEMENT, with no check the model does not know (a drive's currents, a
+stage's ratings...), the search scores by the model; the others by the engine.
 """
 
 from __future__ import annotations
@@ -53,7 +80,9 @@ from sizer.laws.piecewise_polynomial import DoubleS, Trapezoidal
 from sizer.model.domain import Design
 from sizer.numerics.arrays import sorted_unique
 from sizer.numerics.bracket_search import from_grid
+from sizer.numerics.roots import bracketed_root
 from sizer.sizing.candidates import Candidates
+from sizer.sizing.checks import CheckName
 from sizer.sizing.cycle import single_task
 from sizer.sizing.move import CycleCalculator
 from sizer.sizing.shortest_duration import (
@@ -61,6 +90,8 @@ from sizer.sizing.shortest_duration import (
     beyond_flat_part,
     duration_bounds,
     has_constant_torques,
+    minimum_duration,
+    plain_stages,
     rms_duration,
 )
 
@@ -571,3 +602,189 @@ def exact_time_optimal(family: type[MotionLaw], fixed: dict[str, float],
     beyond = beyond_flat_part(calculator, design.limits, solution.duration, 1.0 / (1.0 - alpha))
     beyond |= raw.undecided
     return {name: solution.params[name] for name in ranges}, beyond
+
+
+# ------------------------------------------------- the trapezoid with constant phases
+AGREEMENT = 1e-9
+"""Relative difference of the model's T_min from the engine's at which a motor is scored
+by the model."""
+
+MODELLED = frozenset({CheckName.SPEED, CheckName.PEAK, CheckName.RMS,
+                      CheckName.THERMAL_SPEED, CheckName.INERTIA_RATIO,
+                      CheckName.LOAD_SPEED, CheckName.ACCELERATION})
+"""The checks the model knows (the inertia ratio does not depend on alpha: where it fails
+the engine's T_min is inf at every alpha, and the model does not agree)."""
+
+DOUBLINGS = 64
+"""Doublings of T past the other bounds looking for a duration the RMS allows."""
+
+
+@dataclass(frozen=True)
+class PhaseTorques:
+    """Per motor (arrays (n,)) the figures of the model (module docs) for a trapezoid of
+    stroke h, ``moves`` moves each followed by ``dwell``."""
+
+    h: float
+    moves: int
+    dwell: float
+    speed: np.ndarray
+    """S of T >= C_v S."""
+    acceleration: np.ndarray
+    """The largest load acceleration in the outer phases the peaks and the load's limit
+    allow (x of the module docs); <= 0 where none."""
+    slopes: tuple[np.ndarray, ...]
+    """Per move, P_k (pieces, n): the motor torque per unit load acceleration."""
+    offsets: tuple[np.ndarray, ...]
+    """Per move, C_k (pieces, n): the motor torque at rest in the motion's direction."""
+    held: np.ndarray
+    """n d H^2: the dwells' share of the integral of the squared torque."""
+    rating: np.ndarray
+    """tau_c'^2, the squared continuous torque with its margin."""
+    feasible: np.ndarray
+    """False where no alpha passes (the cruise or the hold above the peak limit)."""
+
+    def durations(self, alpha: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        """T_min of the trapezoid at ``alpha`` for the motors ``rows`` (arrays of one
+        shape; inf where nothing passes, nan where alpha is nan)."""
+        a = np.asarray(alpha, dtype=float)
+        c_v, c_a = 1.0 / (1.0 - a), 1.0 / (a * (1.0 - a))
+        top = self.acceleration[rows]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            T = np.maximum(c_v * self.speed[rows], np.sqrt(c_a * self.h / top))
+        T = np.where(self.feasible[rows] & (top > 0.0), T, np.inf)
+        fails = np.isfinite(T) & (self._rms_excess(T, a, rows) > 0.0)
+        if fails.any():
+            where = np.flatnonzero(fails)
+            T.flat[where] = self._rms_crossing(T.flat[where], a.flat[where],
+                                               np.broadcast_to(rows, a.shape).flat[where])
+        return np.where(np.isnan(a), np.nan, T)
+
+    def _rms_excess(self, T: np.ndarray, a: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        """The squared RMS torque over its limit, less one (> 0: the RMS check fails)."""
+        with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+            x = self.h / (a * (1.0 - a)) / T / T
+            total = np.zeros(np.shape(T))
+            for P, C in zip(self.slopes, self.offsets, strict=True):
+                p, c = P[:, rows], C[:, rows]
+                rise = np.max(p * x + c, axis=0)
+                fall = np.max(c - p * x, axis=0)
+                cruise = np.max(c, axis=0)
+                total = total + a * (rise * rise + fall * fall) + (1.0 - 2.0 * a) * cruise**2
+            return (T * total + self.held[rows]) / (
+                self.moves * self.rating[rows] * (T + self.dwell)) - 1.0
+
+    def _rms_crossing(self, low: np.ndarray, a: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        """The smallest T > low (where the RMS fails) at which it holds: doubling to a
+        T where it holds, then the root between (inf where none is found)."""
+        high = low.copy()
+        f_high = self._rms_excess(high, a, rows)
+        for _ in range(DOUBLINGS):
+            open_ = f_high > 0.0
+            if not open_.any():
+                break
+            high = np.where(open_, 2.0 * high, high)
+            f_high = np.where(open_, self._rms_excess(high, a, rows), f_high)
+        found = ~(f_high > 0.0)
+        start = np.where(high > low, 0.5 * high, low)
+        start = np.maximum(start, low)
+        f_start = self._rms_excess(start, a, rows)
+        out = np.full(len(low), np.inf)
+        if found.any():
+            at = np.flatnonzero(found)
+            _, feasible = bracketed_root(self._rms_excess, start[at], high[at], f_start[at],
+                                         f_high[at], args=(a[at], rows[at]), bracket=True)
+            out[at] = feasible
+        return out
+
+
+def phase_model(design: Design, candidates: Candidates) -> PhaseTorques | None:
+    """The model of the module docs for these candidates, or None where its case does not
+    hold (damping, stage ratings, a jerk limit, another thermal rule...). The motors'
+    regions are taken as flat: :func:`trusted_phase_model` keeps the motors where they
+    are."""
+    limits, motors, drive = design.limits, candidates.motors, candidates.drive
+    cycle = design.machine_cycle
+    if not cycle.minimize or design.transmission.linkage is not None \
+            or design.load.position_dependent or limits.max_jerk is not None \
+            or limits.thermal_speed != "max" or not plain_stages(drive) \
+            or not drive.figures.none("damping") or not bool(np.all(motors.damping == 0.0)):
+        return None
+    task = single_task(design)
+    calculator = CycleCalculator(None, task, drive, motors, limits.thermal_speed)
+    n = len(motors)
+
+    def per_motor(x) -> np.ndarray:
+        return np.broadcast_to(np.asarray(x, dtype=float), (n,)).copy()
+
+    K, h = per_motor(drive.ratio), calculator.h
+    speed_part = 1.0 - limits.speed_margin
+    grip = 1.0 - limits.torque_margin
+    peak = motors.intermittent.torques[:, 0] * grip
+    with np.errstate(divide="ignore", invalid="ignore"):
+        speed = K * h / (np.minimum(motors.speed_limit, motors.continuous.max_speed)
+                         * speed_part)
+        if limits.max_speed is not None:
+            speed = np.maximum(speed, h / limits.max_speed)
+    top = np.full(n, np.inf) if limits.max_acceleration is None \
+        else np.full(n, limits.max_acceleration)
+    rotor = motors.inertia * K
+    slopes, offsets = [], []
+    feasible = np.ones(n, dtype=bool)
+    for direction in calculator.directions:
+        shaft, _ = drive.linear_pieces(float(direction))
+        if any(bool(np.any(np.asarray(B) != 0.0)) for _, B, _ in shaft):
+            return None  # a torque of the speed: not constant in a phase
+        P = np.stack([per_motor(A) + rotor for A, _, _ in shaft])
+        C = np.stack([per_motor(C) for _, _, C in shaft])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            top = np.minimum(top, np.minimum(np.min((peak - C) / P, axis=0),
+                                             np.max((peak + C) / P, axis=0)))
+        feasible &= np.abs(np.max(C, axis=0)) <= peak
+        slopes.append(P)
+        offsets.append(C)
+    moves = len(calculator.directions)
+    hold = per_motor(drive.holding_torques()[0])
+    if task.dwell > 0.0:
+        feasible &= hold <= motors.intermittent.limit(np.zeros(n)) * grip
+    rating = np.square(motors.continuous.torques[:, 0] * grip)
+    return PhaseTorques(h, moves, task.dwell, speed, top, tuple(slopes), tuple(offsets),
+                        moves * task.dwell * hold * hold, rating, feasible)
+
+
+@dataclass(frozen=True)
+class TrustedModel:
+    """The model and, per motor, whether it scores it (:func:`trusted_phase_model`)."""
+
+    model: PhaseTorques
+    trusted: np.ndarray
+
+
+def trusted_phase_model(family: type, fixed: dict[str, float], names: list[str],
+                        ranges: dict[str, tuple[float, float]], design: Design,
+                        candidates: Candidates) -> TrustedModel | None:
+    """The model for the search of ``trapezoidal(alpha=auto)`` (the symmetric law) over
+    these candidates, with the motors it scores: those with rectangular regions whose
+    T_min of the trapezoid at the middle of the range, sized by the engine, is the
+    model's to AGREEMENT with no check the model does not know (both inf counts as
+    agreeing). None where the case does not hold or no motor agrees."""
+    if family is not Trapezoidal or names != ["alpha"] or fixed:
+        return None
+    model = phase_model(design, candidates)
+    if model is None:
+        return None
+    low, high = ranges["alpha"]
+    alpha = 0.5 * (low + high)
+    n = len(candidates)
+    calculator = CycleCalculator(None, single_task(design), candidates.drive,
+                                 candidates.motors, design.limits.thermal_speed,
+                                 law=Trapezoidal(alpha=alpha))
+    solution = minimum_duration(calculator, design.limits)
+    if not {check.name for check in solution.checks} <= MODELLED:
+        return None
+    engine = np.where(solution.feasible, solution.duration, np.inf)
+    mine = model.durations(np.full(n, alpha), np.arange(n))
+    with np.errstate(invalid="ignore"):
+        agree = np.where(np.isinf(engine), np.isinf(mine),
+                         np.abs(mine - engine) <= AGREEMENT * engine)
+    trusted = agree & candidates.motors.is_rectangular
+    return TrustedModel(model, trusted) if trusted.any() else None

@@ -158,11 +158,16 @@ def has_constant_torques(calculator: CycleModel) -> bool:
     below the end of the flat part (:func:`minimum_duration` searches the others).
     """
     drive, motors = calculator.drive, calculator.motors
-    stages_plain = all(bool(np.all(s.preload_torque == 0.0)) and s.max_input_speed is None
-                       and s.rated_output_torque is None and s.peak_output_torque is None
-                       for s in drive.stages)
-    return (drive.figures.none("damping") and drive.is_ideal and stages_plain
+    return (drive.figures.none("damping") and drive.is_ideal and plain_stages(drive)
             and bool(np.all(motors.damping == 0.0)))
+
+
+def plain_stages(drive: Drive) -> bool:
+    """Whether no stage has a preload torque or a rating of its own (speed, torques): the
+    motor's checks are the stages' too."""
+    return all(bool(np.all(s.preload_torque == 0.0)) and s.max_input_speed is None
+               and s.rated_output_torque is None and s.peak_output_torque is None
+               for s in drive.stages)
 
 
 def is_purely_inertial(calculator: CycleModel) -> bool:
