@@ -12,7 +12,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from sizer.laws.piecewise_polynomial import Trapezoidal
+from sizer.laws.piecewise_polynomial import DoubleS, Trapezoidal
 from sizer.model import Design, Limits, Load, Motor, Stage, Task, Transmission
 from sizer.sizing import size_design
 from sizer.sizing.candidates import Candidates, MotorArrays
@@ -149,3 +149,79 @@ def test_outside_its_case_the_engine_scores_the_search():
                                   candidates_of(mixed))
     assert trusted is not None
     assert trusted.trusted.tolist() == [False] + [True] * (len(MOTORS) - 3)
+
+
+def test_the_hand_derivation_of_a_double_s_through_a_lossy_gearbox():
+    """The double S of an inertial load through a gearbox of efficiency eta: the torque
+    is J_f a while power flows to the load (a > 0) and J_b a while it flows back, so its
+    square integrates to (J_f^2 + J_b^2) C_a_rms^2 / 2 per move (the law's halves mirror
+    each other): T^3 (T + d) = C_a_rms^2 h^2 (J_f^2 + J_b^2) / (2 tau_c'^2), with T_A =
+    sqrt(C_a h J_f / tau_p'), T_V = C_v K h / v' and the load's jerk T_J = cbrt(C_j h /
+    j_max) (C_a = 1/(a (1-a) (1-b)), C_j = C_a / (a b), C_a_rms = sqrt((6 - 8b) / (3a)) /
+    ((1-a)(1-b)), sec. 3.4, 6.2.1)."""
+    K, eta, J_l, d, h, margin, jerk = 8.0, 0.8, 0.4, 0.2, math.pi / 2, 0.1, 2e3
+    design = Design(Task(h, None, dwell=d, return_move=True), Load(J_l),
+                    Transmission((Stage("gearbox", K, eta, 0.0),)),
+                    laws=("double_s(alpha=auto, beta=auto)",), motors=MOTORS,
+                    limits=Limits(torque_margin=margin, max_jerk=jerk))
+    model = phase_model(design, candidates_of(design), DoubleS)
+    assert model is not None
+    for a, b in ((0.1, 0.4), (0.25, 0.25), (1 / 3, 0.05), (0.5, 0.5)):
+        c_v, c_a = 1 / (1 - a), 1 / (a * (1 - a) * (1 - b))
+        c_j, c_a_rms = c_a / (a * b), math.sqrt((6 - 8 * b) / (3 * a)) / ((1 - a) * (1 - b))
+        for i, motor in enumerate(MOTORS):
+            J_f = motor.inertia * K + J_l / (eta * K)
+            J_b = motor.inertia * K + eta * J_l / K
+            tau_p, tau_c = (1 - margin) * motor.peak_torque, (1 - margin) * motor.continuous_torque
+            target = c_a_rms**2 * h**2 * (J_f**2 + J_b**2) / (2 * tau_c**2)
+            lo, hi = 0.0, 10.0
+            for _ in range(200):
+                mid = 0.5 * (lo + hi)
+                lo, hi = (mid, hi) if mid**3 * (mid + d) < target else (lo, mid)
+            expected = max(c_v * K * h / motor.rated_speed, math.sqrt(c_a * h * J_f / tau_p),
+                           hi, (c_j * h / jerk) ** (1 / 3))
+            found = model.durations(np.array([a]), np.array([i]), np.array([b]))[0]
+            assert found == pytest.approx(expected, rel=1e-13)
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_the_model_is_the_engines_T_min_of_each_fixed_double_s(seed):
+    """As for the trapezoid, with the double S's ramps (the torque's square over a
+    uniform sweep of the acceleration, the power flow turning inside a ramp where the
+    friction or the constant load outweighs the inertia) and the load's jerk."""
+    design = random_design(seed)
+    design = replace(design, limits=replace(design.limits,
+                                            max_jerk=(None, 3e3, 3e4)[seed % 3]))
+    candidates = candidates_of(design)
+    model = phase_model(design, candidates, DoubleS)
+    assert model is not None
+    rows = np.arange(len(MOTORS))
+    for a, b in ((0.1, 0.1), (0.25, 0.4), (1 / 3, 0.25), (0.45, 0.05), (0.5, 0.5)):
+        engine = -score_law(DoubleS(alpha=a, beta=b), design, candidates)[:, 0]
+        mine = model.durations(np.full(len(rows), a), rows, np.full(len(rows), b))
+        assert np.array_equal(np.isfinite(engine), np.isfinite(mine))
+        ok = np.isfinite(engine)
+        assert np.allclose(mine[ok], engine[ok], rtol=2 * TOLERANCE, atol=0.0)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_the_searched_double_s_is_no_slower_than_a_dense_grid_of_fixed_ones(seed):
+    """The auto double S (alpha and beta, a jerk limit) against the engine's T_min of
+    13 x 13 fixed double S: never slower, to the engine's tolerance."""
+    design = random_design(seed)
+    design = replace(design, laws=("double_s(alpha=auto, beta=auto)",),
+                     motors=MOTORS[2:4],
+                     limits=replace(design.limits, max_jerk=(3e3, 3e4, None)[seed]))
+    trusted = trusted_phase_model(DoubleS, {}, ["alpha", "beta"],
+                                  {"alpha": (1e-3, 0.5), "beta": (1e-3, 0.5)}, design,
+                                  candidates_of(design))
+    assert trusted is not None and trusted.trusted.all()
+    auto = size_design(design).results
+    grid = np.linspace(0.02, 0.5, 13).tolist()
+    fixed = size_design(replace(design, laws=tuple(
+        f"double_s(alpha={a!r}, beta={b!r})" for a in grid for b in grid))).results
+    for motor in design.motors:
+        mine = [r for r in auto if r.motor == motor.id]
+        dense = [r.duration for r in fixed if r.motor == motor.id and r.feasible]
+        assert len(mine) == 1 and dense and mine[0].feasible
+        assert mine[0].duration <= min(dense) * (1 + 2 * TOLERANCE)

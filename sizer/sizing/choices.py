@@ -37,10 +37,10 @@ Searched to tolerance, for the cases without a closed form (:func:`search_shape`
 damping, efficiency, curved envelopes, stage limits, a given duration (the largest smallest
 margin) or other families: the score of a shape (-T_min in minimize mode, else the slacks of
 all checks smallest first, compared lexicographically) is computed by the engine's own
-checks for each motor; the trapezoid's T_min in minimize mode, where nothing depends on the
-speed (no damping, rectangular regions), by its closed forms with constant torques in each
-phase through any efficiencies (sizer.sizing.optimal_shapes: for the motors where they agree
-with the engine's T_min of one trapezoid). One parameter (:func:`search_1d`): a coarse grid
+checks for each motor; the T_min of a trapezoid or a double S in minimize mode, where
+nothing depends on the speed (no damping, rectangular regions), by closed forms through any
+efficiencies (sizer.sizing.optimal_shapes.trusted_phase_model: for the motors where they
+agree with the engine's T_min of one such law). One parameter (:func:`search_1d`): a coarse grid
 brackets each motor's best point (T_min and the margins are max/min of quasi-convex/quasi-concave
 bounds, unimodal on the bracket), then each step tries where the two bounds cross (read
 from the lines through the points either side: the optimum is mostly such a crossing)
@@ -132,14 +132,14 @@ def search_shape(family: type[MotionLaw], fixed: dict[str, float],
 
     def score_rows(points: list[np.ndarray], rows: np.ndarray) -> Scores:
         """The scores of the motors ``rows`` at ``points`` (an array per parameter, a
-        value per row; nan: none): the trapezoid's closed forms where they hold and
+        value per row; nan: none): the law's closed forms where they hold and
         agree with the engine (sizer.sizing.optimal_shapes), else the engine's."""
         if phases is None:
             return evaluate_points(family, fixed, names, points, design, motors.take(rows))
         out = np.empty((len(rows), 1))
         mine = phases.trusted[rows]
         if mine.any():
-            T = phases.model.durations(points[0][mine], rows[mine])
+            T = phases.durations([p[mine] for p in points], rows[mine])
             out[mine, 0] = np.where(np.isfinite(T), -T, -np.inf)
         if not mine.all():
             out[~mine] = evaluate_points(family, fixed, names, [p[~mine] for p in points],

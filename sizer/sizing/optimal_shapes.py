@@ -1,6 +1,8 @@
 """Which shape of a family is time-optimal, in closed form: the trapezoid and the double S in
 the book's case, exactly (sec. 3.2-3.4, 5.2, 6.2), for all motors at once
-(:func:`exact_time_optimal`, used by sizer.sizing.choices.choose_shape).
+(:func:`exact_time_optimal`, used by sizer.sizing.choices.choose_shape); and how short
+each shape of theirs can be through lossy drives, the score of the search elsewhere
+(:func:`trusted_phase_model`, last section).
 
 With rectangular regions, an ideal transmission of plain stages and no damping, T_min of a
 shape is the largest of the bounds of eq. (6.2), each a closed form in one coefficient:
@@ -40,38 +42,45 @@ sizer.numerics.bracket_search (steps where two pieces cross or to a parabola's v
 safeguarded like golden section). Where T_R does not bind and the optimum lies in the
 ranges, it is the book's closed form (sec. 3.4.3).
 
-The trapezoid's T_min at each alpha where its torques are constant in each phase, through
-any efficiencies (:func:`trusted_phase_model`, the shape search's score where it holds:
-sizer.sizing.choices.search_shape). A trapezoid's normalized acceleration is C_a, 0 and
--C_a in its three phases (sec. 3.2); with no damping anywhere (motor, stages, load), plain
-stages and rectangular regions read at the peak speed, the motor torque of a move is the
-largest of the drive's linear functions P a_l + C of the load's acceleration
+The T_min of a trapezoid or a double S at any shape where nothing depends on the speed,
+through any efficiencies (:func:`trusted_phase_model`, the shape search's score where it
+holds: sizer.sizing.choices.search_shape). With no damping anywhere (motor, stages, load),
+plain stages and rectangular regions read at the peak speed, the motor torque of a move is
+the largest of the drive's linear functions P a_l + C of the load's acceleration alone
 (Drive.linear_pieces: one per choice of power-flow direction in each stage, P with the
-rotor's inertia), constant in each phase. With x = C_a h / T^2 (the load's acceleration in
-the outer phases) the checks of T_min (sec. 6.1.1) are closed forms of T per motor:
+rotor's inertia): a function of the acceleration, whose square integrates over the move
+from how long the law spends at each acceleration. The trapezoid's normalized
+acceleration is C_a, 0 and -C_a (sec. 3.2): plateaus alpha each, the cruise 1 - 2 alpha;
+the double S's (sec. 3.4) plateaus alpha (1 - 2 beta) each, the cruise, and four ramps of
+alpha beta each sweeping [0, +-C_a] uniformly. With x = C_a h / T^2 (the load's
+acceleration on the plateaus) the checks of T_min (sec. 6.1.1) are closed forms of T per
+motor:
 
     speed, thermal speed, load speed   T >= C_v S, S the largest of K h / v' (each region's
                                        top speed with its margin) and h / v_load
-    peak    |torque| <= tau_p' in every phase of every move and in the dwells:
-            x <= min_k (tau_p' - C_k) / P_k (acceleration phase),
-            x <= max_k (tau_p' + C_k) / P_k (deceleration), |max_k C_k| <= tau_p' (cruise)
-    load acceleration   x <= a_max
-    RMS     T sum_moves [alpha (t_a^2 + t_d^2) + (1 - 2 alpha) t_c^2] + n d H^2
-                <= n tau_c'^2 (T + d)
+    peak    |torque| <= tau_p' at every acceleration of every move and in the dwells (the
+            torque is convex in it: its extremes at +-x),
+            x <= min_k (tau_p' - C_k) / P_k, x <= max_k (tau_p' + C_k) / P_k,
+            |max_k C_k| <= tau_p' (cruise)
+    load acceleration and jerk   x <= a_max, T >= cbrt(C_j h / j_max)
+    RMS     T sum_moves [plateaus (t_+^2 + t_-^2) + cruise t_0^2 + ramps (S_+ + S_-)]
+                + n d H^2 <= n tau_c'^2 (T + d)
 
-(t_a, t_c, t_d a move's phase torques, n moves, d the dwell after each, H the torque held
-there: sizer.sizing.move.CycleCalculator.evaluate's sums): T_min is the largest of the
-first bounds, or past them the smallest T where the RMS holds (a bracketed root from a
-point where it fails to one where it holds, found by doubling). For the motors where one
-trapezoid's T_min sized by the engine (sizer.sizing.shortest_duration.minimum_duration) is
-the model's to AGREEMENT, with no check the model does not know (a drive's currents, a
-stage's ratings...), the search scores by the model; the others by the engine.
+(t_+, t_0, t_- a move's torques at x, 0, -x, S_+- their mean squares over the ramps'
+sweeps, exact on the polyline of the largest function; n moves, d the dwell after each,
+H the torque held there: sizer.sizing.move.CycleCalculator.evaluate's sums): T_min is
+the largest of the first bounds, or past them the smallest T where the RMS holds
+(Newton's method from the other bounds, safeguarded by the bracket of the durations
+tried). For the motors where one law's T_min sized by the engine
+(sizer.sizing.shortest_duration.minimum_duration) is the model's to AGREEMENT, with no
+check the model does not know (a drive's currents, a stage's ratings...), the search
+scores by the model; the others by the engine.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -80,7 +89,6 @@ from sizer.laws.piecewise_polynomial import DoubleS, Trapezoidal
 from sizer.model.domain import Design
 from sizer.numerics.arrays import sorted_unique
 from sizer.numerics.bracket_search import from_grid
-from sizer.numerics.roots import bracketed_root
 from sizer.sizing.candidates import Candidates
 from sizer.sizing.checks import CheckName
 from sizer.sizing.cycle import single_task
@@ -611,18 +619,20 @@ by the model."""
 
 MODELLED = frozenset({CheckName.SPEED, CheckName.PEAK, CheckName.RMS,
                       CheckName.THERMAL_SPEED, CheckName.INERTIA_RATIO,
-                      CheckName.LOAD_SPEED, CheckName.ACCELERATION})
-"""The checks the model knows (the inertia ratio does not depend on alpha: where it fails
-the engine's T_min is inf at every alpha, and the model does not agree)."""
+                      CheckName.LOAD_SPEED, CheckName.ACCELERATION, CheckName.JERK})
+"""The checks the model knows (the inertia ratio does not depend on the shape: where it
+fails the engine's T_min is inf at every shape, and the model does not agree)."""
 
 DOUBLINGS = 64
 """Doublings of T past the other bounds looking for a duration the RMS allows."""
+NEWTON_STEPS = 200
+"""Most steps of the search for the RMS crossing (Newton's: about six)."""
 
 
 @dataclass(frozen=True)
 class PhaseTorques:
-    """Per motor (arrays (n,)) the figures of the model (module docs) for a trapezoid of
-    stroke h, ``moves`` moves each followed by ``dwell``."""
+    """Per motor (arrays (n,)) the figures of the model (module docs) for a trapezoid or a
+    double S of stroke h, ``moves`` moves each followed by ``dwell``."""
 
     h: float
     moves: int
@@ -632,80 +642,162 @@ class PhaseTorques:
     acceleration: np.ndarray
     """The largest load acceleration in the outer phases the peaks and the load's limit
     allow (x of the module docs); <= 0 where none."""
-    slopes: tuple[np.ndarray, ...]
-    """Per move, P_k (pieces, n): the motor torque per unit load acceleration."""
-    offsets: tuple[np.ndarray, ...]
-    """Per move, C_k (pieces, n): the motor torque at rest in the motion's direction."""
+    jerk: float
+    """S_J = h / j_max of T >= cbrt(C_j S_J); 0 without a jerk limit."""
+    slopes: np.ndarray
+    """P_k (moves, pieces, n): the motor torque per unit load acceleration."""
+    offsets: np.ndarray
+    """C_k (moves, pieces, n): the motor torque at rest in the motion's direction."""
     held: np.ndarray
     """n d H^2: the dwells' share of the integral of the squared torque."""
     rating: np.ndarray
     """tau_c'^2, the squared continuous torque with its margin."""
     feasible: np.ndarray
-    """False where no alpha passes (the cruise or the hold above the peak limit)."""
+    """False where no shape passes (the cruise or the hold above the peak limit)."""
 
-    def durations(self, alpha: np.ndarray, rows: np.ndarray) -> np.ndarray:
-        """T_min of the trapezoid at ``alpha`` for the motors ``rows`` (arrays of one
-        shape; inf where nothing passes, nan where alpha is nan)."""
+    def durations(self, alpha: np.ndarray, rows: np.ndarray,
+                  beta: np.ndarray | None = None) -> np.ndarray:
+        """T_min of the trapezoid at ``alpha`` (the double S at ``alpha``, ``beta``) for the
+        motors ``rows`` (arrays of one shape; inf where nothing passes, nan where a
+        parameter is nan)."""
         a = np.asarray(alpha, dtype=float)
-        c_v, c_a = 1.0 / (1.0 - a), 1.0 / (a * (1.0 - a))
+        b = np.zeros(a.shape) if beta is None else np.asarray(beta, dtype=float)
+        c_v, c_a = 1.0 / (1.0 - a), 1.0 / (a * (1.0 - a) * (1.0 - b))
         top = self.acceleration[rows]
         with np.errstate(divide="ignore", invalid="ignore"):
             T = np.maximum(c_v * self.speed[rows], np.sqrt(c_a * self.h / top))
+            if self.jerk > 0.0:
+                T = np.maximum(T, np.cbrt(c_a / (a * b) * self.jerk))
         T = np.where(self.feasible[rows] & (top > 0.0), T, np.inf)
-        fails = np.isfinite(T) & (self._rms_excess(T, a, rows) > 0.0)
+        ramps = beta is not None
+        fails = np.isfinite(T) & (self._rms_excess(T, a, b, rows, ramps) > 0.0)
         if fails.any():
             where = np.flatnonzero(fails)
-            T.flat[where] = self._rms_crossing(T.flat[where], a.flat[where],
-                                               np.broadcast_to(rows, a.shape).flat[where])
-        return np.where(np.isnan(a), np.nan, T)
+            every = np.broadcast_to(rows, a.shape)
+            T.flat[where] = self._rms_crossing(T.flat[where], a.flat[where], b.flat[where],
+                                               every.flat[where], ramps)
+        return np.where(np.isnan(a) | np.isnan(b), np.nan, T)
 
-    def _rms_excess(self, T: np.ndarray, a: np.ndarray, rows: np.ndarray) -> np.ndarray:
-        """The squared RMS torque over its limit, less one (> 0: the RMS check fails)."""
+    def _rms_excess(self, T: np.ndarray, a: np.ndarray, b: np.ndarray, rows: np.ndarray,
+                    ramps: bool = False) -> np.ndarray:
+        """The squared RMS torque over its limit, less one (> 0: the RMS check fails).
+        Per move: the plateaus at +-x (alpha (1 - 2 beta) each), the cruise (1 - 2 alpha)
+        and with ``ramps`` the double S's four ramps (alpha beta each, the torque's mean
+        square over a uniform sweep of the acceleration: :func:`_sweep_mean_square`)."""
+        return self._excess_and_slope(T, a, b, rows, ramps, False)[0]
+
+    def _excess_and_slope(self, T: np.ndarray, a: np.ndarray, b: np.ndarray,
+                          rows: np.ndarray, ramps: bool, slope: bool = True
+                          ) -> tuple[np.ndarray, np.ndarray | None]:
+        """:meth:`_rms_excess` and, with ``slope``, its derivative in T: with N = T M +
+        n d H^2 and D = n tau_c'^2 (T + d), dN/dT = M - 2 x dM/dx (x = C_a h / T^2), a
+        plateau's d(t^2)/dx = 2 t dt/dx (the slope of the line that is the torque), a
+        ramp's mean square S' = (t(x)^2 - S) / x."""
         with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
-            x = self.h / (a * (1.0 - a)) / T / T
-            total = np.zeros(np.shape(T))
-            for P, C in zip(self.slopes, self.offsets, strict=True):
-                p, c = P[:, rows], C[:, rows]
-                rise = np.max(p * x + c, axis=0)
-                fall = np.max(c - p * x, axis=0)
-                cruise = np.max(c, axis=0)
-                total = total + a * (rise * rise + fall * fall) + (1.0 - 2.0 * a) * cruise**2
-            return (T * total + self.held[rows]) / (
-                self.moves * self.rating[rows] * (T + self.dwell)) - 1.0
+            x = self.h / (a * (1.0 - a) * (1.0 - b)) / T / T
+            plateau = a * (1.0 - 2.0 * b)
+            p, c = self.slopes[:, :, rows], self.offsets[:, :, rows]
+            rising, falling = p * x + c, c - p * x  # each move's lines at +-x
+            rise, fall = np.max(rising, axis=1), np.max(falling, axis=1)
+            cruise = np.max(c, axis=1)
+            terms = plateau * (rise * rise + fall * fall) + (1.0 - 2.0 * a) * cruise**2
+            swept = None
+            if ramps:  # the four ramps of every move in one sweep: (sign, move, ...)
+                lines = p.shape[1]
+                swept = _sweep_mean_square(
+                    np.concatenate([p, -p]).swapaxes(0, 1).reshape(lines, -1),
+                    np.concatenate([c, c]).swapaxes(0, 1).reshape(lines, -1),
+                    np.broadcast_to(x, (2, *p.shape[:1], *np.shape(x))).reshape(-1))
+                swept = swept.reshape(2, *terms.shape)
+                terms = terms + 2.0 * a * b * (swept[0] + swept[1])
+            total = np.sum(terms, axis=0)
+            scale = self.moves * self.rating[rows]
+            excess = (T * total + self.held[rows]) / (scale * (T + self.dwell)) - 1.0
+            if not slope:
+                return excess, None
+            up = np.take_along_axis(p, np.argmax(rising, axis=1)[:, None], axis=1)[:, 0]
+            down = np.take_along_axis(p, np.argmax(falling, axis=1)[:, None], axis=1)[:, 0]
+            d_terms = 2.0 * plateau * (rise * up - fall * down)
+            if swept is not None:
+                d_terms = d_terms + 2.0 * a * b * (rise * rise - swept[0]
+                                                   + fall * fall - swept[1]) / x
+            d_numerator = total - 2.0 * x * np.sum(d_terms, axis=0)
+            return excess, (d_numerator - (excess + 1.0) * scale) / (scale * (T + self.dwell))
 
-    def _rms_crossing(self, low: np.ndarray, a: np.ndarray, rows: np.ndarray) -> np.ndarray:
-        """The smallest T > low (where the RMS fails) at which it holds: doubling to a
-        T where it holds, then the root between (inf where none is found)."""
-        high = low.copy()
-        f_high = self._rms_excess(high, a, rows)
-        for _ in range(DOUBLINGS):
-            open_ = f_high > 0.0
-            if not open_.any():
-                break
-            high = np.where(open_, 2.0 * high, high)
-            f_high = np.where(open_, self._rms_excess(high, a, rows), f_high)
-        found = ~(f_high > 0.0)
-        start = np.where(high > low, 0.5 * high, low)
-        start = np.maximum(start, low)
-        f_start = self._rms_excess(start, a, rows)
+    def _rms_crossing(self, low: np.ndarray, a: np.ndarray, b: np.ndarray, rows: np.ndarray,
+                      ramps: bool) -> np.ndarray:
+        """The smallest T > low (where the RMS fails) at which it holds, to rounding:
+        Newton's method on the excess from ``low``, kept inside the bracket of the
+        durations tried (doubling until one holds where a step would leave it), stepping
+        at least an ulp up from a failing duration; inf where no duration up to
+        2^DOUBLINGS times ``low`` holds."""
+        T, lo = low.copy(), low.copy()
+        hi = np.full(len(low), np.inf)
         out = np.full(len(low), np.inf)
-        if found.any():
-            at = np.flatnonzero(found)
-            _, feasible = bracketed_root(self._rms_excess, start[at], high[at], f_start[at],
-                                         f_high[at], args=(a[at], rows[at]), bracket=True)
-            out[at] = feasible
+        index = np.arange(len(low))
+        ceiling = low * 2.0**DOUBLINGS
+        for _ in range(NEWTON_STEPS):
+            if not len(index):
+                break
+            f, df = self._excess_and_slope(T, a[index], b[index], rows[index], ramps)
+            assert df is not None
+            holds = f <= 0.0
+            hi[index] = np.where(holds, T, hi[index])
+            lo[index] = np.where(holds, lo[index], T)
+            with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+                step = T - f / df
+            below, h = lo[index], hi[index]
+            # from a failing duration at least an ulp up (its step may round to it)
+            step = np.where(holds, step, np.maximum(step, np.nextafter(T, np.inf)))
+            inside = np.isfinite(step) & (step > below) & (step < h)
+            nxt = np.where(inside, step, np.where(np.isfinite(h), 0.5 * (below + h), 2.0 * T))
+            done = (h - below <= 4.0 * np.spacing(h)) | (holds & (np.abs(step - T)
+                                                                  <= 4.0 * np.spacing(T)))
+            out[index[done]] = h[done]
+            lost = ~done & (nxt > ceiling[index])
+            keep = ~(done | lost)
+            index, T = index[keep], nxt[keep]
+        out[index] = hi[index]  # (steps spent: the shortest duration found to hold)
         return out
 
 
-def phase_model(design: Design, candidates: Candidates) -> PhaseTorques | None:
+def _sweep_mean_square(p: np.ndarray, c: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """(1/x) int_0^x (max_k p_k s + c_k)^2 ds per element (p, c: (lines, m), x: (m,)):
+    the mean square of the torque while the acceleration sweeps [0, x] uniformly (a ramp
+    of the double S). The largest of the lines is a convex polyline whose corners are
+    among the lines' crossings: on each stretch between the sorted crossings inside
+    (0, x) one line, whose square integrates exactly ((y0^2 + y0 y1 + y1^2) w / 3)."""
+    shape, lines = np.shape(x), p.shape[0]
+    p, c, x = p.reshape(lines, -1), c.reshape(lines, -1), np.ravel(x)
+    if lines == 1:  # one line: no corner
+        y0, y1 = c[0], p[0] * x + c[0]
+        return ((y0 * y0 + y0 * y1 + y1 * y1) / 3.0).reshape(shape)
+    ends = [np.zeros(x.shape), x]
+    for i in range(lines):
+        for j in range(i + 1, lines):
+            with np.errstate(divide="ignore", invalid="ignore"):
+                s = (c[j] - c[i]) / (p[i] - p[j])
+            ends.append(np.where((s > 0.0) & (s < x), s, 0.0))
+    cuts = np.sort(np.stack(ends), axis=0)
+    lo, hi = cuts[:-1], cuts[1:]
+    pick = np.argmax(p[:, None] * (0.5 * (lo + hi)) + c[:, None], axis=0)
+    column = np.arange(x.size)
+    slope, level = p[pick, column], c[pick, column]
+    y0, y1 = slope * lo + level, slope * hi + level
+    return (np.sum((hi - lo) * (y0 * y0 + y0 * y1 + y1 * y1), axis=0) / (3.0 * x)).reshape(shape)
+
+
+def phase_model(design: Design, candidates: Candidates,
+                family: type[MotionLaw] = Trapezoidal) -> PhaseTorques | None:
     """The model of the module docs for these candidates, or None where its case does not
-    hold (damping, stage ratings, a jerk limit, another thermal rule...). The motors'
-    regions are taken as flat: :func:`trusted_phase_model` keeps the motors where they
-    are."""
+    hold (damping, stage ratings, another thermal rule, a jerk limit for the
+    trapezoid...). The motors' regions are taken as flat: :func:`trusted_phase_model`
+    keeps the motors where they are."""
     limits, motors, drive = design.limits, candidates.motors, candidates.drive
     cycle = design.machine_cycle
-    if not cycle.minimize or design.transmission.linkage is not None \
-            or design.load.position_dependent or limits.max_jerk is not None \
+    if family not in (Trapezoidal, DoubleS) or not cycle.minimize \
+            or design.transmission.linkage is not None or design.load.position_dependent \
+            or (family is Trapezoidal and limits.max_jerk is not None) \
             or limits.thermal_speed != "max" or not plain_stages(drive) \
             or not drive.figures.none("damping") or not bool(np.all(motors.damping == 0.0)):
         return None
@@ -747,44 +839,67 @@ def phase_model(design: Design, candidates: Candidates) -> PhaseTorques | None:
     if task.dwell > 0.0:
         feasible &= hold <= motors.intermittent.limit(np.zeros(n)) * grip
     rating = np.square(motors.continuous.torques[:, 0] * grip)
-    return PhaseTorques(h, moves, task.dwell, speed, top, tuple(slopes), tuple(offsets),
-                        moves * task.dwell * hold * hold, rating, feasible)
+    jerk = 0.0 if limits.max_jerk is None else h / limits.max_jerk
+    if len({len(P) for P in slopes}) > 1:
+        return None  # (the directions' functions are as many: Drive.linear_pieces)
+    return PhaseTorques(h, moves, task.dwell, speed, top, jerk, np.stack(slopes),
+                        np.stack(offsets), moves * task.dwell * hold * hold, rating, feasible)
 
 
 @dataclass(frozen=True)
 class TrustedModel:
-    """The model and, per motor, whether it scores it (:func:`trusted_phase_model`)."""
+    """The model, per motor whether it scores it, and the law's parameters: ``names`` the
+    searched ones in the search's order, ``fixed`` the others (:func:`trusted_phase_model`)."""
 
     model: PhaseTorques
     trusted: np.ndarray
+    names: tuple[str, ...]
+    fixed: dict[str, float]
+    double_s: bool
+
+    def durations(self, points: list[np.ndarray], rows: np.ndarray) -> np.ndarray:
+        """T_min of the motors ``rows`` at ``points`` (an array per searched parameter)."""
+        values = dict(self.fixed) | dict(zip(self.names, points, strict=True))
+        shape = np.shape(points[0])
+        alpha = np.broadcast_to(np.asarray(values["alpha"], dtype=float), shape)
+        if not self.double_s:
+            return self.model.durations(alpha, rows)
+        beta = np.broadcast_to(np.asarray(values["beta"], dtype=float), shape)
+        return self.model.durations(alpha, rows, beta)
 
 
-def trusted_phase_model(family: type, fixed: dict[str, float], names: list[str],
+def trusted_phase_model(family: type[MotionLaw], fixed: dict[str, float], names: list[str],
                         ranges: dict[str, tuple[float, float]], design: Design,
                         candidates: Candidates) -> TrustedModel | None:
-    """The model for the search of ``trapezoidal(alpha=auto)`` (the symmetric law) over
-    these candidates, with the motors it scores: those with rectangular regions whose
-    T_min of the trapezoid at the middle of the range, sized by the engine, is the
-    model's to AGREEMENT with no check the model does not know (both inf counts as
-    agreeing). None where the case does not hold or no motor agrees."""
-    if family is not Trapezoidal or names != ["alpha"] or fixed:
+    """The model for the search of a symmetric trapezoid's alpha or a symmetric double S's
+    alpha and beta over these candidates, with the motors it scores: those with
+    rectangular regions whose T_min of the law at the middle of the ranges, sized by the
+    engine, is the model's to AGREEMENT with no check the model does not know (both inf
+    counts as agreeing). None where the case does not hold or no motor agrees."""
+    shape = {"alpha"} if family is Trapezoidal else {"alpha", "beta"}
+    if family not in (Trapezoidal, DoubleS) or set(names) | set(fixed) > shape \
+            or not set(names) <= shape:
         return None
-    model = phase_model(design, candidates)
+    model = phase_model(design, candidates, family)
     if model is None:
         return None
-    low, high = ranges["alpha"]
-    alpha = 0.5 * (low + high)
+    given = {p.name: float(p.default) for p in family.parameters
+             if p.name in shape and p.default is not None} | fixed
+    middle = given | {name: 0.5 * sum(ranges[name]) for name in names}
     n = len(candidates)
+    law = family(**middle)
     calculator = CycleCalculator(None, single_task(design), candidates.drive,
-                                 candidates.motors, design.limits.thermal_speed,
-                                 law=Trapezoidal(alpha=alpha))
+                                 candidates.motors, design.limits.thermal_speed, law=law)
     solution = minimum_duration(calculator, design.limits)
     if not {check.name for check in solution.checks} <= MODELLED:
         return None
     engine = np.where(solution.feasible, solution.duration, np.inf)
-    mine = model.durations(np.full(n, alpha), np.arange(n))
+    trusted = TrustedModel(model, np.ones(n, dtype=bool), tuple(names),
+                           {k: v for k, v in given.items() if k not in names},
+                           family is DoubleS)
+    mine = trusted.durations([np.full(n, middle[name]) for name in names], np.arange(n))
     with np.errstate(invalid="ignore"):
         agree = np.where(np.isinf(engine), np.isinf(mine),
                          np.abs(mine - engine) <= AGREEMENT * engine)
-    trusted = agree & candidates.motors.is_rectangular
-    return TrustedModel(model, trusted) if trusted.any() else None
+    agree &= candidates.motors.is_rectangular
+    return replace(trusted, trusted=agree) if agree.any() else None
