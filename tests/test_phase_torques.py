@@ -225,3 +225,20 @@ def test_the_searched_double_s_is_no_slower_than_a_dense_grid_of_fixed_ones(seed
         dense = [r.duration for r in fixed if r.motor == motor.id and r.feasible]
         assert len(mine) == 1 and dense and mine[0].feasible
         assert mine[0].duration <= min(dense) * (1 + 2 * TOLERANCE)
+
+
+def test_a_motor_failing_a_check_of_no_shape_is_left_to_the_engine():
+    """The inertia ratio does not depend on the shape: a motor that fails it is infeasible
+    at every alpha for the engine, not for the model, so the model does not score it."""
+    design = random_design(3)
+    candidates = candidates_of(design)
+    driven = candidates.drive.inertia_ratio_numerator() / candidates.motors.inertia
+    limit = float(np.median(driven))
+    limited = replace(design, limits=replace(design.limits, inertia_ratio=limit))
+    trusted = trusted_phase_model(Trapezoidal, {}, ["alpha"], {"alpha": (1e-3, 0.5)}, limited,
+                                  candidates_of(limited))
+    assert trusted is not None
+    assert trusted.trusted.tolist() == (driven <= limit).tolist()
+    auto = size_design(limited).results
+    assert sorted(r.motor for r in auto if r.feasible) == sorted(
+        m.id for m, ok in zip(MOTORS, driven <= limit, strict=True) if ok)
