@@ -13,8 +13,10 @@ trapezoid and the double S take the closed forms with constant torques
 (sizer.sizing.optimal_shapes.exact_time_optimal; fixed laws likewise,
 sizer.sizing.shortest_duration.closed_form_duration); fifteen_segments has none and is
 searched (sizer.sizing.choices.search_shape, every point a T_min search). The same rows
-with a gearbox efficiency of 0.9 (power flow: the motor torque is no longer linear, no
-closed form) are searched throughout: the gap that remains.
+with a gearbox efficiency of 0.9 (power flow: the motor torque is no longer linear) are
+searched: the trapezoid and the double S on closed forms of their T_min at each shape
+(sizer.sizing.optimal_shapes.trusted_phase_model: no damping, their torques functions of
+the acceleration alone), the others with the engine's T_min at every point.
 
 The book's case of eq. (6.2) (rectangular regions, purely inertial load, ideal gearbox),
 minimize mode, synthetic motors (a geometric family of ratings, NOT datasheet figures),
