@@ -19,6 +19,7 @@ from sizer.sizing.candidates import Candidates, MotorArrays
 from sizer.sizing.checks import TOLERANCE
 from sizer.sizing.choices import score_law
 from sizer.sizing.optimal_shapes import phase_model, trusted_phase_model
+from tests.dense_shapes import assert_no_slower_than_fixed
 
 MOTORS = tuple(Motor(f"m{i}", inertia=2e-5 * t**1.3, continuous_torque=t, peak_torque=3 * t,
                      rated_speed=3000 * math.pi / 30)
@@ -113,19 +114,9 @@ def test_the_searched_optimum_is_no_slower_than_a_dense_grid_of_fixed_trapezoids
     trusted = trusted_phase_model(Trapezoidal, {}, ["alpha"], {"alpha": (1e-3, 0.5)}, design,
                                   candidates_of(design))
     assert trusted is not None and trusted.trusted.all()
-    auto = size_design(design).results
     grid = np.linspace(0.02, 0.5, 97).tolist()
-    fixed = size_design(replace(design, laws=tuple(f"trapezoidal(alpha={a!r})"
-                                                   for a in grid))).results
-    for motor in MOTORS:
-        mine = [r for r in auto if r.motor == motor.id]
-        dense = [r.duration for r in fixed if r.motor == motor.id and r.feasible]
-        assert len(mine) == 1
-        if not dense:
-            assert not mine[0].feasible
-            continue
-        assert mine[0].feasible
-        assert mine[0].duration <= min(dense) * (1 + 2 * TOLERANCE)
+    assert_no_slower_than_fixed(design, [f"trapezoidal(alpha={a!r})" for a in grid],
+                                2 * TOLERANCE)
 
 
 def test_outside_its_case_the_engine_scores_the_search():
@@ -216,15 +207,9 @@ def test_the_searched_double_s_is_no_slower_than_a_dense_grid_of_fixed_ones(seed
                                   {"alpha": (1e-3, 0.5), "beta": (1e-3, 0.5)}, design,
                                   candidates_of(design))
     assert trusted is not None and trusted.trusted.all()
-    auto = size_design(design).results
     grid = np.linspace(0.02, 0.5, 13).tolist()
-    fixed = size_design(replace(design, laws=tuple(
-        f"double_s(alpha={a!r}, beta={b!r})" for a in grid for b in grid))).results
-    for motor in design.motors:
-        mine = [r for r in auto if r.motor == motor.id]
-        dense = [r.duration for r in fixed if r.motor == motor.id and r.feasible]
-        assert len(mine) == 1 and dense and mine[0].feasible
-        assert mine[0].duration <= min(dense) * (1 + 2 * TOLERANCE)
+    assert_no_slower_than_fixed(design, [f"double_s(alpha={a!r}, beta={b!r})"
+                                         for a in grid for b in grid], 2 * TOLERANCE)
 
 
 def test_a_motor_failing_a_check_of_no_shape_is_left_to_the_engine():

@@ -13,9 +13,9 @@ import pytest
 from sizer.laws.base import Parameter
 from sizer.laws.piecewise_polynomial import Trapezoidal
 from sizer.model import Design, Limits, Load, Motor, Stage, Task, Transmission
-from sizer.sizing import size_design
 from sizer.sizing.candidates import Candidates, MotorArrays
 from sizer.sizing.choices import TOLERANCE, _law_rows, score_law, search_1d
+from tests.dense_shapes import assert_no_slower_than_fixed
 
 ALPHA = Parameter("alpha", None, 0.0, 0.5)
 
@@ -219,19 +219,11 @@ def test_each_candidates_own_law_sized_as_rows_of_one_model_is_each_law_alone(
 
 @pytest.mark.parametrize("seed", [1, 2, 3])
 def test_the_searched_optimum_is_no_slower_than_a_dense_grid_of_fixed_shapes(seed):
-    """Random designs through a gearbox of efficiency 0.9 (no closed form): the auto
-    trapezoid's T_min against the engine's T_min of 97 fixed trapezoids."""
-    motors = MOTORS[1:3]
-    design = efficiency_design(motors, seed=seed)
-    auto = size_design(design).results
+    """Random designs through a gearbox of efficiency 0.9 with damping (no closed form: the
+    engine scores every point, sizer.sizing.optimal_shapes.trusted_phase_model leaves the
+    damped case to it): the auto trapezoid's T_min against the engine's T_min of 97 fixed
+    trapezoids."""
+    design = efficiency_design(MOTORS[1:3], seed=seed)
+    design = replace(design, load=replace(design.load, damping=0.01))
     grid = np.linspace(0.02, 0.5, 97).tolist()
-    fixed = size_design(replace(design, laws=tuple(f"trapezoidal(alpha={a!r})"
-                                                   for a in grid))).results
-    for motor in motors:
-        mine = [r for r in auto if r.motor == motor.id]
-        dense = [r.duration for r in fixed if r.motor == motor.id and r.feasible]
-        assert len(mine) == 1
-        if not dense:
-            continue
-        assert mine[0].feasible
-        assert mine[0].duration <= min(dense) * (1 + 1e-12)
+    assert_no_slower_than_fixed(design, [f"trapezoidal(alpha={a!r})" for a in grid], 1e-12)
