@@ -40,9 +40,10 @@ all checks smallest first, compared lexicographically) is computed by the engine
 checks for each motor; the T_min of a trapezoid or a double S in minimize mode, where
 nothing depends on the speed (no damping, rectangular regions), by closed forms through any
 efficiencies (sizer.sizing.optimal_shapes.trusted_phase_model: for the motors where they
-agree with the engine's T_min of one such law). One parameter (:func:`search_1d`): a coarse grid
-brackets each motor's best point (T_min and the margins are max/min of quasi-convex/quasi-concave
-bounds, unimodal on the bracket), then each step tries where the two bounds cross (read
+agree with the engine's T_min of one such law). One parameter (:func:`search_1d`): a
+coarse grid brackets each motor's best point (T_min and the margins are max/min of
+quasi-convex/quasi-concave bounds, unimodal on the bracket), then each step tries where
+the two bounds cross (read
 from the lines through the points either side: the optimum is mostly such a crossing)
 or the vertex of a parabola (a smooth optimum of one bound), whichever foretold the
 other points better, a golden-section-like point where neither lies inside or the

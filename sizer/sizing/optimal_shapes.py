@@ -827,21 +827,21 @@ def phase_model(design: Design, candidates: Candidates,
         if any(bool(np.any(np.asarray(B) != 0.0)) for _, B, _ in shaft):
             return None  # a torque of the speed: not constant in a phase
         P = np.stack([per_motor(A) + rotor for A, _, _ in shaft])
-        C = np.stack([per_motor(C) for _, _, C in shaft])
+        C = np.stack([per_motor(const) for _, _, const in shaft])
         with np.errstate(divide="ignore", invalid="ignore"):
             top = np.minimum(top, np.minimum(np.min((peak - C) / P, axis=0),
                                              np.max((peak + C) / P, axis=0)))
         feasible &= np.abs(np.max(C, axis=0)) <= peak
         slopes.append(P)
         offsets.append(C)
+    if len({len(P) for P in slopes}) > 1:
+        return None  # (the directions' functions are as many: Drive.linear_pieces)
     moves = len(calculator.directions)
     hold = per_motor(drive.holding_torques()[0])
     if task.dwell > 0.0:
         feasible &= hold <= motors.intermittent.limit(np.zeros(n)) * grip
     rating = np.square(motors.continuous.torques[:, 0] * grip)
     jerk = 0.0 if limits.max_jerk is None else h / limits.max_jerk
-    if len({len(P) for P in slopes}) > 1:
-        return None  # (the directions' functions are as many: Drive.linear_pieces)
     return PhaseTorques(h, moves, task.dwell, speed, top, jerk, np.stack(slopes),
                         np.stack(offsets), moves * task.dwell * hold * hold, rating, feasible)
 
@@ -877,9 +877,8 @@ def trusted_phase_model(family: type[MotionLaw], fixed: dict[str, float], names:
     engine, is the model's to AGREEMENT with no check the model does not know (both inf
     counts as agreeing). None where the case does not hold or no motor agrees."""
     shape = {"alpha"} if family is Trapezoidal else {"alpha", "beta"}
-    if family not in (Trapezoidal, DoubleS) or set(names) | set(fixed) > shape \
-            or not set(names) <= shape:
-        return None
+    if family not in (Trapezoidal, DoubleS) or not set(names) | set(fixed) <= shape:
+        return None  # (alpha_d, beta_d: an asymmetric law)
     model = phase_model(design, candidates, family)
     if model is None:
         return None
