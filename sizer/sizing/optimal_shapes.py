@@ -47,10 +47,11 @@ through any efficiencies (:func:`trusted_phase_model`, the shape search's score 
 holds: sizer.sizing.choices.search_shape). With no damping anywhere (motor, stages, load),
 plain stages and rectangular regions read at the peak speed, the motor torque of a move is
 the largest of the drive's linear functions P a_l + C of the load's acceleration alone
-(Drive.linear_pieces: one per choice of power-flow direction in each stage, P with the
-rotor's inertia): a function of the acceleration, whose square integrates over the move
-from how long the law spends at each acceleration. The trapezoid's normalized
-acceleration is C_a, 0 and -C_a (sec. 3.2): plateaus alpha each, the cruise 1 - 2 alpha;
+(the engine's, CycleCalculator.channel_terms: one per choice of power-flow direction in
+each stage, P with the rotor's inertia): a function of the acceleration, whose square
+integrates over the move from how long the law spends at each acceleration. The
+trapezoid's normalized acceleration is C_a, 0 and -C_a (sec. 3.2): plateaus alpha each,
+the cruise 1 - 2 alpha;
 the double S's (sec. 3.4) plateaus alpha (1 - 2 beta) each, the cruise, and four ramps of
 alpha beta each sweeping [0, +-C_a] uniformly. With x = C_a h / T^2 (the load's
 acceleration on the plateaus) the checks of T_min (sec. 6.1.1) are closed forms of T per
@@ -92,7 +93,7 @@ from sizer.numerics.bracket_search import from_grid
 from sizer.sizing.candidates import Candidates
 from sizer.sizing.checks import CheckName
 from sizer.sizing.cycle import single_task
-from sizer.sizing.move import CycleCalculator
+from sizer.sizing.move import CycleCalculator, MoveScales
 from sizer.sizing.shortest_duration import (
     DurationBounds,
     beyond_flat_part,
@@ -798,8 +799,7 @@ def phase_model(design: Design, candidates: Candidates,
     if family not in (Trapezoidal, DoubleS) or not cycle.minimize \
             or design.transmission.linkage is not None or design.load.position_dependent \
             or (family is Trapezoidal and limits.max_jerk is not None) \
-            or limits.thermal_speed != "max" or not plain_stages(drive) \
-            or not drive.figures.none("damping") or not bool(np.all(motors.damping == 0.0)):
+            or limits.thermal_speed != "max" or not plain_stages(drive):
         return None
     task = single_task(design)
     calculator = CycleCalculator(None, task, drive, motors, limits.thermal_speed)
@@ -819,15 +819,16 @@ def phase_model(design: Design, candidates: Candidates,
             speed = np.maximum(speed, h / limits.max_speed)
     top = np.full(n, np.inf) if limits.max_acceleration is None \
         else np.full(n, limits.max_acceleration)
-    rotor = motors.inertia * K
     slopes, offsets = [], []
     feasible = np.ones(n, dtype=bool)
+    unit = np.ones(n)
     for direction in calculator.directions:
-        shaft, _ = drive.linear_pieces(float(direction))
-        if any(bool(np.any(np.asarray(B) != 0.0)) for _, B, _ in shaft):
-            return None  # a torque of the speed: not constant in a phase
-        P = np.stack([per_motor(A) + rotor for A, _, _ in shaft])
-        C = np.stack([per_motor(const) for _, _, const in shaft])
+        # the motor's functions per unit load acceleration and speed (the engine's own)
+        motor = calculator.channel_terms(MoveScales(unit, unit, float(direction)))[0]
+        if any(bool(np.any(Q != 0.0)) for _, Q, _ in motor):
+            return None  # damping: a torque of the speed, not of the acceleration alone
+        P = np.stack([P for P, _, _ in motor])
+        C = np.stack([C for _, _, C in motor])
         with np.errstate(divide="ignore", invalid="ignore"):
             top = np.minimum(top, np.minimum(np.min((peak - C) / P, axis=0),
                                              np.max((peak + C) / P, axis=0)))
@@ -855,14 +856,14 @@ class TrustedModel:
     trusted: np.ndarray
     names: tuple[str, ...]
     fixed: dict[str, float]
-    double_s: bool
 
     def durations(self, points: list[np.ndarray], rows: np.ndarray) -> np.ndarray:
-        """T_min of the motors ``rows`` at ``points`` (an array per searched parameter)."""
+        """T_min of the motors ``rows`` at ``points`` (an array per searched parameter):
+        the double S where the parameters have a beta, else the trapezoid."""
         values = dict(self.fixed) | dict(zip(self.names, points, strict=True))
         shape = np.shape(points[0])
         alpha = np.broadcast_to(np.asarray(values["alpha"], dtype=float), shape)
-        if not self.double_s:
+        if "beta" not in values:
             return self.model.durations(alpha, rows)
         beta = np.broadcast_to(np.asarray(values["beta"], dtype=float), shape)
         return self.model.durations(alpha, rows, beta)
@@ -894,8 +895,7 @@ def trusted_phase_model(family: type[MotionLaw], fixed: dict[str, float], names:
         return None
     engine = np.where(solution.feasible, solution.duration, np.inf)
     trusted = TrustedModel(model, np.ones(n, dtype=bool), tuple(names),
-                           {k: v for k, v in given.items() if k not in names},
-                           family is DoubleS)
+                           {k: v for k, v in given.items() if k not in names})
     mine = trusted.durations([np.full(n, middle[name]) for name in names], np.arange(n))
     with np.errstate(invalid="ignore"):
         agree = np.where(np.isinf(engine), np.isinf(mine),
