@@ -19,6 +19,12 @@ sizes every bundled example (examples/, examples/book/, examples/machines/) inst
 book's five, each against the goal of issue 34, 5x (``--size-goal``). ``--against TREE``
 also runs each sizer command from another source tree (say ``git archive BASE | tar -x -C
 /tmp/base``), interleaved with this one's, on lines marked ``before:`` (not judged).
+
+The sizer process runs numpy's BLAS on one thread (sizer.cli.process): the reference,
+a plain ``import numpy``, starts OpenBLAS's workers, which spin until it exits (on two
+cores about 0.05 s of its ~0.14 s of CPU). The second reference line is the same import
+on one BLAS thread, and the last column each command's CPU ratio to it (not judged):
+the cost of sizer's own imports and work, without the spin that the setting saves.
 """
 
 from __future__ import annotations
@@ -38,10 +44,11 @@ from bytecode_cache import bytecode_env  # noqa: E402
 BOOK = ("ex6_1-6_2", "ex6_3", "ex6_3-vmax4", "ex6_4", "ex6_5")
 
 
-def timed(command: list[str], env: dict[str, str], root: Path = ROOT) -> tuple[float, float]:
+def timed(command: list[str], env: dict[str, str], root: Path = ROOT,
+          extra: dict[str, str] | None = None) -> tuple[float, float]:
     """The wall time and the CPU time (user + system) of one run of ``command`` in the
-    source tree ``root``."""
-    environment = {**env, "PYTHONPATH": str(root)}
+    source tree ``root`` (``extra``: more environment variables)."""
+    environment = {**env, "PYTHONPATH": str(root), **(extra or {})}
     start = time.perf_counter()
     process = subprocess.Popen(command, cwd=root, env=environment,
                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -73,8 +80,10 @@ def main() -> int:
     python = sys.executable
     commands: list[tuple[str, list[str], float | None, Path]] = [
         ('python -c "import numpy"', [python, "-c", "import numpy"], None, ROOT),
+        ("  the same, one BLAS thread", [python, "-c", "import numpy"], None, ROOT),
         ("sizer --help", [python, "-m", "sizer", "--help"], args.help_goal, ROOT),
     ]
+    one_thread = {"OPENBLAS_NUM_THREADS": "1"}
     paths = [f"examples/book/{name}.yaml" for name in args.examples]
     if args.all:
         paths = [str(path.relative_to(ROOT)) for folder in ("", "book", "machines")
@@ -84,25 +93,26 @@ def main() -> int:
         commands.append((f"sizer size {path}", [python, "-m", "sizer", "size", path], goal,
                          ROOT))
     if args.against is not None:
-        commands[1:] = [twin for label, command, goal, root in commands[1:] for twin in
+        commands[2:] = [twin for label, command, goal, root in commands[2:] for twin in
                         ((f"before: {label}", command, None, args.against.resolve()),
                          (label, command, goal, root))]
     wall = [float("inf")] * len(commands)
     cpu = [float("inf")] * len(commands)
     with bytecode_env() as env:
-        for _, command, _, root in commands:
-            timed(command, env, root)           # untimed: fills the bytecode cache
+        for i, (_, command, _, root) in enumerate(commands):
+            timed(command, env, root, one_thread if i == 1 else None)  # untimed: the cache
         for _ in range(args.repeat):
             for i, (_, command, _, root) in enumerate(commands):
-                seconds, used = timed(command, env, root)
+                seconds, used = timed(command, env, root, one_thread if i == 1 else None)
                 wall[i], cpu[i] = min(wall[i], seconds), min(cpu[i], used)
     width = max(len(label) for label, *_ in commands)
     print(f"{'command':{width}s} {'wall [s]':>9s} {'x numpy':>8s} {'cpu [s]':>8s} "
-          f"{'x numpy':>8s} {'goal':>6s}  met")
+          f"{'x numpy':>8s} {'x 1 thr':>8s} {'goal':>6s}  met")
     missed = 0
     for (label, _, goal, _), seconds, used in zip(commands, wall, cpu, strict=True):
         ratio, cpu_ratio = seconds / wall[0], used / cpu[0]
-        line = f"{label:{width}s} {seconds:9.3f} {ratio:8.2f} {used:8.3f} {cpu_ratio:8.2f}"
+        line = (f"{label:{width}s} {seconds:9.3f} {ratio:8.2f} {used:8.3f} {cpu_ratio:8.2f} "
+                f"{used / cpu[1]:8.2f}")
         if goal is None:
             print(line)
             continue
