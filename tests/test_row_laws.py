@@ -184,3 +184,33 @@ def test_several_laws_grids_refuse_a_law_without_its_pieces_as_data() -> None:
 
     with pytest.raises(ValueError):
         GridRows([make_law("trapezoidal(alpha=0.2)"), make_law("poly5")], several=True)
+
+
+def test_a_cycle_of_row_laws_gives_its_moves_each_rows_law_and_reads_no_one_law() -> None:
+    """A cycle of rest-to-rest moves over several laws' rows (SegmentCycle with RowLaws,
+    sizer.sizing.engine.rows_cycle): a move naming no law moves with each row's own
+    (sizer.sizing.cycle.segment_laws), a move naming one with it; the paths that read one
+    law's shape (the cycle's samples, its breakdown) refuse the rows, and cycle_laws
+    takes one law only."""
+    from sizer.laws import law_choice
+    from sizer.model.cycle import Cycle, Dwell, Move
+    from sizer.sizing.cycle import SegmentCycle, cycle_laws, segment_laws, single_law
+
+    together, _, _ = _rows(1, "rectangle", True)
+    named = make_law("cycloidal")
+    cycle = Cycle((Move(0.5, None), Dwell(0.1), Move(-0.5, None, law=law_choice("cycloidal"))),
+                  closed=True)
+    rows = together.law
+    assert isinstance(rows, RowLaws)
+    laws = segment_laws(cycle, rows)
+    assert laws[0] is rows and laws[1] is None and laws[2] == named
+    assert cycle_laws(cycle, named) == (named, None, named)
+    assert single_law(named) is named and single_law(None) is None
+    with pytest.raises(TypeError):
+        single_law(rows)
+    model = SegmentCycle(cycle, rows, together.drive, together.motors)
+    s = np.full(len(together.motors), 0.4)
+    assert np.all(np.isfinite(model.evaluate(s).rms_torque))
+    for refused in (model.pieces, model.breakdown):
+        with pytest.raises(TypeError):
+            refused(s)

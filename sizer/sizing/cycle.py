@@ -34,7 +34,7 @@ import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING, cast
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -244,11 +244,9 @@ def normalized_move(basis, move: Move, T: np.ndarray) -> np.ndarray:
                          r1=move.end_acceleration * T * T / h)
 
 
-def cycle_laws(cycle: Cycle, law: RankedLaw | RowLaws | None) -> tuple[MotionLaw | None, ...]:
+def cycle_laws(cycle: Cycle, law: RankedLaw | None) -> tuple[MotionLaw | None, ...]:
     """The law of each segment: a move's own law, else ``law`` (the one being ranked; a
-    law per move, sizer.laws.per_move, gives the moves that name none theirs in order;
-    several laws over the candidates' rows, RowLaws, stand for one in the rest-to-rest
-    moves' engine, sizer.sizing.move.CycleCalculator, which takes either)."""
+    law per move, sizer.laws.per_move, gives the moves that name none theirs in order)."""
     if isinstance(law, LawsPerMove):
         open_moves = sum(1 for s in cycle.segments if isinstance(s, Move) and not s.law)
         if open_moves != len(law.laws):
@@ -257,9 +255,31 @@ def cycle_laws(cycle: Cycle, law: RankedLaw | RowLaws | None) -> tuple[MotionLaw
         spread = iter(law.laws)
         return tuple((make_law(s.law) if s.law else next(spread)) if isinstance(s, Move)
                      else None for s in cycle.segments)
-    ranked = cast("MotionLaw | None", law)
-    return tuple((make_law(s.law) if s.law else ranked) if isinstance(s, Move) else None
+    return tuple((make_law(s.law) if s.law else law) if isinstance(s, Move) else None
                  for s in cycle.segments)
+
+
+def segment_laws(cycle: Cycle, law: RankedLaw | RowLaws | None
+                 ) -> tuple[MotionLaw | RowLaws | None, ...]:
+    """:func:`cycle_laws` where several laws may stand for one over the candidates' rows
+    (RowLaws, in a cycle whose moves are all rest to rest: sizer.sizing.engine.rows_cycle):
+    the moves that name no law move with each row's own."""
+    if not isinstance(law, RowLaws):
+        return cycle_laws(cycle, law)
+    return tuple((make_law(s.law) if s.law else law) if isinstance(s, Move) else None
+                 for s in cycle.segments)
+
+
+def single_law(law: MotionLaw | RowLaws | None) -> MotionLaw | None:
+    """``law``, one law for every row: several laws over the rows (RowLaws) are sized only
+    where every move is rest to rest and the split is the rule's
+    (sizer.sizing.engine.rows_cycle), through the rest-to-rest moves' engine; a path
+    that reads one law's shape (a move with boundary speeds, an optimized share, the
+    samples of the cycle, its breakdown) never sees them."""
+    if isinstance(law, RowLaws):
+        raise TypeError("several laws over the rows reach only the rest-to-rest moves' "
+                        "engine (sizer.sizing.engine.rows_cycle)")
+    return law
 
 
 def with_move_laws(design: Design, law: LawsPerMove) -> Design:
@@ -291,7 +311,7 @@ class SegmentCycle:
                  weights: np.ndarray | None = None) -> None:
         self.cycle = cycle
         self.law = law
-        self.laws = cycle_laws(cycle, law)
+        self.laws = segment_laws(cycle, law)
         self.motors = motors
         self.thermal_rule = thermal_speed
         self.weights = np.array(cycle.weights())
@@ -352,7 +372,7 @@ class SegmentCycle:
         move_cost = self._move_cost(goal, free)
 
         def cost(j: int, T: np.ndarray, rows: np.ndarray) -> np.ndarray:
-            return move_cost(j, self.laws[free[j]], T, rows)
+            return move_cost(j, single_law(self.laws[free[j]]), T, rows)
 
         found = allocate(cost, np.full(n, s * float(np.sum(self.weights))),
                          np.tile(self.weights[free], (n, 1)))  # from sqrt_displacement
@@ -402,7 +422,8 @@ class SegmentCycle:
         own = [getattr(self.cycle.segments[i], "law", None) for i in free]
 
         def cost(j: int, k: int, T: np.ndarray, rows: np.ndarray) -> np.ndarray:
-            return move_cost(j, laws[k] if own[j] is None else self.laws[free[j]], T, rows)
+            return move_cost(j, laws[k] if own[j] is None else single_law(self.laws[free[j]]),
+                             T, rows)
 
         return allocate_laws(cost, len(laws), np.full(n, s * float(np.sum(self.weights))),
                              np.tile(self.weights[free], (n, 1)))
@@ -504,7 +525,7 @@ class SegmentCycle:
         for k, at in self.law.groups(rows):
             one = self.take(rows[at])
             one.law = self.law.laws[k]
-            one.laws = cycle_laws(self.cycle, one.law)
+            one.laws = segment_laws(self.cycle, one.law)
             out.append((k, at, one))
         return out
 
@@ -600,7 +621,7 @@ class SegmentCycle:
         w = float(self.weights[i])
         move = self.cycle.segments[i]
         assert isinstance(move, Move)
-        f = sub._boundary_move(move, self.laws[i], sub.drives[i], w * s)
+        f = sub._boundary_move(move, single_law(self.laws[i]), sub.drives[i], w * s)
         zero = np.zeros(len(rows))
         metrics = CycleMetrics(
             duration=w * s, max_speed=f.max_speed, peak_torque=f.peak_torque,
@@ -681,7 +702,8 @@ class SegmentCycle:
                 out.append(self._dwell(drive, T))
         return out
 
-    def _fixed_figures(self, i: int, segment: Segment, law: MotionLaw | None, drive: Drive,
+    def _fixed_figures(self, i: int, segment: Segment, law: MotionLaw | RowLaws | None,
+                       drive: Drive,
                        T: np.ndarray, peaks: bool) -> SegmentFigures:
         """A segment of fixed duration: its figures do not depend on the scale, so they
         are evaluated once per set of candidates (and ``peaks``) and kept; a subset made
@@ -809,11 +831,12 @@ class SegmentCycle:
                              float(np.sum(self.weights)))
 
     # ------------------------------------------------------------- segments
-    def _move(self, move: Move, law: MotionLaw | None, drive: Drive, T: np.ndarray,
-              peaks: bool, model: bool) -> SegmentFigures:
+    def _move(self, move: Move, law: MotionLaw | RowLaws | None, drive: Drive,
+              T: np.ndarray, peaks: bool, model: bool) -> SegmentFigures:
         if move.rest_to_rest:
-            assert law is not None
+            assert law is not None, "segment_laws gives a move one"
             return self._rest_move(move, law, drive, T, peaks, model)
+        law = single_law(law)
         if law is not None and fixed_shape(law):
             return self._shaped_move(move, law, drive, T, peaks)
         return self._boundary_move(move, law, drive, T)
@@ -852,9 +875,10 @@ class SegmentCycle:
                                 1.0 if h >= 0 else -1.0)
         return SegmentFigures(**vars(exact), duration=T, end_accelerations=ends)
 
-    def _rest_move(self, move: Move, law: MotionLaw, drive: Drive, T: np.ndarray,
+    def _rest_move(self, move: Move, law: MotionLaw | RowLaws, drive: Drive, T: np.ndarray,
                    peaks: bool, model: bool = False) -> SegmentFigures:
-        """A rest-to-rest move: the single-law engine for a one-move task."""
+        """A rest-to-rest move: the law move's engine for a one-move task (each row's own
+        law with RowLaws)."""
         task = Task(move.displacement, None, linear=self.cycle.linear)
         calc = CycleCalculator(None, task, drive, self.motors, "max", law=law)
         m = calc.evaluate(T, peaks, model)
@@ -961,8 +985,9 @@ class SegmentCycle:
                                       hold * np.sign(drive.figures.torque)))
             else:
                 if isinstance(segment, Move):
-                    assert law is not None, "cycle_laws gives a move one"
-                    u, q, v, a = _move_samples(segment, law, np.asarray(T, dtype=float),
+                    one = single_law(law)
+                    assert one is not None, "segment_laws gives a move one"
+                    u, q, v, a = _move_samples(segment, one, np.asarray(T, dtype=float),
                                                samples)
                     rest = 1.0 if segment.displacement >= 0.0 else -1.0
                 else:
@@ -986,8 +1011,9 @@ class SegmentCycle:
             kind = type(segment).__name__.lower()
             scale = abs(segment.displacement) / g.duration ** 2 \
                 if isinstance(segment, Move) else None
-            out.append(SegmentPart(segment.name or kind, kind, law, g.duration, g.peak_torque,
-                                   g.torque_square, g.max_speed, g.energy, start, end, scale))
+            out.append(SegmentPart(segment.name or kind, kind, single_law(law), g.duration,
+                                   g.peak_torque, g.torque_square, g.max_speed, g.energy,
+                                   start, end, scale))
         return out
 
 
