@@ -627,7 +627,7 @@ fails the engine's T_min is inf at every shape, and the model does not agree).""
 DOUBLINGS = 64
 """Doublings of T past the other bounds looking for a duration the RMS allows."""
 NEWTON_STEPS = 200
-"""Most steps of the search for the RMS crossing (Newton's: about six)."""
+"""Most steps of the search for the RMS crossing (Newton's in log T: about three)."""
 
 
 @dataclass(frozen=True)
@@ -728,10 +728,12 @@ class PhaseTorques:
     def _rms_crossing(self, low: np.ndarray, a: np.ndarray, b: np.ndarray, rows: np.ndarray,
                       ramps: bool) -> np.ndarray:
         """The smallest T > low (where the RMS fails) at which it holds, to rounding:
-        Newton's method on the excess from ``low``, kept inside the bracket of the
-        durations tried (doubling until one holds where a step would leave it), stepping
-        at least an ulp up from a failing duration; inf where no duration up to
-        2^DOUBLINGS times ``low`` holds."""
+        Newton's method on log(excess + 1) = log N - log D in log T from ``low``, kept
+        inside the bracket of the durations tried (doubling until one holds where a step
+        would leave it), stepping at least an ulp up from a failing duration; inf where
+        no duration up to 2^DOUBLINGS times ``low`` holds. In those variables an inertial
+        torque's N ~ T^-3 against D ~ T is a line (one step; the excess itself, ~ T^-4,
+        gains a quarter of T per step from far below)."""
         T, lo = low.copy(), low.copy()
         hi = np.full(len(low), np.inf)
         out = np.full(len(low), np.inf)
@@ -746,7 +748,8 @@ class PhaseTorques:
             hi[index] = np.where(holds, T, hi[index])
             lo[index] = np.where(holds, lo[index], T)
             with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-                step = T - f / df
+                ratio = 1.0 + f  # N / D; d log(N / D) / d log T = T df / (1 + f)
+                step = T * np.exp(-np.log(ratio) * ratio / (T * df))
             below, h = lo[index], hi[index]
             # from a failing duration at least an ulp up (its step may round to it)
             step = np.where(holds, step, np.maximum(step, np.nextafter(T, np.inf)))
