@@ -26,7 +26,12 @@ import numpy as np
 import sizer.laws.coefficients as law_coefficients
 from sizer.errors import UserError
 from sizer.laws.coefficients import LawCoefficients
-from sizer.laws.linear_peaks import LinearPeaks, samples_together
+from sizer.laws.linear_peaks import (
+    LinearAcceleration,
+    LinearPeaks,
+    linear_acceleration,
+    samples_together,
+)
 from sizer.laws.piece_forms import PieceForms
 from sizer.laws.piece_table import PieceTable
 from sizer.laws.pieces import Piece
@@ -319,8 +324,19 @@ class MotionLaw:
     @cached_property
     def _moves_backwards(self) -> bool:
         """:meth:`moves_backwards`, asked once per law (each model of a search step asks
-        it of every law of its rows)."""
-        return float(self.linear_peaks.minimum(0.0, 1.0).value) < -1e-12
+        it of every law of its rows); a law whose acceleration is linear on every piece
+        reads its least v_N from its pieces (:attr:`linear_acceleration`), no hull."""
+        linear = self.linear_acceleration
+        slowest = linear.slowest if linear is not None else \
+            float(self.linear_peaks.minimum(0.0, 1.0).value)
+        return slowest < -1e-12
+
+    @cached_property
+    def linear_acceleration(self) -> LinearAcceleration | None:
+        """The least and largest a_N and the least v_N of a law whose acceleration is
+        linear on every piece, from its pieces (sizer.laws.linear_peaks.
+        linear_acceleration); None for other laws."""
+        return linear_acceleration(self)
 
     @cached_property
     def linear_peaks(self) -> LinearPeaks:

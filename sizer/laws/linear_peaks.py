@@ -169,6 +169,47 @@ def piece_values(law: LawShape, tau: np.ndarray, piece: np.ndarray,
     return shaped[0] if isinstance(order, int) else shaped
 
 
+@dataclass(frozen=True)
+class LinearAcceleration:
+    """The extremes of a law whose acceleration is linear on every piece (each piece a
+    polynomial of degree <= 3: the trapezoid, the double S), from its piece ends
+    (:func:`linear_acceleration`)."""
+
+    lowest: float
+    """min a_N over the move."""
+    highest: float
+    """max a_N over the move."""
+    slowest: float
+    """min v_N over the move (at a piece end or where a_N crosses zero inside one)."""
+
+
+def linear_acceleration(law: LawShape) -> LinearAcceleration | None:
+    """:class:`LinearAcceleration` of a law whose every piece is a polynomial of degree
+    <= 3, else None. a_N is linear on each piece, so its extremes are among the pieces'
+    one-sided end values: the very values :class:`LinearPeaks` samples there (its samples
+    hold every piece's ends, evaluated by the same arithmetic, and a query (p, 0) finds no
+    stationary point inside a piece of constant jerk), so p*a_N + c peaks at p times one
+    of them, plus c, with the same floats and no samples or hull. v_N is quadratic on a
+    piece: its least value is at an end or where a_N is zero inside."""
+    if not all(piece.degree is not None and piece.degree <= 3 for piece in law.pieces):
+        return None
+    count = len(law.pieces)
+    starts = np.array([piece.start for piece in law.pieces])
+    ends = np.array([piece.end for piece in law.pieces])
+    index = np.arange(count)
+    tau = np.concatenate((starts, ends))
+    piece = np.concatenate((index, index))
+    v, a = piece_values(law, tau, piece, (1, 2))
+    a0, a1 = a[:count], a[count:]
+    inside = np.flatnonzero(a0 * a1 < 0.0)
+    slowest = float(np.min(v))
+    if len(inside):  # a linear a_N's zero, where v_N is at its vertex
+        share = a0[inside] / (a0[inside] - a1[inside])
+        zero = starts[inside] + (ends[inside] - starts[inside]) * share
+        slowest = min(slowest, float(np.min(piece_values(law, zero, inside, 1))))
+    return LinearAcceleration(float(np.min(a)), float(np.max(a)), slowest)
+
+
 def _piece_grid(law: LawShape, index: int) -> np.ndarray:
     """The samples of one piece: its scan grid (finer where its law varies fast)."""
     piece = law.pieces[index]

@@ -100,10 +100,23 @@ class RowLaws:
         return out[0] if isinstance(order, int) else tuple(out)
 
     def moves_backwards(self) -> bool:
-        """Whether some law may move backwards (v_N < 0 somewhere); the laws' linear
-        peaks built together where they are not yet (sizer.laws.base.build_linear_peaks)."""
-        build_linear_peaks(self.laws)
+        """Whether some law may move backwards (v_N < 0 somewhere); the linear peaks of
+        the laws that need them for it (an acceleration not linear on every piece:
+        MotionLaw.linear_acceleration) built together where they are not yet
+        (sizer.laws.base.build_linear_peaks)."""
+        build_linear_peaks([law for law in self.laws if law.linear_acceleration is None])
         return any(law.moves_backwards() for law in self.laws)
+
+    @cached_property
+    def acceleration_range(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """Each row's law's least and largest a_N (MotionLaw.linear_acceleration), arrays
+        over the rows; None unless every law's acceleration is linear on every piece."""
+        found = [law.linear_acceleration for law in self.laws]
+        if any(linear is None for linear in found):
+            return None
+        lowest = np.array([linear.lowest for linear in found if linear is not None])
+        highest = np.array([linear.highest for linear in found if linear is not None])
+        return lowest[self.index], highest[self.index]
 
 
 class RowPeaks:

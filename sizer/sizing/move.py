@@ -1396,6 +1396,15 @@ class CycleCalculator:
             return self.law.peaks(rows)
         return self.law.linear_peaks
 
+    def _acceleration_range(self):
+        """(least a_N, largest a_N) of the law (each row's: RowLaws, arrays over the rows)
+        where its acceleration is linear on every piece (MotionLaw.linear_acceleration),
+        else None."""
+        if isinstance(self.law, RowLaws):
+            return self.law.acceleration_range
+        linear = self.law.linear_acceleration
+        return None if linear is None else (linear.lowest, linear.highest)
+
     def _values(self, rows: np.ndarray, tau: np.ndarray, piece: np.ndarray, order):
         """piece_values of points of the rows ``rows`` on the law (each row's: RowLaws)."""
         if isinstance(self.law, RowLaws):
@@ -1562,16 +1571,30 @@ class CycleCalculator:
         motors, drive = self.motors, self.drive
         K = drive.ratio
         certified = np.ones(n, dtype=bool)
+        speed = K * scales.vel * c.C_v
+        # speeds past the region are clipped into it for the ratio (the speed check covers
+        # them): a region flat to its end is flat at every speed
+        flat = np.broadcast_to((speed <= motors.flat_speed)
+                               | (motors.flat_speed >= motors.speed_limit), (n,))
+        # where every region is flat no ratio reads where the peak is: a channel affine
+        # in the acceleration (its functions P a_N + C, no speed term) peaks from the
+        # law's least and largest a_N where its acceleration is linear on every piece
+        # (the values its linear peaks give, without their hull: :func:`affine`)
+        extremes = self._acceleration_range() if flat.all() else None
 
-        inertial = _inertial
+        def inertial(coefficients) -> bool:
+            return _inertial(coefficients) or (extremes is not None and not any(
+                np.any(Q) for _, Q, _ in coefficients))
 
         def channel(coefficients, highs, lows):
             """max |value| of a maximum of linear functions of (a_N, v_N), from each
             function's linear peaks (``highs``) and lowest points (``lows``); clears
             ``certified`` where the minimum could not be certified."""
-            if inertial(coefficients):
+            if _inertial(coefficients):
                 places.append(None)
                 return np.broadcast_to(np.abs(coefficients[0][0]) * c.C_a, (n,)).copy()
+            if inertial(coefficients):  # affine in the acceleration: below, from ``extremes``
+                return affine(coefficients)
             top = np.full(n, -np.inf)
             top_tau, top_piece = np.zeros(n), np.zeros(n, dtype=np.intp)
             for high, (_, _, C) in zip(highs, coefficients, strict=True):
@@ -1593,6 +1616,33 @@ class CycleCalculator:
                 certified[:] &= values.max(axis=0) <= bottom + 1e-12 * scale
             upper = top >= -bottom
             places.append((np.where(upper, top_tau, tau), np.where(upper, top_piece, piece)))
+            return np.maximum(top, -bottom)
+
+        def affine(coefficients):
+            """:func:`channel` of functions P a_N + C (no speed term) from the law's least
+            and largest a_N (``extremes``): each function's highest and lowest values are
+            P times one of them, plus C, the floats its linear peaks give; the minimum
+            certified as there, at the a_N of its function's minimizer."""
+            assert extremes is not None
+            places.append(None)
+            lowest, highest = extremes
+            top = np.full(n, -np.inf)
+            floors, minimizers = [], []
+            for P, _, C in coefficients:
+                rising = P >= 0.0
+                value = np.where(rising, P * highest, P * lowest) + C
+                top = np.where(value > top, value, top)
+                floors.append(np.broadcast_to(np.where(rising, P * lowest, P * highest) + C,
+                                              (n,)))
+                minimizers.append(np.broadcast_to(np.where(rising, lowest, highest), (n,)))
+            lows = np.stack(floors)
+            best = np.argmax(lows, axis=0)
+            bottom = lows[best, np.arange(n)]
+            if len(coefficients) > 1:
+                a_n = np.choose(best, minimizers)
+                values = np.stack([P * a_n + C for P, _, C in coefficients])
+                scale = np.max(np.abs(values), axis=0) + np.abs(bottom)
+                certified[:] &= values.max(axis=0) <= bottom + 1e-12 * scale
             return np.maximum(top, -bottom)
 
         places: list[tuple[np.ndarray, np.ndarray] | None] = []  # where each |peak| is
@@ -1628,11 +1678,6 @@ class CycleCalculator:
         peak, load = results[0], results[1]
         peak_place = places[0]
         stages = results[2:] if self.stage_checks else [np.zeros(n) for _ in drive.stages]
-        speed = K * scales.vel * c.C_v
-        # speeds past the region are clipped into it for the ratio (the speed check covers
-        # them): a region flat to its end is flat at every speed
-        flat = np.broadcast_to((speed <= motors.flat_speed)
-                               | (motors.flat_speed >= motors.speed_limit), (n,))
         ratio = _safe_ratio(peak, motors.intermittent.torques[:, 0])
         exact = certified & flat
         curved = np.flatnonzero(certified & ~flat)
@@ -2433,13 +2478,24 @@ def _largest_u(calculator: CycleCalculator, who: np.ndarray, P: np.ndarray, Q: n
     index = np.flatnonzero(open_)
     x = start[index]
     P, Q, D = P[index], Q[index], D[index]
+    # no speed term: the peak is at the law's least or largest a_N where its acceleration
+    # is linear on every piece (the values of its linear peaks: CycleCalculator._exact_peaks)
+    extremes = None if np.any(Q) else calculator._acceleration_range()
     for _ in range(NEWTON_STEPS):
         if len(index) == 0:
             break
         rows = who[index]  # each query's candidate (its law's peaks and pieces)
-        peak = calculator._linear_peaks(rows).maximum(P * x * x, Q * x)
-        v, a = calculator._values(rows, peak.tau, peak.piece, (1, 2))
-        excess = peak.value - D
+        if extremes is None:
+            peak = calculator._linear_peaks(rows).maximum(P * x * x, Q * x)
+            v, a = calculator._values(rows, peak.tau, peak.piece, (1, 2))
+            value = peak.value
+        else:
+            lowest, highest = (np.broadcast_to(e, (len(calculator.motors),))[rows]
+                               for e in extremes)
+            scale = P * x * x
+            a = np.where(scale >= 0.0, highest, lowest)
+            v, value = np.zeros(len(rows)), scale * a
+        excess = value - D
         # the maximizer's quadratic A u^2 + b u <= F(u), equal at x with the same slope:
         # its positive root, in the stable form, lies in (u*, x) where F(x) > D
         A, b = P * a, Q * v

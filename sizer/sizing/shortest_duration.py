@@ -813,9 +813,13 @@ def closed_form_duration(calculator: CycleCalculator, limits: Limits,
 
 def _acceleration_extremes(law: MotionLaw | RowLaws) -> tuple[Any, Any]:
     """max q_N'' and -min q_N'' of the law, from its linear peaks (as the evaluation reads
-    them); of each row's law for RowLaws (arrays over the rows)."""
+    them), or from its pieces where its acceleration is linear on each (the same values:
+    MotionLaw.linear_acceleration); of each row's law for RowLaws (arrays over the
+    rows)."""
     laws = law.laws if isinstance(law, RowLaws) else (law,)
-    found = np.array([one.linear_peaks.maximum(np.array([1.0, -1.0]), np.zeros(2)).value
+    found = np.array([[linear.highest, -linear.lowest]
+                      if (linear := one.linear_acceleration) is not None else
+                      one.linear_peaks.maximum(np.array([1.0, -1.0]), np.zeros(2)).value
                       for one in laws])
     if isinstance(law, RowLaws):
         return found[law.index, 0], found[law.index, 1]
