@@ -1582,7 +1582,9 @@ class CycleCalculator:
         # (the values its linear peaks give, without their hull: :func:`affine`)
         extremes = self._acceleration_range() if flat.all() else None
 
-        def inertial(coefficients) -> bool:
+        def without_hull(coefficients) -> bool:
+            """A channel read without linear-peak queries: proportional to the
+            acceleration (C_a), or affine in it where ``extremes`` are known."""
             return _inertial(coefficients) or (extremes is not None and not any(
                 np.any(Q) for _, Q, _ in coefficients))
 
@@ -1593,7 +1595,7 @@ class CycleCalculator:
             if _inertial(coefficients):
                 places.append(None)
                 return np.broadcast_to(np.abs(coefficients[0][0]) * c.C_a, (n,)).copy()
-            if inertial(coefficients):  # affine in the acceleration: below, from ``extremes``
+            if without_hull(coefficients):  # affine in the acceleration: from ``extremes``
                 return affine(coefficients)
             top = np.full(n, -np.inf)
             top_tau, top_piece = np.zeros(n), np.zeros(n, dtype=np.intp)
@@ -1652,9 +1654,9 @@ class CycleCalculator:
                        f.column("friction", n) + scales.direction * f.column("torque", n))]
         channels = [motor_terms, load_terms] + (stage_terms if self.stage_checks else [])
         # every function's highest and lowest point, all channels in one query
-        functions = [f for co in channels if not inertial(co) for f in co]
+        functions = [f for co in channels if not without_hull(co) for f in co]
         # the law's linear peaks (its hull) only where a channel needs them: purely
-        # inertial channels read C_a alone
+        # inertial channels read C_a alone, affine ones the law's extremes
         solved = self._linear_peaks(np.tile(np.arange(n), 2 * len(functions))).maximum(
             np.concatenate([sign * spread(P, n) for sign in (1.0, -1.0)
                             for P, _, _ in functions]),
@@ -1662,7 +1664,7 @@ class CycleCalculator:
                             for _, Q, _ in functions])) if functions else None
         results, start = [], 0
         for co in channels:
-            if inertial(co):
+            if without_hull(co):
                 results.append(channel(co, [], []))
                 continue
             size = len(co)
