@@ -157,3 +157,38 @@ def test_elliptic_auto_searches_its_declared_range():
     fixed = sized(*(f"elliptic(n={1 + k / 8})" for k in range(9)))
     best = min((r for r in fixed if r.feasible), key=lambda r: r.duration)
     assert auto.duration <= best.duration * (1 + 1e-9)
+
+
+@pytest.mark.parametrize("minimize", [True, False])
+def test_auto_shapes_against_loads_of_the_position_take_the_position_engine(minimize):
+    """Gravity on an arm and a spring (sizer.sizing.linkage_move.position_model): the auto
+    trapezoid is searched on the engine that sizes the design, never refused as if the load
+    had no position; in minimize mode no slower than 41 fixed trapezoids sized alike
+    (tests/dense_shapes.py), with a given duration at least as good (its worst slack)."""
+    import dataclasses
+
+    from dense_shapes import assert_no_slower_than_fixed
+
+    from sizer.model import Stage, Transmission
+    from sizer.model.domain import GravityLoad, SpringLoad
+
+    load = Load(inertia=0.05, friction=0.2,
+                gravity=GravityLoad(moment=0.5, offset=math.radians(-30.0)),
+                spring=SpringLoad(stiffness=0.8, preload=0.2))
+    motors = tuple(Motor(f"m{i}", inertia=2e-5 * t**1.3, continuous_torque=t,
+                         peak_torque=3 * t, rated_speed=3000 * math.pi / 30)
+                   for i, t in enumerate((0.2, 0.35, 0.6, 1.0)))
+    design = Design(Task(math.radians(100.0), None if minimize else 0.5, dwell=0.2),
+                    load, Transmission((Stage("gearbox", 5.0, 0.9),)),
+                    laws=("trapezoidal(alpha=auto)",), motors=motors)
+    grid = [f"trapezoidal(alpha={a:.6g})" for a in np.linspace(0.011, 0.499, 41)]
+    if minimize:
+        assert_no_slower_than_fixed(design, grid, 1e-6)
+        return
+    auto = size_design(design).results
+    fixed = size_design(dataclasses.replace(design, laws=tuple(grid))).results
+    assert auto and all(np.isfinite(r.worst_slack) for r in auto)
+    for motor in motors:
+        mine = next(r for r in auto if r.motor == motor.id)
+        best = max(r.worst_slack for r in fixed if r.motor == motor.id)
+        assert mine.worst_slack >= best - 1e-9

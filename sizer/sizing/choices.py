@@ -105,6 +105,7 @@ from sizer.sizing.shortest_duration import laws_model, minimum_duration
 from sizer.vibration.elastic_load import ElasticLoad
 
 if TYPE_CHECKING:
+    from sizer.sizing.evaluation import CycleModel
     from sizer.sizing.shortest_duration import PeakScales
 
 
@@ -351,9 +352,10 @@ def _law_rows(laws: list[MotionLaw], part: np.ndarray, design: Design,
               candidates: Candidates) -> Scores | None:
     """The scores of several laws' candidates (row i of laws[part[i]]) sized as the rows
     of one model (sizer.sizing.shortest_duration.laws_model: each row's T_min its law's
-    alone): minimize mode, a move rest-to-rest without a linkage, no law that moves
-    backwards. None elsewhere (each law scored alone)."""
-    if len(laws) < 2 or design.transmission.linkage is not None:
+    alone): minimize mode, a move rest-to-rest without a linkage or a load of the
+    position, no law that moves backwards. None elsewhere (each law scored alone)."""
+    if len(laws) < 2 or design.transmission.linkage is not None \
+            or design.load.position_dependent:
         return None
     task = single_task(design)
     if not task.minimize:
@@ -379,8 +381,15 @@ def score_law(law: MotionLaw, design: Design, candidates: Candidates) -> Scores:
             return -np.where(feasible, duration, np.inf)[:, None]
         return np.sort(np.stack([c.slack for c in checks], axis=1), axis=1)
     task = single_task(design)
-    calculator = CycleCalculator(None, task, drive, motors, design.limits.thermal_speed,
-                                 law=law)
+    calculator: CycleModel
+    if design.load.position_dependent:  # gravity, a spring, a table: the position engine
+        from sizer.sizing.linkage_move import position_model  # lazy: start-up
+
+        calculator = position_model(design.machine_cycle, law, design.load, drive, motors,
+                                    design.limits.thermal_speed)
+    else:
+        calculator = CycleCalculator(None, task, drive, motors, design.limits.thermal_speed,
+                                     law=law)
     if task.minimize:
         solution = minimum_duration(calculator, design.limits)
         return -np.where(solution.feasible, solution.duration, np.inf)[:, None]

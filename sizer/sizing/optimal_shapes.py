@@ -585,8 +585,8 @@ def exact_time_optimal(family: type[MotionLaw], fixed: dict[str, float],
     constant torques do not decide (DurationBounds.undecided).
     """
     if not design.machine_cycle.minimize or family not in (Trapezoidal, DoubleS) \
-            or design.transmission.linkage is not None:  # the book's case has no linkage
-        return None
+            or design.transmission.linkage is not None or design.load.position_dependent:
+        return None  # the book's case has no linkage and no load of the position
     if "alpha_d" in fixed or "beta_d" in fixed:  # the closed form is the symmetric law's
         return None
     motors = candidates.motors
