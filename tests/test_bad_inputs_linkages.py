@@ -124,7 +124,18 @@ IN_A_CYCLE = [
         f"{SC}.offset"),
 ]
 
-CASES = [*SLIDER_CRANK, *FOUR_BAR, *IN_A_CYCLE]
+OVERSHOOT = edited(PRESS, set={"laws": ["polynomial_4_3_4(h_l=0, h_s=0)"]})
+"""The press from the end of its range (a dead point) with a 4-3-4 polynomial whose position
+dips below zero (h_l = h_s = 0: q_N down to -0.0176): the stroke is inside the range, the
+law's own excursion is not; the message is placed at the law's line."""
+
+LAW_PAST_THE_RANGE = [
+    Case("slider-crank-law-overshoots-the-range", design=OVERSHOOT,
+         words=(*at(OVERSHOOT, "laws"), "polynomial_4_3_4", "0.148242 m", "0.00176 m below",
+                "the end 0.15 m", "overshoots its stroke"), fields=("laws",)),
+]
+
+CASES = [*SLIDER_CRANK, *FOUR_BAR, *IN_A_CYCLE, *LAW_PAST_THE_RANGE]
 
 
 @pytest.mark.parametrize("case", CASES, ids=str)

@@ -42,6 +42,7 @@ from sizer.laws.per_move import RankedLaw
 from sizer.laws.quadrature import gauss_legendre
 from sizer.mechanics.disc_cam import CamStage
 from sizer.mechanics.drive import Drive
+from sizer.mechanics.linkages import outside_range
 from sizer.model.cycle import Cycle, Move, Run, from_task, shorthand_task
 from sizer.model.domain import Design, Limits, LinkageStage, Load, Task
 from sizer.numerics.arrays import sorted_unique
@@ -206,6 +207,7 @@ def profile_of(stage: LinkageStage, load: Load, h: float, duration: float | None
     else:
         # a run or a move with boundary speeds is on the crank (sizer.io.linkage says so)
         assert isinstance(law, MotionLaw), "a fixed shape is on the crank, no dead point"
+        _within_range(given, law, x[0])
         issues = _issues(given, law, u, x, h, duration)
         with np.errstate(all="ignore"):
             theta = list(input_motion(given, x[0], x[1], x[2], x[3], start_theta=theta0,
@@ -389,6 +391,26 @@ def _one_sided(law: MotionLaw, u: np.ndarray, h: float, T: float
         left[k][0] = h * outside_before / T ** (k + 2)
         right[k][-1] = h * outside_after / T ** (k + 2)
     return (left[0], left[1]), (right[0], right[1])
+
+
+def _within_range(linkage, law: MotionLaw, s: np.ndarray) -> None:
+    """Refuse a law whose output positions ``s`` leave the linkage's range: sizer.io
+    keeps the stroke from start_angle inside it, so the law's own excursion past its
+    ends (q_N outside [0, 1]) takes it there. Located at the law, with the farthest
+    position and by how much (the range's end alone would print as the position)."""
+    low, high = linkage.output_range()
+    if outside_range(s, low, high) is None:
+        return
+    unit = "m" if linkage.output_linear else "rad"
+    below, above = low - float(np.min(s)), float(np.max(s)) - high
+    side, far, end = (("below", float(np.min(s)), low) if below >= above
+                      else ("above", float(np.max(s)), high))
+    raise UserError(f"{law.spec} takes the output to {far:.6g} {unit}, {abs(far - end):.3g} "
+                    f"{unit} {side} the end {end:.6g} {unit} of the linkage's range "
+                    f"[{low:.6g}, {high:.6g}] {unit}: the law's position leaves [0, 1] "
+                    "(it overshoots its stroke) where the stroke reaches that end; give a "
+                    "law that stays within its stroke, or start away from the end",
+                    field="laws")
 
 
 def _issues(linkage, law: MotionLaw, u: np.ndarray, s: list,
