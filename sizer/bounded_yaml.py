@@ -47,6 +47,23 @@ def format_path(path: Sequence[Any]) -> str:
     return text
 
 
+def parse_path(text: str) -> tuple[Any, ...] | None:
+    """The inverse of :func:`format_path` for identifiers and item indices
+    (``'motors[3].inertia'`` -> ``('motors', 3, 'inertia')``); None for any other text
+    (an odd key, an option such as ``--law``)."""
+    parts: list[Any] = []
+    for chunk in text.split("."):
+        name, _, rest = chunk.partition("[")
+        if not name.isidentifier():
+            return None
+        parts.append(name)
+        for index in (rest.split("[") if rest else ()):
+            if not index.endswith("]") or not index[:-1].isdigit():
+                return None
+            parts.append(int(index[:-1]))
+    return tuple(parts)
+
+
 class BoundedLoader(SafeLoader):
     """The safe loader with bounded work: nodes (aliases expanded), depth, scalar length.
 

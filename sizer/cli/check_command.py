@@ -105,7 +105,9 @@ def check_one(design: Path, catalogs: list[str] | tuple[str, ...],
         result = api.check(loaded)
         segments = breakdown_for(loaded, result) if result.duration is not None else None
     except UserError as error:
-        raise error.located(file=str(design)) from None
+        from sizer.io.loader import at_its_line
+
+        raise at_its_line(error, design) from None
     return CheckDocument(result, loaded, api.assumptions(loaded), segments)
 
 

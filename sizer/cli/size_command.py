@@ -334,7 +334,9 @@ def size_loaded(design: Path, loaded: Design, rank_by: str | None, *,
     except UserError as error:
         if error.field == "--law":  # the option's mistake, not the file's
             raise
-        raise error.located(file=str(design)) from None
+        from sizer.io.loader import at_its_line
+
+        raise at_its_line(error, design) from None
 
 
 def check_laws(specs: Sequence[str]) -> None:

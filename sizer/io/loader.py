@@ -22,6 +22,7 @@ from typing import Any
 import numpy as np
 from pydantic import BaseModel
 
+from sizer.bounded_yaml import parse_path
 from sizer.errors import UserError
 from sizer.input_limits import MAX_DESIGN_BYTES, MAX_DESIGN_NODES
 from sizer.io.catalog_table import read_table
@@ -423,6 +424,23 @@ def load_design(path: PathLike, extra_catalogs: Iterable[PathLike] = (), *,
     source = read_yaml(path, limit=MAX_DESIGN_BYTES, max_nodes=MAX_DESIGN_NODES)
     return _design_of(source, path.parent, path.stem, [path], extra_catalogs,
                       default_motors)
+
+
+def at_its_line(error: UserError, path: PathLike) -> UserError:
+    """``error`` (raised while sizing the design file ``path``) placed in that file, at
+    the line of its field where it names one of the file's keys (``laws``,
+    ``transmission[0]``...) and gives no line of its own."""
+    if error.file is not None or error.line is not None:
+        return error.located(file=str(path))
+    at = parse_path(error.field) if error.field else None
+    line = None
+    if at:  # the line of the field, or of its nearest key the file has (None: none)
+        try:
+            line = read_yaml(path, limit=MAX_DESIGN_BYTES,
+                             max_nodes=MAX_DESIGN_NODES).line_of(at)
+        except UserError:  # the file changed since it was read: its name alone
+            line = None
+    return error.located(file=str(path), line=line)
 
 
 def load_design_data(data: Mapping[str, Any], extra_catalogs: Iterable[PathLike] = (), *,
