@@ -44,7 +44,7 @@ MAX_UNIT_POWER = 12
 
 MAX_CYCLE_SEGMENTS = 400
 """Segments of a design's ``cycle:``. Memory grows with the segments of a chunk of
-candidates (sizer.sizing.engine.candidates_per_chunk: fewer candidates a chunk as the moves
+candidates (sizer.sizing.move.candidates_per_chunk: fewer candidates a chunk as the moves
 grow, down to one): 400 segments and the 64 bundled motors peak at 1.3 GB, within 2 GiB
 (benchmarks/README.md)."""
 MAX_MACHINE_AXES = 8

@@ -65,7 +65,13 @@ from sizer.sizing.cycle import (
 )
 from sizer.sizing.energy_check import energy_limit, energy_notes, without_power_figures
 from sizer.sizing.evaluation import CycleMetrics, CycleModel
-from sizer.sizing.move import CycleCalculator, MoveScales, RmsModel, grid_samples
+from sizer.sizing.move import (
+    CycleCalculator,
+    MoveScales,
+    RmsModel,
+    candidates_per_chunk,
+    grid_samples,
+)
 from sizer.sizing.ranking import rank_order
 from sizer.sizing.results import (
     FIGURES,
@@ -444,24 +450,6 @@ def _rows_per_candidate(cycle: Cycle, laws: int) -> int:
     free = sum(1 for i in cycle.free if not getattr(cycle.segments[i], "law", None))
     combinations = laws ** free
     return 5 * (combinations if combinations <= COMBINATIONS else laws)
-
-
-CHUNK_SAMPLES = 2**21
-"""Candidates x law samples evaluated at once (each array of that size is 16 MiB): larger
-candidate sets are evaluated in chunks, so memory stays bounded whatever the catalog."""
-MIN_CHUNK = 64
-"""The smallest chunk (the per-evaluation overhead stays small against the work) while
-its samples stay within MAX_CHUNK_SAMPLES."""
-MAX_CHUNK_SAMPLES = 8 * CHUNK_SAMPLES
-"""Candidates x samples never exceeded by a chunk: a cycle of many moves (each candidate
-already holds millions of samples) is evaluated a few candidates, or one, at a time."""
-
-
-def candidates_per_chunk(samples: int) -> int:
-    """How many candidates of ``samples`` samples each one evaluation takes: CHUNK_SAMPLES
-    worth, at least MIN_CHUNK, at most MAX_CHUNK_SAMPLES worth, at least one."""
-    samples = max(samples, 1)
-    return max(1, min(max(MIN_CHUNK, CHUNK_SAMPLES // samples), MAX_CHUNK_SAMPLES // samples))
 
 
 def chunk_size(law: RankedLaw, moves: int = 1) -> int:

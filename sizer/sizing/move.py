@@ -267,6 +267,24 @@ def grid_samples(law: MotionLaw) -> int:
     return sum(len(part.edges) - 1 for part in parts) * (count + 2)
 
 
+CHUNK_SAMPLES = 2**21
+"""Candidates x law samples evaluated at once (each array of that size is 16 MiB): larger
+candidate sets are evaluated in chunks, so memory stays bounded whatever the catalog."""
+MIN_CHUNK = 64
+"""The smallest chunk (the per-evaluation overhead stays small against the work) while
+its samples stay within MAX_CHUNK_SAMPLES."""
+MAX_CHUNK_SAMPLES = 8 * CHUNK_SAMPLES
+"""Candidates x samples never exceeded by a chunk: a cycle of many moves (each candidate
+already holds millions of samples) is evaluated a few candidates, or one, at a time."""
+
+
+def candidates_per_chunk(samples: int) -> int:
+    """How many candidates of ``samples`` samples each one evaluation takes: CHUNK_SAMPLES
+    worth, at least MIN_CHUNK, at most MAX_CHUNK_SAMPLES worth, at least one."""
+    samples = max(samples, 1)
+    return max(1, min(max(MIN_CHUNK, CHUNK_SAMPLES // samples), MAX_CHUNK_SAMPLES // samples))
+
+
 @lru_cache(maxsize=256)
 def law_grid(law: MotionLaw) -> LawGrid:
     """The grid of a law (cached: laws hash by their canonical spec)."""
