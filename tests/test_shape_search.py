@@ -152,8 +152,19 @@ def efficiency_design(motors=MOTORS, spec="trapezoidal(alpha=auto)", seed=None) 
                   motors=motors, limits=Limits(torque_margin=0.1))
 
 
-def test_several_laws_as_rows_of_one_model_give_each_laws_own_answer():
+@pytest.mark.parametrize("duration", [None, 0.45])
+@pytest.mark.parametrize("chunk", [None, 3])
+def test_several_laws_as_rows_of_one_model_give_each_laws_own_answer(duration, chunk,
+                                                                     monkeypatch):
+    """T_min in minimize mode, the sorted slacks at a given duration; in one model or in
+    chunks of rows (``chunk``: the engine's chunk size made small), each law's own scores
+    bit for bit."""
+    from sizer.sizing import choices
+
+    if chunk is not None:
+        monkeypatch.setattr(choices, "candidates_per_chunk", lambda samples: chunk)
     design = efficiency_design()
+    design = replace(design, task=replace(design.task, duration=duration))
     candidates = Candidates.single(MotorArrays.of(design.motors), design.load,
                                    design.transmission)
     laws = [Trapezoidal(alpha=a) for a in (0.11, 0.25, 1 / 3, 0.47)]
@@ -161,11 +172,14 @@ def test_several_laws_as_rows_of_one_model_give_each_laws_own_answer():
     rows = candidates.take(np.arange(8) % 4)
     together = _law_rows(laws, part, design, rows)
     assert together is not None
+    assert together.shape[1] == (1 if duration is None else len(together[0]))
     for k, law in enumerate(laws):
         mine = np.flatnonzero(part == k)
         alone = score_law(law, design, rows.take(mine))
         assert np.array_equal(together[mine], alone)  # the same numbers, bit for bit
     assert np.isfinite(together).all()
+    if duration is not None:
+        assert together.shape[1] > 1 and (np.diff(together, axis=1) >= 0.0).all()
 
 
 @pytest.mark.parametrize("efficiency", [0.9, 1.0])

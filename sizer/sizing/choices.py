@@ -93,13 +93,13 @@ from sizer.errors import UserError
 from sizer.laws import AUTO, LawChoice, MotionLaw, make_law
 from sizer.laws.base import Parameter
 from sizer.laws.data_spec import data_spec_text, read_data_spec
-from sizer.model.domain import Design, Transmission
+from sizer.model.domain import Design, Task, Transmission
 from sizer.numerics.bracket_search import Scores, agree, beats, from_grid
 from sizer.sizing.candidates import Candidates, MotorArrays
 from sizer.sizing.checks import evaluate_checks
 from sizer.sizing.cycle import single_task
 from sizer.sizing.energy_check import has_braking_check, has_heat_check, without_power_figures
-from sizer.sizing.move import CycleCalculator
+from sizer.sizing.move import CycleCalculator, candidates_per_chunk, grid_samples
 from sizer.sizing.results import CandidateTable, Mode, concatenate, in_groups
 from sizer.sizing.shortest_duration import laws_model, minimum_duration
 from sizer.vibration.elastic_load import ElasticLoad
@@ -333,7 +333,7 @@ def evaluate_points(family: type[MotionLaw], fixed: dict[str, float], names: lis
             for key in keys]
     together = _law_rows(laws, inverse, design, motors.take(wanted))
     if together is not None:
-        every = np.full((n, 1), -np.inf)
+        every = np.full((n, together.shape[1]), -np.inf)
         every[wanted] = together
         return every
     out: Scores | None = None
@@ -351,21 +351,42 @@ def evaluate_points(family: type[MotionLaw], fixed: dict[str, float], names: lis
 def _law_rows(laws: list[MotionLaw], part: np.ndarray, design: Design,
               candidates: Candidates) -> Scores | None:
     """The scores of several laws' candidates (row i of laws[part[i]]) sized as the rows
-    of one model (sizer.sizing.shortest_duration.laws_model: each row's T_min its law's
-    alone): minimize mode, a move rest-to-rest without a linkage or a load of the
-    position, no law that moves backwards. None elsewhere (each law scored alone)."""
+    of one model (sizer.sizing.shortest_duration.laws_model: each row's figures its law's
+    alone, bit for bit): a move rest-to-rest without a linkage or a load of the position,
+    no law that moves backwards; T_min in minimize mode, the checks at the given duration
+    otherwise. None elsewhere (each law scored alone)."""
     if len(laws) < 2 or design.transmission.linkage is not None \
             or design.load.position_dependent:
         return None
     task = single_task(design)
-    if not task.minimize:
-        return None
-    rows = laws_model(laws, part, task, candidates.drive, candidates.motors,
-                      design.limits.thermal_speed)
-    if rows is None:
-        return None
-    solution = minimum_duration(rows, design.limits)
-    return -np.where(solution.feasible, solution.duration, np.inf)[:, None]
+    n = len(candidates)
+    size = candidates_per_chunk(max(grid_samples(law) for law in laws) * task.moves_per_cycle)
+    out: Scores | None = None
+    for start in range(0, n, size):  # in chunks, as the engine sizes: bounded memory
+        at = np.arange(start, min(start + size, n))
+        chunk = candidates if len(at) == n else candidates.take(at)
+        rows = laws_model(laws, part[at], task, chunk.drive, chunk.motors,
+                          design.limits.thermal_speed)
+        if rows is None:
+            return None
+        scores = _model_scores(rows, task, design, chunk)
+        if out is None:
+            out = np.empty((n, scores.shape[1]))
+        out[at] = scores
+    return out
+
+
+def _model_scores(calculator: CycleModel, task: Task, design: Design,
+                  candidates: Candidates) -> Scores:
+    """(-T_min,) in minimize mode (-inf if infeasible), else the sorted slacks of the
+    checks at the task's duration, of the candidates of ``calculator``."""
+    if task.minimize:
+        solution = minimum_duration(calculator, design.limits)
+        return -np.where(solution.feasible, solution.duration, np.inf)[:, None]
+    metrics = calculator.evaluate(np.full(len(candidates), task.duration))
+    checks = evaluate_checks(metrics, candidates.motors, candidates.drive, design.limits,
+                             task.linear)
+    return np.sort(np.stack([c.slack for c in checks], axis=1), axis=1)
 
 
 def score_law(law: MotionLaw, design: Design, candidates: Candidates) -> Scores:
@@ -390,12 +411,7 @@ def score_law(law: MotionLaw, design: Design, candidates: Candidates) -> Scores:
     else:
         calculator = CycleCalculator(None, task, drive, motors, design.limits.thermal_speed,
                                      law=law)
-    if task.minimize:
-        solution = minimum_duration(calculator, design.limits)
-        return -np.where(solution.feasible, solution.duration, np.inf)[:, None]
-    metrics = calculator.evaluate(np.full(len(motors), task.duration))
-    checks = evaluate_checks(metrics, motors, drive, design.limits, task.linear)
-    return np.sort(np.stack([c.slack for c in checks], axis=1), axis=1)
+    return _model_scores(calculator, task, design, candidates)
 
 
 OPEN_INSET = 1e-10
