@@ -34,7 +34,7 @@ import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeVar
 
 import numpy as np
 
@@ -255,8 +255,7 @@ def cycle_laws(cycle: Cycle, law: RankedLaw | None) -> tuple[MotionLaw | None, .
         spread = iter(law.laws)
         return tuple((make_law(s.law) if s.law else next(spread)) if isinstance(s, Move)
                      else None for s in cycle.segments)
-    return tuple((make_law(s.law) if s.law else law) if isinstance(s, Move) else None
-                 for s in cycle.segments)
+    return _moves_with(cycle, law)
 
 
 def segment_laws(cycle: Cycle, law: RankedLaw | RowLaws | None
@@ -264,8 +263,14 @@ def segment_laws(cycle: Cycle, law: RankedLaw | RowLaws | None
     """:func:`cycle_laws` where several laws may stand for one over the candidates' rows
     (RowLaws, in a cycle whose moves are all rest to rest: sizer.sizing.engine.rows_cycle):
     the moves that name no law move with each row's own."""
-    if not isinstance(law, RowLaws):
-        return cycle_laws(cycle, law)
+    return _moves_with(cycle, law) if isinstance(law, RowLaws) else cycle_laws(cycle, law)
+
+
+_Law = TypeVar("_Law", MotionLaw, RowLaws)
+
+
+def _moves_with(cycle: Cycle, law: _Law | None) -> tuple[MotionLaw | _Law | None, ...]:
+    """Each move's own law, else ``law``; None for the other segments."""
     return tuple((make_law(s.law) if s.law else law) if isinstance(s, Move) else None
                  for s in cycle.segments)
 

@@ -285,6 +285,16 @@ def candidates_per_chunk(samples: int) -> int:
     return max(1, min(max(MIN_CHUNK, CHUNK_SAMPLES // samples), MAX_CHUNK_SAMPLES // samples))
 
 
+def acceleration_range(law: MotionLaw | RowLaws):
+    """(least a_N, largest a_N) of the law (each row's: RowLaws, arrays over the rows)
+    where its acceleration is linear on every piece (MotionLaw.linear_acceleration),
+    else None."""
+    if isinstance(law, RowLaws):
+        return law.acceleration_range
+    linear = law.linear_acceleration
+    return None if linear is None else (linear.lowest, linear.highest)
+
+
 @lru_cache(maxsize=256)
 def law_grid(law: MotionLaw) -> LawGrid:
     """The grid of a law (cached: laws hash by their canonical spec)."""
@@ -1415,13 +1425,8 @@ class CycleCalculator:
         return self.law.linear_peaks
 
     def _acceleration_range(self):
-        """(least a_N, largest a_N) of the law (each row's: RowLaws, arrays over the rows)
-        where its acceleration is linear on every piece (MotionLaw.linear_acceleration),
-        else None."""
-        if isinstance(self.law, RowLaws):
-            return self.law.acceleration_range
-        linear = self.law.linear_acceleration
-        return None if linear is None else (linear.lowest, linear.highest)
+        """:func:`acceleration_range` of the calculator's law."""
+        return acceleration_range(self.law)
 
     def _values(self, rows: np.ndarray, tau: np.ndarray, piece: np.ndarray, order):
         """piece_values of points of the rows ``rows`` on the law (each row's: RowLaws)."""
@@ -2501,6 +2506,8 @@ def _largest_u(calculator: CycleCalculator, who: np.ndarray, P: np.ndarray, Q: n
     # no speed term: the peak is at the law's least or largest a_N where its acceleration
     # is linear on every piece (the values of its linear peaks: CycleCalculator._exact_peaks)
     extremes = None if np.any(Q) else calculator._acceleration_range()
+    if extremes is not None:  # per candidate
+        lowest, highest = (np.broadcast_to(e, (len(calculator.motors),)) for e in extremes)
     for _ in range(NEWTON_STEPS):
         if len(index) == 0:
             break
@@ -2510,10 +2517,8 @@ def _largest_u(calculator: CycleCalculator, who: np.ndarray, P: np.ndarray, Q: n
             v, a = calculator._values(rows, peak.tau, peak.piece, (1, 2))
             value = peak.value
         else:
-            lowest, highest = (np.broadcast_to(e, (len(calculator.motors),))[rows]
-                               for e in extremes)
             scale = P * x * x
-            a = np.where(scale >= 0.0, highest, lowest)
+            a = np.where(scale >= 0.0, highest[rows], lowest[rows])
             v, value = np.zeros(len(rows)), scale * a
         excess = value - D
         # the maximizer's quadratic A u^2 + b u <= F(u), equal at x with the same slope:

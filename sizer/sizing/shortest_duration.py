@@ -116,7 +116,12 @@ from sizer.sizing.evaluation import (
     combined_metrics,
     singular_metrics,
 )
-from sizer.sizing.move import CycleCalculator, peak_queries, speed_bounds
+from sizer.sizing.move import (
+    CycleCalculator,
+    acceleration_range,
+    peak_queries,
+    speed_bounds,
+)
 
 if TYPE_CHECKING:
     from sizer.mechanics import Drive
@@ -816,10 +821,12 @@ def _acceleration_extremes(law: MotionLaw | RowLaws) -> tuple[Any, Any]:
     them), or from its pieces where its acceleration is linear on each (the same values:
     MotionLaw.linear_acceleration); of each row's law for RowLaws (arrays over the
     rows)."""
+    linear = acceleration_range(law)
+    if linear is not None:
+        lowest, highest = linear
+        return highest, -lowest
     laws = law.laws if isinstance(law, RowLaws) else (law,)
-    found = np.array([[linear.highest, -linear.lowest]
-                      if (linear := one.linear_acceleration) is not None else
-                      one.linear_peaks.maximum(np.array([1.0, -1.0]), np.zeros(2)).value
+    found = np.array([one.linear_peaks.maximum(np.array([1.0, -1.0]), np.zeros(2)).value
                       for one in laws])
     if isinstance(law, RowLaws):
         return found[law.index, 0], found[law.index, 1]
